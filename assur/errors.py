@@ -1,0 +1,77 @@
+"""Exception and warning hierarchy of the program.
+
+Every error a user can cause by writing a table derives from :class:`AssurError`; the
+command line prints such an error without a traceback and exits with status 2.
+The double bases follow scikit-learn, so ``except ValueError`` still catches table errors.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = [
+    "AssurError",
+    "AssurWarning",
+    "AssemblyError",
+    "Issue",
+    "StructureError",
+    "TableError",
+]
+
+
+class AssurError(Exception):
+    """Root of the program's exceptions."""
+
+
+@dataclass(frozen=True, slots=True)
+class Issue:
+    """One problem found in a table.
+
+    Parameters
+    ----------
+    location : str
+        Where the problem is: table, row and field, e.g. ``pairs[3] (id 'D') 'guide'``.
+    message : str
+        What was expected and what was found, as one sentence.
+    """
+
+    location: str
+    message: str
+
+    def __str__(self) -> str:
+        return f"{self.location}: {self.message}" if self.location else self.message
+
+
+class TableError(AssurError, ValueError):
+    """A user table (YAML) is unreadable or invalid; lists every problem found.
+
+    Parameters
+    ----------
+    source : str
+        The file name (or another label of where the data came from).
+    issues : list of Issue
+        All problems, in the order they were found.
+    """
+
+    def __init__(self, source: str, issues: list[Issue]) -> None:
+        self.source = source
+        self.issues = list(issues)
+        super().__init__(self._text())
+
+    def _text(self) -> str:
+        count = len(self.issues)
+        head = f"{count} problem{'s' if count != 1 else ''} in {self.source}:"
+        return "\n".join([head, *(f"  - {issue}" for issue in self.issues)])
+
+
+class StructureError(AssurError, ValueError):
+    """The chain cannot be analysed the way a command needs (e.g. kinematics of a chain
+    that is not decomposable into supported groups)."""
+
+
+class AssemblyError(AssurError, ArithmeticError):
+    """Raised only by strict scalar helpers; vectorised solvers return masks instead."""
+
+
+class AssurWarning(UserWarning):
+    """Root of the program's warnings."""

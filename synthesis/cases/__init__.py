@@ -1,0 +1,1 @@
+"""Built-in cases, one subpackage each, every one reproducing its published source."""

@@ -1,0 +1,1 @@
+"""Subcommands of the ``assur`` command line, one module each (see :mod:`synthesis.cli`)."""

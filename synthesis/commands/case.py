@@ -1,0 +1,36 @@
+"""``assur case NAME``: run one of the built-in cases.
+
+Each case is a subpackage of :mod:`synthesis.cases` whose ``cli`` module defines
+``NAME``, ``HELP``, ``add_args(parser)`` and ``run(args) -> int``; they are found
+automatically.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import pkgutil
+
+NAME = "case"
+HELP = "run a built-in case (each reproduces its published source)"
+ORDER = 40
+
+
+def add_args(parser: argparse.ArgumentParser) -> None:
+    """Add one sub-subcommand per built-in case."""
+    import synthesis.cases as package
+
+    cases = parser.add_subparsers(dest="case", metavar="CASE")
+    cases.required = True
+    for info in sorted(pkgutil.iter_modules(package.__path__), key=lambda i: i.name):
+        if not info.ispkg or info.name.startswith("_"):
+            continue
+        module = importlib.import_module(f"{package.__name__}.{info.name}.cli")
+        sub = cases.add_parser(module.NAME, help=module.HELP, description=module.HELP)
+        module.add_args(sub)
+        sub.set_defaults(case_handler=module.run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Dispatch to the chosen case."""
+    return int(args.case_handler(args))

@@ -1,0 +1,675 @@
+"""Structural schemes as pictures: the structural scheme and the formalised scheme.
+
+Two drawings of ``method.md`` §1.4 steps 12–13:
+
+* the **structural scheme** (структурная схема, fig. 1.26): links and kinematic pairs drawn
+  as the course draws them — a revolute pair (В) as a small circle, a prismatic pair (П) as
+  a slider block on its guide line, frame pairs on a hatched base, links with three pairs
+  as shaded triangles, the input link with an arrow — and every Assur group outlined and
+  labelled with its class, order and kind;
+* the **formalised structural scheme** (формализованная структурная схема, fig. 1.27): the
+  graph of groups in layering order, an arrow from the group that moves a link to the group
+  attached to it.
+
+The layout is automatic. When the chain table gives pair coordinates (``geometry:``) the
+scheme uses them; otherwise the links are placed in columns by layering level (a layered
+layout) and every pair sits between the two links it joins.
+
+Every drawn pair and group carries a ``gid`` (``pair-<id>``, ``group-<name>``), so an SVG
+file can be checked element by element.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+import os
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from assur.model import Chain, LinkId, Pair, PairId, PairType, id_key
+from assur.tables import atomic_write_bytes
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+__all__ = [
+    "SchemeLayout",
+    "draw_formalised_scheme",
+    "draw_structural_scheme",
+    "group_graph",
+    "roman",
+    "save_schemes",
+    "scheme_figure",
+    "scheme_layout",
+    "scheme_bytes",
+]
+
+_ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI", 7: "VII", 8: "VIII"}
+_KIND_STRINGS = {1: "RRR", 2: "RRP", 3: "RPR", 4: "PRP", 5: "RPP"}
+_KIND_STRINGS_RU = {1: "ВВВ", 2: "ВВП", 3: "ВПВ", 4: "ПВП", 5: "ВПП"}
+_GROUP_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b",
+                  "#e377c2", "#7f7f7f", "#bcbd22")
+_TEXT = {
+    "en": {"structural": "Structural scheme", "formalised": "Formalised structural scheme",
+           "frame": "frame 0", "class": "class", "order": "order", "kind": "kind",
+           "input": "input group", "level": "level"},
+    "ru": {"structural": "Структурная схема", "formalised": "Формализованная структурная схема",
+           "frame": "стойка 0", "class": "класс", "order": "порядок", "kind": "вид",
+           "input": "начальный механизм", "level": "уровень"},
+}
+
+
+def roman(value: Any) -> str:
+    """A group or mechanism class as a Roman numeral (``2`` → ``"II"``; texts pass through).
+
+    >>> roman(2), roman("III"), roman(None)
+    ('II', 'III', '–')
+    """
+    if value is None:
+        return "–"
+    if isinstance(value, int) and not isinstance(value, bool):
+        return _ROMAN.get(value, str(value))
+    return str(value)
+
+
+# ----------------------------------------------------------------------------- the groups
+
+
+@dataclass(frozen=True)
+class _Group:
+    """What the drawings need of one group (the input group included)."""
+
+    name: str
+    links: tuple[LinkId, ...]
+    level: int
+    group_class: Any
+    order: Any
+    kind: Any
+    is_input: bool
+    external: tuple[tuple[PairId, LinkId, LinkId], ...]
+
+
+def _groups(analysis: Any, chain: Chain) -> list[_Group]:
+    """Input groups and Assur groups of an analysis, in layering order."""
+    result: list[_Group] = []
+    for group in getattr(analysis, "input_groups", ()) or ():
+        result.append(_as_group(group, chain, is_input=True))
+    for group in getattr(analysis, "groups", ()) or ():
+        result.append(_as_group(group, chain, is_input=False))
+    seen: set[str] = set()
+    unique = []
+    for group in result:
+        if group.name not in seen:
+            seen.add(group.name)
+            unique.append(group)
+    return sorted(unique, key=lambda g: (g.level, not g.is_input))
+
+
+def _as_group(group: Any, chain: Chain, *, is_input: bool) -> _Group:
+    links = tuple(getattr(group, "links", ()) or ())
+    external = tuple(tuple(item) for item in (getattr(group, "external", ()) or ()))
+    level = getattr(group, "level", 0)
+    is_input = is_input or level == 0
+    name = getattr(group, "name", None) or f"group({','.join(map(str, links))})"
+    return _Group(name=str(name), links=links, level=int(level or 0),
+                  group_class=getattr(group, "group_class", None),
+                  order=getattr(group, "order", None), kind=getattr(group, "kind", None),
+                  is_input=is_input, external=external)  # type: ignore[arg-type]
+
+
+def _kind_text(kind: Any, lang: str) -> str:
+    if isinstance(kind, int) and not isinstance(kind, bool):
+        table = _KIND_STRINGS_RU if lang == "ru" else _KIND_STRINGS
+        code = table.get(kind)
+        return f"{kind} ({code})" if code else str(kind)
+    return "–" if kind is None else str(kind)
+
+
+def _group_caption(group: _Group, lang: str) -> str:
+    text = _TEXT[lang]
+    if group.is_input:
+        return f"{group.name}\n{text['input']}"
+    return (f"{group.name}\n{text['class']} {roman(group.group_class)}, "
+            f"{text['order']} {group.order}, {text['kind']} {_kind_text(group.kind, lang)}")
+
+
+def group_graph(chain: Chain, analysis: Any) -> list[tuple[str, str, tuple[PairId, ...]]]:
+    """Edges of the formalised structural scheme.
+
+    Parameters
+    ----------
+    chain : Chain
+    analysis : StructuralAnalysis
+        The result of :func:`assur.structure.analyse_structure`.
+
+    Returns
+    -------
+    list of (source group, target group, pairs)
+        An edge for every group that attaches to a link of another moving group, with the
+        external pairs that make the attachment. Attachments to the frame are not edges
+        (every group stands on the frame; the drawing shows the frame separately).
+    """
+    groups = _groups(analysis, chain)
+    owner = {link: group for group in groups for link in group.links}
+    edges: dict[tuple[str, str], list[PairId]] = {}
+    for group in groups:
+        for pair_id, _group_link, known in group.external:
+            parent = owner.get(known)
+            if parent is None or parent.level >= group.level:
+                continue
+            source = parent.name
+            edges.setdefault((source, group.name), []).append(pair_id)
+    return [(a, b, tuple(pairs)) for (a, b), pairs in edges.items()]
+
+
+# ----------------------------------------------------------------------------- the layout
+
+
+@dataclass(frozen=True)
+class SchemeLayout:
+    """Where the structural scheme puts things.
+
+    Attributes
+    ----------
+    pairs : dict
+        Pair id → position (complex ``x + 1j*y``).
+    directions : dict
+        P pair id → unit direction of its guide line (complex).
+    links : dict
+        Moving link id → the point where its number is written (complex).
+    from_geometry : bool
+        True when the positions are the table's coordinates, False for the layered layout.
+    """
+
+    pairs: dict[PairId, complex]
+    directions: dict[PairId, complex]
+    links: dict[LinkId, complex]
+    from_geometry: bool
+
+
+def _geometry_entry(chain: Chain, pair: Pair) -> dict[str, Any] | None:
+    geometry = chain.geometry or {}
+    for key in (pair.id, pair.origin):
+        if key is None:
+            continue
+        for candidate in (key, str(key)):
+            entry = geometry.get(candidate)
+            if isinstance(entry, dict):
+                return entry
+    return None
+
+
+def _point(value: Any) -> complex | None:
+    if isinstance(value, (list, tuple)) and len(value) == 2 and all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
+        return complex(float(value[0]), float(value[1]))
+    return None
+
+
+def _from_geometry(chain: Chain) -> tuple[dict[PairId, complex], dict[PairId, complex]] | None:
+    positions: dict[PairId, complex] = {}
+    directions: dict[PairId, complex] = {}
+    for pair in chain.pairs:
+        entry = _geometry_entry(chain, pair)
+        point = _point(entry.get("point")) if entry else None
+        if point is None:
+            return None
+        positions[pair.id] = point
+        direction = _point(entry.get("direction")) if entry else None
+        if pair.type is PairType.P and direction is not None and abs(direction) > 0:
+            directions[pair.id] = direction / abs(direction)
+    return positions, directions
+
+
+def _link_levels(chain: Chain, groups: Sequence[_Group]) -> dict[LinkId, int]:
+    levels = {link: group.level for group in groups for link in group.links}
+    for link in chain.moving_links:  # links outside any group: one column past the last
+        levels.setdefault(link, 1 + max(levels.values(), default=0))
+    return levels
+
+
+def _layered_links(chain: Chain, groups: Sequence[_Group]) -> dict[LinkId, complex]:
+    """Link nodes in columns by level; in a column, groups follow their parents' heights."""
+    levels = _link_levels(chain, groups)
+    members: dict[int, list[tuple[LinkId, ...]]] = {}
+    grouped: set[LinkId] = set()
+    for group in groups:
+        members.setdefault(group.level, []).append(group.links)
+        grouped.update(group.links)
+    for link in sorted(set(chain.moving_links) - grouped, key=id_key):
+        members.setdefault(levels[link], []).append((link,))
+    nodes: dict[LinkId, complex] = {}
+    neighbours: dict[LinkId, list[LinkId]] = {link: [] for link in chain.links}
+    for pair in chain.pairs:
+        a, b = pair.links
+        neighbours[a].append(b)
+        neighbours[b].append(a)
+    for level in sorted(members):
+        def parent_height(links: tuple[LinkId, ...]) -> float:
+            known = [nodes[n].imag for link in links for n in neighbours[link] if n in nodes]
+            return float(np.mean(known)) if known else 0.0
+
+        column = sorted(members[level], key=parent_height)
+        y = 0.0
+        for links in column:
+            count = len(links)
+            for k, link in enumerate(links):
+                angle = math.pi / 2 + 2 * math.pi * k / max(count, 1)
+                offset = 0.0 if count == 1 else 0.9 * complex(0.6 * math.cos(angle),
+                                                                math.sin(angle))
+                if count == 2:  # a dyad: link i up-left, link j down-right
+                    offset = complex(-0.45 + 0.9 * k, 0.7 - 1.4 * k)
+                nodes[link] = complex(3.2 * level, y + 1.4) + offset
+            y += 3.2 if count > 1 else 2.2
+    return nodes
+
+
+def _layered_pairs(chain: Chain, nodes: dict[LinkId, complex]) -> dict[PairId, complex]:
+    positions: dict[PairId, complex] = {}
+    frame_count: dict[LinkId, int] = {}
+    for pair in chain.pairs:
+        a, b = pair.links
+        if chain.frame in (a, b):
+            moving = b if a == chain.frame else a
+            k = frame_count.get(moving, 0)
+            frame_count[moving] = k + 1
+            positions[pair.id] = nodes[moving] + complex(0.5 * k, -1.1)
+        else:
+            shared = [p for p in chain.pairs if set(p.links) == {a, b}]
+            k = shared.index(pair)
+            mid = (nodes[a] + nodes[b]) / 2
+            normal = 1j * (nodes[b] - nodes[a]) / (abs(nodes[b] - nodes[a]) or 1.0)
+            positions[pair.id] = mid + 0.35 * k * normal
+    return positions
+
+
+def scheme_layout(chain: Chain, analysis: Any) -> SchemeLayout:
+    """Positions of pairs and links for the structural scheme.
+
+    Parameters
+    ----------
+    chain : Chain
+    analysis : StructuralAnalysis
+
+    Returns
+    -------
+    SchemeLayout
+        The table's coordinates when every pair has a ``geometry`` point, else a layered
+        layout (links in columns by layering level, a pair between the links it joins).
+    """
+    groups = _groups(analysis, chain)
+    geometric = _from_geometry(chain)
+    if geometric is not None:
+        positions, directions = geometric
+        links = {}
+        for link in chain.moving_links:
+            points = [positions[p.id] for p in chain.pairs_of(link)]
+            links[link] = complex(np.mean(points)) if points else 0j
+        from_geometry = True
+    else:
+        links = _layered_links(chain, groups)
+        positions = _layered_pairs(chain, links)
+        directions = {}
+        from_geometry = False
+    for pair in chain.pairs:
+        if pair.type is PairType.P and pair.id not in directions:
+            directions[pair.id] = _guide_direction(chain, pair, positions, links)
+    return SchemeLayout(pairs=positions, directions=directions, links=links,
+                        from_geometry=from_geometry)
+
+
+def _guide_direction(chain: Chain, pair: Pair, positions: dict[PairId, complex],
+                     links: dict[LinkId, complex]) -> complex:
+    """Guide line of a P pair without coordinates: along the carrier towards the slider."""
+    carrier = pair.guide if pair.guide is not None else pair.links[0]
+    slider = pair.other(carrier)
+    if carrier == chain.frame:
+        return 1 + 0j
+    delta = links.get(slider, 0j) - links.get(carrier, 0j)
+    if abs(delta) < 1e-9:
+        return 1 + 0j
+    return delta / abs(delta)
+
+
+# ----------------------------------------------------------------------------- drawing
+
+
+def _scale(layout: SchemeLayout) -> float:
+    points = np.array(list(layout.pairs.values()) or [0j])
+    span = max(float(np.ptp(points.real)), float(np.ptp(points.imag)), 1e-9)
+    return span / 14.0 if layout.from_geometry else 0.14
+
+
+def _ground(ax: Axes, at: complex, size: float, direction: complex = 1 + 0j) -> None:
+    """A hatched base (frame) under a point, along ``direction``."""
+    along = direction / abs(direction)
+    down = -1j * along
+    if down.imag > 0:
+        down = -down
+    base = at + down * size * 1.1
+    a, b = base - along * size * 1.6, base + along * size * 1.6
+    ax.plot([a.real, b.real], [a.imag, b.imag], color="black", lw=1.2, zorder=2)
+    for t in np.linspace(-1.4, 1.4, 6):
+        p = base + along * size * t
+        q = p + (down - along) * size * 0.5
+        ax.plot([p.real, q.real], [p.imag, q.imag], color="black", lw=0.7, zorder=2)
+    ax.plot([at.real, base.real], [at.imag, base.imag], color="black", lw=1.2, zorder=2)
+
+
+def _draw_revolute(ax: Axes, pair: Pair, at: complex, size: float, chain: Chain) -> None:
+    from matplotlib.patches import Circle
+
+    if chain.frame in pair.links:
+        _ground(ax, at, size * 1.6)
+    circle = Circle((at.real, at.imag), size * 0.55, facecolor="white", edgecolor="black",
+                    lw=1.3, zorder=6)
+    circle.set_gid(f"pair-{pair.id}")
+    ax.add_patch(circle)
+
+
+def _draw_prismatic(ax: Axes, pair: Pair, at: complex, size: float, chain: Chain,
+                    direction: complex) -> None:
+    from matplotlib.patches import Polygon
+
+    along = direction / abs(direction)
+    across = 1j * along
+    a, b = at - along * size * 3.2, at + along * size * 3.2
+    carrier = pair.guide if pair.guide is not None else pair.links[0]
+    ax.plot([a.real, b.real], [a.imag, b.imag], color="black", lw=1.6, zorder=3)
+    if carrier == chain.frame:
+        _ground(ax, at - across * size * 0.4 if across.imag > 0 else at + across * size * 0.4,
+                size * 1.6, along)
+    corners = [at + along * size * sx + across * size * sy * 0.6
+               for sx, sy in ((-1.1, -1), (1.1, -1), (1.1, 1), (-1.1, 1))]
+    block = Polygon([(c.real, c.imag) for c in corners], closed=True, facecolor="white",
+                    edgecolor="black", lw=1.3, zorder=6)
+    block.set_gid(f"pair-{pair.id}")
+    ax.add_patch(block)
+
+
+def _draw_link(ax: Axes, link: LinkId, points: list[complex], colour: str, size: float,
+               is_input: bool) -> None:
+    from matplotlib.patches import Polygon
+
+    if len(points) >= 3:
+        hull = _convex(points)
+        poly = Polygon([(p.real, p.imag) for p in hull], closed=True, facecolor=colour,
+                       alpha=0.18, edgecolor=colour, lw=2.2, zorder=4)
+        poly.set_gid(f"link-{link}")
+        ax.add_patch(poly)
+    centre = complex(np.mean(points)) if points else 0j
+    for p in points:
+        line = ax.plot([centre.real, p.real] if len(points) >= 3 else [points[0].real, p.real],
+                       [centre.imag, p.imag] if len(points) >= 3 else [points[0].imag, p.imag],
+                       color=colour, lw=2.4, zorder=4, solid_capstyle="round")
+        line[0].set_gid(f"link-{link}")
+    if is_input and len(points) >= 2:
+        from matplotlib.patches import FancyArrowPatch
+
+        arrow = FancyArrowPatch((points[0].real + size * 2.2, points[0].imag),
+                                (points[0].real, points[0].imag + size * 2.2),
+                                connectionstyle="arc3,rad=0.5", arrowstyle="-|>",
+                                mutation_scale=10, color="black", lw=1.0, zorder=7)
+        ax.add_patch(arrow)
+
+
+def _convex(points: Iterable[complex]) -> list[complex]:
+    """Convex hull (monotone chain) of a few points; collinear input returns its ends."""
+    unique = sorted({(round(p.real, 12), round(p.imag, 12)) for p in points})
+    if len(unique) <= 2:
+        return [complex(*u) for u in unique]
+
+    def turn(o: tuple[float, float], a: tuple[float, float], b: tuple[float, float]) -> float:
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+    lower: list[tuple[float, float]] = []
+    for p in unique:
+        while len(lower) >= 2 and turn(lower[-2], lower[-1], p) <= 0:
+            lower.pop()
+        lower.append(p)
+    upper: list[tuple[float, float]] = []
+    for p in reversed(unique):
+        while len(upper) >= 2 and turn(upper[-2], upper[-1], p) <= 0:
+            upper.pop()
+        upper.append(p)
+    return [complex(*u) for u in lower[:-1] + upper[:-1]]
+
+
+def _outline(points: list[complex], pad: float) -> list[complex]:
+    """A rounded outline around points: the hull of small circles about each point."""
+    ring = np.exp(1j * np.linspace(0, 2 * np.pi, 24, endpoint=False))
+    cloud = [p + pad * r for p in points for r in ring]
+    return _convex(cloud)
+
+
+def draw_structural_scheme(chain: Chain, analysis: Any, *, ax: Axes | None = None,
+                           lang: str = "en", layout: SchemeLayout | None = None) -> Axes:
+    """Draw the structural scheme (fig. 1.26 of the course).
+
+    Parameters
+    ----------
+    chain : Chain
+    analysis : StructuralAnalysis
+        The groups to outline and label.
+    ax : matplotlib Axes, optional
+        Where to draw; a new figure is made when omitted.
+    lang : {"en", "ru"}
+    layout : SchemeLayout, optional
+        Positions to use (default :func:`scheme_layout`).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    ax = ax if ax is not None else _new_axes((7.5, 6.0))
+    layout = layout or scheme_layout(chain, analysis)
+    size = _scale(layout)
+    groups = _groups(analysis, chain)
+    colour_of: dict[LinkId, str] = {}
+    input_links: set[LinkId] = set()
+    for k, group in enumerate(groups):
+        for link in group.links:
+            colour_of[link] = "black" if group.is_input else _GROUP_COLOURS[k % len(
+                _GROUP_COLOURS)]
+            if group.is_input:
+                input_links.add(link)
+    for link in chain.moving_links:
+        points = [layout.pairs[p.id] for p in chain.pairs_of(link)]
+        _draw_link(ax, link, points, colour_of.get(link, "dimgray"), size, link in input_links)
+        where = layout.links.get(link, complex(np.mean(points)) if points else 0j)
+        ax.annotate(str(link), (where.real, where.imag), xytext=(5, 5),
+                    textcoords="offset points", fontsize=11, fontweight="bold",
+                    color=colour_of.get(link, "dimgray"), zorder=8)
+    for pair in chain.pairs:
+        at = layout.pairs[pair.id]
+        if pair.type is PairType.R:
+            _draw_revolute(ax, pair, at, size, chain)
+        else:
+            _draw_prismatic(ax, pair, at, size, chain, layout.directions[pair.id])
+        ax.annotate(str(pair.origin if pair.origin is not None else pair.id),
+                    (at.real, at.imag), xytext=(-9, -12), textcoords="offset points",
+                    fontsize=7, color="#444444", zorder=8)
+    _draw_group_outlines(ax, chain, groups, layout, size, lang)
+    ax.set_aspect("equal")
+    ax.autoscale_view()
+    ax.margins(0.12)
+    ax.set_axis_off()
+    ax.set_title(_TEXT[lang]["structural"], fontsize=12)
+    return ax
+
+
+def _draw_group_outlines(ax: Axes, chain: Chain, groups: Sequence[_Group],
+                         layout: SchemeLayout, size: float, lang: str) -> None:
+    """Dashed outline around each Assur group's own pairs; captions go to a legend."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Polygon
+
+    handles = []
+    for k, group in enumerate(groups):
+        if group.is_input:
+            continue
+        colour = _GROUP_COLOURS[k % len(_GROUP_COLOURS)]
+        members = set(group.links)
+        own = {pid for pid, _g, _known in group.external}
+        points = [layout.pairs[p.id] for p in chain.pairs
+                  if p.id in own or set(p.links) <= members]
+        if not points:
+            continue
+        outline = _outline(points, size * 2.4)
+        patch = Polygon([(p.real, p.imag) for p in outline], closed=True, fill=False,
+                        edgecolor=colour, lw=1.1, ls="--", zorder=1)
+        patch.set_gid(f"group-{group.name}")
+        ax.add_patch(patch)
+        top = max(outline, key=lambda p: p.imag)
+        ax.annotate(group.name, (top.real, top.imag), xytext=(0, 2),
+                    textcoords="offset points", ha="center", va="bottom", fontsize=8,
+                    color=colour, zorder=9)
+        handles.append(Line2D([], [], color=colour, ls="--", lw=1.1,
+                              label=_group_caption(group, lang).replace("\n", ": ")))
+    if handles:
+        ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.01),
+                  fontsize=8, frameon=False, ncol=1 if len(handles) > 3 else len(handles))
+
+
+def draw_formalised_scheme(chain: Chain, analysis: Any, *, ax: Axes | None = None,
+                           lang: str = "en") -> Axes:
+    """Draw the formalised structural scheme (fig. 1.27 of the course).
+
+    Groups are boxes in columns by layering level, left to right; an arrow joins a group
+    to every group attached to one of its links, labelled with the attaching pairs. The
+    frame is a box of its own at the left, with thin arrows to every group standing on it.
+
+    Parameters
+    ----------
+    chain : Chain
+    analysis : StructuralAnalysis
+    ax : matplotlib Axes, optional
+    lang : {"en", "ru"}
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    from matplotlib.patches import FancyArrowPatch, Rectangle
+
+    ax = ax if ax is not None else _new_axes((7.5, 4.0))
+    groups = _groups(analysis, chain)
+    by_level: dict[int, list[_Group]] = {}
+    for group in groups:
+        by_level.setdefault(group.level, []).append(group)
+    tallest = max((len(m) for m in by_level.values()), default=1)
+    where: dict[str, complex] = {}
+    for level, members in sorted(by_level.items()):
+        for k, group in enumerate(members):
+            where[group.name] = complex(2.4 * level, 1.2 * (tallest - len(members)) / 2
+                                        + 1.2 * (len(members) - 1 - k) + 1.3)
+    text = _TEXT[lang]
+    colour = {g.name: ("black" if g.is_input else _GROUP_COLOURS[k % len(_GROUP_COLOURS)])
+              for k, g in enumerate(groups)}
+    left, right = -1.1, 2.4 * max(by_level, default=0) + 1.1
+    ax.add_patch(Rectangle((left, -0.25), right - left, 0.25, facecolor="#eeeeee",
+                           edgecolor="black", hatch="///", lw=1.0, zorder=1))
+    ax.text(left + 0.05, -0.5, text["frame"], ha="left", va="top", fontsize=8)
+    for group in groups:
+        at = where[group.name]
+        label = group.name if group.is_input else (
+            f"{group.name}\n{roman(group.group_class)}/{group.order}, "
+            f"{_kind_text(group.kind, lang)}")
+        node = ax.text(at.real, at.imag, label, ha="center", va="center", fontsize=9,
+                       bbox={"boxstyle": "round,pad=0.35", "fc": "white", "lw": 1.4,
+                             "ec": colour[group.name]}, zorder=5)
+        node.set_gid(f"node-{group.name}")
+        if group.is_input or any(known == chain.frame for _p, _g, known in group.external):
+            ax.plot([at.real, at.real], [0.0, at.imag - 0.3], color="#999999", lw=0.8,
+                    zorder=2)
+    for source, target, pairs in group_graph(chain, analysis):
+        a, b = where[source], where[target]
+        arrow = FancyArrowPatch((a.real, a.imag), (b.real, b.imag), arrowstyle="-|>",
+                                mutation_scale=14, color="black", lw=1.4, shrinkA=30,
+                                shrinkB=30, zorder=3)
+        arrow.set_gid(f"edge-{source}-{target}")
+        ax.add_patch(arrow)
+        mid = (a + b) / 2
+        ax.text(mid.real, mid.imag + 0.08, ", ".join(map(str, pairs)), ha="center",
+                va="bottom", fontsize=7, color="#444444", zorder=4)
+    top = 1.2 * tallest + 0.6
+    for level in sorted(by_level):
+        ax.text(2.4 * level, top, f"{text['level']} {level}", ha="center", fontsize=8,
+                color="#666666")
+    ax.set_xlim(left - 0.1, right + 0.1)
+    ax.set_ylim(-0.9, top + 0.4)
+    ax.set_axis_off()
+    ax.set_title(text["formalised"], fontsize=12)
+    return ax
+
+
+def _new_axes(size: tuple[float, float]) -> Axes:
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=size, layout="constrained").add_subplot()
+
+
+def scheme_figure(chain: Chain, analysis: Any, *, lang: str = "en",
+                  which: str = "both") -> Figure:
+    """A figure with the structural scheme, the formalised scheme, or both stacked.
+
+    Parameters
+    ----------
+    chain : Chain
+    analysis : StructuralAnalysis
+    lang : {"en", "ru"}
+    which : {"both", "structural", "formalised"}
+
+    Returns
+    -------
+    matplotlib Figure (not attached to pyplot; nothing is shown)
+    """
+    from matplotlib.figure import Figure
+
+    if which not in ("both", "structural", "formalised"):
+        raise ValueError(f"which must be 'both', 'structural' or 'formalised'; got {which!r}")
+    if which == "both":
+        fig = Figure(figsize=(8.0, 10.0), layout="constrained")
+        top, bottom = fig.subplots(2, 1, height_ratios=[2.2, 1])
+        draw_structural_scheme(chain, analysis, ax=top, lang=lang)
+        draw_formalised_scheme(chain, analysis, ax=bottom, lang=lang)
+        return fig
+    fig = Figure(figsize=(8.0, 6.0 if which == "structural" else 4.0), layout="constrained")
+    ax = fig.add_subplot()
+    draw = draw_structural_scheme if which == "structural" else draw_formalised_scheme
+    draw(chain, analysis, ax=ax, lang=lang)
+    return fig
+
+
+def scheme_bytes(chain: Chain, analysis: Any, fmt: str = "svg", *, lang: str = "en",
+                 which: str = "both", dpi: int = 110) -> bytes:
+    """The scheme picture as SVG or PNG bytes (see :func:`scheme_figure`)."""
+    if fmt not in ("svg", "png"):
+        raise ValueError(f"picture format must be 'svg' or 'png'; got {fmt!r}")
+    fig = scheme_figure(chain, analysis, lang=lang, which=which)
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format=fmt, dpi=dpi, metadata={"Date": None} if fmt == "svg" else None)
+    return buffer.getvalue()
+
+
+def save_schemes(chain: Chain, analysis: Any, path: str | os.PathLike[str], *,
+                 lang: str = "en", which: str = "both") -> Path:
+    """Write the schemes to an SVG or PNG file (by its suffix), atomically.
+
+    Raises
+    ------
+    ValueError
+        If the suffix is neither ``.svg`` nor ``.png``.
+    """
+    path = Path(path)
+    fmt = path.suffix.lower().lstrip(".")
+    if fmt not in ("svg", "png"):
+        raise ValueError(f"the picture file must end in .svg or .png; got {path.name!r}")
+    atomic_write_bytes(path, scheme_bytes(chain, analysis, fmt, lang=lang, which=which))
+    return path

@@ -21,3 +21,30 @@ __all__ = [
 # --- structure: chains, decomposition, diagnostics, identification tables (structure owner) ---
 
 # --- kinematics: group solvers, mechanism analysis, existence (kinematics owner) ---
+from assur import jets  # noqa: E402
+from assur.dyads import (  # noqa: E402
+    REASONS,
+    DyadSolution,
+    Reason,
+    solve_input,
+    solve_prp,
+    solve_rpp,
+    solve_rpr,
+    solve_rrp,
+    solve_rrr,
+)
+from assur.jets import Jet  # noqa: E402
+
+__all__ += [
+    "REASONS",
+    "DyadSolution",
+    "Jet",
+    "Reason",
+    "jets",
+    "solve_input",
+    "solve_prp",
+    "solve_rpp",
+    "solve_rpr",
+    "solve_rrp",
+    "solve_rrr",
+]

@@ -1,0 +1,447 @@
+"""Closed-form, vectorised position solvers of the input group L0 and the dyads L1–L5.
+
+Formulas and sign conventions follow ``method.md`` §2.0–2.6; ``docs/group_solvers.md`` gives
+the summary. Points are complex numbers ``x + 1j*y``; angles are radians. Every argument may
+be a number, an ndarray or a :class:`~assur.jets.Jet`; all of them broadcast together, so
+parameters shaped ``(D, 1)`` (D candidate designs) and crank angles shaped ``(N,)`` give
+results shaped ``(D, N)``. When any argument is a jet, every geometric output is a jet
+carrying exact first and second derivatives (velocity and acceleration analogs).
+
+A position where the group cannot be assembled is data, not an error: the solver returns NaN
+for the geometric outputs there, ``exists = False``, the normalised ``margin`` (negative or
+below the assigned tolerance δ) and a ``reason`` code (see :data:`REASONS`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import IntEnum
+from typing import Callable, Union
+
+import numpy as np
+
+from assur import jets as J
+from assur.jets import Jet
+
+__all__ = [
+    "REASONS",
+    "DyadSolution",
+    "Reason",
+    "solve_input",
+    "solve_prp",
+    "solve_rpp",
+    "solve_rpr",
+    "solve_rrp",
+    "solve_rrr",
+]
+
+Value = Union[Jet, np.ndarray, complex, float]
+
+#: A negative margin no larger than this is roundoff at a toggle position and is read as 0.
+ROUNDOFF = 64.0 * np.finfo(float).eps
+
+
+class Reason(IntEnum):
+    """Why a group does not assemble at a position (``DyadSolution.reason``)."""
+
+    ASSEMBLES = 0
+    STRETCHED = 1
+    FOLDED = 2
+    ROD_TOO_SHORT = 3
+    OFFSET_TOO_LARGE = 4
+    GUIDES_PARALLEL = 5
+    COINCIDENT_HINGES = 6
+    UNDEFINED_INPUT = 7
+
+
+#: Reason code → (English sentence, Russian sentence).
+REASONS: dict[int, tuple[str, str]] = {
+    Reason.ASSEMBLES: ("the group assembles", "группа собирается"),
+    Reason.STRETCHED: (
+        "hinges too far apart (chain stretched)",
+        "шарниры слишком далеко друг от друга (цепь вытянута)",
+    ),
+    Reason.FOLDED: ("hinges too close (folded)", "шарниры слишком близко (цепь сложена)"),
+    Reason.ROD_TOO_SHORT: ("rod cannot reach the guide", "шатун не достаёт до направляющей"),
+    Reason.OFFSET_TOO_LARGE: (
+        "guide offset larger than hinge distance",
+        "смещение направляющей больше расстояния между шарнирами",
+    ),
+    Reason.GUIDES_PARALLEL: ("guides parallel", "направляющие параллельны"),
+    Reason.COINCIDENT_HINGES: ("coincident hinges", "шарниры совпадают"),
+    Reason.UNDEFINED_INPUT: (
+        "input position undefined (an earlier group does not assemble)",
+        "положение входа не определено (предыдущая группа не собирается)",
+    ),
+}
+
+
+@dataclass(frozen=True)
+class DyadSolution:
+    """Positions of one group over all requested positions.
+
+    Attributes
+    ----------
+    c : ndarray or Jet, complex
+        The internal joint C (L1, L2, L4), the reference point of the internal slider (L3: the
+        point of the kulisa axis abreast of the block hinge, ``H_i + T·u(φ_i)``; L5: the
+        intersection of the two guide paths), or the crank pin A (L0).
+    origin_i, angle_i, origin_j, angle_j : ndarray or Jet
+        Local frames of links i and j (``method.md`` §2.0): a point fixed on link i with local
+        coordinate ``z`` is ``origin_i + z * exp(1j*angle_i)``. Angles are in (−π, π] where
+        the solver computes them, or the given guide angles. L0 has only link i
+        (``origin_j``, ``angle_j`` are None).
+    s_i, s_j : ndarray or Jet or None
+        Slider coordinates: L2 ``s_i = S``; L3 ``s_i = T``; L4 ``s_i = S_i``, ``s_j = S_j``;
+        L5 ``s_i = S``, ``s_j = T``; None where the kind has no such coordinate.
+    margin : ndarray, real
+        Normalised existence margin (``method.md`` §5.4): L1 ``1 − |c|``, L2 ``1 − |h|/l_j``,
+        L3 ``1 − |h|/ρ``, L4 ``|sin(θ_j − θ_i)|``, L5 ``|sin γ|``, L0 1.
+    exists : ndarray, bool
+        ``margin >= delta`` (False where the margin is NaN).
+    reason : ndarray, int8
+        0 where the group exists, else a :class:`Reason` code (the condition that fails, or
+        the nearest one when the margin is only below δ).
+
+    Notes
+    -----
+    Geometric outputs are NaN wherever ``exists`` is False. To see the geometry inside the
+    tolerance band, solve with ``delta=0`` and compare ``margin`` with δ yourself.
+    """
+
+    c: Value
+    origin_i: Value
+    angle_i: Value
+    origin_j: Value | None
+    angle_j: Value | None
+    s_i: Value | None
+    s_j: Value | None
+    margin: np.ndarray
+    exists: np.ndarray
+    reason: np.ndarray
+
+
+def _branch(sigma: float | np.ndarray) -> float | np.ndarray:
+    """Assembly sign as ±1.0; 0 (the L3 default of table 1.6) reads as +1."""
+    if np.ndim(sigma) == 0:
+        return -1.0 if sigma < 0 else 1.0
+    return np.where(np.asarray(sigma) < 0, -1.0, 1.0)
+
+
+def _shape(*args: object) -> tuple[int, ...]:
+    return np.broadcast_shapes(*(np.shape(J.value(a)) for a in args))
+
+
+def _spread(x: Value, shape: tuple[int, ...]) -> Value:
+    """``x`` with its value broadcast to ``shape`` (a fresh array)."""
+    return x + np.zeros(shape)
+
+
+def _clip_roundoff(margin: np.ndarray, radicand: Value) -> tuple[np.ndarray, Value]:
+    """Read a margin deficit within roundoff as the toggle position itself (margin 0)."""
+    tiny = (margin < 0.0) & (margin > -ROUNDOFF)
+    if tiny.any():
+        margin = np.where(tiny, 0.0, margin)
+        radicand = J.where(tiny, 0.0, radicand)
+    return margin, radicand
+
+
+def _blank(x: Value | None, bad: np.ndarray) -> Value | None:
+    """``x`` with NaN where ``bad``."""
+    if x is None:
+        return None
+    nan = complex(np.nan, np.nan) if np.iscomplexobj(J.value(x)) else np.nan
+    return J.where(bad, nan, x)
+
+
+def _finish(
+    inputs: tuple[Value, ...],
+    margin: np.ndarray,
+    delta: float | np.ndarray,
+    failure: Callable[[], np.ndarray],
+    **geometry: Value | None,
+) -> DyadSolution:
+    """Existence mask, reason codes and NaN blanking common to all solvers.
+
+    ``inputs`` are the solver's geometric arguments; ``failure()`` returns the reason code of
+    each position as if it failed; it is evaluated only when some position does fail.
+    """
+    shape = _shape(*inputs)
+    margin = np.broadcast_to(margin, shape) if np.shape(margin) != shape else margin
+    exists = margin >= delta
+    if exists.all():
+        reason = np.zeros(shape, dtype=np.int8)
+    else:
+        bad = ~exists
+        undefined = np.zeros(shape, dtype=bool)
+        for x in inputs:
+            undefined |= ~np.isfinite(J.value(x))
+        codes = np.where(undefined, Reason.UNDEFINED_INPUT, failure())
+        reason = np.where(bad, codes, Reason.ASSEMBLES).astype(np.int8)
+        geometry = {name: _blank(x, bad) for name, x in geometry.items()}
+    return DyadSolution(margin=margin, exists=exists, reason=reason, **geometry)
+
+
+def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
+    """L0, the input group: crank pin ``A = O + l·u(φ₁)`` (``method.md`` §2.6).
+
+    Parameters
+    ----------
+    o : complex
+        Crank pivot O₁.
+    length : float
+        Crank length l₁.
+    angle : float
+        Absolute crank angle φ₁ = φ₁⁰ + s·φ; pass ``Jet(angle, s, 0.0)`` for analogs.
+
+    Returns
+    -------
+    DyadSolution
+        ``c`` = crank pin, ``origin_i`` = O₁, ``angle_i`` = φ₁; margin 1 (always assembles).
+    """
+    shape = _shape(o, length, angle)
+    with np.errstate(all="ignore"):
+        pin = o + length * J.expi(angle)
+        margin = np.where(np.isfinite(J.value(pin)), 1.0, np.nan)
+    return _finish(
+        (o, length, angle), margin, 0.0, lambda: Reason.UNDEFINED_INPUT,
+        c=pin, origin_i=_spread(o, shape), angle_i=_spread(angle, shape),
+        origin_j=None, angle_j=None, s_i=None, s_j=None,
+    )
+
+
+def solve_rrr(
+    h_i: Value, h_j: Value, l_i: Value, l_j: Value, sigma: float | np.ndarray,
+    delta: float | np.ndarray = 0.0,
+) -> DyadSolution:
+    """L1, the RRR dyad (``method.md`` §2.1).
+
+    Parameters
+    ----------
+    h_i, h_j : complex
+        Outer hinges H_i, H_j.
+    l_i, l_j : float
+        Link lengths |H_i C| and |H_j C|.
+    sigma : {+1, -1}
+        Assembly variant: +1 puts C left of the directed line H_i → H_j.
+    delta : float
+        Assigned tolerance δ₁: the group exists where ``1 − |c| >= delta``.
+
+    Returns
+    -------
+    DyadSolution
+        ``c`` = C; link frames at H_i and H_j with axes towards C.
+
+    Notes
+    -----
+    With ``d = |H_j − H_i|`` the cosine of the angle at H_i is
+    ``c = (l_i² + d² − l_j²)/(2·l_i·d)``. It is evaluated through the factored forms
+    ``1 − c = (d + l_j − l_i)(l_i + l_j − d)/(2·l_i·d)`` and
+    ``1 + c = (d + l_i − l_j)(l_i + l_j + d)/(2·l_i·d)``, which keep full relative accuracy
+    near both toggle positions; ``sin = σ·sqrt((1 − c)(1 + c))`` then fixes the branch.
+    """
+    s = _branch(sigma)
+    shape = _shape(h_i, h_j, l_i, l_j, s)
+    with np.errstate(all="ignore"):
+        r = h_j - h_i
+        d = J.abs(r)
+        two_ld = 2.0 * l_i * d
+        one_minus_c = (d + l_j - l_i) * (l_i + l_j - d) / two_ld
+        one_plus_c = (d + l_i - l_j) * (l_i + l_j + d) / two_ld
+        margin = np.minimum(J.value(one_minus_c), J.value(one_plus_c))
+        margin, sin2 = _clip_roundoff(margin, one_minus_c * one_plus_c)
+        k = l_i / d
+        # C − H_i = r · (l_i/d) · (cos + j·σ·sin), cos = ((1 + c) − (1 − c))/2
+        arm_i = r * (k * 0.5 * (one_plus_c - one_minus_c) + 1j * (k * s * J.sqrt(sin2)))
+        c = h_i + arm_i
+        angle_i = J.arg(arm_i)
+        angle_j = J.arg(arm_i - r)
+
+    def failure() -> np.ndarray:
+        dv = J.value(d)
+        longest = np.maximum(J.value(l_i), J.value(l_j))
+        return np.where(dv == 0.0, Reason.COINCIDENT_HINGES,
+                        np.where(dv > longest, Reason.STRETCHED, Reason.FOLDED))
+
+    return _finish(
+        (h_i, h_j, l_i, l_j, s), margin, delta, failure, c=c, origin_i=_spread(h_i, shape),
+        angle_i=angle_i, origin_j=_spread(h_j, shape), angle_j=angle_j, s_i=None, s_j=None,
+    )
+
+
+def solve_rrp(
+    h_j: Value, a: Value, theta: Value, e: Value, l_j: Value, sigma: float | np.ndarray,
+    delta: float | np.ndarray = 0.0,
+) -> DyadSolution:
+    """L2, the RRP dyad: rod j hinged at H_j, slider i on a guide (``method.md`` §2.2).
+
+    Parameters
+    ----------
+    h_j : complex
+        Rod hinge H_j.
+    a : complex
+        Guide base point A_k.
+    theta : float
+        Guide direction θ (absolute).
+    e : float
+        Signed offset of the path of C from the guide line (along n(θ)).
+    l_j : float
+        Rod length |H_j C|.
+    sigma : {+1, -1}
+        +1 puts C ahead (along +u(θ)) of the foot of the perpendicular from H_j onto its path.
+    delta : float
+        Assigned tolerance δ₂: the group exists where ``1 − |h|/l_j >= delta``.
+
+    Returns
+    -------
+    DyadSolution
+        ``c`` = C; link i frame at C along θ, link j frame at H_j towards C; ``s_i`` = S.
+    """
+    s = _branch(sigma)
+    shape = _shape(h_j, a, theta, e, l_j, s)
+    with np.errstate(all="ignore"):
+        u = J.expi(theta)
+        w = J.conj(u) * (h_j - a) - 1j * e  # (p + j·h): H_j in the frame of the path of C
+        p, h = J.real(w), J.imag(w)
+        habs = J.abs(h)
+        margin = 1.0 - J.value(habs) / J.value(l_j)
+        margin, leg2 = _clip_roundoff(margin, (l_j - habs) * (l_j + habs))
+        slide = p + s * J.sqrt(leg2)
+        c = a + (slide + 1j * e) * u
+        angle_j = J.arg(c - h_j)
+    return _finish(
+        (h_j, a, theta, e, l_j, s), margin, delta, lambda: Reason.ROD_TOO_SHORT,
+        c=c, origin_i=c, angle_i=_spread(theta, shape), origin_j=_spread(h_j, shape),
+        angle_j=angle_j, s_i=slide, s_j=None,
+    )
+
+
+def solve_rpr(
+    h_i: Value, h_j: Value, h: Value, sigma: float | np.ndarray, delta: float | np.ndarray = 0.0,
+) -> DyadSolution:
+    """L3, the RPR dyad: kulisa i hinged at H_i, block j hinged at H_j (``method.md`` §2.3).
+
+    Parameters
+    ----------
+    h_i, h_j : complex
+        Kulisa hinge H_i (= base point A_k) and block hinge H_j.
+    h : float
+        Signed offset of the block's path from H_i (h = d + e_j), along n(φ_i).
+    sigma : {+1, 0, -1}
+        +1 (and 0, the default of table 1.6) puts the block on the positive ray of the kulisa
+        axis, T > 0.
+    delta : float
+        Assigned tolerance δ₃: the group exists where ``1 − |h|/ρ >= delta``, ρ = |H_j − H_i|.
+
+    Returns
+    -------
+    DyadSolution
+        ``c`` = ``H_i + T·u(φ_i)``; link i frame at H_i, link j frame at H_j, both along the
+        kulisa axis φ_i; ``s_i`` = T.
+
+    Notes
+    -----
+    From ``H_j − H_i = (T + j·h)·u(φ_i)``: ``φ_i = arg((H_j − H_i)·(T − j·h))``, one polar
+    angle with no branch ambiguity.
+    """
+    s = _branch(sigma)
+    shape = _shape(h_i, h_j, h, s)
+    with np.errstate(all="ignore"):
+        r = h_j - h_i
+        rho = J.abs(r)
+        habs = J.abs(h)
+        margin = 1.0 - J.value(habs) / J.value(rho)
+        margin, leg2 = _clip_roundoff(margin, (rho - habs) * (rho + habs))
+        t = s * J.sqrt(leg2)
+        turned = r * (t - 1j * h)  # = ρ²·u(φ_i)
+        angle_i = J.arg(turned)
+        c = h_i + t * turned / (rho * rho)
+
+    def failure() -> np.ndarray:
+        return np.where(J.value(rho) == 0.0, Reason.COINCIDENT_HINGES, Reason.OFFSET_TOO_LARGE)
+
+    return _finish(
+        (h_i, h_j, h, s), margin, delta, failure, c=c, origin_i=_spread(h_i, shape),
+        angle_i=angle_i, origin_j=_spread(h_j, shape), angle_j=angle_i, s_i=t, s_j=None,
+    )
+
+
+def solve_prp(
+    a: Value, theta_i: Value, e_i: Value, b: Value, theta_j: Value, e_j: Value,
+    delta: float | np.ndarray = 0.0,
+) -> DyadSolution:
+    """L4, the PRP dyad: two sliders joined by the hinge C (``method.md`` §2.4).
+
+    Parameters
+    ----------
+    a, theta_i, e_i : complex, float, float
+        Guide of slider i: base point A_k, direction θ_i, offset of C along n(θ_i).
+    b, theta_j, e_j : complex, float, float
+        Guide of slider j: base point B_k, direction θ_j, offset of C along n(θ_j).
+    delta : float
+        Assigned tolerance δ₄: the group exists where ``|sin(θ_j − θ_i)| >= delta``.
+
+    Returns
+    -------
+    DyadSolution
+        ``c`` = C; both link frames at C along their guides; ``s_i`` = S_i, ``s_j`` = S_j.
+
+    Notes
+    -----
+    ``sin(θ_j − θ_i)`` is taken from the angle difference, not from the cross product of the
+    two unit vectors, so nearly parallel guides keep full relative accuracy in the divisor.
+    """
+    shape = _shape(a, theta_i, e_i, b, theta_j, e_j)
+    with np.errstate(all="ignore"):
+        u_i, u_j = J.expi(theta_i), J.expi(theta_j)
+        sin_ij = J.imag(J.expi(theta_j - theta_i))
+        r = (b + 1j * e_j * u_j) - (a + 1j * e_i * u_i)
+        slide_i = J.cross(r, u_j) / sin_ij
+        slide_j = J.cross(r, u_i) / sin_ij
+        c = a + (slide_i + 1j * e_i) * u_i
+        margin = np.where(np.isfinite(J.value(c)), np.abs(J.value(sin_ij)), np.nan)
+    return _finish(
+        (a, theta_i, e_i, b, theta_j, e_j), margin, delta, lambda: Reason.GUIDES_PARALLEL,
+        c=c, origin_i=c, angle_i=_spread(theta_i, shape), origin_j=c,
+        angle_j=_spread(theta_j, shape), s_i=slide_i, s_j=slide_j,
+    )
+
+
+def solve_rpp(
+    h_j: Value, gamma: Value, a: Value, theta_s: Value, e: Value,
+    delta: float | np.ndarray = 0.0,
+) -> DyadSolution:
+    """L5, the RPP dyad: link j hinged at H_j carries a guide for slider i (``method.md`` §2.5).
+
+    Parameters
+    ----------
+    h_j : complex
+        Hinge H_j of link j; its guide passes through H_j with direction θ_T = θ_S + γ.
+    gamma : float
+        Constant angle γ between the guides.
+    a, theta_s, e : complex, float, float
+        Guide of slider i: base point A_k, direction θ_S, offset of C along n(θ_S).
+    delta : float
+        Assigned tolerance δ₅: the group exists where ``|sin γ| >= delta``.
+
+    Returns
+    -------
+    DyadSolution
+        ``c`` = C (``H_j + T·u(θ_T)``); link i frame at C along θ_S, link j frame at H_j along
+        θ_T; ``s_i`` = S, ``s_j`` = T.
+    """
+    shape = _shape(h_j, gamma, a, theta_s, e)
+    with np.errstate(all="ignore"):
+        theta_t = theta_s + gamma
+        u_s, u_t = J.expi(theta_s), J.expi(theta_t)
+        minus_sin = -J.imag(J.expi(gamma))  # cross(u_T, u_S) = −sin γ
+        r = a + 1j * e * u_s - h_j
+        t = J.cross(r, u_s) / minus_sin
+        slide = J.cross(r, u_t) / minus_sin
+        c = h_j + t * u_t
+        margin = np.where(np.isfinite(J.value(c)), np.abs(J.value(minus_sin)), np.nan)
+    return _finish(
+        (h_j, gamma, a, theta_s, e), margin, delta, lambda: Reason.GUIDES_PARALLEL,
+        c=c, origin_i=c, angle_i=_spread(theta_s, shape), origin_j=_spread(h_j, shape),
+        angle_j=_spread(theta_t, shape), s_i=slide, s_j=t,
+    )

@@ -1,0 +1,509 @@
+"""Chain tables and DGTU identification tables (YAML) → :class:`~assur.model.Chain`.
+
+Two forms are read (see ``docs/tables.md``):
+
+* the **chain form** (``structure.md`` §2.1): a ``mechanism:`` mapping with ``frame``,
+  ``links``, ``pairs``, ``inputs`` and an optional ``geometry``; it may also carry a
+  ``structure_identification:`` table, which is then checked against the chain;
+* the **identification form** (``method.md`` §3.3): only ``structure_identification:``
+  rows (``L``, ``i_minus_1``, ``j_minus_1``, ``i``, ``j``, …); the chain is rebuilt from
+  the rows: every row names its group's kind, so the pair types and the guide carriers
+  follow from the kind (``method.md`` §2.0).
+
+``general:``, ``geometry:`` and the rows' ``params:`` are kept untouched for the kinematic
+model. Every problem of a table is collected and raised as one
+:class:`~assur.errors.TableError`.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import replace
+from typing import Any
+
+from assur.model import Chain, Drive, LinkId, Pair, PairId, PairType, id_key
+from assur.tables import MISSING, Node, TableReader, describe, normalise_id
+
+__all__ = [
+    "IDENTIFICATION_FIELDS",
+    "chain_from_dict",
+    "load_chain",
+    "pair_label",
+    "recentre_hinge",
+]
+
+_TOP_CHAIN = ("schema_version", "mechanism", "general", "geometry", "structure_identification",
+              "n_moving_links", "p5", "p4", "W", "N_Q", "layering_order")
+_TOP_TABLE = ("schema_version", "mechanism", "name", "frame", "general", "geometry",
+              "structure_identification", "n_moving_links", "p5", "p4", "W", "N_Q",
+              "layering_order")
+_MECHANISM = ("name", "frame", "links", "pairs", "inputs", "geometry")
+_PAIR = ("id", "type", "links", "guide", "name")
+_LINK = ("id", "name")
+_INPUT = ("link", "pair")
+IDENTIFICATION_FIELDS = ("L", "seq", "i_minus_1", "j_minus_1", "i", "j", "i_plus_1",
+                         "j_plus_1", "variant", "out_code", "params")
+_CLAIMS = ("n_moving_links", "p5", "p4", "W", "N_Q")
+
+
+def load_chain(path: str | os.PathLike[str]) -> Chain:
+    """Read a chain table or an identification table.
+
+    Parameters
+    ----------
+    path : path-like
+        The YAML file.
+
+    Returns
+    -------
+    Chain
+
+    Raises
+    ------
+    TableError
+        Listing every problem of the file (file, table, row, field, expected, found).
+    """
+    reader = TableReader.from_path(path)
+    return _read(reader)
+
+
+def chain_from_dict(data: Any, source: str = "<data>") -> Chain:
+    """Build a chain from already parsed table data (see :func:`load_chain`)."""
+    return _read(TableReader.from_data(data, source))
+
+
+def pair_label(a: LinkId, b: LinkId, frame: LinkId) -> str:
+    """Name of a pair rebuilt from an identification table: the two link numbers.
+
+    The frame is written last, other pairs in increasing order, as in ``method.md`` §3.5
+    (``"3-0"``, ``"2-6"``); the input pair is written ``"0-1"`` by the caller.
+    """
+    if a == frame:
+        a, b = b, a
+    elif b != frame and id_key(b) < id_key(a):
+        a, b = b, a
+    return f"{a}-{b}"
+
+
+def _read(reader: TableReader) -> Chain:
+    data = reader.data
+    if isinstance(data, dict) and isinstance(data.get("mechanism"), dict):
+        chain = _read_chain_form(reader)
+    elif isinstance(data, dict) and "structure_identification" in data:
+        chain = _read_table_form(reader)
+    else:
+        reader.root(allowed=None)
+        if isinstance(data, dict):
+            reader.add("", "expected a 'mechanism:' table (chain form) or a "
+                           "'structure_identification:' table; found neither")
+        reader.raise_if_any()
+        raise AssertionError("unreachable")  # pragma: no cover
+    reader.raise_if_any()
+    return chain
+
+
+# ----------------------------------------------------------------------------- chain form
+
+
+def _read_chain_form(reader: TableReader) -> Chain:
+    top = reader.root(allowed=_TOP_CHAIN)
+    mech = top.child("mechanism", allowed=_MECHANISM)
+    assert mech is not None
+    name = mech.get("name", kind="str", required=False, default=None)
+    frame = mech.get("frame", kind="id", required=False, default=0)
+    names: dict[LinkId, str] = {}
+    links = _read_links(mech, names)
+    raw_pairs = list(_read_pairs(mech))
+    known = set(links) if links is not None else None
+    if links is None:
+        links = _links_from_pairs(frame, raw_pairs)
+    elif frame is not MISSING and frame not in known:
+        reader.add("mechanism 'frame'", f"the frame {frame!r} is not in the links table "
+                                        f"({_list(links)})")
+    inputs = _read_inputs(mech)
+    _check_pairs(reader, raw_pairs, set(links))
+    _check_inputs(reader, inputs, set(links), raw_pairs)
+    geometry = _geometry(reader, top, mech)
+    general = top.get("general", kind="mapping", required=False, default=None)
+    rows = _read_rows(top, required=False)
+    claims = _read_claims(top)
+    if reader.issues:
+        return _empty(reader.source)
+    input_links = [d.link for d in inputs if d.link is not None]
+    pairs = _normalise(raw_pairs, frame, input_links)
+    rows_t = tuple(row for row, _ in rows) if rows else None
+    return Chain(name=name or _stem(reader.source), frame=frame, links=tuple(links),
+                 pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,
+                 source=reader.source, group_params=_group_params(rows), names=names,
+                 identification=rows_t, claims=claims)
+
+
+def _read_links(mech: Node, names: dict[LinkId, str]) -> list[LinkId] | None:
+    if not mech.has("links"):
+        return None
+    value = mech.get("links", kind="list")
+    if value is MISSING:
+        return []
+    links: list[LinkId] = []
+    seen: dict[LinkId, int] = {}
+    for index, item in enumerate(value):
+        where = f"mechanism.links[{index}]"
+        if isinstance(item, dict):
+            row = Node(mech.reader, where, item, _LINK)
+            link = row.get("id", kind="id")
+            name = row.get("name", kind="str", required=False, default=None)
+            if link is not MISSING and name:
+                names[link] = name
+        elif _is_id(item):
+            link = normalise_id(item)
+        else:
+            mech.reader.add(where, f"expected a link id (a whole number or a text) or a row "
+                                   f"{{id: ..., name: ...}}; found {describe(item)}")
+            continue
+        if link is MISSING:
+            continue
+        if link in seen:
+            mech.reader.add(where, f"duplicate link id {link!r} (also links[{seen[link]}])")
+            continue
+        seen[link] = index
+        links.append(link)
+    return links
+
+
+class _RawPair:
+    """A pair as written by the user (a compound hinge may list more than two links)."""
+
+    __slots__ = ("id", "type", "links", "guide", "where")
+
+    def __init__(self, pid: PairId, ptype: PairType, links: list[LinkId], guide: LinkId | None,
+                 where: str) -> None:
+        self.id, self.type, self.links, self.guide, self.where = pid, ptype, links, guide, where
+
+
+def _read_pairs(mech: Node) -> list[_RawPair]:
+    pairs: list[_RawPair] = []
+    seen: dict[PairId, str] = {}
+    label = (lambda row: f"id {row['id']!r}" if "id" in row else None)
+    for row in mech.rows("pairs", _PAIR, label=label):
+        pid = row.get("id", kind="id")
+        ptype = row.choice("type", ["R", "P"])
+        links = row.get("links", kind="list")
+        guide = row.get("guide", kind="id", required=False, default=None)
+        ok = True
+        if isinstance(links, list):
+            bad = [item for item in links if not _is_id(item)]
+            if bad:
+                row.reader.add(row._where("links"), f"expected link ids; found "
+                                                    f"{describe(bad[0])}")
+                ok = False
+            elif len(links) < 2:
+                row.reader.add(row._where("links"), f"a pair joins two links; found "
+                                                    f"{describe(links)}")
+                ok = False
+            else:
+                links = [normalise_id(item) for item in links]
+                if len(set(links)) != len(links):
+                    row.reader.add(row._where("links"), f"a pair must join distinct links "
+                                                        f"(a self pair); found {links}")
+                    ok = False
+                elif len(links) > 2 and ptype == "P":
+                    row.reader.add(row._where("links"), "only a revolute hinge may join more "
+                                                        f"than two links; found {links}")
+                    ok = False
+        if ptype == "P" and guide is None and not row.has("guide"):
+            row.reader.add(row._where("guide"), "a P pair needs the link that carries its "
+                                                "guide; this field is missing")
+            ok = False
+        elif ptype == "R" and guide is not None:
+            row.reader.add(row._where("guide"), f"only a P pair has a guide; found "
+                                                f"{describe(guide)} on an R pair")
+            ok = False
+        elif ptype == "P" and isinstance(links, list) and guide not in (MISSING, None) and ok \
+                and guide not in links:
+            row.reader.add(row._where("guide"), f"the guide carrier must be one of the pair's "
+                                                f"links {links}; found {describe(guide)}")
+            ok = False
+        if pid is not MISSING:
+            if pid in seen:
+                row.reader.add(row._where("id"), f"duplicate pair id {pid!r} (also {seen[pid]})")
+                ok = False
+            else:
+                seen[pid] = row.location
+        if ok and MISSING not in (pid, ptype, links, guide):
+            pairs.append(_RawPair(pid, PairType(ptype), links, guide, row.location))
+    return pairs
+
+
+def _read_inputs(mech: Node) -> list[Drive]:
+    value = mech.get("inputs", kind="list")
+    if value is MISSING:
+        return []
+    drives: list[Drive] = []
+    for index, item in enumerate(value):
+        where = f"mechanism.inputs[{index}]"
+        if _is_id(item):
+            drives.append(Drive(link=normalise_id(item)))
+            continue
+        if not isinstance(item, dict):
+            mech.reader.add(where, f"expected a driven link id or a row {{link: ...}} / "
+                                   f"{{pair: ...}}; found {describe(item)}")
+            continue
+        row = Node(mech.reader, where, item, _INPUT)
+        link = row.get("link", kind="id", required=False, default=None)
+        pair = row.get("pair", kind="id", required=False, default=None)
+        if link is None and pair is None and not item.keys() - set(_INPUT):
+            mech.reader.add(where, "an input names a driven 'link' or a driven 'pair'; "
+                                   "found neither")
+        if MISSING not in (link, pair) and (link is not None or pair is not None):
+            drives.append(Drive(link=link, pair=pair))
+    return drives
+
+
+def _check_pairs(reader: TableReader, pairs: list[_RawPair], links: set[LinkId]) -> None:
+    for pair in pairs:
+        for link in pair.links:
+            if link not in links:
+                reader.add(f"{pair.where} 'links'", f"link {link!r} is not in the links table "
+                                                    f"({_list(links)})")
+
+
+def _check_inputs(reader: TableReader, inputs: list[Drive], links: set[LinkId],
+                  pairs: list[_RawPair]) -> None:
+    by_id = {pair.id: pair for pair in pairs}
+    seen: set[Any] = set()
+    for index, drive in enumerate(inputs):
+        where = f"mechanism.inputs[{index}]"
+        if drive.link is not None and drive.link not in links:
+            reader.add(f"{where} 'link'", f"link {drive.link!r} is not in the links table "
+                                          f"({_list(links)})")
+        if drive.pair is not None:
+            pair = by_id.get(drive.pair)
+            if pair is None:
+                reader.add(f"{where} 'pair'", f"there is no pair {drive.pair!r}; pairs: "
+                                              f"{_list(by_id)}")
+            elif len(pair.links) != 2:
+                reader.add(f"{where} 'pair'", f"a driven pair must join exactly two links; "
+                                              f"{drive.pair!r} joins {pair.links}")
+            elif drive.link is not None and drive.link not in pair.links:
+                reader.add(f"{where} 'link'", f"link {drive.link!r} is not one of the links "
+                                              f"{pair.links} of pair {drive.pair!r}")
+        key = (drive.link, drive.pair)
+        if key in seen:
+            reader.add(where, f"this input is given twice ({describe(drive.link or drive.pair)})")
+        seen.add(key)
+
+
+def _normalise(raw: list[_RawPair], frame: LinkId, input_links: list[LinkId]) -> list[Pair]:
+    pairs: list[Pair] = []
+    for item in raw:
+        if len(item.links) == 2:
+            pairs.append(Pair(item.id, item.type, (item.links[0], item.links[1]), item.guide,
+                              item.id))
+        else:
+            centre = next((c for c in [frame, *input_links] if c in item.links), item.links[0])
+            pairs.extend(recentre_hinge(item.id, item.links, centre))
+    return pairs
+
+
+def recentre_hinge(origin: PairId, links: list[LinkId] | tuple[LinkId, ...],
+                   centre: LinkId) -> list[Pair]:
+    """Split a hinge shared by k links into k − 1 binary R pairs around ``centre``.
+
+    The pairs are named ``"<origin>/<link>"`` and keep ``origin`` (``structure.md`` §2.2).
+    """
+    return [Pair(f"{origin}/{link}", PairType.R, (centre, link), None, origin)
+            for link in links if link != centre]
+
+
+def _links_from_pairs(frame: Any, pairs: list[_RawPair]) -> list[LinkId]:
+    links: list[LinkId] = [] if frame is MISSING else [frame]
+    for pair in pairs:
+        links.extend(link for link in pair.links if link not in links)
+    return links
+
+
+def _geometry(reader: TableReader, top: Node, mech: Node | None) -> dict[str, Any] | None:
+    inner = mech.get("geometry", kind="mapping", required=False, default=None) if mech else None
+    outer = top.get("geometry", kind="mapping", required=False, default=None)
+    if isinstance(inner, dict) and isinstance(outer, dict):
+        reader.add("geometry", "give the geometry once, either inside 'mechanism:' or at the "
+                               "top of the file; found both")
+    return inner if isinstance(inner, dict) else (outer if isinstance(outer, dict) else None)
+
+
+def _read_claims(top: Node) -> dict[str, Any]:
+    claims = {}
+    for key in _CLAIMS:
+        value = top.get(key, kind="int", required=False, default=None)
+        if isinstance(value, int):
+            claims[key] = value
+    return claims
+
+
+# ----------------------------------------------------------------------- identification form
+
+
+def _row_label(row: dict[str, Any]) -> str | None:
+    parts = []
+    if "L" in row:
+        parts.append(f"L{row['L']}")
+    links = [str(row[key]) for key in ("i", "j") if row.get(key) is not None]
+    if links:
+        parts.append(f"links {', '.join(links)}")
+    return " ".join(parts) or None
+
+
+def _read_rows(top: Node, *, required: bool) -> list[tuple[dict[str, Any], str]]:
+    """Read and validate identification rows; returns (clean row, location) pairs."""
+    rows: list[tuple[dict[str, Any], str]] = []
+    owner: dict[LinkId, str] = {}
+    for row in top.rows("structure_identification", IDENTIFICATION_FIELDS, required=required,
+                        label=_row_label):
+        kind = row.get("L", kind="int", check=lambda v: None if 0 <= v <= 5 else
+                       "the group kind L must be 0 (input group) to 5")
+        clean: dict[str, Any] = {"L": kind}
+        dyad = kind is not MISSING and kind != 0
+        for key in ("i", "i_minus_1"):
+            clean[key] = row.get(key, kind="id")
+        for key in ("j", "j_minus_1"):
+            clean[key] = row.get(key, kind="id", nullable=True)
+            if kind == 0 and clean[key] not in (None, MISSING):
+                row.reader.add(row._where(key), f"an input group (L = 0) has no link j; "
+                                                f"expected null (the dash); found "
+                                                f"{describe(clean[key])}")
+            elif dyad and clean[key] is None:
+                row.reader.add(row._where(key), f"a dyad (L = {kind}) needs this link; found "
+                                                f"nothing (null)")
+        for key in ("i_plus_1", "j_plus_1"):
+            clean[key] = row.get(key, kind="id", required=False, default=None, nullable=True)
+        clean["seq"] = row.get("seq", kind="int", required=False, default=None, nullable=True)
+        clean["variant"] = row.get("variant", kind="int", required=False, default=None,
+                                   nullable=True)
+        code = row.get("out_code", required=False, default=None, nullable=True)
+        clean["out_code"] = None if code is None else str(code)
+        clean["params"] = row.get("params", kind="mapping", required=False, default=None)
+        if clean["i"] is not MISSING and clean["i"] == clean["j"]:
+            row.reader.add(row._where("j"), f"i and j must be two different links; both are "
+                                            f"{clean['i']!r}")
+        for key in ("i", "j"):
+            link = clean[key]
+            if link in (None, MISSING):
+                continue
+            if link in owner:
+                row.reader.add(row._where(key), f"link {link!r} is already a link of "
+                                                f"{owner[link]}; a link belongs to one group")
+            else:
+                owner[link] = row.location
+        rows.append((clean, row.location))
+    for clean, location in rows:
+        for key, partner in (("i_minus_1", "i"), ("j_minus_1", "j")):
+            if clean[key] not in (None, MISSING) and clean[key] == clean[partner]:
+                top.reader.add(f"{location} {key!r}", f"a link cannot be joined to itself; "
+                                                      f"found {clean[key]!r} for both "
+                                                      f"{partner!r} and {key!r}")
+    return rows
+
+
+def _read_table_form(reader: TableReader) -> Chain:
+    top = reader.root(allowed=_TOP_TABLE)
+    name = top.get("mechanism", kind="str", required=False, default=None)
+    name = top.get("name", kind="str", required=False, default=name)
+    frame = top.get("frame", kind="id", required=False, default=0)
+    rows = _read_rows(top, required=True)
+    geometry = _geometry(reader, top, None)
+    general = top.get("general", kind="mapping", required=False, default=None)
+    claims = _read_claims(top)
+    if not rows and not reader.issues:
+        reader.add("structure_identification", "the table has no rows")
+    members = {frame} | {row[k] for row, _ in rows for k in ("i", "j") if row[k] is not None}
+    for row, location in rows:
+        for key in ("i_minus_1", "j_minus_1", "i_plus_1", "j_plus_1"):
+            link = row.get(key)
+            if link not in (None, MISSING) and link not in members:
+                reader.add(f"{location} {key!r}", f"link {link!r} is neither the frame "
+                                                  f"{frame!r} nor the i or j of any row")
+    if reader.issues:
+        return _empty(reader.source)
+    links = [frame, *sorted((m for m in members if m != frame), key=id_key)]
+    pairs: list[Pair] = []
+    inputs: list[Drive] = []
+    for row, _ in rows:
+        pairs.extend(_group_pairs(row, frame))
+        if row["L"] == 0:
+            inputs.append(Drive(link=row["i"]))
+    pairs = _unique_ids(pairs)
+    return Chain(name=name or _stem(reader.source), frame=frame, links=tuple(links),
+                 pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,
+                 source=reader.source, group_params=_group_params(rows),
+                 identification=tuple(row for row, _ in rows), claims=claims)
+
+
+# Pair types (external of i, internal, external of j) and guide carriers per kind L1..L5
+# (method.md §2.0): "prev" = the known link i−1 / j−1, "i"/"j" = the group's own link.
+_KIND_PAIRS: dict[int, tuple[tuple[str, str | None], tuple[str, str | None],
+                             tuple[str, str | None]]] = {
+    1: (("R", None), ("R", None), ("R", None)),
+    2: (("P", "prev"), ("R", None), ("R", None)),
+    3: (("R", None), ("P", "i"), ("R", None)),
+    4: (("P", "prev"), ("R", None), ("P", "prev")),
+    5: (("P", "prev"), ("P", "j"), ("R", None)),
+}
+
+
+def _group_pairs(row: dict[str, Any], frame: LinkId) -> list[Pair]:
+    i, j, i1, j1 = row["i"], row["j"], row["i_minus_1"], row["j_minus_1"]
+    if row["L"] == 0:
+        return [Pair(f"{i1}-{i}", PairType.R, (i1, i), None, f"{i1}-{i}")]
+    ext_i, internal, ext_j = _KIND_PAIRS[row["L"]]
+    roles = {"i": i, "j": j}
+    out = []
+    for (ptype, carrier), (a, b), prev in ((ext_i, (i, i1), i1), (internal, (i, j), None),
+                                           (ext_j, (j, j1), j1)):
+        guide = None if carrier is None else (prev if carrier == "prev" else roles[carrier])
+        label = pair_label(a, b, frame)
+        out.append(Pair(label, PairType(ptype), (b, a) if b == i1 or b == j1 else (a, b),
+                        guide, label))
+    return out
+
+
+def _unique_ids(pairs: list[Pair]) -> list[Pair]:
+    count: dict[PairId, int] = {}
+    out = []
+    for pair in pairs:
+        n = count.get(pair.id, 0)
+        count[pair.id] = n + 1
+        if n:
+            label = f"{pair.id}#{n + 1}"
+            pair = replace(pair, id=label, origin=label)
+        out.append(pair)
+    return out
+
+
+def _group_params(rows: list[tuple[dict[str, Any], str]] | None
+                  ) -> dict[tuple[LinkId, ...], dict[str, Any]]:
+    params: dict[tuple[LinkId, ...], dict[str, Any]] = {}
+    for row, _ in rows or []:
+        if row.get("params") is not None:
+            key = (row["i"],) if row["L"] == 0 else (row["i"], row["j"])
+            params[key] = row["params"]
+    return params
+
+
+# ------------------------------------------------------------------------------ helpers
+
+
+def _is_id(value: Any) -> bool:
+    return (isinstance(value, int) and not isinstance(value, bool)) or (
+        isinstance(value, str) and value.strip() != "")
+
+
+def _list(items: Any) -> str:
+    return ", ".join(repr(item) for item in sorted(items, key=id_key))
+
+
+def _stem(source: str) -> str:
+    return os.path.splitext(os.path.basename(source))[0] or source
+
+
+def _empty(source: str) -> Chain:
+    return Chain(name="", frame=0, links=(), pairs=(), inputs=(), source=source)

@@ -1,0 +1,275 @@
+"""Classification of accepted groups: class, order, kind, name and DGTU roles.
+
+Rules of ``structure.md`` §4.5 (dyad kinds L1–L5, triads of class III, class IV groups with
+a four-sided contour, higher groups reported as unsupported) and of §5.4 / ``method.md``
+§2.0 for the roles i and j of a dyad.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from itertools import combinations
+from typing import Any
+
+import networkx as nx
+
+from assur.decomposition import BodyGraph, RawGroup
+from assur.diagnostics import Diagnostic, diagnostic
+from assur.model import LinkId, PairId, id_key
+
+__all__ = ["DYAD_NAMES", "AssurGroup", "classify", "input_group", "roman", "subscript"]
+
+DYAD_NAMES = {1: "RRR", 2: "RRP", 3: "RPR", 4: "PRP", 5: "RPP"}
+_KIND = {("R", "RR"): 1, ("R", "PR"): 2, ("P", "RR"): 3, ("R", "PP"): 4, ("P", "PR"): 5}
+_SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def roman(number: int) -> str:
+    """Roman numeral of a group class (1 → I, 4 → IV)."""
+    out = ""
+    for value, mark in ((10, "X"), (9, "IX"), (5, "V"), (4, "IV"), (1, "I")):
+        while number >= value:
+            out, number = out + mark, number - value
+    return out
+
+
+def subscript(number: int) -> str:
+    """Subscript digits, e.g. ``subscript(4) == '₄'``."""
+    return str(number).translate(_SUB)
+
+
+@dataclass(frozen=True)
+class AssurGroup:
+    """An input group (class I) or an Assur group.
+
+    Parameters
+    ----------
+    links : tuple
+        The group's links (all members of a frozen actuator included), sorted.
+    group_class : int
+        1 for input groups, 2 for dyads, 3 for triads, 4, … (Artobolevsky's numbering).
+    order : int
+        Number of external pairs.
+    kind : int or None
+        1–5 for dyads (L1 RRR, L2 RRP, L3 RPR, L4 PRP, L5 RPP), None otherwise.
+    name : str
+        ``"RRR"`` … for dyads, a signature such as ``"III(base 3; leashes R–R, R–R, R–P)"``
+        for triads and class IV groups, ``"L0"`` for input groups.
+    level : int
+        Layering level: 0 for input groups.
+    external : tuple of (pair, group link, known link)
+        The external pairs and the known links they attach to.
+    internal : tuple
+        The internal pairs.
+    i, j : link id or None
+        DGTU roles of a dyad (``method.md`` §2.0); for an input group i is the input link.
+        For a frozen composite the role names the member that carries the external pair.
+    pair_i, pair_j, pair_c : pair id or None
+        External pair of i, external pair of j, internal pair (dyads); for an input group
+        ``pair_i`` is the driven pair.
+    i_minus_1, j_minus_1 : link id or None
+        The known links that i and j attach to.
+    composite : tuple or None
+        Members of a frozen actuator composite link in the group.
+    issues : tuple of Diagnostic
+        Findings about this group (truss, prismatic loop, unsupported …).
+    """
+
+    links: tuple[LinkId, ...]
+    group_class: int
+    order: int
+    kind: int | None
+    name: str
+    level: int
+    external: tuple[tuple[PairId, LinkId, LinkId], ...]
+    internal: tuple[PairId, ...]
+    i: LinkId | None = None
+    j: LinkId | None = None
+    pair_i: PairId | None = None
+    pair_j: PairId | None = None
+    pair_c: PairId | None = None
+    i_minus_1: LinkId | None = None
+    j_minus_1: LinkId | None = None
+    composite: tuple[LinkId, ...] | None = None
+    issues: tuple[Diagnostic, ...] = ()
+    parts: tuple[tuple[LinkId, ...], ...] = ()
+
+    @property
+    def is_dyad(self) -> bool:
+        """Whether this is a dyad of one of the five kinds."""
+        return self.kind is not None
+
+    @property
+    def label(self) -> str:
+        """Artobolevsky notation, e.g. ``II₁(2,3)``, ``I(0,1)``, ``II₁(1,{2,3})``."""
+        if self.group_class == 1:
+            return f"I({self.i_minus_1},{self.i})"
+        parts = ",".join(str(p[0]) if len(p) == 1 else "{" + ",".join(map(str, p)) + "}"
+                         for p in self.parts)
+        kind = subscript(self.kind) if self.kind else ""
+        return f"{roman(self.group_class)}{kind}({parts})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready form (the keys of the ``--json`` output)."""
+        return {"links": list(self.links), "class": self.group_class, "order": self.order,
+                "kind": self.kind, "name": self.name, "label": self.label, "level": self.level,
+                "i": self.i, "j": self.j, "i_minus_1": self.i_minus_1,
+                "j_minus_1": self.j_minus_1, "pair_i": self.pair_i, "pair_j": self.pair_j,
+                "pair_c": self.pair_c,
+                "external": [{"pair": p, "link": g, "known": k} for p, g, k in self.external],
+                "internal": list(self.internal),
+                "composite": list(self.composite) if self.composite else None}
+
+
+def input_group(link: LinkId, pair: PairId | None, frame: LinkId) -> AssurGroup:
+    """The input group L0: the frame and one driven link."""
+    external = ((pair, link, frame),) if pair is not None else ()
+    return AssurGroup(links=(link,), group_class=1, order=1, kind=None, name="L0", level=0,
+                      external=external, internal=(), i=link, pair_i=pair, i_minus_1=frame,
+                      parts=((link,),))
+
+
+def classify(raw: RawGroup, graph: BodyGraph) -> AssurGroup:
+    """Class, order, kind, name and roles of an accepted group."""
+    chain = graph.chain
+    bodies = raw.bodies
+    ext_real = tuple(_real_external(graph, pid, body) for pid, body, _ in raw.external)
+    composite = next((graph.members[b] for b in bodies if len(graph.members[b]) > 1), None)
+    common: dict[str, Any] = dict(
+        links=tuple(graph.links(bodies)), order=len(raw.external), level=raw.level,
+        external=ext_real, internal=tuple(raw.internal), composite=composite,
+        parts=tuple(graph.members[b] for b in bodies))
+    issues: list[Diagnostic] = []
+    truss = _truss(raw, graph)
+    if truss is not None:
+        issues.append(truss)
+    knowns = {k for _, _, k in ext_real}
+    if len(knowns) == 1 and composite is None and len(ext_real) >= 2:
+        issues.append(diagnostic("W_GROUP_ON_ONE_LINK", common["links"],
+                                 [p for p, _, _ in ext_real], base=next(iter(knowns))))
+    if len(bodies) == 2 and len(raw.external) == 2 and len(raw.internal) == 1:
+        return _dyad(raw, graph, common, issues)
+    internal = nx.MultiGraph()
+    internal.add_nodes_from(bodies)
+    for pid in raw.internal:
+        a, b = (graph.body_of[x] for x in chain.pair(pid).links)
+        internal.add_edge(a, b, key=pid)
+    ext_count = {b: sum(1 for _, body, _ in raw.external if body == b) for b in bodies}
+    if len(bodies) == 4 and truss is None:
+        named = _four(raw, graph, internal, ext_count)
+        if named is not None:
+            group_class, name = named
+            return AssurGroup(group_class=group_class, kind=None, name=name,
+                              issues=tuple(issues), **common)
+    simple = nx.Graph(internal)
+    longest = max((len(c) for c in nx.simple_cycles(simple)), default=0) if len(bodies) <= 12 \
+        else 0
+    group_class = max(max((d for _, d in internal.degree()), default=0), longest, 2)
+    if truss is None:
+        if len(bodies) >= 6:
+            issues.append(diagnostic("E_UNSUPPORTED_GROUP", common["links"],
+                                     [*(p for p, _, _ in ext_real), *raw.internal],
+                                     cls=roman(group_class), order=len(raw.external),
+                                     k=len(common["links"])))
+        else:
+            pattern = ", ".join(f"{a}-{b}" for a, b in sorted(
+                (tuple(sorted(e, key=id_key)) for e in simple.edges), key=str))
+            issues.append(diagnostic("E_INTERNAL", common["links"], raw.internal,
+                                     pattern=pattern))
+    return AssurGroup(group_class=group_class, kind=None,
+                      name=f"{roman(group_class)}({len(bodies)} links)", issues=tuple(issues),
+                      **common)
+
+
+def _real_external(graph: BodyGraph, pid: PairId, body: LinkId) -> tuple[PairId, LinkId, LinkId]:
+    a, b = graph.chain.pair(pid).links
+    return (pid, a, b) if graph.body_of[a] == body else (pid, b, a)
+
+
+def _type(graph: BodyGraph, pid: PairId) -> str:
+    return graph.chain.pair(pid).type.value
+
+
+def _dyad(raw: RawGroup, graph: BodyGraph, common: dict[str, Any],
+          issues: list[Diagnostic]) -> AssurGroup:
+    chain = graph.chain
+    (pa, ba, ka), (pb, bb, kb) = raw.external
+    pc = raw.internal[0]
+    tc = _type(graph, pc)
+    ta, tb = _type(graph, pa), _type(graph, pb)
+    kind = _KIND.get((tc, "".join(sorted((ta, tb)))))
+    frame = graph.body_of[chain.frame]
+    first, second = sorted((ba, bb), key=id_key)
+    ext = {ba: (pa, ka, ta), bb: (pb, kb, tb)}
+    if kind is None:
+        issues.append(diagnostic("E_PRISMATIC_LOOP", common["links"], [pa, pb, pc], r=1))
+        return AssurGroup(group_class=2, kind=None, name="PPP", issues=tuple(issues), **common)
+    on_frame = [b for b in (ba, bb) if ext[b][1] == frame]
+    if kind in (1, 4):
+        if len(on_frame) == 1:
+            j = on_frame[0]
+        else:
+            j = second if kind == 1 else first
+    elif kind == 2:
+        j = ba if ta == "R" else bb
+    elif kind == 3:
+        guide = chain.pair(pc).guide
+        j = bb if graph.body_of[guide] == ba else ba
+    else:
+        j = ba if ta == "R" else bb
+    i = bb if j == ba else ba
+    ext_i = _real_external(graph, ext[i][0], i)
+    ext_j = _real_external(graph, ext[j][0], j)
+    return AssurGroup(group_class=2, kind=kind, name=DYAD_NAMES[kind], i=ext_i[1], j=ext_j[1],
+                      pair_i=ext_i[0], pair_j=ext_j[0], pair_c=pc, i_minus_1=ext_i[2],
+                      j_minus_1=ext_j[2], issues=tuple(issues), **common)
+
+
+def _four(raw: RawGroup, graph: BodyGraph, internal: nx.MultiGraph,
+          ext_count: dict[LinkId, int]) -> tuple[int, str] | None:
+    degree = dict(internal.degree())
+    ext_type = {body: _type(graph, pid) for pid, body, _ in raw.external}
+    bases = [b for b, d in degree.items() if d == 3]
+    if len(raw.external) == 3 and len(bases) == 1 and internal.number_of_edges() == 3:
+        base = bases[0]
+        leashes = []
+        for _, leash, pid in sorted(internal.edges(base, keys=True), key=lambda e: id_key(e[1])):
+            if degree[leash] != 1 or ext_count[leash] != 1:
+                return None
+            leashes.append(f"{_type(graph, pid)}–{ext_type[leash]}")
+        return 3, f"III(base {base}; leashes {', '.join(leashes)})"
+    simple = nx.Graph(internal)
+    if (len(raw.external) == 2 and internal.number_of_edges() == 4
+            and simple.number_of_edges() == 4 and all(d == 2 for d in degree.values())
+            and nx.is_connected(simple)):
+        ternary = [b for b in internal.nodes if ext_count[b] == 1]
+        if len(ternary) == 2 and not simple.has_edge(*ternary):
+            start = min(ternary, key=id_key)
+            cycle = [start]
+            while len(cycle) < 4:
+                options = sorted((n for n in simple.neighbors(cycle[-1]) if n not in cycle),
+                                 key=id_key)
+                cycle.append(options[0])
+            contour = [_type(graph, next(iter(internal[a][b])))
+                       for a, b in zip(cycle, cycle[1:] + cycle[:1])]
+            external = ", ".join(ext_type[b] for b in sorted(ternary, key=id_key))
+            return 4, f"IV(contour {'–'.join(contour)}; external {external})"
+    return None
+
+
+def _truss(raw: RawGroup, graph: BodyGraph) -> Diagnostic | None:
+    """The first set T of ≥ 3 bodies of the group with 3(|T| − 1) − 2·p_int(T) ≤ 0."""
+    bodies = raw.bodies
+    if len(bodies) < 3 or len(bodies) > 10:
+        return None
+    inner = [tuple(graph.body_of[x] for x in graph.chain.pair(pid).links) for pid in raw.internal]
+    for size in range(3, len(bodies) + 1):
+        for subset in combinations(bodies, size):
+            chosen = set(subset)
+            pairs = [pid for pid, (a, b) in zip(raw.internal, inner) if a in chosen and b in chosen]
+            f = 3 * (size - 1) - 2 * len(pairs)
+            if f <= 0:
+                return diagnostic("E_RIGID_TRUSS", graph.links(chosen), pairs, k=size,
+                                  p=len(pairs), f=f)
+    return None
+

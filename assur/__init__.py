@@ -19,6 +19,28 @@ __all__ = [
 ]
 
 # --- structure: chains, decomposition, diagnostics, identification tables (structure owner) ---
+from assur.chain_table import chain_from_dict, load_chain  # noqa: E402
+from assur.classification import AssurGroup  # noqa: E402
+from assur.diagnostics import Diagnostic  # noqa: E402
+from assur.model import Chain, Drive, Input, Link, LinkId, Pair, PairId, PairType  # noqa: E402
+from assur.structure import StructuralAnalysis, analyse_structure  # noqa: E402
+
+__all__ += [
+    "AssurGroup",
+    "Chain",
+    "Diagnostic",
+    "Drive",
+    "Input",
+    "Link",
+    "LinkId",
+    "Pair",
+    "PairId",
+    "PairType",
+    "StructuralAnalysis",
+    "analyse_structure",
+    "chain_from_dict",
+    "load_chain",
+]
 
 # --- kinematics: group solvers, mechanism analysis, existence (kinematics owner) ---
 from assur import jets  # noqa: E402

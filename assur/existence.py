@@ -1,0 +1,300 @@
+"""Existence of every group over the input cycle: where it cannot be assembled, and why.
+
+The check follows the course (``method.md`` §5.4): at each input position the groups are
+taken in layering order; the first group that cannot be assembled is reported there, and the
+groups after it are not evaluated at that position. :func:`check_existence` returns, per
+group, the intervals of the input coordinate where it is the first failing group, the failing
+condition (the inequality of ``method.md`` §2.1–2.5 and the solver's reason), the worst
+violation (normalised margin against δ, and in millimetres or degrees), and the margin over
+the positions where it was evaluated. Interval ends are refined by bisection between the grid
+positions, so they are exact to ``tol`` and do not depend on the grid step.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from assur import jets as J
+from assur.dyads import REASONS
+from assur.geometry import GroupModel, KinematicModel
+from assur.kinematics import Motion, analyse
+
+__all__ = [
+    "CONDITIONS",
+    "ExistenceReport",
+    "FailureInterval",
+    "GroupExistence",
+    "check_existence",
+    "first_failure",
+]
+
+#: Existence inequality of each kind, as printed in reports (``method.md`` §2.1–2.5).
+CONDITIONS: dict[int, str] = {
+    0: "the crank always assembles",
+    1: "|l_i − l_j| ≤ |H_i H_j| ≤ l_i + l_j  (|cos| ≤ 1 − δ)",
+    2: "|h| ≤ (1 − δ)·l_j  (rod reaches the guide)",
+    3: "|d| ≤ (1 − δ)·|H_i H_j|",
+    4: "|sin(θ_j − θ_i)| ≥ δ  (guides not parallel)",
+    5: "|sin γ| ≥ δ  (guides not parallel)",
+}
+
+
+@dataclass(frozen=True)
+class FailureInterval:
+    """An interval of the input coordinate where a group is the first that fails.
+
+    Attributes
+    ----------
+    start, end : float
+        Ends (input coordinate; radians of crank rotation or mm of actuator length), refined
+        between grid positions. For a full-turn crank an interval may wrap past 2π (then
+        ``end < start``).
+    reason : int
+        Solver reason code at the worst position (:data:`assur.dyads.REASONS`).
+    worst_margin : float
+        The smallest normalised margin inside the interval (to compare with δ).
+    worst_at : float
+        Where it occurs.
+    shortfall : float
+        The violation in the group's own terms at the worst position: millimetres for L1–L3
+        (how much a length is too short or too long), degrees for L4–L5 (angle between the
+        guides below the allowed one).
+    unit : str
+        ``'mm'`` or ``'deg'``.
+    """
+
+    start: float
+    end: float
+    reason: int
+    worst_margin: float
+    worst_at: float
+    shortfall: float
+    unit: str
+
+    def to_dict(self, degrees: bool) -> dict[str, Any]:
+        """JSON-ready record (crank positions in degrees when ``degrees``)."""
+        conv = math.degrees if degrees else float
+        return {"start": conv(self.start), "end": conv(self.end), "reason": int(self.reason),
+                "condition": REASONS[self.reason][0], "worst_margin": self.worst_margin,
+                "worst_at": conv(self.worst_at), "shortfall": self.shortfall,
+                "unit": self.unit}
+
+
+@dataclass(frozen=True)
+class GroupExistence:
+    """Existence of one group over the positions.
+
+    Attributes
+    ----------
+    label, name : str
+    kind : int
+    delta : float
+        The assigned tolerance δ.
+    evaluated : ndarray of bool
+        Positions where every earlier group assembles (the group is checked there).
+    fails : ndarray of bool
+        Positions where this group is the first that fails.
+    margin : ndarray
+        Normalised margin (NaN where not evaluated).
+    intervals : list of FailureInterval
+    """
+
+    label: str
+    name: str
+    kind: int
+    delta: float
+    evaluated: np.ndarray
+    fails: np.ndarray
+    margin: np.ndarray
+    intervals: list[FailureInterval] = field(default_factory=list)
+
+    @property
+    def assembles(self) -> bool:
+        """True when the group assembles wherever it is evaluated."""
+        return not bool(self.fails.any())
+
+    @property
+    def min_margin(self) -> float:
+        """Smallest margin over the positions where the group was evaluated."""
+        values = self.margin[self.evaluated]
+        return float(np.nanmin(values)) if values.size and np.isfinite(values).any() \
+            else math.nan
+
+    @property
+    def verdict(self) -> str:
+        """``'assembles'``, ``'fails'`` or ``'not evaluated'`` (an earlier group always fails)."""
+        if not self.evaluated.any():
+            return "not evaluated"
+        return "assembles" if self.assembles else "fails"
+
+
+@dataclass(frozen=True)
+class ExistenceReport:
+    """Existence of the mechanism over the positions ``q``.
+
+    Attributes
+    ----------
+    q : ndarray
+    groups : tuple of GroupExistence
+        Layering order (the input group is left out: it always assembles).
+    first : ndarray of int
+        Index into ``groups`` of the first failing group at each position; −1 where all
+        assemble.
+    """
+
+    q: np.ndarray
+    groups: tuple[GroupExistence, ...]
+    first: np.ndarray
+
+    @property
+    def all_exist(self) -> bool:
+        """True when every group assembles at every position."""
+        return bool((self.first < 0).all())
+
+
+def first_failure(motion: Motion) -> np.ndarray:
+    """Index (into the dyads in layering order) of the first failing group; −1 if none.
+
+    Works for any shape of positions and designs, e.g. ``(D, N)``.
+    """
+    dyads = [g for g in motion.model.groups if g.kind != 0]
+    shape = np.shape(motion.q)
+    first = np.full(np.broadcast_shapes(shape, *(np.shape(motion.solutions[g.label].exists)
+                                                 for g in dyads)), -1, dtype=np.int32)
+    for index, group in enumerate(dyads):
+        fails = ~motion.solutions[group.label].exists
+        first = np.where((first < 0) & fails, index, first)
+    return first
+
+
+def check_existence(model: KinematicModel, q: np.ndarray | None = None, *, points: int = 360,
+                    motion: Motion | None = None, refine: bool = True,
+                    tol: float = 1e-10) -> ExistenceReport:
+    """Existence of every group over the input positions of one design.
+
+    Parameters
+    ----------
+    model : KinematicModel
+        One design (scalar parameters).
+    q : array_like, optional
+        Increasing input positions; default the model's grid with ``points`` positions.
+    motion : Motion, optional
+        An analysis already made at ``q`` (saves one solve).
+    refine : bool
+        Refine interval ends by bisection to ``tol`` (relative to the input range).
+
+    Returns
+    -------
+    ExistenceReport
+    """
+    if motion is None:
+        motion = analyse(model, q, points=points)
+    q = motion.q
+    if q.ndim != 1 or model.design_shape not in ((), (1,), (1, 1)):
+        raise ValueError("check_existence works on one design over a 1-D grid of positions")
+    dyads = [g for g in model.groups if g.kind != 0]
+    first = first_failure(motion).reshape(q.shape)
+    span = model.input_range[1] - model.input_range[0]
+    periodic = model.drive == "crank" and math.isclose(span, 2 * math.pi) and \
+        q.size > 1 and math.isclose(q[-1] + (q[1] - q[0]) - q[0], 2 * math.pi)
+    groups = []
+    for index, group in enumerate(dyads):
+        sol = motion.solutions[group.label]
+        evaluated = (first < 0) | (first >= index)
+        fails = first == index
+        margin = np.where(evaluated, np.broadcast_to(sol.margin, q.shape), np.nan)
+        runs = _runs(fails, periodic)
+        intervals = [_interval(model, motion, group, index, run, periodic, refine,
+                               tol * max(abs(span), 1.0))
+                     for run in runs]
+        delta = float(np.max(model.params.get(group.column("delta"), 0.0)))
+        groups.append(GroupExistence(group.label, group.name, group.kind, delta, evaluated,
+                                     fails, margin, intervals))
+    return ExistenceReport(q, tuple(groups), first)
+
+
+def _runs(mask: np.ndarray, periodic: bool) -> list[tuple[int, int]]:
+    """Index runs (first, last) of True values; a run may wrap around when periodic."""
+    if not mask.any():
+        return []
+    n = mask.size
+    padded = np.concatenate(([False], mask, [False]))
+    edges = np.flatnonzero(np.diff(padded.astype(np.int8)))
+    runs = [(int(a), int(b) - 1) for a, b in zip(edges[::2], edges[1::2])]
+    if periodic and len(runs) > 1 and runs[0][0] == 0 and runs[-1][1] == n - 1:
+        runs = [(runs[-1][0], runs[0][1])] + runs[1:-1]
+    return runs
+
+
+def _interval(model: KinematicModel, motion: Motion, group: GroupModel, index: int,
+              run: tuple[int, int], periodic: bool, refine: bool, tol: float
+              ) -> FailureInterval:
+    q = motion.q
+    n = q.size
+    first, last = run
+    idx = np.arange(first, last + 1) if first <= last else np.r_[first:n, 0:last + 1]
+    sol = motion.solutions[group.label]
+    margin = np.broadcast_to(sol.margin, q.shape)[idx]
+    worst = int(idx[int(np.nanargmin(np.where(np.isnan(margin), np.inf, margin)))]) \
+        if np.isfinite(margin).any() else int(idx[0])
+    reason = int(np.broadcast_to(sol.reason, q.shape)[worst])
+    start, end = float(q[first]), float(q[last])
+    step = float(q[1] - q[0]) if n > 1 else 0.0
+    if refine and n > 1:
+        if first > 0 or periodic:
+            outside = float(q[first - 1]) if first > 0 else float(q[-1]) - n * step
+            start = _bisect(model, group, index, outside, start, tol)
+            start = start % (2 * math.pi) if periodic else start
+        if last < n - 1 or periodic:
+            outside = float(q[last + 1]) if last < n - 1 else float(q[0]) + n * step
+            end = _bisect(model, group, index, outside, end, tol)
+            end = end % (2 * math.pi) if periodic else end
+    shortfall, unit = _shortfall(model, motion, group, worst)
+    return FailureInterval(start, end, reason, float(np.broadcast_to(sol.margin, q.shape)[worst]),
+                           float(q[worst]), shortfall, unit)
+
+
+def _bisect(model: KinematicModel, group: GroupModel, index: int, good: float, bad: float,
+            tol: float) -> float:
+    """The boundary between a position where groups ≤ ``index`` assemble and one where not."""
+    dyads = [g for g in model.groups if g.kind != 0]
+    lo, hi = good, bad
+    for _ in range(200):
+        if abs(hi - lo) <= tol:
+            break
+        mid = 0.5 * (lo + hi)
+        motion = analyse(model, np.array([mid]))
+        ok = all(bool(np.all(motion.solutions[g.label].exists)) for g in dyads[:index + 1])
+        if ok:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def _shortfall(model: KinematicModel, motion: Motion, group: GroupModel, at: int
+               ) -> tuple[float, str]:
+    """The violated condition in mm (L1–L3) or degrees (L4, L5) at one position."""
+    sol = motion.solutions[group.label]
+    margin = float(np.broadcast_to(sol.margin, motion.q.shape)[at])
+    delta = float(np.max(model.params.get(group.column("delta"), 0.0)))
+    value = model.value
+    if group.kind == 1:
+        h_i = np.broadcast_to(J.value(motion.joints[group.pairs["H_i"]]), motion.q.shape)[at]
+        h_j = np.broadcast_to(J.value(motion.joints[group.pairs["H_j"]]), motion.q.shape)[at]
+        d = abs(h_j - h_i)
+        l_i = float(motion.q[at]) if group.driven == "i" else float(value(group.column("l_i")))
+        l_j = float(motion.q[at]) if group.driven == "j" else float(value(group.column("l_j")))
+        return float(max(d - (l_i + l_j), abs(l_i - l_j) - d)), "mm"
+    if group.kind == 2:
+        return float(-margin * float(value(group.column("l_j")))), "mm"
+    if group.kind == 3:
+        h_i = np.broadcast_to(J.value(motion.joints[group.pairs["H_i"]]), motion.q.shape)[at]
+        h_j = np.broadcast_to(J.value(motion.joints[group.pairs["H_j"]]), motion.q.shape)[at]
+        return float(-margin * abs(h_j - h_i)), "mm"
+    angle = math.degrees(math.asin(min(max(margin, 0.0), 1.0)))
+    return float(math.degrees(math.asin(min(delta, 1.0))) - angle), "deg"

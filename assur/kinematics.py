@@ -1,0 +1,309 @@
+"""Kinematic analysis of a mechanism over the input cycle, groups solved in layering order.
+
+:func:`analyse` solves every group of a :class:`~assur.geometry.KinematicModel` at all input
+positions at once (crank angles φ, or actuator lengths) and returns a :class:`Motion`: every
+link's pose, every revolute joint, every slider pair (point, slider coordinate, guide line),
+every tracing point, and each group's existence margin. With ``analogs=True`` the input
+coordinate is fed as a :class:`~assur.jets.Jet`, so every quantity also carries its exact
+first and second derivatives with respect to the input coordinate (velocity and
+acceleration analogs); :func:`velocity` and :func:`acceleration` turn them into time
+derivatives for a given crank speed.
+
+Parameters shaped ``(D, 1)`` (D candidate designs) and positions shaped ``(N,)`` give
+results shaped ``(D, N)``; nothing loops over positions or designs in Python.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Union
+
+import numpy as np
+
+from assur import dyads
+from assur import jets as J
+from assur.dyads import DyadSolution
+from assur.geometry import Anchor, GroupModel, Guide, KinematicModel
+from assur.jets import Jet
+from assur.model import LinkId, PairId
+
+__all__ = [
+    "Motion",
+    "SliderState",
+    "acceleration",
+    "analyse",
+    "input_grid",
+    "unwrap",
+    "values",
+    "velocity",
+]
+
+Value = Union[Jet, np.ndarray]
+
+
+@dataclass(frozen=True)
+class SliderState:
+    """A prismatic pair over the cycle.
+
+    The slider's reference point runs along ``base + offset·n(angle) + s·u(angle)``;
+    ``base`` is fixed on the guide carrier, ``angle`` turns with it.
+    """
+
+    pair: PairId
+    carrier: LinkId
+    slider: LinkId
+    point: Value
+    s: Value
+    base: Value
+    angle: Value
+    offset: Any
+
+
+@dataclass(frozen=True)
+class Motion:
+    """The mechanism over the analysed positions.
+
+    Attributes
+    ----------
+    model : KinematicModel
+    q : ndarray
+        Input coordinate: crank rotation φ from the reference position (radians) or actuator
+        length (mm).
+    solutions : dict
+        Group label → :class:`~assur.dyads.DyadSolution` (layering order).
+    frames : dict
+        Link → (origin, angle) of its local frame.
+    joints : dict
+        Revolute pair → its point.
+    sliders : dict
+        Prismatic pair → :class:`SliderState`.
+    tracing : dict
+        Tracing point name → its point.
+    analogs : bool
+        Whether values are jets (with derivatives w.r.t. q).
+    """
+
+    model: KinematicModel
+    q: np.ndarray
+    solutions: dict[str, DyadSolution]
+    frames: dict[LinkId, tuple[Value, Value]]
+    joints: dict[PairId, Value]
+    sliders: dict[PairId, SliderState]
+    tracing: dict[str, Value]
+    analogs: bool
+
+    @property
+    def exists(self) -> np.ndarray:
+        """True where every group assembles."""
+        out = None
+        for solution in self.solutions.values():
+            out = solution.exists if out is None else out & solution.exists
+        return np.asarray(out)
+
+    def link_angle(self, link: LinkId) -> Value:
+        """Angle of a link's local frame (radians, in (−π, π]; unwrap with :func:`unwrap`)."""
+        return self.frames[link][1]
+
+
+def input_grid(model: KinematicModel, points: int) -> np.ndarray:
+    """Evenly spaced input positions over the model's interval.
+
+    A full-turn crank gets ``points`` angles over [0, 2π) (the end equals the start); an
+    actuator gets ``points`` lengths over its closed stroke.
+    """
+    lo, hi = model.input_range
+    if model.drive == "crank" and math.isclose(hi - lo, 2 * math.pi):
+        return lo + (hi - lo) * np.arange(points) / points
+    return np.linspace(lo, hi, points)
+
+
+def analyse(model: KinematicModel, q: np.ndarray | None = None, *, points: int = 360,
+            analogs: bool = False) -> Motion:
+    """Solve the mechanism at every input position, groups in layering order.
+
+    Parameters
+    ----------
+    model : KinematicModel
+    q : array_like, optional
+        Input positions (crank rotation φ in radians from the reference position, any number
+        of turns; or actuator lengths in mm). Default: :func:`input_grid` with ``points``.
+    points : int
+        Grid size when ``q`` is not given.
+    analogs : bool
+        Carry first and second derivatives w.r.t. q (velocity and acceleration analogs).
+
+    Returns
+    -------
+    Motion
+        NaN where a group (or an earlier one) does not assemble; see ``solutions[...]
+        .exists``, ``.margin`` and ``.reason``, and :mod:`assur.existence`.
+    """
+    q = input_grid(model, points) if q is None else np.asarray(q, dtype=float)
+    coordinate: Value = Jet(q, 1.0, 0.0) if analogs else q
+    state = _State(model)
+    with np.errstate(all="ignore"):
+        for group in model.groups:
+            state.solve(group, coordinate)
+    return Motion(model, q, state.solutions, state.frames, state.joints, state.sliders,
+                  state.trace(), analogs)
+
+
+class _State:
+    """Poses known so far while the groups are solved one after another."""
+
+    def __init__(self, model: KinematicModel) -> None:
+        self.model = model
+        self.p = model.value
+        self.solutions: dict[str, DyadSolution] = {}
+        self.frames: dict[LinkId, tuple[Value, Value]] = {}
+        self.rotors: dict[LinkId, Value] = {}
+        self.joints: dict[PairId, Value] = {}
+        self.sliders: dict[PairId, SliderState] = {}
+
+    def rotor(self, link: LinkId) -> Value:
+        if link not in self.rotors:
+            self.rotors[link] = J.expi(self.frames[link][1])
+        return self.rotors[link]
+
+    def point(self, anchor: Anchor) -> Value:
+        """Position of a point fixed on a link."""
+        p = self.p
+        if anchor.link == self.model.frame:
+            return p(f"{anchor.owner}.{anchor.first}") + 1j * p(f"{anchor.owner}.{anchor.second}")
+        first = p(f"{anchor.owner}.{anchor.first}")
+        if anchor.second is None:
+            local = first
+        elif anchor.polar:
+            local = first * np.exp(1j * p(f"{anchor.owner}.{anchor.second}"))
+        else:
+            local = first + 1j * p(f"{anchor.owner}.{anchor.second}")
+        origin = self.frames[anchor.link][0]
+        return origin + local * self.rotor(anchor.link)
+
+    def guide(self, guide: Guide) -> tuple[Value, Value, Any]:
+        """Base point, absolute direction and offset of a guide."""
+        beta = self.p(f"{guide.base.owner}.{guide.beta}")
+        angle = beta if guide.carrier == self.model.frame else self.frames[guide.carrier][1] + beta
+        offset = 0.0 if guide.offset is None else self.p(f"{guide.base.owner}.{guide.offset}")
+        return self.point(guide.base), angle, offset
+
+    def delta(self, group: GroupModel) -> Any:
+        name = group.column("delta")
+        return self.model.params[name] if name in self.model.params else 0.0
+
+    def slider(self, pair: PairId, carrier: LinkId, slider: LinkId, point: Value, s: Value,
+               base: Value, angle: Value, offset: Any) -> None:
+        self.sliders[pair] = SliderState(pair, carrier, slider, point, s, base, angle, offset)
+
+    def solve(self, group: GroupModel, q: Value) -> None:
+        p, col = self.p, group.column
+        kind = group.kind
+        roles = group.pairs
+        if kind == 0:
+            angle = p(col("phi_1_0")) + self.model.direction * q
+            pivot = p(col("x_O1")) + 1j * p(col("y_O1"))
+            sol = dyads.solve_input(pivot, p(col("l_1")), angle)
+            self.joints[roles["H_i"]] = sol.origin_i
+        elif kind == 1:
+            h_i, h_j = self.point(group.hinge_i), self.point(group.hinge_j)
+            l_i = q if group.driven == "i" else p(col("l_i"))
+            l_j = q if group.driven == "j" else p(col("l_j"))
+            sol = dyads.solve_rrr(h_i, h_j, l_i, l_j, group.sigma, self.delta(group))
+            self.joints.update({roles["H_i"]: h_i, roles["H_j"]: h_j, roles["C"]: sol.c})
+            if group.driven is not None:
+                self._actuator(group, sol, q)
+        elif kind == 2:
+            h_j = self.point(group.hinge_j)
+            base, theta, e = self.guide(group.guide_i)
+            sol = dyads.solve_rrp(h_j, base, theta, e, p(col("l_j")), group.sigma,
+                                  self.delta(group))
+            self.joints.update({roles["C"]: sol.c, roles["H_j"]: h_j})
+            self.slider(roles["P_i"], group.guide_i.carrier, group.i, sol.c, sol.s_i, base,
+                        sol.angle_i, e)
+        elif kind == 3:
+            h_i, h_j = self.point(group.hinge_i), self.point(group.hinge_j)
+            h = p(col("d"))
+            sol = dyads.solve_rpr(h_i, h_j, h, group.sigma, self.delta(group))
+            self.joints.update({roles["H_i"]: h_i, roles["H_j"]: h_j})
+            self.slider(roles["P_c"], group.i, group.j, h_j, sol.s_i, sol.origin_i,
+                        sol.angle_i, h)
+        elif kind == 4:
+            a, theta_i, e_i = self.guide(group.guide_i)
+            b, theta_j, e_j = self.guide(group.guide_j)
+            sol = dyads.solve_prp(a, theta_i, e_i, b, theta_j, e_j, self.delta(group))
+            self.joints[roles["C"]] = sol.c
+            self.slider(roles["P_i"], group.guide_i.carrier, group.i, sol.c, sol.s_i, a,
+                        sol.angle_i, e_i)
+            self.slider(roles["P_j"], group.guide_j.carrier, group.j, sol.c, sol.s_j, b,
+                        sol.angle_j, e_j)
+        else:
+            h_j = self.point(group.hinge_j)
+            a, theta_s, e = self.guide(group.guide_i)
+            sol = dyads.solve_rpp(h_j, p(col("gamma")), a, theta_s, e, self.delta(group))
+            self.joints[roles["H_j"]] = h_j
+            self.slider(roles["P_i"], group.guide_i.carrier, group.i, sol.c, sol.s_i, a,
+                        sol.angle_i, e)
+            self.slider(roles["P_c"], group.j, group.i, sol.c, sol.s_j, sol.origin_j,
+                        sol.angle_j, 0.0)
+        self.solutions[group.label] = sol
+        self.frames[group.i] = (sol.origin_i, sol.angle_i)
+        if group.j is not None:
+            self.frames[group.j] = (sol.origin_j, sol.angle_j)
+
+    def _actuator(self, group: GroupModel, sol: DyadSolution, q: Value) -> None:
+        """Frames of the actuator's members and its driven pair (s = actuator length)."""
+        side = group.driven
+        origin = sol.origin_i if side == "i" else sol.origin_j
+        angle = sol.angle_i if side == "i" else sol.angle_j
+        for member in group.composite:
+            self.frames[member] = (origin, angle)
+        pairs = self.model.pair_links
+        driven = [pid for pid, (kind, links, _) in pairs.items()
+                  if kind == "P" and set(links) <= set(group.composite)]
+        for pid in driven:
+            carrier = pairs[pid][2] or group.composite[0]
+            slider = next(link for link in pairs[pid][1] if link != carrier)
+            self.slider(pid, carrier, slider, sol.c, q + np.zeros(np.shape(sol.margin)), origin,
+                        angle, 0.0)
+
+    def trace(self) -> dict[str, Value]:
+        return {point.name: self.point(point.anchor) for point in self.model.tracing}
+
+
+def velocity(x: Jet, omega: float | np.ndarray) -> Any:
+    """Time derivative of a quantity for an input speed ω = dq/dt (rad/s or mm/s)."""
+    return x.d1 * omega
+
+
+def acceleration(x: Jet, omega: float | np.ndarray, epsilon: float | np.ndarray = 0.0) -> Any:
+    """Second time derivative for input speed ω and input acceleration ε = d²q/dt²."""
+    return x.d2 * omega * omega + x.d1 * epsilon
+
+
+def unwrap(angle: np.ndarray, axis: int = -1) -> np.ndarray:
+    """Continuous angles along the positions; NaN gaps (no assembly) are bridged.
+
+    Unlike :func:`numpy.unwrap`, a NaN does not spoil the angles after it: the jump
+    correction across a gap compares the last angle before it with the first after it.
+    """
+    angle = np.asarray(angle, dtype=float)
+    moved = np.moveaxis(angle, axis, -1)
+    filled = moved.copy()
+    valid = np.isfinite(filled)
+    # carry the last valid value forward so that differences across a gap are meaningful
+    index = np.where(valid, np.arange(filled.shape[-1]), 0)
+    np.maximum.accumulate(index, axis=-1, out=index)
+    carried = np.take_along_axis(filled, index, axis=-1)
+    step = np.diff(carried, axis=-1)
+    step = np.where(np.isfinite(step), step, 0.0)
+    correction = -2 * np.pi * np.round(step / (2 * np.pi))
+    out = moved.copy()
+    out[..., 1:] += np.cumsum(correction, axis=-1)
+    return np.moveaxis(out, -1, axis)
+
+
+def values(x: Value) -> np.ndarray:
+    """The plain values of a quantity (jets or arrays)."""
+    return np.asarray(J.value(x))
+

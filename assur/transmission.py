@@ -1,0 +1,149 @@
+"""Force transmission and joint rotations: pressure angles (L1, L2) and relative rotations.
+
+``method.md`` §2.7: the pressure angle is computed only at the internal revolute pair C of
+L1 and L2 groups where a link of the group is a two-hinge rod (a binary link: no attachment
+point of a later group and no guide for a later group on it):
+
+* L1: ``α = arccos |sin(φ_i − φ_j)|`` (``|π/2 − μ|``, μ the transmission angle at C);
+* L2 (rod j binary): ``α = arccos |cos(φ_j − θ)|``.
+
+``method.md`` §2.8: every revolute joint between links a and b turns by
+``θ_ab = φ_a − φ_b`` (unwrapped over the cycle; the frame angle is 0); its swing is
+``max θ_ab − min θ_ab``. The crank pivot turns fully and is not checked.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from assur import jets as J
+from assur.geometry import GroupModel, KinematicModel
+from assur.kinematics import Motion, unwrap
+from assur.model import LinkId, PairId
+
+__all__ = [
+    "JointRotation",
+    "PressureAngle",
+    "binary_links",
+    "joint_rotations",
+    "pressure_angles",
+]
+
+
+@dataclass(frozen=True)
+class PressureAngle:
+    """Pressure angle at C of one L1/L2 group over the positions (radians)."""
+
+    label: str
+    pair: PairId
+    binary: tuple[LinkId, ...]
+    alpha: np.ndarray
+
+    @property
+    def maximum(self) -> float:
+        """Largest pressure angle over the positions where the group assembles (radians)."""
+        return float(np.nanmax(self.alpha)) if np.isfinite(self.alpha).any() else math.nan
+
+
+@dataclass(frozen=True)
+class JointRotation:
+    """Relative rotation in one revolute joint over the positions (radians)."""
+
+    pair: PairId
+    links: tuple[LinkId, LinkId]
+    group: str
+    theta: np.ndarray
+    full_turn: bool
+
+    @property
+    def swing(self) -> float:
+        """``max θ_ab − min θ_ab`` over the positions (radians); 2π for a full-turn joint."""
+        if self.full_turn:
+            return 2 * math.pi
+        if not np.isfinite(self.theta).any():
+            return math.nan
+        return float(np.nanmax(self.theta) - np.nanmin(self.theta))
+
+
+def binary_links(model: KinematicModel) -> set[LinkId]:
+    """Links of the dyads that are two-hinge rods (``method.md`` §2.7, binary test).
+
+    A link is binary when no later group is hinged to it and no later group slides on a
+    guide it carries.
+    """
+    loaded: set[LinkId] = set()
+    for group in model.groups:
+        for anchor in (group.hinge_i, group.hinge_j):
+            if anchor is not None:
+                loaded.add(anchor.link)
+        for guide in (group.guide_i, group.guide_j):
+            if guide is not None:
+                loaded.add(guide.carrier)
+    for group in model.groups:
+        if loaded & set(group.composite):
+            loaded |= set(group.composite)
+    out = set()
+    for group in model.groups:
+        if group.kind == 0:
+            continue
+        out |= {link for link in (group.i, group.j) if link not in loaded}
+    return out
+
+
+def _rod_side(group: GroupModel, binary: set[LinkId]) -> tuple[LinkId, ...]:
+    if group.kind == 1:
+        return tuple(link for link in (group.i, group.j) if link in binary)
+    if group.kind == 2:
+        return (group.j,) if group.j in binary else ()
+    return ()
+
+
+def pressure_angles(motion: Motion) -> list[PressureAngle]:
+    """Pressure angle at C of every L1 and L2 group with a two-hinge rod."""
+    model = motion.model
+    binary = binary_links(model)
+    out = []
+    for group in model.groups:
+        rods = _rod_side(group, binary)
+        if not rods:
+            continue
+        sol = motion.solutions[group.label]
+        phi_i = np.asarray(J.value(sol.angle_i))
+        phi_j = np.asarray(J.value(sol.angle_j))
+        with np.errstate(invalid="ignore"):
+            if group.kind == 1:
+                alpha = np.arccos(np.minimum(np.abs(np.sin(phi_i - phi_j)), 1.0))
+            else:
+                alpha = np.arccos(np.minimum(np.abs(np.cos(phi_j - phi_i)), 1.0))
+        out.append(PressureAngle(group.label, group.pairs["C"], rods, alpha))
+    return out
+
+
+def joint_rotations(motion: Motion) -> list[JointRotation]:
+    """Relative rotation θ_ab(q) of every revolute joint, with its swing."""
+    model = motion.model
+    owner: dict[PairId, str] = {}
+    for group in model.groups:
+        for role, pid in group.pairs.items():
+            if not role.startswith("P"):
+                owner[pid] = group.label
+    crank_pivot = next((g.pairs["H_i"] for g in model.groups if g.kind == 0), None)
+    out = []
+    for pid, (kind, links, _) in model.pair_links.items():
+        if kind != "R" or pid not in owner:
+            continue
+        a, b = links
+        theta = _angle(motion, a) - _angle(motion, b)
+        full = pid == crank_pivot
+        out.append(JointRotation(pid, (a, b), owner[pid], unwrap(theta), full))
+    return out
+
+
+def _angle(motion: Motion, link: LinkId) -> Any:
+    if link == motion.model.frame:
+        return np.zeros(np.shape(motion.q))
+    return np.asarray(J.value(motion.frames[link][1]))

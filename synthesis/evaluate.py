@@ -1,0 +1,272 @@
+"""Block B2: analysis of a batch of candidate designs and their criteria.
+
+:class:`Evaluator` turns a batch of designs ``X`` (shape ``(D, q)``, the varied parameters
+of :class:`~synthesis.problem.Problem` in table units) into the kinematic model with every
+varied parameter replaced by a ``(D, 1)`` column, analyses all designs at all positions in
+one call of the public kinematics (analysis grid + control angles, groups in layering
+order), and computes the criteria of block B3 (:mod:`synthesis.criteria`).
+
+Outputs (``method.md`` §4.5):
+
+* class 1, ψ: the angle of the output link, unwrapped along the grid and measured from its
+  value at φ = 0 (counter-clockwise positive); at a control angle φ_K the value is the grid
+  value at the nearest grid angle plus the wrapped difference of the two raw angles;
+* class 2, S: the slider coordinate of the output link on its guide, measured from its value
+  at φ = 0;
+* classes 3–4, Ж: a tracing point of the output link (its attachment point N/M, or a named
+  tracing point).  For class 3 the nearest point of the path is found on the grid polygon
+  and then refined by Newton steps in φ on the true path, using the exact first and second
+  derivatives of the position w.r.t. φ (``analogs``):
+  ``φ ← φ − f'/f''``, ``f = |Ж(φ) − P_K|²``, ``f' = 2·Re(conj(Ж − P)·Ж')``,
+  ``f'' = 2·(|Ж'|² + Re(conj(Ж − P)·Ж''))``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+import assur
+from synthesis import criteria as C
+from synthesis.problem import Problem
+
+__all__ = ["Analysis", "Evaluator"]
+
+FloatArray = npt.NDArray[np.float64]
+
+_NEWTON_STEPS = 3
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """The analysed designs of one batch (for reports and plots).
+
+    Attributes
+    ----------
+    motion : Motion
+        Kinematics at the grid positions followed by the control angles.
+    grid : ndarray, shape (N,)
+        Crank rotation of the analysis grid (radians from the start position).
+    output_grid : ndarray, shape (D, N)
+        The controlled output over the grid (ψ rad, S mm, or Ж complex).
+    output_control : ndarray, shape (D, K)
+        The output at the control points (for class 3: the nearest path points).
+    phi_control : ndarray, shape (D, K)
+        Crank rotation of each control value (class 3: of the nearest path point).
+    criteria : Criteria
+    """
+
+    motion: Any
+    grid: FloatArray
+    output_grid: npt.NDArray[Any]
+    output_control: npt.NDArray[Any]
+    phi_control: FloatArray
+    criteria: C.Criteria
+    pressure: dict[str, FloatArray]
+    rotations: dict[str, FloatArray]
+
+
+class Evaluator:
+    """The criteria of batches of designs of one problem.
+
+    Parameters
+    ----------
+    problem : Problem
+    grid : int, optional
+        Positions of the analysis grid (default: the problem's ``grid``).
+
+    Examples
+    --------
+    ``Evaluator(problem)(X)`` gives the :class:`~synthesis.criteria.Criteria` of the rows of
+    X; ``Evaluator(problem).analyse(X)`` gives everything computed on the way.
+    """
+
+    def __init__(self, problem: Problem, *, grid: int | None = None) -> None:
+        self.problem = problem
+        n = grid or problem.grid
+        self.grid = 2.0 * np.pi * np.arange(n) / n
+        self.control_phi = (problem.control.phi if problem.task_class != 3
+                            else np.zeros(0))
+        self.positions = np.concatenate([self.grid, self.control_phi])
+        model = problem.model
+        self.output_link = problem.output.link
+        self.label, self.side = model.links[self.output_link]
+        self._slider_pair = self._find_slider() if problem.task_class == 2 else None
+        self.lower = problem.lower
+        self.upper = problem.upper
+
+    # ------------------------------------------------------------------ model and motion
+    def model(self, x: npt.ArrayLike) -> Any:
+        """The kinematic model with the varied parameters of the designs X, shape (D, q)."""
+        x = np.atleast_2d(np.asarray(x, dtype=float))
+        return self.problem.model.with_params(
+            {name: x[:, k:k + 1] for k, name in enumerate(self.problem.names)})
+
+    def _find_slider(self) -> Any:
+        pairs = self.problem.model.pair_links
+        frame = self.problem.model.frame
+        options = [pid for pid, (kind, links, carrier) in pairs.items()
+                   if kind == "P" and self.output_link in links and carrier != self.output_link]
+        options.sort(key=lambda pid: pairs[pid][2] != frame)
+        if not options:
+            raise assur.StructureError(f"{self.problem.source}: output link "
+                                       f"{self.output_link!r} has no prismatic pair; task class "
+                                       f"2 needs a slider")
+        return options[0]
+
+    def _point(self, motion: Any, model: Any) -> Any:
+        """The tracing point Ж of the output link over the analysed positions."""
+        name = self.problem.output.point
+        if name in motion.tracing:
+            return motion.tracing[name]
+        origin, angle = motion.frames[self.output_link]
+        length = model.value(f"{self.label}.l_{name}")
+        beta = model.value(f"{self.label}.beta_{name}")
+        return origin + length * assur.jets.expi(angle + beta) if isinstance(
+            angle, assur.Jet) else origin + length * np.exp(1j * (angle + beta))
+
+    # ------------------------------------------------------------------------ criteria
+    def __call__(self, x: npt.ArrayLike) -> C.Criteria:
+        """Criteria of the designs X, shape (D, q)."""
+        return self.analyse(x).criteria
+
+    def analyse(self, x: npt.ArrayLike) -> Analysis:
+        """Analyse the designs X over the grid and the control angles."""
+        x = np.atleast_2d(np.asarray(x, dtype=float))
+        d = x.shape[0]
+        model = self.model(x)
+        motion = assur.analyse(model, self.positions)
+        n = self.grid.size
+        p1 = self._existence(motion, model, d)
+        cls = self.problem.task_class
+        control = self.problem.control
+        with np.errstate(invalid="ignore"):
+            if cls == 1:
+                raw = _full(motion.link_angle(self.output_link), d, self.positions.size)
+                grid = assur.unwrap(raw[:, :n])
+                out_grid = grid - grid[:, :1]
+                nearest = np.rint(self.control_phi / (2 * np.pi) * n).astype(int) % n
+                wrap = np.angle(np.exp(1j * (raw[:, n:] - raw[:, nearest])))
+                out = out_grid[:, nearest] + wrap
+                phi_c = np.broadcast_to(self.control_phi, out.shape)
+                if control.zone:
+                    dev = C.zone_deviations(out, control.lower, control.upper, control.weight)
+                else:
+                    dev = C.value_deviations(out, control.value, control.weight)
+                res = dev
+            elif cls == 2:
+                s = _full(assur.values(motion.sliders[self._slider_pair].s), d,
+                          self.positions.size)
+                out_grid = s[:, :n] - s[:, :1]
+                out = s[:, n:] - s[:, :1]
+                phi_c = np.broadcast_to(self.control_phi, out.shape)
+                dev = C.value_deviations(out, control.value, control.weight)
+                res = dev
+            else:
+                path = _full(assur.values(self._point(motion, model)), d, self.positions.size)
+                out_grid = path[:, :n]
+                if cls == 4:
+                    out = path[:, n:]
+                    phi_c = np.broadcast_to(self.control_phi, out.shape)
+                else:
+                    index, _ = C.nearest_on_path(out_grid, control.point)
+                    phi_c, out = self._nearest(model, index * (2 * np.pi / n))
+                dev = C.timed_path_deviations(out, control.point, control.weight)
+                gap = control.weight * (out - control.point)
+                res = np.concatenate([gap.real, gap.imag], axis=1)
+            pressure, rotation = self._desirable(motion, d, n)
+        feasible = p1 == 0
+        q = np.where(feasible, C.criterion_q(dev), np.nan)
+        bounds = C.bounds_penalty(x, self.lower, self.upper)
+        p2_alpha = C.pressure_penalty(
+            _stack(pressure, d), np.array([self.problem.pressure_angles[k] for k in pressure]))
+        limits = [lim for label in rotation for lim in self.problem.rotations[label].values()]
+        p2_rot = C.rotation_penalty(_stack(rotation, d), np.array(limits))
+        p2 = np.where(feasible, C.desirable_penalty(bounds, p2_alpha, p2_rot), np.nan)
+        dev = np.where(feasible[:, None], dev, np.nan)
+        res = np.where(feasible[:, None], res, np.nan)
+        return Analysis(motion, self.grid, out_grid, out, np.asarray(phi_c),
+                        C.Criteria(p1, p2, q, dev, res), pressure, rotation)
+
+    def _nearest(self, model: Any, phi: FloatArray) -> tuple[FloatArray, npt.NDArray[Any]]:
+        """Newton refinement in φ of the nearest path points (class 3)."""
+        targets = self.problem.control.point
+        point = None
+        for _ in range(_NEWTON_STEPS):
+            motion = assur.analyse(model, phi, analogs=True)
+            jet = self._point(motion, model)
+            gap = jet.v - targets
+            f1 = 2 * (np.conj(gap) * jet.d1).real
+            f2 = 2 * (np.abs(jet.d1) ** 2 + (np.conj(gap) * jet.d2).real)
+            step = np.where(f2 > 0, -f1 / np.where(f2 > 0, f2, 1.0), 0.0)
+            step = np.clip(np.nan_to_num(step), -0.05, 0.05)
+            phi = phi + step
+            point = jet.v
+        motion = assur.analyse(model, phi)
+        point = assur.values(self._point(motion, model))
+        return phi, point
+
+    def _existence(self, motion: Any, model: Any, d: int) -> FloatArray:
+        """P1 over all analysed positions (``criteria.existence_penalty``)."""
+        shape = (d, self.positions.size)
+        first = np.zeros(shape, dtype=int)
+        violation = np.zeros(shape)
+        for group in model.groups:
+            sol = motion.solutions[group.label]
+            exists = np.broadcast_to(sol.exists, shape)
+            new = (first == 0) & ~exists
+            if not new.any():
+                continue
+            delta = np.asarray(model.params.get(group.column("delta"), 0.0), dtype=float)
+            margin = np.broadcast_to(np.asarray(sol.margin, dtype=float), shape)
+            v = np.broadcast_to(delta, (d, 1)) - margin if delta.ndim else delta - margin
+            first = np.where(new, group.seq, first)
+            violation = np.where(new, v, violation)
+        return C.existence_penalty(first, violation, len(model.groups))
+
+    def _desirable(self, motion: Any, d: int, n: int
+                   ) -> tuple[dict[str, FloatArray], dict[str, FloatArray]]:
+        """Largest pressure angles and joint rotation ranges over the grid, per group."""
+        model = motion.model
+        pressure: dict[str, FloatArray] = {}
+        rotation: dict[str, FloatArray] = {}
+        for label in self.problem.pressure_angles:
+            group = model.group(label)
+            sol = motion.solutions[label]
+            a_i = _full(assur.values(sol.angle_i), d, self.positions.size)[:, :n]
+            a_j = _full(assur.values(sol.angle_j), d, self.positions.size)[:, :n]
+            if group.kind == 1:
+                alpha = np.arccos(np.clip(np.abs(np.sin(a_i - a_j)), 0.0, 1.0))
+            else:
+                alpha = np.arccos(np.clip(np.abs(np.cos(a_j - a_i)), 0.0, 1.0))
+            pressure[label] = np.max(alpha, axis=1)[:, None]
+        for label, limits in self.problem.rotations.items():
+            group = model.group(label)
+            ranges = []
+            for role in limits:
+                a, b = model.pair_links[group.pairs[role]][1]
+                rel = (_angle(motion, model, a, d) - _angle(motion, model, b, d))[:, :n]
+                rel = assur.unwrap(rel)
+                ranges.append(np.max(rel, axis=1) - np.min(rel, axis=1))
+            rotation[label] = np.stack(ranges, axis=1)
+        return pressure, rotation
+
+
+def _angle(motion: Any, model: Any, link: Any, d: int) -> FloatArray:
+    if link == model.frame:
+        return np.zeros((d, motion.q.size))
+    return _full(assur.values(motion.link_angle(link)), d, motion.q.size)
+
+
+def _full(value: Any, d: int, n: int) -> npt.NDArray[Any]:
+    """A quantity broadcast to (D, N)."""
+    return np.broadcast_to(np.asarray(value), (d, n))
+
+
+def _stack(parts: dict[str, FloatArray], d: int) -> FloatArray:
+    if not parts:
+        return np.zeros((d, 0))
+    return np.concatenate([np.broadcast_to(v, (d, v.shape[1])) for v in parts.values()], axis=1)

@@ -1,0 +1,331 @@
+"""Block B5: the result file, the text report (English/Russian) and the machine-readable summary.
+
+* :func:`write_result` — the identification table of the best design (every varied column a
+  plain number), YAML or JSON by the file's suffix, written atomically; ``assur analyze``
+  reads it back.  A YAML result starts with comment lines giving the criteria.
+* :func:`summary` — everything a report needs, as plain data (``--json``).
+* :func:`text_report` — the designer's report: the design, Q, P1, P2, the deviations at the
+  control points, pressure angles, the conditions that bind, how the search went, and the
+  table of feasible trials (the parameter-space view from which a designer picks).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import yaml
+
+from assur import atomic_write_text
+from synthesis.evaluate import Analysis
+from synthesis.problem import Problem
+from synthesis.search import SearchResult
+
+__all__ = ["LANGUAGES", "summary", "text_report", "write_result"]
+
+LANGUAGES = ("en", "ru")
+
+_WORDS: dict[str, tuple[str, str]] = {
+    "title": ("Synthesis of {name}: task class {cls} ({what})",
+              "Синтез {name}: задача класса {cls} ({what})"),
+    "class1": ("rotating output ψ(φ)", "вращательное движение выходного звена ψ(φ)"),
+    "class2": ("slider output S(φ)", "поступательное движение выходного звена S(φ)"),
+    "class3": ("tracing-point path without timing", "траектория точки без согласования"),
+    "class4": ("tracing-point path with timing", "траектория точки с согласованием по φ"),
+    "design": ("Design (varied parameters, table units: mm, degrees)",
+               "Найденные параметры (единицы таблиц: мм, градусы)"),
+    "param": ("parameter", "параметр"),
+    "initial": ("initial", "начальное"),
+    "lower": ("lower", "левая граница"),
+    "upper": ("upper", "правая граница"),
+    "found": ("found", "найдено"),
+    "criteria": ("Criteria", "Критерии"),
+    "q": ("Q = max |Δ_K| (accuracy)", "Q = max |Δ_K| (точность)"),
+    "rms": ("RMS deviation", "среднеквадратичное отклонение"),
+    "p1": ("P1 (existence over the cycle)", "P1 (существование на всём цикле)"),
+    "p2": ("P2 (desirable conditions)", "P2 (желательные условия)"),
+    "required": ("required accuracy [Q]", "требуемая точность [Q]"),
+    "favourable": ("favourable mechanism", "благоприятный механизм"),
+    "yes": ("yes", "да"),
+    "no": ("no", "нет"),
+    "deviations": ("Deviations at the control points", "Отклонения в контрольных точках"),
+    "target": ("target", "задано"),
+    "reproduced": ("reproduced", "воспроизведено"),
+    "pressure": ("Pressure angles (largest over the cycle)",
+                 "Углы давления (наибольшие за цикл)"),
+    "allowed": ("allowable", "допускаемый"),
+    "rotations": ("Relative rotations in joints", "Относительные повороты в шарнирах"),
+    "binding": ("Conditions that bind", "Активные условия"),
+    "at_bound": ("{p} is at its {side} bound", "{p} на {side} границе"),
+    "side_lower": ("lower", "левой"),
+    "side_upper": ("upper", "правой"),
+    "margin": ("smallest existence margin of {g}: {m:.4g} (δ = {d:g})",
+               "наименьший запас существования {g}: {m:.4g} (δ = {d:g})"),
+    "alternance": ("|Δ_K| reaches Q at control points {k}",
+                   "|Δ_K| достигает Q в контрольных точках {k}"),
+    "near_limit": ("pressure angle of {g} is within 5 % of [α]",
+                   "угол давления {g} в пределах 5 % от [α]"),
+    "none": ("none", "нет"),
+    "search": ("Search", "Поиск"),
+    "trials": ("trials", "испытаний"),
+    "feasible_trials": ("feasible trials (P1 = P2 = 0)", "допустимых испытаний (P1 = P2 = 0)"),
+    "stop": ("stop", "остановка"),
+    "time": ("wall time", "время"),
+    "history": ("improvements of the best design", "улучшения лучшего решения"),
+    "trial": ("trial", "испытание"),
+    "stage": ("stage", "этап"),
+    "table": ("Feasible trials, best {n} by Q (the designer may pick any)",
+              "Допустимые испытания, лучшие {n} по Q (проектировщик выбирает любое)"),
+    "not_feasible": ("No feasible design was found: P1 > 0 or P2 > 0.",
+                     "Допустимого решения не найдено: P1 > 0 или P2 > 0."),
+    "favourable_stop": ("a favourable mechanism was found", "найден благоприятный механизм"),
+    "stall_stop": ("no progress", "нет улучшения"),
+    "budget_stop": ("trial budget used up", "исчерпан бюджет испытаний"),
+    "time_stop": ("time limit used up", "исчерпан лимит времени"),
+    "interrupted_stop": ("interrupted (Ctrl-C), best design kept",
+                         "прервано (Ctrl-C), сохранено лучшее решение"),
+}
+
+
+def _w(key: str, lang: str) -> str:
+    if lang not in LANGUAGES:
+        raise ValueError(f"language must be one of {', '.join(LANGUAGES)}; got {lang!r}")
+    return _WORDS[key][lang == "ru"]
+
+
+def _num(value: Any) -> float | None:
+    value = float(value)
+    return value if math.isfinite(value) else None
+
+
+def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
+            top: int = 20) -> dict[str, Any]:
+    """The outcome as plain data (numbers in table units; angles of ψ in degrees).
+
+    Parameters
+    ----------
+    problem : Problem
+    result : SearchResult
+    analysis : Analysis
+        The analysis of the best design alone (``Evaluator.analyse(result.x[None])``).
+    top : int
+        Number of feasible trials listed.
+    """
+    c = analysis.criteria
+    control = problem.control
+    degrees = problem.task_class == 1
+    out = analysis.output_control[0]
+    trials = _feasible_trials(problem, result, top)
+    points = []
+    for k in range(control.weight.size):
+        row: dict[str, Any] = {"K": k, "E": float(control.weight[k]),
+                               "deviation": _num(c.deviations[0, k])}
+        if problem.task_class in (3, 4):
+            row.update(x=float(control.point[k].real), y=float(control.point[k].imag),
+                       x_reproduced=_num(out[k].real), y_reproduced=_num(out[k].imag))
+        if problem.task_class != 3:
+            row["phi"] = math.degrees(control.phi[k])
+        if problem.task_class in (1, 2):
+            scale = math.degrees(1.0) if degrees else 1.0
+            if control.zone:
+                row.update(lower=float(control.lower[k]) * scale,
+                           upper=float(control.upper[k]) * scale)
+            else:
+                row["target"] = float(control.value[k]) * scale
+            row["reproduced"] = _num(np.real(out[k]) * scale)
+        if problem.task_class == 3:
+            row["phi_nearest"] = _num(math.degrees(analysis.phi_control[0, k] % (2 * math.pi)))
+        points.append(row)
+    return {
+        "problem": problem.source,
+        "name": problem.name,
+        "task_class": problem.task_class,
+        "design": problem.design(result.x),
+        "initial": problem.design(problem.initial),
+        "bounds": {p.name: [p.lower, p.upper] for p in problem.parameters},
+        "Q": _num(c.q[0]),
+        "Q_rms": _num(np.sqrt(np.mean((c.deviations[0] / control.weight) ** 2))),
+        "P1": float(c.p1[0]),
+        "P2": _num(c.p2[0]),
+        "accuracy": problem.accuracy,
+        "feasible": bool(c.p1[0] == 0 and c.p2[0] == 0),
+        "favourable": bool(c.p1[0] == 0 and c.p2[0] == 0 and problem.accuracy is not None
+                           and c.q[0] <= problem.accuracy),
+        "control_points": points,
+        "pressure_angles": {k: {"max_deg": math.degrees(float(v[0, 0])),
+                                "allowed_deg": math.degrees(problem.pressure_angles[k])}
+                            for k, v in analysis.pressure.items()},
+        "rotations": {k: {role: {"range_deg": math.degrees(float(v[0, n])),
+                                 "allowed_deg": math.degrees(lim)}
+                          for n, (role, lim) in enumerate(problem.rotations[k].items())}
+                      for k, v in analysis.rotations.items()},
+        "margins": _margins(analysis),
+        "binding": _binding(problem, result, analysis),
+        "search": {
+            "trials": int(result.trials.shape[0]),
+            "feasible_trials": int(np.sum((result.trial_criteria.p1 == 0)
+                                          & (result.trial_criteria.p2 == 0))),
+            "stop": result.stop, "message": result.message,
+            "seconds": result.elapsed, "seed": result.settings.seed,
+            "budget_log2": result.settings.budget_log2, "refine": result.settings.refine,
+            "history": result.history,
+        },
+        "feasible_table": trials,
+    }
+
+
+def _margins(analysis: Analysis) -> dict[str, dict[str, float]]:
+    motion = analysis.motion
+    n = analysis.grid.size
+    out = {}
+    for group in motion.model.groups[1:]:
+        margin = np.asarray(motion.solutions[group.label].margin, dtype=float)
+        margin = np.broadcast_to(margin, (1, motion.q.size))[0, :n]
+        delta = float(np.asarray(motion.model.params.get(group.column("delta"), 0.0)).ravel()[0])
+        out[group.label] = {"min_margin": _num(np.nanmin(margin)) if np.isfinite(margin).any()
+                            else None, "delta": delta}
+    return out
+
+
+def _binding(problem: Problem, result: SearchResult, analysis: Analysis) -> list[dict[str, Any]]:
+    """Which conditions are active at the best design."""
+    out: list[dict[str, Any]] = []
+    for p, x in zip(problem.parameters, result.x):
+        span = p.upper - p.lower
+        if x - p.lower <= 1e-6 * span:
+            out.append({"kind": "bound", "parameter": p.name, "side": "lower"})
+        elif p.upper - x <= 1e-6 * span:
+            out.append({"kind": "bound", "parameter": p.name, "side": "upper"})
+    dev = np.abs(analysis.criteria.deviations[0])
+    q = analysis.criteria.q[0]
+    if np.isfinite(q) and q > 0:
+        ks = [int(k) for k in np.flatnonzero(dev >= q * (1 - 1e-3))]
+        out.append({"kind": "alternance", "points": ks})
+    for label, v in analysis.pressure.items():
+        if v[0, 0] >= 0.95 * problem.pressure_angles[label]:
+            out.append({"kind": "pressure", "group": label})
+    for label, info in _margins(analysis).items():
+        if info["min_margin"] is not None and info["min_margin"] < info["delta"] + 0.02:
+            out.append({"kind": "margin", "group": label, "margin": info["min_margin"],
+                        "delta": info["delta"]})
+    return out
+
+
+def _feasible_trials(problem: Problem, result: SearchResult, top: int) -> list[dict[str, Any]]:
+    c = result.trial_criteria
+    ok = np.flatnonzero((c.p1 == 0) & (c.p2 == 0) & np.isfinite(c.q))
+    order = ok[np.argsort(c.q[ok], kind="stable")][:top]
+    return [{"trial": int(k), "stage": result.stage[k], "Q": float(c.q[k]),
+             **problem.design(result.trials[k])} for k in order]
+
+
+def text_report(data: dict[str, Any], lang: str = "en") -> str:
+    """The report of :func:`summary` data as text in English or Russian."""
+    w = lambda key: _w(key, lang)  # noqa: E731
+    lines = [w("title").format(name=data["name"], cls=data["task_class"],
+                               what=w(f"class{data['task_class']}")), ""]
+    lines += [w("design"),
+              f"  {w('param'):<22} {w('initial'):>12} {w('lower'):>12} {w('upper'):>12} "
+              f"{w('found'):>14}"]
+    for name, value in data["design"].items():
+        lo, hi = data["bounds"][name]
+        lines.append(f"  {name:<22} {data['initial'][name]:>12.6g} {lo:>12.6g} {hi:>12.6g} "
+                     f"{value:>14.9g}")
+    yes_no = lambda flag: w("yes") if flag else w("no")  # noqa: E731
+    lines += ["", w("criteria"),
+              f"  {w('q'):<40} {_fmt(data['Q'])}",
+              f"  {w('rms'):<40} {_fmt(data['Q_rms'])}",
+              f"  {w('p1'):<40} {_fmt(data['P1'])}",
+              f"  {w('p2'):<40} {_fmt(data['P2'])}"]
+    if data["accuracy"] is not None:
+        lines.append(f"  {w('required'):<40} {data['accuracy']:g}")
+        lines.append(f"  {w('favourable'):<40} {yes_no(data['favourable'])}")
+    if not data["feasible"]:
+        lines += ["", w("not_feasible")]
+    lines += ["", w("deviations")]
+    cls = data["task_class"]
+    for row in data["control_points"]:
+        if cls in (1, 2):
+            target = (f"{row['target']:.6g}" if "target" in row
+                      else f"[{row['lower']:.6g}, {row['upper']:.6g}]")
+            lines.append(f"  K={row['K']:<3} φ={row['phi']:8.3f}  {w('target')} {target:>12}  "
+                         f"{w('reproduced')} {_fmt(row['reproduced']):>12}  "
+                         f"Δ={_fmt(row['deviation'])}")
+        else:
+            where = (f"φ={row['phi']:8.3f}" if cls == 4
+                     else f"φ*={_fmt(row['phi_nearest']):>8}")
+            lines.append(f"  K={row['K']:<3} {where}  ({row['x']:.6g}, {row['y']:.6g})  "
+                         f"Δ={_fmt(row['deviation'])}")
+    if data["pressure_angles"]:
+        lines += ["", w("pressure")]
+        for label, info in data["pressure_angles"].items():
+            lines.append(f"  {label:<12} {info['max_deg']:8.3f}°   {w('allowed')} "
+                         f"{info['allowed_deg']:.3f}°")
+    if data["rotations"]:
+        lines += ["", w("rotations")]
+        for label, joints in data["rotations"].items():
+            for role, info in joints.items():
+                lines.append(f"  {label:<12} {role:<4} {info['range_deg']:8.3f}°   "
+                             f"{w('allowed')} {info['allowed_deg']:.3f}°")
+    lines += ["", w("binding")]
+    if not data["binding"]:
+        lines.append(f"  {w('none')}")
+    for item in data["binding"]:
+        if item["kind"] == "bound":
+            lines.append("  " + w("at_bound").format(p=item["parameter"],
+                                                     side=w(f"side_{item['side']}")))
+        elif item["kind"] == "alternance":
+            lines.append("  " + w("alternance").format(k=", ".join(map(str, item["points"]))))
+        elif item["kind"] == "pressure":
+            lines.append("  " + w("near_limit").format(g=item["group"]))
+        else:
+            lines.append("  " + w("margin").format(g=item["group"], m=item["margin"],
+                                                   d=item["delta"]))
+    s = data["search"]
+    lines += ["", w("search"),
+              f"  {w('trials')}: {s['trials']}   {w('feasible_trials')}: {s['feasible_trials']}",
+              f"  {w('stop')}: {w(s['stop'] + '_stop')}   {w('time')}: {s['seconds']:.2f} s   "
+              f"seed {s['seed']}, 2^{s['budget_log2']} LPτ",
+              f"  {w('history')}:"]
+    for h in s["history"]:
+        lines.append(f"    {w('trial')} {int(h['trial']):>7}  {h['seconds']:8.3f} s  "
+                     f"{h['stage']:<8} P1={h['p1']:.4g} P2={_fmt(h['p2'])} Q={_fmt(h['q'])}")
+    table = data["feasible_table"]
+    if table:
+        names = list(data["design"])
+        lines += ["", w("table").format(n=len(table)),
+                  "  " + f"{w('trial'):>7} {w('stage'):<8} {'Q':>12} "
+                  + " ".join(f"{n:>16}" for n in names)]
+        for row in table:
+            lines.append(f"  {row['trial']:>7} {row['stage']:<8} {row['Q']:>12.5g} "
+                         + " ".join(f"{row[n]:>16.8g}" for n in names))
+    return "\n".join(lines) + "\n"
+
+
+def _fmt(value: Any) -> str:
+    return "—" if value is None else f"{value:.6g}"
+
+
+def write_result(path: str | os.PathLike[str], problem: Problem, result: SearchResult,
+                 data: dict[str, Any]) -> None:
+    """Write the identification table of the best design (YAML, or JSON for ``.json``).
+
+    The file is a mechanism table that ``assur analyze`` reads; the criteria stand in comment
+    lines at the top of a YAML file (a JSON file carries only the table).
+    """
+    table = problem.mechanism_table(result.x)
+    if Path(path).suffix.lower() == ".json":
+        atomic_write_text(path, json.dumps(table, indent=2, ensure_ascii=False) + "\n")
+        return
+    head = [f"# Result of the synthesis of {problem.source} (task class {problem.task_class})",
+            f"# Q = {_fmt(data['Q'])}, P1 = {_fmt(data['P1'])}, P2 = {_fmt(data['P2'])}, "
+            f"RMS = {_fmt(data['Q_rms'])}",
+            f"# seed {result.settings.seed}, {data['search']['trials']} trials, "
+            f"stop: {result.stop}"]
+    body = yaml.safe_dump(table, sort_keys=False, allow_unicode=True, default_flow_style=None,
+                          width=100)
+    atomic_write_text(path, "\n".join(head) + "\n" + body)

@@ -70,3 +70,66 @@ __all__ += [
     "solve_rrp",
     "solve_rrr",
 ]
+from assur.existence import (  # noqa: E402
+    CONDITIONS,
+    ExistenceReport,
+    FailureInterval,
+    GroupExistence,
+    check_existence,
+    first_failure,
+)
+from assur.geometry import (  # noqa: E402
+    KIND_COLUMNS,
+    GroupModel,
+    KinematicModel,
+    build_model,
+    load_model,
+    model_from_params,
+    model_from_sketch,
+)
+from assur.kinematics import (  # noqa: E402
+    Motion,
+    SliderState,
+    acceleration,
+    analyse,
+    input_grid,
+    unwrap,
+    values,
+    velocity,
+)
+from assur.transmission import (  # noqa: E402
+    JointRotation,
+    PressureAngle,
+    binary_links,
+    joint_rotations,
+    pressure_angles,
+)
+
+__all__ += [
+    "CONDITIONS",
+    "ExistenceReport",
+    "FailureInterval",
+    "GroupExistence",
+    "GroupModel",
+    "JointRotation",
+    "KIND_COLUMNS",
+    "KinematicModel",
+    "Motion",
+    "PressureAngle",
+    "SliderState",
+    "acceleration",
+    "analyse",
+    "binary_links",
+    "build_model",
+    "check_existence",
+    "first_failure",
+    "input_grid",
+    "joint_rotations",
+    "load_model",
+    "model_from_params",
+    "model_from_sketch",
+    "pressure_angles",
+    "unwrap",
+    "values",
+    "velocity",
+]

@@ -1,0 +1,347 @@
+"""The DGTU structure-identification table (``method.md`` §3.1, table 1.4/1.6).
+
+:func:`identification_table` fills the table from a structural analysis: one row per group,
+the input group(s) included, in layering order. :func:`check_identification` compares a
+table filled by hand with the analysis and reports every mismatch by row and field
+(expected versus found); the rows may come in any order (the course prints them by kind).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import asdict, dataclass
+from typing import Any
+
+from assur.classification import AssurGroup
+from assur.errors import StructureError
+from assur.model import LinkId, PairType, id_key
+from assur.structure import StructuralAnalysis
+
+__all__ = ["COLUMNS", "OUT_CODES", "IdentificationRow", "Mismatch", "check_identification",
+           "identification_table"]
+
+# Output-parameter codes of the source's table 1.6 per kind (meaning lost; kept as text).
+OUT_CODES = {0: "0", 1: "8;2", 2: "7;3", 3: "5", 4: "4", 5: "5"}
+_DEFAULT_VARIANT = {1: 1, 2: 1, 3: 0}
+_VARIANTS: dict[int, tuple[Any, ...]] = {0: (None,), 1: (1, -1), 2: (1, -1), 3: (0, 1, -1),
+                                         4: (None,), 5: (None,)}
+COLUMNS = ("L", "seq", "i_minus_1", "j_minus_1", "i", "j", "i_plus_1", "j_plus_1", "variant",
+           "out_code")
+
+
+@dataclass(frozen=True)
+class IdentificationRow:
+    """One row of the structure-identification table; None is the source's dash."""
+
+    L: int
+    seq: int
+    i_minus_1: LinkId | None
+    j_minus_1: LinkId | None
+    i: LinkId
+    j: LinkId | None
+    i_plus_1: Any
+    j_plus_1: Any
+    variant: int | None
+    out_code: str
+
+    def to_dict(self) -> dict[str, Any]:
+        """The row as a mapping with the table's keys."""
+        return asdict(self)
+
+
+@dataclass(frozen=True)
+class Mismatch:
+    """A difference between a user's identification table and the analysis.
+
+    Attributes
+    ----------
+    row : int or None
+        Index of the row in the user's table (None for a missing row or a table-level count).
+    label : str
+        Where, e.g. ``structure_identification[2] (L2, links 9, 8)``.
+    field : str
+        The column (``"i_plus_1"``) or count (``"W"``); ``"row"`` for a missing row.
+    expected, found : object
+        The analysis' value and the table's value.
+    message, message_ru : str
+        One sentence each.
+    """
+
+    row: int | None
+    label: str
+    field: str
+    expected: Any
+    found: Any
+    message: str
+    message_ru: str
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready form."""
+        return asdict(self)
+
+
+def _require_dgtu(analysis: StructuralAnalysis) -> None:
+    others = [g.label for g in analysis.groups if not g.is_dyad or g.composite]
+    if analysis.leftover or others:
+        parts = []
+        if others:
+            parts.append(f"groups {', '.join(others)} are not dyads of kinds 1–5")
+        if analysis.leftover:
+            parts.append(f"links {', '.join(map(str, analysis.leftover))} are in no group")
+        raise StructureError(f"{analysis.chain.name}: the identification table lists the input "
+                             f"group and dyads only; {'; '.join(parts)}")
+
+
+def identification_table(analysis: StructuralAnalysis) -> list[IdentificationRow]:
+    """Fill the structure-identification table from an analysis, in layering order.
+
+    The assembly variant is a property of the dimensions, not of the structure: the table
+    gets the default (+1 for L1/L2, 0 for L3); ``out_code`` gets the source's code per kind.
+
+    Raises
+    ------
+    StructureError
+        If the mechanism is not made of input groups and dyads of kinds 1–5 only.
+    """
+    _require_dgtu(analysis)
+    rows = []
+    for seq, group in enumerate((*analysis.input_groups, *analysis.groups), start=1):
+        kind = group.kind or 0
+        rows.append(IdentificationRow(
+            L=kind, seq=seq, i_minus_1=group.i_minus_1, j_minus_1=group.j_minus_1, i=group.i,
+            j=group.j, i_plus_1=_successor(analysis, group, group.i),
+            j_plus_1=_successor(analysis, group, group.j) if group.j is not None else None,
+            variant=_DEFAULT_VARIANT.get(kind), out_code=OUT_CODES[kind]))
+    return rows
+
+
+def _successor(analysis: StructuralAnalysis, group: AssurGroup, link: LinkId | None) -> Any:
+    """Links of later groups hinged (R pair) to ``link``: one id, a list, or None."""
+    if link is None:
+        return None
+    own = {p for p, _, _ in group.external} | set(group.internal)
+    found = sorted({pair.other(link) for pair in analysis.chain.pairs_of(link)
+                    if pair.type is PairType.R and pair.id not in own}, key=id_key)
+    if not found:
+        return None
+    return found[0] if len(found) == 1 else found
+
+
+def _flexible(group: AssurGroup, frame: LinkId) -> bool:
+    """Whether the course leaves the choice of i and j free for this dyad."""
+    if group.kind not in (1, 4):
+        return False
+    return (group.i_minus_1 == frame) == (group.j_minus_1 == frame)
+
+
+def check_identification(analysis: StructuralAnalysis,
+                         rows: Iterable[Mapping[str, Any] | IdentificationRow],
+                         *, table: str = "structure_identification") -> list[Mismatch]:
+    """Compare a filled identification table with the analysis, field by field.
+
+    Parameters
+    ----------
+    analysis : StructuralAnalysis
+    rows : iterable of mappings (or :class:`IdentificationRow`)
+        The user's rows, in any order, with the keys of ``method.md`` §3.3.
+    table : str
+        Table name used in the labels.
+
+    Returns
+    -------
+    list of Mismatch
+        Empty when the table agrees with the analysis.
+    """
+    rows = [r.to_dict() if isinstance(r, IdentificationRow) else dict(r) for r in rows]
+    groups = (*analysis.input_groups, *analysis.groups)
+    seq_of = {id(g): k for k, g in enumerate(groups, start=1)}
+    frame = analysis.chain.frame
+    out: list[Mismatch] = []
+    used: dict[int, int] = {}
+    user_seq: dict[int, tuple[int, int, str]] = {}
+
+    for index, row in enumerate(rows):
+        label = _label(table, index, row)
+
+        def miss(field: str, expected: Any, found: Any, why: str = "", why_ru: str = "") -> None:
+            out.append(_mismatch(index, label, field, expected, found, why, why_ru))
+
+        user_i, user_j = row.get("i"), row.get("j")
+        group = analysis.group_of(user_i) if user_i is not None else None
+        if group is None and user_j is not None:
+            group = analysis.group_of(user_j)
+        if group is None:
+            miss("i", "a link of the mechanism", user_i, "this link is in no group",
+                 "это звено не входит ни в одну группу")
+            continue
+        expected_links = set(group.links)
+        found_links = {x for x in (user_i, user_j) if x is not None}
+        if found_links != expected_links:
+            partner = sorted(expected_links - {user_i}, key=id_key)
+            field = "j" if user_i in expected_links else "i"
+            miss(field, partner[0] if len(partner) == 1 else (partner or None),
+                 row.get(field), f"the group of this row is {group.label}",
+                 f"группа этой строки — {group.label}")
+            continue
+        key = id(group)
+        if key in used:
+            miss("row", None, group.label, f"group {group.label} is already described in row "
+                 f"{used[key]}", f"группа {group.label} уже описана в строке {used[key]}")
+            continue
+        used[key] = index
+        kind = group.kind or 0
+        if row.get("L") != kind:
+            miss("L", kind, row.get("L"), f"{group.label} is "
+                 f"{'the input group' if kind == 0 else f'a dyad of kind {kind} ({group.name})'}",
+                 f"{group.label} — {'начальный механизм' if kind == 0 else f'группа {kind} вида'}")
+        i, j = group.i, group.j
+        if (user_i, user_j) != (i, j):
+            if not (group.j is not None and _flexible(group, frame)):
+                rule, rule_ru = _role_rule(kind)
+                miss("i", group.i, user_i, rule, rule_ru)
+                if group.j is not None:
+                    miss("j", group.j, user_j, rule, rule_ru)
+            # judge the neighbour columns in the orientation that explains the row better
+            theirs = _neighbours(analysis, group, user_i, user_j, row, index, label)
+            ours = _neighbours(analysis, group, i, j, row, index, label)
+            out += theirs if len(theirs) < len(ours) else ours
+        else:
+            out += _neighbours(analysis, group, i, j, row, index, label)
+        if row.get("variant") not in _VARIANTS[kind] and "variant" in row:
+            allowed = _VARIANTS[kind]
+            miss("variant", " or ".join("null" if v is None else str(v) for v in allowed),
+                 row.get("variant"), f"allowed for kind {kind}", f"допустимо для {kind} вида")
+        if row.get("seq") is not None:
+            user_seq[key] = (row["seq"], index, label)
+
+    for group in groups:
+        if id(group) not in used:
+            out.append(Mismatch(None, table, "row", group.label, None,
+                                f"{table}: no row for group {group.label}",
+                                f"{table}: нет строки для группы {group.label}"))
+    out += _check_seq(analysis, groups, seq_of, user_seq)
+    out += _check_claims(analysis, table)
+    return out
+
+
+def _neighbours(analysis: StructuralAnalysis, group: AssurGroup, i: LinkId | None,
+                j: LinkId | None, row: Mapping[str, Any], index: int, label: str
+                ) -> list[Mismatch]:
+    """Mismatches of the columns i−1, j−1, i+1, j+1 for the roles (i, j)."""
+    out = []
+    for field, link in (("i_minus_1", i), ("j_minus_1", j)):
+        expected = _known_end(group, link)
+        if field in row and row[field] != expected:
+            out.append(_mismatch(
+                index, label, field, expected, row[field],
+                f"the external pair of link {link} joins it to link {expected}"
+                if expected is not None else "",
+                f"внешняя пара звена {link} соединяет его со звеном {expected}"
+                if expected is not None else ""))
+    for field, link in (("i_plus_1", i), ("j_plus_1", j)):
+        expected = _successor(analysis, group, link)
+        if field in row and not _same(row[field], expected):
+            guided = link is not None and any(
+                p.type is PairType.P and p.guide == link
+                and p.id not in {e[0] for e in group.external} and p.id not in group.internal
+                for p in analysis.chain.pairs_of(link))
+            note = " (a link guided by it is not listed)" if guided else ""
+            note_ru = " (звено, скользящее по нему, не указывается)" if guided else ""
+            out.append(_mismatch(
+                index, label, field, expected, row[field],
+                f"links of later groups hinged to link {link}: {_text(expected)}{note}",
+                f"звенья следующих групп, шарнирно присоединённые к звену {link}: "
+                f"{_text(expected)}{note_ru}"))
+    return out
+
+
+def _known_end(group: AssurGroup, link: LinkId | None) -> LinkId | None:
+    if link is None:
+        return None
+    for _, member, known in group.external:
+        if member == link:
+            return known
+    return None
+
+
+def _role_rule(kind: int) -> tuple[str, str]:
+    return {
+        0: ("i is the input link", "i — входное звено"),
+        1: ("in an RRR dyad the link hinged to the frame is j",
+            "в группе ВВВ звено, шарнирно связанное со стойкой, обозначается j"),
+        2: ("in an RRP dyad i is the slider (its external pair is prismatic), j the rod",
+            "в группе ВВП i — ползун (внешняя поступательная пара), j — шатун"),
+        3: ("in an RPR dyad i is the slotted lever carrying the guide, j the block",
+            "в группе ВПВ i — кулиса (несёт направляющую), j — камень"),
+        4: ("in a PRP dyad j is the link guided by the frame",
+            "в группе ПВП j — звено, скользящее по направляющей стойки"),
+        5: ("in an RPP dyad j is the link with the revolute pair",
+            "в группе ВПП j — звено с вращательной парой"),
+    }[kind]
+
+
+def _same(found: Any, expected: Any) -> bool:
+    if isinstance(expected, list):
+        return isinstance(found, list) and sorted(found, key=id_key) == expected
+    return found == expected
+
+
+def _text(value: Any) -> str:
+    if value is None:
+        return "none"
+    return ", ".join(map(str, value)) if isinstance(value, list) else str(value)
+
+
+def _label(table: str, index: int, row: Mapping[str, Any]) -> str:
+    links = ", ".join(str(row[k]) for k in ("i", "j") if row.get(k) is not None)
+    return f"{table}[{index}] (L{row.get('L')}, links {links})"
+
+
+def _mismatch(index: int | None, label: str, field: str, expected: Any, found: Any,
+              why: str = "", why_ru: str = "") -> Mismatch:
+    exp, fnd = _shown(expected), _shown(found)
+    tail = f" ({why})" if why else ""
+    tail_ru = f" ({why_ru})" if why_ru else ""
+    return Mismatch(index, label, field, expected, found,
+                    f"{label} {field!r}: expected {exp}, found {fnd}{tail}",
+                    f"{label} {field!r}: ожидалось {exp}, указано {fnd}{tail_ru}")
+
+
+def _shown(value: Any) -> str:
+    return "null (–)" if value is None else repr(value) if isinstance(value, str) else str(value)
+
+
+def _check_seq(analysis: StructuralAnalysis, groups: tuple[AssurGroup, ...],
+               seq_of: dict[int, int], user_seq: dict[int, tuple[int, int, str]]
+               ) -> list[Mismatch]:
+    """A user's ``seq`` may differ from ours if it is still a valid layering order."""
+    out = []
+    by_link = {link: g for g in groups for link in g.links}
+    values = [s for s, _, _ in user_seq.values()]
+    for group in groups:
+        if id(group) not in user_seq:
+            continue
+        seq, index, label = user_seq[id(group)]
+        before = {id(by_link[k]) for _, _, k in group.external if k in by_link}
+        late = [g for g in groups if id(g) in before and id(g) in user_seq
+                and user_seq[id(g)][0] >= seq]
+        clash = values.count(seq) > 1 or not 1 <= seq <= len(groups)
+        if late or (clash and seq != seq_of[id(group)]):
+            why = (f"the group attaches to {', '.join(g.label for g in late)}, which must come "
+                   f"earlier" if late else f"seq must be a unique number 1..{len(groups)}")
+            why_ru = (f"группа присоединяется к {', '.join(g.label for g in late)}, которые "
+                      f"должны идти раньше" if late else
+                      f"seq — неповторяющийся номер 1..{len(groups)}")
+            out.append(_mismatch(index, label, "seq", seq_of[id(group)], seq, why, why_ru))
+    return out
+
+
+def _check_claims(analysis: StructuralAnalysis, table: str) -> list[Mismatch]:
+    actual = {"n_moving_links": analysis.n, "p5": analysis.p5, "p4": analysis.p4,
+              "W": analysis.W, "N_Q": len(analysis.input_groups) + len(analysis.groups)}
+    out = []
+    for key, found in analysis.chain.claims.items():
+        if actual[key] != found:
+            out.append(_mismatch(None, "table header", key, actual[key], found))
+    return out
+

@@ -1,0 +1,52 @@
+"""``assur check TABLE.yaml``: structural analysis of a chain or identification table.
+
+Prints the counts n, p5, p4 and W, the input groups and Assur groups in layering order, the
+structure formula, the mechanism class, the diagnostics, the DGTU identification table and
+the applicability verdict; with ``--json`` one JSON object instead. When the file carries a
+filled ``structure_identification`` table, it is checked against the analysis field by field.
+Exit code 0 when the analysis ran (whatever it found), 2 for an unreadable or invalid table.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+from assur import analyse_structure, load_chain
+from assur.errors import StructureError
+from assur.identification import check_identification, identification_table
+from assur.structure_report import structure_report
+
+NAME = "check"
+HELP = "structural analysis of a chain table: mobility, Assur groups, formula, DGTU table"
+ORDER = 10
+
+
+def add_args(parser: argparse.ArgumentParser) -> None:
+    """Arguments of ``assur check``."""
+    parser.add_argument("table", help="chain table or identification table (YAML)")
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.add_argument("--lang", choices=("en", "ru"), default="en",
+                        help="language of the text report (default: en)")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Analyse the table and print the report."""
+    chain = load_chain(args.table)
+    analysis = analyse_structure(chain)
+    try:
+        table = identification_table(analysis)
+    except StructureError:
+        table = None
+    mismatches = (check_identification(analysis, chain.identification)
+                  if chain.identification is not None else None)
+    if args.json:
+        payload = analysis.to_dict()
+        payload["identification_table"] = [row.to_dict() for row in table] if table else None
+        payload["identification_check"] = (
+            None if mismatches is None else [m.to_dict() for m in mismatches])
+        print(json.dumps(payload, ensure_ascii=False, indent=2))
+    else:
+        print(structure_report(analysis, lang=args.lang, table=table, mismatches=mismatches,
+                               checked_rows=len(chain.identification or ())))
+    return 0

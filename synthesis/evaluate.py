@@ -229,36 +229,26 @@ class Evaluator:
 
     def _desirable(self, motion: Any, d: int, n: int
                    ) -> tuple[dict[str, FloatArray], dict[str, FloatArray]]:
-        """Largest pressure angles and joint rotation ranges over the grid, per group."""
-        model = motion.model
+        """Largest pressure angles (D, 1) and joint rotation ranges (D, J) over the grid."""
         pressure: dict[str, FloatArray] = {}
         rotation: dict[str, FloatArray] = {}
-        for label in self.problem.pressure_angles:
-            group = model.group(label)
-            sol = motion.solutions[label]
-            a_i = _full(assur.values(sol.angle_i), d, self.positions.size)[:, :n]
-            a_j = _full(assur.values(sol.angle_j), d, self.positions.size)[:, :n]
-            if group.kind == 1:
-                alpha = np.arccos(np.clip(np.abs(np.sin(a_i - a_j)), 0.0, 1.0))
-            else:
-                alpha = np.arccos(np.clip(np.abs(np.cos(a_j - a_i)), 0.0, 1.0))
-            pressure[label] = np.max(alpha, axis=1)[:, None]
-        for label, limits in self.problem.rotations.items():
-            group = model.group(label)
-            ranges = []
-            for role in limits:
-                a, b = model.pair_links[group.pairs[role]][1]
-                rel = (_angle(motion, model, a, d) - _angle(motion, model, b, d))[:, :n]
-                rel = assur.unwrap(rel)
-                ranges.append(np.max(rel, axis=1) - np.min(rel, axis=1))
-            rotation[label] = np.stack(ranges, axis=1)
+        size = self.positions.size
+        if self.problem.pressure_angles:
+            for item in assur.pressure_angles(motion):
+                if item.label in self.problem.pressure_angles:
+                    alpha = np.nan_to_num(_full(item.alpha, d, size)[:, :n], nan=0.0)
+                    pressure[item.label] = np.max(alpha, axis=1)[:, None]
+        if self.problem.rotations:
+            swings = {}
+            for item in assur.joint_rotations(motion):
+                theta = _full(item.theta, d, size)[:, :n]
+                swings[item.pair] = (np.max(np.nan_to_num(theta), axis=1)
+                                     - np.min(np.nan_to_num(theta), axis=1))
+            for label, limits in self.problem.rotations.items():
+                group = motion.model.group(label)
+                rotation[label] = np.stack([swings[group.pairs[role]] for role in limits],
+                                           axis=1)
         return pressure, rotation
-
-
-def _angle(motion: Any, model: Any, link: Any, d: int) -> FloatArray:
-    if link == model.frame:
-        return np.zeros((d, motion.q.size))
-    return _full(assur.values(motion.link_angle(link)), d, motion.q.size)
 
 
 def _full(value: Any, d: int, n: int) -> npt.NDArray[Any]:

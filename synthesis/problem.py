@@ -54,6 +54,7 @@ from assur.tables import MISSING, Node, describe, normalise_id
 
 __all__ = [
     "ControlPoints",
+    "DEFAULT_PRESSURE_ANGLE",
     "GroupKey",
     "Output",
     "Parameter",
@@ -63,6 +64,9 @@ __all__ = [
 ]
 
 GroupKey = tuple[Any, ...]
+
+#: The program default of the allowable pressure angle [α], degrees (``method.md`` §2.7).
+DEFAULT_PRESSURE_ANGLE = 45.0
 FloatArray = npt.NDArray[np.float64]
 
 
@@ -319,6 +323,9 @@ def _read(reader: TableReader, base: Path) -> Problem:
     if not parameters:
         reader.add("parameters", "no parameter is varied; give at least one column as "
                                  "[initial, lower, upper] with lower < upper")
+    pressure_angles = {labels[k]: v for k, v in pressure.items()}
+    rotation_limits = {labels[k]: v for k, v in rotations.items()}
+    _check_allowable(reader, model, pressure_angles, rotation_limits)
     if output.link is not None and output.link not in model.links:
         reader.add("output 'link'", f"link {output.link!r} is not a moving link of the "
                                     f"mechanism")
@@ -329,8 +336,7 @@ def _read(reader: TableReader, base: Path) -> Problem:
         n_groups=g["n_groups"], grid=g["grid"], accuracy=g["accuracy"],
         objective=g["objective"], p2_weight=float(g["p2_weight"]), mechanism=mechanism,
         model=model, parameters=parameters, control=control, output=output,
-        pressure_angles={labels[k]: v for k, v in pressure.items()},
-        rotations={labels[k]: v for k, v in rotations.items()}, group_models=models,
+        pressure_angles=pressure_angles, rotations=rotation_limits, group_models=models,
         search=search)
 
 
@@ -495,25 +501,54 @@ def _read_control(top: Node, task_class: Any, n_points: Any) -> ControlPoints:
 
 def _read_allowable(top: Node, groups: dict[GroupKey, Any]
                     ) -> tuple[dict[GroupKey, float], dict[GroupKey, dict[str, float]]]:
+    """Tables 2.7–2.11: allowable pressure angles and joint rotations (degrees → radians)."""
     pressure: dict[GroupKey, float] = {}
     rotations: dict[GroupKey, dict[str, float]] = {}
     for row in top.rows("allowable", ("links", "pressure_angle", "rotations"), required=False):
         key = _group_of(row, groups)
-        angle = row.get("pressure_angle", kind="number", required=False, default=None,
-                        check=lambda v: None if 0 < v <= 90 else "must lie in (0, 90] degrees")
+        angle = None
+        if row.mapping.get("pressure_angle") == "default":
+            angle = DEFAULT_PRESSURE_ANGLE
+        else:
+            angle = row.get("pressure_angle", kind="number", required=False, default=None,
+                            check=lambda v: None if 0 < v <= 90 else
+                            "must lie in (0, 90] degrees, or be 'default'")
         turns = row.child("rotations", required=False)
+        limits = {}
+        if turns is not None:
+            for joint in turns.mapping:
+                value = turns.get(joint, kind="number", check=_positive)
+                if value is not MISSING:
+                    limits[str(joint)] = math.radians(value)
         if key is None:
             continue
         if angle not in (None, MISSING):
             pressure[key] = math.radians(angle)
-        if turns is not None:
-            limits = {}
-            for joint in turns.mapping:
-                v = turns.get(joint, kind="number", check=_positive)
-                if v is not MISSING:
-                    limits[str(joint)] = math.radians(v)
+        if limits:
             rotations[key] = limits
     return pressure, rotations
+
+
+def _check_allowable(reader: TableReader, model: Any, pressure: dict[str, float],
+                     rotations: dict[str, dict[str, float]]) -> None:
+    """Pressure angles exist only for L1/L2 groups with a two-hinge rod; rotations only in
+    the group's revolute joints (``method.md`` §2.7–2.8)."""
+    if pressure:
+        motion = assur.analyse(model, np.zeros(1))
+        computed = {item.label for item in assur.pressure_angles(motion)}
+        for label in pressure:
+            if label not in computed:
+                reader.add(f"allowable ({label}) 'pressure_angle'",
+                           f"the pressure angle is computed only for L1 and L2 groups with a "
+                           f"two-hinge rod; {label} has none")
+    for label, limits in rotations.items():
+        group = model.group(label)
+        joints = [role for role in group.pairs if not role.startswith("P")]
+        for role in limits:
+            if role not in joints:
+                reader.add(f"allowable ({label}) 'rotations'",
+                           f"unknown revolute joint {role!r}; the joints of {label} are "
+                           f"{', '.join(joints) or 'none'}")
 
 
 def _read_search(top: Node) -> dict[str, Any]:

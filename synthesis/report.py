@@ -78,8 +78,9 @@ _WORDS: dict[str, tuple[str, str]] = {
     "history": ("improvements of the best design", "улучшения лучшего решения"),
     "trial": ("trial", "испытание"),
     "stage": ("stage", "этап"),
-    "table": ("Feasible trials, best {n} by Q (the designer may pick any)",
-              "Допустимые испытания, лучшие {n} по Q (проектировщик выбирает любое)"),
+    "table": ("Feasible passive trials, best {n} by Q (the designer may pick any)",
+              "Допустимые пассивные испытания, лучшие {n} по Q (проектировщик выбирает "
+              "любое)"),
     "not_feasible": ("No feasible design was found: P1 > 0 or P2 > 0.",
                      "Допустимого решения не найдено: P1 > 0 или P2 > 0."),
     "favourable_stop": ("a favourable mechanism was found", "найден благоприятный механизм"),
@@ -217,7 +218,8 @@ def _binding(problem: Problem, result: SearchResult, analysis: Analysis) -> list
 
 def _feasible_trials(problem: Problem, result: SearchResult, top: int) -> list[dict[str, Any]]:
     c = result.trial_criteria
-    ok = np.flatnonzero((c.p1 == 0) & (c.p2 == 0) & np.isfinite(c.q))
+    passive = np.array([stage != "refine" for stage in result.stage])
+    ok = np.flatnonzero((c.p1 == 0) & (c.p2 == 0) & np.isfinite(c.q) & passive)
     order = ok[np.argsort(c.q[ok], kind="stable")][:top]
     return [{"trial": int(k), "stage": result.stage[k], "Q": float(c.q[k]),
              **problem.design(result.trials[k])} for k in order]
@@ -291,7 +293,10 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
               f"  {w('stop')}: {w(s['stop'] + '_stop')}   {w('time')}: {s['seconds']:.2f} s   "
               f"seed {s['seed']}, 2^{s['budget_log2']} LPτ",
               f"  {w('history')}:"]
-    for h in s["history"]:
+    history = s["history"]
+    if len(history) > 12:
+        history = history[:6] + history[-6:]
+    for h in history:
         lines.append(f"    {w('trial')} {int(h['trial']):>7}  {h['seconds']:8.3f} s  "
                      f"{h['stage']:<8} P1={h['p1']:.4g} P2={_fmt(h['p2'])} Q={_fmt(h['q'])}")
     table = data["feasible_table"]

@@ -30,6 +30,7 @@ import sys
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -38,7 +39,7 @@ from scipy.stats import qmc
 
 from synthesis.criteria import Criteria, Objective, merit
 
-__all__ = ["SearchResult", "SearchSettings", "search"]
+__all__ = ["STOP_REASONS", "SearchResult", "SearchSettings", "search", "settings_for"]
 
 FloatArray = npt.NDArray[np.float64]
 Evaluator = Callable[[FloatArray], Criteria]
@@ -338,6 +339,28 @@ class _Search:
 def _concat(parts: list[Criteria]) -> Criteria:
     return Criteria(*(np.concatenate([getattr(p, name) for p in parts])
                       for name in ("p1", "p2", "q", "deviations", "residuals")))
+
+
+def settings_for(problem: Any, **overrides: Any) -> SearchSettings:
+    """Search settings of a problem: its ``search`` table, then the given overrides.
+
+    Parameters
+    ----------
+    problem : Problem
+        Supplies ``search`` (``budget``, ``seed``, ``refine``, ``shrink_passes``, ``stall``,
+        ``time_limit``), ``accuracy`` ([Q]), ``objective`` and ``p2_weight``.
+    **overrides
+        Fields of :class:`SearchSettings`; None leaves the problem's value.
+    """
+    table = dict(problem.search)
+    values: dict[str, Any] = {
+        "budget_log2": table.get("budget", 12), "seed": table.get("seed", 0),
+        "refine": table.get("refine", False), "shrink_passes": table.get("shrink_passes", 0),
+        "stall": table.get("stall"), "time_limit": table.get("time_limit"),
+        "q_required": problem.accuracy, "objective": problem.objective,
+        "p2_weight": problem.p2_weight}
+    values.update({k: v for k, v in overrides.items() if v is not None})
+    return SearchSettings(**values)
 
 
 def search(evaluate: Evaluator, lower: npt.ArrayLike, upper: npt.ArrayLike,

@@ -1,0 +1,85 @@
+"""``assur synthesize PROBLEM.yaml``: optimisation synthesis by passive LPτ search (B1–B5).
+
+Exit codes: 0 a feasible design (P1 = P2 = 0) was found, 1 the search ended without one,
+2 the problem file is invalid, 130 interrupted (the best design so far is still written).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from typing import Any
+
+from synthesis.report import summary, text_report, write_result
+
+NAME = "synthesize"
+HELP = "synthesise a mechanism: passive LPτ search for the Peisakh criteria Q, P1, P2"
+ORDER = 30
+
+
+def add_args(parser: argparse.ArgumentParser) -> None:
+    """Arguments of ``assur synthesize``."""
+    parser.add_argument("problem", metavar="PROBLEM.yaml", help="the synthesis problem table")
+    parser.add_argument("--budget", type=int, metavar="M", default=None,
+                        help="draw up to 2**M LPτ trials (default: the problem's, else 12)")
+    parser.add_argument("--seed", type=int, default=None,
+                        help="seed of the scrambled LPτ sequence (default: the problem's, else 0)")
+    parser.add_argument("--refine", action="store_true", default=None,
+                        help="refine the best trials locally (scipy.optimize.least_squares)")
+    parser.add_argument("--shrink", type=int, metavar="PASSES", default=None,
+                        help="passive passes in boxes shrunk around the best design")
+    parser.add_argument("--time-limit", type=float, metavar="SEC", default=None,
+                        help="stop the search after this many seconds")
+    parser.add_argument("--out", metavar="RESULT", default=None,
+                        help="write the mechanism table of the best design (.yaml or .json); "
+                             "'assur analyze RESULT' reads it back")
+    parser.add_argument("--json", action="store_true", help="print the summary as JSON")
+    parser.add_argument("--plot", metavar="DIR", default=None,
+                        help="save output.png, mechanism.png and convergence.png into DIR")
+    parser.add_argument("--lang", choices=("en", "ru"), default="en",
+                        help="language of the report")
+    parser.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Read the problem, search, report."""
+    from synthesis.evaluate import Evaluator
+    from synthesis.problem import load_problem
+    from synthesis.search import search, settings_for
+
+    problem = load_problem(args.problem)
+    settings = settings_for(problem, budget_log2=args.budget, seed=args.seed,
+                            refine=args.refine, shrink_passes=args.shrink,
+                            time_limit=args.time_limit, progress=not args.quiet)
+    evaluator = Evaluator(problem)
+    result = search(evaluator, problem.lower, problem.upper, problem.initial, settings)
+    analysis = evaluator.analyse(result.x[None, :])
+    data = summary(problem, result, analysis)
+    if args.out:
+        write_result(args.out, problem, result, data)
+        data["result_file"] = args.out
+    if args.plot:
+        from synthesis.plots import save_plots
+
+        data["plots"] = [str(p) for p in save_plots(args.plot, problem, result, analysis,
+                                                    lang=args.lang)]
+    if args.json:
+        print(json.dumps(_plain(data), indent=2, ensure_ascii=False))
+    else:
+        sys.stdout.write(text_report(data, args.lang))
+    if result.stop == "interrupted":
+        return 130
+    return 0 if data["feasible"] else 1
+
+
+def _plain(value: Any) -> Any:
+    """JSON-safe copy: NaN and infinities become null."""
+    if isinstance(value, dict):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value

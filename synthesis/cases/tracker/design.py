@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Literal
 
 import numpy as np
 import numpy.typing as npt
@@ -37,6 +38,7 @@ __all__ = [
     "DesignTable",
     "DesignTask",
     "PATENT_TASK",
+    "Violation",
     "choose",
     "design_at",
     "design_table",
@@ -109,6 +111,24 @@ actuator, l_g ≥ 85 mm, k2 = 1.4 … 2.2, k5 = 2."""
 
 
 @dataclass(frozen=True)
+class Violation:
+    """A requirement a design breaks.
+
+    Attributes
+    ----------
+    requirement : {'transmission', 'clearance', 'stroke'}
+        ``b_min ≥ b_min.ad``, ``l_g ≥`` the clearance, or ``l_s ≤`` the actuator's stroke.
+    value, limit : float
+        The design's value and the task's limit (radians for the transmission angle, mm
+        otherwise).
+    """
+
+    requirement: Literal["transmission", "clearance", "stroke"]
+    value: float
+    limit: float
+
+
+@dataclass(frozen=True)
 class Design:
     """One design: proportions, angles (radians) and lengths (mm).
 
@@ -122,7 +142,7 @@ class Design:
         Actuator extended, retracted and stroke, post clearance, over ``l1``.
     l1, l2, l5, l_d, l_i, l_s, l_g : float
         The same in millimetres (``l3 = l2``, ``l4 = l1``).
-    violations : tuple of str
+    violations : tuple of Violation
         The requirements the design breaks (empty for an admissible design).
     """
 
@@ -137,7 +157,7 @@ class Design:
     k_s: float
     k_g: float
     l1: float
-    violations: tuple[str, ...] = field(default=())
+    violations: tuple[Violation, ...] = field(default=())
 
     @property
     def l2(self) -> float:
@@ -226,14 +246,14 @@ def _design(task: DesignTask, values: Proportions, index: tuple[int, ...]) -> De
     transmission, clearance, stroke = (float(m[index]) for m in _violations(task, values))
     broken = []
     if transmission < -_SLACK:
-        broken.append(f"b_min = {math.degrees(float(values.b_min[index])):.2f}° is below the "
-                      f"allowed {math.degrees(task.min_transmission):g}°")
+        broken.append(Violation("transmission", float(values.b_min[index]),
+                                task.min_transmission))
     if clearance < -_SLACK:
-        broken.append(f"l_g = {float(values.k_g[index]) * task.l1:.1f} mm is below the "
-                      f"required {task.min_clearance:g} mm")
+        broken.append(Violation("clearance", float(values.k_g[index]) * task.l1,
+                                task.min_clearance))
     if stroke < -_SLACK:
-        broken.append(f"l_s = {float(values.k_s[index]) * task.l1:.1f} mm exceeds the "
-                      f"actuator's stroke of {task.actuator_stroke:g} mm")
+        broken.append(Violation("stroke", float(values.k_s[index]) * task.l1,
+                                task.actuator_stroke))
     return Design(**{name: float(getattr(values, name)[index]) for name in (
         "k2", "k5", "a", "b_min", "c", "d", "k_d", "k_i", "k_s", "k_g")},
         l1=task.l1, violations=tuple(broken))

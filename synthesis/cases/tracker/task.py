@@ -88,7 +88,7 @@ def _read(reader: TableReader, overrides: dict[str, Any], *, required: bool = Tr
                                     check=_ratios)
     options = TableReader.from_data({OPTIONS[name]: value for name, value in overrides.items()},
                                     reader.source)
-    given = options.root(name="command line")
+    given = options.root(name="option")
     for name in overrides:
         kind, check = ("list", _ratios) if name in ("k2", "k5") else ("number", _in_range(name))
         values[name] = given.get(OPTIONS[name], kind=kind, check=check)
@@ -124,7 +124,7 @@ def load_task(path: str | os.PathLike[str] | None = None,
         Listing every problem of the table and of the overrides.
     """
     if path is None:
-        return _read(TableReader.from_data({}, source="patent example"), dict(overrides or {}),
+        return _read(TableReader.from_data({}, source="command line"), dict(overrides or {}),
                      required=False)
     return _read(TableReader.from_path(path), dict(overrides or {}))
 

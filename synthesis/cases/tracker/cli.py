@@ -1,0 +1,61 @@
+"""``assur case tracker``: the rhomboid orientation mechanism of a solar tracker."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from synthesis.cases.tracker.report import summary, to_dict
+from synthesis.cases.tracker.study import run_study
+from synthesis.cases.tracker.task import load_task
+
+NAME = "tracker"
+HELP = ("rhomboid orientation mechanism of a solar tracker driven by a linear actuator "
+        "(patent application RO a 2010 00677): Tabel 1 reproduced, design procedure Etapa I-VI")
+
+_OPTIONS = (
+    ("--stroke", "stroke_deg", float, "DEG", "platform stroke a (default 210)"),
+    ("--min-transmission", "min_transmission_deg", float, "DEG",
+     "smallest allowed transmission angle b_min.ad (default 25)"),
+    ("--l1", "l1_mm", float, "MM", "short rocker l1 (default 300)"),
+    ("--actuator-stroke", "actuator_stroke_mm", float, "MM",
+     "stroke of the available actuator (default 1000)"),
+    ("--min-clearance", "min_clearance_mm", float, "MM",
+     "least distance from the post to the extended actuator's axis (default 85)"),
+)
+
+
+def add_args(parser: argparse.ArgumentParser) -> None:
+    """Options of the case; each overrides the value of the task table."""
+    parser.add_argument("--table", metavar="FILE.yaml",
+                        help="design task table (see input_tables/case_tracker.yaml); "
+                             "default: the patent's worked example")
+    for flag, dest, kind, metavar, text in _OPTIONS:
+        parser.add_argument(flag, dest=dest, type=kind, metavar=metavar, help=text)
+    parser.add_argument("--k2", nargs="+", type=float, metavar="K2",
+                        help="values of l2/l1 for the design table (default 1.4 1.6 1.8 2 2.2)")
+    parser.add_argument("--k5", nargs="+", type=float, metavar="K5",
+                        help="values of l5/l1 (default 2)")
+    parser.add_argument("--json", action="store_true", help="print the results as JSON")
+    parser.add_argument("--plot", metavar="DIR", help="write the charts and drawings here")
+    parser.add_argument("--lang", choices=("en", "ru"), default="en",
+                        help="language of the report")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run the case; returns 0 (the report says whether a design was found)."""
+    names = [dest for _, dest, *_ in _OPTIONS] + ["k2", "k5"]
+    overrides = {name: getattr(args, name) for name in names if getattr(args, name) is not None}
+    study = run_study(load_task(args.table, overrides))
+    if args.json:
+        json.dump(to_dict(study), sys.stdout, indent=2, ensure_ascii=False)
+        print()
+    else:
+        sys.stdout.write(summary(study, args.lang))
+    if args.plot:
+        from synthesis.cases.tracker.plot import save_plots
+
+        for path in save_plots(study, args.plot, args.lang):
+            print(f"wrote {path}", file=sys.stderr)
+    return 0

@@ -1,0 +1,208 @@
+"""Pictures of the tracker case: the design charts and the mechanism at both stroke ends.
+
+matplotlib is imported only when a picture is drawn, and only its object API is used (no
+pyplot, nothing is shown); files are written atomically.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from assur import atomic_write_bytes
+from synthesis.cases.tracker.geometry import proportions, stroke
+from synthesis.cases.tracker.patent import EXAMPLE, SERIES
+from synthesis.cases.tracker.study import Study, Verification
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+__all__ = ["chart_figure", "mechanism_figure", "plot_mechanism", "save_plots"]
+
+_CHART_K5 = (1.8, 2.0, 2.2)
+_LABELS = {
+    "en": {"b": "smallest transmission angle b_min, °", "a": "platform stroke a, °",
+           "k2": "k2 = l2/l1", "deg": "angle, °", "ratio": "ratio to l1", "patent": "patent",
+           "stroke": "stroke a(b_min) for each k2 (fig. 4)", "bmin": "b_min (fig. 4)",
+           "cd": "c and d (figs. 5, 6)", "kdi": "k_d and k_i (figs. 7, 8)",
+           "ks": "k_s (figs. 9, 13, 15)", "kg": "k_g (figs. 12, 14, 16)",
+           "allowed": "allowed", "required": "required",
+           "retracted": "actuator retracted", "extended": "actuator extended",
+           "mech": "k2 = {k2:.3f}, k5 = {k5:.3f}, l1 = {l1:g} mm: stroke {a:.1f}°",
+           "x": "x, mm", "y": "y, mm", "clear": "post clearance l_g ≥ {g:g} mm"},
+    "ru": {"b": "наименьший угол передачи b_min, °", "a": "ход платформы a, °",
+           "k2": "k2 = l2/l1", "deg": "угол, °", "ratio": "отношение к l1", "patent": "патент",
+           "stroke": "ход a(b_min) для каждого k2 (рис. 4)", "bmin": "b_min (рис. 4)",
+           "cd": "c и d (рис. 5, 6)", "kdi": "k_d и k_i (рис. 7, 8)",
+           "ks": "k_s (рис. 9, 13, 15)", "kg": "k_g (рис. 12, 14, 16)",
+           "allowed": "допустимо", "required": "требуется",
+           "retracted": "привод втянут", "extended": "привод выдвинут",
+           "mech": "k2 = {k2:.3f}, k5 = {k5:.3f}, l1 = {l1:g} мм: ход {a:.1f}°",
+           "x": "x, мм", "y": "y, мм", "clear": "зазор до стойки l_g ≥ {g:g} мм"},
+}
+
+
+def _printed(quantity: str, k5: float | None) -> tuple[list[float], list[float]]:
+    points = [(k2, value) for series in SERIES if series.quantity == quantity
+              and series.source != "Tabel 1" and (k5 is None or series.k5 == k5)
+              for k2, value in series.values.items()]
+    if quantity in ("d", "k_d") and not points:
+        points = [(k2, value) for series in SERIES if series.quantity == quantity
+                  and (k5 is None or series.k5 == k5) for k2, value in series.values.items()]
+    return [p[0] for p in points], [p[1] for p in points]
+
+
+def chart_figure(study: Study, lang: str = "en") -> Figure:
+    """The design charts: the stroke against b_min, and every quantity against k2.
+
+    Curves for several ``k5`` (the task's and the patent's 1.8, 2, 2.2); where the task's
+    stroke is the patent's 210°, the printed values are drawn as markers.
+    """
+    from matplotlib.figure import Figure
+
+    text = _LABELS[lang]
+    task = study.task
+    fig = Figure(figsize=(14, 8.5), layout="constrained")
+    axes = fig.subplots(2, 3)
+    k2 = np.linspace(min(task.k2) - 0.1, max(task.k2) + 0.1, 201)
+    k5s = sorted(set(task.k5) | set(_CHART_K5))
+    a_deg = math.degrees(task.stroke)
+    patent = math.isclose(a_deg, EXAMPLE["stroke_deg"])
+
+    ax = axes[0, 0]
+    b = np.radians(np.linspace(5.0, 85.0, 321))
+    for value in task.k2:
+        ax.plot(np.degrees(b), np.degrees(stroke(b, value)), label=f"k2 = {value:g}")
+    ax.axhline(a_deg, color="k", lw=0.8, ls="--")
+    ax.axvline(math.degrees(task.min_transmission), color="r", lw=0.8, ls=":",
+               label=f"b_min.ad ({text['allowed']})")
+    table_b = np.degrees(study.table.values.b_min[:, 0])
+    ax.plot(table_b, np.full_like(table_b, a_deg), "ko", ms=4)
+    ax.set(title=text["stroke"], xlabel=text["b"], ylabel=text["a"])
+    ax.legend(fontsize=7)
+
+    one = proportions(task.stroke, k2, k5s[0])
+    ax = axes[0, 1]
+    ax.plot(k2, np.degrees(one.b_min), label="b_min")
+    ax.axhline(math.degrees(task.min_transmission), color="r", lw=0.8, ls=":",
+               label=text["allowed"])
+    if patent:
+        ax.plot(*_printed("b_min", None), "kx", label=text["patent"])
+    ax.set(title=text["bmin"], xlabel=text["k2"], ylabel=text["deg"])
+    ax.legend(fontsize=7)
+
+    ax = axes[0, 2]
+    ax.plot(k2, np.degrees(one.c), label="c")
+    ax.plot(k2, np.degrees(one.d), label="d")
+    if patent:
+        for quantity in ("c", "d"):
+            ax.plot(*_printed(quantity, None), "kx")
+    ax.set(title=text["cd"], xlabel=text["k2"], ylabel=text["deg"])
+    ax.legend(fontsize=7)
+
+    panels = ((axes[1, 0], ("k_d", "k_i"), text["kdi"]), (axes[1, 1], ("k_s",), text["ks"]),
+              (axes[1, 2], ("k_g",), text["kg"]))
+    for ax, quantities, title in panels:
+        for index, k5 in enumerate(k5s):
+            values = proportions(task.stroke, k2, k5)
+            for quantity, style in zip(quantities, ("-", "--")):
+                ax.plot(k2, getattr(values, quantity), style, color=f"C{index}",
+                        label=f"{quantity}, k5 = {k5:g}")
+                if patent:
+                    ax.plot(*_printed(quantity, k5), "x", color=f"C{index}")
+        ax.set(title=title, xlabel=text["k2"], ylabel=text["ratio"])
+        ax.legend(fontsize=7)
+    axes[1, 1].axhline(task.actuator_stroke / task.l1, color="r", lw=0.8, ls=":",
+                       label=text["allowed"])
+    axes[1, 2].axhline(task.min_clearance / task.l1, color="r", lw=0.8, ls=":",
+                       label=text["required"])
+    return fig
+
+
+def plot_mechanism(check: Verification, ax: Axes, lang: str = "en",
+                   min_clearance: float | None = None) -> Axes:
+    """Draw the mechanism at both ends of the stroke, with the actuator and the post.
+
+    Parameters
+    ----------
+    check : Verification
+        A simulated design (its motion runs from the retracted to the extended actuator).
+    ax : matplotlib Axes
+    lang : {'en', 'ru'}
+    min_clearance : float, optional
+        Draws the required clearance around the post as a dashed circle.
+
+    Returns
+    -------
+    Axes
+    """
+    text = _LABELS[lang]
+    m = check.motion
+    d = check.design
+    ax.plot(m.b.real, m.b.imag, color="0.7", lw=0.8)
+    ax.plot(m.c.real, m.c.imag, color="0.7", lw=0.8)
+    base = np.array([complex(m.d[0]), complex(m.a[0]), complex(m.e[0])])
+    ax.plot(base.real, base.imag, color="k", lw=1.0)
+    for index, colour, label in ((0, "tab:blue", text["retracted"]),
+                                 (-1, "tab:red", text["extended"])):
+        a, b, c, dd, e = (complex(p[index]) for p in (m.a, m.b, m.c, m.d, m.e))
+        ax.plot([a.real, b.real], [a.imag, b.imag], color=colour, lw=4, solid_capstyle="round",
+                label=label)
+        ax.plot([b.real, c.real, dd.real], [b.imag, c.imag, dd.imag], color=colour, lw=2)
+        body = e + (c - e) / abs(c - e) * min(abs(c - e), d.l_i)
+        ax.plot([e.real, body.real], [e.imag, body.imag], color=colour, lw=6, alpha=0.45)
+        ax.plot([e.real, c.real], [e.imag, c.imag], color=colour, lw=1.5, ls="--")
+        ax.plot([a.real, b.real, c.real, dd.real, e.real], [a.imag, b.imag, c.imag, dd.imag,
+                                                            e.imag], "o", color=colour, ms=4)
+    for name, point in (("A", m.a[0]), ("D", m.d[0]), ("E", m.e[0])):
+        ax.annotate(name, (point.real, point.imag), textcoords="offset points", xytext=(4, -12))
+    ax.plot([0.0], [0.0], "ks", ms=9)
+    if min_clearance:
+        angle = np.linspace(0.0, 2.0 * np.pi, 181)
+        ax.plot(min_clearance * np.cos(angle), min_clearance * np.sin(angle), "k:", lw=0.8,
+                label=text["clear"].format(g=min_clearance))
+    ax.set_aspect("equal")
+    ax.set(title=text["mech"].format(k2=d.k2, k5=d.k5, l1=d.l1, a=math.degrees(check.stroke)),
+           xlabel=text["x"], ylabel=text["y"])
+    ax.legend(fontsize=7, loc="lower left")
+    return ax
+
+
+def mechanism_figure(check: Verification, lang: str = "en",
+                     min_clearance: float | None = None) -> Figure:
+    """A figure with :func:`plot_mechanism`."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(8, 7), layout="constrained")
+    plot_mechanism(check, fig.subplots(), lang, min_clearance)
+    return fig
+
+
+def _write(fig: Figure, path: Path) -> Path:
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=120)
+    atomic_write_bytes(path, buffer.getvalue())
+    return path
+
+
+def save_plots(study: Study, directory: str | Path, lang: str = "en") -> list[Path]:
+    """Write the design charts and the chosen designs' drawings as PNG files.
+
+    Returns
+    -------
+    list of Path
+        The files written: ``tracker_charts.png``, ``tracker_chosen.png`` and
+        ``tracker_refined.png`` (the last two when there is such a design).
+    """
+    directory = Path(directory)
+    paths = [_write(chart_figure(study, lang), directory / "tracker_charts.png")]
+    for name, check in (("chosen", study.chosen), ("refined", study.refined)):
+        if check is not None:
+            paths.append(_write(mechanism_figure(check, lang, study.task.min_clearance),
+                                directory / f"tracker_{name}.png"))
+    return paths

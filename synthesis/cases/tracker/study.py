@@ -1,0 +1,152 @@
+"""The whole tracker case for one design task: table, choice, simulation, reproduction.
+
+:func:`run_study` builds the design table (Etapa I–V), chooses the design on the table's
+rows and on a continuous ``k2`` (Etapa VI), and confirms every returned design by an
+independent simulation of its dimensions (:mod:`~synthesis.cases.tracker.model`): the
+platform stroke, the smallest transmission angle and the post clearance must come out of the
+simulation as the closed forms promised.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from synthesis.cases.tracker.design import (
+    Design,
+    DesignTable,
+    DesignTask,
+    choose,
+    design_table,
+    refine,
+)
+from synthesis.cases.tracker.model import Motion, actuator_positions, simulate
+from synthesis.cases.tracker.reproduction import Comparison, reproduce, reproduce_mm
+
+__all__ = ["Study", "Verification", "run_study", "verify", "worst"]
+
+
+@dataclass(frozen=True)
+class Verification:
+    """A design's dimensions simulated over the actuator's stroke ``l_i … l_d``.
+
+    Attributes
+    ----------
+    design : Design
+    motion : Motion
+    stroke : float
+        Simulated platform stroke, radians.
+    b_min : float
+        Smallest simulated transmission angle at B (coupler to short rocker), radians.
+    c_min : float
+        Smallest simulated transmission angle at C (actuator to long rocker), radians.
+    clearance : float
+        Simulated distance from the post to the actuator's axis at full extension.
+    min_clearance : float
+        Its smallest value over the stroke.
+    lever_arm : tuple of float
+        Smallest, retracted-end and extended-end lever arm ``ds/dφ`` of the actuator.
+    assembles : bool
+        Both dyads assemble at every position.
+    """
+
+    design: Design
+    motion: Motion
+    stroke: float
+    b_min: float
+    c_min: float
+    clearance: float
+    min_clearance: float
+    lever_arm: tuple[float, float, float]
+    assembles: bool
+
+    @property
+    def errors(self) -> dict[str, float]:
+        """Simulated minus closed-form: stroke and b_min (degrees), l_g (mm)."""
+        return {"stroke": math.degrees(self.stroke - self.design.a),
+                "b_min": math.degrees(self.b_min - self.design.b_min),
+                "l_g": self.clearance - self.design.l_g}
+
+
+def verify(design: Design, *, positions: int = 721) -> Verification:
+    """Simulate a design's dimensions and measure what the closed forms promise.
+
+    Parameters
+    ----------
+    design : Design
+    positions : int
+        Actuator lengths evenly spread over ``[l_i, l_d]``.
+
+    Returns
+    -------
+    Verification
+    """
+    s = actuator_positions(design.l_i, design.l_d, positions)
+    motion = simulate(design.l1, design.l2, design.l5, s)
+    folded = motion.transmission
+    arm = motion.lever_arm
+    return Verification(
+        design=design, motion=motion, stroke=float(motion.stroke),
+        b_min=float(folded[0].min()), c_min=float(folded[1].min()),
+        clearance=float(abs(motion.post_distance[-1])), min_clearance=float(motion.min_clearance),
+        lever_arm=(float(arm.min()), float(arm[0]), float(arm[-1])),
+        assembles=bool(motion.exists.all()))
+
+
+@dataclass(frozen=True)
+class Study:
+    """Everything the tracker case reports for one design task.
+
+    Attributes
+    ----------
+    task : DesignTask
+    table : DesignTable
+        Etapa I–V on the task's grid.
+    chosen : Verification or None
+        Etapa VI on the table's rows (None if no row is admissible).
+    refined : Verification or None
+        Etapa VI on a continuous ``k2`` (the smallest admissible design over every ``k5``).
+    comparisons : list of Comparison
+        The patent's printed values beside the computed ones (ratios, angles, then mm).
+    """
+
+    task: DesignTask
+    table: DesignTable
+    chosen: Verification | None
+    refined: Verification | None
+    comparisons: list[Comparison]
+
+
+def _smallest(designs: list[Design]) -> Design | None:
+    return min(designs, key=lambda d: (d.k_d, -d.b_min)) if designs else None
+
+
+def run_study(task: DesignTask, *, positions: int = 721) -> Study:
+    """Run the design procedure and the checks for one task.
+
+    Parameters
+    ----------
+    task : DesignTask
+    positions : int
+        Positions of each verifying simulation.
+
+    Returns
+    -------
+    Study
+    """
+    table = design_table(task)
+    chosen = choose(table)
+    refined = _smallest([d for d in (refine(task, k5) for k5 in task.k5) if d is not None])
+    return Study(
+        task=task, table=table,
+        chosen=None if chosen is None else verify(chosen, positions=positions),
+        refined=None if refined is None else verify(refined, positions=positions),
+        comparisons=reproduce() + reproduce_mm())
+
+
+def worst(comparisons: list[Comparison], quantity: str) -> float:
+    """Largest |difference| of one quantity among the rows expected to match."""
+    return max((abs(c.difference) for c in comparisons
+                if c.quantity == quantity and c.tolerance is not None), default=np.nan)

@@ -116,7 +116,8 @@ def _as_group(group: Any, chain: Chain, *, is_input: bool) -> _Group:
     external = tuple(tuple(item) for item in (getattr(group, "external", ()) or ()))
     level = getattr(group, "level", 0)
     is_input = is_input or level == 0
-    name = getattr(group, "name", None) or f"group({','.join(map(str, links))})"
+    name = getattr(group, "label", None) or getattr(group, "name", None) or \
+        f"group({','.join(map(str, links))})"
     return _Group(name=str(name), links=links, level=int(level or 0),
                   group_class=getattr(group, "group_class", None),
                   order=getattr(group, "order", None), kind=getattr(group, "kind", None),
@@ -212,6 +213,14 @@ def _point(value: Any) -> complex | None:
     return None
 
 
+def _direction(value: Any) -> complex | None:
+    """A guide direction given as a vector ``[dx, dy]`` or an angle in degrees."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
+        return complex(math.cos(math.radians(value)), math.sin(math.radians(value)))
+    vector = _point(value)
+    return vector / abs(vector) if vector is not None and abs(vector) > 0 else None
+
+
 def _from_geometry(chain: Chain) -> tuple[dict[PairId, complex], dict[PairId, complex]] | None:
     positions: dict[PairId, complex] = {}
     directions: dict[PairId, complex] = {}
@@ -221,10 +230,43 @@ def _from_geometry(chain: Chain) -> tuple[dict[PairId, complex], dict[PairId, co
         if point is None:
             return None
         positions[pair.id] = point
-        direction = _point(entry.get("direction")) if entry else None
-        if pair.type is PairType.P and direction is not None and abs(direction) > 0:
-            directions[pair.id] = direction / abs(direction)
+        direction = _direction(entry.get("direction")) if entry else None
+        if pair.type is PairType.P and direction is not None:
+            directions[pair.id] = direction
     return positions, directions
+
+
+def _slider_positions(chain: Chain, positions: dict[PairId, complex],
+                      directions: dict[PairId, complex]) -> dict[PairId, complex]:
+    """Move each slider pair from the given point of its slide line to the slider itself.
+
+    A table gives a prismatic pair as any point of the slide line and its direction. The
+    slider block is drawn where the slider link is: at the foot of the perpendicular from
+    the slider link's hinges to the line, or, for a slider with no hinge, where its two
+    slide lines cross.
+    """
+    moved = dict(positions)
+    for pair in chain.pairs:
+        if pair.type is not PairType.P or pair.id not in directions:
+            continue
+        carrier = pair.guide if pair.guide is not None else pair.links[0]
+        slider = pair.other(carrier)
+        base, along = positions[pair.id], directions[pair.id]
+        hinges = [positions[p.id] for p in chain.pairs_of(slider) if p.type is PairType.R]
+        if hinges:
+            centre = complex(np.mean(hinges))
+            moved[pair.id] = base + along * ((np.conj(along) * (centre - base)).real)
+            continue
+        for other in chain.pairs_of(slider):
+            if other.id == pair.id or other.type is not PairType.P or other.id not in directions:
+                continue
+            base2, along2 = positions[other.id], directions[other.id]
+            det = (np.conj(along) * along2).imag
+            if abs(det) > 1e-9:  # base + t·along = base2 + u·along2
+                t = (np.conj(base2 - base) * along2).imag / det
+                moved[pair.id] = base + t * along
+                break
+    return moved
 
 
 def _link_levels(chain: Chain, groups: Sequence[_Group]) -> dict[LinkId, int]:
@@ -307,6 +349,7 @@ def scheme_layout(chain: Chain, analysis: Any) -> SchemeLayout:
     geometric = _from_geometry(chain)
     if geometric is not None:
         positions, directions = geometric
+        positions = _slider_positions(chain, positions, directions)
         links = {}
         for link in chain.moving_links:
             points = [positions[p.id] for p in chain.pairs_of(link)]
@@ -343,7 +386,7 @@ def _guide_direction(chain: Chain, pair: Pair, positions: dict[PairId, complex],
 def _scale(layout: SchemeLayout) -> float:
     points = np.array(list(layout.pairs.values()) or [0j])
     span = max(float(np.ptp(points.real)), float(np.ptp(points.imag)), 1e-9)
-    return span / 14.0 if layout.from_geometry else 0.14
+    return span / 45.0 if layout.from_geometry else 0.14
 
 
 def _ground(ax: Axes, at: complex, size: float, direction: complex = 1 + 0j) -> None:

@@ -1,0 +1,49 @@
+"""``assur batch DIR``: check every student's table in a folder, one row per file."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+NAME = "batch"
+HELP = "check every table in a folder (structure, identification table, existence over the cycle)"
+ORDER = 60
+
+
+def add_args(parser: argparse.ArgumentParser) -> None:
+    """Arguments of ``assur batch``."""
+    parser.add_argument("folder", metavar="DIR", help="folder of tables (*.yaml, searched "
+                                                      "recursively)")
+    parser.add_argument("--csv", metavar="FILE", help="also write the rows as CSV")
+    parser.add_argument("--json", action="store_true", help="print the rows as JSON")
+    parser.add_argument("--jobs", type=int, default=None, metavar="N",
+                        help="worker processes (default: all local cores)")
+    parser.add_argument("--reports", metavar="DIR",
+                        help="also write a coursework report (HTML) for every readable table")
+    parser.add_argument("--lang", choices=("en", "ru"), default="en",
+                        help="language of the problems and reports")
+    parser.add_argument("--quiet", action="store_true", help="no progress on stderr")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Check the folder; exit 0 whatever the tables contain (the rows say it)."""
+    from synthesis.batch import run_batch, summary, write_csv
+
+    if args.jobs is not None and args.jobs < 1:
+        print(f"--jobs must be a positive whole number; got {args.jobs}", file=sys.stderr)
+        return 2
+    progress = None if args.quiet or args.json else _progress
+    rows = run_batch(args.folder, jobs=args.jobs, lang=args.lang, progress=progress,
+                     reports=args.reports)
+    if args.csv:
+        write_csv(rows, args.csv)
+    if args.json:
+        print(json.dumps([row.to_dict() for row in rows], ensure_ascii=False, indent=1))
+    else:
+        print(summary(rows, args.lang))
+    return 0
+
+
+def _progress(done: int, total: int) -> None:
+    print(f"\r{done}/{total}", end="" if done < total else "\n", file=sys.stderr, flush=True)

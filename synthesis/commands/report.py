@@ -1,0 +1,37 @@
+"""``assur report TABLE.yaml``: the coursework report as one self-contained HTML page."""
+
+from __future__ import annotations
+
+import argparse
+
+NAME = "report"
+HELP = "write the coursework report (one HTML page: structure, schemes, existence, kinematics)"
+ORDER = 50
+
+
+def add_args(parser: argparse.ArgumentParser) -> None:
+    """Arguments of ``assur report``."""
+    parser.add_argument("table", metavar="TABLE.yaml",
+                        help="chain table, identification table or synthesis problem")
+    parser.add_argument("--out", metavar="REPORT.html", default=None,
+                        help="the page to write (default: the table's name with .html)")
+    parser.add_argument("--lang", choices=("en", "ru"), default="en",
+                        help="language of the report (default: en)")
+    parser.add_argument("--points", type=int, default=360, metavar="N",
+                        help="crank positions of the kinematic analysis (default: 360)")
+    parser.add_argument("--budget", type=int, default=None, metavar="M",
+                        help="synthesis problems: search 2**M trials (default: the problem's, "
+                             "at most 2**10)")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Build and write the report; print where it went."""
+    from synthesis.coursework import write_report
+
+    if args.points < 8:
+        print(f"--points must be at least 8; got {args.points}")
+        return 2
+    path = write_report(args.table, args.out, lang=args.lang, points=args.points,
+                        budget=args.budget)
+    print(path)
+    return 0

@@ -1,0 +1,176 @@
+"""Pictures of the kinematic part of the coursework report (matplotlib, no pyplot state).
+
+* :func:`existence_figure` — the existence margin of every group over the cycle, the
+  tolerance δ and the intervals where a group does not assemble;
+* :func:`kinematic_figures` — the diagrams of the link angles ψ and the slider
+  displacements S over the crank angle, with their first and second analogs
+  (dψ/dφ, d²ψ/dφ², dS/dφ, d²S/dφ²), and the pressure angles of the L1/L2 groups.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from synthesis.i18n import term
+
+__all__ = ["existence_figure", "kinematic_figures"]
+
+_WORDS = {
+    "en": {"angles": "Angles of the links ψ", "sliders": "Slider displacements S",
+           "first": "first analog", "second": "second analog", "link": "link",
+           "pair": "pair", "delta": "δ (allowed margin)", "fails": "does not assemble",
+           "pressure": "Pressure angles", "coordinate": "actuator length, mm"},
+    "ru": {"angles": "Углы поворота звеньев ψ", "sliders": "Перемещения ползунов S",
+           "first": "аналог скорости", "second": "аналог ускорения", "link": "звено",
+           "pair": "пара", "delta": "δ (допустимый запас)", "fails": "не собирается",
+           "pressure": "Углы давления", "coordinate": "длина привода, мм"},
+}
+
+
+def _parts(x: Any, shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Value, first and second analog of a jet (a plain array has zero analogs)."""
+    v, d1, d2 = (x.v, x.d1, x.d2) if hasattr(x, "d1") else (x, 0.0, 0.0)
+    return tuple(np.broadcast_to(np.asarray(part, dtype=float), shape)  # type: ignore[return-value]
+                 for part in (v, d1, d2))
+
+
+def _new_figure(size: tuple[float, float]) -> Any:
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=size, layout="constrained")
+
+
+def _axis(model: Any, q: np.ndarray, lang: str) -> tuple[np.ndarray, str]:
+    if model.drive == "crank":
+        return np.degrees(q), f"{term('crank_angle', lang)} φ, °"
+    return q, _WORDS[lang]["coordinate"]
+
+
+def existence_figure(report: Any, model: Any, *, lang: str = "en") -> Any:
+    """The existence margins of the groups over the cycle.
+
+    Parameters
+    ----------
+    report : ExistenceReport
+        From :func:`assur.existence.check_existence`.
+    model : KinematicModel
+    lang : {"en", "ru"}
+
+    Returns
+    -------
+    matplotlib Figure
+    """
+    words = _WORDS[lang]
+    fig = _new_figure((8.0, 3.8))
+    ax = fig.add_subplot()
+    x, xlabel = _axis(model, report.q, lang)
+    for group in report.groups:
+        line = ax.plot(x, group.margin, lw=1.5, label=f"{group.label} {group.name}")[0]
+        if np.isfinite(group.delta) and group.delta > 0:
+            ax.axhline(group.delta, color=line.get_color(), lw=0.7, ls=":")
+        if group.fails.any():
+            ax.fill_between(x, 0, 1, where=group.fails, transform=ax.get_xaxis_transform(),
+                            color=line.get_color(), alpha=0.15, lw=0)
+    ax.axhline(0.0, color="black", lw=0.8)
+    if not report.all_exist:
+        ax.plot([], [], color="grey", alpha=0.3, lw=6, label=words["fails"])
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(term("margin", lang))
+    ax.set_title(term("existence", lang).capitalize(), fontsize=11)
+    ax.grid(alpha=0.3)
+    if model.drive == "crank":
+        ax.set_xticks(np.arange(0, 361, 45))
+        ax.set_xlim(0, 360)
+    ax.legend(fontsize=7.5, ncol=2, loc="best")
+    return fig
+
+
+def _analog_axes(fig: Any, xlabel: str, ylabels: tuple[str, str, str]) -> list[Any]:
+    axes = fig.subplots(3, 1, sharex=True)
+    for ax, label in zip(axes, ylabels):
+        ax.set_ylabel(label, fontsize=9)
+        ax.grid(alpha=0.3)
+    axes[-1].set_xlabel(xlabel)
+    return list(axes)
+
+
+def kinematic_figures(motion: Any, *, lang: str = "en") -> list[tuple[str, Any]]:
+    """Kinematic diagrams of one design over the cycle.
+
+    Parameters
+    ----------
+    motion : Motion
+        From :func:`assur.kinematics.analyse` with ``analogs=True``.
+    lang : {"en", "ru"}
+
+    Returns
+    -------
+    list of (caption, matplotlib Figure)
+        Link angles, slider displacements (each with both analogs) and pressure angles,
+        where the mechanism has them.
+    """
+    from assur.kinematics import unwrap
+    from assur.transmission import pressure_angles
+
+    words = _WORDS[lang]
+    model = motion.model
+    x, xlabel = _axis(model, motion.q, lang)
+    figures: list[tuple[str, Any]] = []
+    crank = {g.i for g in model.groups if g.kind == 0}
+    rotating = []
+    for link, (_origin, angle) in motion.frames.items():
+        if link in crank or link == model.frame:
+            continue
+        value, first, second = _parts(angle, x.shape)
+        psi = unwrap(value)
+        if np.isfinite(psi).any() and np.nanmax(psi) - np.nanmin(psi) > 1e-9:
+            rotating.append((link, psi, first, second))
+    if rotating:
+        fig = _new_figure((8.0, 7.0))
+        axes = _analog_axes(fig, xlabel, ("ψ, °", "dψ/dφ", "d²ψ/dφ²"))
+        for link, psi, first, second in rotating:
+            axes[0].plot(x, np.degrees(psi), lw=1.3, label=f"{words['link']} {link}")
+            axes[1].plot(x, first, lw=1.3)
+            axes[2].plot(x, second, lw=1.3)
+        axes[0].legend(fontsize=7.5, ncol=4)
+        axes[0].set_title(words["angles"], fontsize=11)
+        figures.append((f"{words['angles']}: {words['first']}, {words['second']}", fig))
+    sliders = []
+    for pid, state in motion.sliders.items():
+        value, first, second = _parts(state.s, x.shape)
+        if np.isfinite(value).any() and np.nanmax(value) - np.nanmin(value) > 1e-9:
+            sliders.append((pid, state.slider, value, first, second))
+    if sliders:
+        fig = _new_figure((8.0, 7.0))
+        axes = _analog_axes(fig, xlabel, ("S, mm", "dS/dφ, mm", "d²S/dφ², mm"))
+        for pid, slider, value, first, second in sliders:
+            label = f"{words['pair']} {pid} ({words['link']} {slider})"
+            axes[0].plot(x, value, lw=1.3, label=label)
+            axes[1].plot(x, first, lw=1.3)
+            axes[2].plot(x, second, lw=1.3)
+        axes[0].legend(fontsize=7.5, ncol=3)
+        axes[0].set_title(words["sliders"], fontsize=11)
+        figures.append((f"{words['sliders']}: {words['first']}, {words['second']}", fig))
+    angles = pressure_angles(motion)
+    if angles:
+        fig = _new_figure((8.0, 3.2))
+        ax = fig.add_subplot()
+        for item in angles:
+            ax.plot(x, np.degrees(np.broadcast_to(item.alpha, x.shape)), lw=1.4,
+                    label=f"{item.label}: {term('pair', lang)} {item.pair}, "
+                          f"max {math.degrees(item.maximum):.1f}°")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(f"{term('pressure_angle', lang)} α, °")
+        ax.set_title(words["pressure"], fontsize=11)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7.5)
+        figures.append((words["pressure"], fig))
+    if model.drive == "crank":
+        for _caption, fig in figures:
+            for ax in fig.axes:
+                ax.set_xticks(np.arange(0, 361, 45))
+                ax.set_xlim(0, 360)
+    return figures

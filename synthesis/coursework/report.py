@@ -1,0 +1,385 @@
+"""The coursework report: one self-contained HTML page that follows the course's steps.
+
+Sections, as the course orders the work (``method.md`` §1.4): the data; the counts and the
+mobility W; the groups with class, order and kind; the structure formula and the mechanism
+class; the structure-identification table (with the verdict on the table given in the file);
+the structural scheme and the formalised structural scheme; the existence of the groups over
+the cycle with its plot; the kinematic diagrams; and, for a synthesis problem, the result
+of the synthesis.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from assur import AssurError, analyse_structure, atomic_write_text, chain_from_dict, load_chain
+from assur.model import Chain, PairType
+from assur.schemes import roman, scheme_bytes
+from synthesis.coursework.page import Section, esc, figure, figure_html, page, table
+from synthesis.i18n import check_lang, term
+
+__all__ = ["CourseworkReport", "build_report", "render_html", "write_report"]
+
+#: Positions of the kinematic analysis over one crank turn.
+POINTS = 360
+#: Default search budget (log2 of the trials) of a synthesis problem in a report.
+BUDGET = 10
+
+_SYNTHESIS_KEYS = ("parameters", "control_points", "allowable")
+
+
+@dataclass
+class CourseworkReport:
+    """The report's content before it becomes HTML.
+
+    Attributes
+    ----------
+    title : str
+    source : str
+        The table file.
+    summary : dict
+        Key values shown at the top (label → value), also used by tests.
+    sections : list of Section
+    """
+
+    title: str
+    source: str
+    lang: str
+    summary: dict[str, str] = field(default_factory=dict)
+    sections: list[Section] = field(default_factory=list)
+
+
+def _is_problem(path: Path) -> bool:
+    """Whether the file is a synthesis problem (it has the problem's tables)."""
+    try:
+        data = yaml.safe_load(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, yaml.YAMLError):
+        return False
+    return isinstance(data, dict) and any(key in data for key in _SYNTHESIS_KEYS)
+
+
+def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int = POINTS,
+                 budget: int | None = None) -> CourseworkReport:
+    """Analyse a table and collect the report.
+
+    Parameters
+    ----------
+    path : path-like
+        A chain table, an identification table, or a synthesis problem.
+    lang : {"en", "ru"}
+    points : int
+        Positions of the kinematic analysis over the cycle.
+    budget : int, optional
+        For a synthesis problem: log2 of the search trials (default: the problem's own, at
+        most :data:`BUDGET`).
+
+    Returns
+    -------
+    CourseworkReport
+
+    Raises
+    ------
+    TableError
+        When the table cannot be read (every problem listed).
+    """
+    check_lang(lang)
+    path = Path(path)
+    synthesis_sections: list[Section] = []
+    if _is_problem(path):
+        chain, synthesis_sections = _synthesis(path, lang, budget)
+    else:
+        chain = load_chain(path)
+    report = CourseworkReport(title="", source=str(path), lang=lang)
+    analysis = analyse_structure(chain)
+    name = chain.name or path.stem
+    report.title = f"{term('report', lang).capitalize()}: {name}"
+    report.summary[term("mobility", lang)] = (f"W = 3·{analysis.n} − 2·{analysis.p5} − "
+                                              f"{analysis.p4} = {analysis.W}")
+    report.summary[term("formula", lang)] = analysis.formula
+    report.summary[term("mechanism_class", lang)] = roman(analysis.mechanism_class)
+    report.sections += [_data_section(chain, lang), _counts_section(analysis, lang),
+                        _groups_section(analysis, lang), _formula_section(analysis, lang)]
+    report.sections.append(_identification_section(analysis, chain, lang, report.summary))
+    report.sections.append(_schemes_section(chain, analysis, lang))
+    report.sections += _kinematic_sections(analysis, lang, points, report.summary)
+    report.sections += synthesis_sections
+    return report
+
+
+# ----------------------------------------------------------------------------- structure
+
+
+def _data_section(chain: Chain, lang: str) -> Section:
+    links = [(link, chain.names.get(link, term("frame", lang) if link == chain.frame else ""),
+              len(chain.pairs_of(link))) for link in chain.links]
+    pairs = [(pair.origin if pair.origin is not None else pair.id,
+              term("revolute" if pair.type is PairType.R else "prismatic", lang),
+              f"{pair.links[0]}–{pair.links[1]}", pair.guide) for pair in chain.pairs]
+    inputs = ", ".join(f"{term('link', lang)} {d.link}" if d.link is not None
+                       else f"{term('pair', lang)} {d.pair}" for d in chain.inputs)
+    body = (f"<h3>{esc(term('links', lang)).capitalize()}</h3>"
+            + table(("№", "", term("pairs", lang)), links, numeric=(2,), table_id="links")
+            + f"<h3>{esc(term('pairs', lang)).capitalize()}</h3>"
+            + table((term("pair", lang), term("pair_type", lang), term("links", lang),
+                     term("guide", lang)), pairs, table_id="pairs")
+            + f"<p>{esc(term('inputs', lang)).capitalize()}: {esc(inputs)}</p>")
+    return Section("data", term("data", lang).capitalize(), body)
+
+
+def _counts_section(analysis: Any, lang: str) -> Section:
+    rows = [(term("n_moving", lang), analysis.n), (term("p5", lang), analysis.p5),
+            (term("p4", lang), analysis.p4),
+            (term("mobility", lang), f"W = 3·{analysis.n} − 2·{analysis.p5} − {analysis.p4} "
+                                     f"= {analysis.W}")]
+    body = table(("", ""), rows, numeric=(1,), table_id="counts")
+    if analysis.W != analysis.m:
+        body += (f'<p class="bad">W = {analysis.W} ≠ {analysis.m} '
+                 f"({esc(term('inputs', lang))})</p>")
+    body += f'<p id="value-W" data-value="{analysis.W}">W = {analysis.W}</p>'
+    return Section("counts", term("counts", lang).capitalize(), body)
+
+
+def _groups_section(analysis: Any, lang: str) -> Section:
+    from assur.structure_report import group_description
+
+    rows = []
+    for group in (*analysis.input_groups, *analysis.groups):
+        external = ", ".join(f"{p} ({g}→{k})" for p, g, k in group.external)
+        rows.append((group.label, ", ".join(map(str, group.links)), roman(group.group_class),
+                     group.order, group.kind if group.kind is not None else "–", group.level,
+                     external, ", ".join(map(str, group.internal)) or "–"))
+    header = (term("group", lang), term("links", lang), term("class", lang),
+              term("order", lang), term("kind", lang), term("level", lang),
+              term("external_pairs", lang), term("internal_pairs", lang))
+    body = table(header, rows, numeric=(3, 4, 5), table_id="groups")
+    described = "".join(f"<li>{esc(g.label)}: {esc(group_description(g, lang))}</li>"
+                        for g in (*analysis.input_groups, *analysis.groups))
+    body += f"<ul>{described}</ul>"
+    if analysis.leftover:
+        body += (f'<p class="bad">{esc(term("links", lang))} ∉ '
+                 f'{esc(term("groups", lang))}: {esc(", ".join(map(str, analysis.leftover)))}'
+                 f"</p>")
+    return Section("groups", term("groups", lang).capitalize(), body)
+
+
+def _formula_section(analysis: Any, lang: str) -> Section:
+    body = (f'<p class="formula" id="formula">{esc(analysis.formula)}</p>'
+            f"<p>{esc(term('mechanism_class', lang)).capitalize()}: "
+            f'<b id="mechanism-class">{roman(analysis.mechanism_class)}</b></p>')
+    if analysis.applicable:
+        body += f'<p class="ok" id="applicable">{esc(term("applicable", lang))}</p>'
+    else:
+        failed = analysis.applicability_ru if lang == "ru" else analysis.applicability
+        body += (f'<p class="bad" id="applicable">{esc(term("not_applicable", lang))}:</p>'
+                 f'<ul class="findings">{"".join(f"<li>{esc(x)}</li>" for x in failed)}</ul>')
+    if analysis.issues:
+        items = "".join(f"<li><code>{esc(d.code)}</code> {esc(d.text(lang))}</li>"
+                        for d in analysis.issues)
+        body += (f"<h3>{esc(term('diagnostics', lang)).capitalize()}</h3>"
+                 f'<ul class="findings" id="findings">{items}</ul>')
+    return Section("formula", term("formula", lang).capitalize(), body)
+
+
+def _identification_section(analysis: Any, chain: Chain, lang: str,
+                            summary: dict[str, str]) -> Section:
+    from assur.errors import StructureError
+    from assur.identification import COLUMNS, check_identification, identification_table
+
+    header = ("L", "seq", "i−1", "j−1", "i", "j", "i+1", "j+1", "variant", "out_code")
+    try:
+        rows = identification_table(analysis)
+    except StructureError as exc:
+        body = f'<p class="bad">{esc(exc)}</p>'
+    else:
+        body = table(header, ([_cell(getattr(r, c)) for c in COLUMNS] for r in rows),
+                     table_id="identification")
+    verdict_key = term("student_table", lang)
+    if chain.identification is None:
+        summary[verdict_key] = term("none_given", lang)
+        body += f'<p class="note" id="student-table">{esc(verdict_key)}: ' \
+                f'{esc(term("none_given", lang))}</p>'
+        return Section("identification", term("identification", lang).capitalize(), body)
+    mismatches = check_identification(analysis, chain.identification)
+    if not mismatches:
+        summary[verdict_key] = term("matches", lang)
+        body += (f'<p class="ok" id="student-table">{esc(verdict_key)} '
+                 f"({len(chain.identification)}): {esc(term('matches', lang))}</p>")
+    else:
+        summary[verdict_key] = f"{term('differs', lang)} ({len(mismatches)})"
+        items = "".join(f"<li>{esc(m.label)} <b>{esc(m.field)}</b>: "
+                        f"{esc(m.message_ru if lang == 'ru' else m.message)}</li>"
+                        for m in mismatches)
+        body += (f'<p class="bad" id="student-table">{esc(verdict_key)}: '
+                 f"{esc(term('differs', lang))} ({len(mismatches)})</p>"
+                 f'<ul class="findings">{items}</ul>')
+    return Section("identification", term("identification", lang).capitalize(), body)
+
+
+def _cell(value: Any) -> str:
+    if value is None:
+        return "–"
+    if isinstance(value, list):
+        return ";".join(map(str, value))
+    return str(value)
+
+
+def _schemes_section(chain: Chain, analysis: Any, lang: str) -> Section:
+    body = figure_html(scheme_bytes(chain, analysis, "svg", lang=lang, which="structural"),
+                       "svg", term("structural_scheme", lang).capitalize(),
+                       ident="structural-scheme")
+    body += figure_html(scheme_bytes(chain, analysis, "svg", lang=lang, which="formalised"),
+                        "svg", term("formalised_scheme", lang).capitalize(),
+                        ident="formalised-scheme")
+    return Section("schemes", term("schemes", lang).capitalize(), body)
+
+
+# ----------------------------------------------------------------------------- kinematics
+
+
+def _kinematic_sections(analysis: Any, lang: str, points: int,
+                        summary: dict[str, str]) -> list[Section]:
+    from assur.geometry import build_model
+
+    chain = analysis.chain
+    title = term("existence", lang).capitalize()
+    if not (chain.geometry or chain.group_params):
+        summary[term("existence", lang)] = term("not_available", lang)
+        return [Section("existence", title, f'<p class="note">{esc(term("no_geometry", lang))}'
+                                            f"</p>")]
+    if not (analysis.decomposed and analysis.applicable):
+        summary[term("existence", lang)] = term("not_available", lang)
+        return [Section("existence", title, f'<p class="note">'
+                                            f'{esc(term("not_applicable", lang))}</p>')]
+    try:
+        model = build_model(analysis)
+    except AssurError as exc:
+        summary[term("existence", lang)] = term("not_available", lang)
+        return [Section("existence", title, f'<pre class="bad">{esc(exc)}</pre>')]
+    return [_existence_section(model, lang, points, summary), _motion_section(model, lang, points)]
+
+
+def _existence_section(model: Any, lang: str, points: int, summary: dict[str, str]) -> Section:
+    from assur.dyads import REASONS
+    from assur.existence import CONDITIONS, check_existence
+    from synthesis.coursework.diagrams import existence_figure
+
+    report = check_existence(model, points=points)
+    crank = model.drive == "crank"
+    rows = []
+    for group in report.groups:
+        where = "; ".join(
+            (f"{math.degrees(i.start):.2f}°…{math.degrees(i.end):.2f}°" if crank
+             else f"{i.start:.3f}…{i.end:.3f}") + f" ({REASONS[i.reason][lang == 'ru']})"
+            for i in group.intervals) or "–"
+        verdict = term("whole_cycle" if group.assembles else "fails", lang)
+        rows.append((group.label, group.name, CONDITIONS.get(group.kind, ""), group.delta,
+                     group.min_margin, verdict, where))
+    header = (term("group", lang), term("kind", lang), "", "δ", f"min {term('margin', lang)}",
+              term("verdict", lang), term("fails", lang))
+    verdict = term("whole_cycle" if report.all_exist else "fails", lang)
+    summary[term("existence", lang)] = verdict
+    css = "ok" if report.all_exist else "bad"
+    body = (f'<p class="{css}" id="existence-verdict">{esc(verdict)}</p>'
+            + table(header, rows, numeric=(3, 4), table_id="existence")
+            + figure(existence_figure(report, model, lang=lang),
+                     term("existence", lang).capitalize(), ident="existence-plot"))
+    return Section("existence", term("existence", lang).capitalize(), body)
+
+
+def _motion_section(model: Any, lang: str, points: int) -> Section:
+    from assur.kinematics import analyse
+    from synthesis.coursework.diagrams import kinematic_figures
+
+    motion = analyse(model, points=points, analogs=True)
+    body = ""
+    drawing = _mechanism_drawing(model, lang)
+    if drawing:
+        body += drawing
+    for k, (caption, fig) in enumerate(kinematic_figures(motion, lang=lang)):
+        body += figure(fig, caption, ident=f"kinematics-{k}")
+    return Section("kinematics", term("kinematics", lang).capitalize(), body)
+
+
+def _mechanism_drawing(model: Any, lang: str) -> str:
+    """The mechanism drawn at several crank positions, when the drawing module has it."""
+    try:
+        from assur.drawing import draw_positions  # type: ignore[attr-defined]
+    except ImportError:
+        return ""
+    fig = draw_positions(model, lang=lang)
+    return figure(fig, term("mechanism", lang).capitalize(), ident="mechanism")
+
+
+# ----------------------------------------------------------------------------- synthesis
+
+
+def _synthesis(path: Path, lang: str, budget: int | None) -> tuple[Chain, list[Section]]:
+    """Run the synthesis of a problem; the chain of the best design and the result section."""
+    from synthesis.evaluate import Evaluator
+    from synthesis.plots import plot_convergence, plot_mechanism, plot_output
+    from synthesis.problem import load_problem
+    from synthesis.report import summary, text_report
+    from synthesis.search import search, settings_for
+
+    problem = load_problem(path)
+    own = problem.search.get("budget")
+    budget = budget if budget is not None else min(int(own) if own else BUDGET, BUDGET)
+    settings = settings_for(problem, budget_log2=budget, progress=False)
+    evaluator = Evaluator(problem)
+    result = search(evaluator, problem.lower, problem.upper, problem.initial, settings)
+    analysis = evaluator.analyse(result.x[None, :])
+    data = summary(problem, result, analysis)
+    feasible = bool(data.get("feasible"))
+    body = (f'<p class="{"ok" if feasible else "bad"}" id="synthesis-verdict">'
+            f"{esc(term('feasible' if feasible else 'infeasible', lang))}</p>"
+            f"<pre>{esc(text_report(data, lang))}</pre>")
+    from matplotlib.figure import Figure
+
+    for ident, draw in (("synthesis-output", lambda ax: plot_output(problem, analysis, axes=ax,
+                                                                    lang=lang)),
+                        ("synthesis-mechanism", lambda ax: plot_mechanism(
+                            problem, analysis, axes=ax, lang=lang)),
+                        ("synthesis-convergence", lambda ax: plot_convergence(
+                            result, axes=ax, lang=lang))):
+        fig = Figure(figsize=(7.5, 4.0), layout="constrained")
+        draw(fig.add_subplot())
+        body += figure(fig, term("synthesis", lang).capitalize(), ident=ident)
+    chain = chain_from_dict(problem.mechanism_table(result.x), source=str(path))
+    return chain, [Section("synthesis", term("synthesis", lang).capitalize(), body)]
+
+
+# ----------------------------------------------------------------------------- output
+
+
+def render_html(report: CourseworkReport) -> str:
+    """The report as one self-contained HTML page."""
+    items = "".join(f"<dt>{esc(k)}</dt><dd>{esc(v)}</dd>" for k, v in report.summary.items())
+    summary = f'<dl class="summary" id="summary">{items}</dl>'
+    return page(report.title, report.source, summary, report.sections, report.lang)
+
+
+def write_report(path: str | os.PathLike[str], out: str | os.PathLike[str] | None = None, *,
+                 lang: str = "en", points: int = POINTS, budget: int | None = None) -> Path:
+    """Build the report of a table and write it as HTML (atomically).
+
+    Parameters
+    ----------
+    path : path-like
+        The table.
+    out : path-like, optional
+        The HTML file; default: the table's name with ``.html`` next to it.
+
+    Returns
+    -------
+    Path of the written page.
+    """
+    target = Path(out) if out is not None else Path(path).with_suffix(".html")
+    report = build_report(path, lang=lang, points=points, budget=budget)
+    atomic_write_text(target, render_html(report))
+    return target

@@ -192,7 +192,8 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
         chain=chain, n=n, p5=p5, p4=p4, W=w, W_star=w_star, m=m, input_groups=inputs,
         groups=tuple(groups), formula=formula, formula_levels=formula_levels,
         mechanism_class=mech_class, applicable=False, applicability=(), applicability_ru=(),
-        issues=tuple(issues), leftover=tuple(peeling.leftover), rank=rank)
+        issues=tuple(issues),
+        leftover=tuple(sorted(peeling.leftover + peeling.disconnected, key=id_key)), rank=rank)
     failed = _applicability(analysis, graph)
     return replace(analysis, applicable=not failed, applicability=tuple(f[0] for f in failed),
                    applicability_ru=tuple(f[1] for f in failed))

@@ -133,3 +133,11 @@ __all__ += [
     "values",
     "velocity",
 ]
+from assur.drawing import (  # noqa: E402
+    draw_mechanism,
+    figure_for,
+    save_animation_gif,
+    save_mechanism_png,
+)
+
+__all__ += ["draw_mechanism", "figure_for", "save_animation_gif", "save_mechanism_png"]

@@ -34,12 +34,12 @@ __all__ = [
 
 #: Existence inequality of each kind, as printed in reports (``method.md`` §2.1–2.5).
 CONDITIONS: dict[int, str] = {
-    0: "the crank always assembles",
-    1: "|l_i − l_j| ≤ |H_i H_j| ≤ l_i + l_j  (|cos| ≤ 1 − δ)",
-    2: "|h| ≤ (1 − δ)·l_j  (rod reaches the guide)",
-    3: "|d| ≤ (1 − δ)·|H_i H_j|",
-    4: "|sin(θ_j − θ_i)| ≥ δ  (guides not parallel)",
-    5: "|sin γ| ≥ δ  (guides not parallel)",
+    0: "—",
+    1: "|l_i − l_j| ≤ |H_iH_j| ≤ l_i + l_j,  |cos ∠H_i| ≤ 1 − δ",
+    2: "|h| ≤ (1 − δ)·l_j",
+    3: "|d| ≤ (1 − δ)·|H_iH_j|",
+    4: "|sin(θ_j − θ_i)| ≥ δ",
+    5: "|sin γ| ≥ δ",
 }
 
 
@@ -260,16 +260,15 @@ def _interval(model: KinematicModel, motion: Motion, group: GroupModel, index: i
 
 def _bisect(model: KinematicModel, group: GroupModel, index: int, good: float, bad: float,
             tol: float) -> float:
-    """The boundary between a position where groups ≤ ``index`` assemble and one where not."""
-    dyads = [g for g in model.groups if g.kind != 0]
+    """The boundary between a position where group ``index`` is not the first failing one
+    (``good``) and one where it is (``bad``)."""
     lo, hi = good, bad
     for _ in range(200):
         if abs(hi - lo) <= tol:
             break
         mid = 0.5 * (lo + hi)
         motion = analyse(model, np.array([mid]))
-        ok = all(bool(np.all(motion.solutions[g.label].exists)) for g in dyads[:index + 1])
-        if ok:
+        if int(first_failure(motion).ravel()[0]) != index:
             lo = mid
         else:
             hi = mid

@@ -145,8 +145,28 @@ def analyse(model: KinematicModel, q: np.ndarray | None = None, *, points: int =
     with np.errstate(all="ignore"):
         for group in model.groups:
             state.solve(group, coordinate)
-    return Motion(model, q, state.solutions, state.frames, state.joints, state.sliders,
-                  state.trace(), analogs)
+        tracing = state.trace()
+    shape = np.broadcast_shapes(model.design_shape, q.shape)
+    frames = {link: (full(o, shape, analogs), full(a, shape, analogs))
+              for link, (o, a) in state.frames.items()}
+    joints = {pid: full(z, shape, analogs) for pid, z in state.joints.items()}
+    sliders = {pid: SliderState(st.pair, st.carrier, st.slider, full(st.point, shape, analogs),
+                                full(st.s, shape, analogs), full(st.base, shape, analogs),
+                                full(st.angle, shape, analogs), st.offset)
+               for pid, st in state.sliders.items()}
+    tracing = {name: full(z, shape, analogs) for name, z in tracing.items()}
+    return Motion(model, q, state.solutions, frames, joints, sliders, tracing, analogs)
+
+
+def full(x: Any, shape: tuple[int, ...], jet: bool = False) -> Any:
+    """``x`` broadcast to ``shape`` (read-only views); a jet when ``jet`` (zero derivatives
+    for a constant)."""
+    if jet and not isinstance(x, Jet):
+        x = Jet(x, 0.0, 0.0)
+    if isinstance(x, Jet):
+        return Jet(np.broadcast_to(x.v, shape), np.broadcast_to(x.d1, shape),
+                   np.broadcast_to(x.d2, shape))
+    return np.broadcast_to(x, shape)
 
 
 class _State:

@@ -1,0 +1,1 @@
+"""Four-bar for a prescribed velocity ratio."""

@@ -1,0 +1,352 @@
+"""The modern solver: a vectorised scan of the design space for starting points, then
+``scipy.optimize.root`` on the conditions in ratio form from every promising start.
+
+The scan covers the whole Grashof crank-rocker domain: the rocker as ``r = r_min/u`` with
+``r_min = max(e, e/|n*|)`` (every design has r ≥ e/|n*|, because n = ±e/r where crank and rocker
+are parallel) and ``u ∈ (0, 1)``; the coupler as ``c = c_lo + t·(c_hi − c_lo)`` with
+``t ∈ (0, 1)`` between the Grashof limits (spaced densely near both limits, where the peak
+is sharp); for the ``crank`` form also e ∈ (0, 1). At each grid
+design the peak of the ratio over the turn and the zone widths at the end value are read from
+a sampled n(θ); the local minima of the mismatch with the request are the starts. Every root
+is then classified (:func:`~.conditions.design_defect`), so that the answer lists every
+distinct design that meets the request, best transmission first, and names the roots that do
+not.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.optimize import brentq, root
+
+from synthesis.cases.fourbar_velocity_ratio.conditions import (
+    Design,
+    Request,
+    design_defect,
+    design_from_unknowns,
+    form_residuals,
+)
+from synthesis.cases.fourbar_velocity_ratio.kinematics import (
+    coupler_bounds,
+    rocker_angle,
+    transmission_angle,
+    velocity_ratio,
+)
+
+__all__ = ["ModernResult", "solve_modern", "min_transmission_angle"]
+
+_GRID = {"paper": (1, 40, 40), "delta": (1, 40, 40), "crank": (20, 24, 24)}
+_SAMPLES = 360
+_CHUNK = 4096
+_MAX_STARTS = 24
+_ACCEPT = 1e-11
+
+
+@dataclass
+class ModernResult:
+    """Outcome of :func:`solve_modern`.
+
+    Attributes
+    ----------
+    designs : list of Design
+        Every distinct design meeting the request, largest minimum transmission angle first.
+    rejected : list of (Design, str)
+        Roots of the conditions that are not acceptable designs, with the reason.
+    reason : str or None
+        Why there is no design, when ``designs`` is empty.
+    evaluations : int
+        Designs evaluated (grid points plus residual calls of the root finders).
+    seconds : float
+        Wall time.
+    """
+
+    request: Request
+    designs: list[Design] = field(default_factory=list)
+    rejected: list[tuple[Design, str]] = field(default_factory=list)
+    reason: str | None = None
+    evaluations: int = 0
+    seconds: float = 0.0
+
+    @property
+    def design(self) -> Design | None:
+        """The first (best) design, or None."""
+        return self.designs[0] if self.designs else None
+
+
+def min_transmission_angle(design: Design, samples: int = 1440) -> float:
+    """Smallest transmission angle over the turn (radians), from (5) on a dense grid."""
+    theta = np.linspace(0.0, 2.0 * np.pi, samples, endpoint=False)
+    phi, _ = rocker_angle(design.e, design.c, design.r, theta)
+    return float(np.min(transmission_angle(design.e, design.r, theta, phi)))
+
+
+def _grid(request: Request) -> dict[str, NDArray[np.float64]]:
+    """Grid designs covering the crank-rocker domain, axes (e, u, t)."""
+    count_e, count_u, count_t = _GRID[request.form]
+    u = np.linspace(0.0, 1.0, count_u + 2)[1:-1]
+    t = 0.5 - 0.5 * np.cos(np.linspace(0.0, np.pi, count_t + 2)[1:-1])
+    e = (np.linspace(0.0, 1.0, count_e + 2)[1:-1] if request.form == "crank"
+         else np.array([request.e]))
+    ee, uu, tt = np.meshgrid(e, u, t, indexing="ij")
+    r = np.maximum(ee, ee / abs(request.n_star)) / uu
+    lo, hi = coupler_bounds(ee, r)
+    return {"e": ee, "c": lo + tt * (hi - lo), "r": r}
+
+
+def _crossing(excess: NDArray[np.float64], peak: NDArray[np.intp], offset: NDArray[np.intp],
+              direction: int) -> NDArray[np.float64]:
+    """Fractional number of samples from the peak to where ``excess`` first reaches zero."""
+    count = excess.shape[-1]
+    order = (peak[:, None] + direction * offset) % count
+    walk = np.take_along_axis(excess, order, axis=1)
+    below = walk <= 0.0
+    first = np.where(below.any(axis=1), np.argmax(below, axis=1), count - 1)
+    rows = np.arange(len(peak))
+    high, low = walk[rows, np.maximum(first - 1, 0)], walk[rows, first]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        part = np.where(first > 0, high / (high - low), 0.0)
+    return first - 1 + part
+
+
+def _sample(request: Request, e: NDArray[np.float64], c: NDArray[np.float64],
+            r: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+    """Mismatch with the request at grid designs (flat arrays), the peak angle, the start
+    value of the extra unknown, and the peak height."""
+    samples = _SAMPLES
+    step = 2.0 * np.pi / samples
+    theta = np.arange(samples) * step
+    phi, exists = rocker_angle(e[:, None], c[:, None], r[:, None], theta)
+    n = velocity_ratio(e[:, None], r[:, None], theta, phi)
+    target = abs(request.n_star)
+    value = np.where(exists, request.sign * n, -np.inf)
+    peak = np.argmax(value, axis=1)
+    rows = np.arange(len(peak))
+    height = value[rows, peak]
+    mismatch = [(height - target) / target]
+    offset = np.arange(samples)
+    if request.form == "delta":
+        shifts = np.array([-request.psi1, request.psi2]) / step
+        ends = []
+        for shift in shifts:
+            low = np.floor(shift).astype(int)
+            part = shift - low
+            ends.append((1 - part) * value[rows, (peak + low) % samples]
+                        + part * value[rows, (peak + low + 1) % samples])
+        mismatch.append((ends[0] - ends[1]) / target)
+        extra = 1.0 - ends[0] / target
+    else:
+        excess = value - target * (1.0 - request.delta)
+        mismatch.append(_crossing(excess, peak, offset, -1) * step - request.psi1)
+        if request.form == "crank":
+            mismatch.append(_crossing(excess, peak, offset, 1) * step - request.psi2)
+        extra = e
+    return np.stack(mismatch), theta[peak], extra, height
+
+
+def _starts(request: Request) -> tuple[list[NDArray[np.float64]], int, dict[str, float]]:
+    """Starting unknowns from the grid scan, the number of grid designs, and the attainable
+    ranges (for the no-solution message).
+
+    A start is the centre of a grid cell in which every mismatch changes sign.
+    """
+    grid = _grid(request)
+    shape = grid["e"].shape
+    flat = {k: v.ravel() for k, v in grid.items()}
+    parts = [_sample(request, *(flat[k][i:i + _CHUNK] for k in ("e", "c", "r")))
+             for i in range(0, flat["e"].size, _CHUNK)]
+    mismatch, theta_peak, extra, height = (np.concatenate(p, axis=-1) for p in zip(*parts))
+    fields = mismatch.reshape(-1, *shape)
+    dims = [k for k in range(3) if shape[k] > 1]
+    lows, highs = np.full(fields.shape, np.inf), np.full(fields.shape, -np.inf)
+    cell = tuple(slice(0, -1) if k in dims else slice(None) for k in range(3))
+    for corner in np.ndindex(*(2 if k in dims else 1 for k in range(3))):
+        pick = tuple(slice(b, shape[k] - 1 + b) if k in dims else slice(None)
+                     for k, b in enumerate(corner))
+        lows[(slice(None), *cell)] = np.minimum(lows[(slice(None), *cell)],
+                                                fields[(slice(None), *pick)])
+        highs[(slice(None), *cell)] = np.maximum(highs[(slice(None), *cell)],
+                                                 fields[(slice(None), *pick)])
+    straddle = np.all((lows <= 0.0) & (highs >= 0.0) & np.isfinite(lows) & np.isfinite(highs),
+                      axis=0)
+    centre_mismatch = np.sqrt(np.sum(np.square(fields), axis=0))
+    cells = np.argwhere(straddle)
+    cells = cells[np.argsort(centre_mismatch[tuple(cells.T)])]
+    kept: list[NDArray[np.intp]] = []
+    for index in cells:
+        if len(kept) < _MAX_STARTS and all(np.abs(index - other).max() > 1 for other in kept):
+            kept.append(index)
+    starts = []
+    for index in kept:
+        corners = [tuple(index[k] + b[k] if k in dims else index[k] for k in range(3))
+                   for b in np.ndindex(2, 2, 2)]
+        corners = list(dict.fromkeys(corners))
+        x = [np.mean([grid["c"][p] for p in corners]), np.mean([grid["r"][p] for p in corners]),
+             _mean_angle([theta_peak.reshape(shape)[p] for p in corners])]
+        if request.form != "paper":
+            x.append(np.mean([extra.reshape(shape)[p] for p in corners]))
+        starts.append(np.array(x))
+    finite = np.isfinite(height)
+    ranges = {"peak_min": float(request.sign * np.min(height[finite])),
+              "peak_max": float(request.sign * np.max(height[finite]))}
+    if request.form == "paper":
+        peak_gap, width_gap = fields[0, 0], fields[1, 0]
+        cross = (np.sign(peak_gap[:, :-1]) != np.sign(peak_gap[:, 1:])) & np.isfinite(
+            peak_gap[:, :-1] + peak_gap[:, 1:] + width_gap[:, :-1] + width_gap[:, 1:])
+        if cross.any():
+            a, b = peak_gap[:, :-1][cross], peak_gap[:, 1:][cross]
+            wa, wb = width_gap[:, :-1][cross], width_gap[:, 1:][cross]
+            widths = wa + (wb - wa) * a / (a - b) + request.psi1
+            ranges["psi1_min"], ranges["psi1_max"] = float(widths.min()), float(widths.max())
+    return starts, flat["e"].size, ranges
+
+
+def _mean_angle(angles: list[float]) -> float:
+    return float(np.angle(np.mean(np.exp(1j * np.asarray(angles)))))
+
+
+class _Rocker:
+    """The request reduced to one equation in the rocker length r.
+
+    For a given r the peak conditions (7) = n*, (8) fix c and θ2 (a well-conditioned 2×2
+    solve, continued from the last point); what is left is ``g(r) = n(θ1) − n_end`` for the
+    paper's form and ``g(r) = n(θ1) − n(θ3)`` for ``delta`` (δ then follows from n(θ1)).
+    """
+
+    def __init__(self, request: Request, start: NDArray[np.float64]) -> None:
+        self.request = request
+        self.x = start.copy()
+        self.evaluations = 0
+
+    def __call__(self, r: float) -> float:
+        x = self.x.copy()
+        x[1] = r
+
+        def peak_conditions(y: NDArray[np.float64]) -> NDArray[np.float64]:
+            x[0], x[2] = y
+            return form_residuals(self.request, x)[:2]
+
+        solution = root(peak_conditions, self.x[[0, 2]], method="hybr", options={"xtol": 1e-14})
+        self.evaluations += int(solution.nfev)
+        x[0], x[2] = solution.x
+        residual = form_residuals(self.request, x)
+        if not (np.all(np.isfinite(residual)) and np.all(np.abs(residual[:2]) < _ACCEPT)):
+            return math.nan
+        if self.request.form == "delta":
+            n_first = residual[2] * abs(self.request.n_star) + self.request.n_star * (1 - x[3])
+            x[3] = 1.0 - n_first / self.request.n_star
+            self.x = x
+            return float(residual[2] - residual[3])
+        self.x = x
+        return float(residual[2])
+
+
+def _roots_along_rocker(request: Request, start: NDArray[np.float64], step: float = 0.01,
+                        reach: int = 8) -> tuple[list[NDArray[np.float64]], int]:
+    """Roots of the reduced equation found by stepping r away from a start both ways and
+    bisecting (``brentq``) the first sign change in each direction."""
+    roots, evaluations = [], 0
+    for direction in (-1.0, 1.0):
+        reduced = _Rocker(request, start)
+        previous = (start[1], reduced(start[1]), reduced.x)
+        for k in range(1, reach + 1):
+            r = start[1] * (1.0 + direction * k * step)
+            value = reduced(r)
+            if not math.isfinite(value):
+                break
+            if math.isfinite(previous[1]) and np.sign(value) != np.sign(previous[1]):
+                reduced.x = previous[2]
+                try:
+                    found = brentq(reduced, previous[0], r, xtol=1e-15, rtol=1e-15)
+                except ValueError:  # the peak conditions lost their solution on the way
+                    break
+                if math.isfinite(reduced(found)):
+                    roots.append(reduced.x.copy())
+                break
+            previous = (r, value, reduced.x)
+        evaluations += reduced.evaluations
+    return roots, evaluations
+
+
+def _polish(request: Request, x0: NDArray[np.float64], xtol: float
+            ) -> tuple[NDArray[np.float64], int]:
+    """Newton-type polish (``hybr``) of all the unknowns together."""
+    solution = root(lambda x: form_residuals(request, x), x0, method="hybr",
+                    options={"xtol": xtol})
+    return solution.x.copy(), int(solution.nfev)
+
+
+def _no_design_reason(request: Request, ranges: dict[str, float]) -> str:
+    """A sentence saying why the scan and the root finder found no design."""
+    low, high = sorted((ranges["peak_min"], ranges["peak_max"]))
+    if request.form != "crank" and not low <= request.n_star <= high:
+        return (f"no crank-rocker with e = {request.e:g} has its peak ratio at n* = "
+                f"{request.n_star:g}: over the crank-rocker domain the peak lies between "
+                f"{low:.4g} and {high:.4g}")
+    if "psi1_min" in ranges:
+        return (f"no crank-rocker with e = {request.e:g} and peak n* = {request.n_star:g} keeps "
+                f"the ratio within δ = {request.delta:g} over ψ′ = "
+                f"{math.degrees(request.psi1):.4g}°: zones of about "
+                f"{math.degrees(ranges['psi1_min']):.3g}°…"
+                f"{math.degrees(ranges['psi1_max']):.3g}° are attainable")
+    return "no crank-rocker in the Grashof domain meets all the prescribed values at once"
+
+
+def solve_modern(request: Request, *, xtol: float = 1e-13) -> ModernResult:
+    """Find every crank-rocker that meets the request.
+
+    Parameters
+    ----------
+    request : Request
+        The design request (any of the three forms).
+    xtol : float
+        Relative tolerance on the unknowns passed to ``scipy.optimize.root`` (``hybr``).
+
+    Returns
+    -------
+    ModernResult
+        The designs (best first), the rejected roots, or the reason there is none.
+
+    Raises
+    ------
+    NoSolution
+        When the request is impossible on its face (e.g. n* ≥ 1 on the forward stroke).
+    """
+    request.check()
+    clock = time.perf_counter()
+    starts, evaluations, ranges = _starts(request)
+    result = ModernResult(request)
+    found: list[NDArray[np.float64]] = []
+    candidates = []
+    for x0 in starts:
+        if request.form == "crank":
+            candidates.append(x0)
+            continue
+        near, count = _roots_along_rocker(request, x0)
+        candidates.extend(near)
+        evaluations += count
+    for x0 in candidates:
+        x, count = _polish(request, x0, xtol)
+        evaluations += count
+        residual = form_residuals(request, x)
+        if not np.all(np.abs(residual) < _ACCEPT):
+            continue
+        x[2] = x[2] % (2.0 * np.pi)
+        if any(np.allclose(x, other, rtol=0.0, atol=1e-7) for other in found):
+            continue
+        found.append(x)
+        design = design_from_unknowns(request, x)
+        defect = design_defect(design)
+        if defect is None:
+            result.designs.append(design)
+        else:
+            result.rejected.append((design, defect))
+    result.designs.sort(key=min_transmission_angle, reverse=True)
+    if not result.designs:
+        result.reason = _no_design_reason(request, ranges)
+    result.evaluations = evaluations
+    result.seconds = time.perf_counter() - clock
+    return result

@@ -8,7 +8,7 @@ of the slide line through c. With the frame columns dropped, ``W_geom = 3n − r
 extra parallel crank); this test can, and it names the passive-link candidates.
 
 The pose is read from the chain's ``geometry`` table: ``<pair id>: {point: [x, y]}`` and,
-for P pairs, ``direction: [dx, dy]``. When any pair lacks a point the test is skipped.
+for P pairs, ``direction: [dx, dy]`` or ``direction: <angle in degrees>``. When any pair lacks a point the test is skipped.
 """
 
 from __future__ import annotations
@@ -70,11 +70,18 @@ def pose_from_geometry(chain: Chain) -> dict[PairId, tuple[complex, complex | No
             return None
         direction = None
         if pair.type is PairType.P:
-            direction = _vector(entry.get("direction"))
+            direction = _direction(entry.get("direction"))
             if direction is None or direction == 0:
                 return None
         pose[pair.id] = (point, direction)
     return pose
+
+
+def _direction(value: Any) -> complex | None:
+    """A slide direction: a vector [dx, dy] or an angle in degrees from the x-axis."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return complex(np.cos(np.radians(value)), np.sin(np.radians(value)))
+    return _vector(value)
 
 
 def _vector(value: Any) -> complex | None:

@@ -62,6 +62,9 @@ class Motion:
         Both dyads assemble.
     margin : ndarray
         The smaller of the two dyads' existence margins (``1 − |cos|`` at their outer hinge).
+    reason : ndarray of int
+        Where the chain does not assemble, the failing dyad's reason code
+        (:data:`assur.REASONS`), the actuator's dyad checked first; 0 elsewhere.
     """
 
     s: Array
@@ -78,6 +81,7 @@ class Motion:
     lever_arm: Array
     exists: npt.NDArray[np.bool_]
     margin: Array
+    reason: npt.NDArray[np.int8]
 
     @property
     def stroke(self) -> Array:
@@ -147,4 +151,5 @@ def simulate(l1: npt.ArrayLike, l2: npt.ArrayLike, l5: npt.ArrayLike, s: npt.Arr
             platform=np.unwrap(np.angle(b - a), axis=-1),
             angle_b=_angle(a, b, c), angle_c=_angle(e, c, d), angle_adc=_angle(a, d, c),
             post_distance=-post, lever_arm=1.0 / second.angle_i.d1,
-            exists=first.exists & second.exists, margin=np.minimum(first.margin, second.margin))
+            exists=first.exists & second.exists, margin=np.fmin(first.margin, second.margin),
+            reason=np.where(first.exists, second.reason, first.reason))

@@ -701,6 +701,8 @@ def _sketch_group(topo: _Topology, sketch: _Sketch, build: _Builder, group: Any,
     kind = group.kind
     i_prev, j_prev = group.i_minus_1, group.j_minus_1
     reader = sketch.reader
+    if i_prev not in build.frames or j_prev not in build.frames:
+        return  # an earlier group could not be built; its problem is already recorded
     count = len(reader.issues)
 
     def need(values: list[Any]) -> bool:

@@ -692,12 +692,20 @@ def scheme_figure(chain: Chain, analysis: Any, *, lang: str = "en",
 
 def scheme_bytes(chain: Chain, analysis: Any, fmt: str = "svg", *, lang: str = "en",
                  which: str = "both", dpi: int = 110) -> bytes:
-    """The scheme picture as SVG or PNG bytes (see :func:`scheme_figure`)."""
+    """The scheme picture as SVG or PNG bytes (see :func:`scheme_figure`).
+
+    SVG keeps its texts as text (searchable, selectable) and is reproducible: the same chain
+    gives the same bytes.
+    """
     if fmt not in ("svg", "png"):
         raise ValueError(f"picture format must be 'svg' or 'png'; got {fmt!r}")
-    fig = scheme_figure(chain, analysis, lang=lang, which=which)
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format=fmt, dpi=dpi, metadata={"Date": None} if fmt == "svg" else None)
+    import matplotlib
+
+    with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "assur"}):
+        fig = scheme_figure(chain, analysis, lang=lang, which=which)
+        buffer = io.BytesIO()
+        fig.savefig(buffer, format=fmt, dpi=dpi,
+                    metadata={"Date": None} if fmt == "svg" else None)
     return buffer.getvalue()
 
 

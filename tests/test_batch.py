@@ -1,0 +1,165 @@
+"""Batch check of a folder of mixed good and broken tables, in parallel.
+
+Every table is written here with its expected verdict, worked out by hand: the counts, the
+Chebyshev formula, and for the four-bar that does not assemble the crank angles where the
+coupler and the rocker cannot reach each other (law of cosines).
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+import shutil
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+import yaml
+
+from synthesis.batch import check_table, run_batch
+from synthesis.cli import main
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def _circles(a: complex, ra: float, b: complex, rb: float) -> complex:
+    """The intersection of two circles left of the line a→b (hand-written construction)."""
+    d = abs(b - a)
+    x = (ra ** 2 - rb ** 2 + d ** 2) / (2 * d)
+    h = math.sqrt(ra ** 2 - x ** 2)
+    u = (b - a) / d
+    return a + u * (x + 1j * h)
+
+
+def four_bar(crank: float, coupler: float, rocker: float, frame: float,
+             identification: list | None = None) -> dict:
+    """A four-bar chain table with a sketch at crank angle 0."""
+    a, d = 0j, complex(frame, 0)
+    b = a + crank
+    c = _circles(b, coupler, d, rocker)
+    table = {"mechanism": {"name": "four-bar", "pairs": [
+        {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
+        {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}],
+        "inputs": [{"link": 1}]},
+        "geometry": {k: {"point": [p.real, p.imag]} for k, p in
+                     (("A", a), ("B", b), ("C", c), ("D", d))}}
+    table["geometry"]["input"] = {"rotation": "ccw"}
+    if identification is not None:
+        table["structure_identification"] = identification
+    return table
+
+
+GOOD_ROWS = [
+    {"L": 0, "seq": 1, "i_minus_1": 0, "j_minus_1": None, "i": 1, "j": None, "i_plus_1": 2,
+     "j_plus_1": None, "variant": None, "out_code": "0"},
+    {"L": 1, "seq": 2, "i_minus_1": 1, "j_minus_1": 0, "i": 2, "j": 3, "i_plus_1": None,
+     "j_plus_1": None, "variant": 1, "out_code": "8;2"}]
+
+# crank 40, coupler 50, rocker 30, frame 100: the crank pin B is |BD|² = 40² + 100² −
+# 2·40·100·cos φ from the rocker pivot D and the dyad needs |BD| ≤ 50 + 30, so it assembles
+# only while cos φ ≥ (40² + 100² − 80²)/(2·40·100) = 0.65.
+FAIL_FROM = math.degrees(math.acos(0.65))
+FAIL_TO = 360.0 - FAIL_FROM
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory) -> Path:
+    root = tmp_path_factory.mktemp("class")
+
+    def put(name: str, data: object) -> None:
+        path = root / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(data if isinstance(data, str) else yaml.safe_dump(data,
+                                                                           allow_unicode=True),
+                        encoding="utf-8")
+
+    put("a_good.yaml", four_bar(30, 90, 80, 100, GOOD_ROWS))
+    wrong = [dict(GOOD_ROWS[0]), dict(GOOD_ROWS[1], L=2)]  # the student calls RRR kind 2
+    put("b_wrong_kind.yaml", four_bar(30, 90, 80, 100, wrong))
+    put("c_broken_yaml.yaml", "mechanism: [links, 0, 1\npairs: {\n")
+    typo = four_bar(30, 90, 80, 100)
+    typo["mechanism"]["pairz"] = typo["mechanism"].pop("pairs")
+    put("d_typo.yaml", typo)
+    put("e_five_bar.yaml", {"mechanism": {"pairs": [
+        {"id": i, "type": "R", "links": links} for i, links in
+        enumerate(([0, 1], [1, 2], [2, 3], [3, 4], [4, 0]))], "inputs": [1]}})
+    put("f_does_not_assemble.yaml", four_bar(40, 50, 30, 100))
+    put("g_empty.yaml", "")
+    put("notes.txt", "not a table")
+    (root / "group2").mkdir()
+    shutil.copy(ROOT / "input_tables" / "course_11_link_table.yaml", root / "group2" / "h_course.yaml")
+    return root
+
+
+EXPECTED = {  # file: (verdict, words of the first problem, identification, existence)
+    "a_good.yaml": ("ok", "", "matches", "whole cycle"),
+    "b_wrong_kind.yaml": ("problems", "kind 1", "differs", "whole cycle"),
+    "c_broken_yaml.yaml": ("error", "not valid YAML", "not given", "not checked"),
+    "d_typo.yaml": ("error", "did you mean 'pairs'", "not given", "not checked"),
+    "e_five_bar.yaml": ("problems", "= 2, but", "not given", "no dimensions"),
+    "f_does_not_assemble.yaml": ("problems", "does not assemble", "not given", "fails"),
+    "g_empty.yaml": ("error", "", "not given", "not checked"),
+    "group2/h_course.yaml": ("ok", "", "matches", "whole cycle"),
+}
+
+
+def test_one_row_per_table_with_the_right_verdict(folder):
+    rows = run_batch(folder, jobs=2)
+    assert [r.file for r in rows] == sorted(EXPECTED)  # notes.txt is not a table
+    for row in rows:
+        verdict, words, identification, existence = EXPECTED[row.file]
+        assert row.verdict == verdict, row
+        assert words in row.problem, row
+        assert row.identification == identification, row
+        assert row.existence == existence, row
+        assert (row.problem == "") == (verdict == "ok")
+    by_file = {r.file: r for r in rows}
+    good = by_file["a_good.yaml"]
+    assert (good.n, good.p5, good.W) == (3, 4, 3 * 3 - 2 * 4)
+    five = by_file["e_five_bar.yaml"]
+    assert (five.n, five.p5, five.W) == (4, 5, 3 * 4 - 2 * 5)
+    course = by_file["group2/h_course.yaml"]
+    assert (course.n, course.p5, course.W) == (11, 16, 1)
+
+
+def test_failure_interval_matches_the_law_of_cosines(folder):
+    row = check_table(folder / "f_does_not_assemble.yaml")
+    assert "L1(2,3)" in row.problem
+    assert f"{FAIL_FROM:.1f}°" in row.problem and f"{FAIL_TO:.1f}°" in row.problem
+    ru = check_table(folder / "f_does_not_assemble.yaml", lang="ru")
+    assert "не собирается" in ru.problem and f"{FAIL_FROM:.1f}°" in ru.problem
+
+
+def test_parallel_and_serial_runs_agree(folder):
+    def strip(rows):
+        return [replace(r, seconds=0.0) for r in rows]
+
+    assert strip(run_batch(folder, jobs=2)) == strip(run_batch(folder, jobs=1))
+
+
+def test_command_line_writes_csv_and_json(folder, tmp_path, capsys):
+    out = tmp_path / "class.csv"
+    assert main(["batch", str(folder), "--csv", str(out), "--json", "--jobs", "2"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert {r["file"]: r["verdict"] for r in rows} == {k: v[0] for k, v in EXPECTED.items()}
+    with out.open(encoding="utf-8") as stream:
+        records = list(csv.DictReader(stream))
+    assert {r["file"]: r["verdict"] for r in records} == {k: v[0] for k, v in EXPECTED.items()}
+
+
+def test_summary_in_russian_and_reports(folder, tmp_path, capsys):
+    reports = tmp_path / "reports"
+    assert main(["batch", str(folder), "--lang", "ru", "--jobs", "2", "--quiet",
+                 "--reports", str(reports)]) == 0
+    text = capsys.readouterr().out
+    assert "файл не читается" in text and "есть ошибки" in text and "верно" in text
+    written = sorted(str(p.relative_to(reports)) for p in reports.rglob("*.html"))
+    readable = sorted(str(Path(f).with_suffix(".html")) for f, v in EXPECTED.items()
+                      if v[0] != "error")
+    assert written == readable
+
+
+def test_not_a_folder(tmp_path, capsys):
+    assert main(["batch", str(tmp_path / "missing")]) == 2
+    assert "not a folder" in capsys.readouterr().err

@@ -113,10 +113,11 @@ def _read_chain_form(reader: TableReader) -> Chain:
     frame = mech.get("frame", kind="id", required=False, default=0)
     names: dict[LinkId, str] = {}
     links = _read_links(mech, names)
-    raw_pairs = list(_read_pairs(mech))
+    raw_pairs, mentioned = _read_pairs(mech)
     known = set(links) if links is not None else None
     if links is None:
-        links = _links_from_pairs(frame, raw_pairs)
+        links = [] if frame is MISSING else [frame]
+        links += [link for link in dict.fromkeys(mentioned) if link not in links]
     elif frame is not MISSING and frame not in known:
         reader.add("mechanism 'frame'", f"the frame {frame!r} is not in the links table "
                                         f"({_list(links)})")
@@ -180,8 +181,10 @@ class _RawPair:
         self.id, self.type, self.links, self.guide, self.where = pid, ptype, links, guide, where
 
 
-def _read_pairs(mech: Node) -> list[_RawPair]:
+def _read_pairs(mech: Node) -> tuple[list[_RawPair], list[LinkId]]:
+    """The valid pairs, and every link id mentioned by any pair row (valid or not)."""
     pairs: list[_RawPair] = []
+    mentioned: list[LinkId] = []
     seen: dict[PairId, str] = {}
     label = (lambda row: f"id {row['id']!r}" if "id" in row else None)
     for row in mech.rows("pairs", _PAIR, label=label):
@@ -202,6 +205,7 @@ def _read_pairs(mech: Node) -> list[_RawPair]:
                 ok = False
             else:
                 links = [normalise_id(item) for item in links]
+                mentioned.extend(links)
                 if len(set(links)) != len(links):
                     row.reader.add(row._where("links"), f"a pair must join distinct links "
                                                         f"(a self pair); found {links}")
@@ -231,7 +235,7 @@ def _read_pairs(mech: Node) -> list[_RawPair]:
                 seen[pid] = row.location
         if ok and MISSING not in (pid, ptype, links, guide):
             pairs.append(_RawPair(pid, PairType(ptype), links, guide, row.location))
-    return pairs
+    return pairs, mentioned
 
 
 def _read_inputs(mech: Node) -> list[Drive]:
@@ -313,13 +317,6 @@ def recentre_hinge(origin: PairId, links: list[LinkId] | tuple[LinkId, ...],
     """
     return [Pair(f"{origin}/{link}", PairType.R, (centre, link), None, origin)
             for link in links if link != centre]
-
-
-def _links_from_pairs(frame: Any, pairs: list[_RawPair]) -> list[LinkId]:
-    links: list[LinkId] = [] if frame is MISSING else [frame]
-    for pair in pairs:
-        links.extend(link for link in pair.links if link not in links)
-    return links
 
 
 def _geometry(reader: TableReader, top: Node, mech: Node | None) -> dict[str, Any] | None:

@@ -174,6 +174,12 @@ def check_identification(analysis: StructuralAnalysis,
             miss("i", "a link of the mechanism", user_i, "this link is in no group",
                  "это звено не входит ни в одну группу")
             continue
+        key = id(group)
+        if key in used:
+            miss("row", None, group.label, f"group {group.label} is already described in row "
+                 f"{used[key]}", f"группа {group.label} уже описана в строке {used[key]}")
+            continue
+        used[key] = index
         expected_links = set(group.links)
         found_links = {x for x in (user_i, user_j) if x is not None}
         if found_links != expected_links:
@@ -183,12 +189,6 @@ def check_identification(analysis: StructuralAnalysis,
                  row.get(field), f"the group of this row is {group.label}",
                  f"группа этой строки — {group.label}")
             continue
-        key = id(group)
-        if key in used:
-            miss("row", None, group.label, f"group {group.label} is already described in row "
-                 f"{used[key]}", f"группа {group.label} уже описана в строке {used[key]}")
-            continue
-        used[key] = index
         kind = group.kind or 0
         if row.get("L") != kind:
             miss("L", kind, row.get("L"), f"{group.label} is "

@@ -1,0 +1,148 @@
+"""Reading chain tables and identification tables."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from assur import PairType, chain_from_dict, load_chain
+from assur.errors import TableError
+
+BROKEN = sorted((Path(__file__).parent / "broken").glob("*.yaml"))
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _expectations(path: Path) -> tuple[str, str]:
+    text = path.read_text(encoding="utf-8")
+    expect = re.search(r"^# expect: (.*)$", text, re.M).group(1)
+    where = re.search(r"^# where: (.*)$", text, re.M).group(1)
+    return expect, where
+
+
+@pytest.mark.parametrize("path", BROKEN, ids=[p.stem for p in BROKEN])
+def test_broken_table_names_file_row_and_field(path: Path) -> None:
+    expect, where = _expectations(path)
+    with pytest.raises(TableError) as info:
+        load_chain(path)
+    text = str(info.value)
+    assert str(path) in text.splitlines()[0]
+    line = next((line for line in text.splitlines() if expect in line), None)
+    assert line is not None, text
+    assert where in line or where in text.splitlines()[0], text
+
+
+def test_every_problem_is_reported_at_once() -> None:
+    data = {"mechanism": {"pairs": [
+        {"id": "A", "type": "R", "links": [0, 0]},
+        {"id": "B", "type": "X", "links": [1, 2]},
+        {"id": "C", "type": "P", "links": [2, 0]}], "inputs": [1], "framee": 0}}
+    with pytest.raises(TableError) as info:
+        chain_from_dict(data, source="many.yaml")
+    messages = [issue.message for issue in info.value.issues]
+    assert len(messages) == 4
+    assert any("self pair" in m for m in messages)
+    assert any("found 'X'" in m for m in messages)
+    assert any("guide" in m for m in messages)
+    assert any("did you mean 'frame'" in m for m in messages)
+
+
+def _four_bar(**extra: object) -> dict:
+    return {"mechanism": {"pairs": [
+        {"id": "A", "type": "R", "links": ["0", "1"]},
+        {"id": "B", "type": "R", "links": ["1", "2"]},
+        {"id": "C", "type": "R", "links": ["2", "3"]},
+        {"id": "D", "type": "P", "links": ["3", "0"], "guide": "0"}],
+        "inputs": [{"link": "1"}], **extra}}
+
+
+def test_digit_texts_are_link_numbers_and_the_frame_defaults_to_zero() -> None:
+    chain = chain_from_dict(_four_bar())
+    assert chain.frame == 0
+    assert chain.links == (0, 1, 2, 3)
+    assert chain.pair("D").links == (3, 0) and chain.pair("D").guide == 0
+    assert chain.pair("D").type is PairType.P
+    assert chain.inputs[0].link == 1
+
+
+def test_text_link_ids_are_kept() -> None:
+    data = {"mechanism": {"frame": "ground", "pairs": [
+        {"id": "A", "type": "R", "links": ["ground", "crank"]},
+        {"id": "B", "type": "R", "links": ["crank", "rod"]},
+        {"id": "C", "type": "P", "links": ["rod", "ground"], "guide": "ground"}],
+        "inputs": ["crank"]}}
+    chain = chain_from_dict(data)
+    assert chain.frame == "ground" and set(chain.moving_links) == {"crank", "rod"}
+
+
+def test_geometry_and_general_are_passed_through_untouched() -> None:
+    geometry = {"A": {"point": [0, 0]}, "anything": {"the kinematics": "reads it"}}
+    general = {"N_z": 12, "s": -1}
+    data = _four_bar()
+    data["geometry"] = geometry
+    data["general"] = general
+    chain = chain_from_dict(data)
+    assert chain.geometry == geometry and chain.general == general
+    inner = chain_from_dict(_four_bar(geometry=geometry))
+    assert inner.geometry == geometry
+
+
+def test_geometry_given_twice_is_an_error() -> None:
+    data = _four_bar(geometry={"A": {"point": [0, 0]}})
+    data["geometry"] = {"A": {"point": [0, 0]}}
+    with pytest.raises(TableError, match="give the geometry once"):
+        chain_from_dict(data)
+
+
+def test_compound_hinge_becomes_k_minus_1_pairs_with_origin() -> None:
+    data = {"mechanism": {"pairs": [
+        {"id": "A", "type": "R", "links": [0, 1]},
+        {"id": "K", "type": "R", "links": [1, 2, 3, 0]}], "inputs": [1]}}
+    chain = chain_from_dict(data)
+    k_pairs = [p for p in chain.pairs if p.origin == "K"]
+    assert len(k_pairs) == 3
+    assert all(0 in p.links for p in k_pairs)       # centred on the frame, known first
+    assert chain.pair("K").origin == "K"
+
+
+def test_compound_prismatic_pair_is_refused() -> None:
+    data = {"mechanism": {"pairs": [
+        {"id": "A", "type": "P", "links": [0, 1, 2], "guide": 0}], "inputs": [1]}}
+    with pytest.raises(TableError, match="only a revolute hinge"):
+        chain_from_dict(data)
+
+
+def test_identification_table_rebuilds_the_course_chain() -> None:
+    chain = load_chain(ROOT / "input_tables" / "course_11_link.yaml")
+    rebuilt = load_chain(ROOT / "input_tables" / "course_11_link_table.yaml")
+
+    def pairs(c: object) -> set:
+        return {(p.id, p.type, frozenset(p.links), p.guide) for p in c.pairs}
+
+    # the 16 pairs of method.md §3.5, with the same names, types and guide carriers
+    assert pairs(rebuilt) == pairs(chain)
+    assert rebuilt.inputs[0].link == 1
+    assert rebuilt.claims == {"n_moving_links": 11, "p5": 16, "p4": 0, "W": 1, "N_Q": 6}
+    assert len(rebuilt.identification) == 6
+
+
+def test_row_params_are_kept_per_group() -> None:
+    data = {"structure_identification": [
+        {"L": 0, "i_minus_1": 0, "j_minus_1": None, "i": 1, "j": None,
+         "params": {"l1": 40.0}},
+        {"L": 1, "i_minus_1": 1, "j_minus_1": 0, "i": 2, "j": 3,
+         "params": {"li": 120, "lj": 90, "extra": [1, 2]}}],
+        "general": {"s": 1}, "geometry": {"0-1": {"point": [0, 0]}}}
+    chain = chain_from_dict(data)
+    assert chain.group_params == {(1,): {"l1": 40.0},
+                                  (2, 3): {"li": 120, "lj": 90, "extra": [1, 2]}}
+    assert chain.general == {"s": 1} and chain.geometry == {"0-1": {"point": [0, 0]}}
+
+
+def test_chain_form_may_carry_a_table_to_check() -> None:
+    data = _four_bar()
+    data["structure_identification"] = [
+        {"L": 0, "i_minus_1": 0, "j_minus_1": None, "i": 1, "j": None}]
+    chain = chain_from_dict(data)
+    assert chain.identification[0]["i"] == 1

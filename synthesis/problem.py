@@ -309,26 +309,33 @@ def _read(reader: TableReader, base: Path) -> Problem:
         for row in rows:
             if isinstance(row, dict) and row.get("L") == 0 and isinstance(row.get("params"), dict):
                 row["params"].setdefault("s", g["direction"])
+    structure_ok = bool(rows) and not any(
+        issue.location.startswith(("mechanism", "structure_identification", "parameters", "frame"))
+        for issue in reader.issues)
     task_class = g.get("task_class", MISSING)
     output = _read_output(top, task_class, groups)
     control = _read_control(top, task_class, g.get("n_points", MISSING))
     pressure, rotations = _read_allowable(top, groups)
     models = tuple(top.get("group_models", kind="list", required=False, default=[]) or [])
     search = _read_search(top)
-    reader.raise_if_any()
-    model = _build_model(reader, mechanism)
-    labels = {(grp.i,) if grp.j is None else (grp.i, grp.j): grp.label for grp in model.groups}
-    parameters = tuple(Parameter(n, float(model.params[n]), lo, hi)
-                       for n, (lo, hi) in model.bounds.items() if hi > lo)
-    if not parameters:
-        reader.add("parameters", "no parameter is varied; give at least one column as "
-                                 "[initial, lower, upper] with lower < upper")
-    pressure_angles = {labels[k]: v for k, v in pressure.items()}
-    rotation_limits = {labels[k]: v for k, v in rotations.items()}
-    _check_allowable(reader, model, pressure_angles, rotation_limits)
-    if output.link is not None and output.link not in model.links:
-        reader.add("output 'link'", f"link {output.link!r} is not a moving link of the "
-                                    f"mechanism")
+    model = _build_model(reader, mechanism) if structure_ok else None
+    parameters: tuple[Parameter, ...] = ()
+    pressure_angles: dict[str, float] = {}
+    rotation_limits: dict[str, dict[str, float]] = {}
+    if model is not None:
+        labels = {(grp.i,) if grp.j is None else (grp.i, grp.j): grp.label
+                  for grp in model.groups}
+        parameters = tuple(Parameter(n, float(model.params[n]), lo, hi)
+                           for n, (lo, hi) in model.bounds.items() if hi > lo)
+        if not parameters:
+            reader.add("parameters", "no parameter is varied; give at least one column as "
+                                     "[initial, lower, upper] with lower < upper")
+        pressure_angles = {labels[k]: v for k, v in pressure.items()}
+        rotation_limits = {labels[k]: v for k, v in rotations.items()}
+        _check_allowable(reader, model, pressure_angles, rotation_limits)
+        if output.link not in (None, MISSING) and output.link not in model.links:
+            reader.add("output 'link'", f"link {output.link!r} is not a moving link of the "
+                                        f"mechanism")
     reader.raise_if_any()
     return Problem(
         source=reader.source, name=name or Path(reader.source).stem,
@@ -341,7 +348,7 @@ def _read(reader: TableReader, base: Path) -> Problem:
 
 
 def _build_model(reader: TableReader, mechanism: dict[str, Any]) -> Any:
-    """The kinematic model of the initial design (table problems become issues of this file)."""
+    """The kinematic model of the initial design, or None (its problems become issues)."""
     try:
         chain = assur.chain_from_dict(mechanism, source=reader.source)
         return assur.build_model(assur.analyse_structure(chain))
@@ -350,8 +357,7 @@ def _build_model(reader: TableReader, mechanism: dict[str, Any]) -> Any:
             reader.add(issue.location, issue.message)
     except assur.StructureError as exc:
         reader.add("structure_identification", str(exc))
-    reader.raise_if_any()
-    raise AssertionError("unreachable")  # pragma: no cover
+    return None
 
 
 def _read_mechanism(reader: TableReader, top: Node, base: Path) -> dict[str, Any]:
@@ -412,7 +418,7 @@ def _merge_parameters(top: Node, groups: dict[GroupKey, Any]) -> None:
     seen: set[GroupKey] = set()
     for row in top.rows("parameters", None, required=False):
         key = _group_of(row, groups)
-        if key is None:
+        if key is None or key not in groups:
             continue
         if key in seen:
             row.reader.add(f"{row.location} 'links'", f"group {list(key)} already has a "

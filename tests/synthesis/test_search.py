@@ -1,0 +1,117 @@
+"""The passive search: reproducibility, stop rules, interruption, refinement."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from synthesis.criteria import Criteria
+from synthesis.search import SearchSettings, search
+
+OPTIMUM = np.array([0.31, 0.77, 0.12])
+
+
+def quadratic(x: np.ndarray) -> Criteria:
+    """Q = max |x − x*|; designs with x_0 > 0.9 do not exist (P1 = x_0 − 0.9)."""
+    dev = x - OPTIMUM
+    p1 = np.maximum(x[:, 0] - 0.9, 0.0)
+    zero = np.zeros(len(x))
+    feasible = p1 == 0
+    q = np.where(feasible, np.max(np.abs(dev), axis=1), np.nan)
+    return Criteria(p1, np.where(feasible, zero, np.nan), q, dev, dev)
+
+
+LOWER, UPPER, START = np.zeros(3), np.ones(3), np.array([0.95, 0.5, 0.5])
+
+
+def test_same_seed_same_result_and_other_seed_other_trials() -> None:
+    a = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=7, seed=5))
+    b = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=7, seed=5))
+    c = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=7, seed=6))
+    np.testing.assert_array_equal(a.trials, b.trials)
+    np.testing.assert_array_equal(a.x, b.x)
+    assert not np.array_equal(a.trials[1:], c.trials[1:])
+
+
+def test_trial_zero_is_the_initial_design_and_the_budget_is_2_to_m() -> None:
+    r = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=6, batch=16))
+    np.testing.assert_array_equal(r.trials[0], START)
+    assert r.trials.shape[0] == 1 + 2 ** 6
+    assert r.stop == "budget"
+    assert np.all((r.trials[1:] >= LOWER) & (r.trials[1:] <= UPPER))
+    # the infeasible initial design (P1 > 0) never wins against a feasible one
+    assert r.criteria.p1[0] == 0
+
+
+def test_best_is_the_best_trial_by_the_ranking() -> None:
+    r = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=8))
+    c = r.trial_criteria
+    feasible = c.p1 == 0
+    assert r.criteria.q[0] == np.min(c.q[feasible])
+
+
+def test_favourable_design_stops_the_search() -> None:
+    r = search(quadratic, LOWER, UPPER, START,
+               SearchSettings(budget_log2=12, batch=32, q_required=0.2))
+    assert r.stop == "favourable"
+    assert r.criteria.q[0] <= 0.2
+    assert r.trials.shape[0] < 2 ** 12
+
+
+def test_no_progress_stops_the_search() -> None:
+    def flat(x: np.ndarray) -> Criteria:
+        zero = np.zeros(len(x))
+        return Criteria(zero, zero, zero + 1.0, zero[:, None], zero[:, None])
+
+    r = search(flat, LOWER, UPPER, START, SearchSettings(budget_log2=12, batch=16, stall=64))
+    assert r.stop == "stall"
+    assert r.trials.shape[0] <= 64 + 2 * 16 + 1
+
+
+def test_time_limit_stops_the_search() -> None:
+    r = search(quadratic, LOWER, UPPER, START,
+               SearchSettings(budget_log2=20, batch=64, time_limit=0.2))
+    assert r.stop == "time"
+    assert r.trials.shape[0] < 2 ** 20
+
+
+def test_ctrl_c_keeps_the_best_so_far() -> None:
+    calls = []
+
+    def interrupted(x: np.ndarray) -> Criteria:
+        calls.append(len(x))
+        if len(calls) == 4:
+            raise KeyboardInterrupt
+        return quadratic(x)
+
+    r = search(interrupted, LOWER, UPPER, START, SearchSettings(budget_log2=10, batch=32))
+    assert r.stop == "interrupted"
+    assert r.trials.shape[0] == sum(calls[:3])
+    assert r.criteria.q[0] == np.nanmin(r.trial_criteria.q)
+
+
+def test_refinement_and_shrinking_improve_on_the_passive_best() -> None:
+    plain = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=7, seed=2))
+    shrunk = search(quadratic, LOWER, UPPER, START,
+                    SearchSettings(budget_log2=7, seed=2, shrink_passes=2))
+    refined = search(quadratic, LOWER, UPPER, START,
+                     SearchSettings(budget_log2=7, seed=2, refine=True))
+    assert shrunk.criteria.q[0] < plain.criteria.q[0]
+    assert refined.criteria.q[0] < 1e-8
+    np.testing.assert_allclose(refined.x, OPTIMUM, atol=1e-8)
+    assert set(refined.stage) == {"initial", "lptau", "refine"}
+
+
+def test_weighted_objective_can_accept_a_desirable_violation() -> None:
+    def trade(x: np.ndarray) -> Criteria:
+        # P2 = 0 only for x_0 < 0.5, but Q is smallest near x_0 = 0.8
+        q = np.abs(x[:, 0] - 0.8)
+        p2 = np.maximum(x[:, 0] - 0.5, 0.0) * 0.01
+        zero = np.zeros(len(x))
+        return Criteria(zero, p2, q, q[:, None], q[:, None])
+
+    lex = search(trade, LOWER, UPPER, START, SearchSettings(budget_log2=8))
+    soft = search(trade, LOWER, UPPER, START,
+                  SearchSettings(budget_log2=8, objective="weighted", p2_weight=1.0))
+    assert lex.x[0] <= 0.5
+    assert soft.x[0] == pytest.approx(0.8, abs=0.02)

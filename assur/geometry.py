@@ -570,8 +570,11 @@ def model_from_sketch(analysis: Any) -> KinematicModel:
 
 
 def _ordered(build: _Builder) -> dict[str, Any]:
+    """Parameters in layering and column order; every dyad gets its margin δ (default 0)."""
     out: dict[str, Any] = {}
     for group in build.groups:
+        if group.kind != 0:
+            build.params.setdefault(group.column("delta"), 0.0)
         extra = sorted(k for k in build.params if k.startswith(group.label + ".")
                        and k.split(".", 1)[1] not in KIND_COLUMNS[group.kind])
         for column in KIND_COLUMNS[group.kind]:

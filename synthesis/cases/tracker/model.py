@@ -1,50 +1,104 @@
 """Kinematic model of the rhomboid orientation mechanism over the actuator's stroke.
 
-The chain (``mechanism.yaml`` beside this module): base 4, short rocker 1 (platform),
-coupler 2, long rocker 3, actuator cylinder 5 and rod 6; hinges A = 4–1, B = 1–2, C = 2–3
-(the rod's hinge 6–3 sits on the same axis), D = 3–4, E = 4–5; the driven prismatic pair
-5–6 is the input. Frozen, the cylinder and rod form one link of length ``s`` (the input
-coordinate), and the chain splits into two RRR dyads (``structure.md`` T21):
+The chain is declared as a table like any other mechanism (``mechanism.yaml`` beside this
+module): base 4, short rocker 1 (the platform), coupler 2, long rocker 3, actuator cylinder 5
+and rod 6; hinges A = 4–1, B = 1–2, D = 3–4, E = 4–5, the compound hinge C of 2, 3 and 6, and
+the driven prismatic pair S = 5–6. The structural analysis freezes the driven pair into a
+composite link of variable length ``s = |EC|`` (the input coordinate) and finds two RRR
+dyads (``structure.md`` T21): ``II₁(3,{5,6})`` on the base hinges D and E, then
+``II₁(1,2)`` on A and C. The kinematic model is built from a sketch of one pose and solved
+over the stroke by :func:`assur.analyse`, with analogs (derivatives with respect to ``s``).
 
-1. ``({5,6}, 3)`` on the base hinges E and D, internal joint C;
-2. ``(1, 2)`` on the base hinge A and on C, internal joint B — taken on the kite branch
-   (B is the mirror image of D in the diagonal AC; the other assembly is D itself).
-
-Coordinates: A at the origin (the post), D at ``−l1`` and E at ``l5 − l1`` on the x axis,
-C above it. Angles in radians, lengths in the caller's unit.
+The sketch pose has the long rocker at right angles to the base (angle ADC = 90°, inside
+every stroke ``[b_min, 180° − b_min]``) and B on the kite branch: the mirror image of D in the
+diagonal AC (the other assembly of the dyad (1, 2) is D itself). Coordinates: A at the
+origin (the post), D at ``−l1`` and E at ``l5 − l1`` on the x axis, C above it. Angles in
+radians, lengths in mm.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from assur import Jet, solve_rrr
+from assur import (
+    Chain,
+    KinematicModel,
+    StructuralAnalysis,
+    analyse,
+    analyse_structure,
+    build_model,
+    input_grid,
+    load_chain,
+    unwrap,
+)
 
-__all__ = ["KITE_BRANCH", "Motion", "actuator_positions", "simulate"]
+__all__ = ["CHAIN_TABLE", "TrackerMotion", "chain", "mechanism_model", "simulate", "sketch"]
+
+CHAIN_TABLE = Path(__file__).with_name("mechanism.yaml")
+"""The chain table of the mechanism."""
 
 Array = npt.NDArray[np.float64]
 Points = npt.NDArray[np.complex128]
 
-KITE_BRANCH: dict[str, int] = {"C": -1, "B": -1}
-"""Assembly signs σ of the two dyads: C above the base line (left of D→E is below, so the
-dyad (E, D) takes σ = −1 with H_i = E), B on the far side of AC from D."""
+
+@lru_cache(maxsize=1)
+def chain() -> Chain:
+    """The chain read from :data:`CHAIN_TABLE`."""
+    return load_chain(CHAIN_TABLE)
+
+
+def sketch(l1: float, l2: float, l5: float, l_i: float, l_d: float) -> dict[str, Any]:
+    """The ``geometry:`` section of one design: joint coordinates at the sketch pose.
+
+    Parameters
+    ----------
+    l1, l2, l5 : float
+        Short rocker (= base), coupler (= long rocker), ``|DE|``; mm.
+    l_i, l_d : float
+        Actuator length retracted and extended (the analysed stroke); mm.
+
+    Returns
+    -------
+    dict
+        Joint id → ``{point: [x, y]}`` (and ``direction`` for the actuator's slide), plus
+        ``input: {stroke: [l_i, l_d]}``.
+    """
+    a, d, e = 0j, complex(-l1), complex(l5 - l1)
+    c = d + 1j * l2
+    axis = (c - a) / abs(c - a)
+    b = a + axis * axis * np.conj(d - a)       # D mirrored in the diagonal AC
+    xy = (lambda z: [float(z.real), float(z.imag)])
+    return {"A": {"point": xy(a)}, "B": {"point": xy(b)}, "C": {"point": xy(c)},
+            "D": {"point": xy(d)}, "E": {"point": xy(e)},
+            "S": {"point": xy(e), "direction": xy(c - e)},
+            "input": {"stroke": [float(l_i), float(l_d)]}}
+
+
+def mechanism_model(l1: float, l2: float, l5: float, l_i: float,
+                    l_d: float) -> tuple[StructuralAnalysis, KinematicModel]:
+    """Structural analysis and kinematic model of one design (see :func:`sketch`)."""
+    analysis = analyse_structure(replace(chain(), geometry=sketch(l1, l2, l5, l_i, l_d)))
+    return analysis, build_model(analysis)
 
 
 @dataclass(frozen=True)
-class Motion:
-    """The mechanism over the actuator's stroke; arrays of shape ``(..., N)``.
+class TrackerMotion:
+    """The mechanism over the actuator's stroke; arrays of shape ``(N,)``.
 
     Attributes
     ----------
+    formula : str
+        The structure formula found by the structural analysis.
     s : ndarray
         Actuator length ``|EC|`` (the input coordinate).
-    a, d, e : ndarray, complex
-        Base hinges A (the post), D and E (broadcast to the shape of ``s``).
-    b, c : ndarray, complex
-        Moving joints B and C (NaN where the chain does not assemble).
+    a, b, c, d, e : ndarray, complex
+        Joints (NaN where the chain does not assemble); A is the post.
     platform : ndarray
         Angle of the short rocker AB (the platform), unwrapped along the stroke.
     angle_b : ndarray
@@ -59,20 +113,18 @@ class Motion:
         ``ds/dφ``, the actuator's length change per radian of the platform: by virtual work,
         the torque on the platform per unit of actuator force (its effective lever arm).
     exists : ndarray of bool
-        Both dyads assemble.
+        Every group assembles.
     margin : ndarray
-        The smaller of the two dyads' existence margins (``1 − |cos|`` at their outer hinge).
-    reason : ndarray of int
-        Where the chain does not assemble, the failing dyad's reason code
-        (:data:`assur.REASONS`), the actuator's dyad checked first; 0 elsewhere.
+        The smallest existence margin of the groups.
     """
 
+    formula: str
     s: Array
     a: Points
-    d: Points
-    e: Points
     b: Points
     c: Points
+    d: Points
+    e: Points
     platform: Array
     angle_b: Array
     angle_c: Array
@@ -81,28 +133,22 @@ class Motion:
     lever_arm: Array
     exists: npt.NDArray[np.bool_]
     margin: Array
-    reason: npt.NDArray[np.int8]
 
     @property
-    def stroke(self) -> Array:
+    def stroke(self) -> float:
         """Platform stroke: the range of the platform angle over the positions."""
-        return np.ptp(self.platform, axis=-1)
+        return float(np.ptp(self.platform))
 
     @property
     def transmission(self) -> Array:
-        """Transmission angles at B and C folded into [0, π/2]: shape ``(2, ..., N)``."""
+        """Transmission angles at B and C folded into [0, π/2]: shape ``(2, N)``."""
         both = np.stack([self.angle_b, self.angle_c])
         return np.minimum(both, np.pi - both)
 
     @property
-    def min_transmission(self) -> Array:
-        """Smallest transmission angle at B over the stroke (the patent's ``b_min``)."""
-        return self.transmission[0].min(axis=-1)
-
-    @property
-    def min_clearance(self) -> Array:
+    def min_clearance(self) -> float:
         """Smallest distance from the post to the actuator's axis over the stroke."""
-        return np.abs(self.post_distance).min(axis=-1)
+        return float(np.abs(self.post_distance).min())
 
 
 def _angle(p: Points, q: Points, r: Points) -> Array:
@@ -110,46 +156,35 @@ def _angle(p: Points, q: Points, r: Points) -> Array:
     return np.abs(np.angle((r - q) / (p - q)))
 
 
-def actuator_positions(l_i: npt.ArrayLike, l_d: npt.ArrayLike, n: int) -> Array:
-    """``n`` actuator lengths evenly spread from ``l_i`` to ``l_d`` (shape ``(..., n)``)."""
-    t = np.linspace(0.0, 1.0, n)
-    l_i = np.asarray(l_i, dtype=float)[..., None]
-    return l_i + (np.asarray(l_d, dtype=float)[..., None] - l_i) * t
-
-
-def simulate(l1: npt.ArrayLike, l2: npt.ArrayLike, l5: npt.ArrayLike, s: npt.ArrayLike,
-             *, delta: float = 0.0) -> Motion:
-    """Solve the mechanism at the given actuator lengths.
+def simulate(l1: float, l2: float, l5: float, l_i: float, l_d: float, *,
+             positions: int = 721) -> TrackerMotion:
+    """Solve the mechanism over the actuator's stroke ``[l_i, l_d]``.
 
     Parameters
     ----------
-    l1, l2, l5 : array_like
-        Short rocker (= base), coupler (= long rocker), and ``|DE|``; shape ``(..., 1)`` for
-        several designs at once.
-    s : array_like
-        Actuator lengths ``|EC|``, broadcasting with the dimensions (e.g. from
-        :func:`actuator_positions`).
-    delta : float
-        Assigned existence tolerance of the two dyads.
+    l1, l2, l5 : float
+        Short rocker (= base), coupler (= long rocker), ``|DE|``; mm.
+    l_i, l_d : float
+        Actuator lengths at the two ends of the stroke; mm.
+    positions : int
+        Actuator lengths evenly spread over the stroke.
 
     Returns
     -------
-    Motion
+    TrackerMotion
     """
-    l1, l2, l5, s = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (l1, l2, l5, s)))
-    a = np.zeros_like(s, dtype=complex)
-    d = -l1 + 0j
-    e = (l5 - l1) + 0j
-    first = solve_rrr(e, d, Jet(s, 1.0), l2, KITE_BRANCH["C"], delta)
-    second = solve_rrr(a, first.c, l1, l2, KITE_BRANCH["B"], delta)
-    c, b = first.c.v, second.c.v
+    analysis, model = mechanism_model(l1, l2, l5, l_i, l_d)
+    motion = analyse(model, input_grid(model, positions), analogs=True)
+    joint = {key: motion.joints[pair.id].v for pair in analysis.chain.pairs
+             for key in [pair.origin] if pair.type.value == "R"}
+    a, b, c, d, e = (joint[name] for name in "ABCDE")
+    platform = motion.link_angle(1)
     with np.errstate(invalid="ignore", divide="ignore"):
         arm = c - e
         post = np.imag(np.conj(arm) * (a - e)) / np.abs(arm)
-        return Motion(
-            s=s, a=a, d=d, e=e, b=b, c=c,
-            platform=np.unwrap(np.angle(b - a), axis=-1),
-            angle_b=_angle(a, b, c), angle_c=_angle(e, c, d), angle_adc=_angle(a, d, c),
-            post_distance=-post, lever_arm=1.0 / second.angle_i.d1,
-            exists=first.exists & second.exists, margin=np.fmin(first.margin, second.margin),
-            reason=np.where(first.exists, second.reason, first.reason))
+        margin = np.fmin.reduce([s.margin for s in motion.solutions.values()])
+        return TrackerMotion(
+            formula=analysis.formula, s=np.asarray(motion.q), a=a, b=b, c=c, d=d, e=e,
+            platform=unwrap(platform.v), angle_b=_angle(a, b, c), angle_c=_angle(e, c, d),
+            angle_adc=_angle(a, d, c), post_distance=-post, lever_arm=1.0 / platform.d1,
+            exists=motion.exists, margin=margin)

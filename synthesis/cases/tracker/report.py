@@ -72,10 +72,10 @@ _T: dict[str, tuple[str, str]] = {
                     "В патенте выбрано k2 = {k2:g}, k5 = {k5:g}: {same}"),
     "same": ("the same design", "тот же вариант"),
     "other": ("a different design", "другой вариант"),
-    "sim": ("Simulation of the returned dimensions ({n} actuator lengths from l_i to l_d, "
-            "two RRR dyads)",
-            "Моделирование полученных размеров (две группы ВВВ, положений привода от l_i "
-            "до l_d: {n})"),
+    "sim": ("Simulation of the returned dimensions: the chain table solved group by group, "
+            "{formula}, at {n} actuator lengths from l_i to l_d",
+            "Моделирование полученных размеров: таблица цепи решена по группам, {formula}, "
+            "положений привода от l_i до l_d: {n}"),
     "sim_line": ("stroke {s:.4f}° (closed form {a:.4f}°), min transmission at B {b:.4f}° "
                  "(closed form {bc:.4f}°), l_g at extension {g:.2f} mm (closed form "
                  "{gc:.2f} mm), least post distance over the stroke {gm:.2f} mm, assembles "
@@ -340,7 +340,8 @@ def summary(study: Study, lang: Lang = "en") -> str:
             out.append(f"  {_t('none', lang)}")
             continue
         out += _design_text(check.design, lang)
-        out += ["  " + _t("sim", lang).format(n=check.motion.s.shape[-1]) + ":",
+        out += ["  " + _t("sim", lang).format(n=check.motion.s.shape[-1],
+                                              formula=check.motion.formula) + ":",
                 *_verification_text(check, lang)]
     if study.chosen is not None and _is_patent_task(study):
         same = math.isclose(study.chosen.design.k2, CHOSEN["k2"]) and \
@@ -371,7 +372,7 @@ def _design_dict(check: Verification | None) -> dict[str, Any] | None:
         "c_deg": deg(d.c), "d_deg": deg(d.d), "k_d": d.k_d, "k_i": d.k_i, "k_s": d.k_s,
         "k_g": d.k_g, "lengths_mm": d.lengths(),
         "violations": [violation_text(v) for v in d.violations],
-        "simulation": {"stroke_deg": deg(check.stroke), "b_min_deg": deg(check.b_min),
+        "simulation": {"structure": check.motion.formula, "stroke_deg": deg(check.stroke), "b_min_deg": deg(check.b_min),
                        "c_min_deg": deg(check.c_min), "l_g_mm": check.clearance,
                        "min_post_distance_mm": check.min_clearance,
                        "lever_arm_mm": {"least": check.lever_arm[0],

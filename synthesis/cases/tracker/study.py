@@ -22,7 +22,7 @@ from synthesis.cases.tracker.design import (
     design_table,
     refine,
 )
-from synthesis.cases.tracker.model import Motion, actuator_positions, simulate
+from synthesis.cases.tracker.model import TrackerMotion, simulate
 from synthesis.cases.tracker.reproduction import Comparison, reproduce, reproduce_mm
 
 __all__ = ["Study", "Verification", "run_study", "verify", "worst"]
@@ -35,7 +35,8 @@ class Verification:
     Attributes
     ----------
     design : Design
-    motion : Motion
+    motion : TrackerMotion
+        The chain-table model solved over the stroke by the mechanism-level analysis.
     stroke : float
         Simulated platform stroke, radians.
     b_min : float
@@ -53,7 +54,7 @@ class Verification:
     """
 
     design: Design
-    motion: Motion
+    motion: TrackerMotion
     stroke: float
     b_min: float
     c_min: float
@@ -83,14 +84,14 @@ def verify(design: Design, *, positions: int = 721) -> Verification:
     -------
     Verification
     """
-    s = actuator_positions(design.l_i, design.l_d, positions)
-    motion = simulate(design.l1, design.l2, design.l5, s)
+    motion = simulate(design.l1, design.l2, design.l5, design.l_i, design.l_d,
+                      positions=positions)
     folded = motion.transmission
     arm = motion.lever_arm
     return Verification(
-        design=design, motion=motion, stroke=float(motion.stroke),
+        design=design, motion=motion, stroke=motion.stroke,
         b_min=float(folded[0].min()), c_min=float(folded[1].min()),
-        clearance=float(abs(motion.post_distance[-1])), min_clearance=float(motion.min_clearance),
+        clearance=float(abs(motion.post_distance[-1])), min_clearance=motion.min_clearance,
         lever_arm=(float(arm.min()), float(arm[0]), float(arm[-1])),
         assembles=bool(motion.exists.all()))
 

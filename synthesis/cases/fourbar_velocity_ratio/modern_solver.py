@@ -287,11 +287,12 @@ def _no_design_reason(request: Request, ranges: dict[str, float]) -> str:
                 f"{request.n_star:g}: over the crank-rocker domain the peak lies between "
                 f"{low:.4g} and {high:.4g}")
     if "psi1_min" in ranges:
+        wide = request.psi1 > ranges["psi1_max"]
+        edge = math.degrees(ranges["psi1_max" if wide else "psi1_min"])
         return (f"no crank-rocker with e = {request.e:g} and peak n* = {request.n_star:g} keeps "
                 f"the ratio within δ = {request.delta:g} over ψ′ = "
-                f"{math.degrees(request.psi1):.4g}°: zones of about "
-                f"{math.degrees(ranges['psi1_min']):.3g}°…"
-                f"{math.degrees(ranges['psi1_max']):.3g}° are attainable")
+                f"{math.degrees(request.psi1):.4g}°: the {'widest' if wide else 'narrowest'} "
+                f"such zone found is about {edge:.3g}°")
     return "no crank-rocker in the Grashof domain meets all the prescribed values at once"
 
 

@@ -1,0 +1,137 @@
+"""``assur case fourbar-velocity-ratio``: a crank-rocker synthesised for a prescribed velocity
+ratio over a zone of crank angles."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from typing import Any
+
+from assur.tables import MISSING, TableReader
+from synthesis.cases.fourbar_velocity_ratio.conditions import NoSolution, Request
+from synthesis.cases.fourbar_velocity_ratio.report import no_solution_text, summary, to_dict
+from synthesis.cases.fourbar_velocity_ratio.study import METHODS, run_study
+
+__all__ = ["HELP", "NAME", "add_args", "read_request", "run"]
+
+NAME = "fourbar-velocity-ratio"
+HELP = ("crank-rocker four-bar whose velocity ratio stays within δ of its peak n* over a zone "
+        "of crank angles (nested false position of the source and a modern solver, each design "
+        "checked independently)")
+
+TABLE = "fourbar_velocity_ratio"
+_FIELDS = (
+    ("--e", "e", "crank length e (frame = 1); leave out to find it"),
+    ("--n-star", "n_star", "peak velocity ratio n* (negative: return stroke)"),
+    ("--delta", "delta", "allowed relative variation δ; leave out to find it"),
+    ("--psi1", "psi1_deg", "zone before the peak ψ′, degrees"),
+    ("--psi2", "psi2_deg", "zone after the peak ψ″, degrees; leave out to find it"),
+)
+
+
+def add_args(parser: argparse.ArgumentParser) -> None:
+    """Options of the case; each overrides the value of the input table."""
+    parser.add_argument("--table", metavar="FILE.yaml",
+                        help="input table (see input_tables/case_fourbar_velocity_ratio.yaml)")
+    for flag, dest, text in _FIELDS:
+        parser.add_argument(flag, dest=dest, type=float, metavar=dest.split("_")[0].upper(),
+                            help=text)
+    parser.add_argument("--method", choices=METHODS, default=None,
+                        help="solver: modern (default), paper or both")
+    parser.add_argument("--json", action="store_true", help="print the results as JSON")
+    parser.add_argument("--plot", metavar="FILE", help="write a picture of the design (PNG, SVG…)")
+    parser.add_argument("--lang", choices=("en", "ru"), default="en",
+                        help="language of the report")
+
+
+def _open_interval(low: float, high: float, what: str):
+    def rule(value: float) -> str | None:
+        return None if low < value < high else f"{what} must lie between {low:g} and {high:g}"
+    return rule
+
+
+def read_request(data: dict[str, Any], source: str) -> tuple[Request, str]:
+    """A request (and the method) from table data; every bad value is reported at once.
+
+    Raises
+    ------
+    TableError
+        Naming the file, table and field of each problem.
+    """
+    reader = TableReader.from_data({TABLE: data}, source=source)
+    root = reader.root(allowed=[TABLE])
+    node = root.child(TABLE, allowed=[dest for _, dest, _ in _FIELDS] + ["method"])
+    values: dict[str, Any] = {}
+    rules = {"e": _open_interval(0.0, math.inf, "e"),
+             "n_star": lambda v: None if v != 0 else "n* must not be zero",
+             "delta": _open_interval(0.0, 1.0, "δ"),
+             "psi1_deg": _open_interval(0.0, 180.0, "ψ′"),
+             "psi2_deg": _open_interval(0.0, 180.0, "ψ″")}
+    if node is not None:
+        for _, dest, _ in _FIELDS:
+            values[dest] = node.get(dest, kind="number", check=rules[dest],
+                                    required=dest in ("n_star", "psi1_deg"), default=None,
+                                    nullable=True)
+        method = node.choice("method", METHODS, required=False, default="modern")
+        given = [k for k in ("e", "delta", "psi2_deg") if values.get(k) is not None]
+        if len(given) == 3:
+            reader.add(TABLE, "e, delta and psi2_deg are all given: with e given, prescribing "
+                              "both zones over-determines the problem; leave one of them out")
+        elif len(given) < 2 and all(values.get(k) is not MISSING for k in
+                                    ("e", "delta", "psi2_deg")):
+            reader.add(TABLE, "give two of e, delta and psi2_deg (the third one is found); "
+                              f"found only {', '.join(given) or 'none'}")
+    reader.raise_if_any()
+
+    def angle(key: str) -> float | None:
+        return None if values[key] is None else math.radians(values[key])
+
+    request = Request(n_star=float(values["n_star"]), psi1=float(angle("psi1_deg")),
+                      e=values["e"], delta=values["delta"], psi2=angle("psi2_deg"))
+    return request, method
+
+
+def _gather(args: argparse.Namespace) -> tuple[dict[str, Any], str]:
+    data: dict[str, Any] = {}
+    source = "command line"
+    if args.table:
+        reader = TableReader.from_path(args.table)
+        top = reader.root(allowed=[TABLE])
+        table = top.get(TABLE, kind="mapping")
+        reader.raise_if_any()
+        data.update(table)
+        source = args.table
+    for _, dest, _ in _FIELDS:
+        if getattr(args, dest) is not None:
+            data[dest] = getattr(args, dest)
+    if args.method is not None:
+        data["method"] = args.method
+    return data, source
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run the case; 0 when a design is found and confirmed, 1 when there is none."""
+    data, source = _gather(args)
+    request, method = read_request(data, source)
+    try:
+        study = run_study(request, method)
+    except NoSolution as exc:
+        if args.json:
+            json.dump({"case": NAME, "passed": False, "no_solution": str(exc)}, sys.stdout,
+                      indent=2, ensure_ascii=False)
+            print()
+        else:
+            sys.stdout.write(no_solution_text(str(exc), args.lang))
+        return 1
+    if args.json:
+        json.dump(to_dict(study), sys.stdout, indent=2, ensure_ascii=False)
+        print()
+    else:
+        sys.stdout.write(summary(study, args.lang))
+    if args.plot and study.best is not None:
+        from synthesis.cases.fourbar_velocity_ratio.plot import save_plot
+
+        print(f"wrote {save_plot(study.best, args.plot, args.lang)}", file=sys.stderr)
+    return 0 if study.passed else 1

@@ -141,3 +141,28 @@ from assur.drawing import (  # noqa: E402
 )
 
 __all__ += ["draw_mechanism", "figure_for", "save_animation_gif", "save_mechanism_png"]
+
+# --- schemes: structural scheme pictures (coursework owner) ---
+from assur.schemes import (  # noqa: E402
+    PictureFormatError,
+    SchemeLayout,
+    draw_formalised_scheme,
+    draw_structural_scheme,
+    group_graph,
+    save_schemes,
+    scheme_bytes,
+    scheme_figure,
+    scheme_layout,
+)
+
+__all__ += [
+    "PictureFormatError",
+    "SchemeLayout",
+    "draw_formalised_scheme",
+    "draw_structural_scheme",
+    "group_graph",
+    "save_schemes",
+    "scheme_bytes",
+    "scheme_figure",
+    "scheme_layout",
+]

@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from assur.errors import AssurError
 from assur.model import Chain, LinkId, Pair, PairId, PairType, id_key
 from assur.tables import atomic_write_bytes
 
@@ -39,6 +40,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
 __all__ = [
+    "PictureFormatError",
     "SchemeLayout",
     "draw_formalised_scheme",
     "draw_structural_scheme",
@@ -63,6 +65,10 @@ _TEXT = {
            "frame": "стойка 0", "class": "класс", "order": "порядок", "kind": "вид",
            "input": "начальный механизм", "level": "уровень"},
 }
+
+
+class PictureFormatError(AssurError, ValueError):
+    """A picture was asked for in a format other than SVG or PNG."""
 
 
 def roman(value: Any) -> str:
@@ -698,7 +704,7 @@ def scheme_bytes(chain: Chain, analysis: Any, fmt: str = "svg", *, lang: str = "
     gives the same bytes.
     """
     if fmt not in ("svg", "png"):
-        raise ValueError(f"picture format must be 'svg' or 'png'; got {fmt!r}")
+        raise PictureFormatError(f"picture format must be 'svg' or 'png'; got {fmt!r}")
     import matplotlib
 
     with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "assur"}):
@@ -715,12 +721,12 @@ def save_schemes(chain: Chain, analysis: Any, path: str | os.PathLike[str], *,
 
     Raises
     ------
-    ValueError
+    PictureFormatError
         If the suffix is neither ``.svg`` nor ``.png``.
     """
     path = Path(path)
     fmt = path.suffix.lower().lstrip(".")
     if fmt not in ("svg", "png"):
-        raise ValueError(f"the picture file must end in .svg or .png; got {path.name!r}")
+        raise PictureFormatError(f"{path}: the picture file must end in .svg or .png")
     atomic_write_bytes(path, scheme_bytes(chain, analysis, fmt, lang=lang, which=which))
     return path

@@ -110,9 +110,7 @@ def find_tables(folder: str | os.PathLike[str]) -> list[Path]:
 
 def _existence(analysis: Any, lang: str) -> tuple[str, list[str]]:
     """Existence over the cycle: the status word and the failures in words."""
-    from assur.dyads import REASONS
-    from assur.existence import check_existence
-    from assur.geometry import build_model
+    from assur import REASONS, build_model, check_existence
 
     model = build_model(analysis)
     report = check_existence(model, points=EXISTENCE_POINTS)

@@ -28,12 +28,19 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument("--lang", choices=("en", "ru"), default="en",
                         help="language of the text report (default: en)")
+    parser.add_argument("--plot", metavar="FILE", default=None,
+                        help="draw the structural and formalised structural schemes "
+                             "(FILE.svg or FILE.png)")
 
 
 def run(args: argparse.Namespace) -> int:
     """Analyse the table and print the report."""
     chain = load_chain(args.table)
     analysis = analyse_structure(chain)
+    if args.plot:
+        from assur.schemes import save_schemes
+
+        save_schemes(chain, analysis, args.plot, lang=args.lang)
     try:
         table = identification_table(analysis)
     except StructureError:

@@ -2,6 +2,8 @@
 
 * :func:`existence_figure` — the existence margin of every group over the cycle, the
   tolerance δ and the intervals where a group does not assemble;
+* :func:`mechanism_figure` — the mechanism at four positions of the cycle, with the paths
+  of its joints (drawn by :func:`assur.drawing.draw_mechanism`);
 * :func:`kinematic_figures` — the diagrams of the link angles ψ and the slider
   displacements S over the crank angle, with their first and second analogs
   (dψ/dφ, d²ψ/dφ², dS/dφ, d²S/dφ²), and the pressure angles of the L1/L2 groups.
@@ -16,7 +18,7 @@ import numpy as np
 
 from synthesis.i18n import term
 
-__all__ = ["existence_figure", "kinematic_figures"]
+__all__ = ["existence_figure", "kinematic_figures", "mechanism_figure"]
 
 _WORDS = {
     "en": {"angles": "Angles of the links ψ", "sliders": "Slider displacements S",
@@ -112,8 +114,7 @@ def kinematic_figures(motion: Any, *, lang: str = "en") -> list[tuple[str, Any]]
         Link angles, slider displacements (each with both analogs) and pressure angles,
         where the mechanism has them.
     """
-    from assur.kinematics import unwrap
-    from assur.transmission import pressure_angles
+    from assur import pressure_angles, unwrap
 
     words = _WORDS[lang]
     model = motion.model
@@ -174,3 +175,33 @@ def kinematic_figures(motion: Any, *, lang: str = "en") -> list[tuple[str, Any]]
                 ax.set_xticks(np.arange(0, 361, 45))
                 ax.set_xlim(0, 360)
     return figures
+
+
+def mechanism_figure(motion: Any, *, lang: str = "en", positions: int = 4) -> Any:
+    """The mechanism at ``positions`` evenly spaced positions of the cycle (2 per row).
+
+    Parameters
+    ----------
+    motion : Motion
+        One design over the cycle.
+    lang : {"en", "ru"}
+    positions : int
+
+    Returns
+    -------
+    matplotlib Figure
+    """
+    from assur import draw_mechanism
+
+    n = motion.q.size
+    picks = [int(round(k * n / positions)) % n for k in range(positions)]
+    rows = math.ceil(positions / 2)
+    fig = _new_figure((8.0, 4.0 * rows))
+    axes = fig.subplots(rows, 2, squeeze=False).ravel()
+    for ax, index in zip(axes, picks):
+        draw_mechanism(motion, index, ax, lang=lang)
+        ax.set_aspect("equal")
+        ax.autoscale_view()
+    for ax in axes[len(picks):]:
+        ax.set_axis_off()
+    return fig

@@ -18,9 +18,17 @@ from typing import Any
 
 import yaml
 
-from assur import AssurError, analyse_structure, atomic_write_text, chain_from_dict, load_chain
-from assur.model import Chain, PairType
-from assur.schemes import roman, scheme_bytes
+from assur import (
+    AssurError,
+    Chain,
+    PairType,
+    analyse_structure,
+    atomic_write_text,
+    chain_from_dict,
+    load_chain,
+    scheme_bytes,
+)
+from assur.schemes import roman
 from synthesis.coursework.page import Section, esc, figure, figure_html, page, table
 from synthesis.i18n import check_lang, term
 
@@ -188,7 +196,7 @@ def _formula_section(analysis: Any, lang: str) -> Section:
 
 def _identification_section(analysis: Any, chain: Chain, lang: str,
                             summary: dict[str, str]) -> Section:
-    from assur.errors import StructureError
+    from assur import StructureError
     from assur.identification import COLUMNS, check_identification, identification_table
 
     header = ("L", "seq", "i−1", "j−1", "i", "j", "i+1", "j+1", "variant", "out_code")
@@ -244,7 +252,7 @@ def _schemes_section(chain: Chain, analysis: Any, lang: str) -> Section:
 
 def _kinematic_sections(analysis: Any, lang: str, points: int,
                         summary: dict[str, str]) -> list[Section]:
-    from assur.geometry import build_model
+    from assur import build_model
 
     chain = analysis.chain
     title = term("existence", lang).capitalize()
@@ -265,8 +273,7 @@ def _kinematic_sections(analysis: Any, lang: str, points: int,
 
 
 def _existence_section(model: Any, lang: str, points: int, summary: dict[str, str]) -> Section:
-    from assur.dyads import REASONS
-    from assur.existence import CONDITIONS, check_existence
+    from assur import CONDITIONS, REASONS, check_existence
     from synthesis.coursework.diagrams import existence_figure
 
     report = check_existence(model, points=points)
@@ -293,27 +300,15 @@ def _existence_section(model: Any, lang: str, points: int, summary: dict[str, st
 
 
 def _motion_section(model: Any, lang: str, points: int) -> Section:
-    from assur.kinematics import analyse
-    from synthesis.coursework.diagrams import kinematic_figures
+    from assur import analyse
+    from synthesis.coursework.diagrams import kinematic_figures, mechanism_figure
 
     motion = analyse(model, points=points, analogs=True)
-    body = ""
-    drawing = _mechanism_drawing(model, lang)
-    if drawing:
-        body += drawing
+    body = figure(mechanism_figure(motion, lang=lang), term("mechanism", lang).capitalize(),
+                  ident="mechanism", fmt="png")
     for k, (caption, fig) in enumerate(kinematic_figures(motion, lang=lang)):
         body += figure(fig, caption, ident=f"kinematics-{k}")
     return Section("kinematics", term("kinematics", lang).capitalize(), body)
-
-
-def _mechanism_drawing(model: Any, lang: str) -> str:
-    """The mechanism drawn at several crank positions, when the drawing module has it."""
-    try:
-        from assur.drawing import draw_positions  # type: ignore[attr-defined]
-    except ImportError:
-        return ""
-    fig = draw_positions(model, lang=lang)
-    return figure(fig, term("mechanism", lang).capitalize(), ident="mechanism")
 
 
 # ----------------------------------------------------------------------------- synthesis

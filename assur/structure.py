@@ -351,8 +351,14 @@ def _applicability(a: StructuralAnalysis, graph: BodyGraph) -> list[tuple[str, s
     failed: list[tuple[str, str]] = []
     codes = {d.code for d in a.issues}
     chain = a.chain
-    bad_inputs = [d for d in chain.inputs if d.link is None or d.link not in graph.driven
-                  or chain.pair(graph.driven[d.link]).type is not PairType.R]
+    def driven_link(drive: Drive) -> LinkId | None:
+        if drive.pair is not None:
+            pair = chain.pair(drive.pair)
+            return pair.other(chain.frame) if chain.frame in pair.links else None
+        return drive.link
+
+    bad_inputs = [d for d in chain.inputs if driven_link(d) not in graph.driven
+                  or chain.pair(graph.driven[driven_link(d)]).type is not PairType.R]
     if bad_inputs:
         names = ", ".join(str(d.link if d.link is not None else d.pair) for d in bad_inputs)
         failed.append((f"condition 3: every input must be a crank turning on the frame in a "

@@ -129,18 +129,49 @@ def _branch(sigma: float | np.ndarray) -> float | np.ndarray:
 
 
 def _shape(*args: object) -> tuple[int, ...]:
-    return np.broadcast_shapes(*(np.shape(J.value(a)) for a in args))
+    """Broadcast shape of the values of ``args`` (cheap when they share one shape)."""
+    shapes = {a.v.shape if isinstance(a, Jet) else getattr(a, "shape", ()) for a in args}
+    shapes.discard(())
+    if len(shapes) <= 1:
+        return shapes.pop() if shapes else ()
+    return np.broadcast_shapes(*shapes)
+
+
+def _has_jet(*args: object) -> bool:
+    return any(isinstance(a, Jet) for a in args)
+
+
+def _constant(x: object, shape: tuple[int, ...]) -> np.ndarray:
+    """A read-only array of ``shape`` whose every element is the number ``x``, without a copy."""
+    base = np.array([x])
+    base.flags.writeable = False
+    return np.ndarray(shape, base.dtype, base, 0, (0,) * len(shape))
 
 
 def _spread(x: Value, shape: tuple[int, ...]) -> Value:
-    """``x`` with its value broadcast to ``shape`` (a fresh array)."""
-    return x + np.zeros(shape)
+    """``x`` with its value broadcast to ``shape``: ``x`` itself, or a read-only view."""
+    if isinstance(x, Jet):
+        return x if x.v.shape == shape else Jet(np.broadcast_to(x.v, shape), x.d1, x.d2)
+    if getattr(x, "shape", ()) == shape:
+        return x
+    return _constant(x, shape) if np.ndim(x) == 0 else np.broadcast_to(x, shape)
+
+
+def _roundoff(margin: np.ndarray) -> np.ndarray | None:
+    """Mask of margin deficits within roundoff (to be read as the toggle position itself).
+
+    Returns None in the usual case of no negative margin, found with one reduction.
+    """
+    if np.ndim(margin) and np.minimum.reduce(margin, axis=None) >= 0.0:
+        return None
+    tiny = (margin < 0.0) & (margin > -ROUNDOFF)
+    return tiny if tiny.any() else None
 
 
 def _clip_roundoff(margin: np.ndarray, radicand: Value) -> tuple[np.ndarray, Value]:
-    """Read a margin deficit within roundoff as the toggle position itself (margin 0)."""
-    tiny = (margin < 0.0) & (margin > -ROUNDOFF)
-    if tiny.any():
+    """Margin and radicand with deficits within roundoff set to 0."""
+    tiny = _roundoff(margin)
+    if tiny is not None:
         margin = np.where(tiny, 0.0, margin)
         radicand = J.where(tiny, 0.0, radicand)
     return margin, radicand
@@ -155,6 +186,7 @@ def _blank(x: Value | None, bad: np.ndarray) -> Value | None:
 
 
 def _finish(
+    shape: tuple[int, ...],
     inputs: tuple[Value, ...],
     margin: np.ndarray,
     delta: float | np.ndarray,
@@ -163,15 +195,16 @@ def _finish(
 ) -> DyadSolution:
     """Existence mask, reason codes and NaN blanking common to all solvers.
 
-    ``inputs`` are the solver's geometric arguments; ``failure()`` returns the reason code of
+    ``shape`` is the broadcast shape of the solver's arguments ``inputs``; ``failure()`` returns the reason code of
     each position as if it failed; it is evaluated only when some position does fail.
     """
-    shape = _shape(*inputs)
-    margin = np.broadcast_to(margin, shape) if np.shape(margin) != shape else margin
-    exists = margin >= delta
-    if exists.all():
-        reason = np.zeros(shape, dtype=np.int8)
+    margin = margin if margin.shape == shape else np.broadcast_to(margin, shape)
+    lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
+    if lowest >= (delta if type(delta) is float else np.max(delta)):
+        exists = _constant(True, shape)  # one reduction found every position assembled
+        reason = _constant(np.int8(Reason.ASSEMBLES), shape)
     else:
+        exists = margin >= delta
         bad = ~exists
         undefined = np.zeros(shape, dtype=bool)
         for x in inputs:
@@ -201,10 +234,21 @@ def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
     """
     shape = _shape(o, length, angle)
     with np.errstate(all="ignore"):
-        pin = o + length * J.expi(angle)
-        margin = np.where(np.isfinite(J.value(pin)), 1.0, np.nan)
+        u = J.expi(angle)
+        if type(u) is np.ndarray and u.shape == shape and not _has_jet(o, length) \
+                and np.ndim(length) == 0:
+            pin = u  # fast path: scale the interleaved (x, y) pairs in place
+            pin.view(np.float64)[...] *= length
+            pin += o
+        else:
+            pin = o + length * u
+        pv = J.value(pin)
+        if np.isfinite(np.add.reduce(pv, axis=None)):  # one reduction: all positions finite
+            margin = _constant(1.0, shape)
+        else:
+            margin = np.where(np.isfinite(pv), 1.0, np.nan)
     return _finish(
-        (o, length, angle), margin, 0.0, lambda: Reason.UNDEFINED_INPUT,
+        shape, (o, length, angle), margin, 0.0, lambda: Reason.UNDEFINED_INPUT,
         c=pin, origin_i=_spread(o, shape), angle_i=_spread(angle, shape),
         origin_j=None, angle_j=None, s_i=None, s_j=None,
     )
@@ -242,6 +286,25 @@ def solve_rrr(
     """
     s = _branch(sigma)
     shape = _shape(h_i, h_j, l_i, l_j, s)
+    if _has_jet(h_i, h_j, l_i, l_j) or not shape:
+        c, angle_i, angle_j, margin, d = _rrr_generic(h_i, h_j, l_i, l_j, s)
+    else:
+        c, angle_i, angle_j, margin, d = _rrr_arrays(h_i, h_j, l_i, l_j, s, shape)
+
+    def failure() -> np.ndarray:
+        longest = np.maximum(J.value(l_i), J.value(l_j))
+        return np.where(d == 0.0, Reason.COINCIDENT_HINGES,
+                        np.where(d > longest, Reason.STRETCHED, Reason.FOLDED))
+
+    return _finish(
+        shape, (h_i, h_j, l_i, l_j, s), margin, delta, failure, c=c,
+        origin_i=_spread(h_i, shape), angle_i=angle_i, origin_j=_spread(h_j, shape),
+        angle_j=angle_j, s_i=None, s_j=None,
+    )
+
+
+def _rrr_generic(h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.ndarray) -> tuple:
+    """RRR dyad for any arguments (jets too): C, φ_i, φ_j, margin, hinge distance d (value)."""
     with np.errstate(all="ignore"):
         r = h_j - h_i
         d = J.abs(r)
@@ -253,20 +316,57 @@ def solve_rrr(
         k = l_i / d
         # C − H_i = r · (l_i/d) · (cos + j·σ·sin), cos = ((1 + c) − (1 − c))/2
         arm_i = r * (k * 0.5 * (one_plus_c - one_minus_c) + 1j * (k * s * J.sqrt(sin2)))
-        c = h_i + arm_i
-        angle_i = J.arg(arm_i)
-        angle_j = J.arg(arm_i - r)
+        return h_i + arm_i, J.arg(arm_i), J.arg(arm_i - r), margin, J.value(d)
 
-    def failure() -> np.ndarray:
-        dv = J.value(d)
-        longest = np.maximum(J.value(l_i), J.value(l_j))
-        return np.where(dv == 0.0, Reason.COINCIDENT_HINGES,
-                        np.where(dv > longest, Reason.STRETCHED, Reason.FOLDED))
 
-    return _finish(
-        (h_i, h_j, l_i, l_j, s), margin, delta, failure, c=c, origin_i=_spread(h_i, shape),
-        angle_i=angle_i, origin_j=_spread(h_j, shape), angle_j=angle_j, s_i=None, s_j=None,
-    )
+def _rrr_arrays(
+    h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.ndarray,
+    shape: tuple[int, ...],
+) -> tuple:
+    """The same as :func:`_rrr_generic` for plain arrays, in real arithmetic, few temporaries.
+
+    With ``r = H_j − H_i``, ``d² = |r|²``: ``C − H_i = r·(x + jσy)``, where
+    ``x = (d² + l_i² − l_j²)/(2d²)`` and ``y = sqrt(Δ)/(2d²)`` with the discriminant in
+    factored form ``Δ = ((l_i + l_j)² − d²)(d² − (l_j − l_i)²)`` (16 times the squared area
+    of the triangle H_i C H_j), exact in sign at both toggle positions.
+    """
+    with np.errstate(all="ignore"):
+        r = np.subtract(h_j, h_i, dtype=complex)
+        if r.shape != shape:
+            r = np.array(np.broadcast_to(r, shape))
+        rx, ry = r.real, r.imag
+        d2 = rx * rx
+        d2 += ry * ry
+        q = np.divide(0.5, d2)
+        x = np.add(d2, np.subtract(np.multiply(l_i, l_i), np.multiply(l_j, l_j)))
+        x *= q
+        l_sum, l_dif = np.add(l_i, l_j), np.subtract(l_j, l_i)
+        disc = np.subtract(np.multiply(l_sum, l_sum), d2)
+        disc *= np.subtract(d2, np.multiply(l_dif, l_dif))
+        d = np.sqrt(d2, out=d2)
+        margin = np.multiply(x, d)
+        margin /= l_i  # c = cos of the angle at H_i
+        np.absolute(margin, out=margin)
+        np.subtract(1.0, margin, out=margin)
+        tiny = _roundoff(margin)
+        if tiny is not None:
+            margin[tiny] = 0.0
+        np.maximum(disc, 0.0, out=disc)  # < 0 only within roundoff where the dyad exists
+        y = np.sqrt(disc, out=disc)
+        y *= q
+        y *= s
+        wx = rx * x
+        wx -= ry * y
+        wy = np.multiply(rx, y, out=y)
+        wy += np.multiply(ry, x, out=x)  # (wx, wy) = C − H_i
+        angle_i = np.arctan2(wy, wx)
+        c = np.empty(shape, dtype=complex)
+        np.add(np.real(h_i), wx, out=c.real)
+        np.add(np.imag(h_i), wy, out=c.imag)
+        wx -= rx
+        wy -= ry  # C − H_j
+        angle_j = np.arctan2(wy, wx)
+    return c, angle_i, angle_j, margin, d
 
 
 def solve_rrp(
@@ -310,7 +410,7 @@ def solve_rrp(
         c = a + (slide + 1j * e) * u
         angle_j = J.arg(c - h_j)
     return _finish(
-        (h_j, a, theta, e, l_j, s), margin, delta, lambda: Reason.ROD_TOO_SHORT,
+        shape, (h_j, a, theta, e, l_j, s), margin, delta, lambda: Reason.ROD_TOO_SHORT,
         c=c, origin_i=c, angle_i=_spread(theta, shape), origin_j=_spread(h_j, shape),
         angle_j=angle_j, s_i=slide, s_j=None,
     )
@@ -361,7 +461,7 @@ def solve_rpr(
         return np.where(J.value(rho) == 0.0, Reason.COINCIDENT_HINGES, Reason.OFFSET_TOO_LARGE)
 
     return _finish(
-        (h_i, h_j, h, s), margin, delta, failure, c=c, origin_i=_spread(h_i, shape),
+        shape, (h_i, h_j, h, s), margin, delta, failure, c=c, origin_i=_spread(h_i, shape),
         angle_i=angle_i, origin_j=_spread(h_j, shape), angle_j=angle_i, s_i=t, s_j=None,
     )
 
@@ -401,7 +501,7 @@ def solve_prp(
         c = a + (slide_i + 1j * e_i) * u_i
         margin = np.where(np.isfinite(J.value(c)), np.abs(J.value(sin_ij)), np.nan)
     return _finish(
-        (a, theta_i, e_i, b, theta_j, e_j), margin, delta, lambda: Reason.GUIDES_PARALLEL,
+        shape, (a, theta_i, e_i, b, theta_j, e_j), margin, delta, lambda: Reason.GUIDES_PARALLEL,
         c=c, origin_i=c, angle_i=_spread(theta_i, shape), origin_j=c,
         angle_j=_spread(theta_j, shape), s_i=slide_i, s_j=slide_j,
     )
@@ -441,7 +541,7 @@ def solve_rpp(
         c = h_j + t * u_t
         margin = np.where(np.isfinite(J.value(c)), np.abs(J.value(minus_sin)), np.nan)
     return _finish(
-        (h_j, gamma, a, theta_s, e), margin, delta, lambda: Reason.GUIDES_PARALLEL,
+        shape, (h_j, gamma, a, theta_s, e), margin, delta, lambda: Reason.GUIDES_PARALLEL,
         c=c, origin_i=c, angle_i=_spread(theta_s, shape), origin_j=_spread(h_j, shape),
         angle_j=_spread(theta_t, shape), s_i=slide, s_j=t,
     )

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import importlib.util
 import pkgutil
 
 NAME = "case"
@@ -23,9 +24,10 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     cases = parser.add_subparsers(dest="case", metavar="CASE")
     cases.required = True
     for info in sorted(pkgutil.iter_modules(package.__path__), key=lambda i: i.name):
-        if not info.ispkg or info.name.startswith("_"):
+        name = f"{package.__name__}.{info.name}.cli"
+        if not info.ispkg or info.name.startswith("_") or importlib.util.find_spec(name) is None:
             continue
-        module = importlib.import_module(f"{package.__name__}.{info.name}.cli")
+        module = importlib.import_module(name)
         sub = cases.add_parser(module.NAME, help=module.HELP, description=module.HELP)
         module.add_args(sub)
         sub.set_defaults(case_handler=module.run)

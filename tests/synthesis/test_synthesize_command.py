@@ -1,0 +1,122 @@
+"""``assur synthesize`` on the shipped problems; the result file re-analysed independently."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+import yaml
+
+import assur
+from synthesis.cli import main
+from synthesis.commands import synthesize
+
+PROBLEMS = sorted((Path(__file__).resolve().parents[2] / "input_tables" / "problems")
+                  .glob("*.yaml"))
+
+
+def _run(argv: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str]:
+    parser = argparse.ArgumentParser()
+    synthesize.add_args(parser)
+    code = synthesize.run(parser.parse_args(argv))
+    return code, capsys.readouterr().out
+
+
+def _reanalyse(problem: dict[str, Any], result: Path) -> float:
+    """Q of the result file's mechanism, from the public kinematics alone."""
+    model = assur.load_model(result)
+    general, control, output = problem["general"], problem["control_points"], problem["output"]
+    task = general["task_class"]
+    if task == 3:
+        phi = 2 * np.pi * np.arange(4000) / 4000
+    else:
+        phi = np.radians([row["phi"] for row in control])
+    motion = assur.analyse(model, np.concatenate([[0.0], phi]))
+    assert motion.exists.all()
+    weights = np.array([row.get("E", 1.0) for row in control])
+    if task == 1:
+        angle = assur.values(motion.link_angle(output["link"]))
+        psi = np.degrees(np.angle(np.exp(1j * (angle[1:] - angle[0]))))
+        if "psi" in control[0]:
+            dev = psi - np.array([row["psi"] for row in control])
+        else:
+            lo = np.array([row["psi_lo"] for row in control])
+            hi = np.array([row["psi_hi"] for row in control])
+            dev = np.maximum(0.0, np.maximum(lo - psi, psi - hi))
+        return float(np.max(weights * np.abs(np.radians(dev))))
+    if task == 2:
+        pair = next(pid for pid, state in motion.sliders.items()
+                    if state.slider == output["link"] and state.carrier == model.frame)
+        s = assur.values(motion.sliders[pair].s)
+        return float(np.max(weights * np.abs(s[1:] - s[0] - [row["S"] for row in control])))
+    targets = np.array([row["x"] + 1j * row["y"] for row in control])
+    point = _tracing_point(model, motion, output["link"])
+    if task == 4:
+        return float(np.max(weights * np.abs(point[1:] - targets)))
+    # class 3: nearest grid point, then the polygon of a 400 times finer grid around it
+    m = np.argmin(np.abs(point[1:][None, :] - targets[:, None]), axis=1)
+    fine = phi[m][:, None] + np.linspace(-1, 1, 801)[None, :] * (phi[1] - phi[0])
+    motion = assur.analyse(model, fine.ravel())
+    curve = _tracing_point(model, motion, output["link"]).reshape(fine.shape)
+    seg = np.diff(curve, axis=1)
+    rel = targets[:, None] - curve[:, :-1]
+    t = np.clip((np.conj(seg) * rel).real / np.abs(seg) ** 2, 0, 1)
+    return float(np.max(weights * np.min(np.abs(rel - t * seg), axis=1)))
+
+
+def _tracing_point(model: Any, motion: Any, link: Any) -> np.ndarray:
+    """Attachment point N of the output link: origin + l_N·exp(i(angle + beta_N))."""
+    label, _ = model.links[link]
+    origin, angle = (assur.values(v) for v in motion.frames[link])
+    return origin + model.value(f"{label}.l_N") * np.exp(
+        1j * (angle + model.value(f"{label}.beta_N")))
+
+
+@pytest.mark.parametrize("path", PROBLEMS, ids=[p.stem for p in PROBLEMS])
+def test_shipped_problem_is_solved_and_confirmed(path: Path, tmp_path: Path,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "result.yaml"
+    code, text = _run([str(path), "--out", str(out), "--json", "--quiet"], capsys)
+    data = json.loads(text)
+    problem = yaml.safe_load(path.read_text(encoding="utf-8"))
+    assert code == 0
+    assert data["P1"] == 0 and data["P2"] == 0
+    assert data["Q"] <= problem["general"]["accuracy"]
+    confirmed = _reanalyse(problem, out)
+    # the result file rounds the dimensions to 12 significant digits
+    assert confirmed == pytest.approx(data["Q"], rel=1e-3, abs=1e-8)
+
+
+def test_report_in_russian_and_pictures(tmp_path: Path,
+                                        capsys: pytest.CaptureFixture[str]) -> None:
+    path = next(p for p in PROBLEMS if p.stem.startswith("class3"))
+    code, text = _run([str(path), "--budget", "6", "--lang", "ru", "--quiet",
+                       "--plot", str(tmp_path / "pictures")], capsys)
+    assert code == 0
+    assert "Найденные параметры" in text and "Критерии" in text
+    for name in ("output", "mechanism", "convergence"):
+        assert (tmp_path / "pictures" / f"{name}.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_json_result_file_reads_back(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = next(p for p in PROBLEMS if p.stem.startswith("class4"))
+    out = tmp_path / "result.json"
+    code, text = _run([str(path), "--out", str(out), "--json", "--quiet"], capsys)
+    problem = yaml.safe_load(path.read_text(encoding="utf-8"))
+    assert code == 0
+    assert _reanalyse(problem, out) == pytest.approx(json.loads(text)["Q"], rel=1e-3, abs=1e-8)
+
+
+def test_bad_problem_exits_with_2_and_names_the_field(tmp_path: Path,
+                                                      capsys: pytest.CaptureFixture[str]) -> None:
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("general: {control_points: two, task_class: 5}\n", encoding="utf-8")
+    assert main(["synthesize", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert "general 'control_points': expected a whole number; found 'two' (a text)" in err
+    assert "general 'task_class': expected one of 1, 2, 3, 4; found 5" in err
+    assert "Traceback" not in err

@@ -1,0 +1,88 @@
+"""Pressure angles and joint rotations against hand formulas (law of cosines, arcsin)."""
+
+from __future__ import annotations
+
+import cmath
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import assur
+
+ROOT = Path(__file__).resolve().parents[2]
+PHI = np.linspace(0.0, 2 * np.pi, 720, endpoint=False)
+
+
+def _build(pairs: list[dict], geometry: dict) -> assur.KinematicModel:
+    chain = assur.chain_from_dict({"mechanism": {"pairs": pairs, "inputs": [1]},
+                                   "geometry": geometry})
+    return assur.build_model(assur.analyse_structure(chain))
+
+
+R = [{"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
+     {"id": "C", "type": "R", "links": [2, 3]}]
+
+
+def test_four_bar_pressure_angle_is_the_transmission_angle_defect() -> None:
+    """Crank 20, coupler 70, rocker 60, frame 80: cos μ = (l2² + l3² − d²)/(2 l2 l3)."""
+    crank, li, lj, frame = 20.0, 70.0, 60.0, 80.0
+    a0 = complex(crank, 0)
+    dist = frame - crank
+    cos_a = (li * li + dist * dist - lj * lj) / (2 * li * dist)
+    c0 = a0 + li * cmath.exp(1j * math.acos(cos_a))
+    model = _build(R + [{"id": "D", "type": "R", "links": [3, 0]}],
+                   {"A": {"point": [0, 0]}, "B": {"point": [crank, 0]},
+                    "C": {"point": [c0.real, c0.imag]}, "D": {"point": [frame, 0]}})
+    motion = assur.analyse(model, PHI)
+    (item,) = assur.pressure_angles(motion)
+    assert set(item.binary) == {2, 3}
+    d = np.abs(frame - crank * np.exp(1j * PHI))
+    mu = np.arccos((li * li + lj * lj - d * d) / (2 * li * lj))
+    np.testing.assert_allclose(item.alpha, np.abs(np.pi / 2 - mu), atol=1e-9)
+    # rocker swing between the two dead centres (crank and coupler collinear)
+    ext = math.acos((frame ** 2 + lj ** 2 - (li + crank) ** 2) / (2 * frame * lj))
+    fold = math.acos((frame ** 2 + lj ** 2 - (li - crank) ** 2) / (2 * frame * lj))
+    rotations = {r.pair: r for r in assur.joint_rotations(motion)}
+    fine = assur.analyse(model, np.linspace(0, 2 * np.pi, 20001))
+    fine_rot = {r.pair: r for r in assur.joint_rotations(fine)}
+    assert fine_rot["D"].swing == pytest.approx(ext - fold, abs=1e-6)
+    assert rotations["A"].full_turn and rotations["A"].swing == pytest.approx(2 * np.pi)
+    assert rotations["D"].group == "L1(2,3)"
+
+
+def test_slider_crank_pressure_angle_is_arcsin_of_the_offset() -> None:
+    r, l, e = 25.0, 90.0, 10.0
+    model = _build(R[:2] + [{"id": "C", "type": "R", "links": [2, 3]},
+                            {"id": "G", "type": "P", "links": [3, 0], "guide": 0}],
+                   {"A": {"point": [0, 0]}, "B": {"point": [r, 0]},
+                    "C": {"point": [r + math.sqrt(l * l - e * e), e]},
+                    "G": {"point": [0, e], "direction": 0}})
+    motion = assur.analyse(model, PHI)
+    (item,) = assur.pressure_angles(motion)
+    assert item.binary == (2,)
+    expected = np.arcsin(np.abs(r * np.sin(PHI) - e) / l)
+    np.testing.assert_allclose(item.alpha, expected, atol=1e-9)
+    assert item.maximum == pytest.approx(math.asin((r + e) / l), abs=1e-5)
+
+
+def test_course_example_has_no_two_hinge_rod_in_l1_or_l2() -> None:
+    """Link 2 carries N, link 3 the guide of 4, rod 8 carries M (method.md §2.7)."""
+    model = assur.load_model(ROOT / "input_tables" / "course_11_link.yaml")
+    assert not ({2, 3, 8} & assur.binary_links(model))
+    assert assur.pressure_angles(assur.analyse(model, PHI[::10])) == []
+
+
+def test_joint_rotations_of_the_course_example_from_positions() -> None:
+    """θ_ab from the directions of joints on each link, unwrapped by hand."""
+    model = assur.load_model(ROOT / "input_tables" / "course_11_link.yaml")
+    motion = assur.analyse(model, PHI)
+    rot = {r.pair: r for r in assur.joint_rotations(motion)}
+    assert len(rot) == 10  # 1 + 3 + 1 + 2 + 2 + 1 revolute joints (method.md §2.8)
+    j = motion.joints
+    coupler = np.angle(j["2-3"] - j["1-2"])
+    rocker = np.angle(j["2-3"] - j["3-0"])
+    theta = np.unwrap(coupler - rocker)
+    assert rot["2-3"].swing == pytest.approx(np.ptp(theta), abs=1e-9)
+    assert rot["3-0"].swing == pytest.approx(np.ptp(np.unwrap(rocker)), abs=1e-9)

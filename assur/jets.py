@@ -247,10 +247,14 @@ def dot(a: Jet | ArrayLike, b: Jet | ArrayLike) -> Jet | np.ndarray:
 
 
 def where(condition: np.ndarray, x: Jet | ArrayLike, y: Jet | ArrayLike) -> Jet | np.ndarray:
-    """Elementwise choice between ``x`` and ``y`` (all parts of a jet follow the value)."""
+    """Elementwise choice between ``x`` and ``y`` (all parts of a jet follow the value).
+
+    A plain ``x`` or ``y`` counts as a constant, with zero derivatives, except that NaN has NaN
+    derivatives (so that a position blanked with NaN has no velocity either).
+    """
     if not isinstance(x, Jet) and not isinstance(y, Jet):
         return np.where(condition, x, y)
-    x, y = (t if isinstance(t, Jet) else Jet(t) for t in (x, y))
+    x, y = (t if isinstance(t, Jet) else Jet(t, 0.0 * t, 0.0 * t) for t in (x, y))
     return Jet(
         np.where(condition, x.v, y.v),
         np.where(condition, x.d1, y.d1),

@@ -1,0 +1,295 @@
+"""Speed against accuracy of the synthesis loop, and the comparison with pylinkage.
+
+Run::
+
+    python benchmarks/bench_synthesis.py [--out benchmarks/bench_synthesis.png] [--quick]
+                                         [--no-peer]
+
+Three parts, printed as tables and drawn in one picture:
+
+1. the true continuous deviation against the number of control points: a four-bar is
+   synthesised for a rocker law it cannot reproduce exactly, ψ*(φ) = 20°·(1 − cos φ), with
+   K control points; Q is measured at the control points, the true deviation on a 3600-point
+   grid (the difference shows what the control points miss);
+2. best Q against the LPτ budget 2^m and against wall time, with and without refinement
+   (the class-3 shipped problem);
+3. the peer: pylinkage 1.3 (``pip install pylinkage==1.3.0``; not a dependency of this
+   program) fits a four-bar coupler point to 20 points taken at equal crank steps from the
+   coupler curve of a known crank-rocker, with its seeded differential evolution; our loop
+   solves the same task (class 3) with its stop rule [Q] = the peer's RMS error.  Both
+   errors are measured the same way, independently of both programs: RMS over the targets
+   of the distance to the nearest point of the traced curve (closed-form coupler curve,
+   200 000 points, polygon projection).
+"""
+
+from __future__ import annotations
+
+import argparse
+import copy
+import math
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from synthesis.evaluate import Evaluator  # noqa: E402
+from synthesis.problem import load_problem, problem_from_dict  # noqa: E402
+from synthesis.search import SearchSettings, search  # noqa: E402
+
+FOURBAR_ROWS = [
+    {"L": 0, "i": 1, "j": None, "i_minus_1": 0, "j_minus_1": None, "i_plus_1": 2},
+    {"L": 1, "i": 2, "j": 3, "i_minus_1": 1, "j_minus_1": 0, "variant": 1},
+]
+
+# the peer task: ground pivots (0, 0), (3, 0); crank 1, coupler 3, rocker 2.5; coupler point
+# 1.5 from the crank-coupler joint at 0.6 rad from the coupler line
+PEER_TRUE = (1.0, 3.0, 2.5, 1.5, 0.6)
+PEER_LOWER = (0.5, 2.0, 2.0, 0.5, 0.0)
+PEER_UPPER = (1.5, 4.0, 3.5, 2.5, 1.2)
+PEER_POINTS = 20
+
+
+# ------------------------------------------------------------------ independent closed form
+
+def coupler_curve(phi: np.ndarray, l1: float, li: float, lj: float, ln: float, beta: float,
+                  xhj: float = 3.0) -> np.ndarray:
+    """Coupler point of the four-bar with pivots (0, 0), (xhj, 0); C left of A → H_j."""
+    a = l1 * np.exp(1j * phi)
+    w = xhj - a
+    d = np.abs(w)
+    phi_i = np.angle(w) + np.arccos((li ** 2 + d ** 2 - lj ** 2) / (2 * li * d))
+    return a + ln * np.exp(1j * (phi_i + beta))
+
+
+def rms_to_curve(targets: np.ndarray, design: tuple[float, ...]) -> float:
+    """RMS over the targets of the distance to the traced curve (no timing)."""
+    curve = coupler_curve(np.linspace(0, 2 * np.pi, 200_000, endpoint=False), *design)
+    seg = np.roll(curve, -1) - curve
+    out = []
+    for p in targets:
+        rel = p - curve
+        t = np.clip((np.conj(seg) * rel).real / np.abs(seg) ** 2, 0, 1)
+        out.append(np.min(np.abs(rel - t * seg)))
+    return float(np.sqrt(np.mean(np.square(out))))
+
+
+# ------------------------------------------------------------------------------- part 1
+
+def rocker_problem(k: int) -> dict[str, Any]:
+    phi = np.arange(k) * 360.0 / k
+    psi = 20.0 * (1 - np.cos(np.radians(phi)))
+    return {
+        "general": {"control_points": k, "groups": 2, "task_class": 1, "grid": 360},
+        "structure_identification": copy.deepcopy(FOURBAR_ROWS),
+        "output": {"link": 3},
+        "parameters": [
+            {"links": [1], "x_O1": 0, "y_O1": 0, "l_1": [30, 15, 50], "phi_1_0": [0, -180, 180]},
+            {"links": [2, 3], "x_Hi": "A", "y_Hi": "A", "x_Hj": 100, "y_Hj": [0, -60, 60],
+             "l_i": [110, 60, 160], "l_j": [90, 40, 120], "l_N": 0, "beta_N": 0, "l_M": 0,
+             "beta_M": 0}],
+        "control_points": [{"K": n, "phi": float(phi[n]), "psi": float(psi[n])}
+                           for n in range(k)],
+    }
+
+
+def part_control_points(budget: int) -> list[dict[str, float]]:
+    rows = []
+    dense = 3600
+    for k in (4, 6, 8, 12, 18, 24, 36):
+        problem = problem_from_dict(rocker_problem(k), f"rocker_{k}.yaml")
+        evaluator = Evaluator(problem)
+        result = search(evaluator, problem.lower, problem.upper, problem.initial,
+                        SearchSettings(budget_log2=budget, seed=0, refine=True))
+        check = problem_from_dict(rocker_problem(dense), "dense.yaml")
+        true = Evaluator(check, grid=dense)(result.x[None, :])
+        rows.append({"K": k, "Q_deg": math.degrees(result.criteria.q[0]),
+                     "true_deg": math.degrees(true.q[0]), "seconds": result.elapsed})
+    return rows
+
+
+# ------------------------------------------------------------------------------- part 2
+
+def part_budget(budgets: list[int]) -> list[dict[str, float]]:
+    problem = load_problem(ROOT / "input_tables" / "problems" / "class3_fourbar_path.yaml")
+    evaluator = Evaluator(problem)
+    rows = []
+    for m in budgets:
+        for refine in (False, True):
+            r = search(evaluator, problem.lower, problem.upper, problem.initial,
+                       SearchSettings(budget_log2=m, seed=0, refine=refine))
+            rows.append({"m": m, "refine": refine, "Q": float(r.criteria.q[0]),
+                         "seconds": r.elapsed, "trials": int(r.trials.shape[0])})
+    return rows
+
+
+# ------------------------------------------------------------------------------- part 3
+
+def peer_targets() -> np.ndarray:
+    return coupler_curve(2 * np.pi * np.arange(PEER_POINTS) / PEER_POINTS, *PEER_TRUE)
+
+
+def run_pylinkage(targets: np.ndarray, seed: int) -> dict[str, Any] | None:
+    """pylinkage 1.3: its four-bar with a fixed coupler point, its differential evolution."""
+    try:
+        import pylinkage as pl
+        from pylinkage.optimization import differential_evolution_optimization
+        from pylinkage.optimization.utils import kinematic_minimization
+    except ImportError:
+        return None
+
+    o1 = pl.Ground(0.0, 0.0, name="O1")
+    o2 = pl.Ground(3.0, 0.0, name="O2")
+    crank = pl.Crank(anchor=o1, radius=1.0)          # 360 steps per turn (its default)
+    joint = pl.RRRDyad(crank.output, o2, distance1=3.0, distance2=2.5, name="B")
+    point = pl.FixedDyad(crank.output, joint, distance=1.5, angle=0.6, name="P")
+    linkage = pl.Linkage([o1, o2, crank, joint, point], name="four-bar")
+
+    def polygon_rms(path: np.ndarray) -> float:
+        seg = np.roll(path, -1) - path
+        rel = targets[:, None] - path[None, :]
+        t = np.clip((np.conj(seg)[None, :] * rel).real / np.abs(seg)[None, :] ** 2, 0, 1)
+        return float(np.sqrt(np.mean(np.min(np.abs(rel - t * seg[None, :]), axis=1) ** 2)))
+
+    @kinematic_minimization
+    def fitness(loci: Any, **_: Any) -> float:
+        return polygon_rms(np.array([complex(*frame[-1]) for frame in loci]))
+
+    start = time.perf_counter()
+    ensemble = differential_evolution_optimization(
+        fitness, linkage, bounds=(list(PEER_LOWER), list(PEER_UPPER)), order_relation=min,
+        seed=seed, verbose=False)
+    seconds = time.perf_counter() - start
+    design = tuple(float(v) for v in ensemble[0].dimensions)
+    return {"seconds": seconds, "design": design, "rms": rms_to_curve(targets, design)}
+
+
+def peer_problem(targets: np.ndarray, accuracy: float) -> dict[str, Any]:
+    lo, hi = PEER_LOWER, PEER_UPPER
+    mid = [(a + b) / 2 for a, b in zip(lo, hi)]
+    return {
+        "general": {"control_points": PEER_POINTS, "groups": 2, "task_class": 3, "grid": 360,
+                    "accuracy": accuracy},
+        "structure_identification": copy.deepcopy(FOURBAR_ROWS),
+        "output": {"link": 2, "point": "N"},
+        "parameters": [
+            {"links": [1], "x_O1": 0, "y_O1": 0, "l_1": [mid[0], lo[0], hi[0]], "phi_1_0": 0},
+            {"links": [2, 3], "x_Hi": "A", "y_Hi": "A", "x_Hj": 3, "y_Hj": 0,
+             "l_i": [mid[1], lo[1], hi[1]], "l_j": [mid[2], lo[2], hi[2]],
+             "l_N": [mid[3], lo[3], hi[3]],
+             "beta_N": [math.degrees(mid[4]), math.degrees(lo[4]), math.degrees(hi[4])],
+             "l_M": 0, "beta_M": 0}],
+        "control_points": [{"K": k, "x": float(p.real), "y": float(p.imag)}
+                           for k, p in enumerate(targets)],
+    }
+
+
+def run_ours(targets: np.ndarray, accuracy: float, seed: int) -> dict[str, Any]:
+    start = time.perf_counter()
+    problem = problem_from_dict(peer_problem(targets, accuracy), "peer.yaml")
+    result = search(Evaluator(problem), problem.lower, problem.upper, problem.initial,
+                    SearchSettings(budget_log2=8, seed=seed, refine=True,
+                                   q_required=accuracy))
+    seconds = time.perf_counter() - start
+    x = result.x
+    design = (x[0], x[1], x[2], x[3], math.radians(x[4]))
+    return {"seconds": seconds, "design": tuple(float(v) for v in design),
+            "rms": rms_to_curve(targets, design), "trials": int(result.trials.shape[0])}
+
+
+# ----------------------------------------------------------------------------- report
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", default=str(ROOT / "benchmarks" / "bench_synthesis.png"))
+    parser.add_argument("--quick", action="store_true", help="smaller budgets")
+    parser.add_argument("--no-peer", action="store_true", help="skip the pylinkage run")
+    parser.add_argument("--seed", type=int, default=0)
+    args = parser.parse_args(argv)
+
+    budget = 8 if args.quick else 10
+    print(f"1. Control points against the true continuous deviation "
+          f"(rocker law 20°·(1 − cos φ), four-bar, 2^{budget} LPτ + refinement)")
+    part1 = part_control_points(budget)
+    print(f"{'K':>4} {'Q at the points, deg':>22} {'true deviation, deg':>21} {'s':>7}")
+    for r in part1:
+        print(f"{r['K']:>4} {r['Q_deg']:>22.5f} {r['true_deg']:>21.5f} {r['seconds']:>7.2f}")
+
+    print("\n2. Best Q against the LPτ budget (class-3 shipped problem)")
+    budgets = [6, 8, 10] if args.quick else [6, 8, 10, 12, 14]
+    part2 = part_budget(budgets)
+    print(f"{'2^m':>6} {'refine':>7} {'best Q, mm':>14} {'trials':>8} {'s':>8}")
+    for r in part2:
+        print(f"{2 ** r['m']:>6} {('yes' if r['refine'] else 'no'):>7} {r['Q']:>14.4e} "
+              f"{r['trials']:>8} {r['seconds']:>8.3f}")
+
+    part3 = None
+    if not args.no_peer:
+        print("\n3. Against pylinkage 1.3 (four-bar coupler point, 20 points, path without "
+              "timing)")
+        targets = peer_targets()
+        peer = run_pylinkage(targets, args.seed)
+        if peer is None:
+            print("   pylinkage is not installed: pip install pylinkage==1.3.0")
+        else:
+            ours = run_ours(targets, peer["rms"], args.seed)
+            part3 = (peer, ours)
+            print(f"{'program':<34} {'RMS error':>12} {'seconds':>10}")
+            print(f"{'pylinkage 1.3 differential_evolution':<34} {peer['rms']:>12.3e} "
+                  f"{peer['seconds']:>10.2f}")
+            print(f"{'assur synthesize (LPτ + refinement)':<34} {ours['rms']:>12.3e} "
+                  f"{ours['seconds']:>10.2f}")
+            print(f"speed ratio: {peer['seconds'] / ours['seconds']:.0f}x "
+                  f"(our RMS {'≤' if ours['rms'] <= peer['rms'] else '>'} the peer's)")
+
+    _plot(args.out, part1, part2, part3)
+    print(f"\npicture: {args.out}")
+    return 0
+
+
+def _plot(path: str, part1: list[dict[str, float]], part2: list[dict[str, float]],
+          part3: tuple[dict[str, Any], dict[str, Any]] | None) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
+    ax = axes[0]
+    ax.plot([r["K"] for r in part1], [r["Q_deg"] for r in part1], "o-", label="Q at the points")
+    ax.plot([r["K"] for r in part1], [r["true_deg"] for r in part1], "s-",
+            label="true deviation")
+    ax.set_xlabel("control points K")
+    ax.set_ylabel("deviation, deg")
+    ax.legend()
+    for refine, style in ((False, "o-"), (True, "s-")):
+        rows = [r for r in part2 if r["refine"] == refine]
+        label = "with refinement" if refine else "LPτ only"
+        axes[1].loglog([2 ** r["m"] for r in rows], [max(r["Q"], 1e-12) for r in rows], style,
+                       label=label)
+        axes[2].loglog([r["seconds"] for r in rows], [max(r["Q"], 1e-12) for r in rows], style,
+                       label=label)
+    axes[1].set_xlabel("LPτ budget 2^m")
+    axes[2].set_xlabel("wall time, s")
+    for ax in axes[1:]:
+        ax.set_ylabel("best Q, mm")
+        ax.legend()
+    if part3 is not None:
+        peer, ours = part3
+        axes[2].loglog([peer["seconds"]], [peer["rms"]], "k*", markersize=12,
+                       label="pylinkage DE (RMS)")
+        axes[2].loglog([ours["seconds"]], [ours["rms"]], "r*", markersize=12,
+                       label="ours, peer task (RMS)")
+        axes[2].legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -893,7 +893,11 @@ def _param_values(node: Node | None, kind: int, build: _Builder, label: str, *,
                                                            "supplied by an earlier group")
             continue
         where = f"{node.location} {column!r}"
-        if raw == SUPPLIED and supplied_ok:
+        if raw == SUPPLIED and supplied_ok and column.startswith(("x_", "y_")):
+            continue  # checked against the link the point lies on (_param_anchor, _param_guide)
+        if raw == SUPPLIED:
+            node.reader.add(where, "expected a number; 'A' (supplied by an earlier group) "
+                                   "applies only to coordinates of points on moving links")
             continue
         if isinstance(raw, list) and len(raw) == 3 and all(_is_number(v) for v in raw):
             value, lo, hi = (float(v) for v in raw)
@@ -919,6 +923,7 @@ def _param_anchor(topo: _Topology, build: _Builder, link: LinkId, label: str,
                   cols: tuple[str, str], reader: TableReader, node: Node | None) -> Anchor:
     """An external hinge: absolute columns on the frame, supplied N/M on a moving link."""
     if link == topo.frame:
+        _need_numbers(build, label, cols, reader, node, "the hinge lies on the frame")
         return Anchor(link, label, cols[0], cols[1], False)
     if node is not None:
         for col in cols:
@@ -936,9 +941,21 @@ def _param_anchor(topo: _Topology, build: _Builder, link: LinkId, label: str,
     return Anchor(link, owner.label, f"l_{letter}", f"beta_{letter}", True)
 
 
+def _need_numbers(build: _Builder, label: str, cols: tuple[str, ...], reader: TableReader,
+                  node: Node | None, why: str) -> None:
+    """Report coordinate columns written 'A' although the point is on the frame."""
+    for col in cols:
+        if node is not None and node.mapping.get(col) == SUPPLIED:
+            reader.add(f"{node.location} {col!r}", f"{why}: expected its coordinate (mm); "
+                                                   f"found 'A'")
+
+
 def _param_guide(topo: _Topology, build: _Builder, pair: Any, carrier: LinkId, label: str,
-                 cols: tuple[str, str, str, str | None]) -> Guide:
+                 cols: tuple[str, str, str, str | None], reader: TableReader,
+                 node: Node | None) -> Guide:
     x, y, beta, offset = cols
+    if carrier == topo.frame:
+        _need_numbers(build, label, (x, y), reader, node, "the guide is on the frame")
     for col in (x, y):
         name = f"{label}.{col}"
         if name not in build.params:
@@ -965,7 +982,7 @@ def _param_group(topo: _Topology, build: _Builder, group: Any, label: str, seq: 
                           _param_anchor(topo, build, j_prev, label, ("x_Hj", "y_Hj"), reader,
                                         node),
                           _param_guide(topo, build, pi, i_prev, label,
-                                       ("x_Ak", "y_Ak", "beta_g", "e")),
+                                       ("x_Ak", "y_Ak", "beta_g", "e"), reader, node),
                           pairs={"P_i": pi.id, "C": pc.id, "H_j": pj.id})
     if kind == 3:
         return GroupModel(label, 3, seq, group.i, group.j, sigma,
@@ -977,14 +994,14 @@ def _param_group(topo: _Topology, build: _Builder, group: Any, label: str, seq: 
     if kind == 4:
         return GroupModel(label, 4, seq, group.i, group.j, 1, None, None,
                           _param_guide(topo, build, pi, i_prev, label,
-                                       ("x_Ak", "y_Ak", "beta_i", "e_i")),
+                                       ("x_Ak", "y_Ak", "beta_i", "e_i"), reader, node),
                           _param_guide(topo, build, pj, j_prev, label,
-                                       ("x_Bk", "y_Bk", "beta_j", "e_j")),
+                                       ("x_Bk", "y_Bk", "beta_j", "e_j"), reader, node),
                           pairs={"P_i": pi.id, "C": pc.id, "P_j": pj.id})
     return GroupModel(label, 5, seq, group.i, group.j, 1, None,
                       _param_anchor(topo, build, j_prev, label, ("x_Hj", "y_Hj"), reader, node),
                       _param_guide(topo, build, pi, i_prev, label,
-                                   ("x_Ak", "y_Ak", "beta_S", "e")),
+                                   ("x_Ak", "y_Ak", "beta_S", "e"), reader, node),
                       pairs={"P_i": pi.id, "P_c": pc.id, "H_j": pj.id})
 
 

@@ -47,14 +47,6 @@ class BodyGraph:
         """The real links of some bodies."""
         return sorted((link for body in bodies for link in self.members[body]), key=id_key)
 
-    def graph(self) -> nx.MultiGraph:
-        """Bodies as nodes, pairs as edges keyed by pair id."""
-        graph = nx.MultiGraph()
-        graph.add_nodes_from(self.members)
-        for pid, a, b in self.edges:
-            graph.add_edge(a, b, key=pid)
-        return graph
-
 
 @dataclass
 class RawGroup:
@@ -154,8 +146,13 @@ class _Peeler:
             self.adj[a].append((pid, b))
             self.adj[b].append((pid, a))
             self.mult[frozenset((a, b))] += 1
-        nxg = graph.graph()
-        reach = nx.node_connected_component(nxg, frame)
+        reach = {frame}
+        queue = deque([frame])
+        while queue:
+            for _, other in self.adj[queue.popleft()]:
+                if other not in reach:
+                    reach.add(other)
+                    queue.append(other)
         self.disconnected = [b for b in graph.members if b not in reach]
         self.level: dict[LinkId, int] = {frame: 0}
         for body in graph.input_bodies:

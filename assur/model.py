@@ -151,6 +151,22 @@ class Chain:
     names: dict[LinkId, str] = field(default_factory=dict)
     identification: tuple[dict[str, Any], ...] | None = None
     claims: dict[str, Any] = field(default_factory=dict)
+    _index: dict[str, dict[Any, Any]] = field(default_factory=dict, init=False, repr=False,
+                                              compare=False)
+
+    def _lookup(self, table: str) -> dict[Any, Any]:
+        """Pair indexes, built on first use (the chain is immutable)."""
+        if not self._index:
+            by_id: dict[Any, Pair] = {}
+            at: dict[Any, list[Pair]] = {link: [] for link in self.links}
+            for pair in self.pairs:
+                by_id.setdefault(pair.id, pair)
+                for link in pair.links:
+                    at.setdefault(link, []).append(pair)
+            for pair in self.pairs:
+                by_id.setdefault(pair.origin, pair)
+            self._index.update(by_id=by_id, at={k: tuple(v) for k, v in at.items()})
+        return self._index[table]
 
     def pair(self, pair_id: PairId) -> Pair:
         """The pair with this id (a user joint id of a compound hinge gives its first pair).
@@ -160,13 +176,10 @@ class Chain:
         KeyError
             If no pair has this id.
         """
-        for pair in self.pairs:
-            if pair.id == pair_id:
-                return pair
-        for pair in self.pairs:
-            if pair.origin == pair_id:
-                return pair
-        raise KeyError(f"no pair {pair_id!r} in chain {self.name!r}")
+        try:
+            return self._lookup("by_id")[pair_id]
+        except KeyError:
+            raise KeyError(f"no pair {pair_id!r} in chain {self.name!r}") from None
 
     @property
     def moving_links(self) -> tuple[LinkId, ...]:
@@ -175,4 +188,4 @@ class Chain:
 
     def pairs_of(self, link: LinkId) -> tuple[Pair, ...]:
         """The pairs that touch ``link``."""
-        return tuple(pair for pair in self.pairs if link in pair.links)
+        return self._lookup("at").get(link, ())

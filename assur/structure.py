@@ -23,8 +23,6 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Any
 
-import networkx as nx
-
 from assur.classification import AssurGroup, classify, input_group, roman
 from assur.decomposition import BodyGraph, Peeling, body_graph, peel
 from assur.diagnostics import Diagnostic, diagnostic
@@ -170,7 +168,7 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
     issues += _with_suggestions(chain, peeling.issues) if suggest else peeling.issues
     for group in groups:
         issues += [d for d in group.issues if not _in_loop(d, loops)]
-    issues += _idle(chain, graph, set(peeling.disconnected))
+    issues += _idle(chain)
     rank = None
     pose = pose_from_geometry(chain) if n <= _RANK_LIMIT else None
     if pose is not None:
@@ -247,18 +245,34 @@ def _duplicates(chain: Chain) -> list[Diagnostic]:
 
 
 def _prismatic_loops(chain: Chain) -> list[Diagnostic]:
-    """One E_PRISMATIC_LOOP per component of the P-pair subgraph that holds a loop."""
-    sub = nx.MultiGraph()
-    for pair in chain.pairs:
-        if pair.type is PairType.P:
-            sub.add_edge(*pair.links, key=pair.id)
+    """One E_PRISMATIC_LOOP per component of the P-pair subgraph that holds a loop.
+
+    r_P = |E_P| − |V_P| + c(P-subgraph) (``structure.md`` §3.3), counted per component.
+    """
+    parent: dict[LinkId, LinkId] = {}
+
+    def find(link: LinkId) -> LinkId:
+        parent.setdefault(link, link)
+        while parent[link] != link:
+            parent[link] = parent[parent[link]]
+            link = parent[link]
+        return link
+
+    prismatic = [pair for pair in chain.pairs if pair.type is PairType.P]
+    for pair in prismatic:
+        a, b = (find(x) for x in pair.links)
+        if a != b:
+            parent[a] = b
+    parts: dict[LinkId, tuple[set, list]] = {}
+    for pair in prismatic:
+        nodes, pids = parts.setdefault(find(pair.links[0]), (set(), []))
+        nodes.update(pair.links)
+        pids.append(pair.id)
     out = []
-    for nodes in nx.connected_components(sub):
-        part = sub.subgraph(nodes)
-        r = part.number_of_edges() - part.number_of_nodes() + 1
+    for nodes, pids in parts.values():
+        r = len(pids) - len(nodes) + 1
         if r > 0:
-            out.append(diagnostic("E_PRISMATIC_LOOP", nodes, [k for _, _, k in part.edges(keys=True)],
-                                  r=r))
+            out.append(diagnostic("E_PRISMATIC_LOOP", nodes, pids, r=r))
     return out
 
 
@@ -267,28 +281,63 @@ def _in_loop(finding: Diagnostic, loops: list[Diagnostic]) -> bool:
         set(finding.links) <= set(loop.links) for loop in loops)
 
 
-def _idle(chain: Chain, graph: BodyGraph, disconnected: set[LinkId]) -> list[Diagnostic]:
-    """Open appendages: the far side of a bridge (seen from the frame) with no input."""
-    g = nx.MultiGraph()
-    g.add_nodes_from(chain.links)
-    for pair in chain.pairs:
-        g.add_edge(*pair.links, key=pair.id)
+def _idle(chain: Chain) -> list[Diagnostic]:
+    """Open appendages: the far side of a bridge (seen from the frame) holding no input."""
     inputs = {link for d in chain.inputs for link in
               ([d.link] if d.link is not None else list(chain.pair(d.pair).links))}
-    sides: list[set] = []
-    for a, b in nx.bridges(g):
-        cut = g.copy()
-        cut.remove_edge(a, b)
-        far = nx.node_connected_component(cut, b if nx.has_path(cut, chain.frame, a) else a)
-        if chain.frame in far or far & disconnected or far & inputs:
-            continue
-        sides.append(far)
-    maximal = [s for s in sides if not any(s < t for t in sides)]
     out = []
-    for side in sorted(maximal, key=lambda s: min(id_key(x) for x in s)):
-        pairs = {p.id for p in chain.pairs if set(p.links) & side}
+    for side in _appendages(chain, inputs):
+        pairs = {p.id for link in side for p in chain.pairs_of(link)}
         out.append(diagnostic("W_IDLE_LINK", side, pairs))
     return out
+
+
+def _appendages(chain: Chain, inputs: set[LinkId]) -> list[list[LinkId]]:
+    """Maximal subtrees beyond a bridge with no input, by one depth-first search (Tarjan).
+
+    Parallel pairs are distinct edges, so two pairs between the same links are no bridge.
+    """
+    order: dict[LinkId, int] = {chain.frame: 0}
+    low = {chain.frame: 0}
+    visit = [chain.frame]
+    bridges: list[LinkId] = []  # child end of each bridge
+    tree_parent: dict[LinkId, LinkId] = {}
+    stack = [(chain.frame, None, iter(chain.pairs_of(chain.frame)))]
+    while stack:
+        node, via, edges = stack[-1]
+        for pair in edges:
+            if pair.id == via:
+                continue
+            nxt = pair.other(node)
+            if nxt not in order:
+                order[nxt] = low[nxt] = len(visit)
+                tree_parent[nxt] = node
+                visit.append(nxt)
+                stack.append((nxt, pair.id, iter(chain.pairs_of(nxt))))
+                break
+            low[node] = min(low[node], order[nxt])
+        else:
+            stack.pop()
+            if stack:
+                parent = stack[-1][0]
+                low[parent] = min(low[parent], low[node])
+                if low[node] > order[parent]:
+                    bridges.append(node)
+    size = {node: 1 for node in visit}
+    has_input = {node: node in inputs for node in visit}
+    for node in reversed(visit[1:]):
+        parent = tree_parent[node]
+        size[parent] += size[node]
+        has_input[parent] = has_input[parent] or has_input[node]
+    sides = []
+    covered_until = -1
+    for child in sorted(bridges, key=order.__getitem__):
+        start = order[child]
+        if start < covered_until or has_input[child]:
+            continue
+        covered_until = start + size[child]
+        sides.append(visit[start:covered_until])
+    return sides
 
 
 def _with_suggestions(chain: Chain, found: list[Diagnostic]) -> list[Diagnostic]:

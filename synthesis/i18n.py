@@ -15,7 +15,7 @@ Examples
 
 from __future__ import annotations
 
-__all__ = ["LANGUAGES", "TERMS", "check_lang", "term"]
+__all__ = ["LANGUAGES", "TERMS", "check_lang", "heading", "term"]
 
 LANGUAGES = ("en", "ru")
 
@@ -114,3 +114,13 @@ def term(key: str, lang: str = "en") -> str:
     """
     english, russian = TERMS[key]
     return russian if check_lang(lang) == "ru" else english
+
+
+def heading(key: str, lang: str = "en") -> str:
+    """The term with its first letter capitalised (the rest kept: «Группы Ассура»).
+
+    >>> heading("groups", "ru")
+    'Группы Ассура'
+    """
+    text = term(key, lang)
+    return text[:1].upper() + text[1:]

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from synthesis.i18n import term
+from synthesis.i18n import heading, term
 
 __all__ = ["existence_figure", "kinematic_figures", "mechanism_figure"]
 
@@ -81,7 +81,7 @@ def existence_figure(report: Any, model: Any, *, lang: str = "en") -> Any:
         ax.plot([], [], color="grey", alpha=0.3, lw=6, label=words["fails"])
     ax.set_xlabel(xlabel)
     ax.set_ylabel(term("margin", lang))
-    ax.set_title(term("existence", lang).capitalize(), fontsize=11)
+    ax.set_title(heading("existence", lang), fontsize=11)
     ax.grid(alpha=0.3)
     if model.drive == "crank":
         ax.set_xticks(np.arange(0, 361, 45))

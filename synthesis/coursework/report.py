@@ -30,7 +30,7 @@ from assur import (
 )
 from assur.schemes import roman
 from synthesis.coursework.page import Section, esc, figure, figure_html, page, table
-from synthesis.i18n import check_lang, term
+from synthesis.i18n import check_lang, heading, term
 
 __all__ = ["CourseworkReport", "build_report", "render_html", "write_report"]
 
@@ -99,14 +99,15 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
     check_lang(lang)
     path = Path(path)
     synthesis_sections: list[Section] = []
+    report = CourseworkReport(title="", source=str(path), lang=lang)
     if _is_problem(path):
-        chain, synthesis_sections = _synthesis(path, lang, budget)
+        chain, synthesis_sections, line = _synthesis(path, lang, budget)
+        report.summary.update(line)
     else:
         chain = load_chain(path)
-    report = CourseworkReport(title="", source=str(path), lang=lang)
     analysis = analyse_structure(chain)
     name = chain.name or path.stem
-    report.title = f"{term('report', lang).capitalize()}: {name}"
+    report.title = f"{heading('report', lang)}: {name}"
     report.summary[term("mobility", lang)] = (f"W = 3·{analysis.n} − 2·{analysis.p5} − "
                                               f"{analysis.p4} = {analysis.W}")
     report.summary[term("formula", lang)] = analysis.formula
@@ -131,13 +132,13 @@ def _data_section(chain: Chain, lang: str) -> Section:
               f"{pair.links[0]}–{pair.links[1]}", pair.guide) for pair in chain.pairs]
     inputs = ", ".join(f"{term('link', lang)} {d.link}" if d.link is not None
                        else f"{term('pair', lang)} {d.pair}" for d in chain.inputs)
-    body = (f"<h3>{esc(term('links', lang)).capitalize()}</h3>"
+    body = (f"<h3>{esc(heading('links', lang))}</h3>"
             + table(("№", "", term("pairs", lang)), links, numeric=(2,), table_id="links")
-            + f"<h3>{esc(term('pairs', lang)).capitalize()}</h3>"
+            + f"<h3>{esc(heading('pairs', lang))}</h3>"
             + table((term("pair", lang), term("pair_type", lang), term("links", lang),
                      term("guide", lang)), pairs, table_id="pairs")
-            + f"<p>{esc(term('inputs', lang)).capitalize()}: {esc(inputs)}</p>")
-    return Section("data", term("data", lang).capitalize(), body)
+            + f"<p>{esc(heading('inputs', lang))}: {esc(inputs)}</p>")
+    return Section("data", heading("data", lang), body)
 
 
 def _counts_section(analysis: Any, lang: str) -> Section:
@@ -150,7 +151,7 @@ def _counts_section(analysis: Any, lang: str) -> Section:
         body += (f'<p class="bad">W = {analysis.W} ≠ {analysis.m} '
                  f"({esc(term('inputs', lang))})</p>")
     body += f'<p id="value-W" data-value="{analysis.W}">W = {analysis.W}</p>'
-    return Section("counts", term("counts", lang).capitalize(), body)
+    return Section("counts", heading("counts", lang), body)
 
 
 def _groups_section(analysis: Any, lang: str) -> Section:
@@ -173,12 +174,12 @@ def _groups_section(analysis: Any, lang: str) -> Section:
         body += (f'<p class="bad">{esc(term("links", lang))} ∉ '
                  f'{esc(term("groups", lang))}: {esc(", ".join(map(str, analysis.leftover)))}'
                  f"</p>")
-    return Section("groups", term("groups", lang).capitalize(), body)
+    return Section("groups", heading("groups", lang), body)
 
 
 def _formula_section(analysis: Any, lang: str) -> Section:
     body = (f'<p class="formula" id="formula">{esc(analysis.formula)}</p>'
-            f"<p>{esc(term('mechanism_class', lang)).capitalize()}: "
+            f"<p>{esc(heading('mechanism_class', lang))}: "
             f'<b id="mechanism-class">{roman(analysis.mechanism_class)}</b></p>')
     if analysis.applicable:
         body += f'<p class="ok" id="applicable">{esc(term("applicable", lang))}</p>'
@@ -189,9 +190,9 @@ def _formula_section(analysis: Any, lang: str) -> Section:
     if analysis.issues:
         items = "".join(f"<li><code>{esc(d.code)}</code> {esc(d.text(lang))}</li>"
                         for d in analysis.issues)
-        body += (f"<h3>{esc(term('diagnostics', lang)).capitalize()}</h3>"
+        body += (f"<h3>{esc(heading('diagnostics', lang))}</h3>"
                  f'<ul class="findings" id="findings">{items}</ul>')
-    return Section("formula", term("formula", lang).capitalize(), body)
+    return Section("formula", heading("formula", lang), body)
 
 
 def _identification_section(analysis: Any, chain: Chain, lang: str,
@@ -212,7 +213,7 @@ def _identification_section(analysis: Any, chain: Chain, lang: str,
         summary[verdict_key] = term("none_given", lang)
         body += f'<p class="note" id="student-table">{esc(verdict_key)}: ' \
                 f'{esc(term("none_given", lang))}</p>'
-        return Section("identification", term("identification", lang).capitalize(), body)
+        return Section("identification", heading("identification", lang), body)
     mismatches = check_identification(analysis, chain.identification)
     if not mismatches:
         summary[verdict_key] = term("matches", lang)
@@ -226,7 +227,7 @@ def _identification_section(analysis: Any, chain: Chain, lang: str,
         body += (f'<p class="bad" id="student-table">{esc(verdict_key)}: '
                  f"{esc(term('differs', lang))} ({len(mismatches)})</p>"
                  f'<ul class="findings">{items}</ul>')
-    return Section("identification", term("identification", lang).capitalize(), body)
+    return Section("identification", heading("identification", lang), body)
 
 
 def _cell(value: Any) -> str:
@@ -239,12 +240,12 @@ def _cell(value: Any) -> str:
 
 def _schemes_section(chain: Chain, analysis: Any, lang: str) -> Section:
     body = figure_html(scheme_bytes(chain, analysis, "svg", lang=lang, which="structural"),
-                       "svg", term("structural_scheme", lang).capitalize(),
+                       "svg", heading("structural_scheme", lang),
                        ident="structural-scheme")
     body += figure_html(scheme_bytes(chain, analysis, "svg", lang=lang, which="formalised"),
-                        "svg", term("formalised_scheme", lang).capitalize(),
+                        "svg", heading("formalised_scheme", lang),
                         ident="formalised-scheme")
-    return Section("schemes", term("schemes", lang).capitalize(), body)
+    return Section("schemes", heading("schemes", lang), body)
 
 
 # ----------------------------------------------------------------------------- kinematics
@@ -255,7 +256,7 @@ def _kinematic_sections(analysis: Any, lang: str, points: int,
     from assur import build_model
 
     chain = analysis.chain
-    title = term("existence", lang).capitalize()
+    title = heading("existence", lang)
     if not (chain.geometry or chain.group_params):
         summary[term("existence", lang)] = term("not_available", lang)
         return [Section("existence", title, f'<p class="note">{esc(term("no_geometry", lang))}'
@@ -295,8 +296,8 @@ def _existence_section(model: Any, lang: str, points: int, summary: dict[str, st
     body = (f'<p class="{css}" id="existence-verdict">{esc(verdict)}</p>'
             + table(header, rows, numeric=(3, 4), table_id="existence")
             + figure(existence_figure(report, model, lang=lang),
-                     term("existence", lang).capitalize(), ident="existence-plot"))
-    return Section("existence", term("existence", lang).capitalize(), body)
+                     heading("existence", lang), ident="existence-plot"))
+    return Section("existence", heading("existence", lang), body)
 
 
 def _motion_section(model: Any, lang: str, points: int) -> Section:
@@ -304,18 +305,30 @@ def _motion_section(model: Any, lang: str, points: int) -> Section:
     from synthesis.coursework.diagrams import kinematic_figures, mechanism_figure
 
     motion = analyse(model, points=points, analogs=True)
-    body = figure(mechanism_figure(motion, lang=lang), term("mechanism", lang).capitalize(),
+    body = figure(mechanism_figure(motion, lang=lang), heading("mechanism", lang),
                   ident="mechanism", fmt="png")
     for k, (caption, fig) in enumerate(kinematic_figures(motion, lang=lang)):
         body += figure(fig, caption, ident=f"kinematics-{k}")
-    return Section("kinematics", term("kinematics", lang).capitalize(), body)
+    return Section("kinematics", heading("kinematics", lang), body)
 
 
 # ----------------------------------------------------------------------------- synthesis
 
 
-def _synthesis(path: Path, lang: str, budget: int | None) -> tuple[Chain, list[Section]]:
-    """Run the synthesis of a problem; the chain of the best design and the result section."""
+_SYNTHESIS_CAPTIONS = {
+    "en": ("the output over the cycle and the deviations at the control points",
+           "the mechanism found", "the course of the search"),
+    "ru": ("выходной параметр за цикл и отклонения в контрольных точках",
+           "найденный механизм", "ход поиска"),
+}
+
+
+def _synthesis(path: Path, lang: str, budget: int | None
+               ) -> tuple[Chain, list[Section], dict[str, str]]:
+    """Run the synthesis of a problem: the chain of the best design, the result section and
+    the summary line."""
+    from matplotlib.figure import Figure
+
     from synthesis.evaluate import Evaluator
     from synthesis.plots import plot_convergence, plot_mechanism, plot_output
     from synthesis.problem import load_problem
@@ -331,22 +344,20 @@ def _synthesis(path: Path, lang: str, budget: int | None) -> tuple[Chain, list[S
     analysis = evaluator.analyse(result.x[None, :])
     data = summary(problem, result, analysis)
     feasible = bool(data.get("feasible"))
-    body = (f'<p class="{"ok" if feasible else "bad"}" id="synthesis-verdict">'
-            f"{esc(term('feasible' if feasible else 'infeasible', lang))}</p>"
-            f"<pre>{esc(text_report(data, lang))}</pre>")
-    from matplotlib.figure import Figure
-
-    for ident, draw in (("synthesis-output", lambda ax: plot_output(problem, analysis, axes=ax,
-                                                                    lang=lang)),
-                        ("synthesis-mechanism", lambda ax: plot_mechanism(
-                            problem, analysis, axes=ax, lang=lang)),
-                        ("synthesis-convergence", lambda ax: plot_convergence(
-                            result, axes=ax, lang=lang))):
+    verdict = term("feasible" if feasible else "infeasible", lang)
+    q = "–" if data.get("Q") is None else f"{data['Q']:.4g}"
+    body = (f'<p class="{"ok" if feasible else "bad"}" id="synthesis-verdict">{esc(verdict)}, '
+            f"Q = {q}</p><pre>{esc(text_report(data, lang))}</pre>")
+    drawings = (lambda ax: plot_output(problem, analysis, axes=ax, lang=lang),
+                lambda ax: plot_mechanism(problem, analysis, axes=ax, lang=lang),
+                lambda ax: plot_convergence(result, axes=ax, lang=lang))
+    for k, (draw, caption) in enumerate(zip(drawings, _SYNTHESIS_CAPTIONS[lang])):
         fig = Figure(figsize=(7.5, 4.0), layout="constrained")
         draw(fig.add_subplot())
-        body += figure(fig, term("synthesis", lang).capitalize(), ident=ident)
+        body += figure(fig, caption[:1].upper() + caption[1:], ident=f"synthesis-{k}")
     chain = chain_from_dict(problem.mechanism_table(result.x), source=str(path))
-    return chain, [Section("synthesis", term("synthesis", lang).capitalize(), body)]
+    line = {term("synthesis", lang): f"{verdict}, Q = {q}"}
+    return chain, [Section("synthesis", heading("synthesis", lang), body)], line
 
 
 # ----------------------------------------------------------------------------- output

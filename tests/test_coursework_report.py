@@ -1,0 +1,224 @@
+"""The coursework report: content checked against the course and hand calculations, the page
+checked for being self-contained, and rendered in a real browser (headless Chromium)."""
+
+from __future__ import annotations
+
+import base64
+import math
+import shutil
+import subprocess
+import xml.etree.ElementTree as ET
+from html.parser import HTMLParser
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+from PIL import Image
+
+from synthesis.cli import main
+from synthesis.coursework import build_report, render_html, write_report
+
+ROOT = Path(__file__).resolve().parent.parent
+COURSE = ROOT / "input_tables" / "course_11_link.yaml"
+
+# method.md §3.5 and §1.2: the formula and the counts of fig. 1.25
+COURSE_FORMULA = "I(0,1) → II₁(2,3) → II₄(4,5) → II₃(6,7) → II₂(8,9) → II₅(10,11)"
+# table 1.6 of the course (method.md §3.3) in layering order: L, seq, i-1, j-1, i, j, i+1, j+1
+COURSE_TABLE = [["0", "1", "0", "–", "1", "–", "2", "–"],
+                ["1", "2", "1", "0", "2", "3", "6", "–"],
+                ["4", "3", "3", "0", "4", "5", "–", "–"],
+                ["3", "4", "2", "0", "6", "7", "8", "–"],
+                ["2", "5", "0", "6", "9", "8", "–", "10"],
+                ["5", "6", "0", "8", "11", "10", "–", "–"]]
+
+
+class _Page(HTMLParser):
+    """Collects images, element ids and table cells of a page."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.images: list[dict[str, str]] = []
+        self.ids: set[str] = set()
+        self.tables: dict[str, list[list[str]]] = {}
+        self.tags: set[str] = set()
+        self._table: str | None = None
+        self._cell: list[str] | None = None
+        self.text: list[str] = []
+
+    def handle_starttag(self, tag, attrs):
+        attrs = dict(attrs)
+        self.tags.add(tag)
+        if "id" in attrs:
+            self.ids.add(attrs["id"])
+        if tag == "img":
+            self.images.append(attrs)
+        if tag == "table":
+            self._table = attrs.get("id", "")
+            self.tables[self._table] = []
+        if tag == "tr" and self._table is not None:
+            self.tables[self._table].append([])
+        if tag == "td" and self._table is not None:
+            self._cell = []
+
+    def handle_endtag(self, tag):
+        if tag == "td" and self._cell is not None:
+            self.tables[self._table][-1].append("".join(self._cell))
+            self._cell = None
+        if tag == "table":
+            self._table = None
+
+    def handle_data(self, data):
+        self.text.append(data)
+        if self._cell is not None:
+            self._cell.append(data)
+
+
+def _parse(html: str) -> _Page:
+    page = _Page()
+    page.feed(html)
+    return page
+
+
+@pytest.fixture(scope="module")
+def course_html() -> str:
+    return render_html(build_report(COURSE, points=120))
+
+
+def test_course_report_follows_the_course(course_html):
+    page = _parse(course_html)
+    text = "".join(page.text)
+    assert COURSE_FORMULA in text
+    assert "W = 3·11 − 2·16 − 0 = 1" in text  # method.md §1.2: n = 11, p5 = 16, W = 1
+    rows = [r[:8] for r in page.tables["identification"] if r]
+    assert rows == COURSE_TABLE
+    groups = {r[0]: r[2:5] for r in page.tables["groups"] if r}
+    for label in COURSE_FORMULA.split(" → ")[1:]:
+        kind = str("₀₁₂₃₄₅".index(label[2]))
+        assert groups[label] == ["II", "2", kind]  # class II, order 2, kind from the name
+    for ident in ("data", "counts", "groups", "formula", "identification", "schemes",
+                  "structural-scheme", "formalised-scheme", "existence", "existence-plot",
+                  "mechanism", "kinematics"):
+        assert ident in page.ids
+    assert "assembles over the whole cycle" in text
+
+
+def test_page_is_self_contained(course_html):
+    page = _parse(course_html)
+    assert len(page.images) >= 6
+    for image in page.images:
+        head, _, data = image["src"].partition(";base64,")
+        assert head in ("data:image/svg+xml", "data:image/png")
+        raw = base64.b64decode(data, validate=True)
+        if head.endswith("svg+xml"):
+            assert ET.fromstring(raw).tag.endswith("svg")
+        else:
+            assert raw.startswith(b"\x89PNG")
+    assert not {"script", "link", "iframe"} & page.tags
+    assert "http" not in course_html.replace("http://www.w3.org", "")  # no network reference
+    assert "@media print" in course_html
+
+
+def test_student_table_and_failure_interval(tmp_path):
+    from test_batch import FAIL_FROM, FAIL_TO, GOOD_ROWS, four_bar
+
+    wrong = [dict(GOOD_ROWS[0]), dict(GOOD_ROWS[1], i_plus_1=3)]  # a slip in i+1
+    table = tmp_path / "student.yaml"
+    table.write_text(yaml.safe_dump(four_bar(40, 50, 30, 100, wrong)), encoding="utf-8")
+    report = build_report(table, points=90)
+    assert report.summary["the table given in the file"].startswith("differs from the chain")
+    assert report.summary["existence of the groups over the cycle"] == "does not assemble"
+    page = _parse(render_html(report))
+    text = "".join(page.text)
+    assert "i_plus_1" in text
+    # the dyad cannot close while |BD| > 50 + 30 (law of cosines, see test_batch)
+    assert f"{FAIL_FROM:.2f}°…{FAIL_TO:.2f}°" in text
+    assert math.isclose(FAIL_FROM, 49.458, abs_tol=1e-3)
+
+
+def test_russian_report(tmp_path):
+    out = write_report(COURSE, tmp_path / "отчёт.html", lang="ru", points=60)
+    html = out.read_text("utf-8")
+    page = _parse(html)
+    text = "".join(page.text)
+    for words in ("Формула строения", "Группы Ассура", "группа Ассура 2 класса 2 порядка",
+                  "Таблица идентификации структуры", "Структурные схемы",
+                  "Существование групп за цикл", "собирается на всём цикле",
+                  "Кинематические диаграммы", "Исходные данные"):
+        assert words in text, words
+    schemes = [base64.b64decode(i["src"].partition(",")[2]).decode("utf-8")
+               for i in page.images if i["src"].startswith("data:image/svg")]
+    assert any("Формализованная структурная схема" in s for s in schemes)
+    assert any("уровень" in s for s in schemes)
+
+
+def test_command_line(tmp_path, capsys):
+    out = tmp_path / "report.html"
+    assert main(["report", str(COURSE), "--out", str(out), "--points", "36"]) == 0
+    assert capsys.readouterr().out.strip() == str(out)
+    assert COURSE_FORMULA in out.read_text("utf-8")
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("mechanism: {pairs: [{id: A, type: Q, links: [0, 1]}], inputs: [1]}\n")
+    assert main(["report", str(bad), "--out", str(tmp_path / "bad.html")]) == 2
+    err = capsys.readouterr().err
+    assert "bad.yaml" in err and "type" in err
+    assert not (tmp_path / "bad.html").exists()
+
+
+def test_synthesis_problem_report(tmp_path):
+    problem = ROOT / "input_tables" / "problems" / "class1_fourbar_rocker.yaml"
+    report = build_report(problem, budget=6, points=36)
+    html = render_html(report)
+    page = _parse(html)
+    assert {"synthesis", "synthesis-verdict", "synthesis-0", "synthesis-1",
+            "synthesis-2"} <= page.ids
+    # the synthesised mechanism is the problem's four-bar: one RRR dyad on the crank
+    assert "I(0,1) → II₁(2,3)" in "".join(page.text)
+    assert "synthesis" in report.summary
+
+
+def _chromium() -> str | None:
+    return shutil.which("chromium") or shutil.which("chromium-browser")
+
+
+def _browser(tmp_path: Path, url: str, *extra: str) -> subprocess.CompletedProcess:
+    chromium = _chromium()
+    assert chromium is not None
+    profile = tmp_path / "profile"
+    profile.mkdir(exist_ok=True)
+    return subprocess.run(
+        [chromium, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+         "--no-first-run", "--disable-background-networking", "--disable-component-update",
+         "--disable-sync", f"--user-data-dir={profile}", *extra, url],
+        capture_output=True, text=True, timeout=120, check=False)
+
+
+@pytest.mark.browser
+@pytest.mark.skipif(_chromium() is None, reason="headless Chromium is not installed "
+                                                "(Debian package 'chromium'); .ci/run installs it")
+def test_report_renders_in_chromium(tmp_path, course_html):
+    page_file = tmp_path / "report.html"
+    page_file.write_text(course_html, encoding="utf-8")
+    url = page_file.as_uri()
+    dom = _browser(tmp_path, url, "--dump-dom")
+    assert dom.returncode == 0, dom.stderr
+    page = _parse(dom.stdout)  # the DOM as the browser built it
+    assert COURSE_FORMULA in "".join(page.text)
+    assert len(page.images) >= 6 and all(i["src"].startswith("data:image/")
+                                         for i in page.images)
+    shot = tmp_path / "shot.png"
+    run = _browser(tmp_path, url, f"--screenshot={shot}", "--window-size=1000,9000",
+                   "--hide-scrollbars")
+    assert run.returncode == 0 and shot.exists(), run.stderr
+    with Image.open(shot) as image:
+        pixels = np.asarray(image.convert("RGB"), dtype=int)
+    assert pixels.shape[:2] == (9000, 1000)
+    # the page's own style has no red, green or purple: these come from the pictures only,
+    # so seeing them proves that the embedded schemes and plots were decoded and painted
+    for colour in ((214, 39, 40), (44, 160, 44), (148, 103, 189)):
+        hits = (np.abs(pixels - np.array(colour)).sum(axis=2) < 40).sum()
+        assert hits > 200, colour
+    # the pictures spread down the page: coloured pixels in at least four 1000-px bands
+    coloured = (pixels.max(axis=2) - pixels.min(axis=2)) > 60
+    bands = {int(y) // 1000 for y in np.nonzero(coloured.any(axis=1))[0]}
+    assert len(bands) >= 4

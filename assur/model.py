@@ -181,6 +181,10 @@ class Chain:
         except KeyError:
             raise KeyError(f"no pair {pair_id!r} in chain {self.name!r}") from None
 
+    def link(self, link_id: LinkId) -> Link:
+        """The link with its human name, if the table gave one."""
+        return Link(link_id, self.names.get(link_id))
+
     @property
     def moving_links(self) -> tuple[LinkId, ...]:
         """All links but the frame."""

@@ -101,13 +101,19 @@ class StructuralAnalysis:
                 return group
         return None
 
+    def _inputs(self) -> list[dict[str, Any]]:
+        """Each input with its driven pair (found for driven links)."""
+        driven = {g.i: g.pair_i for g in self.input_groups}
+        return [{"link": d.link, "pair": d.pair if d.pair is not None else driven.get(d.link)}
+                for d in self.chain.inputs]
+
     def to_dict(self) -> dict[str, Any]:
         """The JSON object of ``assur check --json``."""
         return {
             "name": self.chain.name, "source": self.chain.source,
             "n": self.n, "p5": self.p5, "p4": self.p4, "W": self.W, "W_star": self.W_star,
             "m": self.m,
-            "inputs": [{"link": d.link, "pair": d.pair} for d in self.chain.inputs],
+            "inputs": self._inputs(),
             "input_groups": [g.to_dict() for g in self.input_groups],
             "groups": [g.to_dict() for g in self.groups],
             "formula": self.formula, "formula_levels": [list(x) for x in self.formula_levels],

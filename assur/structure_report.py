@@ -137,7 +137,8 @@ def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
     items = []
     for drive in chain.inputs:
         if drive.link is not None:
-            items.append(str(drive.link) + (f" ({drive.pair})" if drive.pair is not None else ""))
+            name = chain.link(drive.link).name
+            items.append(str(drive.link) + (f" ({name})" if name else ""))
         else:
             pair = chain.pair(drive.pair)
             items.append(f"{'пара' if lang == 'ru' else 'pair'} {pair.id} "

@@ -58,7 +58,8 @@ def test_json_output_with_overrides(capsys):
 def test_plots_are_written(tmp_path, capsys):
     assert _run(["--plot", str(tmp_path)]) == 0
     names = sorted(p.name for p in Path(tmp_path).iterdir())
-    assert names == ["tracker_charts.png", "tracker_chosen.png", "tracker_refined.png"]
+    assert names == ["tracker_charts.png", "tracker_chosen.png", "tracker_refined.png",
+                     "tracker_synthesis.png"]
     assert all((tmp_path / n).read_bytes()[:4] == b"\x89PNG" for n in names)
 
 

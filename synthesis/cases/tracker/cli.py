@@ -6,6 +6,7 @@ import argparse
 import json
 import sys
 
+from assur import Issue, TableError
 from synthesis.cases.tracker.report import summary, to_dict
 from synthesis.cases.tracker.study import run_study
 from synthesis.cases.tracker.task import load_task
@@ -37,6 +38,10 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         help="values of l2/l1 for the design table (default 1.4 1.6 1.8 2 2.2)")
     parser.add_argument("--k5", nargs="+", type=float, metavar="K5",
                         help="values of l5/l1 (default 2)")
+    parser.add_argument("--budget", type=int, default=10, metavar="LOG2",
+                        help="the B1-B5 synthesis draws 2**LOG2 LPtau trials in its first pass "
+                             "(default 10); 0 skips the synthesis")
+    parser.add_argument("--seed", type=int, default=0, help="seed of the synthesis (default 0)")
     parser.add_argument("--json", action="store_true", help="print the results as JSON")
     parser.add_argument("--plot", metavar="DIR", help="write the charts and drawings here")
     parser.add_argument("--lang", choices=("en", "ru"), default="en",
@@ -47,7 +52,11 @@ def run(args: argparse.Namespace) -> int:
     """Run the case; returns 0 (the report says whether a design was found)."""
     names = [dest for _, dest, *_ in _OPTIONS] + ["k2", "k5"]
     overrides = {name: getattr(args, name) for name in names if getattr(args, name) is not None}
-    study = run_study(load_task(args.table, overrides))
+    if not 0 <= args.budget <= 20:
+        raise TableError("command line", [Issue("option '--budget'", f"must lie in [0, 20]; "
+                                                                      f"found {args.budget}")])
+    study = run_study(load_task(args.table, overrides), budget_log2=args.budget or None,
+                      seed=args.seed, progress=args.budget >= 14)
     if args.json:
         json.dump(to_dict(study), sys.stdout, indent=2, ensure_ascii=False)
         print()

@@ -16,7 +16,8 @@ import numpy as np
 from assur import atomic_write_bytes
 from synthesis.cases.tracker.geometry import proportions, stroke
 from synthesis.cases.tracker.patent import EXAMPLE, SERIES
-from synthesis.cases.tracker.study import Study, Verification
+from synthesis.cases.tracker.model import TrackerMotion
+from synthesis.cases.tracker.study import Study
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -124,41 +125,44 @@ def chart_figure(study: Study, lang: str = "en") -> Figure:
     return fig
 
 
-def plot_mechanism(check: Verification, ax: Axes, lang: str = "en",
-                   min_clearance: float | None = None) -> Axes:
+def plot_mechanism(motion: TrackerMotion, ax: Axes, *, title: str, body: float,
+                   lang: str = "en", min_clearance: float | None = None) -> Axes:
     """Draw the mechanism at both ends of the stroke, with the actuator and the post.
 
     Parameters
     ----------
-    check : Verification
-        A simulated design (its motion runs from the retracted to the extended actuator).
+    motion : TrackerMotion
+        The mechanism from the retracted to the extended actuator.
     ax : matplotlib Axes
+    title : str
+    body : float
+        Length of the actuator's cylinder drawn from E (mm).
     lang : {'en', 'ru'}
     min_clearance : float, optional
-        Draws the required clearance around the post as a dashed circle.
+        Draws the required clearance around the post as a dotted circle.
 
     Returns
     -------
     Axes
     """
     text = _LABELS[lang]
-    m = check.motion
-    d = check.design
+    m = motion
     ax.plot(m.b.real, m.b.imag, color="0.7", lw=0.8)
     ax.plot(m.c.real, m.c.imag, color="0.7", lw=0.8)
     base = np.array([complex(m.d[0]), complex(m.a[0]), complex(m.e[0])])
     ax.plot(base.real, base.imag, color="k", lw=1.0)
     for index, colour, label in ((0, "tab:blue", text["retracted"]),
                                  (-1, "tab:red", text["extended"])):
-        a, b, c, dd, e = (complex(p[index]) for p in (m.a, m.b, m.c, m.d, m.e))
+        a, b, c, d, e = (complex(p[index]) for p in (m.a, m.b, m.c, m.d, m.e))
         ax.plot([a.real, b.real], [a.imag, b.imag], color=colour, lw=4, solid_capstyle="round",
                 label=label)
-        ax.plot([b.real, c.real, dd.real], [b.imag, c.imag, dd.imag], color=colour, lw=2)
-        body = e + (c - e) / abs(c - e) * min(abs(c - e), d.l_i)
-        ax.plot([e.real, body.real], [e.imag, body.imag], color=colour, lw=6, alpha=0.45)
+        ax.plot([b.real, c.real, d.real], [b.imag, c.imag, d.imag], color=colour, lw=2)
+        cylinder = e + (c - e) / abs(c - e) * min(abs(c - e), body)
+        ax.plot([e.real, cylinder.real], [e.imag, cylinder.imag], color=colour, lw=6,
+                alpha=0.45)
         ax.plot([e.real, c.real], [e.imag, c.imag], color=colour, lw=1.5, ls="--")
-        ax.plot([a.real, b.real, c.real, dd.real, e.real], [a.imag, b.imag, c.imag, dd.imag,
-                                                            e.imag], "o", color=colour, ms=4)
+        ax.plot([a.real, b.real, c.real, d.real, e.real],
+                [a.imag, b.imag, c.imag, d.imag, e.imag], "o", color=colour, ms=4)
     for name, point in (("A", m.a[0]), ("D", m.d[0]), ("E", m.e[0])):
         ax.annotate(name, (point.real, point.imag), textcoords="offset points", xytext=(4, -12))
     ax.plot([0.0], [0.0], "ks", ms=9)
@@ -167,20 +171,36 @@ def plot_mechanism(check: Verification, ax: Axes, lang: str = "en",
         ax.plot(min_clearance * np.cos(angle), min_clearance * np.sin(angle), "k:", lw=0.8,
                 label=text["clear"].format(g=min_clearance))
     ax.set_aspect("equal")
-    ax.set(title=text["mech"].format(k2=d.k2, k5=d.k5, l1=d.l1, a=math.degrees(check.stroke)),
-           xlabel=text["x"], ylabel=text["y"])
+    ax.set(title=title, xlabel=text["x"], ylabel=text["y"])
     ax.legend(fontsize=7, loc="lower left")
     return ax
 
 
-def mechanism_figure(check: Verification, lang: str = "en",
+def mechanism_figure(motion: TrackerMotion, *, title: str, body: float, lang: str = "en",
                      min_clearance: float | None = None) -> Figure:
     """A figure with :func:`plot_mechanism`."""
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(8, 7), layout="constrained")
-    plot_mechanism(check, fig.subplots(), lang, min_clearance)
+    plot_mechanism(motion, fig.subplots(), title=title, body=body, lang=lang,
+                   min_clearance=min_clearance)
     return fig
+
+
+def _drawings(study: Study, lang: str) -> list[tuple[str, TrackerMotion, str, float]]:
+    text = _LABELS[lang]["mech"]
+    out = []
+    for name, check in (("chosen", study.chosen), ("refined", study.refined)):
+        if check is not None:
+            d = check.design
+            out.append((name, check.motion, text.format(k2=d.k2, k5=d.k5, l1=d.l1,
+                                                        a=math.degrees(check.stroke)), d.l_i))
+    answer = study.synthesis
+    if answer is not None:
+        title = text.format(k2=answer.k2, k5=answer.k5, l1=answer.task.l1,
+                            a=math.degrees(answer.check.stroke)) + " (B1–B5)"
+        out.append(("synthesis", answer.check, title, answer.l_i))
+    return out
 
 
 def _write(fig: Figure, path: Path) -> Path:
@@ -191,18 +211,18 @@ def _write(fig: Figure, path: Path) -> Path:
 
 
 def save_plots(study: Study, directory: str | Path, lang: str = "en") -> list[Path]:
-    """Write the design charts and the chosen designs' drawings as PNG files.
+    """Write the design charts and the designs' drawings as PNG files.
 
     Returns
     -------
     list of Path
-        The files written: ``tracker_charts.png``, ``tracker_chosen.png`` and
-        ``tracker_refined.png`` (the last two when there is such a design).
+        The files written: ``tracker_charts.png``, then ``tracker_chosen.png``,
+        ``tracker_refined.png`` and ``tracker_synthesis.png`` for the designs there are.
     """
     directory = Path(directory)
     paths = [_write(chart_figure(study, lang), directory / "tracker_charts.png")]
-    for name, check in (("chosen", study.chosen), ("refined", study.refined)):
-        if check is not None:
-            paths.append(_write(mechanism_figure(check, lang, study.task.min_clearance),
-                                directory / f"tracker_{name}.png"))
+    for name, motion, title, body in _drawings(study, lang):
+        paths.append(_write(mechanism_figure(motion, title=title, body=body, lang=lang,
+                                             min_clearance=study.task.min_clearance),
+                            directory / f"tracker_{name}.png"))
     return paths

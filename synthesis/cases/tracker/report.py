@@ -18,6 +18,7 @@ from synthesis.cases.tracker.design import PATENT_TASK, Design, Violation, desig
 from synthesis.cases.tracker.patent import CHOSEN, EXAMPLE, K2, SERIES
 from synthesis.cases.tracker.reproduction import ANGLES, Comparison
 from synthesis.cases.tracker.study import Study, Verification, worst
+from synthesis.cases.tracker.synthesis_problem import SynthesisAnswer
 
 __all__ = ["Lang", "inconsistencies", "notes", "summary", "to_dict", "violation_text"]
 
@@ -95,6 +96,44 @@ _T: dict[str, tuple[str, str]] = {
                   "l_g = {v:.1f} мм меньше требуемых {l:g} мм"),
     "stroke": ("l_s = {v:.1f} mm exceeds the actuator's stroke of {l:g} mm",
                "l_s = {v:.1f} мм больше хода привода {l:g} мм"),
+    "synth": ("The same task as a B1–B5 synthesis problem",
+              "Та же задача как задача синтеза B1–B5"),
+    "synth_setup": ("varied: k2 in [{k2lo:g}, {k2hi:g}], k5 in [{k5lo:g}, {k5hi:g}], platform "
+                    "start angle θ0 in [{tlo:g}°, {thi:g}°] (the platform is the input link: "
+                    "{formula}); P1: assembly over the whole stroke; P2: b ≥ {b:g}°, "
+                    "l_g ≥ {lg:g} mm, l_s ≤ {ls:g} mm; Q: the size l_d/l1",
+                    "варьируются: k2 в [{k2lo:g}, {k2hi:g}], k5 в [{k5lo:g}, {k5hi:g}], "
+                    "начальный угол платформы θ0 в [{tlo:g}°, {thi:g}°] (платформа — входное "
+                    "звено: {formula}); P1: сборка на всём ходе; P2: b ≥ {b:g}°, "
+                    "l_g ≥ {lg:g} мм, l_s ≤ {ls:g} мм; Q: размер l_d/l1"),
+    "synth_run": ("search: {n} trials in {t:.2f} s (seed {seed}), stop: {stop}; "
+                  "every condition met: {ok}",
+                  "поиск: {n} испытаний за {t:.2f} с (seed {seed}), останов: {stop}; "
+                  "все условия выполнены: {ok}"),
+    "synth_found": ("found k2 = {k2:.4f}, k5 = {k5:.4f}, θ0 = {t0:.2f}°; transmission angle "
+                    "at B {b1:.2f}° retracted, {b2:.2f}° extended",
+                    "найдено k2 = {k2:.4f}, k5 = {k5:.4f}, θ0 = {t0:.2f}°; угол передачи в B "
+                    "{b1:.2f}° во втянутом, {b2:.2f}° в выдвинутом положении"),
+    "synth_check": ("actuator-driven chain simulated from l_i to l_d: stroke {s:.4f}°, "
+                    "assembles everywhere: {ok}",
+                    "моделирование цепи с приводом от l_i до l_d: ход {s:.4f}°, собирается "
+                    "везде: {ok}"),
+    "compare": ("Both answers side by side", "Оба ответа рядом"),
+    "col_table": ("Etapa VI, rows", "этап VI, строки"),
+    "col_refined": ("Etapa VI, continuous k2", "этап VI, непрерывный k2"),
+    "col_synth": ("B1–B5 synthesis", "синтез B1–B5"),
+    "b_ends": ("b at the ends, °", "b на концах, °"),
+    "c_min": ("least angle at C, °", "наим. угол в C, °"),
+    "synth_note": ("The patent's closed forms put b_min at both ends of the stroke (that is "
+                   "what a = 2[180° − (c + d)] assumes); the search may place the stroke "
+                   "anywhere and here shortens the extended actuator by {gain:.1f}% "
+                   "({l0:.0f} → {l1:.0f} mm) with b_min.ad reached at one end only.",
+                   "Формулы патента дают b_min на обоих концах хода (это и предполагает "
+                   "a = 2[180° − (c + d)]); поиск может расположить ход где угодно и здесь "
+                   "укорачивает выдвинутый привод на {gain:.1f}% ({l0:.0f} → {l1:.0f} мм), "
+                   "достигая b_min.ad только на одном конце."),
+    "synth_same": ("The search and the procedure agree within {gap:.1f}% on l_d.",
+                   "Поиск и процедура согласуются по l_d с точностью {gap:.1f}%."),
     "yes": ("yes", "да"),
     "no": ("no", "нет"),
     "incons": ("Inconsistencies of the patent", "Несоответствия в патенте"),
@@ -202,10 +241,70 @@ def _verification_text(check: Verification, lang: Lang) -> list[str]:
                                             r1=check.lever_arm[1], r2=check.lever_arm[2])]
 
 
-def _patent_design(study: Study) -> Design | None:
-    if study.chosen is None:
-        return None
-    return study.chosen.design
+def _synthesis_text(study: Study, lang: Lang) -> list[str]:
+    answer = study.synthesis
+    if answer is None:
+        return []
+    task = study.task
+    lower, upper = _bounds(answer)
+    out = ["", _t("synth", lang) + ":", "  " + _t("synth_setup", lang).format(
+        k2lo=lower[0], k2hi=upper[0], k5lo=lower[1], k5hi=upper[1], tlo=lower[2],
+        thi=upper[2], formula=answer.formula, b=math.degrees(task.min_transmission),
+        lg=task.min_clearance, ls=task.actuator_stroke)]
+    r = answer.result
+    out.append("  " + _t("synth_run", lang).format(
+        n=len(r.trials), t=r.elapsed, seed=r.settings.seed, stop=r.stop,
+        ok=_t("yes" if answer.feasible else "no", lang)))
+    b1, b2 = (math.degrees(v) for v in answer.ends)
+    out.append("  " + _t("synth_found", lang).format(k2=answer.k2, k5=answer.k5,
+                                                     t0=float(answer.x[2]), b1=b1, b2=b2))
+    lengths = ", ".join(f"{k} = {v:.1f}" for k, v in answer.lengths().items())
+    out.append(f"  {_t('lengths', lang)}: {lengths}")
+    out.append("  " + _t("synth_check", lang).format(
+        s=math.degrees(answer.check.stroke),
+        ok=_t("yes" if bool(answer.check.exists.all()) else "no", lang)))
+    out += ["", _t("compare", lang) + ":"]
+    columns = [(_t("col_table", lang), study.chosen), (_t("col_refined", lang), study.refined)]
+    rows = [["", *(name for name, _ in columns), _t("col_synth", lang)]]
+    values = [_column(check) for _, check in columns] + [_synthesis_column(answer)]
+    for key in ("k2", "k5", "l2", "l_d", "l_i", "l_s", "l_g", "b_ends", "c_min"):
+        label = _t(key, lang) if key in ("b_ends", "c_min") else key
+        rows.append([label, *(v.get(key, "—") for v in values)])
+    out += _table(rows)
+    if study.refined is not None and answer.feasible:
+        l0, l1 = study.refined.design.l_d, answer.l_d
+        gain = 100.0 * (l0 - l1) / l0
+        out.append("  " + (_t("synth_note", lang).format(gain=gain, l0=l0, l1=l1)
+                           if gain > 0.5 else _t("synth_same", lang).format(gap=abs(gain))))
+    return out
+
+
+def _bounds(answer: SynthesisAnswer) -> tuple[list[float], list[float]]:
+    from synthesis.cases.tracker.synthesis_problem import bounds
+
+    lower, upper = bounds(answer.task)
+    return [float(v) for v in lower], [float(v) for v in upper]
+
+
+def _column(check: Verification | None) -> dict[str, str]:
+    if check is None:
+        return {}
+    d = check.design
+    ends = check.motion.transmission[0]
+    out = {"k2": f"{d.k2:.4f}", "k5": f"{d.k5:.4f}"}
+    out.update({k: f"{v:.1f}" for k, v in d.lengths().items() if k != "l1" and k != "l5"})
+    out["b_ends"] = f"{math.degrees(ends[0]):.2f} / {math.degrees(ends[-1]):.2f}"
+    out["c_min"] = f"{math.degrees(check.c_min):.2f}"
+    return out
+
+
+def _synthesis_column(answer: SynthesisAnswer) -> dict[str, str]:
+    out = {"k2": f"{answer.k2:.4f}", "k5": f"{answer.k5:.4f}"}
+    out.update({k: f"{v:.1f}" for k, v in answer.lengths().items() if k not in ("l1", "l5")})
+    b1, b2 = (math.degrees(v) for v in answer.ends)
+    out["b_ends"] = f"{b1:.2f} / {b2:.2f}"
+    out["c_min"] = f"{math.degrees(float(answer.check.transmission[1].min())):.2f}"
+    return out
 
 
 def inconsistencies(study: Study, lang: Lang = "en") -> list[str]:
@@ -348,6 +447,7 @@ def summary(study: Study, lang: Lang = "en") -> str:
             math.isclose(study.chosen.design.k5, CHOSEN["k5"])
         out.append("  " + _t("patent_pick", lang).format(
             k2=CHOSEN["k2"], k5=CHOSEN["k5"], same=_t("same" if same else "other", lang)))
+    out += _synthesis_text(study, lang)
     out += ["", _t("incons", lang) + ":"]
     out += [f"  {i}. {text}" for i, text in enumerate(inconsistencies(study, lang), 1)]
     extra = notes(study, lang)
@@ -382,6 +482,19 @@ def _design_dict(check: Verification | None) -> dict[str, Any] | None:
     }
 
 
+def _synthesis_dict(answer: SynthesisAnswer | None) -> dict[str, Any] | None:
+    if answer is None:
+        return None
+    r = answer.result
+    b1, b2 = (math.degrees(v) for v in answer.ends)
+    return {"structure": answer.formula, "k2": answer.k2, "k5": answer.k5,
+            "theta0_deg": float(answer.x[2]), "feasible": answer.feasible,
+            "lengths_mm": answer.lengths(), "b_retracted_deg": b1, "b_extended_deg": b2,
+            "simulated_stroke_deg": math.degrees(answer.check.stroke),
+            "trials": len(r.trials), "seconds": r.elapsed, "seed": r.settings.seed,
+            "stop": r.stop}
+
+
 def to_dict(study: Study) -> dict[str, Any]:
     """Everything of the report as plain data (for ``--json``)."""
     task = study.task
@@ -408,6 +521,7 @@ def to_dict(study: Study) -> dict[str, Any]:
         "design_table": rows,
         "chosen": _design_dict(study.chosen),
         "refined": _design_dict(study.refined),
+        "synthesis": _synthesis_dict(study.synthesis),
         "inconsistencies": inconsistencies(study, "en"),
         "notes": notes(study, "en"),
     }

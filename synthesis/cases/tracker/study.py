@@ -24,6 +24,7 @@ from synthesis.cases.tracker.design import (
 )
 from synthesis.cases.tracker.model import TrackerMotion, simulate
 from synthesis.cases.tracker.reproduction import Comparison, reproduce, reproduce_mm
+from synthesis.cases.tracker.synthesis_problem import SynthesisAnswer, has_room, solve
 
 __all__ = ["Study", "Verification", "run_study", "verify", "worst"]
 
@@ -111,6 +112,8 @@ class Study:
         Etapa VI on a continuous ``k2`` (the smallest admissible design over every ``k5``).
     comparisons : list of Comparison
         The patent's printed values beside the computed ones (ratios, angles, then mm).
+    synthesis : SynthesisAnswer or None
+        The same task as a B1–B5 synthesis problem (None when not run).
     """
 
     task: DesignTask
@@ -118,20 +121,29 @@ class Study:
     chosen: Verification | None
     refined: Verification | None
     comparisons: list[Comparison]
+    synthesis: SynthesisAnswer | None = None
 
 
 def _smallest(designs: list[Design]) -> Design | None:
     return min(designs, key=lambda d: (d.k_d, -d.b_min)) if designs else None
 
 
-def run_study(task: DesignTask, *, positions: int = 721) -> Study:
-    """Run the design procedure and the checks for one task.
+def run_study(task: DesignTask, *, positions: int = 721, budget_log2: int | None = 10,
+              seed: int = 0, progress: bool = False) -> Study:
+    """Run the design procedure, the checks and the B1–B5 synthesis for one task.
 
     Parameters
     ----------
     task : DesignTask
     positions : int
         Positions of each verifying simulation.
+    budget_log2 : int or None
+        LPτ budget of the synthesis (``2**budget_log2`` trials in the first pass); None skips
+        the synthesis (so does a stroke within 2° of a full turn).
+    seed : int
+        Seed of the synthesis.
+    progress : bool
+        Print the synthesis's progress on standard error.
 
     Returns
     -------
@@ -144,7 +156,9 @@ def run_study(task: DesignTask, *, positions: int = 721) -> Study:
         task=task, table=table,
         chosen=None if chosen is None else verify(chosen, positions=positions),
         refined=None if refined is None else verify(refined, positions=positions),
-        comparisons=reproduce() + reproduce_mm())
+        comparisons=reproduce() + reproduce_mm(),
+        synthesis=None if budget_log2 is None or not has_room(task) else solve(
+            task, budget_log2=budget_log2, seed=seed, progress=progress))
 
 
 def worst(comparisons: list[Comparison], quantity: str) -> float:

@@ -191,20 +191,26 @@ def _finish(
     margin: np.ndarray,
     delta: float | np.ndarray,
     failure: Callable[[], np.ndarray],
+    valid: np.ndarray | None = None,
     **geometry: Value | None,
 ) -> DyadSolution:
     """Existence mask, reason codes and NaN blanking common to all solvers.
 
-    ``shape`` is the broadcast shape of the solver's arguments ``inputs``; ``failure()`` returns the reason code of
-    each position as if it failed; it is evaluated only when some position does fail.
+    ``shape`` is the broadcast shape of the solver's arguments ``inputs``. ``failure()``
+    returns the reason code of each position as if it failed; it is evaluated only when some
+    position does fail. ``valid`` (optional) is a further condition of existence.
     """
     margin = margin if margin.shape == shape else np.broadcast_to(margin, shape)
+    if any(type(x) is Jet for x in geometry.values()):  # constant outputs become jets too
+        geometry = {name: x if x is None or type(x) is Jet else Jet(x)
+                    for name, x in geometry.items()}
     lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
-    if lowest >= (delta if type(delta) is float else np.max(delta)):
+    if lowest >= (delta if type(delta) is float else np.max(delta)) and (
+            valid is None or valid.all()):
         exists = _constant(True, shape)  # one reduction found every position assembled
         reason = _constant(np.int8(Reason.ASSEMBLES), shape)
     else:
-        exists = margin >= delta
+        exists = margin >= delta if valid is None else (margin >= delta) & valid
         bad = ~exists
         undefined = np.zeros(shape, dtype=bool)
         for x in inputs:
@@ -325,10 +331,11 @@ def _rrr_arrays(
 ) -> tuple:
     """The same as :func:`_rrr_generic` for plain arrays, in real arithmetic, few temporaries.
 
-    With ``r = H_j − H_i``, ``d² = |r|²``: ``C − H_i = r·(x + jσy)``, where
+    With ``r = H_j − H_i``, ``d = |r|``: ``C − H_i = r·(x + jσy)``, where
     ``x = (d² + l_i² − l_j²)/(2d²)`` and ``y = sqrt(Δ)/(2d²)`` with the discriminant in
-    factored form ``Δ = ((l_i + l_j)² − d²)(d² − (l_j − l_i)²)`` (16 times the squared area
-    of the triangle H_i C H_j), exact in sign at both toggle positions.
+    factored form ``Δ = (l_i + l_j − d)(l_i + l_j + d)(d − l_j + l_i)(d + l_j − l_i)``
+    (Heron: 16 times the squared area of the triangle H_i C H_j), whose small factor keeps
+    full relative accuracy at both toggle positions.
     """
     with np.errstate(all="ignore"):
         r = np.subtract(h_j, h_i, dtype=complex)
@@ -340,10 +347,13 @@ def _rrr_arrays(
         q = np.divide(0.5, d2)
         x = np.add(d2, np.subtract(np.multiply(l_i, l_i), np.multiply(l_j, l_j)))
         x *= q
+        d = np.sqrt(d2)
         l_sum, l_dif = np.add(l_i, l_j), np.subtract(l_j, l_i)
-        disc = np.subtract(np.multiply(l_sum, l_sum), d2)
-        disc *= np.subtract(d2, np.multiply(l_dif, l_dif))
-        d = np.sqrt(d2, out=d2)
+        disc = l_sum - d
+        disc *= l_sum + d
+        wx = d - l_dif
+        wx *= d + l_dif
+        disc *= wx
         margin = np.multiply(x, d)
         margin /= l_i  # c = cos of the angle at H_i
         np.absolute(margin, out=margin)
@@ -355,7 +365,7 @@ def _rrr_arrays(
         y = np.sqrt(disc, out=disc)
         y *= q
         y *= s
-        wx = rx * x
+        np.multiply(rx, x, out=wx)
         wx -= ry * y
         wy = np.multiply(rx, y, out=y)
         wy += np.multiply(ry, x, out=x)  # (wx, wy) = C − H_i
@@ -502,6 +512,7 @@ def solve_prp(
         margin = np.where(np.isfinite(J.value(c)), np.abs(J.value(sin_ij)), np.nan)
     return _finish(
         shape, (a, theta_i, e_i, b, theta_j, e_j), margin, delta, lambda: Reason.GUIDES_PARALLEL,
+        valid=margin > ROUNDOFF,
         c=c, origin_i=c, angle_i=_spread(theta_i, shape), origin_j=c,
         angle_j=_spread(theta_j, shape), s_i=slide_i, s_j=slide_j,
     )
@@ -542,6 +553,7 @@ def solve_rpp(
         margin = np.where(np.isfinite(J.value(c)), np.abs(J.value(minus_sin)), np.nan)
     return _finish(
         shape, (h_j, gamma, a, theta_s, e), margin, delta, lambda: Reason.GUIDES_PARALLEL,
+        valid=margin > ROUNDOFF,
         c=c, origin_i=c, angle_i=_spread(theta_s, shape), origin_j=_spread(h_j, shape),
         angle_j=_spread(theta_t, shape), s_i=slide, s_j=t,
     )

@@ -284,15 +284,19 @@ def _no_design_reason(request: Request, ranges: dict[str, float]) -> str:
     low, high = sorted((ranges["peak_min"], ranges["peak_max"]))
     if request.form != "crank" and not low <= request.n_star <= high:
         return (f"no crank-rocker with e = {request.e:g} has its peak ratio at n* = "
-                f"{request.n_star:g}: over the crank-rocker domain the peak lies between "
-                f"{low:.4g} and {high:.4g}")
+                f"{request.n_star:g}: the scan of the crank-rocker domain finds peaks between "
+                f"{low:.4g} and {high:.4g} only")
     if "psi1_min" in ranges:
-        wide = request.psi1 > ranges["psi1_max"]
-        edge = math.degrees(ranges["psi1_max" if wide else "psi1_min"])
-        return (f"no crank-rocker with e = {request.e:g} and peak n* = {request.n_star:g} keeps "
+        head = (f"no crank-rocker with e = {request.e:g} and peak n* = {request.n_star:g} keeps "
                 f"the ratio within δ = {request.delta:g} over ψ′ = "
-                f"{math.degrees(request.psi1):.4g}°: the {'widest' if wide else 'narrowest'} "
-                f"such zone found is about {edge:.3g}°")
+                f"{math.degrees(request.psi1):.4g}°: ")
+        low, high = (math.degrees(ranges[k]) for k in ("psi1_min", "psi1_max"))
+        if request.psi1 > ranges["psi1_max"]:
+            return head + f"the widest such zone found is about {high:.3g}°"
+        if request.psi1 < ranges["psi1_min"]:
+            return head + f"the narrowest such zone found is about {low:.3g}°"
+        return (head + f"zones from about {low:.3g}° to {high:.3g}° are attainable on separate "
+                "branches of the design curve, but none of this width")
     return "no crank-rocker in the Grashof domain meets all the prescribed values at once"
 
 

@@ -50,7 +50,7 @@ import numpy.typing as npt
 
 import assur
 from assur import TableError, TableReader
-from assur.tables import MISSING, Node, describe, normalise_id
+from assur.tables import MISSING, Node, normalise_id
 
 __all__ = [
     "ControlPoints",

@@ -199,6 +199,8 @@ class _State:
         else:
             local = first + 1j * p(f"{anchor.owner}.{anchor.second}")
         origin = self.frames[anchor.link][0]
+        if np.ndim(local) == 0 and local == 0:
+            return origin
         return origin + local * self.rotor(anchor.link)
 
     def guide(self, guide: Guide) -> tuple[Value, Value, Any]:
@@ -270,6 +272,23 @@ class _State:
         self.frames[group.i] = (sol.origin_i, sol.angle_i)
         if group.j is not None:
             self.frames[group.j] = (sol.origin_j, sol.angle_j)
+        self._rotors(group, sol)
+
+    def _rotors(self, group: GroupModel, sol: DyadSolution) -> None:
+        """Unit vectors of link axes from the solved joints, where that is cheaper than
+        ``exp(1j*angle)`` (the same vectors, without trigonometric functions)."""
+        p, col, kind = self.p, group.column, group.kind
+        if kind == 0:
+            self.rotors[group.i] = (sol.c - sol.origin_i) / p(col("l_1"))
+        elif kind == 1 and group.driven is None:
+            self.rotors[group.i] = (sol.c - sol.origin_i) / p(col("l_i"))
+            self.rotors[group.j] = (sol.c - sol.origin_j) / p(col("l_j"))
+        elif kind == 2:
+            self.rotors[group.j] = (sol.c - sol.origin_j) / p(col("l_j"))
+        elif kind == 3:
+            r = sol.origin_j - sol.origin_i
+            axis = r * (sol.s_i - 1j * p(col("d"))) / J.dot(r, r)
+            self.rotors[group.i] = self.rotors[group.j] = axis
 
     def _actuator(self, group: GroupModel, sol: DyadSolution, q: Value) -> None:
         """Frames of the actuator's members and its driven pair (s = actuator length)."""

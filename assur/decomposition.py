@@ -219,7 +219,7 @@ class _Peeler:
         while self.unknown:
             if self._dyads():
                 continue
-            if self._search():
+            if self._search() or self._large_group():
                 continue
             self._stall()
             break
@@ -265,27 +265,29 @@ class _Peeler:
         return diagnostic("E_OVERCONSTRAINED", self.g.links(subset), pairs, k=len(subset), p=p,
                           d=d, q=-d, why=why, why_ru=why_ru)
 
-    def _stall(self) -> None:
+    def _components(self) -> list[set[LinkId]]:
         sub = nx.Graph()
         sub.add_nodes_from(self.unknown)
-        for pid, a, b in self.g.edges:
-            if a in self.unknown and b in self.unknown:
-                sub.add_edge(a, b)
-        for component in sorted(nx.connected_components(sub),
-                                key=lambda c: min(id_key(x) for x in c)):
+        sub.add_edges_from((a, b) for _, a, b in self.g.edges
+                           if a in self.unknown and b in self.unknown)
+        return sorted(nx.connected_components(sub), key=lambda c: min(id_key(x) for x in c))
+
+    def _large_group(self) -> bool:
+        """Accept a leftover component with d = 0 that is larger than ``s_max`` as a group."""
+        for component in self._components():
+            if self._count(component)[0] == 0:
+                self._accept(component)
+                return True
+        return False
+
+    def _stall(self) -> None:
+        for component in self._components():
             d, p = self._count(component)
             external, internal = self._pairs(component)
             pairs = [pid for pid, _, _ in external] + internal
-            links = self.g.links(component)
-            if d > 0:
-                self.issues.append(diagnostic("E_UNDERCONSTRAINED", links, pairs, k=len(component),
-                                              p=p, d=d))
-            elif d == 0:
-                self.issues.append(diagnostic("E_UNSUPPORTED_GROUP", links, pairs,
-                                              cls="?", order=len(external), k=len(links)))
-            else:
-                self.issues.append(diagnostic("E_OVERCONSTRAINED", links, pairs, k=len(component),
-                                              p=p, d=d, q=-d))
+            code = "E_UNDERCONSTRAINED" if d > 0 else "E_OVERCONSTRAINED"
+            self.issues.append(diagnostic(code, self.g.links(component), pairs,
+                                          k=len(component), p=p, d=d, q=-d))
 
 
 def _connected_subsets(order: list[LinkId], adj: dict[LinkId, list[tuple[PairId, LinkId]]],

@@ -80,9 +80,9 @@ CODES: dict[str, tuple[str, str]] = {
         "свободы, кинематическая цепь здесь не замкнута"),
     "W_PASSIVE_LINK": (
         "with the given dimensions, {links} (pairs {pairs}) adds no constraint the other links "
-        "do not already impose: a passive link; remove it for structural analysis",
+        "do not already impose: a passive link; remove it for structural analysis{hint}",
         "при заданных размерах {links_ru} (пары {pairs}) не накладывает новых связей: "
-        "пассивное звено, удалите его при структурном анализе"),
+        "пассивное звено, удалите его при структурном анализе{hint_ru}"),
     "E_PRISMATIC_LOOP": (
         "loop {links_plain} (pairs {pairs}) has only prismatic pairs: one rotational constraint "
         "is counted twice, the real mobility is higher by {r} (W* = W + {r})",

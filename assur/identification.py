@@ -82,12 +82,14 @@ class Mismatch:
 
 def _require_dgtu(analysis: StructuralAnalysis) -> None:
     others = [g.label for g in analysis.groups if not g.is_dyad or g.composite]
-    if analysis.leftover or others:
+    placed = {link for g in (*analysis.input_groups, *analysis.groups) for link in g.links}
+    unplaced = [link for link in analysis.chain.moving_links if link not in placed]
+    if unplaced or others:
         parts = []
         if others:
             parts.append(f"groups {', '.join(others)} are not dyads of kinds 1–5")
-        if analysis.leftover:
-            parts.append(f"links {', '.join(map(str, analysis.leftover))} are in no group")
+        if unplaced:
+            parts.append(f"links {', '.join(map(str, unplaced))} are in no group")
         raise StructureError(f"{analysis.chain.name}: the identification table lists the input "
                              f"group and dyads only; {'; '.join(parts)}")
 
@@ -180,6 +182,11 @@ def check_identification(analysis: StructuralAnalysis,
                  f"{used[key]}", f"группа {group.label} уже описана в строке {used[key]}")
             continue
         used[key] = index
+        if group.group_class > 1 and not group.is_dyad:
+            miss("L", None, row.get("L"), f"{group.label} is not a dyad of kinds 1–5 and has no "
+                 f"row in this table", f"{group.label} — не двухповодковая группа 1–5 видов, "
+                 f"в этой таблице её описать нельзя")
+            continue
         expected_links = set(group.links)
         found_links = {x for x in (user_i, user_j) if x is not None}
         if found_links != expected_links:
@@ -215,7 +222,7 @@ def check_identification(analysis: StructuralAnalysis,
             user_seq[key] = (row["seq"], index, label)
 
     for group in groups:
-        if id(group) not in used:
+        if id(group) not in used and (group.group_class == 1 or group.is_dyad):
             out.append(Mismatch(None, table, "row", group.label, None,
                                 f"{table}: no row for group {group.label}",
                                 f"{table}: нет строки для группы {group.label}"))

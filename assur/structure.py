@@ -161,11 +161,18 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
     w_star = w + sum(d.data["r"] for d in loops)
     m = len(chain.inputs)
 
+    pose = pose_from_geometry(chain) if n <= _RANK_LIMIT else None
+    rank = _rank(chain, graph, groups, pose) if pose is not None else None
+
     issues: list[Diagnostic] = []
     if w_star != m:
         star = f" (W* = {w_star})" if w_star != w else ""
+        star_ru = star
+        if rank is not None and rank.W_geom != w:
+            star += f"; with the given dimensions W_geom = {rank.W_geom}"
+            star_ru += f"; при заданных размерах W_geom = {rank.W_geom}"
         issues.append(diagnostic("E_MOBILITY_MISMATCH", pairs=(), n=n, p5=p5, p4=p4, W=w, m=m,
-                                 star=star, star_ru=star))
+                                 star=star, star_ru=star_ru))
     if peeling.disconnected:
         issues.append(diagnostic("E_DISCONNECTED", peeling.disconnected))
     issues += graph.issues
@@ -175,10 +182,7 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
     for group in groups:
         issues += [d for d in group.issues if not _in_loop(d, loops)]
     issues += _idle(chain)
-    rank = None
-    pose = pose_from_geometry(chain) if n <= _RANK_LIMIT else None
-    if pose is not None:
-        rank = _rank(chain, graph, groups, pose)
+    if rank is not None:
         issues += _rank_issues(chain, rank, peeling)
     issues += [diagnostic("I_HIGH_DEGREE", [link], [p.id for p in chain.pairs_of(link)],
                           k=len(chain.pairs_of(link)))
@@ -387,9 +391,16 @@ def _rank(chain: Chain, graph: BodyGraph, groups: list[AssurGroup],
 
 
 def _rank_issues(chain: Chain, rank: RankResult, peeling: Peeling) -> list[Diagnostic]:
+    unplaced = {link for d in peeling.issues if d.code == "E_OVERCONSTRAINED"
+                for link in d.links}
     out = []
     for link in rank.passive:
-        out.append(diagnostic("W_PASSIVE_LINK", [link], [p.id for p in chain.pairs_of(link)]))
+        hint = hint_ru = ""
+        if link in unplaced:
+            hint = "; this is the link the decomposition could not place"
+            hint_ru = "; именно это звено не удалось включить в группы"
+        out.append(diagnostic("W_PASSIVE_LINK", [link], [p.id for p in chain.pairs_of(link)],
+                              hint=hint, hint_ru=hint_ru))
     for links in rank.singular:
         out.append(diagnostic("W_SINGULAR_POSE", links, ()))
     return out

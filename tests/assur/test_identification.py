@@ -170,3 +170,23 @@ def test_table_needs_dyads_only() -> None:
         {"id": p, "type": t, "links": [a, b]} for p, t, a, b in pairs], "inputs": [1]}}))
     with pytest.raises(StructureError, match="not dyads"):
         identification_table(triad)
+
+
+def test_row_for_a_triad_is_reported() -> None:
+    # the triad of tests/assur/chains/x01_triad.yaml (all R here) written as a dyad row
+    pairs = [("A", 0, 1), ("B", 1, 2), ("C", 2, 4), ("D", 3, 4), ("E", 3, 0), ("F", 4, 5),
+             ("G", 5, 0)]
+    triad = analyse_structure(chain_from_dict({"mechanism": {"pairs": [
+        {"id": p, "type": "R", "links": [a, b]} for p, a, b in pairs], "inputs": [1]}}))
+    rows = [{"L": 0, "i_minus_1": 0, "j_minus_1": None, "i": 1, "j": None},
+            {"L": 1, "i_minus_1": 1, "j_minus_1": 4, "i": 2, "j": 3}]
+    assert _found(check_identification(triad, rows)) == [(1, "L", None, 1)]
+
+
+def test_no_table_when_a_link_is_in_no_group() -> None:
+    # double parallelogram: the third crank 4 is placed in no group (redundant constraint)
+    pairs = [("A", 0, 1), ("B", 1, 2), ("C", 2, 3), ("D", 3, 0), ("E", 2, 4), ("F", 4, 0)]
+    analysis = analyse_structure(chain_from_dict({"mechanism": {"pairs": [
+        {"id": p, "type": "R", "links": [a, b]} for p, a, b in pairs], "inputs": [1]}}))
+    with pytest.raises(StructureError, match="links 4 are in no group"):
+        identification_table(analysis)

@@ -73,7 +73,9 @@ def sketch(l1: float, l2: float, l5: float, l_i: float, l_d: float) -> dict[str,
     c = d + 1j * l2
     axis = (c - a) / abs(c - a)
     b = a + axis * axis * np.conj(d - a)       # D mirrored in the diagonal AC
-    xy = (lambda z: [float(z.real), float(z.imag)])
+    def xy(z: complex) -> list[float]:
+        return [float(z.real), float(z.imag)]
+
     return {"A": {"point": xy(a)}, "B": {"point": xy(b)}, "C": {"point": xy(c)},
             "D": {"point": xy(d)}, "E": {"point": xy(e)},
             "S": {"point": xy(e), "direction": xy(c - e)},

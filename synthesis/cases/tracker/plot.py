@@ -15,8 +15,8 @@ import numpy as np
 
 from assur import atomic_write_bytes
 from synthesis.cases.tracker.geometry import proportions, stroke
-from synthesis.cases.tracker.patent import EXAMPLE, SERIES
 from synthesis.cases.tracker.model import TrackerMotion
+from synthesis.cases.tracker.patent import EXAMPLE, SERIES
 from synthesis.cases.tracker.study import Study
 
 if TYPE_CHECKING:
@@ -111,7 +111,7 @@ def chart_figure(study: Study, lang: str = "en") -> Figure:
     for ax, quantities, title in panels:
         for index, k5 in enumerate(k5s):
             values = proportions(task.stroke, k2, k5)
-            for quantity, style in zip(quantities, ("-", "--")):
+            for quantity, style in zip(quantities, ("-", "--"), strict=False):
                 ax.plot(k2, getattr(values, quantity), style, color=f"C{index}",
                         label=f"{quantity}, k5 = {k5:g}")
                 if patent:

@@ -165,7 +165,8 @@ def _cell(row: Comparison, lang: Lang) -> str:
 
 def _table(rows: list[list[str]]) -> list[str]:
     widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
-    return ["  " + "  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in rows]
+    return ["  " + "  ".join(c.ljust(w) for c, w in zip(r, widths, strict=True)).rstrip()
+            for r in rows]
 
 
 def _tabel1(study: Study, lang: Lang) -> list[str]:
@@ -376,21 +377,22 @@ def notes(study: Study, lang: Lang = "en") -> list[str]:
     d = check.design
     c_min = math.degrees(check.c_min)
     if lang == "en":
-        items = [f"The patent checks the transmission angle at B only. At C the actuator "
-                 f"meets the long rocker at {c_min:.1f}° at full extension, and the actuator's "
-                 f"lever arm about the platform drops to {check.lever_arm[2]:.0f} mm there "
-                 f"(from {max(check.motion.lever_arm):.0f} mm mid-stroke): the actuator force "
-                 "needed for a given platform torque is largest at that end."]
+        items = [f"The patent checks the transmission angle at B only. At C the angle between "
+                 f"the actuator and the long rocker falls to {c_min:.1f}°, and at full "
+                 f"extension the actuator's lever arm about the platform is "
+                 f"{check.lever_arm[2]:.0f} mm (up to {max(check.motion.lever_arm):.0f} mm "
+                 "elsewhere in the stroke): the actuator force needed for a given platform "
+                 "torque is largest there."]
         if d.l_i < d.l_s:
             items.append(f"The retracted hinge-to-hinge length l_i = {d.l_i:.0f} mm is shorter "
                          f"than the stroke l_s = {d.l_s:.0f} mm: a clevis-mounted single-stage "
                          "actuator cannot do this; the actuator must be trunnion-mounted with "
                          "its body behind E, or telescopic.")
         return items
-    items = [f"В патенте проверяется только угол передачи в B. В C привод встречает длинное "
-             f"коромысло под углом {c_min:.1f}° в выдвинутом положении, и плечо привода "
-             f"относительно оси платформы падает там до {check.lever_arm[2]:.0f} мм (с "
-             f"{max(check.motion.lever_arm):.0f} мм в середине хода): усилие привода для "
+    items = [f"В патенте проверяется только угол передачи в B. В C угол между приводом и "
+             f"длинным коромыслом падает до {c_min:.1f}°, а плечо привода относительно оси "
+             f"платформы в выдвинутом положении равно {check.lever_arm[2]:.0f} мм (до "
+             f"{max(check.motion.lever_arm):.0f} мм на остальном ходе): усилие привода для "
              "заданного момента на платформе там наибольшее."]
     if d.l_i < d.l_s:
         items.append(f"Длина втянутого привода между шарнирами l_i = {d.l_i:.0f} мм меньше хода "
@@ -472,7 +474,8 @@ def _design_dict(check: Verification | None) -> dict[str, Any] | None:
         "c_deg": deg(d.c), "d_deg": deg(d.d), "k_d": d.k_d, "k_i": d.k_i, "k_s": d.k_s,
         "k_g": d.k_g, "lengths_mm": d.lengths(),
         "violations": [violation_text(v) for v in d.violations],
-        "simulation": {"structure": check.motion.formula, "stroke_deg": deg(check.stroke), "b_min_deg": deg(check.b_min),
+        "simulation": {"structure": check.motion.formula, "stroke_deg": deg(check.stroke),
+                       "b_min_deg": deg(check.b_min),
                        "c_min_deg": deg(check.c_min), "l_g_mm": check.clearance,
                        "min_post_distance_mm": check.min_clearance,
                        "lever_arm_mm": {"least": check.lever_arm[0],

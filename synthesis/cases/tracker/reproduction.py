@@ -56,13 +56,16 @@ class Comparison:
 
     @property
     def difference(self) -> float | None:
-        """computed − printed (None where nothing is computed)."""
+        """Computed minus printed (None where nothing is computed)."""
         return None if self.computed is None else self.computed - self.printed
 
     @property
     def status(self) -> str:
-        """``'match'``, ``'differs'`` (no agreement expected), ``'MISMATCH'`` or
-        ``'not derivable'``."""
+        """How the row compares.
+
+        ``'match'`` (within the tolerance), ``'MISMATCH'`` (outside it), ``'differs'`` (no
+        agreement expected) or ``'not derivable'`` (nothing computed).
+        """
         if self.computed is None:
             return "not derivable"
         if self.tolerance is None:
@@ -91,7 +94,7 @@ def reproduce() -> list[Comparison]:
             computed = [float(v) for v in values]
         rows.extend(Comparison(series.quantity, float(x), series.k5, series.source, float(p),
                                c, None if c is None else _tolerance(series.quantity, x))
-                    for x, p, c in zip(k2, printed, computed))
+                    for x, p, c in zip(k2, printed, computed, strict=True))
     return rows
 
 
@@ -112,5 +115,5 @@ def reproduce_mm() -> list[Comparison]:
         rows.extend(Comparison(name, float(x), k5, "Tabel 1", float(p), float(r * l1),
                                None if name == "l_g" and not math.isclose(x, _K_G_CHECKED)
                                else tolerance * l1)
-                    for x, p, r in zip(k2, printed.values(), ratio))
+                    for x, p, r in zip(k2, printed.values(), ratio, strict=True))
     return rows

@@ -78,9 +78,7 @@ def pair_label(a: LinkId, b: LinkId, frame: LinkId) -> str:
     The frame is written last, other pairs in increasing order, as in ``method.md`` §3.5
     (``"3-0"``, ``"2-6"``); the input pair is written ``"0-1"`` by the caller.
     """
-    if a == frame:
-        a, b = b, a
-    elif b != frame and id_key(b) < id_key(a):
+    if a == frame or (b != frame and id_key(b) < id_key(a)):
         a, b = b, a
     return f"{a}-{b}"
 
@@ -186,8 +184,7 @@ def _read_pairs(mech: Node) -> tuple[list[_RawPair], list[LinkId]]:
     pairs: list[_RawPair] = []
     mentioned: list[LinkId] = []
     seen: dict[PairId, str] = {}
-    label = (lambda row: f"id {row['id']!r}" if "id" in row else None)
-    for row in mech.rows("pairs", _PAIR, label=label):
+    for row in mech.rows("pairs", _PAIR, label=_pair_label):
         pid = row.get("id", kind="id")
         ptype = row.choice("type", ["R", "P"])
         links = row.get("links", kind="list")
@@ -236,6 +233,10 @@ def _read_pairs(mech: Node) -> tuple[list[_RawPair], list[LinkId]]:
         if ok and MISSING not in (pid, ptype, links, guide):
             pairs.append(_RawPair(pid, PairType(ptype), links, guide, row.location))
     return pairs, mentioned
+
+
+def _pair_label(row: dict[str, Any]) -> str | None:
+    return f"id {row['id']!r}" if "id" in row else None
 
 
 def _read_inputs(mech: Node) -> list[Drive]:
@@ -458,7 +459,7 @@ def _group_pairs(row: dict[str, Any], frame: LinkId) -> list[Pair]:
                                            (ext_j, (j, j1), j1)):
         guide = None if carrier is None else (prev if carrier == "prev" else roles[carrier])
         label = pair_label(a, b, frame)
-        out.append(Pair(label, PairType(ptype), (b, a) if b == i1 or b == j1 else (a, b),
+        out.append(Pair(label, PairType(ptype), (b, a) if b in (i1, j1) else (a, b),
                         guide, label))
     return out
 

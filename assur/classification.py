@@ -206,10 +206,10 @@ def _dyad(raw: RawGroup, graph: BodyGraph, common: dict[str, Any],
         return AssurGroup(group_class=2, kind=None, name="PPP", issues=tuple(issues), **common)
     on_frame = [b for b in (ba, bb) if ext[b][1] == frame]
     if kind in (1, 4):
-        if len(on_frame) == 1:
-            j = on_frame[0]
-        else:
-            j = second if kind == 1 else first
+        # the link hinged to (L1) or guided by (L4) the frame is j; otherwise i < j for L1
+        # and j < i for L4 (structure.md §5.4)
+        default = second if kind == 1 else first
+        j = on_frame[0] if len(on_frame) == 1 else default
     elif kind == 2:
         j = ba if ta == "R" else bb
     elif kind == 3:
@@ -251,7 +251,7 @@ def _four(raw: RawGroup, graph: BodyGraph, internal: nx.MultiGraph,
                                  key=id_key)
                 cycle.append(options[0])
             contour = [_type(graph, next(iter(internal[a][b])))
-                       for a, b in zip(cycle, cycle[1:] + cycle[:1])]
+                       for a, b in zip(cycle, cycle[1:] + cycle[:1], strict=True)]
             external = ", ".join(ext_type[b] for b in sorted(ternary, key=id_key))
             return 4, f"IV(contour {'–'.join(contour)}; external {external})"
     return None
@@ -266,7 +266,8 @@ def _truss(raw: RawGroup, graph: BodyGraph) -> Diagnostic | None:
     for size in range(3, len(bodies) + 1):
         for subset in combinations(bodies, size):
             chosen = set(subset)
-            pairs = [pid for pid, (a, b) in zip(raw.internal, inner) if a in chosen and b in chosen]
+            pairs = [pid for pid, (a, b) in zip(raw.internal, inner, strict=True)
+                     if a in chosen and b in chosen]
             f = 3 * (size - 1) - 2 * len(pairs)
             if f <= 0:
                 return diagnostic("E_RIGID_TRUSS", graph.links(chosen), pairs, k=size,

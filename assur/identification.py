@@ -165,7 +165,8 @@ def check_identification(analysis: StructuralAnalysis,
     for index, row in enumerate(rows):
         label = _label(table, index, row)
 
-        def miss(field: str, expected: Any, found: Any, why: str = "", why_ru: str = "") -> None:
+        def miss(field: str, expected: Any, found: Any, why: str = "", why_ru: str = "",
+                 index: int = index, label: str = label) -> None:
             out.append(_mismatch(index, label, field, expected, found, why, why_ru))
 
         user_i, user_j = row.get("i"), row.get("j")
@@ -211,9 +212,9 @@ def check_identification(analysis: StructuralAnalysis,
             # judge the neighbour columns in the orientation that explains the row better
             theirs = _neighbours(analysis, group, user_i, user_j, row, index, label)
             ours = _neighbours(analysis, group, i, j, row, index, label)
-            out += theirs if len(theirs) < len(ours) else ours
+            out.extend(theirs if len(theirs) < len(ours) else ours)
         else:
-            out += _neighbours(analysis, group, i, j, row, index, label)
+            out.extend(_neighbours(analysis, group, i, j, row, index, label))
         if row.get("variant") not in _VARIANTS[kind] and "variant" in row:
             allowed = _VARIANTS[kind]
             miss("variant", " or ".join("null" if v is None else str(v) for v in allowed),

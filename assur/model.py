@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from enum import Enum
-from typing import Any, Union
+from typing import Any
 
 __all__ = [
     "Chain",
@@ -26,8 +26,8 @@ __all__ = [
     "id_key",
 ]
 
-LinkId = Union[int, str]
-PairId = Union[int, str]
+LinkId = int | str
+PairId = int | str
 
 
 def id_key(value: LinkId | PairId) -> tuple[int, int | str]:

@@ -8,7 +8,8 @@ of the slide line through c. With the frame columns dropped, ``W_geom = 3n − r
 extra parallel crank); this test can, and it names the passive-link candidates.
 
 The pose is read from the chain's ``geometry`` table: ``<pair id>: {point: [x, y]}`` and,
-for P pairs, ``direction: [dx, dy]`` or ``direction: <angle in degrees>``. When any pair lacks a point the test is skipped.
+for P pairs, ``direction: [dx, dy]`` or ``direction: <angle in degrees>``. When any pair
+lacks a point the test is skipped.
 """
 
 from __future__ import annotations
@@ -106,7 +107,7 @@ def constraint_jacobian(pairs: Iterable[Pair], pose: dict[PairId, tuple[complex,
     def row_for(pair: Pair, vec: complex, rotation: bool) -> np.ndarray:
         c = pose[pair.id][0] / scale
         row = np.zeros(3 * len(columns))
-        for link, sign in zip(pair.links, (1.0, -1.0)):
+        for link, sign in zip(pair.links, (1.0, -1.0), strict=True):
             if link not in index:
                 continue
             k = 3 * index[link]

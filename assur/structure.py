@@ -23,11 +23,11 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Any
 
+from assur.chain_table import recentre_hinge
 from assur.classification import AssurGroup, classify, input_group, roman
 from assur.decomposition import BodyGraph, Peeling, body_graph, peel
 from assur.diagnostics import Diagnostic, diagnostic
 from assur.model import Chain, Drive, LinkId, PairType, id_key
-from assur.chain_table import recentre_hinge
 from assur.rank_test import RankResult, pose_from_geometry, rank_test
 
 __all__ = ["AssurGroup", "Diagnostic", "StructuralAnalysis", "analyse_structure"]

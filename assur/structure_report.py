@@ -110,8 +110,9 @@ def _table(rows: Sequence[IdentificationRow]) -> list[str]:
     header = ["L", "seq", "i-1", "j-1", "i", "j", "i+1", "j+1", "variant", "out_code"]
     cells = [[_cell(getattr(row, key)) for key in COLUMNS] for row in rows]
     widths = [max(len(h), *(len(c[k]) for c in cells)) for k, h in enumerate(header)]
-    lines = ["  " + "  ".join(h.rjust(w) for h, w in zip(header, widths))]
-    lines += ["  " + "  ".join(c.rjust(w) for c, w in zip(line, widths)) for line in cells]
+    lines = ["  " + "  ".join(h.rjust(w) for h, w in zip(header, widths, strict=True))]
+    lines += ["  " + "  ".join(c.rjust(w) for c, w in zip(line, widths, strict=True))
+              for line in cells]
     return lines
 
 

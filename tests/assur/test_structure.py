@@ -118,3 +118,15 @@ def test_report_speaks_the_course_terms() -> None:
     english = structure_report(analysis)
     assert "Assur group of class 2, order 2, kind 2 (RRP); i = 3, j = 2" in english
     assert "DGTU method applicable: yes" in english
+
+
+def test_groups_larger_than_the_search_limit_are_still_found() -> None:
+    # the triad of tests/assur/chains/x01_triad.yaml with the subset search limited to 2
+    # links: the leftover component {2,3,4,5} has d = 12 − 12 = 0 and is taken whole
+    from assur.decomposition import body_graph, peel
+
+    pairs = [("A", 0, 1), ("B", 1, 2), ("C", 2, 4), ("D", 3, 4), ("E", 3, 0), ("F", 4, 5),
+             ("G", 5, 0)]
+    result = peel(body_graph(_revolute_chain(pairs, [1])), s_max=2)
+    assert [g.bodies for g in result.groups] == [(2, 3, 4, 5)]
+    assert not result.issues and not result.leftover

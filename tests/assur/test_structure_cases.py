@@ -48,7 +48,7 @@ def test_chain_case(path: Path) -> None:
         assert list(analysis.leftover) == expected["leftover"]
     if "groups" in expected:
         assert len(analysis.groups) == len(expected["groups"])
-        for group, want in zip(analysis.groups, expected["groups"]):
+        for group, want in zip(analysis.groups, expected["groups"], strict=True):
             _check_group(group, want)
     if "applicability" in expected:
         failed = [int(re.match(r"condition (\d+)", text).group(1))

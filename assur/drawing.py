@@ -118,7 +118,7 @@ def draw_mechanism(motion: Motion, index: int = 0, ax: Any = None, *, paths: boo
         u = np.exp(1j * angle)
         line_base = base + 1j * float(np.asarray(slider.offset).ravel()[0]) * u
         ends = line_base + np.array([lo - margin, hi + margin]) * u
-        style = dict(color="0.35", lw=2.2 if slider.carrier == frame else 1.4, zorder=2)
+        style = {"color": "0.35", "lw": 2.2 if slider.carrier == frame else 1.4, "zorder": 2}
         ax.plot(ends.real, ends.imag, "-", **style)
         if slider.carrier == frame:
             normal = -1j * u * 0.6 * r

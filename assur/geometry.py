@@ -36,10 +36,10 @@ from assur.model import LinkId, PairId, PairType
 from assur.tables import MISSING, Node, TableReader, describe, normalise_id
 
 __all__ = [
+    "KIND_COLUMNS",
     "Anchor",
     "GroupModel",
     "Guide",
-    "KIND_COLUMNS",
     "KinematicModel",
     "TracePoint",
     "build_model",

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Union
+from typing import Any
 
 import numpy as np
 
@@ -39,7 +39,7 @@ __all__ = [
     "velocity",
 ]
 
-Value = Union[Jet, np.ndarray]
+Value = Jet | np.ndarray
 
 
 @dataclass(frozen=True)
@@ -211,8 +211,7 @@ class _State:
         return self.point(guide.base), angle, offset
 
     def delta(self, group: GroupModel) -> Any:
-        name = group.column("delta")
-        return self.model.params[name] if name in self.model.params else 0.0
+        return self.model.params.get(group.column("delta"), 0.0)
 
     def slider(self, pair: PairId, carrier: LinkId, slider: LinkId, point: Value, s: Value,
                base: Value, angle: Value, offset: Any) -> None:

@@ -8,23 +8,19 @@ Prints crank positions per second for
   per analysed position, next to the single-design rate;
 * the existence check with interval refinement (one design, 360 angles).
 
-Run: ``python benchmarks/bench_mechanism.py [--repeat 5]``. Numpy is limited to one thread.
+Run: ``python benchmarks/bench_mechanism.py [--repeat 5] [--wall]``. Numpy's elementwise
+operations run on one thread, so the figures are for one core.
 """
 
 from __future__ import annotations
 
-import os
+import argparse
+import time
+from pathlib import Path
 
-for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_name, "1")
+import numpy as np
 
-import argparse  # noqa: E402
-import time  # noqa: E402
-from pathlib import Path  # noqa: E402
-
-import numpy as np  # noqa: E402
-
-import assur  # noqa: E402
+import assur
 
 TABLE = Path(__file__).resolve().parent.parent / "input_tables" / "course_11_link.yaml"
 

@@ -177,7 +177,7 @@ def test_identification_table_form_gives_the_same_summary_ranges(capsys) -> None
 
 def test_files_are_written(tmp_path: Path, capsys) -> None:
     csv_file, png, gif = tmp_path / "a.csv", tmp_path / "a.png", tmp_path / "a.gif"
-    code, out, _ = _run(capsys, EXAMPLE, "--points", "24", "--csv", csv_file, "--plot", png,
+    code, _, _ = _run(capsys, EXAMPLE, "--points", "24", "--csv", csv_file, "--plot", png,
                         "--at", "90", "--animate", gif, "--frames", "3", "--omega", "10")
     assert code == 0
     lines = csv_file.read_text().splitlines()
@@ -199,7 +199,7 @@ def test_bad_sketch_is_reported_with_every_problem(tmp_path: Path, capsys) -> No
     text = text.replace("direction: 150}", "direction: east}")
     bad = tmp_path / "bad.yaml"
     bad.write_text(text)
-    code, out, err = _run(capsys, bad)
+    code, _, err = _run(capsys, bad)
     assert code == 2
     assert "Traceback" not in err
     assert "geometry '2-3'" in err and "did you mean 'point'" in err

@@ -27,8 +27,8 @@ ORDER = 20
 
 _TEXT = {
     "title": ("Kinematic analysis: {name} ({source})", "Кинематический анализ: {name} ({source})"),
-    "crank": ("Input: crank {link}, {dir}, {n} positions over φ = 0…360° from the sketched "
-              "position", "Вход: кривошип {link}, {dir}, {n} положений φ = 0…360° от исходного"),
+    "crank": (("Input: crank {link}, {dir}, {n} positions over φ = 0…360° from the sketched "
+               "position"), "Вход: кривошип {link}, {dir}, {n} положений φ = 0…360° от исходного"),
     "actuator": ("Input: actuator length {lo:.3f}…{hi:.3f} mm, {n} positions",
                  "Вход: длина привода {lo:.3f}…{hi:.3f} мм, {n} положений"),
     "ccw": ("counter-clockwise", "против часовой стрелки"),
@@ -50,15 +50,15 @@ _TEXT = {
                     "Вывод: механизм разрывается в {n} из {total} положений."),
     "outputs": ("Output ranges (where assembled):", "Диапазоны выходных величин (где собран):"),
     "link": ("link {link} angle", "угол звена {link}"),
-    "slider": ("slider {slider} on {carrier}, pair {pair}: S", "ползун {slider} на {carrier}, "
-               "пара {pair}: S"),
+    "slider": ("slider {slider} on {carrier}, pair {pair}: S",
+               "ползун {slider} на {carrier}, пара {pair}: S"),
     "trace": ("tracing point {name}", "точка {name}"),
     "pressure": ("Pressure angles at C (L1/L2 with a two-hinge rod, [α] = 45°):",
                  "Углы давления в паре C (L1/L2 с двухшарнирным звеном, [α] = 45°):"),
     "no_pressure": ("Pressure angles: no L1/L2 group has a two-hinge rod (method.md §2.7).",
                     "Углы давления: нет групп L1/L2 с двухшарнирным звеном (method.md §2.7)."),
-    "alpha": ("{label}, pair {pair}: max {a:.2f}° at {at}", "{label}, пара {pair}: макс. {a:.2f}° "
-              "при {at}"),
+    "alpha": ("{label}, pair {pair}: max {a:.2f}° at {at}",
+              "{label}, пара {pair}: макс. {a:.2f}° при {at}"),
     "rotations": ("Relative rotation in the revolute joints (swing):",
                   "Относительный поворот во вращательных парах (размах):"),
     "full": ("full turn (crank pivot)", "полный оборот (опора кривошипа)"),
@@ -198,7 +198,7 @@ def summary(motion: Any, report: Any, lang: str = "en") -> str:
     lines += ["", _t("rotations", lang)]
     for item in assur.joint_rotations(motion):
         swing = _t("full", lang) if item.full_turn else f"{math.degrees(item.swing):8.2f}°"
-        lines.append(f"  {str(item.pair):<8} {item.links[0]}–{item.links[1]:<4} "
+        lines.append(f"  {item.pair!s:<8} {item.links[0]}–{item.links[1]:<4} "
                      f"{item.group:<12} {swing}")
     return "\n".join(lines)
 

@@ -308,7 +308,10 @@ def _read(reader: TableReader, base: Path) -> Problem:
     if g.get("direction") in (1, -1):
         for row in rows:
             if isinstance(row, dict) and row.get("L") == 0 and isinstance(row.get("params"), dict):
-                row["params"].setdefault("s", g["direction"])
+                if row["params"].setdefault("s", g["direction"]) != g["direction"]:
+                    reader.add("general 'direction'", f"the input group's params give s = "
+                                                      f"{row['params']['s']!r}; found "
+                                                      f"{g['direction']}")
     structure_ok = bool(rows) and not any(
         issue.location.startswith(("mechanism", "structure_identification", "parameters", "frame"))
         for issue in reader.issues)

@@ -457,14 +457,17 @@ def _applicability(a: StructuralAnalysis, graph: BodyGraph) -> list[tuple[str, s
     others = [g.label for g in a.groups if not g.is_dyad]
     if a.leftover or others or any(d.code in {"E_UNSUPPORTED_GROUP", "E_INTERNAL"} for d in
                                    a.issues):
-        what = []
+        what, what_ru = [], []
         if others:
             what.append(f"groups {', '.join(others)} are not dyads")
+            what_ru.append(f"группы {', '.join(others)} не являются двухповодковыми")
         if a.leftover:
             what.append(f"links {', '.join(map(str, a.leftover))} are in no group")
+            what_ru.append(f"звенья {', '.join(map(str, a.leftover))} не вошли в группы")
         text = "; ".join(what) or "the decomposition is incomplete"
+        text_ru = "; ".join(what_ru) or "разложение на группы не завершено"
         failed.append((f"condition 8: the mechanism must be built by layering dyads of kinds "
                        f"1–5 on the input group (class II); {text}",
                        f"условие 8: механизм должен образовываться наслоением двухповодковых "
-                       f"групп 1–5 видов на начальный механизм (II класс); {text}"))
+                       f"групп 1–5 видов на начальный механизм (II класс); {text_ru}"))
     return failed

@@ -75,7 +75,11 @@ def group_description(group: AssurGroup, lang: str = "en") -> str:
                 f"input group (class I mechanism): frame {group.i_minus_1} and input link "
                 f"{group.i}, driven pair {group.pair_i}")
     ext, internal = _pairs(group, lang)
-    if group.is_dyad:
+    if group.name == "PPP":
+        head = (f"уровень {group.level}: не группа Ассура (ППП: контур из поступательных пар)"
+                if ru else f"level {group.level}: not an Assur group (PPP: a loop of prismatic "
+                           f"pairs)")
+    elif group.is_dyad:
         head = (f"уровень {group.level}: группа Ассура {group.group_class} класса "
                 f"{group.order} порядка {group.kind} вида ({_RU_KIND[group.name]}); "
                 f"i = {group.i}, j = {group.j}" if ru else

@@ -130,3 +130,14 @@ def test_groups_larger_than_the_search_limit_are_still_found() -> None:
     result = peel(body_graph(_revolute_chain(pairs, [1])), s_max=2)
     assert [g.bodies for g in result.groups] == [(2, 3, 4, 5)]
     assert not result.issues and not result.leftover
+
+
+def test_russian_report_has_no_english_sentences() -> None:
+    # four-bar with a disconnected part (structure.md T26): every finding and every failed
+    # condition is written in Russian
+    pairs = [("A", 0, 1), ("B", 1, 2), ("C", 2, 3), ("D", 3, 0), ("E", 4, 5)]
+    russian = structure_report(analyse_structure(_revolute_chain(pairs, [1])), lang="ru")
+    assert "звенья {4, 5} не связаны со стойкой" in russian
+    assert "звенья 4, 5 не вошли в группы" in russian
+    for english in ("links", "group", "condition", "expected", "found"):
+        assert english not in russian

@@ -313,9 +313,12 @@ class _Topology:
         chain = analysis.chain
         self.chain = chain
         self.frame = chain.frame
-        if not getattr(analysis, "applicable", True) and not analysis.groups:
-            raise StructureError(f"{chain.source}: the chain is not decomposable into Assur "
-                                 f"groups; kinematics needs a class II mechanism")
+        if not analysis.decomposed:
+            found = "; ".join(d.message for d in analysis.issues
+                              if d.code.startswith("E")) or "links left over: " + ", ".join(
+                                  map(str, analysis.leftover))
+            raise StructureError(f"{chain.source}: the chain does not split into Assur groups, "
+                                 f"so it has no kinematic model ({found}); see 'assur check'")
         if len(chain.inputs) != 1:
             raise StructureError(f"{chain.source}: kinematic analysis needs exactly one input; "
                                  f"found {len(chain.inputs)}")
@@ -328,10 +331,8 @@ class _Topology:
         self.analysis = analysis
         self.groups = list(analysis.groups)
         self.composite_group = next((g for g in self.groups if g.composite), None)
-        labels = {}
-        for seq, group in enumerate(self.groups, start=2):
-            labels[group] = f"L{group.kind}({_link_text(group.i)},{_link_text(group.j)})"
-        self.labels = labels
+        self.labels = {group: f"L{group.kind}({_link_text(group.i)},{_link_text(group.j)})"
+                       for group in self.groups}
 
     def crank(self) -> tuple[LinkId, PairId]:
         """The crank and its driven pair (to the frame)."""
@@ -680,11 +681,11 @@ def _sketch_crank(topo: _Topology, sketch: _Sketch, build: _Builder) -> None:
     pins = [p for p in topo.chain.pairs if crank in p.links and p.id != driven]
     pin = sketch.point(pins[0]) if pins else None
     if pivot is None or pin is None:
-        sketch.reader.raise_if_any()
+        return  # recorded; the groups hinged to the crank are skipped too
     if pin == pivot:
         sketch.reader.add(f"geometry {pins[0].origin!r}", "the crank pin coincides with the "
                                                           "crank pivot (zero crank length)")
-        sketch.reader.raise_if_any()
+        return
     angle = cmath.phase(pin - pivot)
     build.put(label, "x_O1", pivot.real)
     build.put(label, "y_O1", pivot.imag)

@@ -36,6 +36,7 @@ _TEXT = {
     "existence": ("Existence of the groups (layering order; margin against δ):",
                   "Существование групп (в порядке наслоения; запас против δ):"),
     "assembles": ("assembles over the whole cycle", "собирается на всём цикле"),
+    "reached": ("assembles wherever it is reached", "собирается везде, где проверялась"),
     "fails": ("CANNOT BE ASSEMBLED", "НЕ СОБИРАЕТСЯ"),
     "not evaluated": ("not evaluated (an earlier group always fails)",
                       "не проверялась (раньше не собирается предыдущая группа)"),
@@ -156,7 +157,8 @@ def summary(motion: Any, report: Any, lang: str = "en") -> str:
     lines += ["", _t("existence", lang)]
     unit_words = {"mm": "mm" if lang == "en" else "мм", "deg": "°"}
     for group in report.groups:
-        verdict = _t(group.verdict, lang)
+        reached = group.verdict == "assembles" and not group.evaluated.all()
+        verdict = _t("reached" if reached else group.verdict, lang)
         lines.append(f"  {group.name:<20} {verdict}; "
                      + _t("margin", lang, m=group.min_margin, d=group.delta))
         lines.append(f"  {'':<20} {assur.CONDITIONS[group.kind]}")

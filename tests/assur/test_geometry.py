@@ -151,3 +151,13 @@ def test_with_params_rejects_unknown_names_with_a_hint() -> None:
     batch = model.with_params({"L1(2,3).l_i": np.array([[139.0], [141.0]])})
     assert batch.design_shape == (2, 1)
     assert model.design_shape == ()
+
+
+def test_chain_that_does_not_split_into_groups_has_no_model() -> None:
+    """A five-bar with one input keeps one degree of freedom: no kinematic model."""
+    pairs = [{"id": k, "type": "R", "links": links} for k, links in
+             (("A", [0, 1]), ("B", [1, 2]), ("C", [2, 3]), ("D", [3, 4]), ("E", [4, 0]))]
+    geometry = {k: {"point": p} for k, p in
+                (("A", [0, 0]), ("B", [10, 0]), ("C", [20, 10]), ("D", [30, 5]), ("E", [40, 0]))}
+    with pytest.raises(assur.StructureError, match="does not split into Assur groups"):
+        _model({"mechanism": {"pairs": pairs, "inputs": [1]}, "geometry": geometry})

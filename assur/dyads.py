@@ -14,9 +14,9 @@ below the assigned tolerance δ) and a ``reason`` code (see :data:`REASONS`).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from enum import IntEnum
-from typing import Callable, Union
 
 import numpy as np
 
@@ -35,7 +35,7 @@ __all__ = [
     "solve_rrr",
 ]
 
-Value = Union[Jet, np.ndarray, complex, float]
+Value = Jet | np.ndarray | complex | float
 
 #: A negative margin no larger than this is roundoff at a toggle position and is read as 0.
 ROUNDOFF = 64.0 * np.finfo(float).eps
@@ -123,14 +123,14 @@ class DyadSolution:
 
 def _branch(sigma: float | np.ndarray) -> float | np.ndarray:
     """Assembly sign as ±1.0; 0 (the L3 default of table 1.6) reads as +1."""
-    if np.ndim(sigma) == 0:
+    if getattr(sigma, "ndim", 0) == 0:
         return -1.0 if sigma < 0 else 1.0
-    return np.where(np.asarray(sigma) < 0, -1.0, 1.0)
+    return np.where(sigma < 0, -1.0, 1.0)
 
 
 def _shape(*args: object) -> tuple[int, ...]:
     """Broadcast shape of the values of ``args`` (cheap when they share one shape)."""
-    shapes = {a.v.shape if isinstance(a, Jet) else getattr(a, "shape", ()) for a in args}
+    shapes = {a.v.shape if type(a) is Jet else getattr(a, "shape", ()) for a in args}
     shapes.discard(())
     if len(shapes) <= 1:
         return shapes.pop() if shapes else ()
@@ -138,23 +138,34 @@ def _shape(*args: object) -> tuple[int, ...]:
 
 
 def _has_jet(*args: object) -> bool:
-    return any(isinstance(a, Jet) for a in args)
+    return Jet in map(type, args)
+
+
+def _read_only(x: object) -> np.ndarray:
+    base = np.array([x])
+    base.flags.writeable = False
+    return base
+
+
+_TRUE, _ASSEMBLES, _ONE = _read_only(True), _read_only(np.int8(Reason.ASSEMBLES)), _read_only(1.0)
 
 
 def _constant(x: object, shape: tuple[int, ...]) -> np.ndarray:
-    """A read-only array of ``shape`` whose every element is the number ``x``, without a copy."""
-    base = np.array([x])
-    base.flags.writeable = False
+    """A read-only array of ``shape`` whose every element is the number ``x``, without a copy.
+
+    ``x`` may also be one of the prepared one-element read-only arrays (``_TRUE`` ...).
+    """
+    base = x if type(x) is np.ndarray else _read_only(x)
     return np.ndarray(shape, base.dtype, base, 0, (0,) * len(shape))
 
 
 def _spread(x: Value, shape: tuple[int, ...]) -> Value:
     """``x`` with its value broadcast to ``shape``: ``x`` itself, or a read-only view."""
-    if isinstance(x, Jet):
+    if type(x) is Jet:
         return x if x.v.shape == shape else Jet(np.broadcast_to(x.v, shape), x.d1, x.d2)
     if getattr(x, "shape", ()) == shape:
         return x
-    return _constant(x, shape) if np.ndim(x) == 0 else np.broadcast_to(x, shape)
+    return _constant(x, shape) if getattr(x, "ndim", 0) == 0 else np.broadcast_to(x, shape)
 
 
 def _roundoff(margin: np.ndarray) -> np.ndarray | None:
@@ -162,7 +173,7 @@ def _roundoff(margin: np.ndarray) -> np.ndarray | None:
 
     Returns None in the usual case of no negative margin, found with one reduction.
     """
-    if np.ndim(margin) and np.minimum.reduce(margin, axis=None) >= 0.0:
+    if margin.ndim and np.minimum.reduce(margin, axis=None) >= 0.0:
         return None
     tiny = (margin < 0.0) & (margin > -ROUNDOFF)
     return tiny if tiny.any() else None
@@ -191,24 +202,24 @@ def _finish(
     margin: np.ndarray,
     delta: float | np.ndarray,
     failure: Callable[[], np.ndarray],
+    geometry: tuple[Value | None, ...],
     valid: np.ndarray | None = None,
-    **geometry: Value | None,
 ) -> DyadSolution:
     """Existence mask, reason codes and NaN blanking common to all solvers.
 
-    ``shape`` is the broadcast shape of the solver's arguments ``inputs``. ``failure()``
-    returns the reason code of each position as if it failed; it is evaluated only when some
-    position does fail. ``valid`` (optional) is a further condition of existence.
+    ``shape`` is the broadcast shape of the solver's arguments ``inputs``; ``geometry`` holds
+    the outputs ``c, origin_i, angle_i, origin_j, angle_j, s_i, s_j``. ``failure()`` returns
+    the reason code of each position as if it failed; it is evaluated only when some position
+    does fail. ``valid`` (optional) is a further condition of existence.
     """
     margin = margin if margin.shape == shape else np.broadcast_to(margin, shape)
-    if any(type(x) is Jet for x in geometry.values()):  # constant outputs become jets too
-        geometry = {name: x if x is None or type(x) is Jet else Jet(x)
-                    for name, x in geometry.items()}
+    if Jet in map(type, geometry):  # constant outputs become jets too
+        geometry = tuple(x if x is None or type(x) is Jet else Jet(x) for x in geometry)
     lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
     if lowest >= (delta if type(delta) is float else np.max(delta)) and (
             valid is None or valid.all()):
-        exists = _constant(True, shape)  # one reduction found every position assembled
-        reason = _constant(np.int8(Reason.ASSEMBLES), shape)
+        exists = _constant(_TRUE, shape)  # one reduction found every position assembled
+        reason = _constant(_ASSEMBLES, shape)
     else:
         exists = margin >= delta if valid is None else (margin >= delta) & valid
         bad = ~exists
@@ -217,8 +228,8 @@ def _finish(
             undefined |= ~np.isfinite(J.value(x))
         codes = np.where(undefined, Reason.UNDEFINED_INPUT, failure())
         reason = np.where(bad, codes, Reason.ASSEMBLES).astype(np.int8)
-        geometry = {name: _blank(x, bad) for name, x in geometry.items()}
-    return DyadSolution(margin=margin, exists=exists, reason=reason, **geometry)
+        geometry = tuple(_blank(x, bad) for x in geometry)
+    return DyadSolution(*geometry, margin, exists, reason)
 
 
 def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
@@ -242,7 +253,7 @@ def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
     with np.errstate(all="ignore"):
         u = J.expi(angle)
         if type(u) is np.ndarray and u.shape == shape and not _has_jet(o, length) \
-                and np.ndim(length) == 0:
+                and getattr(length, "ndim", 0) == 0:
             pin = u  # fast path: scale the interleaved (x, y) pairs in place
             pin.view(np.float64)[...] *= length
             pin += o
@@ -250,13 +261,12 @@ def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
             pin = o + length * u
         pv = J.value(pin)
         if np.isfinite(np.add.reduce(pv, axis=None)):  # one reduction: all positions finite
-            margin = _constant(1.0, shape)
+            margin = _constant(_ONE, shape)
         else:
             margin = np.where(np.isfinite(pv), 1.0, np.nan)
     return _finish(
         shape, (o, length, angle), margin, 0.0, lambda: Reason.UNDEFINED_INPUT,
-        c=pin, origin_i=_spread(o, shape), angle_i=_spread(angle, shape),
-        origin_j=None, angle_j=None, s_i=None, s_j=None,
+        (pin, _spread(o, shape), _spread(angle, shape), None, None, None, None),
     )
 
 
@@ -303,9 +313,8 @@ def solve_rrr(
                         np.where(d > longest, Reason.STRETCHED, Reason.FOLDED))
 
     return _finish(
-        shape, (h_i, h_j, l_i, l_j, s), margin, delta, failure, c=c,
-        origin_i=_spread(h_i, shape), angle_i=angle_i, origin_j=_spread(h_j, shape),
-        angle_j=angle_j, s_i=None, s_j=None,
+        shape, (h_i, h_j, l_i, l_j, s), margin, delta, failure,
+        (c, _spread(h_i, shape), angle_i, _spread(h_j, shape), angle_j, None, None),
     )
 
 
@@ -421,8 +430,7 @@ def solve_rrp(
         angle_j = J.arg(c - h_j)
     return _finish(
         shape, (h_j, a, theta, e, l_j, s), margin, delta, lambda: Reason.ROD_TOO_SHORT,
-        c=c, origin_i=c, angle_i=_spread(theta, shape), origin_j=_spread(h_j, shape),
-        angle_j=angle_j, s_i=slide, s_j=None,
+        (c, c, _spread(theta, shape), _spread(h_j, shape), angle_j, slide, None),
     )
 
 
@@ -471,8 +479,8 @@ def solve_rpr(
         return np.where(J.value(rho) == 0.0, Reason.COINCIDENT_HINGES, Reason.OFFSET_TOO_LARGE)
 
     return _finish(
-        shape, (h_i, h_j, h, s), margin, delta, failure, c=c, origin_i=_spread(h_i, shape),
-        angle_i=angle_i, origin_j=_spread(h_j, shape), angle_j=angle_i, s_i=t, s_j=None,
+        shape, (h_i, h_j, h, s), margin, delta, failure,
+        (c, _spread(h_i, shape), angle_i, _spread(h_j, shape), angle_i, t, None),
     )
 
 
@@ -512,9 +520,8 @@ def solve_prp(
         margin = np.where(np.isfinite(J.value(c)), np.abs(J.value(sin_ij)), np.nan)
     return _finish(
         shape, (a, theta_i, e_i, b, theta_j, e_j), margin, delta, lambda: Reason.GUIDES_PARALLEL,
+        (c, c, _spread(theta_i, shape), c, _spread(theta_j, shape), slide_i, slide_j),
         valid=margin > ROUNDOFF,
-        c=c, origin_i=c, angle_i=_spread(theta_i, shape), origin_j=c,
-        angle_j=_spread(theta_j, shape), s_i=slide_i, s_j=slide_j,
     )
 
 
@@ -553,7 +560,7 @@ def solve_rpp(
         margin = np.where(np.isfinite(J.value(c)), np.abs(J.value(minus_sin)), np.nan)
     return _finish(
         shape, (h_j, gamma, a, theta_s, e), margin, delta, lambda: Reason.GUIDES_PARALLEL,
+        (c, c, _spread(theta_s, shape), _spread(h_j, shape), _spread(theta_t, shape), slide,
+         t),
         valid=margin > ROUNDOFF,
-        c=c, origin_i=c, angle_i=_spread(theta_s, shape), origin_j=_spread(h_j, shape),
-        angle_j=_spread(theta_t, shape), s_i=slide, s_j=t,
     )

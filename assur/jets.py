@@ -18,8 +18,6 @@ Chain rule used throughout, for ``y = f(x)``::
 
 from __future__ import annotations
 
-from typing import Union
-
 import numpy as np
 
 __all__ = [
@@ -39,7 +37,7 @@ __all__ = [
     "where",
 ]
 
-ArrayLike = Union[complex, float, np.ndarray]
+ArrayLike = complex | float | np.ndarray
 
 
 class Jet:
@@ -71,7 +69,7 @@ class Jet:
     True
     """
 
-    __slots__ = ("v", "d1", "d2")
+    __slots__ = ("d1", "d2", "v")
     __array_ufunc__ = None
 
     def __init__(self, v: ArrayLike, d1: ArrayLike = 0.0, d2: ArrayLike = 0.0) -> None:
@@ -219,7 +217,7 @@ def expi(theta: Jet | ArrayLike) -> Jet | np.ndarray:
     return Jet(u, ju * theta.d1, (ju * theta.d2) - u * theta.d1 * theta.d1)
 
 
-def abs(x: Jet | ArrayLike) -> Jet | np.ndarray:  # noqa: A001 - mirrors numpy's name
+def abs(x: Jet | ArrayLike) -> Jet | np.ndarray:
     """Absolute value of a real argument, or modulus of a complex one."""
     if not isinstance(x, Jet):
         return np.abs(x)

@@ -3,18 +3,21 @@
 One crank-rocker four-bar (O₁ = 0, O₂ = 100 mm, crank 30, coupler 80, rocker 90) is solved over
 N crank angles of one turn, on one core, by
 
-(a) ``solve_input`` + ``solve_rrr`` on plain arrays (crank pin, joint C, both link angles, the
-    existence margin, mask and reason codes);
+(a) ``solve_input`` + ``solve_rrr`` on plain arrays: crank pin, joint C, both link angles, the
+    existence margin, mask and reason codes;
 (b) a hand-written minimal numpy closed form computing the same joints and link angles (no
     margin, mask or reasons): the practical limit of numpy on this machine;
-(c) pylinkage 1.3 (if installed): ``Linkage.step_fast`` (numba) and the plain ``step``;
-(d) 1,000 designs × 360 angles in one call of (a), parameters shaped (D, 1).
+(c) pylinkage 1.3, if installed: ``Linkage.step_fast`` (numba) and the plain ``step``;
+(d) 1,000 designs × 360 angles in one call (crank length varied, shape (1000, 1)), by (a)
+    and by (b).
 
-Every variant is timed in turn within each round, so that all of them see the same machine
-load; the table gives the median rate over the rounds and the ratios to (b) and to
-pylinkage's numba path. The script also checks that the variants agree on the coupler joint.
+Timing: in each round the variants run in a shuffled order; each one is called once untimed
+and then timed over a batch of calls, so that every figure is a steady-state rate, not the
+cost of the first call after another variant's memory traffic. The table gives the median
+over the rounds and the ratios measured in the same run. The script first checks that the
+variants agree on the coupler joint.
 
-Run: ``python benchmarks/bench_fourbar.py [--points N] [--rounds R]``.
+Run: ``python benchmarks/bench_fourbar.py [--points N ...] [--rounds R]``.
 """
 
 from __future__ import annotations
@@ -26,13 +29,14 @@ from collections.abc import Callable
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")  # one core: no threaded BLAS anywhere
 
-import numpy as np  # noqa: E402
+import numpy as np
 
-from assur import solve_input, solve_rrr  # noqa: E402
+from assur import solve_input, solve_rrr
 
 O1, O2 = 0.0 + 0.0j, 100.0 + 0.0j
 CRANK, COUPLER, ROCKER = 30.0, 80.0, 90.0
 SIGMA = 1.0
+BATCH_SECONDS = 0.02
 
 
 def ours(phi: np.ndarray, crank: float | np.ndarray = CRANK) -> np.ndarray:
@@ -41,10 +45,10 @@ def ours(phi: np.ndarray, crank: float | np.ndarray = CRANK) -> np.ndarray:
     return solve_rrr(pin.c, O2, COUPLER, ROCKER, SIGMA).c
 
 
-def handwritten(phi: np.ndarray) -> np.ndarray:
+def handwritten(phi: np.ndarray, crank: float | np.ndarray = CRANK) -> np.ndarray:
     """Minimal closed-form four-bar in real arithmetic: joints A, C and angles φ₂, φ₃."""
-    ax = CRANK * np.cos(phi)
-    ay = CRANK * np.sin(phi)
+    ax = crank * np.cos(phi)
+    ay = crank * np.sin(phi)
     rx = O2.real - ax
     ry = O2.imag - ay
     d2 = rx * rx + ry * ry
@@ -83,77 +87,106 @@ def numba_available() -> bool:
     return True
 
 
-def median_rate(times: list[float], positions: int) -> float:
-    return positions / float(np.median(times))
+def check_agreement(phi: np.ndarray, linkage: object | None) -> None:
+    """Print how far the variants are from each other on the coupler joint C."""
+    print(f"max |C_assur - C_hand| = {np.max(np.abs(ours(phi) - handwritten(phi))):.3e} mm")
+    if linkage is not None:
+        traj = linkage.step_fast(iterations=phi.size)
+        pins = traj[:, 2, 0] + 1j * traj[:, 2, 1]
+        c_pl = traj[:, 3, 0] + 1j * traj[:, 3, 1]
+        dev = min(np.nanmax(np.abs(c_pl - solve_rrr(pins, O2, COUPLER, ROCKER, b).c))
+                  for b in (SIGMA, -SIGMA))  # whichever branch pylinkage settled on
+        print(f"max |C_assur - C_pylinkage| on pylinkage's crank pins = {dev:.3e} mm")
+
+
+def steady_rate(run: Callable[[], object], positions: int) -> float:
+    """Positions per second of ``run`` over a batch of calls after one untimed call."""
+    run()
+    calls, elapsed = 0, 0.0
+    start = time.perf_counter()
+    while elapsed < BATCH_SECONDS:
+        run()
+        calls += 1
+        elapsed = time.perf_counter() - start
+    return positions * calls / elapsed
+
+
+def variants_for(n: int, designs: int) -> dict[str, tuple[Callable[[], object], int]]:
+    phi = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
+    variants: dict[str, tuple[Callable[[], object], int]] = {
+        f"(a) assur solvers, N = {n}": (lambda: ours(phi), n),
+        f"(b) hand-written numpy, N = {n}": (lambda: handwritten(phi), n),
+    }
+    linkage = pylinkage_linkage(n)
+    if linkage is not None and numba_available():
+        linkage.step_fast(iterations=n)  # compile once, outside the timing
+        variants[f"(c) pylinkage step_fast (numba), N = {n}"] = (
+            lambda: linkage.step_fast(iterations=n), n)
+    if linkage is not None:
+        steps = max(n // 10, 36)
+        variants[f"(c) pylinkage step (plain), N = {n}"] = (
+            lambda: list(linkage.step(iterations=steps)), steps)
+    return variants
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--points", type=int, default=3600, help="crank angles per call")
-    parser.add_argument("--rounds", type=int, default=15, help="timing rounds (median taken)")
+    parser.add_argument("--points", type=int, nargs="+", default=[360, 3600],
+                        help="crank angles per call (one table block each)")
+    parser.add_argument("--rounds", type=int, default=7, help="timing rounds (median taken)")
     parser.add_argument("--designs", type=int, default=1000, help="designs in variant (d)")
     args = parser.parse_args(argv)
-    n = args.points
-    phi = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
-    phi_d = np.linspace(0.0, 2.0 * np.pi, 360, endpoint=False)
-    cranks = np.linspace(0.9, 1.1, args.designs)[:, None] * CRANK
 
-    variants: dict[str, tuple[Callable[[], object], int]] = {
-        "(a) assur solvers, plain arrays": (lambda: ours(phi), n),
-        "(b) hand-written numpy closed form": (lambda: handwritten(phi), n),
-        f"(d) assur solvers, {args.designs} designs x 360": (
-            lambda: ours(phi_d, cranks), args.designs * 360),
-    }
-    linkage = pylinkage_linkage(n)
+    linkage = pylinkage_linkage(360)
     if linkage is None:
         print("pylinkage is not installed; to include it: pip install pylinkage==1.3.0")
-    else:
-        if numba_available():
-            linkage.step_fast(iterations=n)  # compile once, outside the timing
-            variants["(c) pylinkage 1.3 step_fast (numba)"] = (
-                lambda: linkage.step_fast(iterations=n), n)
-        else:
-            print("numba is not installed, so pylinkage's step_fast would run uncompiled;"
-                  " to include it: pip install numba")
-        steps = max(n // 10, 36)
-        variants["(c) pylinkage 1.3 step (plain)"] = (
-            lambda: list(linkage.step(iterations=steps)), steps)
+    elif not numba_available():
+        print("numba is not installed, so pylinkage's step_fast would run uncompiled;"
+              " to include it: pip install numba")
+    check_agreement(np.linspace(0.0, 2.0 * np.pi, 360, endpoint=False),
+                    linkage if numba_available() else None)
 
-    # agreement on the coupler joint before timing anything
-    c_ours, c_hand = ours(phi), handwritten(phi)
-    print(f"max |C_assur - C_hand| = {np.max(np.abs(c_ours - c_hand)):.3e} mm")
-    if linkage is not None:
-        linkage.step_fast(iterations=1)  # back to a known start is not needed: compare a turn
-        traj = linkage.step_fast(iterations=n)
-        c_pl = traj[:, 3, 0] + 1j * traj[:, 3, 1]
-        pins = traj[:, 2, 0] + 1j * traj[:, 2, 1]
-        c_ref = solve_rrr(pins, O2, COUPLER, ROCKER, SIGMA).c
-        c_alt = solve_rrr(pins, O2, COUPLER, ROCKER, -SIGMA).c
-        dev = min(np.nanmax(np.abs(c_pl - c_ref)), np.nanmax(np.abs(c_pl - c_alt)))
-        print(f"max |C_assur - C_pylinkage| on pylinkage's crank pins = {dev:.3e} mm")
+    variants: dict[str, tuple[Callable[[], object], int]] = {}
+    for n in args.points:
+        variants.update(variants_for(n, args.designs))
+    phi_d = np.linspace(0.0, 2.0 * np.pi, 360, endpoint=False)
+    cranks = np.linspace(0.9, 1.1, args.designs)[:, None] * CRANK
+    np.testing.assert_allclose(ours(phi_d, cranks), handwritten(phi_d, cranks), atol=1e-9)
+    variants[f"(d) assur solvers, {args.designs} x 360"] = (
+        lambda: ours(phi_d, cranks), args.designs * 360)
+    variants[f"(d) hand-written numpy, {args.designs} x 360"] = (
+        lambda: handwritten(phi_d, cranks), args.designs * 360)
 
-    for run, _ in variants.values():  # warm caches and allocators
-        run()
-    times: dict[str, list[float]] = {name: [] for name in variants}
+    rng = np.random.default_rng(7)
+    names = list(variants)
+    rates: dict[str, list[float]] = {name: [] for name in names}
     for _ in range(args.rounds):
-        for name, (run, _) in variants.items():
-            start = time.perf_counter()
-            run()
-            times[name].append(time.perf_counter() - start)
+        for name in rng.permutation(names):
+            run, count = variants[name]
+            rates[name].append(steady_rate(run, count))
+    median = {name: float(np.median(values)) for name, values in rates.items()}
 
-    rates = {name: median_rate(times[name], count) for name, (_, count) in variants.items()}
-    hand = rates["(b) hand-written numpy closed form"]
-    fast = rates.get("(c) pylinkage 1.3 step_fast (numba)")
-    print(f"\nfour-bar positions per second, N = {n} crank angles per call, "
-          f"median of {args.rounds} rounds, one process")
-    header = f"{'variant':46s} {'positions/s':>13s} {'vs (b)':>8s}"
-    header += f" {'vs numba':>9s}" if fast else ""
-    print(header)
-    for name in sorted(rates):
-        line = f"{name:46s} {rates[name]:13,.0f} {rates[name] / hand:8.2f}"
-        line += f" {rates[name] / fast:9.2f}" if fast else ""
+    print(f"\nfour-bar positions per second, one process, median of {args.rounds} rounds")
+    print(f"{'variant':44s} {'positions/s':>13s}  ratios")
+    for name in names:
+        print(f"{name:44s} {median[name]:13,.0f}")
+    print("\nratios measured side by side:")
+    for n in args.points:
+        a, b = median[f"(a) assur solvers, N = {n}"], median[f"(b) hand-written numpy, N = {n}"]
+        line = f"  N = {n:6d}: (a)/(b) = {a / b:5.2f}"
+        fast = median.get(f"(c) pylinkage step_fast (numba), N = {n}")
+        if fast:
+            line += f"   (a)/numba = {a / fast:5.2f}"
+        plain = median.get(f"(c) pylinkage step (plain), N = {n}")
+        if plain:
+            line += f"   (a)/plain step = {a / plain:6.1f}"
         print(line)
-    print("\ntargets: (a)/(b) >= 0.8, (a)/numba >= 1.5, (d) per position >= (a)")
+    d_ours = median[f"(d) assur solvers, {args.designs} x 360"]
+    d_hand = median[f"(d) hand-written numpy, {args.designs} x 360"]
+    print(f"  {args.designs} x 360 in one call: (d) assur/(d) hand = {d_ours / d_hand:5.2f};"
+          f" per position vs (a) at N = {args.points[-1]}:"
+          f" {d_ours / median[f'(a) assur solvers, N = {args.points[-1]}']:5.2f}")
+    print("targets: (a)/(b) >= 0.8, (a)/numba >= 1.5, (d) per position >= (a)")
     return 0
 
 

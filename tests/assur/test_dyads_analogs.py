@@ -118,16 +118,23 @@ def test_four_bar_analogs_against_complex_step_of_freudenstein() -> None:
     # pick the closed-form branch that is the solver's assembly (C left of A -> O₂)
     branch = min((1.0, -1.0), key=lambda b: np.max(np.abs(
         np.angle(np.exp(1j * (freudenstein_rocker_angle(PHI, b) - sol.angle_j.v))))))
-    psi = lambda phi: freudenstein_rocker_angle(phi, branch)  # noqa: E731
+
+    def psi(phi: np.ndarray) -> np.ndarray:
+        return freudenstein_rocker_angle(phi, branch)
+
     np.testing.assert_allclose(np.angle(np.exp(1j * (psi(PHI) - sol.angle_j.v))), 0, atol=1e-12)
     d1, d2 = complex_step(psi)
     np.testing.assert_allclose(sol.angle_j.d1, d1, rtol=1e-10, atol=1e-12)
     np.testing.assert_allclose(sol.angle_j.d2, d2, rtol=1e-6, atol=1e-8)
     # coupler joint C = O₂ + d·u(ψ): both coordinates are analytic in φ
-    for part, f in ((J.real, np.cos), (J.imag, np.sin)):
-        d1, d2 = complex_step(lambda phi: 90.0 * f(psi(phi)) + (100.0 if f is np.cos else 0.0))
-        np.testing.assert_allclose(part(sol.c).d1, d1, rtol=1e-9, atol=1e-9)
-        np.testing.assert_allclose(part(sol.c).d2, d2, rtol=1e-6, atol=1e-6)
+    coordinates = {
+        "x": (J.real(sol.c), lambda phi: 100.0 + 90.0 * np.cos(psi(phi))),
+        "y": (J.imag(sol.c), lambda phi: 90.0 * np.sin(psi(phi))),
+    }
+    for jet, formula in coordinates.values():
+        d1, d2 = complex_step(formula)
+        np.testing.assert_allclose(jet.d1, d1, rtol=1e-9, atol=1e-9)
+        np.testing.assert_allclose(jet.d2, d2, rtol=1e-6, atol=1e-6)
 
 
 def test_slider_crank_analogs_against_complex_step() -> None:

@@ -89,21 +89,21 @@ def configurations(draw: st.DrawFn, kind: str) -> tuple[dict, float]:
     crank = point() + s * draw(st.floats(0.05, 1.0)) * u(PHI + draw(angle))
     sigma = draw(st.sampled_from([1.0, -1.0]))
     if kind == "RRR":
-        args = dict(h_i=crank, h_j=point(), l_i=s * draw(positive), l_j=s * draw(positive),
-                    sigma=sigma)
+        args = {"h_i": crank, "h_j": point(), "l_i": s * draw(positive),
+                "l_j": s * draw(positive), "sigma": sigma}
     elif kind == "RRP":
-        args = dict(h_j=crank, a=point(), theta=draw(angle), e=s * draw(unit),
-                    l_j=s * draw(positive), sigma=sigma)
+        args = {"h_j": crank, "a": point(), "theta": draw(angle), "e": s * draw(unit),
+                "l_j": s * draw(positive), "sigma": sigma}
     elif kind == "RPR":
-        args = dict(h_i=point(), h_j=crank, h=s * draw(unit),
-                    sigma=draw(st.sampled_from([1.0, 0.0, -1.0])))
+        args = {"h_i": point(), "h_j": crank, "h": s * draw(unit),
+                "sigma": draw(st.sampled_from([1.0, 0.0, -1.0]))}
     elif kind == "PRP":
-        args = dict(a=crank, theta_i=draw(angle) + 0.4 * np.sin(PHI), e_i=s * draw(unit),
-                    b=point(), theta_j=draw(angle), e_j=s * draw(unit))
+        args = {"a": crank, "theta_i": draw(angle) + 0.4 * np.sin(PHI), "e_i": s * draw(unit),
+                "b": point(), "theta_j": draw(angle), "e_j": s * draw(unit)}
     else:
         gamma = draw(st.floats(0.05, np.pi - 0.05)) * draw(st.sampled_from([1.0, -1.0]))
-        args = dict(h_j=crank, gamma=gamma, a=point(),
-                    theta_s=draw(angle) + 0.4 * np.sin(PHI), e=s * draw(unit))
+        args = {"h_j": crank, "gamma": gamma, "a": point(),
+                "theta_s": draw(angle) + 0.4 * np.sin(PHI), "e": s * draw(unit)}
     return args, s
 
 
@@ -192,20 +192,20 @@ def test_constraints_hold_where_the_group_exists(kind: str, data: st.DataObject)
 
 @given(data=st.data())
 def test_assembly_variant_sign_conventions(data: st.DataObject) -> None:
-    args, s = data.draw(configurations("RRR"))
+    args, _ = data.draw(configurations("RRR"))
     sol = solve_rrr(**args)
     ok = sol.exists & (sol.margin > 1e-6)
     side = cross(args["h_j"] - args["h_i"], sol.c - args["h_i"])  # > 0: C left of H_i -> H_j
     assert np.all(np.sign(side[ok]) == args["sigma"])
 
-    args, s = data.draw(configurations("RRP"))
+    args, _ = data.draw(configurations("RRP"))
     sol = solve_rrp(**args)
     ok = sol.exists & (sol.margin < 1 - 1e-6)
     ut = u(args["theta"])
     ahead = dot(ut, sol.c - args["h_j"])  # along +u(θ) from the foot of the perpendicular
     assert np.all(np.sign(ahead[ok]) == args["sigma"])
 
-    args, s = data.draw(configurations("RPR"))
+    args, _ = data.draw(configurations("RPR"))
     sol = solve_rpr(**args)
     ok = sol.exists & (sol.margin > 1e-6)
     assert np.all(np.sign(sol.s_i[ok]) == (-1.0 if args["sigma"] < 0 else 1.0))

@@ -22,24 +22,36 @@ __all__ = [
 from assur.chain_table import chain_from_dict, load_chain  # noqa: E402
 from assur.classification import AssurGroup  # noqa: E402
 from assur.diagnostics import Diagnostic  # noqa: E402
+from assur.identification import (  # noqa: E402
+    IdentificationRow,
+    Mismatch,
+    check_identification,
+    identification_table,
+)
 from assur.model import Chain, Drive, Input, Link, LinkId, Pair, PairId, PairType  # noqa: E402
 from assur.structure import StructuralAnalysis, analyse_structure  # noqa: E402
+from assur.structure_report import structure_report  # noqa: E402
 
 __all__ += [
     "AssurGroup",
     "Chain",
     "Diagnostic",
     "Drive",
+    "IdentificationRow",
     "Input",
     "Link",
     "LinkId",
+    "Mismatch",
     "Pair",
     "PairId",
     "PairType",
     "StructuralAnalysis",
     "analyse_structure",
     "chain_from_dict",
+    "check_identification",
+    "identification_table",
     "load_chain",
+    "structure_report",
 ]
 
 # --- kinematics: group solvers, mechanism analysis, existence (kinematics owner) ---

@@ -12,10 +12,14 @@ from __future__ import annotations
 import argparse
 import json
 
-from assur import analyse_structure, load_chain
-from assur.errors import StructureError
-from assur.identification import check_identification, identification_table
-from assur.structure_report import structure_report
+from assur import (
+    StructureError,
+    analyse_structure,
+    check_identification,
+    identification_table,
+    load_chain,
+    structure_report,
+)
 
 NAME = "check"
 HELP = "structural analysis of a chain table: mobility, Assur groups, formula, DGTU table"

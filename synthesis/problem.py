@@ -21,7 +21,9 @@ complete example of each task class):
     The varied-parameter tables 2.1–2.6, one row per group (``links: [i, j]``, or
     ``links: [1]`` for L0); each column of the group is ``[initial, lower, upper]``, a single
     number (a fixed value, lower = upper = initial), ``A`` (taken from earlier groups) or
-    ``[0, 0, 0]`` (absent).  Lengths in mm (table units), angles in degrees.
+    ``0`` (absent).  Lengths in mm (table units), angles in degrees.  A row replaces the
+    same columns of the identification row with the same links; the kinematic model then
+    checks every column (:func:`assur.build_model`).
 ``allowable``
     Tables 2.7–2.11: rows ``{links: [i, j], pressure_angle: deg, rotations: {joint: deg}}``.
 ``control_points``

@@ -121,7 +121,7 @@ def _read_chain_form(reader: TableReader) -> Chain:
                                         f"({_list(links)})")
     inputs = _read_inputs(mech)
     _check_pairs(reader, raw_pairs, set(links))
-    _check_inputs(reader, inputs, set(links), raw_pairs)
+    _check_inputs(reader, inputs, set(links), raw_pairs, frame)
     geometry = _geometry(reader, top, mech)
     general = top.get("general", kind="mapping", required=False, default=None)
     rows = _read_rows(top, required=False)
@@ -273,12 +273,15 @@ def _check_pairs(reader: TableReader, pairs: list[_RawPair], links: set[LinkId])
 
 
 def _check_inputs(reader: TableReader, inputs: list[Drive], links: set[LinkId],
-                  pairs: list[_RawPair]) -> None:
+                  pairs: list[_RawPair], frame: Any) -> None:
     by_id = {pair.id: pair for pair in pairs}
     seen: set[Any] = set()
     for index, drive in enumerate(inputs):
         where = f"mechanism.inputs[{index}]"
-        if drive.link is not None and drive.link not in links:
+        if drive.link is not None and drive.link == frame:
+            reader.add(f"{where} 'link'", f"the frame {frame!r} cannot be an input; name the "
+                                          f"driven link that turns on it")
+        elif drive.link is not None and drive.link not in links:
             reader.add(f"{where} 'link'", f"link {drive.link!r} is not in the links table "
                                           f"({_list(links)})")
         if drive.pair is not None:

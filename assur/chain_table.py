@@ -21,6 +21,7 @@ import os
 from dataclasses import replace
 from typing import Any
 
+from assur.errors import TableError
 from assur.model import Chain, Drive, LinkId, Pair, PairId, PairType, id_key
 from assur.tables import MISSING, Node, TableReader, describe, normalise_id
 
@@ -94,8 +95,7 @@ def _read(reader: TableReader) -> Chain:
         if isinstance(data, dict):
             reader.add("", "expected a 'mechanism:' table (chain form) or a "
                            "'structure_identification:' table; found neither")
-        reader.raise_if_any()
-        raise AssertionError("unreachable")  # pragma: no cover
+        raise TableError(reader.source, reader.issues)
     reader.raise_if_any()
     return chain
 

@@ -163,16 +163,9 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
 
     pose = pose_from_geometry(chain) if n <= _RANK_LIMIT else None
     rank = _rank(chain, graph, groups, pose) if pose is not None else None
-
     issues: list[Diagnostic] = []
     if w_star != m:
-        star = f" (W* = {w_star})" if w_star != w else ""
-        star_ru = star
-        if rank is not None and rank.W_geom != w:
-            star += f"; with the given dimensions W_geom = {rank.W_geom}"
-            star_ru += f"; при заданных размерах W_geom = {rank.W_geom}"
-        issues.append(diagnostic("E_MOBILITY_MISMATCH", pairs=(), n=n, p5=p5, p4=p4, W=w, m=m,
-                                 star=star, star_ru=star_ru))
+        issues.append(_mismatch(n, p5, p4, w, w_star, m, rank))
     if peeling.disconnected:
         issues.append(diagnostic("E_DISCONNECTED", peeling.disconnected))
     issues += graph.issues
@@ -188,23 +181,40 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
                           k=len(chain.pairs_of(link)))
                for link in chain.moving_links if len(chain.pairs_of(link)) > 3]
 
+    formula, formula_levels = _formula(inputs, groups)
+    analysis = StructuralAnalysis(
+        chain=chain, n=n, p5=p5, p4=p4, W=w, W_star=w_star, m=m, input_groups=inputs,
+        groups=tuple(groups), formula=formula, formula_levels=formula_levels,
+        mechanism_class=max((g.group_class for g in groups), default=1), applicable=False,
+        applicability=(), applicability_ru=(), issues=tuple(issues),
+        leftover=tuple(sorted(peeling.leftover + peeling.disconnected, key=id_key)), rank=rank)
+    failed = _applicability(analysis, graph)
+    return replace(analysis, applicable=not failed, applicability=tuple(f[0] for f in failed),
+                   applicability_ru=tuple(f[1] for f in failed))
+
+
+def _formula(inputs: tuple[AssurGroup, ...], groups: list[AssurGroup]
+             ) -> tuple[str, tuple[tuple[str, ...], ...]]:
+    """Structure formula (input groups, then the groups in layering order) and its levels."""
     levels: dict[int, list[str]] = {}
     for group in groups:
         levels.setdefault(group.level, []).append(group.label)
     head = ", ".join(g.label for g in inputs)
     formula = " → ".join(([head] if head else []) + [g.label for g in groups])
-    formula_levels = tuple(([tuple(g.label for g in inputs)] if inputs else []) +
-                           [tuple(levels[k]) for k in sorted(levels)])
-    mech_class = max((g.group_class for g in groups), default=1)
-    analysis = StructuralAnalysis(
-        chain=chain, n=n, p5=p5, p4=p4, W=w, W_star=w_star, m=m, input_groups=inputs,
-        groups=tuple(groups), formula=formula, formula_levels=formula_levels,
-        mechanism_class=mech_class, applicable=False, applicability=(), applicability_ru=(),
-        issues=tuple(issues),
-        leftover=tuple(sorted(peeling.leftover + peeling.disconnected, key=id_key)), rank=rank)
-    failed = _applicability(analysis, graph)
-    return replace(analysis, applicable=not failed, applicability=tuple(f[0] for f in failed),
-                   applicability_ru=tuple(f[1] for f in failed))
+    by_level = tuple(([tuple(g.label for g in inputs)] if inputs else []) +
+                     [tuple(levels[k]) for k in sorted(levels)])
+    return formula, by_level
+
+
+def _mismatch(n: int, p5: int, p4: int, w: int, w_star: int, m: int,
+              rank: RankResult | None) -> Diagnostic:
+    star = f" (W* = {w_star})" if w_star != w else ""
+    star_ru = star
+    if rank is not None and rank.W_geom != w:
+        star += f"; with the given dimensions W_geom = {rank.W_geom}"
+        star_ru += f"; при заданных размерах W_geom = {rank.W_geom}"
+    return diagnostic("E_MOBILITY_MISMATCH", pairs=(), n=n, p5=p5, p4=p4, W=w, m=m, star=star,
+                      star_ru=star_ru)
 
 
 # ------------------------------------------------------------------------- compound hinges

@@ -48,6 +48,17 @@ def layered_chains(draw: st.DrawFn) -> tuple[dict, list[tuple]]:
             pairs.append(row)
         level[u] = level[v] = 1 + max(level[a], level[b])
         groups.append((frozenset((u, v)), kind, level[u], u, v))
+    # renumber the moving links after the crank at random and shuffle the pair rows: the
+    # decomposition must not depend on either
+    new = dict(zip(range(2, 2 + 2 * len(groups)),
+                   draw(st.permutations(range(2, 2 + 2 * len(groups)))), strict=True))
+    new.update({0: 0, 1: 1})
+    for row in pairs:
+        row["links"] = [new[x] for x in row["links"]]
+        if "guide" in row:
+            row["guide"] = new[row["guide"]]
+    groups = [(frozenset(new[x] for x in links), kind, lev, new[u], new[v])
+              for links, kind, lev, u, v in groups]
     order = draw(st.permutations(range(len(pairs))))
     return {"mechanism": {"pairs": [pairs[k] for k in order], "inputs": [1]}}, groups
 

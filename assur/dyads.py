@@ -98,13 +98,16 @@ class DyadSolution:
         Normalised existence margin (``method.md`` §5.4): L1 ``1 − |c|``, L2 ``1 − |h|/l_j``,
         L3 ``1 − |h|/ρ``, L4 ``|sin(θ_j − θ_i)|``, L5 ``|sin γ|``, L0 1.
     exists : ndarray, bool
-        ``margin >= delta`` (False where the margin is NaN).
+        ``margin >= delta``; False where the margin is NaN (an input is undefined) and, for L4
+        and L5, where the guides are parallel within roundoff (``margin <= ROUNDOFF``).
     reason : ndarray, int8
         0 where the group exists, else a :class:`Reason` code (the condition that fails, or
         the nearest one when the margin is only below δ).
 
     Notes
     -----
+    Every output has the broadcast shape of the arguments; outputs that are constant over it
+    (a fixed origin, an all-true mask) are read-only views rather than copies.
     Geometric outputs are NaN wherever ``exists`` is False. To see the geometry inside the
     tolerance band, solve with ``delta=0`` and compare ``margin`` with δ yourself.
     """

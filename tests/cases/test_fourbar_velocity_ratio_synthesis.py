@@ -96,7 +96,8 @@ def test_variants_meet_every_condition(request_):
 # Requests chosen on a plain grid, not adjusted to the solver.
 GRID = [Request(n_star=n, psi1=p * DEG, e=e, delta=d)
         for e, n, p, d in [(0.15, 0.2, 15, 0.02), (0.35, 0.45, 25, 0.1), (0.55, 0.7, 10, 0.01),
-                           (0.25, -0.6, 12, 0.05), (0.45, 0.35, 30, 0.2), (0.2, -1.5, 8, 0.05)]]
+                           (0.25, -0.6, 12, 0.05), (0.45, 0.35, 30, 0.2), (0.2, -1.5, 8, 0.05),
+                           (0.3, 0.4, 18, 0.04), (0.4, 0.55, 14, 0.03)]]
 
 
 solve_once = lru_cache(maxsize=None)(solve_modern)

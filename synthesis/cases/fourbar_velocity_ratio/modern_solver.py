@@ -4,8 +4,8 @@
 The scan covers the whole Grashof crank-rocker domain: the rocker as ``r = r_min/u`` with
 ``r_min = max(e, e/|n*|)`` (every design has r ≥ e/|n*|, because n = ±e/r where crank and rocker
 are parallel) and ``u ∈ (0, 1)``; the coupler as ``c = c_lo + t·(c_hi − c_lo)`` with
-``t ∈ (0, 1)`` between the Grashof limits (spaced densely near both limits, where the peak
-is sharp); for the ``crank`` form also e ∈ (0, 1). At each grid
+``t ∈ (0, 1)`` between the Grashof limits (spaced densely near both limits, down to about 5e-5 of the
+interval, because the peak becomes sharp and the design curve ends there); for the ``crank`` form also e ∈ (0, 1). At each grid
 design the peak of the ratio over the turn and the zone widths at the end value are read from
 a sampled n(θ); the local minima of the mismatch with the request are the starts. Every root
 is then classified (:func:`~.conditions.design_defect`), so that the answer lists every
@@ -42,6 +42,7 @@ __all__ = ["ModernResult", "solve_modern", "min_transmission_angle"]
 _GRID = {"paper": (1, 40, 40), "delta": (1, 40, 40), "crank": (20, 24, 24)}
 _SAMPLES = 360
 _CHUNK = 4096
+_CLUSTER = 5.0
 _MAX_STARTS = 24
 _ACCEPT = 1e-11
 
@@ -88,7 +89,7 @@ def _grid(request: Request) -> dict[str, NDArray[np.float64]]:
     """Grid designs covering the crank-rocker domain, axes (e, u, t)."""
     count_e, count_u, count_t = _GRID[request.form]
     u = np.linspace(0.0, 1.0, count_u + 2)[1:-1]
-    t = 0.5 - 0.5 * np.cos(np.linspace(0.0, np.pi, count_t + 2)[1:-1])
+    t = 0.5 + 0.5 * np.tanh(_CLUSTER * np.linspace(-1.0, 1.0, count_t))
     e = (np.linspace(0.0, 1.0, count_e + 2)[1:-1] if request.form == "crank"
          else np.array([request.e]))
     ee, uu, tt = np.meshgrid(e, u, t, indexing="ij")
@@ -147,29 +148,38 @@ def _sample(request: Request, e: NDArray[np.float64], c: NDArray[np.float64],
     return np.stack(mismatch), theta[peak], extra, height
 
 
-def _starts(request: Request) -> tuple[list[NDArray[np.float64]], int, dict[str, float]]:
-    """Starting unknowns from the grid scan, the number of grid designs, and the attainable
-    ranges (for the no-solution message).
+@dataclass
+class _Scan:
+    """The sampled grid: designs (axes e, u, t), mismatch fields, peak angle and height."""
 
-    A start is the centre of a grid cell in which every mismatch changes sign.
-    """
+    grid: dict[str, NDArray[np.float64]]
+    fields: NDArray[np.float64]
+    theta_peak: NDArray[np.float64]
+    extra: NDArray[np.float64]
+    height: NDArray[np.float64]
+
+
+def _scan(request: Request) -> _Scan:
+    """Sample n(θ) at every grid design (in chunks) and measure the mismatch."""
     grid = _grid(request)
     shape = grid["e"].shape
     flat = {k: v.ravel() for k, v in grid.items()}
     parts = [_sample(request, *(flat[k][i:i + _CHUNK] for k in ("e", "c", "r")))
              for i in range(0, flat["e"].size, _CHUNK)]
     mismatch, theta_peak, extra, height = (np.concatenate(p, axis=-1) for p in zip(*parts))
-    fields = mismatch.reshape(-1, *shape)
-    dims = [k for k in range(3) if shape[k] > 1]
+    return _Scan(grid, mismatch.reshape(-1, *shape), theta_peak.reshape(shape),
+                 extra.reshape(shape), height.reshape(shape))
+
+
+def _cell_starts(request: Request, scan: _Scan) -> list[NDArray[np.float64]]:
+    """Centres of the grid cells in which every mismatch changes sign (``crank`` form)."""
+    fields, shape = scan.fields, scan.grid["e"].shape
     lows, highs = np.full(fields.shape, np.inf), np.full(fields.shape, -np.inf)
-    cell = tuple(slice(0, -1) if k in dims else slice(None) for k in range(3))
-    for corner in np.ndindex(*(2 if k in dims else 1 for k in range(3))):
-        pick = tuple(slice(b, shape[k] - 1 + b) if k in dims else slice(None)
-                     for k, b in enumerate(corner))
-        lows[(slice(None), *cell)] = np.minimum(lows[(slice(None), *cell)],
-                                                fields[(slice(None), *pick)])
-        highs[(slice(None), *cell)] = np.maximum(highs[(slice(None), *cell)],
-                                                 fields[(slice(None), *pick)])
+    cell = (slice(None), slice(0, -1), slice(0, -1), slice(0, -1))
+    for corner in np.ndindex(2, 2, 2):
+        pick = (slice(None), *(slice(b, shape[k] - 1 + b) for k, b in enumerate(corner)))
+        lows[cell] = np.minimum(lows[cell], fields[pick])
+        highs[cell] = np.maximum(highs[cell], fields[pick])
     straddle = np.all((lows <= 0.0) & (highs >= 0.0) & np.isfinite(lows) & np.isfinite(highs),
                       axis=0)
     centre_mismatch = np.sqrt(np.sum(np.square(fields), axis=0))
@@ -181,19 +191,40 @@ def _starts(request: Request) -> tuple[list[NDArray[np.float64]], int, dict[str,
             kept.append(index)
     starts = []
     for index in kept:
-        corners = [tuple(index[k] + b[k] if k in dims else index[k] for k in range(3))
-                   for b in np.ndindex(2, 2, 2)]
-        corners = list(dict.fromkeys(corners))
-        x = [np.mean([grid["c"][p] for p in corners]), np.mean([grid["r"][p] for p in corners]),
-             _mean_angle([theta_peak.reshape(shape)[p] for p in corners])]
+        corners = [tuple(index + np.array(b)) for b in np.ndindex(2, 2, 2)]
+        starts.append(np.array([np.mean([scan.grid["c"][p] for p in corners]),
+                                np.mean([scan.grid["r"][p] for p in corners]),
+                                _mean_angle([scan.theta_peak[p] for p in corners]),
+                                np.mean([scan.extra[p] for p in corners])]))
+    return starts
+
+
+def _curve_seeds(request: Request, scan: _Scan) -> list[tuple[NDArray[np.float64], float]]:
+    """Points of the design curve (peak = n*) on each grid row of constant r, with the r of
+    the next row: the segments along which the reduced equation is followed."""
+    gap = scan.fields[0, 0]
+    r = scan.grid["r"][0, :, 0]
+    seeds = []
+    for i, j in np.argwhere((np.sign(gap[:, :-1]) != np.sign(gap[:, 1:]))
+                            & np.isfinite(gap[:, :-1] + gap[:, 1:])):
+        part = gap[i, j] / (gap[i, j] - gap[i, j + 1])
+        c = (1 - part) * scan.grid["c"][0, i, j] + part * scan.grid["c"][0, i, j + 1]
+        x = [c, r[i], scan.theta_peak[0, i, j if part < 0.5 else j + 1]]
         if request.form != "paper":
-            x.append(np.mean([extra.reshape(shape)[p] for p in corners]))
-        starts.append(np.array(x))
-    finite = np.isfinite(height)
-    ranges = {"peak_min": float(request.sign * np.min(height[finite])),
-              "peak_max": float(request.sign * np.max(height[finite]))}
+            x.append(scan.extra[0, i, j])
+        for neighbour in (i - 1, i + 1):
+            if 0 <= neighbour < len(r):
+                seeds.append((np.array(x), float(r[neighbour])))
+    return seeds
+
+
+def _ranges(request: Request, scan: _Scan) -> dict[str, float]:
+    """Peaks and zone widths seen on the grid, for the no-solution message."""
+    height = scan.height[np.isfinite(scan.height)]
+    ranges = {"peak_min": float(request.sign * np.min(height)),
+              "peak_max": float(request.sign * np.max(height))}
     if request.form == "paper":
-        peak_gap, width_gap = fields[0, 0], fields[1, 0]
+        peak_gap, width_gap = scan.fields[0, 0], scan.fields[1, 0]
         cross = (np.sign(peak_gap[:, :-1]) != np.sign(peak_gap[:, 1:])) & np.isfinite(
             peak_gap[:, :-1] + peak_gap[:, 1:] + width_gap[:, :-1] + width_gap[:, 1:])
         if cross.any():
@@ -201,7 +232,7 @@ def _starts(request: Request) -> tuple[list[NDArray[np.float64]], int, dict[str,
             wa, wb = width_gap[:, :-1][cross], width_gap[:, 1:][cross]
             widths = wa + (wb - wa) * a / (a - b) + request.psi1
             ranges["psi1_min"], ranges["psi1_max"] = float(widths.min()), float(widths.max())
-    return starts, flat["e"].size, ranges
+    return ranges
 
 
 def _mean_angle(angles: list[float]) -> float:
@@ -244,31 +275,32 @@ class _Rocker:
         return float(residual[2])
 
 
-def _roots_along_rocker(request: Request, start: NDArray[np.float64], step: float = 0.01,
-                        reach: int = 8) -> tuple[list[NDArray[np.float64]], int]:
-    """Roots of the reduced equation found by stepping r away from a start both ways and
-    bisecting (``brentq``) the first sign change in each direction."""
-    roots, evaluations = [], 0
-    for direction in (-1.0, 1.0):
-        reduced = _Rocker(request, start)
-        previous = (start[1], reduced(start[1]), reduced.x)
-        for k in range(1, reach + 1):
-            r = start[1] * (1.0 + direction * k * step)
-            value = reduced(r)
-            if not math.isfinite(value):
+def _roots_on_segment(request: Request, seed: NDArray[np.float64], r_end: float,
+                      max_step: float = 0.03) -> tuple[list[NDArray[np.float64]], int]:
+    """Follow the design curve from a seed to ``r = r_end`` in relative steps of at most
+    ``max_step`` and bisect (``brentq``) every sign change of the reduced equation."""
+    reduced = _Rocker(request, seed)
+    r0 = float(seed[1])
+    value = reduced(r0)
+    steps = max(1, math.ceil(abs(math.log(r_end / r0)) / max_step))
+    roots = []
+    for r in np.geomspace(r0, r_end, steps + 1)[1:]:
+        before = reduced.x
+        following = reduced(float(r))
+        if not (math.isfinite(value) and math.isfinite(following)):
+            break
+        if np.sign(following) != np.sign(value):
+            after = reduced.x
+            reduced.x = before
+            try:
+                found = brentq(reduced, r0, float(r), xtol=1e-15, rtol=1e-15)
+            except ValueError:  # the peak conditions lost their solution on the way
                 break
-            if math.isfinite(previous[1]) and np.sign(value) != np.sign(previous[1]):
-                reduced.x = previous[2]
-                try:
-                    found = brentq(reduced, previous[0], r, xtol=1e-15, rtol=1e-15)
-                except ValueError:  # the peak conditions lost their solution on the way
-                    break
-                if math.isfinite(reduced(found)):
-                    roots.append(reduced.x.copy())
-                break
-            previous = (r, value, reduced.x)
-        evaluations += reduced.evaluations
-    return roots, evaluations
+            if math.isfinite(reduced(found)):
+                roots.append(reduced.x.copy())
+            reduced.x = after
+        r0, value = float(r), following
+    return roots, reduced.evaluations
 
 
 def _polish(request: Request, x0: NDArray[np.float64], xtol: float
@@ -322,17 +354,18 @@ def solve_modern(request: Request, *, xtol: float = 1e-13) -> ModernResult:
     """
     request.check()
     clock = time.perf_counter()
-    starts, evaluations, ranges = _starts(request)
+    scan = _scan(request)
+    evaluations = scan.height.size
     result = ModernResult(request)
     found: list[NDArray[np.float64]] = []
-    candidates = []
-    for x0 in starts:
-        if request.form == "crank":
-            candidates.append(x0)
-            continue
-        near, count = _roots_along_rocker(request, x0)
-        candidates.extend(near)
-        evaluations += count
+    if request.form == "crank":
+        candidates = _cell_starts(request, scan)
+    else:
+        candidates = []
+        for seed, r_end in _curve_seeds(request, scan):
+            near, count = _roots_on_segment(request, seed, r_end)
+            candidates.extend(near)
+            evaluations += count
     for x0 in candidates:
         x, count = _polish(request, x0, xtol)
         evaluations += count
@@ -351,7 +384,7 @@ def solve_modern(request: Request, *, xtol: float = 1e-13) -> ModernResult:
             result.rejected.append((design, defect))
     result.designs.sort(key=min_transmission_angle, reverse=True)
     if not result.designs:
-        result.reason = _no_design_reason(request, ranges)
+        result.reason = _no_design_reason(request, _ranges(request, scan))
     result.evaluations = evaluations
     result.seconds = time.perf_counter() - clock
     return result

@@ -121,7 +121,8 @@ def _read_chain_form(reader: TableReader) -> Chain:
                                         f"({_list(links)})")
     inputs = _read_inputs(mech)
     _check_pairs(reader, raw_pairs, set(links))
-    _check_inputs(reader, inputs, set(links), raw_pairs, frame)
+    if known is not None or mentioned:  # no link is known when no pair row could be read
+        _check_inputs(reader, inputs, set(links), raw_pairs, frame)
     geometry = _geometry(reader, top, mech)
     general = top.get("general", kind="mapping", required=False, default=None)
     rows = _read_rows(top, required=False)

@@ -146,3 +146,11 @@ def test_chain_form_may_carry_a_table_to_check() -> None:
         {"L": 0, "i_minus_1": 0, "j_minus_1": None, "i": 1, "j": None}]
     chain = chain_from_dict(data)
     assert chain.identification[0]["i"] == 1
+
+
+def test_a_missing_pairs_table_is_not_blamed_on_the_inputs() -> None:
+    with pytest.raises(TableError) as info:
+        chain_from_dict({"mechanism": {"pairz": [], "inputs": [1]}}, source="typo.yaml")
+    assert [issue.message for issue in info.value.issues] == [
+        "unknown key 'pairz'; did you mean 'pairs'?",
+        "this field is missing; expected a list"]

@@ -1,0 +1,66 @@
+"""Command line of the velocity-ratio four-bar: input table, exit codes, languages, JSON, plot."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+
+import pytest
+
+from assur.errors import TableError
+from synthesis.cases.fourbar_velocity_ratio import cli
+from synthesis.cases.fourbar_velocity_ratio.conditions import Design, condition_residuals
+
+
+def run(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser()
+    cli.add_args(parser)
+    return cli.run(parser.parse_args(argv))
+
+
+def test_shipped_table_runs_both_solvers_and_reports_json(tables_dir, capsys):
+    table = tables_dir / "case_fourbar_velocity_ratio.yaml"
+    assert run(["--table", str(table), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["passed"] and out["request"]["form"] == "paper"
+    assert out["paper"]["matches_modern_design"] is not None
+    for item in out["modern"]["designs"]:
+        design = Design(e=item["e"], c=item["c"], r=item["r"],
+                        theta2=math.radians(item["theta2_deg"]), n_star=item["n_star"],
+                        delta=item["delta"], psi1=math.radians(item["psi1_deg"]),
+                        psi2=math.radians(item["psi2_deg"]))
+        assert max(abs(v) for v in condition_residuals(design).values()) < 1e-11
+        assert item["check"]["passed"]
+
+
+def test_russian_report_and_plot(tmp_path, capsys):
+    picture = tmp_path / "ratio.png"
+    code = run(["--e", "0.3", "--n-star", "0.5", "--psi1", "20", "--psi2", "22", "--lang", "ru",
+                "--plot", str(picture)])
+    text = capsys.readouterr().out
+    assert code == 0
+    assert "ПОДТВЕРЖДЕНО" in text and "ищутся c, r, θ2 и δ" in text
+    assert picture.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_forward_stroke_ratio_of_one_or_more_is_answered_without_a_design(capsys):
+    assert run(["--e", "0.3", "--n-star", "1.2", "--delta", "0.05", "--psi1", "20"]) == 1
+    assert "forward stroke" in capsys.readouterr().out
+
+
+def test_bad_table_lists_every_problem(tmp_path):
+    table = tmp_path / "bad.yaml"
+    table.write_text("fourbar_velocity_ratio:\n  e: abc\n  n_starr: 0.5\n  delta: 2\n"
+                     "  psi1_deg: 20\n  method: fast\n", encoding="utf-8")
+    with pytest.raises(TableError) as info:
+        run(["--table", str(table)])
+    text = str(info.value)
+    assert str(table) in text
+    for field in ("'e'", "did you mean 'n_star'", "'n_star'", "'delta'", "'method'"):
+        assert field in text
+
+
+def test_over_determined_request_is_refused():
+    with pytest.raises(TableError, match="over-determines"):
+        run(["--e", "0.3", "--n-star", "0.5", "--delta", "0.05", "--psi1", "20", "--psi2", "20"])

@@ -19,7 +19,9 @@ Three parts, printed as tables and drawn in one picture:
    solves the same task (class 3) with its stop rule [Q] = the peer's RMS error.  Both
    errors are measured the same way, independently of both programs: RMS over the targets
    of the distance to the nearest point of the traced curve (closed-form coupler curve,
-   200 000 points, polygon projection).
+   200 000 points, polygon projection).  Times are compared at RMS 2e-5 (the peer's time is
+   that of the first generation of its run whose best design is within 2e-5) and at the
+   peer's converged error.
 """
 
 from __future__ import annotations
@@ -53,6 +55,7 @@ PEER_TRUE = (1.0, 3.0, 2.5, 1.5, 0.6)
 PEER_LOWER = (0.5, 2.0, 2.0, 0.5, 0.0)
 PEER_UPPER = (1.5, 4.0, 3.5, 2.5, 1.2)
 PEER_POINTS = 20
+PEER_LEVEL = 2e-5        # the RMS error the comparison is made at
 
 
 # ------------------------------------------------------------------ independent closed form
@@ -160,13 +163,28 @@ def run_pylinkage(targets: np.ndarray, seed: int) -> dict[str, Any] | None:
     def fitness(loci: Any, **_: Any) -> float:
         return polygon_rms(np.array([complex(*frame[-1]) for frame in loci]))
 
+    log: list[tuple[float, float, np.ndarray]] = []
+
+    def progress(intermediate_result: Any) -> None:
+        log.append((time.perf_counter() - start, float(intermediate_result.fun),
+                    np.array(intermediate_result.x)))
+
     start = time.perf_counter()
     ensemble = differential_evolution_optimization(
         fitness, linkage, bounds=(list(PEER_LOWER), list(PEER_UPPER)), order_relation=min,
-        seed=seed, verbose=False)
+        seed=seed, verbose=False, callback=progress)
     seconds = time.perf_counter() - start
     design = tuple(float(v) for v in ensemble[0].dimensions)
-    return {"seconds": seconds, "design": design, "rms": rms_to_curve(targets, design)}
+    # the first generation whose best design is within PEER_LEVEL (independent measure)
+    level_time, level_rms = math.nan, math.nan
+    for elapsed, score, x in log:
+        if score <= 2 * PEER_LEVEL:
+            rms = rms_to_curve(targets, tuple(x))
+            if rms <= PEER_LEVEL:
+                level_time, level_rms = elapsed, rms
+                break
+    return {"seconds": seconds, "design": design, "rms": rms_to_curve(targets, design),
+            "generations": len(log), "level_seconds": level_time, "level_rms": level_rms}
 
 
 def peer_problem(targets: np.ndarray, accuracy: float) -> dict[str, Any]:
@@ -237,15 +255,21 @@ def main(argv: list[str] | None = None) -> int:
         if peer is None:
             print("   pylinkage is not installed: pip install pylinkage==1.3.0")
         else:
-            ours = run_ours(targets, peer["rms"], args.seed)
+            ours = run_ours(targets, PEER_LEVEL, args.seed)
+            floor = max(peer["rms"], 1e-13)       # below ~1e-13 rounding decides, not design
+            final = run_ours(targets, floor, args.seed)
             part3 = (peer, ours)
-            print(f"{'program':<34} {'RMS error':>12} {'seconds':>10}")
-            print(f"{'pylinkage 1.3 differential_evolution':<34} {peer['rms']:>12.3e} "
-                  f"{peer['seconds']:>10.2f}")
-            print(f"{'assur synthesize (LPτ + refinement)':<34} {ours['rms']:>12.3e} "
+            print(f"{'program':<40} {'RMS error':>12} {'seconds':>10}")
+            print(f"{'pylinkage 1.3 DE, first within 2e-5':<40} {peer['level_rms']:>12.3e} "
+                  f"{peer['level_seconds']:>10.2f}")
+            print(f"{'assur synthesize, [Q] = 2e-5':<40} {ours['rms']:>12.3e} "
                   f"{ours['seconds']:>10.2f}")
-            print(f"speed ratio: {peer['seconds'] / ours['seconds']:.0f}x "
-                  f"(our RMS {'≤' if ours['rms'] <= peer['rms'] else '>'} the peer's)")
+            print(f"{'pylinkage 1.3 DE, converged':<40} {peer['rms']:>12.3e} "
+                  f"{peer['seconds']:>10.2f}   ({peer['generations']} generations)")
+            print(f"{f'assur synthesize, [Q] = {floor:.0e}':<40} {final['rms']:>12.3e} "
+                  f"{final['seconds']:>10.2f}")
+            print(f"speed ratio at RMS 2e-5: {peer['level_seconds'] / ours['seconds']:.0f}x; "
+                  f"to convergence: {peer['seconds'] / final['seconds']:.0f}x")
 
     _plot(args.out, part1, part2, part3)
     print(f"\npicture: {args.out}")

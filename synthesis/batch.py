@@ -262,15 +262,15 @@ def rows_to_csv(rows: Iterable[BatchRow], lang: str = "en") -> str:
 
 def summary(rows: Sequence[BatchRow], lang: str = "en") -> str:
     """A plain-text table of the rows for the terminal, with totals."""
-    lines = []
     width = max((len(r.file) for r in rows), default=4)
-    for row in rows:
-        verdict = term(row.verdict, lang)
-        lines.append(f"{row.file:<{width}}  {verdict:<14}  {row.problem}")
+    words = {v: term(v, lang) for v in VERDICTS}
+    column = max(len(w) for w in words.values())
+    lines = [f"{row.file:<{width}}  {words[row.verdict]:<{column}}  {row.problem}".rstrip()
+             for row in rows]
     counts = {v: sum(r.verdict == v for r in rows) for v in VERDICTS}
     lines.append("")
-    lines.append(", ".join(f"{term(v, lang)}: {counts[v]}" for v in VERDICTS)
-                 + f"  ({len(rows)} {term('file', lang)})")
+    lines.append(", ".join(f"{words[v]}: {counts[v]}" for v in VERDICTS)
+                 + f"; {term('files', lang)}: {len(rows)}")
     return "\n".join(lines)
 
 

@@ -23,10 +23,12 @@ TERMS: dict[str, tuple[str, str]] = {
     # the structure
     "mechanism": ("mechanism", "механизм"),
     "link": ("link", "звено"),
+    "name": ("name", "название"),
     "links": ("links", "звенья"),
     "frame": ("frame", "стойка"),
     "pair": ("pair", "кинематическая пара"),
     "pairs": ("kinematic pairs", "кинематические пары"),
+    "pair_count": ("pairs", "пар"),
     "pair_type": ("type", "вид пары"),
     "revolute": ("revolute (R)", "вращательная (В)"),
     "prismatic": ("prismatic (P)", "поступательная (П)"),
@@ -61,6 +63,7 @@ TERMS: dict[str, tuple[str, str]] = {
                   "существование групп за цикл"),
     "crank_angle": ("crank angle", "угол поворота кривошипа"),
     "margin": ("existence margin", "запас существования"),
+    "condition": ("existence condition", "условие существования"),
     "pressure_angle": ("pressure angle", "угол давления"),
     "kinematics": ("kinematic diagrams", "кинематические диаграммы"),
     "whole_cycle": ("assembles over the whole cycle", "собирается на всём цикле"),
@@ -74,6 +77,7 @@ TERMS: dict[str, tuple[str, str]] = {
     "infeasible": ("infeasible", "недопустимо"),
     # verdicts and the batch
     "file": ("file", "файл"),
+    "files": ("files", "файлов"),
     "verdict": ("verdict", "итог"),
     "ok": ("ok", "верно"),
     "problems": ("problems", "есть ошибки"),

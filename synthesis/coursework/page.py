@@ -26,6 +26,7 @@ h2 { font-size: 1.2rem; margin: 2rem 0 .6rem; padding-bottom: .2rem;
      border-bottom: 2px solid var(--ink); }
 h3 { font-size: 1.02rem; margin: 1.2rem 0 .4rem; }
 p.source { color: var(--muted); margin: 0 0 1rem; }
+.columns { display: flex; flex-wrap: wrap; gap: 0 2rem; align-items: flex-start; }
 table { border-collapse: collapse; margin: .4rem 0 1rem; font-size: .9rem; }
 th, td { border: 1px solid var(--line); padding: .25rem .55rem; text-align: left;
          vertical-align: top; }

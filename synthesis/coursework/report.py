@@ -132,12 +132,14 @@ def _data_section(chain: Chain, lang: str) -> Section:
               f"{pair.links[0]}–{pair.links[1]}", pair.guide) for pair in chain.pairs]
     inputs = ", ".join(f"{term('link', lang)} {d.link}" if d.link is not None
                        else f"{term('pair', lang)} {d.pair}" for d in chain.inputs)
-    body = (f"<h3>{esc(heading('links', lang))}</h3>"
-            + table(("№", "", term("pairs", lang)), links, numeric=(2,), table_id="links")
-            + f"<h3>{esc(heading('pairs', lang))}</h3>"
+    body = ('<div class="columns"><div>'
+            f"<h3>{esc(heading('links', lang))}</h3>"
+            + table(("№", term("name", lang), term("pair_count", lang)), links, numeric=(2,),
+                    table_id="links")
+            + f"</div><div><h3>{esc(heading('pairs', lang))}</h3>"
             + table((term("pair", lang), term("pair_type", lang), term("links", lang),
                      term("guide", lang)), pairs, table_id="pairs")
-            + f"<p>{esc(heading('inputs', lang))}: {esc(inputs)}</p>")
+            + f"</div></div><p>{esc(heading('inputs', lang))}: {esc(inputs)}</p>")
     return Section("data", heading("data", lang), body)
 
 
@@ -286,15 +288,15 @@ def _existence_section(model: Any, lang: str, points: int, summary: dict[str, st
              else f"{i.start:.3f}…{i.end:.3f}") + f" ({REASONS[i.reason][lang == 'ru']})"
             for i in group.intervals) or "–"
         verdict = term("whole_cycle" if group.assembles else "fails", lang)
-        rows.append((group.label, group.name, CONDITIONS.get(group.kind, ""), group.delta,
+        rows.append((group.name, CONDITIONS.get(group.kind, ""), group.delta,
                      group.min_margin, verdict, where))
-    header = (term("group", lang), term("kind", lang), "", "δ", f"min {term('margin', lang)}",
-              term("verdict", lang), term("fails", lang))
+    header = (term("group", lang), term("condition", lang), "δ",
+              f"min {term('margin', lang)}", term("verdict", lang), term("fails", lang))
     verdict = term("whole_cycle" if report.all_exist else "fails", lang)
     summary[term("existence", lang)] = verdict
     css = "ok" if report.all_exist else "bad"
     body = (f'<p class="{css}" id="existence-verdict">{esc(verdict)}</p>'
-            + table(header, rows, numeric=(3, 4), table_id="existence")
+            + table(header, rows, numeric=(2, 3), table_id="existence")
             + figure(existence_figure(report, model, lang=lang),
                      heading("existence", lang), ident="existence-plot"))
     return Section("existence", heading("existence", lang), body)

@@ -1,0 +1,147 @@
+"""Every command of the tutorials (English and Russian) runs, so they cannot go stale.
+
+The commands are taken from the ```console blocks of ``docs/tutorial.md`` and
+``docs/tutorial.ru.md`` (lines starting with ``$ ``; a trailing ``# exit N`` states the
+expected exit code, 0 otherwise). The ```sh blocks hold only the installation steps, which
+cannot run inside a test; the test makes sure nothing else hides there. Each tutorial runs
+in its own process, the two in parallel, in a scratch folder that sees the repository's
+input tables, so no file of the repository is written.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+TUTORIALS = ("tutorial.md", "tutorial.ru.md")
+SETUP = ("sudo apt-get install", "git clone", "cd assur", "python3 -m venv",
+         ". .venv/bin/activate", "pip install")
+
+# Runs the commands of one tutorial in one process (no start-up cost per command) and
+# prints, as JSON, the exit code and the output of each.
+_RUNNER = r"""
+import contextlib, io, json, sys
+import matplotlib
+matplotlib.use("Agg")
+from synthesis.cli import main
+results = []
+for argv in json.load(sys.stdin):
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            code = main(argv)
+        except SystemExit as exc:
+            code = exc.code if isinstance(exc.code, int) else 2
+    results.append({"argv": argv, "code": code, "stdout": out.getvalue(),
+                    "stderr": err.getvalue()})
+json.dump(results, sys.stdout)
+"""
+
+
+def blocks(text: str, language: str) -> list[str]:
+    """The contents of the fenced blocks of one language."""
+    return re.findall(rf"^```{language}\n(.*?)^```", text, flags=re.M | re.S)
+
+
+def commands(text: str) -> list[tuple[list[str], int]]:
+    """The ``$ `` commands of the console blocks with their expected exit codes."""
+    found = []
+    for block in blocks(text, "console"):
+        for line in block.splitlines():
+            if not line.startswith("$ "):
+                continue
+            command, _, comment = line[2:].partition("#")
+            code = re.fullmatch(r"\s*exit (\d+)\s*", comment)
+            argv = shlex.split(command)
+            assert argv[0] == "assur", f"only assur commands belong in console blocks: {line}"
+            found.append((argv[1:], int(code.group(1)) if code else 0))
+    return found
+
+
+def _workspace(root: Path) -> Path:
+    """A scratch folder laid out like the repository for the tutorial's paths."""
+    root.mkdir()
+    (root / "input_tables").symlink_to(ROOT / "input_tables")
+    (root / "docs").mkdir()
+    (root / "docs" / "tutorial_class").symlink_to(ROOT / "docs" / "tutorial_class")
+    (root / "docs" / "img").mkdir()
+    return root
+
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory) -> dict[str, tuple[Path, list[dict]]]:
+    base = tmp_path_factory.mktemp("tutorials")
+    env = {**os.environ, "MPLBACKEND": "Agg"}
+    started = {}
+    for name in TUTORIALS:
+        text = (ROOT / "docs" / name).read_text(encoding="utf-8")
+        work = _workspace(base / name.replace(".", "_"))
+        process = subprocess.Popen([sys.executable, "-c", _RUNNER], cwd=work, env=env,
+                                   stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                   stderr=subprocess.PIPE, text=True)
+        argvs = [argv for argv, _ in commands(text)]
+        started[name] = (work, process, json.dumps(argvs))
+    results = {}
+    for name, (work, process, payload) in started.items():
+        out, err = process.communicate(payload, timeout=600)
+        assert process.returncode == 0, err
+        results[name] = (work, json.loads(out))
+    return results
+
+
+@pytest.mark.parametrize("name", TUTORIALS)
+def test_setup_blocks_hold_only_installation(name):
+    text = (ROOT / "docs" / name).read_text(encoding="utf-8")
+    lines = [line for block in blocks(text, "sh") for line in block.splitlines() if line]
+    assert lines, "the installation steps are missing"
+    for line in lines:
+        assert line.startswith(SETUP), f"{name}: not an installation step: {line}"
+
+
+@pytest.mark.parametrize("name", TUTORIALS)
+def test_every_command_runs(name, runs):
+    text = (ROOT / "docs" / name).read_text(encoding="utf-8")
+    expected = commands(text)
+    assert len(expected) >= 12
+    _work, results = runs[name]
+    for (argv, code), result in zip(expected, results):
+        assert result["argv"] == argv
+        assert result["code"] == code, (argv, result["stderr"][-2000:])
+
+
+@pytest.mark.parametrize("name", TUTORIALS)
+def test_pictures_exist_and_are_drawn_by_the_commands(name, runs):
+    text = (ROOT / "docs" / name).read_text(encoding="utf-8")
+    work, _results = runs[name]
+    pictures = re.findall(r"!\[[^\]]*\]\((img/[^)]+)\)", text)
+    assert len(pictures) >= 6
+    for picture in pictures:
+        assert (ROOT / "docs" / picture).is_file(), picture
+        if picture != "img/course_report.png":  # a browser screenshot of the report
+            assert (work / "docs" / picture).is_file(), f"no command draws {picture}"
+
+
+def test_russian_tutorial_prints_russian(runs):
+    """Every command of the Russian tutorial answers in Russian (``--lang ru``)."""
+    work, results = runs["tutorial.ru.md"]
+    cyrillic = re.compile("[а-яё]", re.I)
+    expected = dict((tuple(argv), code) for argv, code in commands(
+        (ROOT / "docs" / "tutorial.ru.md").read_text(encoding="utf-8")))
+    for result in results:
+        argv = result["argv"]
+        if "--help" in argv or expected[tuple(argv)] != 0:
+            continue
+        assert "--lang" in argv and argv[argv.index("--lang") + 1] == "ru", argv
+        if argv[0] == "report":
+            page = work / argv[argv.index("--out") + 1]
+            assert '<html lang="ru">' in page.read_text(encoding="utf-8")
+        else:
+            assert cyrillic.search(result["stdout"]), argv

@@ -283,9 +283,11 @@ class _Search:
         span = self.upper - self.lower
         lo, hi = self.lower, self.upper
         varied = span > 0
+        x0 = np.clip(x0, lo, hi)
         base = self.record(x0[None, :], "refine", check_stall=False)
         if base.p1[0] > 0 or not np.all(np.isfinite(base.residuals[0])):
             return
+        p2_start = base.p2[0]
         worst = 10.0 * (np.abs(base.residuals[0]) + 1e-12)
         cache: dict[bytes, FloatArray] = {}
 
@@ -294,7 +296,9 @@ class _Search:
             key = x.tobytes()
             if key not in cache:
                 c = self.record(x[None, :], "refine", check_stall=False)
-                ok = c.p1[0] == 0 and c.p2[0] == 0 and np.all(np.isfinite(c.residuals[0]))
+                # a step may not break the chain nor worsen the desirable conditions
+                ok = (c.p1[0] == 0 and c.p2[0] <= p2_start
+                      and np.all(np.isfinite(c.residuals[0])))
                 cache[key] = c.residuals[0] if ok else worst
             return cache[key]
 

@@ -256,9 +256,12 @@ def form_residuals(request: Request, x: ArrayLike) -> NDArray[np.float64]:
 
     ``x`` is ``(c, r, θ2)`` for the paper's form, ``(c, r, θ2, δ)`` for ``delta`` and
     ``(c, r, θ2, e)`` for ``crank``; a leading axis of candidates broadcasts
-    (``x`` of shape ``(k, D)`` gives ``(k, D)``).
+    (``x`` of shape ``(k, D)`` gives ``(k, D)``); ``np.longdouble`` input is evaluated in
+    extended precision.
     """
-    x = np.asarray(x, dtype=float)
+    x = np.asarray(x)
+    if not np.issubdtype(x.dtype, np.floating):
+        x = x.astype(float)
     c, r, theta2 = x[0], x[1], x[2]
     e = x[3] if request.form == "crank" else request.e
     delta = x[3] if request.form == "delta" else request.delta

@@ -275,7 +275,7 @@ class _Rocker:
         return float(residual[2])
 
 
-def _roots_on_segment(request: Request, seed: NDArray[np.float64], r_end: float,
+def _roots_on_segment(request: Request, seed: NDArray[np.float64], r_end: float, xtol: float,
                       max_step: float = 0.03) -> tuple[list[NDArray[np.float64]], int]:
     """Follow the design curve from a seed to ``r = r_end`` in relative steps of at most
     ``max_step`` and bisect (``brentq``) every sign change of the reduced equation."""
@@ -293,7 +293,7 @@ def _roots_on_segment(request: Request, seed: NDArray[np.float64], r_end: float,
             after = reduced.x
             reduced.x = before
             try:
-                found = brentq(reduced, r0, float(r), xtol=1e-15, rtol=1e-15)
+                found = brentq(reduced, r0, float(r), xtol=xtol, rtol=max(xtol, 1e-15))
             except ValueError:  # the peak conditions lost their solution on the way
                 break
             if math.isfinite(reduced(found)):
@@ -340,7 +340,9 @@ def solve_modern(request: Request, *, xtol: float = 1e-13) -> ModernResult:
     request : Request
         The design request (any of the three forms).
     xtol : float
-        Relative tolerance on the unknowns passed to ``scipy.optimize.root`` (``hybr``).
+        Tolerance on the unknowns: of the bisection of the reduced equation (``brentq``) and
+        of the final polish (``scipy.optimize.root``, ``hybr``); a root is accepted when every
+        condition holds to ``max(1e-11, 100·xtol)``.
 
     Returns
     -------
@@ -363,21 +365,21 @@ def solve_modern(request: Request, *, xtol: float = 1e-13) -> ModernResult:
     else:
         candidates = []
         for seed, r_end in _curve_seeds(request, scan):
-            near, count = _roots_on_segment(request, seed, r_end)
+            near, count = _roots_on_segment(request, seed, r_end, xtol)
             candidates.extend(near)
             evaluations += count
     for x0 in candidates:
         x, count = _polish(request, x0, xtol)
         evaluations += count
         residual = form_residuals(request, x)
-        if not np.all(np.abs(residual) < _ACCEPT):
+        if not np.all(np.abs(residual) < max(_ACCEPT, 100.0 * xtol)):
             continue
         x[2] = x[2] % (2.0 * np.pi)
         if any(np.allclose(x, other, rtol=0.0, atol=1e-7) for other in found):
             continue
         found.append(x)
         design = design_from_unknowns(request, x)
-        defect = design_defect(design)
+        defect = design_defect(design, accuracy=max(1e-9, xtol))
         if defect is None:
             result.designs.append(design)
         else:

@@ -1,0 +1,227 @@
+"""Four-bar for a prescribed velocity ratio: speed against accuracy of the two solvers, their
+behaviour at the extremes, and the same task given to the general synthesis search (B3–B4).
+
+Correct digits are measured against a reference solve: every root of the modern solver
+polished by Newton's method in extended precision (``np.longdouble``, the conditions
+evaluated in that precision, the step solved from a central-difference Jacobian); a
+reference is used only when its residual is below 1e-17.
+
+Run ``python benchmarks/bench_fourbar_velocity_ratio.py`` (``--quick`` for a shorter run).
+The tables are quoted in ``docs/case_fourbar_velocity_ratio.md``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+
+import numpy as np
+
+from synthesis.cases.fourbar_velocity_ratio.check import check_design
+from synthesis.cases.fourbar_velocity_ratio.conditions import (
+    NoSolution,
+    Request,
+    design_defect,
+    design_from_unknowns,
+    form_residuals,
+)
+from synthesis.cases.fourbar_velocity_ratio.kinematics import coupler_bounds, grashof_margin
+from synthesis.cases.fourbar_velocity_ratio.modern_solver import solve_modern
+from synthesis.cases.fourbar_velocity_ratio.paper_solver import solve_paper
+from synthesis.criteria import Criteria
+from synthesis.search import SearchSettings, search
+
+DEG = math.pi / 180.0
+EXAMPLE = Request(n_star=0.5, psi1=20 * DEG, e=0.3, delta=0.05)
+
+
+def extended_root(request: Request, x: np.ndarray) -> np.ndarray | None:
+    """Newton polish of a root in extended precision; None if the residual stays > 1e-17."""
+    x = np.asarray(x, dtype=np.longdouble)
+    for _ in range(8):
+        f = form_residuals(request, x)
+        jacobian = np.empty((len(x), len(x)))
+        for k in range(len(x)):
+            h = np.longdouble(1e-7) * max(np.longdouble(1), abs(x[k]))
+            step = np.zeros(len(x), dtype=np.longdouble)
+            step[k] = h
+            jacobian[:, k] = ((form_residuals(request, x + step) - form_residuals(request, x - step))
+                              / (2 * h)).astype(float)
+        dx = np.linalg.solve(jacobian, f.astype(float))
+        x = x - dx.astype(np.longdouble)
+        if np.max(np.abs(form_residuals(request, x))) < 1e-18:
+            break
+    return x if np.max(np.abs(form_residuals(request, x))) < 1e-17 else None
+
+
+def unknowns(design) -> np.ndarray:
+    return np.array([design.c, design.r, design.theta2 % (2 * math.pi)])
+
+
+def digits(x: np.ndarray, references: list[np.ndarray]) -> tuple[float, int]:
+    """Correct significant digits of x against the nearest reference, and its index."""
+    errors = [float(np.max(np.abs(np.asarray(x, dtype=np.longdouble) - ref)
+                           / np.maximum(1, np.abs(ref)))) for ref in references]
+    k = int(np.argmin(errors))
+    return min(18.0, -math.log10(max(errors[k], 1e-18))), k
+
+
+def references(request: Request) -> list[np.ndarray]:
+    result = solve_modern(request)
+    return [ref for ref in (extended_root(request, unknowns(d)) for d in result.designs)
+            if ref is not None]
+
+
+def timed(function, *args, repeat: int = 1, **kwargs):
+    best, out = math.inf, None
+    for _ in range(repeat):
+        start = time.perf_counter()
+        out = function(*args, **kwargs)
+        best = min(best, time.perf_counter() - start)
+    return out, best
+
+
+def table_accuracy(repeat: int) -> None:
+    refs = references(EXAMPLE)
+    print(f"\n### Speed against accuracy: e = 0.3, n* = 0.5, δ = 0.05, ψ′ = 20° "
+          f"({len(refs)} reference roots)\n")
+    print("| solver | tolerance | time, s | evaluations | designs | correct digits (worst) |")
+    print("|---|---|---|---|---|---|")
+    for xtol in (1e-3, 1e-5, 1e-7, 1e-9, 1e-11, 1e-13):
+        result, seconds = timed(solve_modern, EXAMPLE, xtol=xtol, repeat=repeat)
+        worst = min((digits(unknowns(d), refs)[0] for d in result.designs), default=math.nan)
+        print(f"| modern | xtol {xtol:.0e} | {seconds:.3f} | {result.evaluations} | "
+              f"{len(result.designs)} | {worst:.1f} |")
+    for tol in (1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12):
+        result, seconds = timed(solve_paper, EXAMPLE, tol=tol, repeat=repeat)
+        if result.design is None:
+            print(f"| paper | tol {tol:.0e} | {seconds:.3f} | {result.evaluations} | 0 | "
+                  f"stopped: {result.reason} |")
+            continue
+        got, which = digits(unknowns(result.design), refs)
+        note = f" (wrong root: {result.defect})" if result.defect else ""
+        print(f"| paper | tol {tol:.0e} | {seconds:.3f} | {result.evaluations} | 1 (root "
+              f"r = {float(refs[which][1]):.4f}) | {got:.1f}{note} |")
+
+
+def extremes() -> list[tuple[str, Request]]:
+    rows = []
+    for e in (0.6, 0.8, 0.9, 0.95):
+        rows.append((f"Grashof limit: e = {e}", Request(n_star=0.8, psi1=10 * DEG, e=e,
+                                                        delta=0.05)))
+    rows.append(("Grashof limit: root at margin 1e-3", Request(n_star=0.55, psi1=14 * DEG, e=0.4,
+                                                               delta=0.03)))
+    for n in (0.7, 0.9, 0.97, 0.99):
+        rows.append((f"n* → 1: n* = {n}", Request(n_star=n, psi1=10 * DEG, e=0.3, delta=0.05)))
+    for delta in (1e-2, 1e-3, 1e-4, 1e-6):
+        psi = 20 * DEG * math.sqrt(delta / 0.05)
+        rows.append((f"δ → 0: δ = {delta:g}, ψ′ = {math.degrees(psi):.3g}°",
+                     Request(n_star=0.5, psi1=psi, e=0.3, delta=delta)))
+    for e in (0.1, 0.03, 0.01, 0.001):
+        rows.append((f"small e: e = {e}", Request(n_star=0.5, psi1=20 * DEG, e=e, delta=0.05)))
+    return rows
+
+
+def table_extremes() -> None:
+    print("\n### Extremes (paper's form; tolerance: modern xtol 1e-13, paper tol 1e-6)\n")
+    print("| request | modern: designs, worst digits, check, s | least Grashof margin | "
+          "paper: outcome | paper digits | paper s |")
+    print("|---|---|---|---|---|---|")
+    for label, request in extremes():
+        try:
+            modern, m_seconds = timed(solve_modern, request)
+        except NoSolution as exc:
+            print(f"| {label} | refused: {exc} | | | | |")
+            continue
+        refs = [ref for ref in (extended_root(request, unknowns(d)) for d in modern.designs)
+                if ref is not None]
+        if modern.designs:
+            worst = min(digits(unknowns(d), refs)[0] for d in modern.designs) if refs else math.nan
+            checks = all(check_design(d).passed for d in modern.designs)
+            margin = min(float(grashof_margin(d.e, d.c, d.r)) for d in modern.designs)
+            m_text = (f"{len(modern.designs)}, {worst:.1f}, "
+                      f"{'passed' if checks else 'FAILED'}, {m_seconds:.2f}")
+            m_margin = f"{margin:.1e}"
+        else:
+            m_text, m_margin = f"none ({modern.reason}), {m_seconds:.2f}", ""
+        paper, p_seconds = timed(solve_paper, request)
+        if paper.design is None:
+            outcome, p_digits = f"fails: {paper.reason}", ""
+        elif paper.defect:
+            outcome, p_digits = f"WRONG ROOT: {paper.defect}", ""
+        else:
+            check = check_design(paper.design, value_tol=1e-4, angle_tol=1e-4)
+            outcome = "root, check " + ("passed" if check.passed else "FAILED")
+            p_digits = f"{digits(unknowns(paper.design), refs)[0]:.1f}" if refs else "no reference"
+        print(f"| {label} | {m_text} | {m_margin} | {outcome} | {p_digits} | {p_seconds:.2f} |")
+
+
+def ratio_evaluator(request: Request):
+    """B2 for the search: the ratio conditions of the paper's form as deviations Δ_K.
+
+    Designs are rows (t, r, θ2) with c = c_lo + t·(c_hi − c_lo), so that the box of the
+    search is the crank-rocker domain; P1 is the distance outside it.
+    """
+    def evaluate(x: np.ndarray) -> Criteria:
+        t, r, theta2 = x[:, 0], x[:, 1], x[:, 2]
+        lo, hi = coupler_bounds(request.e, r)
+        c = lo + t * (hi - lo)
+        outside = np.maximum(0.0, lo - hi) + np.maximum(0.0, -grashof_margin(request.e, c, r))
+        with np.errstate(invalid="ignore"):
+            residual = form_residuals(request, np.stack([c, r, theta2])).T
+        p1 = np.where(np.all(np.isfinite(residual), axis=1), outside, 1.0 + outside)
+        dev = np.where(p1[:, None] > 0, np.nan, np.abs(residual))
+        q = np.where(p1 > 0, np.nan, np.max(np.abs(residual), axis=1))
+        return Criteria(p1, np.where(p1 > 0, np.nan, 0.0), q, dev,
+                        np.where(p1[:, None] > 0, np.nan, residual))
+    return evaluate
+
+
+def table_search() -> None:
+    refs = references(EXAMPLE)
+    print("\n### The same task for the general search (LPτ + least-squares refinement)\n")
+    print("| method | trials (designs evaluated) | time, s | max condition residual | "
+          "correct digits | nearest root r | check |")
+    print("|---|---|---|---|---|---|---|")
+    r_min = EXAMPLE.e / EXAMPLE.n_star
+    lower, upper = [0.0, r_min, 0.0], [1.0, 6 * r_min, 2 * math.pi]
+    for budget in (10, 14):
+        settings = SearchSettings(budget_log2=budget, seed=0, refine=True, refine_starts=3,
+                                  refine_evaluations=400)
+        result, seconds = timed(search, ratio_evaluator(EXAMPLE), lower, upper,
+                                [0.5, 2 * r_min, math.pi / 2], settings)
+        t, r, theta2 = result.x
+        lo, hi = coupler_bounds(EXAMPLE.e, r)
+        x = np.array([lo + t * (hi - lo), r, theta2 % (2 * math.pi)])
+        got, which = digits(x, refs)
+        design = design_from_unknowns(EXAMPLE, x)
+        ok = design_defect(design, accuracy=1e-6) is None and check_design(
+            design, value_tol=1e-6, angle_tol=1e-6).passed
+        print(f"| search 2^{budget} + refine | {len(result.trials)} | {seconds:.2f} | "
+              f"{float(result.criteria.q[0]):.1e} | {got:.1f} | {float(refs[which][1]):.4f} | "
+              f"{'passed' if ok else 'failed'} |")
+    modern, seconds = timed(solve_modern, EXAMPLE)
+    print(f"| modern solver (all roots) | {modern.evaluations} | {seconds:.2f} | "
+          f"{max(float(np.max(np.abs(form_residuals(EXAMPLE, unknowns(d))))) for d in modern.designs):.1e}"
+          f" | {min(digits(unknowns(d), refs)[0] for d in modern.designs):.1f} | all "
+          f"{len(modern.designs)} | passed |")
+    paper, seconds = timed(solve_paper, EXAMPLE)
+    print(f"| paper's scheme (tol 1e-6) | {paper.evaluations} | {seconds:.2f} | "
+          f"{float(np.max(np.abs(form_residuals(EXAMPLE, unknowns(paper.design))))):.1e} | "
+          f"{digits(unknowns(paper.design), refs)[0]:.1f} | {paper.design.r:.4f} | "
+          f"{'passed' if paper.ok else 'failed'} |")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="skip the extremes table")
+    args = parser.parse_args()
+    table_accuracy(repeat=1 if args.quick else 3)
+    if not args.quick:
+        table_extremes()
+    table_search()
+
+
+if __name__ == "__main__":
+    main()

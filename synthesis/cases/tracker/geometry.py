@@ -119,7 +119,8 @@ def transmission_for_stroke(a: ArrayLike, k2: ArrayLike) -> Array:
     s = np.pi - 0.5 * a
     k4 = np.asarray(k2, dtype=float) ** 4
     t = -np.cos(s) + np.sqrt(np.cos(s) ** 2 + k4 - 1.0)
-    return 0.5 * np.angle(1.0 + t * np.exp(1j * s))
+    half: Array = 0.5 * np.angle(1.0 + t * np.exp(1j * s))
+    return half
 
 
 def actuator_ratios(b_min: ArrayLike, k2: ArrayLike, k5: ArrayLike) -> tuple[Array, Array]:

@@ -28,6 +28,7 @@ import numpy.typing as npt
 
 from assur import (
     Chain,
+    Jet,
     KinematicModel,
     StructuralAnalysis,
     analyse,
@@ -36,6 +37,7 @@ from assur import (
     input_grid,
     load_chain,
     unwrap,
+    values,
 )
 
 __all__ = ["CHAIN_TABLE", "TrackerMotion", "chain", "mechanism_model", "simulate", "sketch"]
@@ -177,10 +179,12 @@ def simulate(l1: float, l2: float, l5: float, l_i: float, l_d: float, *,
     """
     analysis, model = mechanism_model(l1, l2, l5, l_i, l_d)
     motion = analyse(model, input_grid(model, positions), analogs=True)
-    joint = {key: motion.joints[pair.id].v for pair in analysis.chain.pairs
+    joint = {key: values(motion.joints[pair.id]) for pair in analysis.chain.pairs
              for key in [pair.origin] if pair.type.value == "R"}
     a, b, c, d, e = (joint[name] for name in "ABCDE")
     platform = motion.link_angle(1)
+    if not isinstance(platform, Jet):  # analogs=True always gives jets
+        raise TypeError("the analysis returned no derivatives")
     with np.errstate(invalid="ignore", divide="ignore"):
         arm = c - e
         post = np.imag(np.conj(arm) * (a - e)) / np.abs(arm)

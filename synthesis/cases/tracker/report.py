@@ -317,7 +317,7 @@ def inconsistencies(study: Study, lang: Lang = "en") -> list[str]:
     b22 = math.degrees(float(at.b_min[-1]))
     k_s22 = float(at.k_s[-1])
     kg_rows = [c for c in study.comparisons if c.quantity == "k_g" and c.tolerance is None]
-    kg_gap = max(abs(c.difference) for c in kg_rows)
+    kg_gap = max(c.deviation for c in kg_rows)
     kg_printed = ", ".join(f"{at_k:g}" for at_k in
                            next(s for s in SERIES if s.source == "fig. 12").values.values())
     kg_computed = ", ".join(f"{x:.3f}" for x in at.k_g)
@@ -425,7 +425,7 @@ def summary(study: Study, lang: Lang = "en") -> str:
                                                                 "k_s", "k_g")}
     out.append("  " + _t("worst", lang).format(items=", ".join(
         f"{q} {worst(study.comparisons, q):.3f} ({tol:g})" for q, tol in tolerances.items())))
-    kg = [abs(c.difference) for c in study.comparisons
+    kg = [c.deviation for c in study.comparisons
           if c.quantity == "k_g" and c.tolerance is None]
     out += ["  " + _t("kg_differs", lang).format(dk=max(kg)), ""]
     out += [_t("procedure", lang) + ":"]

@@ -60,6 +60,11 @@ class Comparison:
         return None if self.computed is None else self.computed - self.printed
 
     @property
+    def deviation(self) -> float:
+        """|computed − printed|, NaN where nothing is computed."""
+        return math.nan if self.computed is None else abs(self.computed - self.printed)
+
+    @property
     def status(self) -> str:
         """How the row compares.
 
@@ -70,7 +75,7 @@ class Comparison:
             return "not derivable"
         if self.tolerance is None:
             return "differs"
-        return "match" if abs(self.difference) <= self.tolerance else "MISMATCH"
+        return "match" if self.deviation <= self.tolerance else "MISMATCH"
 
 
 def _tolerance(quantity: str, k2: float) -> float | None:
@@ -82,7 +87,7 @@ def _tolerance(quantity: str, k2: float) -> float | None:
 def reproduce() -> list[Comparison]:
     """Every printed value of the figure tables and Tabel 1 beside its computed value."""
     a = math.radians(EXAMPLE["stroke_deg"])
-    rows = []
+    rows: list[Comparison] = []
     for series in SERIES:
         k2 = np.array(list(series.values))
         printed = np.array(list(series.values.values()))
@@ -105,7 +110,7 @@ def reproduce_mm() -> list[Comparison]:
     """
     l1, k5 = EXAMPLE["l1_mm"], EXAMPLE["k5"]
     a = math.radians(EXAMPLE["stroke_deg"])
-    rows = []
+    rows: list[Comparison] = []
     for name, printed in TABLE_MM.items():
         k2 = np.array(list(printed))
         values = proportions(a, k2, k5)

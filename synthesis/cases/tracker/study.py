@@ -163,5 +163,5 @@ def run_study(task: DesignTask, *, positions: int = 721, budget_log2: int | None
 
 def worst(comparisons: list[Comparison], quantity: str) -> float:
     """Largest |difference| of one quantity among the rows expected to match."""
-    return max((abs(c.difference) for c in comparisons
+    return max((c.deviation for c in comparisons
                 if c.quantity == quantity and c.tolerance is not None), default=np.nan)

@@ -86,3 +86,14 @@ def test_stroke_near_a_full_turn_has_no_room_for_the_start_angle():
     assert not has_room(task)
     with pytest.raises(ValueError, match="leaves no room"):
         bounds(task)
+
+
+def test_a_batch_of_designs_equals_one_design_at_a_time():
+    evaluate = Evaluator(replace(PATENT_TASK, k5=(1.8, 2.4)), positions=61)
+    x = np.array([[2.2, 2.0, -73.9], [1.8, 2.3, -90.0], [1.5, 1.9, -60.0]])
+    batch = evaluate(x)
+    for k, row in enumerate(x):
+        one = evaluate(row)
+        assert one.p1[0] == batch.p1[k]
+        assert one.p2[0] == pytest.approx(batch.p2[k], abs=1e-12)
+        assert one.q[0] == pytest.approx(batch.q[k], abs=1e-12)

@@ -7,6 +7,8 @@ Each table (one per student) is checked the way the course checks a coursework:
 2. the structure-identification table given in the file, against the chain;
 3. the existence of every group over the whole cycle, when the table gives dimensions.
 
+A synthesis problem is checked as its mechanism at the problem's initial design.
+
 A row holds the verdict and the first problem in plain words. A broken file is a row with
 its error, never a stop. The files are checked in parallel on all local cores
 (:class:`concurrent.futures.ProcessPoolExecutor`).
@@ -25,7 +27,14 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-from assur import AssurError, analyse_structure, atomic_write_text, load_chain
+from assur import (
+    AssurError,
+    Chain,
+    analyse_structure,
+    atomic_write_text,
+    chain_from_dict,
+    load_chain,
+)
 from synthesis.i18n import check_lang, term
 
 __all__ = [
@@ -128,6 +137,18 @@ def _existence(analysis: Any, lang: str) -> tuple[str, list[str]]:
     return ("whole cycle" if report.all_exist else "fails"), found
 
 
+def _load(path: Path) -> Chain:
+    """The chain of a table; for a synthesis problem, its mechanism at the initial design."""
+    from synthesis.coursework import is_problem
+
+    if is_problem(path):
+        from synthesis.problem import load_problem
+
+        problem = load_problem(path)
+        return chain_from_dict(problem.mechanism_table(problem.initial), source=str(path))
+    return load_chain(path)
+
+
 def check_table(path: str | os.PathLike[str], *, lang: str = "en",
                 root: str | os.PathLike[str] | None = None) -> BatchRow:
     """Check one table; never raises for a problem of the table itself.
@@ -151,7 +172,7 @@ def check_table(path: str | os.PathLike[str], *, lang: str = "en",
     path = Path(path)
     name = str(path.relative_to(root)) if root is not None else str(path)
     try:
-        chain = load_chain(path)
+        chain = _load(path)
     except AssurError as exc:
         issues = getattr(exc, "issues", None)
         first = str(issues[0]) if issues else str(exc)

@@ -87,6 +87,8 @@ def folder(tmp_path_factory) -> Path:
     put("f_does_not_assemble.yaml", four_bar(40, 50, 30, 100))
     put("g_empty.yaml", "")
     put("notes.txt", "not a table")
+    shutil.copy(ROOT / "input_tables" / "problems" / "class1_fourbar_rocker.yaml",
+                root / "i_problem.yaml")  # a synthesis problem: its mechanism as first given
     (root / "group2").mkdir()
     shutil.copy(ROOT / "input_tables" / "course_11_link_table.yaml", root / "group2" / "h_course.yaml")
     return root
@@ -101,6 +103,7 @@ EXPECTED = {  # file: (verdict, words of the first problem, identification, exis
     "f_does_not_assemble.yaml": ("problems", "does not assemble", "not given", "fails"),
     "g_empty.yaml": ("error", "", "not given", "not checked"),
     "group2/h_course.yaml": ("ok", "", "matches", "whole cycle"),
+    "i_problem.yaml": ("ok", "", "matches", "whole cycle"),
 }
 
 
@@ -121,6 +124,7 @@ def test_one_row_per_table_with_the_right_verdict(folder):
     assert (five.n, five.p5, five.W) == (4, 5, 3 * 4 - 2 * 5)
     course = by_file["group2/h_course.yaml"]
     assert (course.n, course.p5, course.W) == (11, 16, 1)
+    assert by_file["i_problem.yaml"].formula == "I(0,1) → II₁(2,3)"  # a four-bar
 
 
 def test_failure_interval_matches_the_law_of_cosines(folder):

@@ -152,3 +152,16 @@ def test_png_opens(course):
     chain, analysis = course
     with Image.open(io.BytesIO(scheme_bytes(chain, analysis, "png", which="formalised"))) as im:
         assert im.size[0] > 400 and im.size[1] > 200
+
+
+def test_check_command_draws_the_schemes(tmp_path, tables_dir_module, capsys):
+    from synthesis.cli import main
+
+    table = tables_dir_module / "course_11_link.yaml"
+    out = tmp_path / "schemes.svg"
+    assert main(["check", str(table), "--plot", str(out), "--lang", "ru"]) == 0
+    gids = _gids(out.read_bytes())
+    assert sum(g.startswith("pair-") for g in gids) == 16  # p5 = 16 (method.md §1.2)
+    assert "Формула строения" in capsys.readouterr().out
+    assert main(["check", str(table), "--plot", str(tmp_path / "schemes.jpg")]) == 2
+    assert ".svg or .png" in capsys.readouterr().err

@@ -5,6 +5,12 @@ kinematics, synthesis) and :func:`render_html` turns the result into the page;
 :func:`write_report` does both and writes the file.
 """
 
-from synthesis.coursework.report import CourseworkReport, build_report, render_html, write_report
+from synthesis.coursework.report import (
+    CourseworkReport,
+    build_report,
+    is_problem,
+    render_html,
+    write_report,
+)
 
-__all__ = ["CourseworkReport", "build_report", "render_html", "write_report"]
+__all__ = ["CourseworkReport", "build_report", "is_problem", "render_html", "write_report"]

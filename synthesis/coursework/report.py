@@ -32,7 +32,7 @@ from assur.schemes import roman
 from synthesis.coursework.page import Section, esc, figure, figure_html, page, table
 from synthesis.i18n import check_lang, heading, term
 
-__all__ = ["CourseworkReport", "build_report", "render_html", "write_report"]
+__all__ = ["CourseworkReport", "build_report", "is_problem", "render_html", "write_report"]
 
 #: Positions of the kinematic analysis over one crank turn.
 POINTS = 360
@@ -63,10 +63,10 @@ class CourseworkReport:
     sections: list[Section] = field(default_factory=list)
 
 
-def _is_problem(path: Path) -> bool:
-    """Whether the file is a synthesis problem (it has the problem's tables)."""
+def is_problem(path: str | os.PathLike[str]) -> bool:
+    """Whether a table file is a synthesis problem (it has the problem's own tables)."""
     try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
+        data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
     except (OSError, UnicodeDecodeError, yaml.YAMLError):
         return False
     return isinstance(data, dict) and any(key in data for key in _SYNTHESIS_KEYS)
@@ -100,7 +100,7 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
     path = Path(path)
     synthesis_sections: list[Section] = []
     report = CourseworkReport(title="", source=str(path), lang=lang)
-    if _is_problem(path):
+    if is_problem(path):
         chain, synthesis_sections, line = _synthesis(path, lang, budget)
         report.summary.update(line)
     else:

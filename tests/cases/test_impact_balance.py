@@ -49,8 +49,13 @@ def _link_residuals(data: ImpactData, pos: ImpactPosition, res: ImpactResult,
     g3 = a + data.r3 / 2 * u3
     contact = data.r1 + data.r4 * complex(math.cos(th4), math.sin(th4)) + data.clearance * u_psi
     on_pin = -normal * u_psi - friction * 1j * u_psi
-    v_g2 = lambda w: 1j * w * a / 2  # noqa: E731
-    v_g3 = lambda w_2, w_3: 1j * w_2 * a + 1j * w_3 * (g3 - a)  # noqa: E731
+
+    def v_g2(w: float) -> complex:
+        return 1j * w * a / 2
+
+    def v_g3(w_2: float, w_3: float) -> complex:
+        return 1j * w_2 * a + 1j * w_3 * (g3 - a)
+
     scale = abs(normal) * data.r1
     crank_linear = data.m2 * (v_g2(w2p) - v_g2(w2)) - (r_o2 - r_a)
     crank_angular = data.inertia_o2 * (w2p - w2) - (_cross(a, -r_a) + drive)
@@ -105,7 +110,8 @@ def _compare(data: ImpactData, pos: ImpactPosition, k: float, mu: float) -> None
             ref = _generalised(data, pos, index, k, mu, crank_held)
             scale_w = abs(ref["omega2"]) + abs(ref["omega3"]) + abs(ref["omega4"])
             for name in ("omega2", "omega3", "omega4"):
-                assert _at(getattr(res, name), index) == pytest.approx(ref[name], abs=1e-11 * scale_w)
+                assert _at(getattr(res, name), index) == pytest.approx(ref[name],
+                                                                      abs=1e-11 * scale_w)
             assert _at(res.normal, index) == pytest.approx(ref["normal"], rel=1e-10)
             assert _at(res.friction, index) == pytest.approx(ref["friction"], rel=1e-10, abs=1e-18)
             assert max(_link_residuals(data, pos, res, index)) < 1e-12

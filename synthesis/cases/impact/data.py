@@ -8,7 +8,7 @@ say "Ns": a unit slip, see the report).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import astuple, dataclass, replace
 
 __all__ = [
     "PAPER",
@@ -83,9 +83,20 @@ class ImpactData:
         """Moment of inertia of the coupler about the joint A (parallel axes), kg·m²."""
         return self.inertia3 + self.m3 * (self.r3 / 2.0) ** 2
 
+    def same_as(self, other: ImpactData, rel: float = 1e-12) -> bool:
+        """Whether every field equals the other's up to a relative tolerance."""
+        if len(self.omega4) != len(other.omega4):
+            return False
+        mine, theirs = (_flatten(astuple(data)) for data in (self, other))
+        return all(math.isclose(x, y, rel_tol=rel) for x, y in zip(mine, theirs))
+
     def with_changes(self, **changes: object) -> ImpactData:
         """A copy with some fields replaced (the command line's overrides)."""
         return replace(self, **changes)
+
+
+def _flatten(values: tuple[object, ...]) -> list[float]:
+    return [float(x) for v in values for x in (v if isinstance(v, tuple) else (v,))]
 
 
 #: The source's example (section 3 and Table 1), after Townsend and Mansour.

@@ -26,6 +26,7 @@ __all__ = [
     "LEVERS",
     "MODELS",
     "ImpactResult",
+    "Lever",
     "restitution_lever",
     "solve_paper",
     "solve_townsend_mansour",
@@ -285,7 +286,8 @@ def solve_townsend_mansour(data: ImpactData, position: ImpactPosition, *,
     r_a = data.m3 * (v3p - _coupler_velocity(data, position, w2, w3)) + (normal + 1j * friction) * u
     th2 = position.theta2
     drive = -data.r2 * (r_a.real * np.sin(th2) - r_a.imag * np.cos(th2))
-    return _result("TM", k, mu, data, position, t, w2p, w3p, w4p, v3p, normal, friction, r_a, r_a, drive)
+    return _result("TM", k, mu, data, position, t, w2p, w3p, w4p, v3p, normal, friction, r_a,
+                   r_a, drive)
 
 
 def _result(model: str, k: float, mu: float, data: ImpactData, position: ImpactPosition, t: _Terms,

@@ -82,3 +82,14 @@ def test_table_values_and_option_overrides_combine():
                           {"l1_mm": 250.0})
     assert math.degrees(task.stroke) == pytest.approx(200.0)
     assert task.k5 == (2.5,) and task.l1 == 250.0 and task.k2 == PATENT_TASK.k2
+
+
+def test_command_line_exits_2_on_bad_input_without_traceback(tmp_path, capsys):
+    from synthesis.cli import main
+
+    path = tmp_path / "task.yaml"
+    path.write_text("design_task:\n  k5: [0.5]\n", encoding="utf-8")
+    assert main(["case", "tracker", "--table", str(path), "--budget", "0"]) == 2
+    err = capsys.readouterr().err
+    assert "design_task 'k5': every value must be greater than 1" in err
+    assert "Traceback" not in err

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import lru_cache
 from enum import IntEnum
 
 import numpy as np
@@ -144,22 +145,18 @@ def _has_jet(*args: object) -> bool:
     return Jet in map(type, args)
 
 
-def _read_only(x: object) -> np.ndarray:
-    base = np.array([x])
-    base.flags.writeable = False
-    return base
-
-
-_TRUE, _ASSEMBLES, _ONE = _read_only(True), _read_only(np.int8(Reason.ASSEMBLES)), _read_only(1.0)
-
-
+@lru_cache(maxsize=256, typed=True)
 def _constant(x: object, shape: tuple[int, ...]) -> np.ndarray:
     """A read-only array of ``shape`` whose every element is the number ``x``, without a copy.
 
-    ``x`` may also be one of the prepared one-element read-only arrays (``_TRUE`` ...).
+    Cached: solvers called again and again at one resolution share these views.
     """
-    base = x if type(x) is np.ndarray else _read_only(x)
+    base = np.array([x])
+    base.flags.writeable = False
     return np.ndarray(shape, base.dtype, base, 0, (0,) * len(shape))
+
+
+_TRUE, _ASSEMBLES, _ONE = True, np.int8(Reason.ASSEMBLES), 1.0
 
 
 def _spread(x: Value, shape: tuple[int, ...]) -> Value:
@@ -168,7 +165,9 @@ def _spread(x: Value, shape: tuple[int, ...]) -> Value:
         return x if x.v.shape == shape else Jet(np.broadcast_to(x.v, shape), x.d1, x.d2)
     if getattr(x, "shape", ()) == shape:
         return x
-    return _constant(x, shape) if getattr(x, "ndim", 0) == 0 else np.broadcast_to(x, shape)
+    if getattr(x, "ndim", 0) == 0:
+        return _constant(x[()] if type(x) is np.ndarray else x, shape)
+    return np.broadcast_to(x, shape)
 
 
 def _roundoff(margin: np.ndarray) -> np.ndarray | None:
@@ -207,18 +206,21 @@ def _finish(
     failure: Callable[[], np.ndarray],
     geometry: tuple[Value | None, ...],
     valid: np.ndarray | None = None,
+    lowest: float | None = None,
 ) -> DyadSolution:
     """Existence mask, reason codes and NaN blanking common to all solvers.
 
     ``shape`` is the broadcast shape of the solver's arguments ``inputs``; ``geometry`` holds
     the outputs ``c, origin_i, angle_i, origin_j, angle_j, s_i, s_j``. ``failure()`` returns
     the reason code of each position as if it failed; it is evaluated only when some position
-    does fail. ``valid`` (optional) is a further condition of existence.
+    does fail. ``valid`` (optional) is a further condition of existence; ``lowest`` is the
+    smallest margin when the caller already knows it.
     """
     margin = margin if margin.shape == shape else np.broadcast_to(margin, shape)
     if Jet in map(type, geometry):  # constant outputs become jets too
         geometry = tuple(x if x is None or type(x) is Jet else Jet(x) for x in geometry)
-    lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
+    if lowest is None:
+        lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
     if lowest >= (delta if type(delta) is float else np.max(delta)) and (
             valid is None or valid.all()):
         exists = _constant(_TRUE, shape)  # one reduction found every position assembled
@@ -253,20 +255,19 @@ def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
         ``c`` = crank pin, ``origin_i`` = O₁, ``angle_i`` = φ₁; margin 1 (always assembles).
     """
     shape = _shape(o, length, angle)
+    if type(angle) is np.ndarray and angle.shape == shape and not _has_jet(o, length) \
+            and getattr(o, "ndim", 0) == 0 and getattr(length, "ndim", 0) == 0 \
+            and np.isfinite(np.add.reduce(angle, axis=None) + o + length):
+        pin = J.expi(angle)  # finite inputs: the fast path needs no error state
+        xy = pin.view(np.float64)  # scale the interleaved (x, y) pairs in place
+        np.multiply(xy, length, out=xy)
+        pin += o
+        return DyadSolution(pin, _spread(o, shape), angle, None, None, None, None,
+                            _constant(_ONE, shape), _constant(_TRUE, shape),
+                            _constant(_ASSEMBLES, shape))
     with np.errstate(all="ignore"):
-        u = J.expi(angle)
-        if type(u) is np.ndarray and u.shape == shape and not _has_jet(o, length) \
-                and getattr(length, "ndim", 0) == 0:
-            pin = u  # fast path: scale the interleaved (x, y) pairs in place
-            pin.view(np.float64)[...] *= length
-            pin += o
-        else:
-            pin = o + length * u
-        pv = J.value(pin)
-        if np.isfinite(np.add.reduce(pv, axis=None)):  # one reduction: all positions finite
-            margin = _constant(_ONE, shape)
-        else:
-            margin = np.where(np.isfinite(pv), 1.0, np.nan)
+        pin = o + length * J.expi(angle)
+        margin = np.where(np.isfinite(J.value(pin)), 1.0, np.nan)
     return _finish(
         shape, (o, length, angle), margin, 0.0, lambda: Reason.UNDEFINED_INPUT,
         (pin, _spread(o, shape), _spread(angle, shape), None, None, None, None),
@@ -307,8 +308,9 @@ def solve_rrr(
     shape = _shape(h_i, h_j, l_i, l_j, s)
     if _has_jet(h_i, h_j, l_i, l_j) or not shape:
         c, angle_i, angle_j, margin, d = _rrr_generic(h_i, h_j, l_i, l_j, s)
+        lowest = None
     else:
-        c, angle_i, angle_j, margin, d = _rrr_arrays(h_i, h_j, l_i, l_j, s, shape)
+        c, angle_i, angle_j, margin, d, lowest = _rrr_arrays(h_i, h_j, l_i, l_j, s, shape)
 
     def failure() -> np.ndarray:
         longest = np.maximum(J.value(l_i), J.value(l_j))
@@ -318,6 +320,7 @@ def solve_rrr(
     return _finish(
         shape, (h_i, h_j, l_i, l_j, s), margin, delta, failure,
         (c, _spread(h_i, shape), angle_i, _spread(h_j, shape), angle_j, None, None),
+        lowest=lowest,
     )
 
 
@@ -341,7 +344,9 @@ def _rrr_arrays(
     h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.ndarray,
     shape: tuple[int, ...],
 ) -> tuple:
-    """The same as :func:`_rrr_generic` for plain arrays, in real arithmetic, few temporaries.
+    """:func:`_rrr_generic` for plain arrays, in real arithmetic with few temporaries.
+
+    Also returns the smallest margin (found anyway to detect roundoff at a toggle).
 
     With ``r = H_j − H_i``, ``d = |r|``: ``C − H_i = r·(x + jσy)``, where
     ``x = (d² + l_i² − l_j²)/(2d²)`` and ``y = sqrt(Δ)/(2d²)`` with the discriminant in
@@ -350,17 +355,17 @@ def _rrr_arrays(
     full relative accuracy at both toggle positions.
     """
     with np.errstate(all="ignore"):
-        r = np.subtract(h_j, h_i, dtype=complex)
-        if r.shape != shape:
-            r = np.array(np.broadcast_to(r, shape))
-        rx, ry = r.real, r.imag
+        rx = np.subtract(np.real(h_j), np.real(h_i))  # r = H_j − H_i, as contiguous x and y
+        ry = np.subtract(np.imag(h_j), np.imag(h_i))
+        if rx.shape != shape:
+            rx, ry = (np.array(np.broadcast_to(t, shape)) for t in (rx, ry))
         d2 = rx * rx
         d2 += ry * ry
         q = np.divide(0.5, d2)
-        x = np.add(d2, np.subtract(np.multiply(l_i, l_i), np.multiply(l_j, l_j)))
+        x = d2 + (l_i * l_i - l_j * l_j)
         x *= q
         d = np.sqrt(d2)
-        l_sum, l_dif = np.add(l_i, l_j), np.subtract(l_j, l_i)
+        l_sum, l_dif = l_i + l_j, l_j - l_i
         disc = l_sum - d
         disc *= l_sum + d
         wx = d - l_dif
@@ -370,15 +375,20 @@ def _rrr_arrays(
         margin /= l_i  # c = cos of the angle at H_i
         np.absolute(margin, out=margin)
         np.subtract(1.0, margin, out=margin)
-        tiny = _roundoff(margin)
-        if tiny is not None:
+        lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
+        if not lowest >= 0.0:
+            tiny = (margin < 0.0) & (margin > -ROUNDOFF)
             margin[tiny] = 0.0
+            lowest = np.minimum.reduce(margin, axis=None)
         np.maximum(disc, 0.0, out=disc)  # < 0 only within roundoff where the dyad exists
         y = np.sqrt(disc, out=disc)
         y *= q
-        y *= s
+        if type(s) is not float:
+            y *= s
+        elif s < 0.0:
+            np.negative(y, out=y)
         np.multiply(rx, x, out=wx)
-        wx -= ry * y
+        wx -= np.multiply(ry, y, out=q)
         wy = np.multiply(rx, y, out=y)
         wy += np.multiply(ry, x, out=x)  # (wx, wy) = C − H_i
         angle_i = np.arctan2(wy, wx)
@@ -388,7 +398,7 @@ def _rrr_arrays(
         wx -= rx
         wy -= ry  # C − H_j
         angle_j = np.arctan2(wy, wx)
-    return c, angle_i, angle_j, margin, d
+    return c, angle_i, angle_j, margin, d, lowest
 
 
 def solve_rrp(

@@ -103,13 +103,22 @@ def test_far_from_the_origin() -> None:
 
 # --- near toggle ------------------------------------------------------------------------------
 
-def test_exact_toggle_assembles_with_zero_margin() -> None:
-    sol = solve_rrr(0j, 100 + 0j, 60.0, 40.0, 1)  # stretched: 60 + 40 = 100
-    assert sol.exists and sol.margin == 0.0 and sol.reason == 0
-    assert sol.c == pytest.approx(60 + 0j, abs=1e-12)
-    folded = solve_rrr(0j, 20 + 0j, 60.0, 40.0, -1)  # folded: 60 - 40 = 20
-    assert folded.exists and folded.margin == 0.0
-    assert folded.c == pytest.approx(60 + 0j, abs=1e-12)
+@pytest.mark.parametrize("hinges", [0j, np.zeros(3, complex)], ids=["scalar", "array"])
+def test_exact_toggle_assembles_with_zero_margin(hinges: complex | np.ndarray) -> None:
+    sol = solve_rrr(hinges, hinges + 100, 60.0, 40.0, 1)  # stretched: 60 + 40 = 100
+    assert np.all(sol.exists) and np.all(sol.margin == 0.0) and np.all(sol.reason == 0)
+    np.testing.assert_allclose(sol.c, 60.0, atol=1e-12)
+    folded = solve_rrr(hinges, hinges + 20, 60.0, 40.0, -1)  # folded: 60 - 40 = 20
+    assert np.all(folded.exists) and np.all(folded.margin == 0.0)
+    np.testing.assert_allclose(folded.c, 60.0, atol=1e-12)
+    # 3-4-5 triangle scaled by 0.1 and rotated: the rounded coordinates give margin ~1e-16
+    turn = np.exp(0.3j)
+    tilted = solve_rrr(hinges, hinges + 14 * turn, 8.0, 6.0, 1)
+    assert np.all(tilted.exists) and np.all(np.abs(tilted.margin) <= 1e-14)
+    np.testing.assert_allclose(tilted.c, 8 * turn, atol=1e-6)
+
+
+def test_exact_tangency_of_rod_and_path() -> None:
     rrp = solve_rrp(100j, 0j, 0.0, 0.0, 100.0, 1)  # rod exactly reaches the guide
     assert rrp.exists and rrp.s_i == 0.0 and rrp.c == 0j
 

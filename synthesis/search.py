@@ -278,6 +278,9 @@ class _Search:
                 break
         for x0 in starts:
             self.refine_from(x0)
+        if self.best_x is not None and self.best_criteria is not None \
+                and self.best_criteria.p1[0] == 0:
+            self.minimax_from(self.best_x)
 
     def refine_from(self, x0: FloatArray) -> None:
         span = self.upper - self.lower
@@ -316,6 +319,62 @@ class _Search:
                                x_scale=np.where(varied, span, 1.0), method="trf",
                                max_nfev=self.settings.refine_evaluations, xtol=1e-15,
                                ftol=1e-15, gtol=1e-15)
+
+    def minimax_from(self, x0: FloatArray) -> None:
+        """Minimise Q itself near x0: min t subject to −t ≤ Δ_K(x) ≤ t (SLSQP).
+
+        Least squares minimises Σ Δ_K², which is not Q = max |Δ_K| when the target cannot be
+        met exactly; this epigraph form moves to the Chebyshev (minimax) design.  Variables
+        are scaled to the unit box; the Jacobian of Δ comes from one batched
+        forward-difference call.
+        """
+        lo, span = self.lower, self.upper - self.lower
+        base = self.record(x0[None, :], "refine", check_stall=False)
+        q0 = float(base.q[0])
+        if base.p1[0] > 0 or not np.isfinite(q0) or q0 == 0.0:
+            return
+        p2_start = base.p2[0]
+        fallback = np.full(base.deviations.shape[1], 10.0 * q0)
+        cache: dict[bytes, FloatArray] = {}
+
+        def design(u: FloatArray) -> FloatArray:
+            return lo + np.clip(u, 0.0, 1.0) * span
+
+        def deviations(u: FloatArray) -> FloatArray:
+            key = np.clip(u, 0.0, 1.0).tobytes()
+            if key not in cache:
+                c = self.record(design(u)[None, :], "refine", check_stall=False)
+                ok = (c.p1[0] == 0 and c.p2[0] <= p2_start
+                      and np.all(np.isfinite(c.deviations[0])))
+                cache[key] = c.deviations[0] if ok else fallback
+            return cache[key]
+
+        def jacobian(u: FloatArray) -> FloatArray:
+            u = np.clip(u, 0.0, 1.0)
+            step = np.where(u + 1e-7 > 1.0, -1e-7, 1e-7)
+            c = self.record(design(u[None, :] + np.diag(step)), "refine", check_stall=False)
+            d0 = deviations(u)
+            d = np.where(np.isfinite(c.deviations), c.deviations, d0[None, :])
+            return ((d - d0[None, :]) / step[:, None]).T
+
+        def constraints(z: FloatArray) -> FloatArray:
+            d = deviations(z[:-1])
+            return np.concatenate([z[-1] - d, z[-1] + d])
+
+        def constraints_jac(z: FloatArray) -> FloatArray:
+            jac = jacobian(z[:-1])
+            ones = np.ones((jac.shape[0], 1))
+            return np.vstack([np.hstack([-jac, ones]), np.hstack([jac, ones])])
+
+        q = span.size
+        objective_grad = np.zeros(q + 1)
+        objective_grad[-1] = 1.0
+        optimize.minimize(lambda z: z[-1], np.append((x0 - lo) / span, q0),
+                          jac=lambda z: objective_grad, method="SLSQP",
+                          bounds=[(0.0, 1.0)] * q + [(0.0, None)],
+                          constraints=[{"type": "ineq", "fun": constraints,
+                                        "jac": constraints_jac}],
+                          options={"maxiter": 60, "ftol": 1e-15})
 
     # -------------------------------------------------------------------------- run
     def run(self, initial: FloatArray) -> SearchResult:

@@ -11,6 +11,7 @@ from synthesis.cases.impact.data import PAPER, TABLE_1, ImpactData
 from synthesis.cases.impact.energy import EnergyBalance, energy_balance
 from synthesis.cases.impact.models import ImpactResult, solve_paper, solve_townsend_mansour
 from synthesis.cases.impact.position import ImpactPosition, impact_position
+from synthesis.cases.impact.study import ImpactStudy, run_study
 
 __all__ = [
     "PAPER",
@@ -19,8 +20,10 @@ __all__ = [
     "ImpactData",
     "ImpactPosition",
     "ImpactResult",
+    "ImpactStudy",
     "energy_balance",
     "impact_position",
+    "run_study",
     "solve_paper",
     "solve_townsend_mansour",
 ]

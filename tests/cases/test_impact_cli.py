@@ -33,7 +33,7 @@ def test_default_run_prints_table_1_and_worst_errors(capsys: pytest.CaptureFixtu
     assert main(["case", "impact"]) == 0
     out = capsys.readouterr().out
     assert "Worst relative error per column" in out
-    worst = re.findall(r"^  (θ[23]'\+|F|r_A|r_O2) (\[2\]|P)\s+([0-9.]+) %$", out, re.M)
+    worst = re.findall(r"^  (θ[23]'\+|F|r_A|r_O2) (\[2\]|P)\s+([0-9.]+) %$", out, re.MULTILINE)
     assert len(worst) == 10
     assert all(float(value) < 0.1 for *_, value in worst)
     assert "1e-4 N·s" in out and "r_2θ" in out and "I_O4" in out and "3 equations" in out

@@ -115,3 +115,17 @@ def test_weighted_objective_can_accept_a_desirable_violation() -> None:
                   SearchSettings(budget_log2=8, objective="weighted", p2_weight=1.0))
     assert lex.x[0] <= 0.5
     assert soft.x[0] == pytest.approx(0.8, abs=0.02)
+
+
+def test_refinement_reaches_the_minimax_not_the_least_squares_design() -> None:
+    """Δ = (x − 0, x − 0, x − 3): least squares gives x = 1 (Q = 2), minimax x = 1.5 (Q = 1.5)."""
+    targets = np.array([0.0, 0.0, 3.0])
+
+    def residual(x: np.ndarray) -> Criteria:
+        dev = x[:, :1] - targets[None, :]
+        zero = np.zeros(len(x))
+        return Criteria(zero, zero, np.max(np.abs(dev), axis=1), dev, dev)
+
+    r = search(residual, [-5.0], [5.0], [4.0], SearchSettings(budget_log2=4, refine=True))
+    assert r.criteria.q[0] == pytest.approx(1.5, abs=1e-6)
+    assert r.x[0] == pytest.approx(1.5, abs=1e-6)

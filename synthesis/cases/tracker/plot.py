@@ -115,13 +115,15 @@ def chart_figure(study: Study, lang: str = "en") -> Figure:
                 ax.plot(k2, getattr(values, quantity), style, color=f"C{index}",
                         label=f"{quantity}, k5 = {k5:g}")
                 if patent:
-                    ax.plot(*_printed(quantity, k5), "x", color=f"C{index}")
+                    ax.plot(*_printed(quantity, k5), "x", color=f"C{index}",
+                            label=text["patent"] if index == 0 and style == "-" else None)
         ax.set(title=title, xlabel=text["k2"], ylabel=text["ratio"])
-        ax.legend(fontsize=7)
     axes[1, 1].axhline(task.actuator_stroke / task.l1, color="r", lw=0.8, ls=":",
                        label=text["allowed"])
     axes[1, 2].axhline(task.min_clearance / task.l1, color="r", lw=0.8, ls=":",
                        label=text["required"])
+    for ax, _, _ in panels:
+        ax.legend(fontsize=7)
     return fig
 
 

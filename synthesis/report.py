@@ -38,6 +38,8 @@ _WORDS: dict[str, tuple[str, str]] = {
     "class4": ("tracing-point path with timing", "траектория точки с согласованием по φ"),
     "design": ("Design (varied parameters, table units: mm, degrees)",
                "Найденные параметры (единицы таблиц: мм, градусы)"),
+    "rad": ("rad", "рад"),
+    "mm": ("mm", "мм"),
     "param": ("parameter", "параметр"),
     "initial": ("initial", "начальное"),
     "lower": ("lower", "левая граница"),
@@ -149,6 +151,7 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
         "initial": problem.design(problem.initial),
         "bounds": {p.name: [p.lower, p.upper] for p in problem.parameters},
         "Q": _num(c.q[0]),
+        "unit": "rad" if problem.task_class == 1 else "mm",
         "Q_rms": _num(np.sqrt(np.mean((c.deviations[0] / control.weight) ** 2))),
         "P1": float(c.p1[0]),
         "P2": _num(c.p2[0]),
@@ -238,13 +241,16 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
         lines.append(f"  {name:<22} {data['initial'][name]:>12.6g} {lo:>12.6g} {hi:>12.6g} "
                      f"{value:>14.9g}")
     yes_no = lambda flag: w("yes") if flag else w("no")  # noqa: E731
+    unit = w(data["unit"])
+    in_degrees = (f" ({math.degrees(data['Q']):.6g}°)"
+                  if data["unit"] == "rad" and data["Q"] is not None else "")
     lines += ["", w("criteria"),
-              f"  {w('q'):<40} {_fmt(data['Q'])}",
-              f"  {w('rms'):<40} {_fmt(data['Q_rms'])}",
+              f"  {w('q'):<40} {_fmt(data['Q'])} {unit}{in_degrees}",
+              f"  {w('rms'):<40} {_fmt(data['Q_rms'])} {unit}",
               f"  {w('p1'):<40} {_fmt(data['P1'])}",
               f"  {w('p2'):<40} {_fmt(data['P2'])}"]
     if data["accuracy"] is not None:
-        lines.append(f"  {w('required'):<40} {data['accuracy']:g}")
+        lines.append(f"  {w('required'):<40} {data['accuracy']:g} {unit}")
         lines.append(f"  {w('favourable'):<40} {yes_no(data['favourable'])}")
     if not data["feasible"]:
         lines += ["", w("not_feasible")]
@@ -256,12 +262,12 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
                       else f"[{row['lower']:.6g}, {row['upper']:.6g}]")
             lines.append(f"  K={row['K']:<3} φ={row['phi']:8.3f}  {w('target')} {target:>12}  "
                          f"{w('reproduced')} {_fmt(row['reproduced']):>12}  "
-                         f"Δ={_fmt(row['deviation'])}")
+                         f"Δ={_fmt(row['deviation'])} {unit}")
         else:
             where = (f"φ={row['phi']:8.3f}" if cls == 4
                      else f"φ*={_fmt(row['phi_nearest']):>8}")
             lines.append(f"  K={row['K']:<3} {where}  ({row['x']:.6g}, {row['y']:.6g})  "
-                         f"Δ={_fmt(row['deviation'])}")
+                         f"Δ={_fmt(row['deviation'])} {unit}")
     if data["pressure_angles"]:
         lines += ["", w("pressure")]
         for label, info in data["pressure_angles"].items():

@@ -104,3 +104,15 @@ def test_plot_has_the_mechanism_and_both_models() -> None:
     assert len(jumps.patches) == 2 * 3 * 3 and len(impulses.patches) == 2 * 3 * 3
     labels = [text.get_text() for text in mechanism.texts]
     assert {"F", "r_A", "r_O2"} <= set(labels)
+
+
+def test_a_rocker_moving_with_the_pin_is_reported_not_solved(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from synthesis.cases.impact.position import impact_position
+
+    rigid = float(impact_position(PAPER, omega4=0.0).omega4_rigid)
+    target = tmp_path / "none.png"
+    assert main(["case", "impact", "--omega4", repr(rigid), "--plot", str(target)]) == 0
+    out = capsys.readouterr().out
+    assert "no impact" in out and "nan" not in out
+    assert target.exists()

@@ -29,17 +29,21 @@ _LABELS: dict[str, dict[str, str]] = {
 }
 
 
-def plot_case(study: ImpactStudy, lang: Lang = "en", row: int = 0) -> Any:
+def plot_case(study: ImpactStudy, lang: Lang = "en", row: int | None = None) -> Any:
     """Draw the case; returns a :class:`matplotlib.figure.Figure` (not shown).
 
     Parameters
     ----------
     study : ImpactStudy
     lang : {'en', 'ru'}
-    row : int
-        Which rocker velocity (index into ``study.data.omega4``) the mechanism panel shows.
+    row : int, optional
+        Which rocker velocity (index into ``study.data.omega4``) the mechanism panel shows;
+        by default the first one with an impact.
     """
     from matplotlib.figure import Figure
+
+    if row is None:
+        row = int(np.argmax(study.position.exists))
 
     figure = Figure(figsize=(15, 5.2), layout="constrained")
     mech, jumps, impulses = figure.subplots(1, 3, width_ratios=[1.3, 1, 1])
@@ -150,4 +154,5 @@ def _draw_comparison(jumps: Any, impulses: Any, study: ImpactStudy, lang: Lang) 
         ax.axhline(0.0, color="k", lw=0.8)
         ax.set_title(_LABELS[key][lang], fontsize=10)
         ax.grid(axis="y", alpha=0.3)
-    impulses.legend(fontsize=7)
+    if rows:
+        impulses.legend(fontsize=7)

@@ -182,6 +182,8 @@ def _model_lines(study: ImpactStudy, lang: Lang) -> list[str]:
     lines = [_t("models", lang), "  " + "".join(f"{h:>10}" for h in heads)]
     unit = PAPER_IMPULSE_UNIT
     for index, omega4 in enumerate(study.position.omega4):
+        if not study.position.exists[index]:
+            continue
         for model in ("TM", "P"):
             r = study.results[model]
             values = (r.omega2[index], r.omega3[index], r.omega4[index], r.normal[index] / unit,
@@ -224,6 +226,8 @@ def _table_lines(study: ImpactStudy, lang: Lang) -> list[str]:
 def _energy_lines(study: ImpactStudy, lang: Lang) -> list[str]:
     lines = [f"{_t('energy', lang)} ({_t('energy_head', lang)})"]
     for index, omega4 in enumerate(study.position.omega4):
+        if not study.position.exists[index]:
+            continue
         for model in ("TM", "P"):
             e = study.energy[model]
             values = (e.before[index] * 1e3, e.drive_work[index] * 1e3, e.after[index] * 1e3,
@@ -231,8 +235,7 @@ def _energy_lines(study: ImpactStudy, lang: Lang) -> list[str]:
             lines.append(f"  θ4' = {omega4:>6g} {_MODEL_LABEL[model]:>4}"
                          + "".join(f"{v:>12.4f}" for v in values)
                          + f"{100 * e.relative_loss[index]:>12.5f}")
-            result = study.results[model]
-            if study.position.exists[index] and not result.full_slip[index]:
+            if not study.results[model].full_slip[index]:
                 lines.append("    " + _t("friction_bad", lang).format(
                     model=_MODEL_LABEL[model], w4=omega4))
     s = study.slip

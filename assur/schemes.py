@@ -99,6 +99,7 @@ class _Group:
     kind: Any
     is_input: bool
     external: tuple[tuple[PairId, LinkId, LinkId], ...]
+    signature: str = ""
 
 
 def _groups(analysis: Any, chain: Chain) -> list[_Group]:
@@ -127,23 +128,29 @@ def _as_group(group: Any, chain: Chain, *, is_input: bool) -> _Group:
     return _Group(name=str(name), links=links, level=int(level or 0),
                   group_class=getattr(group, "group_class", None),
                   order=getattr(group, "order", None), kind=getattr(group, "kind", None),
-                  is_input=is_input, external=external)  # type: ignore[arg-type]
+                  is_input=is_input, external=external,  # type: ignore[arg-type]
+                  signature=str(getattr(group, "name", "") or ""))
 
 
-def _kind_text(kind: Any, lang: str) -> str:
+def _kind_text(group: _Group, lang: str) -> str:
+    """The kind of a dyad with its pair string, or the signature of a larger group."""
+    kind = group.kind
     if isinstance(kind, int) and not isinstance(kind, bool):
         table = _KIND_STRINGS_RU if lang == "ru" else _KIND_STRINGS
         code = table.get(kind)
         return f"{kind} ({code})" if code else str(kind)
-    return "–" if kind is None else str(kind)
+    return group.signature or "–" if kind is None else str(kind)
 
 
 def _group_caption(group: _Group, lang: str) -> str:
     text = _TEXT[lang]
     if group.is_input:
         return f"{group.name}\n{text['input']}"
+    kind = _kind_text(group, lang)
+    if group.kind is not None:
+        kind = f"{text['kind']} {kind}"
     return (f"{group.name}\n{text['class']} {roman(group.group_class)}, "
-            f"{text['order']} {group.order}, {text['kind']} {_kind_text(group.kind, lang)}")
+            f"{text['order']} {group.order}, {kind}")
 
 
 def group_graph(chain: Chain, analysis: Any) -> list[tuple[str, str, tuple[PairId, ...]]]:
@@ -299,23 +306,27 @@ def _layered_links(chain: Chain, groups: Sequence[_Group]) -> dict[LinkId, compl
         neighbours[a].append(b)
         neighbours[b].append(a)
     for level in sorted(members):
-        def parent_height(links: tuple[LinkId, ...]) -> float:
-            known = [nodes[n].imag for link in links for n in neighbours[link] if n in nodes]
-            return float(np.mean(known)) if known else 0.0
-
-        column = sorted(members[level], key=parent_height)
+        heights = {links: [nodes[n].imag for link in links for n in neighbours[link]
+                           if n in nodes] for links in members[level]}
+        column = sorted(members[level],
+                        key=lambda links: float(np.mean(heights[links])) if heights[links]
+                        else 0.0)
         y = 0.0
         for links in column:
-            count = len(links)
             for k, link in enumerate(links):
-                angle = math.pi / 2 + 2 * math.pi * k / max(count, 1)
-                offset = 0.0 if count == 1 else 0.9 * complex(0.6 * math.cos(angle),
-                                                                math.sin(angle))
-                if count == 2:  # a dyad: link i up-left, link j down-right
-                    offset = complex(-0.45 + 0.9 * k, 0.7 - 1.4 * k)
-                nodes[link] = complex(3.2 * level, y + 1.4) + offset
-            y += 3.2 if count > 1 else 2.2
+                nodes[link] = complex(3.2 * level, y + 1.4) + _member_offset(k, len(links))
+            y += 3.2 if len(links) > 1 else 2.2
     return nodes
+
+
+def _member_offset(k: int, count: int) -> complex:
+    """Where the k-th link of a group sits around the group's centre."""
+    if count == 1:
+        return 0j
+    if count == 2:  # a dyad: link i up-left, link j down-right
+        return complex(-0.45 + 0.9 * k, 0.7 - 1.4 * k)
+    angle = math.pi / 2 + 2 * math.pi * k / count
+    return 0.9 * complex(0.6 * math.cos(angle), math.sin(angle))
 
 
 def _layered_pairs(chain: Chain, nodes: dict[LinkId, complex]) -> dict[PairId, complex]:
@@ -629,7 +640,7 @@ def draw_formalised_scheme(chain: Chain, analysis: Any, *, ax: Axes | None = Non
         at = where[group.name]
         label = group.name if group.is_input else (
             f"{group.name}\n{roman(group.group_class)}/{group.order}, "
-            f"{_kind_text(group.kind, lang)}")
+            f"{_kind_text(group, lang)}")
         node = ax.text(at.real, at.imag, label, ha="center", va="center", fontsize=9,
                        bbox={"boxstyle": "round,pad=0.35", "fc": "white", "lw": 1.4,
                              "ec": colour[group.name]}, zorder=5)

@@ -269,7 +269,7 @@ _COLUMNS = ("file", "verdict", "problem", "problems", "formula", "n", "p5", "W",
             "identification", "existence", "seconds")
 
 
-def rows_to_csv(rows: Iterable[BatchRow], lang: str = "en") -> str:
+def rows_to_csv(rows: Iterable[BatchRow]) -> str:
     """The rows as CSV text (a header line, then one line per file)."""
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")

@@ -165,3 +165,17 @@ def test_check_command_draws_the_schemes(tmp_path, tables_dir_module, capsys):
     assert "Формула строения" in capsys.readouterr().out
     assert main(["check", str(table), "--plot", str(tmp_path / "schemes.jpg")]) == 2
     assert ".svg or .png" in capsys.readouterr().err
+
+
+def test_triad_is_outlined_with_class_and_order():
+    # a class III triad: base link 4 with leashes 2, 3, 5 (three external pairs B, E, G)
+    chain = chain_from_dict({"mechanism": {"pairs": [
+        {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
+        {"id": "C", "type": "R", "links": [2, 4]}, {"id": "D", "type": "R", "links": [3, 4]},
+        {"id": "E", "type": "R", "links": [3, 0]}, {"id": "F", "type": "R", "links": [4, 5]},
+        {"id": "G", "type": "P", "links": [5, 0], "guide": 0}], "inputs": [1]}})
+    analysis = analyse_structure(chain)
+    svg = scheme_bytes(chain, analysis, "svg").decode("utf-8")
+    assert "group-III(2,3,4,5)" in svg
+    assert "class III, order 3, III(base 4; leashes R–R, R–R, R–P)" in svg
+    assert group_graph(chain, analysis) == [("I(0,1)", "III(2,3,4,5)", ("B",))]

@@ -288,7 +288,8 @@ def _existence_section(model: Any, lang: str, points: int, summary: dict[str, st
              else f"{i.start:.3f}…{i.end:.3f}") + f" ({REASONS[i.reason][lang == 'ru']})"
             for i in group.intervals) or "–"
         verdict = term("whole_cycle" if group.assembles else "fails", lang)
-        rows.append((group.name, CONDITIONS.get(group.kind, ""), group.delta,
+        condition = CONDITIONS.get(group.kind, "").split("  (")[0]  # the inequality alone
+        rows.append((group.name, condition, group.delta,
                      group.min_margin, verdict, where))
     header = (term("group", lang), term("condition", lang), "δ",
               f"min {term('margin', lang)}", term("verdict", lang), term("fails", lang))

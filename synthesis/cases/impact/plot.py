@@ -23,6 +23,8 @@ _LABELS: dict[str, dict[str, str]] = {
     "jumps": {"en": "Velocity jumps, rad/s", "ru": "Скачки скоростей, рад/с"},
     "impulses": {"en": "Impulses, 1e-4 N·s", "ru": "Импульсы, 1e-4 Н·с"},
     "normal": {"en": "impact normal u(ψ)", "ru": "нормаль удара u(ψ)"},
+    "x": {"en": "x, mm", "ru": "x, мм"},
+    "y": {"en": "y, mm", "ru": "y, мм"},
     "zoom": {"en": "bearing B (ξ exaggerated)", "ru": "шарнир B (ξ увеличен)"},
     "TM": {"en": "[2] Townsend–Mansour", "ru": "[2] Таунсенд–Мансур"},
     "P": {"en": "P (the source)", "ru": "P (статья)"},
@@ -69,8 +71,8 @@ def _draw_mechanism(ax: Any, study: ImpactStudy, lang: Lang, row: int) -> None:
     p, d = study.position, study.data
     ax.set_title(_LABELS["mechanism"][lang].format(w4=float(p.omega4[row])), fontsize=10)
     ax.set_aspect("equal")
-    ax.set_xlabel("x, mm")
-    ax.set_ylabel("y, mm")
+    ax.set_xlabel(_LABELS["x"][lang])
+    ax.set_ylabel(_LABELS["y"][lang])
     if not p.exists[row]:
         return
     o2, o4 = 0j, complex(p.o4[row])
@@ -155,4 +157,5 @@ def _draw_comparison(jumps: Any, impulses: Any, study: ImpactStudy, lang: Lang) 
         ax.set_title(_LABELS[key][lang], fontsize=10)
         ax.grid(axis="y", alpha=0.3)
     if rows:
-        impulses.legend(fontsize=7)
+        impulses.set_ylim(top=impulses.get_ylim()[1] * (1.0 + 0.08 * 2 * len(rows)))
+        impulses.legend(fontsize=7, loc="upper right")

@@ -62,8 +62,10 @@ def plot_output(problem: Problem, analysis: Analysis, *, axes: Any = None,
         ax.plot(phi, np.real(out) * scale, label=t["reproduced"])
         cphi = np.degrees(control.phi)
         if control.zone:
-            ax.fill_between(cphi, control.lower * scale, control.upper * scale, alpha=0.3,
-                            step="mid", label=t["zone"])
+            middle = (control.lower + control.upper) / 2 * scale
+            half = (control.upper - control.lower) / 2 * scale
+            ax.errorbar(cphi, middle, yerr=half, fmt="none", capsize=4, color="tab:green",
+                        label=t["zone"])
         else:
             ax.plot(cphi, control.value * scale, "o", label=t["target"])
         ax.set_xlabel(t["phi"])

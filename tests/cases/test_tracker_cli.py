@@ -12,6 +12,8 @@ import pytest
 from assur import TableError
 from synthesis.cases.tracker import cli
 from synthesis.cases.tracker.design import PATENT_TASK
+from synthesis.cases.tracker.plot import save_plots
+from synthesis.cases.tracker.study import run_study
 from synthesis.cases.tracker.task import load_task, task_from_data
 
 
@@ -55,8 +57,9 @@ def test_json_output_with_overrides(capsys):
                                                               "not derivable"}
 
 
-def test_plots_are_written(tmp_path, capsys):
-    assert _run(["--plot", str(tmp_path)]) == 0
+def test_plots_are_written(tmp_path):
+    paths = save_plots(run_study(PATENT_TASK), tmp_path, "ru", dpi=40)
+    assert paths[0].name == "tracker_charts.png"
     names = sorted(p.name for p in Path(tmp_path).iterdir())
     assert names == ["tracker_charts.png", "tracker_chosen.png", "tracker_refined.png",
                      "tracker_synthesis.png"]

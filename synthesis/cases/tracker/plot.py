@@ -68,8 +68,9 @@ def chart_figure(study: Study, lang: str = "en") -> Figure:
 
     text = _LABELS[lang]
     task = study.task
-    fig = Figure(figsize=(14, 8.5), layout="constrained")
-    axes = fig.subplots(2, 3)
+    fig = Figure(figsize=(14, 8.5))
+    axes = fig.subplots(2, 3, gridspec_kw={"left": 0.05, "right": 0.99, "bottom": 0.06,
+                                            "top": 0.96, "wspace": 0.22, "hspace": 0.28})
     k2 = np.linspace(min(task.k2) - 0.1, max(task.k2) + 0.1, 201)
     k5s = sorted(set(task.k5) | set(_CHART_K5))
     a_deg = math.degrees(task.stroke)
@@ -183,9 +184,9 @@ def mechanism_figure(motion: TrackerMotion, *, title: str, body: float, lang: st
     """A figure with :func:`plot_mechanism`."""
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(8, 7), layout="constrained")
-    plot_mechanism(motion, fig.subplots(), title=title, body=body, lang=lang,
-                   min_clearance=min_clearance)
+    fig = Figure(figsize=(8, 7))
+    ax = fig.subplots(gridspec_kw={"left": 0.1, "right": 0.97, "bottom": 0.08, "top": 0.94})
+    plot_mechanism(motion, ax, title=title, body=body, lang=lang, min_clearance=min_clearance)
     return fig
 
 
@@ -205,15 +206,16 @@ def _drawings(study: Study, lang: str) -> list[tuple[str, TrackerMotion, str, fl
     return out
 
 
-def _write(fig: Figure, path: Path) -> Path:
+def _write(fig: Figure, path: Path, dpi: int) -> Path:
     buffer = io.BytesIO()
-    fig.savefig(buffer, format="png", dpi=120)
+    fig.savefig(buffer, format="png", dpi=dpi)
     atomic_write_bytes(path, buffer.getvalue())
     return path
 
 
-def save_plots(study: Study, directory: str | Path, lang: str = "en") -> list[Path]:
-    """Write the design charts and the designs' drawings as PNG files.
+def save_plots(study: Study, directory: str | Path, lang: str = "en", *,
+               dpi: int = 120) -> list[Path]:
+    """Write the design charts and the designs' drawings as PNG files (``dpi`` dots/inch).
 
     Returns
     -------
@@ -222,9 +224,9 @@ def save_plots(study: Study, directory: str | Path, lang: str = "en") -> list[Pa
         ``tracker_refined.png`` and ``tracker_synthesis.png`` for the designs there are.
     """
     directory = Path(directory)
-    paths = [_write(chart_figure(study, lang), directory / "tracker_charts.png")]
+    paths = [_write(chart_figure(study, lang), directory / "tracker_charts.png", dpi)]
     for name, motion, title, body in _drawings(study, lang):
         paths.append(_write(mechanism_figure(motion, title=title, body=body, lang=lang,
                                              min_clearance=study.task.min_clearance),
-                            directory / f"tracker_{name}.png"))
+                            directory / f"tracker_{name}.png", dpi))
     return paths

@@ -14,10 +14,11 @@ below the assigned tolerance δ) and a ``reason`` code (see :data:`REASONS`).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from functools import lru_cache
 from enum import IntEnum
+from functools import lru_cache
 
 import numpy as np
 
@@ -40,6 +41,9 @@ Value = Jet | np.ndarray | complex | float
 
 #: A negative margin no larger than this is roundoff at a toggle position and is read as 0.
 ROUNDOFF = 64.0 * np.finfo(float).eps
+
+#: Positions per block in the plain-array kernels of large calls.
+BLOCK = 8192
 
 
 class Reason(IntEnum):
@@ -266,7 +270,8 @@ def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
                             _constant(_ONE, shape), _constant(_TRUE, shape),
                             _constant(_ASSEMBLES, shape))
     with np.errstate(all="ignore"):
-        pin = o + length * J.expi(angle)
+        pin = length * J.expi(angle)
+        pin = np.add(pin, o, out=pin) if type(pin) is np.ndarray else pin + o
         margin = np.where(np.isfinite(J.value(pin)), 1.0, np.nan)
     return _finish(
         shape, (o, length, angle), margin, 0.0, lambda: Reason.UNDEFINED_INPUT,
@@ -340,11 +345,42 @@ def _rrr_generic(h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.n
         return h_i + arm_i, J.arg(arm_i), J.arg(arm_i - r), margin, J.value(d)
 
 
+def _blocks(shape: tuple[int, ...]) -> list[slice]:
+    """Slices of the first axis cutting ``shape`` into blocks of about ``BLOCK`` positions."""
+    row = math.prod(shape[1:])
+    step = max(1, BLOCK // max(row, 1))
+    return [slice(k, k + step) for k in range(0, shape[0], step)]
+
+
 def _rrr_arrays(
     h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.ndarray,
     shape: tuple[int, ...],
 ) -> tuple:
+    """:func:`_rrr_kernel` over blocks of ``BLOCK`` positions (one block if small).
+
+    Blocking keeps the temporaries in cache and off the allocator for large calls (many
+    designs × many angles); results are written into the full-size outputs.
+    """
+    if math.prod(shape) <= 2 * BLOCK:
+        return _rrr_kernel(h_i, h_j, l_i, l_j, s, shape)
+    args = [x if getattr(x, "ndim", 0) == 0 else np.broadcast_to(x, shape)
+            for x in (h_i, h_j, l_i, l_j, s)]
+    outputs = (np.empty(shape, complex), *(np.empty(shape) for _ in range(4)))
+    lowest = np.inf
+    for rows in _blocks(shape):
+        part = [x if getattr(x, "ndim", 0) == 0 else x[rows] for x in args]
+        block = tuple(out[rows] for out in outputs)
+        lowest = min(lowest, _rrr_kernel(*part, block[0].shape, block)[-1])
+    return (*outputs, lowest)
+
+
+def _rrr_kernel(
+    h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.ndarray,
+    shape: tuple[int, ...], out: tuple[np.ndarray, ...] | None = None,
+) -> tuple:
     """:func:`_rrr_generic` for plain arrays, in real arithmetic with few temporaries.
+
+    ``out`` optionally gives the arrays for C, φ_i, φ_j, the margin and d.
 
     Also returns the smallest margin (found anyway to detect roundoff at a toggle).
 
@@ -364,14 +400,15 @@ def _rrr_arrays(
         q = np.divide(0.5, d2)
         x = d2 + (l_i * l_i - l_j * l_j)
         x *= q
-        d = np.sqrt(d2)
+        c, angle_i, angle_j, margin, d = out if out is not None else (None,) * 5
+        d = np.sqrt(d2, out=d)
         l_sum, l_dif = l_i + l_j, l_j - l_i
         disc = l_sum - d
         disc *= l_sum + d
         wx = d - l_dif
         wx *= d + l_dif
         disc *= wx
-        margin = np.multiply(x, d)
+        margin = np.multiply(x, d, out=margin)
         margin /= l_i  # c = cos of the angle at H_i
         np.absolute(margin, out=margin)
         np.subtract(1.0, margin, out=margin)
@@ -391,13 +428,13 @@ def _rrr_arrays(
         wx -= np.multiply(ry, y, out=q)
         wy = np.multiply(rx, y, out=y)
         wy += np.multiply(ry, x, out=x)  # (wx, wy) = C − H_i
-        angle_i = np.arctan2(wy, wx)
-        c = np.empty(shape, dtype=complex)
+        angle_i = np.arctan2(wy, wx, out=angle_i)
+        c = np.empty(shape, dtype=complex) if c is None else c
         np.add(np.real(h_i), wx, out=c.real)
         np.add(np.imag(h_i), wy, out=c.imag)
         wx -= rx
         wy -= ry  # C − H_j
-        angle_j = np.arctan2(wy, wx)
+        angle_j = np.arctan2(wy, wx, out=angle_j)
     return c, angle_i, angle_j, margin, d, lowest
 
 

@@ -271,6 +271,20 @@ def test_designs_times_angles_broadcast() -> None:
         np.testing.assert_allclose(sol.c[row], alone.c, rtol=1e-14)
 
 
+def test_large_calls_in_blocks_equal_row_by_row_calls() -> None:
+    # 40 designs x 500 angles is larger than two blocks of the plain-array kernel
+    lengths = np.linspace(40.0, 90.0, 40)[:, None]  # the shortest couplers fail part of a turn
+    pins = 30.0 * u(np.linspace(0.0, 2.0 * np.pi, 500))
+    sol = solve_rrr(pins, 100.0 + 0j, lengths, 90.0, -1.0, delta=0.05)
+    assert sol.exists.any() and not sol.exists.all()
+    for row in range(40):
+        alone = solve_rrr(pins, 100.0 + 0j, float(lengths[row, 0]), 90.0, -1.0, delta=0.05)
+        np.testing.assert_array_equal(sol.reason[row], alone.reason)
+        np.testing.assert_array_equal(sol.margin[row], alone.margin)
+        np.testing.assert_array_equal(sol.c[row], alone.c)
+        np.testing.assert_array_equal(sol.angle_j[row], alone.angle_j)
+
+
 def mirror(p: np.ndarray, base: np.ndarray, direction: np.ndarray) -> np.ndarray:
     """Reflection of the point ``p`` in the line through ``base`` along ``direction``."""
     e = direction / np.abs(direction)

@@ -4,6 +4,7 @@ checked for being self-contained, and rendered in a real browser (headless Chrom
 from __future__ import annotations
 
 import base64
+import json
 import math
 import shutil
 import subprocess
@@ -128,6 +129,8 @@ def test_student_table_and_failure_interval(tmp_path):
     report = build_report(table, points=90)
     assert report.summary["the table given in the file"].startswith("differs from the chain")
     assert report.summary["existence of the groups over the cycle"] == "does not assemble"
+    assert (report.facts["identification"], report.facts["existence"]) == ("differs", "fails")
+    assert [m["field"] for m in report.facts["mismatches"]] == ["i_plus_1"]
     page = _parse(render_html(report))
     text = "".join(page.text)
     assert "i_plus_1" in text
@@ -137,7 +140,7 @@ def test_student_table_and_failure_interval(tmp_path):
 
 
 def test_russian_report(tmp_path):
-    out = write_report(COURSE, tmp_path / "отчёт.html", lang="ru", points=60)
+    out = write_report(COURSE, tmp_path / "отчёт.html", lang="ru", points=60).out
     html = out.read_text("utf-8")
     page = _parse(html)
     text = "".join(page.text)
@@ -157,6 +160,11 @@ def test_command_line(tmp_path, capsys):
     assert main(["report", str(COURSE), "--out", str(out), "--points", "36"]) == 0
     assert capsys.readouterr().out.strip() == str(out)
     assert COURSE_FORMULA in out.read_text("utf-8")
+    assert main(["report", str(COURSE), "--out", str(out), "--points", "36", "--json"]) == 0
+    facts = json.loads(capsys.readouterr().out)
+    assert facts["W"] == 1 and facts["formula"] == COURSE_FORMULA
+    assert facts["mechanism_class"] == 2 and facts["identification"] == "not given"
+    assert facts["existence"] == "whole cycle" and facts["out"] == str(out)
     bad = tmp_path / "bad.yaml"
     bad.write_text("mechanism: {pairs: [{id: A, type: Q, links: [0, 1]}], inputs: [1]}\n")
     assert main(["report", str(bad), "--out", str(tmp_path / "bad.html")]) == 2
@@ -175,6 +183,7 @@ def test_synthesis_problem_report(tmp_path):
     # the synthesised mechanism is the problem's four-bar: one RRR dyad on the crank
     assert "I(0,1) → II₁(2,3)" in "".join(page.text)
     assert "synthesis" in report.summary
+    assert report.facts["feasible"] in (True, False) and report.facts["Q"] >= 0
 
 
 def _chromium() -> str | None:

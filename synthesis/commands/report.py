@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import argparse
+import json
+import sys
 
 NAME = "report"
 HELP = "write the coursework report (one HTML page: structure, schemes, existence, kinematics)"
@@ -19,19 +21,26 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         help="language of the report (default: en)")
     parser.add_argument("--points", type=int, default=360, metavar="N",
                         help="crank positions of the kinematic analysis (default: 360)")
+    parser.add_argument("--json", action="store_true",
+                        help="print the key values of the report as JSON (the page is written "
+                             "as well)")
     parser.add_argument("--budget", type=int, default=None, metavar="M",
                         help="synthesis problems: search 2**M trials (default: the problem's, "
                              "at most 2**10)")
 
 
 def run(args: argparse.Namespace) -> int:
-    """Build and write the report; print where it went."""
+    """Build and write the report; print where it went (or the key values as JSON)."""
     from synthesis.coursework import write_report
 
     if args.points < 8:
-        print(f"--points must be at least 8; got {args.points}")
+        print(f"--points must be at least 8; got {args.points}", file=sys.stderr)
         return 2
-    path = write_report(args.table, args.out, lang=args.lang, points=args.points,
-                        budget=args.budget)
-    print(path)
+    report = write_report(args.table, args.out, lang=args.lang, points=args.points,
+                          budget=args.budget)
+    if args.json:
+        print(json.dumps({"out": str(report.out), "title": report.title, **report.facts},
+                         ensure_ascii=False, indent=1, default=str))
+    else:
+        print(report.out)
     return 0

@@ -52,15 +52,24 @@ class CourseworkReport:
     source : str
         The table file.
     summary : dict
-        Key values shown at the top (label → value), also used by tests.
+        Key values shown at the top (label in the report's language → value).
+    facts : dict
+        The same key values for programs (``assur report --json``): ``W``, ``formula``,
+        ``mechanism_class``, ``identification`` (``matches``, ``differs``, ``not given``),
+        ``mismatches``, ``existence`` (``whole cycle``, ``fails``, ``not available``), and
+        for a synthesis problem ``feasible`` and ``Q``.
     sections : list of Section
+    out : Path or None
+        Where the page was written (set by :func:`write_report`).
     """
 
     title: str
     source: str
     lang: str
     summary: dict[str, str] = field(default_factory=dict)
+    facts: dict[str, Any] = field(default_factory=dict)
     sections: list[Section] = field(default_factory=list)
+    out: Path | None = None
 
 
 def is_problem(path: str | os.PathLike[str]) -> bool:
@@ -101,8 +110,7 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
     synthesis_sections: list[Section] = []
     report = CourseworkReport(title="", source=str(path), lang=lang)
     if is_problem(path):
-        chain, synthesis_sections, line = _synthesis(path, lang, budget)
-        report.summary.update(line)
+        chain, synthesis_sections = _synthesis(path, lang, budget, report)
     else:
         chain = load_chain(path)
     analysis = analyse_structure(chain)
@@ -112,11 +120,13 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
                                               f"{analysis.p4} = {analysis.W}")
     report.summary[term("formula", lang)] = analysis.formula
     report.summary[term("mechanism_class", lang)] = roman(analysis.mechanism_class)
+    report.facts.update(W=analysis.W, formula=analysis.formula,
+                        mechanism_class=analysis.mechanism_class, applicable=analysis.applicable)
     report.sections += [_data_section(chain, lang), _counts_section(analysis, lang),
                         _groups_section(analysis, lang), _formula_section(analysis, lang)]
-    report.sections.append(_identification_section(analysis, chain, lang, report.summary))
+    report.sections.append(_identification_section(analysis, chain, lang, report))
     report.sections.append(_schemes_section(chain, analysis, lang))
-    report.sections += _kinematic_sections(analysis, lang, points, report.summary)
+    report.sections += _kinematic_sections(analysis, lang, points, report)
     report.sections += synthesis_sections
     return report
 
@@ -198,7 +208,7 @@ def _formula_section(analysis: Any, lang: str) -> Section:
 
 
 def _identification_section(analysis: Any, chain: Chain, lang: str,
-                            summary: dict[str, str]) -> Section:
+                            report: CourseworkReport) -> Section:
     from assur import StructureError
     from assur.identification import COLUMNS, check_identification, identification_table
 
@@ -210,13 +220,17 @@ def _identification_section(analysis: Any, chain: Chain, lang: str,
     else:
         body = table(header, ([_cell(getattr(r, c)) for c in COLUMNS] for r in rows),
                      table_id="identification")
+    summary = report.summary
     verdict_key = term("student_table", lang)
+    report.facts["identification"] = "not given"
     if chain.identification is None:
         summary[verdict_key] = term("none_given", lang)
         body += f'<p class="note" id="student-table">{esc(verdict_key)}: ' \
                 f'{esc(term("none_given", lang))}</p>'
         return Section("identification", heading("identification", lang), body)
     mismatches = check_identification(analysis, chain.identification)
+    report.facts["identification"] = "differs" if mismatches else "matches"
+    report.facts["mismatches"] = [m.to_dict() for m in mismatches]
     if not mismatches:
         summary[verdict_key] = term("matches", lang)
         body += (f'<p class="ok" id="student-table">{esc(verdict_key)} '
@@ -254,9 +268,11 @@ def _schemes_section(chain: Chain, analysis: Any, lang: str) -> Section:
 
 
 def _kinematic_sections(analysis: Any, lang: str, points: int,
-                        summary: dict[str, str]) -> list[Section]:
+                        report: CourseworkReport) -> list[Section]:
     from assur import build_model
 
+    summary = report.summary
+    report.facts["existence"] = "not available"
     chain = analysis.chain
     title = heading("existence", lang)
     if not (chain.geometry or chain.group_params):
@@ -272,17 +288,18 @@ def _kinematic_sections(analysis: Any, lang: str, points: int,
     except AssurError as exc:
         summary[term("existence", lang)] = term("not_available", lang)
         return [Section("existence", title, f'<pre class="bad">{esc(exc)}</pre>')]
-    return [_existence_section(model, lang, points, summary), _motion_section(model, lang, points)]
+    return [_existence_section(model, lang, points, report),
+            _motion_section(model, lang, points)]
 
 
-def _existence_section(model: Any, lang: str, points: int, summary: dict[str, str]) -> Section:
+def _existence_section(model: Any, lang: str, points: int, report: CourseworkReport) -> Section:
     from assur import CONDITIONS, REASONS, check_existence
     from synthesis.coursework.diagrams import existence_figure
 
-    report = check_existence(model, points=points)
+    existence = check_existence(model, points=points)
     crank = model.drive == "crank"
     rows = []
-    for group in report.groups:
+    for group in existence.groups:
         where = "; ".join(
             (f"{math.degrees(i.start):.2f}°…{math.degrees(i.end):.2f}°" if crank
              else f"{i.start:.3f}…{i.end:.3f}") + f" ({REASONS[i.reason][lang == 'ru']})"
@@ -293,12 +310,13 @@ def _existence_section(model: Any, lang: str, points: int, summary: dict[str, st
                      group.min_margin, verdict, where))
     header = (term("group", lang), term("condition", lang), "δ",
               f"min {term('margin', lang)}", term("verdict", lang), term("fails", lang))
-    verdict = term("whole_cycle" if report.all_exist else "fails", lang)
-    summary[term("existence", lang)] = verdict
-    css = "ok" if report.all_exist else "bad"
+    verdict = term("whole_cycle" if existence.all_exist else "fails", lang)
+    report.summary[term("existence", lang)] = verdict
+    report.facts["existence"] = "whole cycle" if existence.all_exist else "fails"
+    css = "ok" if existence.all_exist else "bad"
     body = (f'<p class="{css}" id="existence-verdict">{esc(verdict)}</p>'
             + table(header, rows, numeric=(2, 3), table_id="existence")
-            + figure(existence_figure(report, model, lang=lang),
+            + figure(existence_figure(existence, model, lang=lang),
                      heading("existence", lang), ident="existence-plot"))
     return Section("existence", heading("existence", lang), body)
 
@@ -326,10 +344,10 @@ _SYNTHESIS_CAPTIONS = {
 }
 
 
-def _synthesis(path: Path, lang: str, budget: int | None
-               ) -> tuple[Chain, list[Section], dict[str, str]]:
-    """Run the synthesis of a problem: the chain of the best design, the result section and
-    the summary line."""
+def _synthesis(path: Path, lang: str, budget: int | None, report: CourseworkReport
+               ) -> tuple[Chain, list[Section]]:
+    """Run the synthesis of a problem: the chain of the best design and the result section
+    (the verdict goes to the report's summary)."""
     from matplotlib.figure import Figure
 
     from synthesis.evaluate import Evaluator
@@ -359,8 +377,9 @@ def _synthesis(path: Path, lang: str, budget: int | None
         draw(fig.add_subplot())
         body += figure(fig, caption[:1].upper() + caption[1:], ident=f"synthesis-{k}")
     chain = chain_from_dict(problem.mechanism_table(result.x), source=str(path))
-    line = {term("synthesis", lang): f"{verdict}, Q = {q}"}
-    return chain, [Section("synthesis", heading("synthesis", lang), body)], line
+    report.summary[term("synthesis", lang)] = f"{verdict}, Q = {q}"
+    report.facts.update(feasible=feasible, Q=data.get("Q"))
+    return chain, [Section("synthesis", heading("synthesis", lang), body)]
 
 
 # ----------------------------------------------------------------------------- output
@@ -374,7 +393,8 @@ def render_html(report: CourseworkReport) -> str:
 
 
 def write_report(path: str | os.PathLike[str], out: str | os.PathLike[str] | None = None, *,
-                 lang: str = "en", points: int = POINTS, budget: int | None = None) -> Path:
+                 lang: str = "en", points: int = POINTS, budget: int | None = None
+                 ) -> CourseworkReport:
     """Build the report of a table and write it as HTML (atomically).
 
     Parameters
@@ -383,12 +403,16 @@ def write_report(path: str | os.PathLike[str], out: str | os.PathLike[str] | Non
         The table.
     out : path-like, optional
         The HTML file; default: the table's name with ``.html`` next to it.
+    lang, points, budget
+        As for :func:`build_report`.
 
     Returns
     -------
-    Path of the written page.
+    CourseworkReport
+        With :attr:`~CourseworkReport.out` set to the written page.
     """
     target = Path(out) if out is not None else Path(path).with_suffix(".html")
     report = build_report(path, lang=lang, points=points, budget=budget)
     atomic_write_text(target, render_html(report))
-    return target
+    report.out = target
+    return report

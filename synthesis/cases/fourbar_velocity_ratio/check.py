@@ -24,7 +24,7 @@ from synthesis.cases.fourbar_velocity_ratio.conditions import Design
 
 __all__ = ["CheckResult", "check_design", "grashof_type", "ratio_by_construction"]
 
-_STENCIL = 1e-3
+_STENCIL = 2e-4
 _BRANCH = 1.0
 
 

@@ -37,7 +37,7 @@ from synthesis.cases.fourbar_velocity_ratio.kinematics import (
     velocity_ratio,
 )
 
-__all__ = ["ModernResult", "solve_modern", "min_transmission_angle"]
+__all__ = ["ModernResult", "attainable_zone", "min_transmission_angle", "solve_modern"]
 
 _GRID = {"paper": (1, 40, 40), "delta": (1, 40, 40), "crank": (20, 24, 24)}
 _SAMPLES = 360
@@ -231,7 +231,9 @@ def _ranges(request: Request, scan: _Scan) -> dict[str, float]:
             a, b = peak_gap[:, :-1][cross], peak_gap[:, 1:][cross]
             wa, wb = width_gap[:, :-1][cross], width_gap[:, 1:][cross]
             widths = wa + (wb - wa) * a / (a - b) + request.psi1
-            ranges["psi1_min"], ranges["psi1_max"] = float(widths.min()), float(widths.max())
+            widths = widths[widths > 0.0]
+            if widths.size:
+                ranges["psi1_min"], ranges["psi1_max"] = float(widths.min()), float(widths.max())
     return ranges
 
 
@@ -330,6 +332,18 @@ def _no_design_reason(request: Request, ranges: dict[str, float]) -> str:
         return (head + f"zones from about {low:.3g}° to {high:.3g}° are attainable on separate "
                 "branches of the design curve, but none of this width")
     return "no crank-rocker in the Grashof domain meets all the prescribed values at once"
+
+
+def attainable_zone(request: Request) -> tuple[float, float] | None:
+    """Estimated range of zones ψ′ before the peak that crank-rockers with the request's e,
+    n* and δ reach (radians, from the grid scan; paper's form only); None if the scan finds
+    no design with that peak.  Values inside the range may still fall in a gap between the
+    branches of the design curve."""
+    request.check()
+    if request.form != "paper":
+        raise ValueError("the zone range is defined for the paper's form (e, n*, δ, ψ′ given)")
+    ranges = _ranges(request, _scan(request))
+    return (ranges["psi1_min"], ranges["psi1_max"]) if "psi1_min" in ranges else None
 
 
 def solve_modern(request: Request, *, xtol: float = 1e-13) -> ModernResult:

@@ -391,8 +391,8 @@ def _rrr_kernel(
     full relative accuracy at both toggle positions.
     """
     with np.errstate(all="ignore"):
-        rx = np.subtract(np.real(h_j), np.real(h_i))  # r = H_j − H_i, as contiguous x and y
-        ry = np.subtract(np.imag(h_j), np.imag(h_i))
+        rx = np.subtract(h_j.real, h_i.real)  # r = H_j − H_i, as contiguous x and y
+        ry = np.subtract(h_j.imag, h_i.imag)
         if rx.shape != shape:
             rx, ry = (np.array(np.broadcast_to(t, shape)) for t in (rx, ry))
         d2 = rx * rx
@@ -430,8 +430,8 @@ def _rrr_kernel(
         wy += np.multiply(ry, x, out=x)  # (wx, wy) = C − H_i
         angle_i = np.arctan2(wy, wx, out=angle_i)
         c = np.empty(shape, dtype=complex) if c is None else c
-        np.add(np.real(h_i), wx, out=c.real)
-        np.add(np.imag(h_i), wy, out=c.imag)
+        np.add(h_i.real, wx, out=c.real)
+        np.add(h_i.imag, wy, out=c.imag)
         wx -= rx
         wy -= ry  # C − H_j
         angle_j = np.arctan2(wy, wx, out=angle_j)

@@ -244,7 +244,10 @@ def _interval(model: KinematicModel, motion: Motion, group: GroupModel, index: i
     reason = int(np.broadcast_to(sol.reason, q.shape)[worst])
     start, end = float(q[first]), float(q[last])
     step = float(q[1] - q[0]) if n > 1 else 0.0
-    if refine and n > 1:
+    whole = idx.size == n  # fails everywhere: the interval is the whole range
+    if whole:
+        start, end = float(model.input_range[0]), float(model.input_range[1])
+    if refine and n > 1 and not whole:
         if first > 0 or periodic:
             outside = float(q[first - 1]) if first > 0 else float(q[-1]) - n * step
             start = _bisect(model, group, index, outside, start, tol)

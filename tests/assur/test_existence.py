@@ -167,3 +167,13 @@ def test_non_grashof_crank_fails_where_the_triangle_inequality_breaks() -> None:
     assert assur.REASONS[got.reason][0].startswith("hinges too far apart")
     # shortfall in mm at the worst position (φ = 180°): d − (l_i + l_j)
     assert math.isclose(got.shortfall, 100 + crank - li - lj, rel_tol=1e-6)
+
+
+def test_group_that_never_assembles_fails_over_the_whole_turn() -> None:
+    model = _four_bar(30.0).with_params({"L1(2,3).l_j": 200.0})  # |l_i − l_j| > 130 ≥ d
+    report = assur.check_existence(model, points=72)
+    (group,) = report.groups
+    (interval,) = group.intervals
+    assert (interval.start, interval.end) == (0.0, 2 * math.pi)
+    assert assur.REASONS[interval.reason][0].startswith("hinges too close")
+    assert group.fails.all() and not report.all_exist

@@ -386,9 +386,10 @@ def _rrr_kernel(
 
     With ``r = H_j − H_i``, ``d = |r|``: ``C − H_i = r·(x + jσy)``, where
     ``x = (d² + l_i² − l_j²)/(2d²)`` and ``y = sqrt(Δ)/(2d²)`` with the discriminant in
-    factored form ``Δ = (l_i + l_j − d)(l_i + l_j + d)(d − l_j + l_i)(d + l_j − l_i)``
-    (Heron: 16 times the squared area of the triangle H_i C H_j), whose small factor keeps
-    full relative accuracy at both toggle positions.
+    factored form ``Δ = g₁·g₂``, ``g₁ = (l_i + l_j − d)(d + l_j − l_i) = 2·l_i·d·(1 − c)``,
+    ``g₂ = (d − l_j + l_i)(l_i + l_j + d) = 2·l_i·d·(1 + c)`` (Heron: 16 times the squared
+    area of the triangle H_i C H_j). The small factor at each toggle is a difference of
+    inputs, so Δ and the margin ``min(g₁, g₂)/(2·l_i·d)`` keep full relative accuracy there.
     """
     with np.errstate(all="ignore"):
         rx = np.subtract(h_j.real, h_i.real)  # r = H_j − H_i, as contiguous x and y
@@ -404,21 +405,20 @@ def _rrr_kernel(
         d = np.sqrt(d2, out=d)
         l_sum, l_dif = l_i + l_j, l_j - l_i
         disc = l_sum - d
-        disc *= l_sum + d
+        disc *= d + l_dif  # 2·l_i·d·(1 − c), c = cos of the angle at H_i
         wx = d - l_dif
-        wx *= d + l_dif
+        wx *= l_sum + d  # 2·l_i·d·(1 + c)
+        margin = np.minimum(disc, wx, out=margin)
+        margin /= d
+        margin /= 2.0 * l_i
         disc *= wx
-        margin = np.multiply(x, d, out=margin)
-        margin /= l_i  # c = cos of the angle at H_i
-        np.absolute(margin, out=margin)
-        np.subtract(1.0, margin, out=margin)
         lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
         if not lowest >= 0.0:
             tiny = (margin < 0.0) & (margin > -ROUNDOFF)
             margin[tiny] = 0.0
+            disc[tiny] = 0.0
             lowest = np.minimum.reduce(margin, axis=None)
-        np.maximum(disc, 0.0, out=disc)  # < 0 only within roundoff where the dyad exists
-        y = np.sqrt(disc, out=disc)
+        y = np.sqrt(disc, out=disc)  # NaN only where the dyad does not exist
         y *= q
         if type(s) is not float:
             y *= s

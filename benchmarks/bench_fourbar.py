@@ -36,7 +36,7 @@ from assur import solve_input, solve_rrr
 O1, O2 = 0.0 + 0.0j, 100.0 + 0.0j
 CRANK, COUPLER, ROCKER = 30.0, 80.0, 90.0
 SIGMA = 1.0
-BATCH_SECONDS = 0.02
+BATCH_SECONDS = 0.1
 
 
 def ours(phi: np.ndarray, crank: float | np.ndarray = CRANK) -> np.ndarray:

@@ -31,7 +31,7 @@ from typing import Any
 
 import numpy as np
 
-from assur.errors import StructureError, TableError
+from assur.errors import Issue, StructureError, TableError
 from assur.model import LinkId, PairId, PairType
 from assur.tables import MISSING, Node, TableReader, describe, normalise_id
 
@@ -43,6 +43,7 @@ __all__ = [
     "KinematicModel",
     "TracePoint",
     "build_model",
+    "is_angle",
     "load_model",
     "model_from_params",
     "model_from_sketch",
@@ -295,15 +296,9 @@ def build_model(analysis: Any) -> KinematicModel:
         return model_from_sketch(analysis)
     if chain.group_params:
         return model_from_params(analysis)
-    raise TableError(chain.source, [_issue("geometry", "the table gives no dimensions: add a "
-                                           "'geometry:' section (joint coordinates at one "
-                                           "position) or 'params:' in the identification rows")])
-
-
-def _issue(where: str, message: str) -> Any:
-    from assur.errors import Issue
-
-    return Issue(where, message)
+    raise TableError(chain.source, [Issue("geometry", "the table gives no dimensions: add a "
+                                          "'geometry:' section (joint coordinates at one "
+                                          "position) or 'params:' in the identification rows")])
 
 
 class _Topology:

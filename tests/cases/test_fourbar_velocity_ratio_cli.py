@@ -64,3 +64,14 @@ def test_bad_table_lists_every_problem(tmp_path):
 def test_over_determined_request_is_refused():
     with pytest.raises(TableError, match="over-determines"):
         run(["--e", "0.3", "--n-star", "0.5", "--delta", "0.05", "--psi1", "20", "--psi2", "20"])
+
+
+def test_registered_as_a_built_in_case(capsys):
+    from synthesis.cli import main
+
+    assert main(["case", "fourbar-velocity-ratio", "--e", "0.3", "--n-star", "1.0",
+                 "--delta", "0.05", "--psi1", "20"]) == 1
+    assert "no such mechanism" in capsys.readouterr().out
+    assert main(["case", "fourbar-velocity-ratio", "--e", "0.3", "--n-star", "0.5",
+                 "--delta", "-1", "--psi1", "20"]) == 2
+    assert "'delta'" in capsys.readouterr().err

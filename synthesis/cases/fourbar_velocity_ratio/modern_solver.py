@@ -100,7 +100,8 @@ def _grid(request: Request) -> dict[str, NDArray[np.float64]]:
 
 def _crossing(excess: NDArray[np.float64], peak: NDArray[np.intp], offset: NDArray[np.intp],
               direction: int) -> NDArray[np.float64]:
-    """Fractional number of samples from the peak to where ``excess`` first reaches zero."""
+    """Fractional number of samples from the peak to where ``excess`` first reaches zero
+    (NaN where the sampled peak itself is below the level)."""
     count = excess.shape[-1]
     order = (peak[:, None] + direction * offset) % count
     walk = np.take_along_axis(excess, order, axis=1)
@@ -109,8 +110,8 @@ def _crossing(excess: NDArray[np.float64], peak: NDArray[np.intp], offset: NDArr
     rows = np.arange(len(peak))
     high, low = walk[rows, np.maximum(first - 1, 0)], walk[rows, first]
     with np.errstate(invalid="ignore", divide="ignore"):
-        part = np.where(first > 0, high / (high - low), 0.0)
-    return first - 1 + part
+        part = high / (high - low)
+    return np.where(first > 0, first - 1 + part, np.nan)
 
 
 def _sample(request: Request, e: NDArray[np.float64], c: NDArray[np.float64],

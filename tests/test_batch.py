@@ -152,16 +152,31 @@ def test_command_line_writes_csv_and_json(folder, tmp_path, capsys):
     assert {r["file"]: r["verdict"] for r in records} == {k: v[0] for k, v in EXPECTED.items()}
 
 
-def test_summary_in_russian_and_reports(folder, tmp_path, capsys):
+def test_summary_in_russian(folder, capsys):
+    assert main(["batch", str(folder), "--lang", "ru", "--jobs", "2", "--quiet"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    verdicts = {"ok": "верно", "problems": "есть ошибки", "error": "файл не читается"}
+    for name, (verdict, *_rest) in EXPECTED.items():
+        line = next(x for x in lines if x.startswith(name + " "))
+        assert line[len(name):].strip().startswith(verdicts[verdict]), line
+    assert lines[-1] == "верно: 3, есть ошибки: 3, файл не читается: 3; файлов: 9"
+
+
+def test_reports_for_readable_tables(tmp_path):
+    class_dir = tmp_path / "class"
+    class_dir.mkdir()
+    (class_dir / "good.yaml").write_text(yaml.safe_dump(four_bar(30, 90, 80, 100)), "utf-8")
+    (class_dir / "sub").mkdir()
+    (class_dir / "sub" / "five_bar.yaml").write_text(yaml.safe_dump({"mechanism": {"pairs": [
+        {"id": i, "type": "R", "links": ab} for i, ab in
+        enumerate(([0, 1], [1, 2], [2, 3], [3, 4], [4, 0]))], "inputs": [1]}}), "utf-8")
+    (class_dir / "broken.yaml").write_text("mechanism: [\n", "utf-8")
     reports = tmp_path / "reports"
-    assert main(["batch", str(folder), "--lang", "ru", "--jobs", "2", "--quiet",
-                 "--reports", str(reports)]) == 0
-    text = capsys.readouterr().out
-    assert "файл не читается" in text and "есть ошибки" in text and "верно" in text
+    rows = run_batch(class_dir, jobs=2, reports=reports)
+    assert [r.verdict for r in rows] == ["error", "ok", "problems"]
     written = sorted(str(p.relative_to(reports)) for p in reports.rglob("*.html"))
-    readable = sorted(str(Path(f).with_suffix(".html")) for f, v in EXPECTED.items()
-                      if v[0] != "error")
-    assert written == readable
+    assert written == ["good.html", "sub/five_bar.html"]
+    assert "I(0,1) → II₁(2,3)" in (reports / "good.html").read_text("utf-8")
 
 
 def test_not_a_folder(tmp_path, capsys):

@@ -157,10 +157,8 @@ def test_russian_report(tmp_path):
 
 def test_command_line(tmp_path, capsys):
     out = tmp_path / "report.html"
-    assert main(["report", str(COURSE), "--out", str(out), "--points", "36"]) == 0
-    assert capsys.readouterr().out.strip() == str(out)
-    assert COURSE_FORMULA in out.read_text("utf-8")
     assert main(["report", str(COURSE), "--out", str(out), "--points", "36", "--json"]) == 0
+    assert COURSE_FORMULA in out.read_text("utf-8")
     facts = json.loads(capsys.readouterr().out)
     assert facts["W"] == 1 and facts["formula"] == COURSE_FORMULA
     assert facts["mechanism_class"] == 2 and facts["identification"] == "not given"

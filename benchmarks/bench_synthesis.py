@@ -184,7 +184,8 @@ def run_pylinkage(targets: np.ndarray, seed: int) -> dict[str, Any] | None:
                 level_time, level_rms = elapsed, rms
                 break
     return {"seconds": seconds, "design": design, "rms": rms_to_curve(targets, design),
-            "generations": len(log), "level_seconds": level_time, "level_rms": level_rms}
+            "generations": len(log), "level_seconds": level_time, "level_rms": level_rms,
+            "trace": [(elapsed, score) for elapsed, score, _ in log]}
 
 
 def peer_problem(targets: np.ndarray, accuracy: float) -> dict[str, Any]:
@@ -258,7 +259,7 @@ def main(argv: list[str] | None = None) -> int:
             ours = run_ours(targets, PEER_LEVEL, args.seed)
             floor = max(peer["rms"], 1e-13)       # below ~1e-13 rounding decides, not design
             final = run_ours(targets, floor, args.seed)
-            part3 = (peer, ours)
+            part3 = (peer, ours, final)
             print(f"{'program':<40} {'RMS error':>12} {'seconds':>10}")
             print(f"{'pylinkage 1.3 DE, first within 2e-5':<40} {peer['level_rms']:>12.3e} "
                   f"{peer['level_seconds']:>10.2f}")
@@ -277,19 +278,20 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _plot(path: str, part1: list[dict[str, float]], part2: list[dict[str, float]],
-          part3: tuple[dict[str, Any], dict[str, Any]] | None) -> None:
+          part3: tuple[dict[str, Any], ...] | None) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
+    fig, axes = plt.subplots(1, 4, figsize=(20, 4.5))
     ax = axes[0]
     ax.plot([r["K"] for r in part1], [r["Q_deg"] for r in part1], "o-", label="Q at the points")
     ax.plot([r["K"] for r in part1], [r["true_deg"] for r in part1], "s-",
             label="true deviation")
     ax.set_xlabel("control points K")
     ax.set_ylabel("deviation, deg")
+    ax.set_title("control points (class 1)")
     ax.legend()
     for refine, style in ((False, "o-"), (True, "s-")):
         rows = [r for r in part2 if r["refine"] == refine]
@@ -300,18 +302,25 @@ def _plot(path: str, part1: list[dict[str, float]], part2: list[dict[str, float]
                        label=label)
     axes[1].set_xlabel("LPτ budget 2^m")
     axes[2].set_xlabel("wall time, s")
-    for ax in axes[1:]:
+    for ax in axes[1:3]:
         ax.set_ylabel("best Q, mm")
+        ax.set_title("class-3 shipped problem")
         ax.legend()
+    ax = axes[3]
     if part3 is not None:
-        peer, ours = part3
-        axes[2].loglog([peer["seconds"]], [peer["rms"]], "k*", markersize=12,
-                       label="pylinkage DE (RMS)")
-        axes[2].loglog([ours["seconds"]], [ours["rms"]], "r*", markersize=12,
-                       label="ours, peer task (RMS)")
-        axes[2].legend()
+        peer, ours, final = part3
+        trace = np.array(peer["trace"])
+        ax.loglog(trace[:, 0], np.maximum(trace[:, 1], 1e-17), "k-",
+                  label="pylinkage 1.3 DE (best per generation)")
+        ax.loglog([ours["seconds"], final["seconds"]], [ours["rms"], final["rms"]], "r*",
+                  markersize=12, label="assur synthesize")
+        ax.axhline(PEER_LEVEL, color="grey", linestyle=":")
+        ax.legend()
+    ax.set_xlabel("wall time, s")
+    ax.set_ylabel("RMS distance to the path")
+    ax.set_title("peer task: four-bar coupler point, 20 points")
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=100)
     plt.close(fig)
 
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 import base64
 import json
 import math
+import re
 import shutil
 import subprocess
 import xml.etree.ElementTree as ET
@@ -139,6 +140,18 @@ def test_student_table_and_failure_interval(tmp_path):
     assert math.isclose(FAIL_FROM, 49.458, abs_tol=1e-3)
 
 
+def test_table_without_dimensions():
+    # the tutorial's slider-crank: no sketch, and kind 1 written for the RRP dyad
+    report = build_report(ROOT / "docs" / "tutorial_class" / "petrova.yaml")
+    assert report.facts["formula"] == "I(0,1) → II₂(2,3)"
+    assert report.facts["existence"] == "not available"
+    assert [m["field"] for m in report.facts["mismatches"]] == ["L"]
+    page = _parse(render_html(report))
+    assert {"structural-scheme", "formalised-scheme"} <= page.ids
+    assert "existence-plot" not in page.ids and "mechanism" not in page.ids
+    assert "the table gives no dimensions" in "".join(page.text)
+
+
 def test_russian_report(tmp_path):
     out = write_report(COURSE, tmp_path / "отчёт.html", lang="ru", points=60).out
     html = out.read_text("utf-8")
@@ -225,6 +238,13 @@ def test_report_renders_in_chromium(tmp_path, course_html):
     for colour in ((214, 39, 40), (44, 160, 44), (148, 103, 189)):
         hits = (np.abs(pixels - np.array(colour)).sum(axis=2) < 40).sum()
         assert hits > 200, colour
+    # it prints: a PDF of several A4/Letter pages with the pictures in it
+    pdf = tmp_path / "report.pdf"
+    run = _browser(tmp_path, url, f"--print-to-pdf={pdf}", "--no-pdf-header-footer")
+    assert run.returncode == 0 and pdf.exists(), run.stderr
+    data = pdf.read_bytes()
+    assert data.startswith(b"%PDF") and len(data) > 100_000
+    assert 4 <= len(re.findall(rb"/Type\s*/Page[^s]", data)) <= 20
     # the pictures spread down the page: coloured pixels in at least four 1000-px bands
     coloured = (pixels.max(axis=2) - pixels.min(axis=2)) > 60
     bands = {int(y) // 1000 for y in np.nonzero(coloured.any(axis=1))[0]}

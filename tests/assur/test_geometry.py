@@ -161,3 +161,24 @@ def test_chain_that_does_not_split_into_groups_has_no_model() -> None:
                 (("A", [0, 0]), ("B", [10, 0]), ("C", [20, 10]), ("D", [30, 5]), ("E", [40, 0]))}
     with pytest.raises(assur.StructureError, match="does not split into Assur groups"):
         _model({"mechanism": {"pairs": pairs, "inputs": [1]}, "geometry": geometry})
+
+
+@pytest.mark.parametrize(("cy", "sigma", "phi_i", "phi_j"),
+                         [(48.0, 1, 36.8699, 126.8699), (-48.0, -1, -36.8699, -126.8699)])
+def test_rrr_test_vectors_of_the_method_at_the_sketched_position(
+        cy: float, sigma: int, phi_i: float, phi_j: float) -> None:
+    """method.md §2.9: H_i = (0, 0), H_j = (100, 0), l_i = 80, l_j = 60."""
+    pairs = [{"id": k, "type": "R", "links": links} for k, links in
+             (("O", [0, 1]), ("Hi", [1, 2]), ("C", [2, 3]), ("Hj", [3, 0]))]
+    geometry = {"O": {"point": [-20, 0]}, "Hi": {"point": [0, 0]}, "C": {"point": [64, cy]},
+                "Hj": {"point": [100, 0]}}
+    model = _model({"mechanism": {"pairs": pairs, "inputs": [1]}, "geometry": geometry})
+    group = model.group("L1(2,3)")
+    assert group.sigma == sigma
+    assert model.params["L1(2,3).l_i"] == 80.0 and model.params["L1(2,3).l_j"] == 60.0
+    motion = assur.analyse(model, np.array([0.0, 2 * np.pi]))
+    np.testing.assert_allclose(motion.joints["C"], complex(64, cy), atol=1e-12)
+    np.testing.assert_allclose(np.degrees(motion.frames[2][1]), phi_i, atol=1e-4)
+    np.testing.assert_allclose(np.degrees(motion.frames[3][1]), phi_j, atol=1e-4)
+    (alpha,) = assur.pressure_angles(motion)
+    np.testing.assert_allclose(alpha.alpha, 0.0, atol=1e-7)

@@ -508,6 +508,20 @@ def _outline(points: list[complex], pad: float) -> list[complex]:
     return _convex(cloud)
 
 
+def _link_label_place(points: list[complex], node: complex) -> tuple[complex, complex]:
+    """Where a link's number goes: beside the middle of a bar, inside a plate.
+
+    Returns the anchor point and the offset in points (complex).
+    """
+    if len(points) == 2 and abs(points[1] - points[0]) > 0:
+        along = (points[1] - points[0]) / abs(points[1] - points[0])
+        normal = 1j * along if (1j * along).imag >= 0 else -1j * along
+        return (points[0] + points[1]) / 2, 9 * normal
+    if len(points) >= 3:
+        return complex(np.mean(points)), 0j
+    return (points[0] if points else node), complex(6, 6)
+
+
 def draw_structural_scheme(chain: Chain, analysis: Any, *, ax: Axes | None = None,
                            lang: str = "en", layout: SchemeLayout | None = None) -> Axes:
     """Draw the structural scheme (fig. 1.26 of the course).
@@ -542,10 +556,12 @@ def draw_structural_scheme(chain: Chain, analysis: Any, *, ax: Axes | None = Non
     for link in chain.moving_links:
         points = [layout.pairs[p.id] for p in chain.pairs_of(link)]
         _draw_link(ax, link, points, colour_of.get(link, "dimgray"), size, link in input_links)
-        where = layout.links.get(link, complex(np.mean(points)) if points else 0j)
-        ax.annotate(str(link), (where.real, where.imag), xytext=(5, 5),
+        where, offset = _link_label_place(points, layout.links.get(link, 0j))
+        ax.annotate(str(link), (where.real, where.imag), xytext=(offset.real, offset.imag),
                     textcoords="offset points", fontsize=11, fontweight="bold",
-                    color=colour_of.get(link, "dimgray"), zorder=8)
+                    ha="center", va="center", color=colour_of.get(link, "dimgray"), zorder=8,
+                    bbox={"boxstyle": "round,pad=0.12", "fc": "white", "ec": "none",
+                          "alpha": 0.85})
     for pair in chain.pairs:
         at = layout.pairs[pair.id]
         if pair.type is PairType.R:

@@ -77,10 +77,10 @@ class BatchRow:
     n, p5, W : int or None
         The counts.
     identification : str
-        ``matches``, ``differs`` or ``not given``: the student's identification table
-        against the chain.
+        ``matches``, ``differs``, ``not given`` or ``not checked``: the student's
+        identification table against the chain.
     existence : str
-        ``whole cycle``, ``fails`` or ``no dimensions``.
+        ``whole cycle``, ``fails``, ``no dimensions`` or ``not checked``.
     seconds : float
         Time spent on the file.
     """
@@ -177,8 +177,7 @@ def check_table(path: str | os.PathLike[str], *, lang: str = "en",
         issues = getattr(exc, "issues", None)
         first = str(issues[0]) if issues else str(exc)
         return BatchRow(name, "error", first, len(issues) if issues else 1, "", None, None,
-                        None, term("none_given", "en"), "not checked",
-                        time.perf_counter() - start)
+                        None, "not checked", "not checked", time.perf_counter() - start)
     analysis = analyse_structure(chain)
     found = [d.text(lang) for d in analysis.issues if d.severity == "error"]
     applicability = analysis.applicability_ru if lang == "ru" else analysis.applicability

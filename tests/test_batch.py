@@ -97,11 +97,11 @@ def folder(tmp_path_factory) -> Path:
 EXPECTED = {  # file: (verdict, words of the first problem, identification, existence)
     "a_good.yaml": ("ok", "", "matches", "whole cycle"),
     "b_wrong_kind.yaml": ("problems", "kind 1", "differs", "whole cycle"),
-    "c_broken_yaml.yaml": ("error", "not valid YAML", "not given", "not checked"),
-    "d_typo.yaml": ("error", "did you mean 'pairs'", "not given", "not checked"),
+    "c_broken_yaml.yaml": ("error", "not valid YAML", "not checked", "not checked"),
+    "d_typo.yaml": ("error", "did you mean 'pairs'", "not checked", "not checked"),
     "e_five_bar.yaml": ("problems", "= 2, but", "not given", "no dimensions"),
     "f_does_not_assemble.yaml": ("problems", "does not assemble", "not given", "fails"),
-    "g_empty.yaml": ("error", "", "not given", "not checked"),
+    "g_empty.yaml": ("error", "found nothing", "not checked", "not checked"),
     "group2/h_course.yaml": ("ok", "", "matches", "whole cycle"),
     "i_problem.yaml": ("ok", "", "matches", "whole cycle"),
 }

@@ -94,11 +94,16 @@ def _require_dgtu(analysis: StructuralAnalysis) -> None:
                              f"group and dyads only; {'; '.join(parts)}")
 
 
-def identification_table(analysis: StructuralAnalysis) -> list[IdentificationRow]:
+def identification_table(analysis: StructuralAnalysis,
+                         variants: Mapping[tuple[Any, Any], int] | None = None,
+                         ) -> list[IdentificationRow]:
     """Fill the structure-identification table from an analysis, in layering order.
 
-    The assembly variant is a property of the dimensions, not of the structure: the table
-    gets the default (+1 for L1/L2, 0 for L3); ``out_code`` gets the source's code per kind.
+    The assembly variant is a property of the dimensions, not of the structure: pass the
+    σ of each dyad (keyed by its links ``(i, j)``) when the dimensions are known, e.g. from
+    the kinematic model of the table's sketch; otherwise the table gets the default (+1 for
+    L1/L2, 0 for L3). For L3 the course writes its default branch σ = +1 as 0.
+    ``out_code`` gets the source's code per kind.
 
     Raises
     ------
@@ -113,8 +118,16 @@ def identification_table(analysis: StructuralAnalysis) -> list[IdentificationRow
             L=kind, seq=seq, i_minus_1=group.i_minus_1, j_minus_1=group.j_minus_1, i=group.i,
             j=group.j, i_plus_1=_successor(analysis, group, group.i),
             j_plus_1=_successor(analysis, group, group.j) if group.j is not None else None,
-            variant=_DEFAULT_VARIANT.get(kind), out_code=OUT_CODES[kind]))
+            variant=_variant(kind, (variants or {}).get((group.i, group.j))),
+            out_code=OUT_CODES[kind]))
     return rows
+
+
+def _variant(kind: int, sigma: int | None) -> int | None:
+    """The table's variant of a dyad with assembly sign ``sigma`` (None: not known)."""
+    if sigma is None or kind not in _DEFAULT_VARIANT:
+        return _DEFAULT_VARIANT.get(kind)
+    return 0 if kind == 3 and sigma > 0 else int(sigma)
 
 
 def _successor(analysis: StructuralAnalysis, group: AssurGroup, link: LinkId | None) -> Any:

@@ -13,8 +13,11 @@ import argparse
 import json
 
 from assur import (
+    AssurError,
+    StructuralAnalysis,
     StructureError,
     analyse_structure,
+    build_model,
     check_identification,
     identification_table,
     load_chain,
@@ -46,7 +49,7 @@ def run(args: argparse.Namespace) -> int:
 
         save_schemes(chain, analysis, args.plot, lang=args.lang)
     try:
-        table = identification_table(analysis)
+        table = identification_table(analysis, _variants(analysis))
     except StructureError:
         table = None
     mismatches = (check_identification(analysis, chain.identification)
@@ -61,3 +64,19 @@ def run(args: argparse.Namespace) -> int:
         print(structure_report(analysis, lang=args.lang, table=table, mismatches=mismatches,
                                checked_rows=len(chain.identification or ())))
     return 0
+
+
+def _variants(analysis: StructuralAnalysis) -> dict[tuple[object, object], int] | None:
+    """Assembly sign of every dyad from the table's dimensions, if it gives valid ones.
+
+    Problems of the dimensions are not this command's business (``assur analyze`` reports
+    them); without usable dimensions the identification table shows the default variants.
+    """
+    chain = analysis.chain
+    if not (chain.geometry or chain.group_params):
+        return None
+    try:
+        model = build_model(analysis)
+    except AssurError:
+        return None
+    return {(group.i, group.j): group.sigma for group in model.groups if group.j is not None}

@@ -114,13 +114,16 @@ def _scan(function: Callable[[float], float], values: list[float]
 class _Scheme:
     """State of the nested loops for one request."""
 
-    def __init__(self, request: Request, tol: float, epsilon: float, theta_step: float,
-                 c_steps: int, r_step: float, r_steps: int, max_iter: int) -> None:
+    def __init__(self, request: Request, tol: float, epsilon: float, theta_start: float | None,
+                 theta_step: float, c_steps: int, r_step: float, r_steps: int,
+                 max_iter: int) -> None:
         self.request = request
         self.tol, self.epsilon, self.max_iter = tol, epsilon, max_iter
         self.theta_step, self.c_steps = theta_step, c_steps
         self.r_step, self.r_steps = r_step, r_steps
-        self.theta2 = math.pi / 2 if request.n_star > 0 else 3 * math.pi / 2
+        if theta_start is None:
+            theta_start = math.pi / 2 if request.n_star > 0 else 3 * math.pi / 2
+        self.theta2 = theta_start
         self.evaluations = 0
         self.iterations = {"theta2": 0, "c": 0, "r": 0}
 
@@ -190,7 +193,8 @@ class _Scheme:
 
 
 def solve_paper(request: Request, *, tol: float = 1e-6, epsilon: float = 1e-3,
-                theta_step: float = math.radians(5.0), c_steps: int = 20,
+                theta_start: float | None = None, theta_step: float = math.radians(5.0),
+                c_steps: int = 20,
                 r_step: float = 0.05, r_steps: int = 60, max_iter: int = 200) -> PaperResult:
     """Run the paper's nested false-position scheme (steps a–p).
 
@@ -202,6 +206,9 @@ def solve_paper(request: Request, *, tol: float = 1e-6, epsilon: float = 1e-3,
         The error allowed on F1, F2, F3 (steps g, j, o).
     epsilon : float
         The ε of step b.
+    theta_start : float, optional
+        Starting value of θ2 (step c), radians; by default 90° on the forward stroke and 270°
+        on the return stroke.
     theta_step : float
         Step of θ2 while looking for a sign change of F1 (radians).
     c_steps : int
@@ -229,7 +236,8 @@ def solve_paper(request: Request, *, tol: float = 1e-6, epsilon: float = 1e-3,
                          "use the modern solver for the other forms")
         return result
     clock = time.perf_counter()
-    scheme = _Scheme(request, tol, epsilon, theta_step, c_steps, r_step, r_steps, max_iter)
+    scheme = _Scheme(request, tol, epsilon, theta_start, theta_step, c_steps, r_step, r_steps,
+                     max_iter)
     try:
         c, r, theta2 = scheme.outer()
     except _NoRoot as exc:

@@ -33,6 +33,7 @@ from synthesis.cases.fourbar_velocity_ratio.conditions import (
 from synthesis.cases.fourbar_velocity_ratio.kinematics import coupler_bounds, grashof_margin
 from synthesis.cases.fourbar_velocity_ratio.modern_solver import attainable_zone, solve_modern
 from synthesis.cases.fourbar_velocity_ratio.paper_solver import solve_paper
+from synthesis.cases.fourbar_velocity_ratio.study import paper_check_tolerance
 from synthesis.criteria import Criteria
 from synthesis.search import SearchSettings, search
 
@@ -173,7 +174,8 @@ def _paper_outcome(paper, refs: list[np.ndarray]) -> tuple[str, str]:
         return f"fails: {paper.reason}", ""
     if paper.defect:
         return f"WRONG ROOT: {paper.defect}", ""
-    check = check_design(paper.design, value_tol=1e-4, angle_tol=1e-4)
+    tolerance = paper_check_tolerance(1e-6, paper.design.delta)
+    check = check_design(paper.design, value_tol=tolerance, angle_tol=tolerance)
     outcome = "root, check " + ("passed" if check.passed else "FAILED")
     return outcome, (f"{digits(unknowns(paper.design), refs)[0]:.1f}" if refs
                      else "no reference")

@@ -153,10 +153,8 @@ def test_too_wide_a_zone_gets_no_design_and_a_reason():
 
 def test_defects_of_false_roots_are_named(modern):
     good = modern.designs[0]
-    _, dn, _, _ = ratio_and_derivative(good.e, good.c, good.r,
-                                       np.linspace(0, 2 * np.pi, 3600))
-    trough = float(np.linspace(0, 2 * np.pi, 3600)[np.argmin(
-        ratio_and_derivative(good.e, good.c, good.r, np.linspace(0, 2 * np.pi, 3600))[0])])
+    theta = np.linspace(0, 2 * np.pi, 3600)
+    trough = float(theta[np.argmin(ratio_and_derivative(good.e, good.c, good.r, theta)[0])])
     assert "least" in design_defect(replace(good, theta2=trough))
     assert "Grashof" in design_defect(replace(good, c=good.c + 2.0))
     assert design_defect(good) is None

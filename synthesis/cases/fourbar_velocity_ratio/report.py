@@ -108,8 +108,9 @@ def _request_lines(request: Request, lang: str) -> list[str]:
     if request.psi2 is not None:
         parts.append(f"ψ″ = {math.degrees(request.psi2):g}°")
     stroke = "stroke_fwd" if request.n_star > 0 else "stroke_ret"
-    return [f"{_t('request', lang)} ({_t('form_' + request.form, lang)}; {_t(stroke, lang)}; "
-            f"{_t('frame', lang)}):", "  " + ", ".join(parts)]
+    head = (f"{_t('request', lang)} ({_t('form_' + request.form, lang)}; {_t(stroke, lang)}; "
+            f"{_t('frame', lang)}):")
+    return [head, "  " + ", ".join(parts)]
 
 
 def _design_lines(design: Design, lang: str) -> list[str]:
@@ -117,9 +118,9 @@ def _design_lines(design: Design, lang: str) -> list[str]:
     residuals = condition_residuals(design)
     worst = max(abs(residuals[k]) for k in ("n(θ2) − n*", "dn/dθ(θ2)", "n(θ1) − n_end",
                                             "n(θ3) − n_end"))
-    return [f"e = {v['e']:.12g}, c = {v['c']:.12g}, r = {v['r']:.12g}",
-            f"θ1 = {v['theta1_deg']:.8f}°, θ2 = {v['theta2_deg']:.8f}°, "
-            f"θ3 = {v['theta3_deg']:.8f}°, ψ″ = {v['psi2_deg']:.8f}°, δ = {v['delta']:.12g}",
+    angles = (f"θ1 = {v['theta1_deg']:.8f}°, θ2 = {v['theta2_deg']:.8f}°, "
+              f"θ3 = {v['theta3_deg']:.8f}°, ψ″ = {v['psi2_deg']:.8f}°, δ = {v['delta']:.12g}")
+    return [f"e = {v['e']:.12g}, c = {v['c']:.12g}, r = {v['r']:.12g}", angles,
             _t("residual", lang, v=worst, w=worst / abs(design.n_star)),
             _t("mu", lang, m=math.degrees(min_transmission_angle(design)))]
 

@@ -12,15 +12,16 @@ from synthesis.cases.fourbar_velocity_ratio.conditions import Design, Request
 from synthesis.cases.fourbar_velocity_ratio.modern_solver import ModernResult, solve_modern
 from synthesis.cases.fourbar_velocity_ratio.paper_solver import PaperResult, solve_paper
 
-__all__ = ["METHODS", "Study", "run_study", "paper_check_tolerance"]
+__all__ = ["METHODS", "Study", "paper_check_tolerance", "run_study"]
 
 METHODS = ("modern", "paper", "both")
 
 
-def paper_check_tolerance(tol: float) -> float:
+def paper_check_tolerance(tol: float, delta: float) -> float:
     """Relative tolerance of the check for a design of the paper's scheme run with ``tol``
-    on F1–F3 (its conditions hold only to about that accuracy)."""
-    return 100.0 * tol
+    on F1–F3: its conditions hold only to about that accuracy, but the check must still
+    resolve the band, so the tolerance never exceeds δ/10."""
+    return min(100.0 * tol, 0.1 * delta)
 
 
 @dataclass
@@ -80,9 +81,9 @@ def run_study(request: Request, method: str = "modern", *, paper_tol: float = 1e
     if method in ("paper", "both"):
         study.paper = solve_paper(request, tol=paper_tol)
         if study.paper.design is not None:
-            study.paper_check = check_design(study.paper.design,
-                                             value_tol=paper_check_tolerance(paper_tol),
-                                             angle_tol=paper_check_tolerance(paper_tol))
+            tolerance = paper_check_tolerance(paper_tol, study.paper.design.delta)
+            study.paper_check = check_design(study.paper.design, value_tol=tolerance,
+                                             angle_tol=tolerance)
     if study.paper is not None and study.paper.design is not None and study.modern is not None:
         pool = study.modern.designs
         if pool:

@@ -330,22 +330,27 @@ def _member_offset(k: int, count: int) -> complex:
 
 
 def _layered_pairs(chain: Chain, nodes: dict[LinkId, complex]) -> dict[PairId, complex]:
+    """A pair between the two links it joins (a frame pair under its link), never two pairs
+    on one spot: a pair that would land on another one moves aside along its normal."""
     positions: dict[PairId, complex] = {}
-    frame_count: dict[LinkId, int] = {}
     for pair in chain.pairs:
         a, b = pair.links
         if chain.frame in (a, b):
             moving = b if a == chain.frame else a
-            k = frame_count.get(moving, 0)
-            frame_count[moving] = k + 1
-            positions[pair.id] = nodes[moving] + complex(0.5 * k, -1.1)
+            at, aside = nodes[moving] - 1.1j, 0.5 + 0j
         else:
-            shared = [p for p in chain.pairs if set(p.links) == {a, b}]
-            k = shared.index(pair)
-            mid = (nodes[a] + nodes[b]) / 2
-            normal = 1j * (nodes[b] - nodes[a]) / (abs(nodes[b] - nodes[a]) or 1.0)
-            positions[pair.id] = mid + 0.35 * k * normal
+            at, span = (nodes[a] + nodes[b]) / 2, nodes[b] - nodes[a]
+            aside = 0.35j * span / abs(span) if abs(span) > 1e-9 else 0.35 + 0j
+        step = 0
+        while any(abs(at + _shift(step) * aside - q) < 0.2 for q in positions.values()):
+            step += 1
+        positions[pair.id] = at + _shift(step) * aside
     return positions
+
+
+def _shift(step: int) -> int:
+    """0, 1, −1, 2, −2, … : the k-th place to try beside a taken spot."""
+    return (step + 1) // 2 * (1 if step % 2 else -1)
 
 
 def scheme_layout(chain: Chain, analysis: Any) -> SchemeLayout:

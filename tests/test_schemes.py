@@ -16,6 +16,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 import yaml
+from hypothesis import given
+from hypothesis import strategies as st
 from PIL import Image
 
 from assur import analyse_structure, chain_from_dict, load_chain
@@ -179,3 +181,59 @@ def test_triad_is_outlined_with_class_and_order():
     assert "group-III(2,3,4,5)" in svg
     assert "class III, order 3, III(base 4; leashes R–R, R–R, R–P)" in svg
     assert group_graph(chain, analysis) == [("I(0,1)", "III(2,3,4,5)", ("B",))]
+
+
+# kind → (pair of i with its known link, internal pair, pair of j with its known link);
+# for a P pair, which side carries the guide ("known", "i" or "j")  (structure.md §4.5)
+_DYADS = {1: (("R", None), ("R", None), ("R", None)),
+          2: (("P", "known"), ("R", None), ("R", None)),
+          3: (("R", None), ("P", "i"), ("R", None)),
+          4: (("P", "known"), ("R", None), ("P", "known")),
+          5: (("P", "known"), ("P", "j"), ("R", None))}
+
+
+@st.composite
+def dyad_chains(draw):
+    """A crank and a random series of dyads, each on two different known links."""
+    pairs = [{"id": "0-1", "type": "R", "links": [0, 1]}]
+    known, built, link = [0, 1], [], 1
+    for _ in range(draw(st.integers(1, 6))):
+        kind = draw(st.integers(1, 5))
+        a, b = draw(st.lists(st.sampled_from(known), min_size=2, max_size=2, unique=True))
+        i, j = link + 1, link + 2
+        link += 2
+        ends = ((i, a), (i, j), (j, b))
+        for (ptype, carrier), (p, q) in zip(_DYADS[kind], ends):
+            pair = {"id": f"{p}-{q}", "type": ptype, "links": [p, q]}
+            if ptype == "P":
+                pair["guide"] = {"known": q, "i": i, "j": j}[carrier]
+            pairs.append(pair)
+        built.append({"links": (i, j), "on": {f"{i}-{a}": a, f"{j}-{b}": b}})
+        known += [i, j]
+    return {"mechanism": {"pairs": pairs, "inputs": [1]}}, built
+
+
+@given(dyad_chains())
+def test_random_dyad_chains_layout_and_group_graph(case):
+    data, built = case
+    chain = chain_from_dict(data)
+    analysis = analyse_structure(chain)
+    assert sorted(sorted(g.links) for g in analysis.groups) == sorted(
+        sorted(d["links"]) for d in built)
+    label = {link: g.label for g in (*analysis.input_groups, *analysis.groups)
+             for link in g.links}
+    expected: dict[tuple[str, str], list[str]] = {}
+    for dyad in built:  # an arrow from the group of every moving link a dyad stands on
+        target = label[dyad["links"][0]]
+        for pid, known in dyad["on"].items():
+            if known != 0:
+                expected.setdefault((label[known], target), []).append(pid)
+    edges = {(a, b): sorted(p) for a, b, p in group_graph(chain, analysis)}
+    assert edges == {k: sorted(v) for k, v in expected.items()}
+    layout = scheme_layout(chain, analysis)
+    points = np.array([layout.pairs[p.id] for p in chain.pairs])
+    assert np.isfinite(points).all()
+    assert len(np.unique(np.round(points, 9))) == len(points)  # no two pairs drawn together
+    for pair in chain.pairs:  # every slider has a unit guide direction
+        if pair.type.value == "P":
+            assert abs(abs(layout.directions[pair.id]) - 1) < 1e-12

@@ -10,6 +10,7 @@ import base64
 import html
 import io
 from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 __all__ = ["Section", "esc", "figure", "figure_html", "page", "table"]
@@ -96,13 +97,13 @@ def figure(fig: Any, caption: str, *, ident: str, fmt: str = "svg") -> str:
     return figure_html(buffer.getvalue(), fmt, caption, ident=ident)
 
 
+@dataclass(frozen=True)
 class Section:
-    """One numbered section of the report: a heading and its HTML body."""
+    """One numbered section of the report: its element id, heading and HTML body."""
 
-    def __init__(self, ident: str, title: str, body: str) -> None:
-        self.ident = ident
-        self.title = title
-        self.body = body
+    ident: str
+    title: str
+    body: str
 
     def html(self, number: int) -> str:
         """The section as HTML with its number."""

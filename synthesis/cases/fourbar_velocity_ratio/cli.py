@@ -9,7 +9,7 @@ import math
 import sys
 from typing import Any
 
-from assur.tables import MISSING, TableReader
+from assur import TableReader
 from synthesis.cases.fourbar_velocity_ratio.conditions import NoSolution, Request
 from synthesis.cases.fourbar_velocity_ratio.report import no_solution_text, summary, to_dict
 from synthesis.cases.fourbar_velocity_ratio.study import METHODS, run_study
@@ -75,12 +75,13 @@ def read_request(data: dict[str, Any], source: str) -> tuple[Request, str]:
                                     required=dest in ("n_star", "psi1_deg"), default=None,
                                     nullable=True)
         method = node.choice("method", METHODS, required=False, default="modern")
-        given = [k for k in ("e", "delta", "psi2_deg") if values.get(k) is not None]
+        optional = [values[k] for k in ("e", "delta", "psi2_deg")]
+        given = [k for k, v in zip(("e", "delta", "psi2_deg"), optional)
+                 if isinstance(v, (int, float))]
         if len(given) == 3:
             reader.add(TABLE, "e, delta and psi2_deg are all given: with e given, prescribing "
                               "both zones over-determines the problem; leave one of them out")
-        elif len(given) < 2 and all(values.get(k) is not MISSING for k in
-                                    ("e", "delta", "psi2_deg")):
+        elif len(given) < 2 and all(v is None or isinstance(v, (int, float)) for v in optional):
             reader.add(TABLE, "give two of e, delta and psi2_deg (the third one is found); "
                               f"found only {', '.join(given) or 'none'}")
     reader.raise_if_any()

@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
-from assur.errors import AssurError
+from assur import AssurError
 from synthesis.cases.fourbar_velocity_ratio.kinematics import (
     grashof_margin,
     ratio_and_derivative,

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from assur.tables import atomic_write_bytes
+from assur import atomic_write_bytes
 from synthesis.cases.fourbar_velocity_ratio.conditions import Design
 from synthesis.cases.fourbar_velocity_ratio.kinematics import rocker_angle, velocity_ratio
 

@@ -25,7 +25,7 @@ from synthesis.evaluate import Analysis
 from synthesis.problem import Problem
 from synthesis.search import SearchResult
 
-__all__ = ["LANGUAGES", "summary", "text_report", "write_result"]
+__all__ = ["LANGUAGES", "summary", "text_report", "write_result", "write_trials"]
 
 LANGUAGES = ("en", "ru")
 
@@ -340,3 +340,26 @@ def write_result(path: str | os.PathLike[str], problem: Problem, result: SearchR
     body = yaml.safe_dump(table, sort_keys=False, allow_unicode=True, default_flow_style=None,
                           width=100)
     atomic_write_text(path, "\n".join(head) + "\n" + body)
+
+
+def write_trials(path: str | os.PathLike[str], problem: Problem, result: SearchResult) -> int:
+    """Write every feasible passive trial (P1 = P2 = 0) as CSV, best Q first; returns the count.
+
+    Columns: trial number, stage (initial, lptau, shrink), Q, then the varied parameters in
+    table units — the parameter-space table from which a designer picks a mechanism.
+    """
+    import csv
+    import io
+
+    c = result.trial_criteria
+    passive = np.array([stage != "refine" for stage in result.stage])
+    ok = np.flatnonzero((c.p1 == 0) & (c.p2 == 0) & np.isfinite(c.q) & passive)
+    order = ok[np.argsort(c.q[ok], kind="stable")]
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(["trial", "stage", "Q", *problem.names])
+    for k in order:
+        writer.writerow([int(k), result.stage[k], repr(float(c.q[k])),
+                         *(repr(float(v)) for v in result.trials[k])])
+    atomic_write_text(path, buffer.getvalue())
+    return int(order.size)

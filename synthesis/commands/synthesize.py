@@ -12,7 +12,7 @@ import math
 import sys
 from typing import Any
 
-from synthesis.report import summary, text_report, write_result
+from synthesis.report import summary, text_report, write_result, write_trials
 
 NAME = "synthesize"
 HELP = "synthesise a mechanism: passive LPτ search for the Peisakh criteria Q, P1, P2"
@@ -35,6 +35,8 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--out", metavar="RESULT", default=None,
                         help="write the mechanism table of the best design (.yaml or .json); "
                              "'assur analyze RESULT' reads it back")
+    parser.add_argument("--trials", metavar="CSV", default=None,
+                        help="write every feasible passive trial (best Q first) as CSV")
     parser.add_argument("--json", action="store_true", help="print the summary as JSON")
     parser.add_argument("--plot", metavar="DIR", default=None,
                         help="save output.png, mechanism.png and convergence.png into DIR")
@@ -60,6 +62,9 @@ def run(args: argparse.Namespace) -> int:
     if args.out:
         write_result(args.out, problem, result, data)
         data["result_file"] = args.out
+    if args.trials:
+        data["trials_file"] = args.trials
+        data["trials_written"] = write_trials(args.trials, problem, result)
     if args.plot:
         from synthesis.plots import save_plots
 

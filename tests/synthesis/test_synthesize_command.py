@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import csv
 import json
 from pathlib import Path
 from typing import Any
@@ -14,6 +15,8 @@ import yaml
 import assur
 from synthesis.cli import main
 from synthesis.commands import synthesize
+from synthesis.evaluate import Evaluator
+from synthesis.problem import load_problem
 
 PROBLEMS = sorted((Path(__file__).resolve().parents[2] / "input_tables" / "problems")
                   .glob("*.yaml"))
@@ -109,6 +112,25 @@ def test_json_result_file_reads_back(tmp_path: Path, capsys: pytest.CaptureFixtu
     problem = yaml.safe_load(path.read_text(encoding="utf-8"))
     assert code == 0
     assert _reanalyse(problem, out) == pytest.approx(json.loads(text)["Q"], rel=1e-3, abs=1e-8)
+
+
+def test_feasible_trials_table(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = next(p for p in PROBLEMS if p.stem.startswith("class1_fourbar_rocker"))
+    table = tmp_path / "trials.csv"
+    code, text = _run([str(path), "--budget", "7", "--json", "--quiet", "--trials", str(table)],
+                      capsys)
+    data = json.loads(text)
+    rows = list(csv.reader(table.read_text(encoding="utf-8").splitlines()))
+    assert code == 0
+    assert rows[0] == ["trial", "stage", "Q", "L0(1).l_1", "L1(2,3).l_i", "L1(2,3).l_j"]
+    assert len(rows) - 1 == data["trials_written"] > 0
+    q = [float(r[2]) for r in rows[1:]]
+    assert q == sorted(q)
+    # every listed design is inside the box (passive trials) and its Q is re-computed equal
+    problem = load_problem(path)
+    x = np.array([[float(v) for v in r[3:]] for r in rows[1:4]])
+    assert np.all((x >= problem.lower) & (x <= problem.upper))
+    np.testing.assert_allclose(Evaluator(problem)(x).q, q[:3], rtol=1e-12)
 
 
 def test_bad_problem_exits_with_2_and_names_the_field(tmp_path: Path,

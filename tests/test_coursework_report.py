@@ -26,13 +26,15 @@ COURSE = ROOT / "input_tables" / "course_11_link.yaml"
 
 # method.md §3.5 and §1.2: the formula and the counts of fig. 1.25
 COURSE_FORMULA = "I(0,1) → II₁(2,3) → II₄(4,5) → II₃(6,7) → II₂(8,9) → II₅(10,11)"
-# table 1.6 of the course (method.md §3.3) in layering order: L, seq, i-1, j-1, i, j, i+1, j+1
-COURSE_TABLE = [["0", "1", "0", "–", "1", "–", "2", "–"],
-                ["1", "2", "1", "0", "2", "3", "6", "–"],
-                ["4", "3", "3", "0", "4", "5", "–", "–"],
-                ["3", "4", "2", "0", "6", "7", "8", "–"],
-                ["2", "5", "0", "6", "9", "8", "–", "10"],
-                ["5", "6", "0", "8", "11", "10", "–", "–"]]
+# table 1.6 of the course (method.md §3.3) in layering order: L, seq, i-1, j-1, i, j, i+1, j+1,
+# variant, out_code (the sketch of course_11_link.yaml assembles L2 in the variant −1 the
+# course prints)
+COURSE_TABLE = [["0", "1", "0", "–", "1", "–", "2", "–", "–", "0"],
+                ["1", "2", "1", "0", "2", "3", "6", "–", "1", "8;2"],
+                ["4", "3", "3", "0", "4", "5", "–", "–", "–", "4"],
+                ["3", "4", "2", "0", "6", "7", "8", "–", "0", "5"],
+                ["2", "5", "0", "6", "9", "8", "–", "10", "-1", "7;3"],
+                ["5", "6", "0", "8", "11", "10", "–", "–", "–", "5"]]
 
 
 class _Page(HTMLParser):
@@ -92,7 +94,7 @@ def test_course_report_follows_the_course(course_html):
     text = "".join(page.text)
     assert COURSE_FORMULA in text
     assert "W = 3·11 − 2·16 − 0 = 1" in text  # method.md §1.2: n = 11, p5 = 16, W = 1
-    rows = [r[:8] for r in page.tables["identification"] if r]
+    rows = [r for r in page.tables["identification"] if r]
     assert rows == COURSE_TABLE
     groups = {r[0]: r[2:5] for r in page.tables["groups"] if r}
     for label in COURSE_FORMULA.split(" → ")[1:]:

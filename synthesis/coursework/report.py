@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -124,9 +124,10 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
                         mechanism_class=analysis.mechanism_class, applicable=analysis.applicable)
     report.sections += [_data_section(chain, lang), _counts_section(analysis, lang),
                         _groups_section(analysis, lang), _formula_section(analysis, lang)]
-    report.sections.append(_identification_section(analysis, chain, lang, report))
+    model, why_not = _kinematic_model(analysis, lang)
+    report.sections.append(_identification_section(analysis, chain, lang, report, model))
     report.sections.append(_schemes_section(chain, analysis, lang))
-    report.sections += _kinematic_sections(analysis, lang, points, report)
+    report.sections += _kinematic_sections(model, why_not, lang, points, report)
     report.sections += synthesis_sections
     return report
 
@@ -207,8 +208,10 @@ def _formula_section(analysis: Any, lang: str) -> Section:
     return Section("formula", heading("formula", lang), body)
 
 
-def _identification_section(analysis: Any, chain: Chain, lang: str,
-                            report: CourseworkReport) -> Section:
+def _identification_section(analysis: Any, chain: Chain, lang: str, report: CourseworkReport,
+                            model: Any) -> Section:
+    """The program's identification table (assembly variants of L1/L2 from the dimensions,
+    when there are any) and the verdict on the table given in the file."""
     from assur import StructureError
     from assur.identification import COLUMNS, check_identification, identification_table
 
@@ -218,6 +221,9 @@ def _identification_section(analysis: Any, chain: Chain, lang: str,
     except StructureError as exc:
         body = f'<p class="bad">{esc(exc)}</p>'
     else:
+        if model is not None:  # σ of the RRR and RRP dyads as the dimensions assemble them
+            sigma = {(g.i, g.j): g.sigma for g in model.groups if g.kind in (1, 2)}
+            rows = [replace(r, variant=sigma.get((r.i, r.j), r.variant)) for r in rows]
         body = table(header, ([_cell(getattr(r, c)) for c in COLUMNS] for r in rows),
                      table_id="identification")
     summary = report.summary
@@ -267,27 +273,27 @@ def _schemes_section(chain: Chain, analysis: Any, lang: str) -> Section:
 # ----------------------------------------------------------------------------- kinematics
 
 
-def _kinematic_sections(analysis: Any, lang: str, points: int,
-                        report: CourseworkReport) -> list[Section]:
+def _kinematic_model(analysis: Any, lang: str) -> tuple[Any, str]:
+    """The kinematic model of the table, or None and the reason (HTML) why there is none."""
     from assur import build_model
 
-    summary = report.summary
-    report.facts["existence"] = "not available"
     chain = analysis.chain
-    title = heading("existence", lang)
     if not (chain.geometry or chain.group_params):
-        summary[term("existence", lang)] = term("not_available", lang)
-        return [Section("existence", title, f'<p class="note">{esc(term("no_geometry", lang))}'
-                                            f"</p>")]
+        return None, f'<p class="note">{esc(term("no_geometry", lang))}</p>'
     if not (analysis.decomposed and analysis.applicable):
-        summary[term("existence", lang)] = term("not_available", lang)
-        return [Section("existence", title, f'<p class="note">'
-                                            f'{esc(term("not_applicable", lang))}</p>')]
+        return None, f'<p class="note">{esc(term("not_applicable", lang))}</p>'
     try:
-        model = build_model(analysis)
+        return build_model(analysis), ""
     except AssurError as exc:
-        summary[term("existence", lang)] = term("not_available", lang)
-        return [Section("existence", title, f'<pre class="bad">{esc(exc)}</pre>')]
+        return None, f'<pre class="bad">{esc(exc)}</pre>'
+
+
+def _kinematic_sections(model: Any, why_not: str, lang: str, points: int,
+                        report: CourseworkReport) -> list[Section]:
+    if model is None:
+        report.summary[term("existence", lang)] = term("not_available", lang)
+        report.facts["existence"] = "not available"
+        return [Section("existence", heading("existence", lang), why_not)]
     return [_existence_section(model, lang, points, report),
             _motion_section(model, lang, points)]
 

@@ -200,9 +200,11 @@ def _cell_starts(request: Request, scan: _Scan) -> list[NDArray[np.float64]]:
     return starts
 
 
-def _curve_seeds(request: Request, scan: _Scan) -> list[tuple[NDArray[np.float64], float]]:
-    """Points of the design curve (peak = n*) on each grid row of constant r, with the r of
-    the next row: the segments along which the reduced equation is followed."""
+def _curve_seeds(request: Request, scan: _Scan
+                 ) -> list[tuple[NDArray[np.float64], float, int]]:
+    """Segments of the design curve (peak = n*) along which the reduced equation is
+    followed: a point on each grid row of constant r with the r of the next row (axis 1),
+    and the cap at the least rocker from one branch to the other in c (axis 0)."""
     gap = scan.fields[0, 0]
     r = scan.grid["r"][0, :, 0]
     seeds = []
@@ -215,7 +217,14 @@ def _curve_seeds(request: Request, scan: _Scan) -> list[tuple[NDArray[np.float64
             x.append(scan.extra[0, i, j])
         for neighbour in (i - 1, i + 1):
             if 0 <= neighbour < len(r):
-                seeds.append((np.array(x), float(r[neighbour])))
+                seeds.append((np.array(x), float(r[neighbour]), 1))
+    # the cap of the curve, where its two branches meet at the least rocker: follow it in c
+    # from the small-c to the large-c crossing of the last row with both
+    rows = [seed for seed in seeds if seed[0][1] == min(x[1] for x, _, _ in seeds)]
+    if len({float(x[0]) for x, _, _ in rows}) > 1:
+        low = min(rows, key=lambda seed: seed[0][0])[0]
+        high = max(float(x[0]) for x, _, _ in rows)
+        seeds.append((low, high, 0))
     return seeds
 
 
@@ -242,30 +251,35 @@ def _mean_angle(angles: list[float]) -> float:
     return float(np.angle(np.mean(np.exp(1j * np.asarray(angles)))))
 
 
-class _Rocker:
-    """The request reduced to one equation in the rocker length r.
+class _Reduced:
+    """The request reduced to one equation along the design curve.
 
-    For a given r the peak conditions (7) = n*, (8) fix c and θ2 (a well-conditioned 2×2
-    solve, continued from the last point); what is left is ``g(r) = n(θ1) − n_end`` for the
-    paper's form and ``g(r) = n(θ1) − n(θ3)`` for ``delta`` (δ then follows from n(θ1)).
+    The curve is parametrised by one length, r (``axis = 1``) or c (``axis = 0``): for a
+    given value the peak conditions (7) = n*, (8) fix the other length and θ2 (a
+    well-conditioned 2×2 solve, continued from the last point); what is left is
+    ``g = n(θ1) − n_end`` for the paper's form and ``g = n(θ1) − n(θ3)`` for ``delta`` (δ then
+    follows from n(θ1)).
     """
 
-    def __init__(self, request: Request, start: NDArray[np.float64]) -> None:
+    def __init__(self, request: Request, start: NDArray[np.float64], axis: int) -> None:
         self.request = request
         self.x = start.copy()
+        self.free = [1 - axis, 2]
+        self.axis = axis
         self.evaluations = 0
 
-    def __call__(self, r: float) -> float:
+    def __call__(self, value: float) -> float:
         x = self.x.copy()
-        x[1] = r
+        x[self.axis] = value
 
         def peak_conditions(y: NDArray[np.float64]) -> NDArray[np.float64]:
-            x[0], x[2] = y
+            x[self.free] = y
             return form_residuals(self.request, x)[:2]
 
-        solution = root(peak_conditions, self.x[[0, 2]], method="hybr", options={"xtol": 1e-14})
+        solution = root(peak_conditions, self.x[self.free], method="hybr",
+                        options={"xtol": 1e-14})
         self.evaluations += int(solution.nfev)
-        x[0], x[2] = solution.x
+        x[self.free] = solution.x
         residual = form_residuals(self.request, x)
         if not (np.all(np.isfinite(residual)) and np.all(np.abs(residual[:2]) < _ACCEPT)):
             return math.nan
@@ -278,31 +292,33 @@ class _Rocker:
         return float(residual[2])
 
 
-def _roots_on_segment(request: Request, seed: NDArray[np.float64], r_end: float, xtol: float,
-                      max_step: float = 0.03) -> tuple[list[NDArray[np.float64]], int]:
-    """Follow the design curve from a seed to ``r = r_end`` in relative steps of at most
-    ``max_step`` and bisect (``brentq``) every sign change of the reduced equation."""
-    reduced = _Rocker(request, seed)
-    r0 = float(seed[1])
-    value = reduced(r0)
-    steps = max(1, math.ceil(abs(math.log(r_end / r0)) / max_step))
+def _roots_on_segment(request: Request, seed: NDArray[np.float64], end: float, xtol: float,
+                      axis: int = 1, max_step: float = 0.03
+                      ) -> tuple[list[NDArray[np.float64]], int]:
+    """Follow the design curve from a seed until r (``axis = 1``) or c (``axis = 0``) reaches
+    ``end``, in relative steps of at most ``max_step``, and bisect (``brentq``) every sign
+    change of the reduced equation."""
+    reduced = _Reduced(request, seed, axis)
+    start = float(seed[axis])
+    value = reduced(start)
+    steps = max(1, math.ceil(abs(math.log(end / start)) / max_step))
     roots = []
-    for r in np.geomspace(r0, r_end, steps + 1)[1:]:
+    for point in np.geomspace(start, end, steps + 1)[1:]:
         before = reduced.x
-        following = reduced(float(r))
+        following = reduced(float(point))
         if not (math.isfinite(value) and math.isfinite(following)):
             break
         if np.sign(following) != np.sign(value):
             after = reduced.x
             reduced.x = before
             try:
-                found = brentq(reduced, r0, float(r), xtol=xtol, rtol=max(xtol, 1e-15))
+                found = brentq(reduced, start, float(point), xtol=xtol, rtol=max(xtol, 1e-15))
             except ValueError:  # the peak conditions lost their solution on the way
                 break
             if math.isfinite(reduced(found)):
                 roots.append(reduced.x.copy())
             reduced.x = after
-        r0, value = float(r), following
+        start, value = float(point), following
     return roots, reduced.evaluations
 
 
@@ -379,8 +395,8 @@ def solve_modern(request: Request, *, xtol: float = 1e-13) -> ModernResult:
         candidates = _cell_starts(request, scan)
     else:
         candidates = []
-        for seed, r_end in _curve_seeds(request, scan):
-            near, count = _roots_on_segment(request, seed, r_end, xtol)
+        for seed, end, axis in _curve_seeds(request, scan):
+            near, count = _roots_on_segment(request, seed, end, xtol, axis)
             candidates.extend(near)
             evaluations += count
     for x0 in candidates:

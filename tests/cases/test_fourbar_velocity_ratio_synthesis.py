@@ -165,3 +165,17 @@ def test_the_check_rejects_a_perturbed_design(modern):
     check = check_design(replace(design, c=design.c * (1 + 1e-5)))
     assert not check.passed
     assert {code for code, _ in check.failures} & {"peak_value", "end_theta1", "end_theta3"}
+
+
+@pytest.mark.parametrize("psi1_deg", [20.2, 20.7])
+def test_roots_where_the_two_branches_meet_are_found(psi1_deg):
+    # a dense scan (exploration of this request family) gives ψ′ ≈ 20.43° where the branches
+    # meet at r = e/n*, rising to about 21.5° on the large-c branch and falling to about
+    # 19.3° on the small-c one: ψ′ = 20.2° and 20.7° each have a root within a few per cent
+    # of r = e/n*, besides the roots further out
+    request = replace(PAPER_FORM, psi1=psi1_deg * DEG)
+    result = solve_once(request)
+    r_min = request.e / request.n_star
+    near_cap = [d for d in result.designs if d.r < 1.05 * r_min]
+    assert len(near_cap) == 1 and len(result.designs) == 3
+    assert check_design(near_cap[0]).passed

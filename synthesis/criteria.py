@@ -42,6 +42,7 @@ __all__ = [
     "rotation_penalty",
     "timed_path_deviations",
     "value_deviations",
+    "workspace_penalty",
     "zone_deviations",
 ]
 
@@ -354,18 +355,43 @@ def rotation_penalty(rotation: FloatArray, allowed: FloatArray) -> FloatArray:
     return pressure_penalty(rotation, allowed)
 
 
+def workspace_penalty(excess: FloatArray, scale: FloatArray) -> FloatArray:
+    """Desirable condition 4: tracked points stay inside their allowed boxes.
+
+    For each tracked point P with box [x_min, x_max] × [y_min, y_max] and length scale L
+    (the box diagonal)::
+
+        e_P = max_φ [max(0, x_min − x_P, x_P − x_max) + max(0, y_min − y_P, y_P − y_max)]
+        P2_w = Σ_P e_P / L_P
+
+    Parameters
+    ----------
+    excess : array_like, shape (D, J)
+        e_P of each tracked point (mm).
+    scale : array_like, shape (J,)
+        L_P (mm, positive).
+    """
+    scale = np.asarray(scale, dtype=float)
+    if scale.size == 0:
+        return np.zeros(np.shape(excess)[0])
+    return np.sum(np.asarray(excess) / scale, axis=-1)
+
+
 def desirable_penalty(bounds: FloatArray, pressure: FloatArray, rotation: FloatArray,
-                      *, weights: tuple[float, float, float] = (1.0, 1.0, 1.0)) -> FloatArray:
+                      workspace: FloatArray | float = 0.0, *,
+                      weights: tuple[float, float, float, float] = (1.0, 1.0, 1.0, 1.0)
+                      ) -> FloatArray:
     """Criterion P2: the weighted sum of the desirable-condition penalties.
 
     ::
 
-        P2 = w_b·P2_b + w_α·P2_α + w_r·P2_r          (default weights 1)
+        P2 = w_b·P2_b + w_α·P2_α + w_r·P2_r + w_w·P2_w          (default weights 1)
 
     P2 = 0 iff every desirable condition holds.  It is meaningful only where P1 = 0.
     """
-    w_b, w_a, w_r = weights
-    return w_b * np.asarray(bounds) + w_a * np.asarray(pressure) + w_r * np.asarray(rotation)
+    w_b, w_a, w_r, w_w = weights
+    return (w_b * np.asarray(bounds) + w_a * np.asarray(pressure) + w_r * np.asarray(rotation)
+            + w_w * np.asarray(workspace))
 
 
 # ---------------------------------------------------------------------- combination (§5.6)

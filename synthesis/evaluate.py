@@ -23,6 +23,7 @@ Outputs (``method.md`` §4.5):
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -67,6 +68,7 @@ class Analysis:
     criteria: C.Criteria
     pressure: dict[str, FloatArray]
     rotations: dict[str, FloatArray]
+    workspace: dict[str, FloatArray]
 
 
 class Evaluator:
@@ -178,6 +180,7 @@ class Evaluator:
                 gap = control.weight * (out - control.point)
                 res = np.concatenate([gap.real, gap.imag], axis=1)
             pressure, rotation = self._desirable(motion, d, n)
+            workspace = self._workspace(motion, d, n)
         feasible = p1 == 0
         q = np.where(feasible, C.criterion_q(dev), np.nan)
         bounds = C.bounds_penalty(x, self.lower, self.upper)
@@ -185,11 +188,16 @@ class Evaluator:
             _stack(pressure, d), np.array([self.problem.pressure_angles[k] for k in pressure]))
         limits = [lim for label in rotation for lim in self.problem.rotations[label].values()]
         p2_rot = C.rotation_penalty(_stack(rotation, d), np.array(limits))
-        p2 = np.where(feasible, C.desirable_penalty(bounds, p2_alpha, p2_rot), np.nan)
+        scales = []
+        for label, excess in workspace.items():
+            x_min, x_max, y_min, y_max = self.problem.workspace[label]
+            scales += [math.hypot(x_max - x_min, y_max - y_min)] * excess.shape[1]
+        p2_work = C.workspace_penalty(_stack(workspace, d), np.array(scales))
+        p2 = np.where(feasible, C.desirable_penalty(bounds, p2_alpha, p2_rot, p2_work), np.nan)
         dev = np.where(feasible[:, None], dev, np.nan)
         res = np.where(feasible[:, None], res, np.nan)
         return Analysis(motion, self.grid, out_grid, out, np.asarray(phi_c),
-                        C.Criteria(p1, p2, q, dev, res), pressure, rotation)
+                        C.Criteria(p1, p2, q, dev, res), pressure, rotation, workspace)
 
     def _nearest(self, model: Any, phi: FloatArray) -> tuple[FloatArray, npt.NDArray[Any]]:
         """Newton refinement in φ of the nearest path points (class 3).
@@ -251,6 +259,29 @@ class Evaluator:
                 rotation[label] = np.stack([swings[group.pairs[role]] for role in limits],
                                            axis=1)
         return pressure, rotation
+
+    def _workspace(self, motion: Any, d: int, n: int) -> dict[str, FloatArray]:
+        """Largest excursion of each group's revolute joints outside its box, (D, J) mm."""
+        out: dict[str, FloatArray] = {}
+        size = self.positions.size
+        for label, box in self.problem.workspace.items():
+            group = motion.model.group(label)
+            columns = []
+            for role, pid in group.pairs.items():
+                if role.startswith("P") or pid not in motion.joints:
+                    continue
+                z = _full(assur.values(motion.joints[pid]), d, size)[:, :n]
+                columns.append(np.max(_outside(z, box), axis=1))
+            out[label] = np.stack(columns, axis=1)
+        return out
+
+
+def _outside(z: npt.NDArray[Any], box: tuple[float, float, float, float]) -> FloatArray:
+    """How far points lie outside an axis-aligned box (0 inside), per coordinate summed."""
+    x_min, x_max, y_min, y_max = box
+    dx = np.maximum(np.maximum(x_min - z.real, z.real - x_max), 0.0)
+    dy = np.maximum(np.maximum(y_min - z.imag, z.imag - y_max), 0.0)
+    return np.nan_to_num(dx + dy)
 
 
 def _full(value: Any, d: int, n: int) -> npt.NDArray[Any]:

@@ -25,7 +25,9 @@ complete example of each task class):
     same columns of the identification row with the same links; the kinematic model then
     checks every column (:func:`assur.build_model`).
 ``allowable``
-    Tables 2.7–2.11: rows ``{links: [i, j], pressure_angle: deg, rotations: {joint: deg}}``.
+    Tables 2.7–2.11: rows ``{links: [i, j], pressure_angle: deg, rotations: {joint: deg},
+    workspace: {x: [min, max], y: [min, max]}}`` (the box applies to the group's revolute
+    joints, mm).
 ``control_points``
     Tables 2.12–2.15, columns by class: 1 ``K, phi, psi, E`` (or ``psi_lo, psi_hi`` for a
     zone), 2 ``K, phi, S, E``, 3 ``K, x, y, E``, 4 ``K, phi, x, y, E`` (φ, ψ in degrees;
@@ -183,6 +185,7 @@ class Problem:
     output: Output
     pressure_angles: dict[str, float] = field(default_factory=dict)
     rotations: dict[str, dict[str, float]] = field(default_factory=dict)
+    workspace: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
     group_models: tuple[Any, ...] = ()
     search: dict[str, Any] = field(default_factory=dict)
 
@@ -320,7 +323,7 @@ def _read(reader: TableReader, base: Path) -> Problem:
     task_class = g.get("task_class", MISSING)
     output = _read_output(top, task_class, groups)
     control = _read_control(top, task_class, g.get("n_points", MISSING))
-    pressure, rotations = _read_allowable(top, groups)
+    pressure, rotations, boxes = _read_allowable(top, groups)
     models = tuple(top.get("group_models", kind="list", required=False, default=[]) or [])
     search = _read_search(top)
     model = _build_model(reader, mechanism) if structure_ok else None
@@ -348,7 +351,9 @@ def _read(reader: TableReader, base: Path) -> Problem:
         n_groups=g["n_groups"], grid=g["grid"], accuracy=g["accuracy"],
         objective=g["objective"], p2_weight=float(g["p2_weight"]), mechanism=mechanism,
         model=model, parameters=parameters, control=control, output=output,
-        pressure_angles=pressure_angles, rotations=rotation_limits, group_models=models,
+        pressure_angles=pressure_angles, rotations=rotation_limits,
+        workspace={labels[k]: v for k, v in boxes.items()} if model is not None else {},
+        group_models=models,
         search=search)
 
 
@@ -511,11 +516,15 @@ def _read_control(top: Node, task_class: Any, n_points: Any) -> ControlPoints:
 
 
 def _read_allowable(top: Node, groups: dict[GroupKey, Any]
-                    ) -> tuple[dict[GroupKey, float], dict[GroupKey, dict[str, float]]]:
-    """Tables 2.7–2.11: allowable pressure angles and joint rotations (degrees → radians)."""
+                    ) -> tuple[dict[GroupKey, float], dict[GroupKey, dict[str, float]],
+                               dict[GroupKey, tuple[float, float, float, float]]]:
+    """Tables 2.7–2.11: allowable pressure angles and joint rotations (degrees → radians),
+    and working-space boxes of the groups' joints (mm)."""
     pressure: dict[GroupKey, float] = {}
     rotations: dict[GroupKey, dict[str, float]] = {}
-    for row in top.rows("allowable", ("links", "pressure_angle", "rotations"), required=False):
+    boxes: dict[GroupKey, tuple[float, float, float, float]] = {}
+    for row in top.rows("allowable", ("links", "pressure_angle", "rotations", "workspace"),
+                        required=False):
         key = _group_of(row, groups)
         angle = None
         if row.mapping.get("pressure_angle") == "default":
@@ -531,13 +540,33 @@ def _read_allowable(top: Node, groups: dict[GroupKey, Any]
                 value = turns.get(joint, kind="number", check=_positive)
                 if value is not MISSING:
                     limits[str(joint)] = math.radians(value)
+        box = _read_box(row)
         if key is None:
             continue
         if angle not in (None, MISSING):
             pressure[key] = math.radians(angle)
         if limits:
             rotations[key] = limits
-    return pressure, rotations
+        if box is not None:
+            boxes[key] = box
+    return pressure, rotations, boxes
+
+
+def _read_box(row: Node) -> tuple[float, float, float, float] | None:
+    node = row.child("workspace", ("x", "y"), required=False)
+    if node is None:
+        return None
+    out = []
+    for axis in ("x", "y"):
+        value = node.get(axis, kind="list")
+        if value is MISSING:
+            return None
+        if len(value) != 2 or not all(map(_is_number, value)) or value[0] >= value[1]:
+            row.reader.add(f"{node.location} {axis!r}", f"expected [min, max] with min < max "
+                                                        f"(mm); found {value}")
+            return None
+        out.extend(float(v) for v in value)
+    return out[0], out[1], out[2], out[3]
 
 
 def _check_allowable(reader: TableReader, model: Any, pressure: dict[str, float],

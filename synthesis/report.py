@@ -62,6 +62,8 @@ _WORDS: dict[str, tuple[str, str]] = {
     "allowed": ("allowable", "допускаемый"),
     "rotations": ("Relative rotations in joints", "Относительные повороты в шарнирах"),
     "binding": ("Conditions that bind", "Активные условия"),
+    "workspace": ("Working space of the joints (mm)", "Рабочее пространство шарниров (мм)"),
+    "outside": ("largest excursion outside", "наибольший выход за пределы"),
     "at_bound": ("{p} is at its {side} bound", "{p} на {side} границе"),
     "side_lower": ("lower", "левой"),
     "side_upper": ("upper", "правой"),
@@ -167,6 +169,9 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
                                  "allowed_deg": math.degrees(lim)}
                           for n, (role, lim) in enumerate(problem.rotations[k].items())}
                       for k, v in analysis.rotations.items()},
+        "workspace": {k: {"max_outside_mm": float(np.max(v[0])),
+                          "box_mm": list(problem.workspace[k])}
+                      for k, v in analysis.workspace.items()},
         "margins": _margins(analysis),
         "binding": _binding(problem, result, analysis),
         "search": {
@@ -279,6 +284,12 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
             for role, info in joints.items():
                 lines.append(f"  {label:<12} {role:<4} {info['range_deg']:8.3f}°   "
                              f"{w('allowed')} {info['allowed_deg']:.3f}°")
+    if data["workspace"]:
+        lines += ["", w("workspace")]
+        for label, info in data["workspace"].items():
+            x0, x1, y0, y1 = info["box_mm"]
+            lines.append(f"  {label:<12} x ∈ [{x0:g}, {x1:g}], y ∈ [{y0:g}, {y1:g}]   "
+                         f"{w('outside')} {info['max_outside_mm']:.6g}")
     lines += ["", w("binding")]
     if not data["binding"]:
         lines.append(f"  {w('none')}")

@@ -87,7 +87,11 @@ def test_desirable_penalties_by_hand() -> None:
     assert C.pressure_penalty(alpha, np.radians([40.0, 45.0]))[0] == pytest.approx(0.25)
     assert C.rotation_penalty(np.radians([[100.0]]), np.radians([80.0]))[0] == \
         pytest.approx(0.25)
-    assert C.desirable_penalty(1.0, 0.25, 0.5, weights=(1.0, 2.0, 4.0)) == pytest.approx(3.5)
+    # a point 3 mm beyond a box of diagonal 5 mm, another inside
+    assert C.workspace_penalty(np.array([[3.0, 0.0]]), np.array([5.0, 7.0]))[0] == \
+        pytest.approx(0.6)
+    assert C.desirable_penalty(1.0, 0.25, 0.5, 0.6, weights=(1.0, 2.0, 4.0, 5.0)) == \
+        pytest.approx(6.5)
 
 
 def _criteria(p1: list[float], p2: list[float], q: list[float]) -> C.Criteria:

@@ -70,3 +70,18 @@ def test_pressure_angle_and_rocker_swing_penalties() -> None:
     assert analysis.criteria.p2[0] == pytest.approx(expected, rel=1e-12)
     # ψ at 180° is the unwrapped rocker angle there, from its value at 0
     assert analysis.output_control[0, 1] == pytest.approx(rocker[36] - rocker[0], abs=1e-12)
+
+
+def test_workspace_penalty_of_the_joints_of_a_group() -> None:
+    data = copy.deepcopy(DATA)
+    data["allowable"] = [{"links": [2, 3], "workspace": {"x": [-200, 200], "y": [-20, 300]}}]
+    problem = problem_from_dict(data, "fourbar.yaml")
+    l1, lj = 30.0, 70.0
+    criteria = Evaluator(problem)(np.array([[l1, lj]]))
+    phi = 2 * np.pi * np.arange(72) / 72
+    a = l1 * np.exp(1j * phi)
+    c = a + 90.0 * np.exp(1j * (np.angle(XHJ - a) + np.arccos(_cosine(phi, l1, 90.0, lj))))
+    # the crank pin dips to y = −30 (10 mm below the box); C and the pivot stay inside
+    excess = np.max(np.maximum(-20.0 - a.imag, 0)) + np.max(np.maximum(-20.0 - c.imag, 0))
+    assert excess == pytest.approx(10.0, abs=1e-9)
+    assert criteria.p2[0] == pytest.approx(excess / math.hypot(400.0, 320.0), rel=1e-12)

@@ -58,6 +58,13 @@ class Analysis:
     phi_control : ndarray, shape (D, K)
         Crank rotation of each control value (class 3: of the nearest path point).
     criteria : Criteria
+    pressure : dict
+        Group label → largest pressure angle over the grid, shape (D, 1), radians (groups
+        with an allowable pressure angle).
+    rotations : dict
+        Group label → swing of each checked joint, shape (D, J), radians.
+    workspace : dict
+        Group label → largest excursion of each joint outside its box, shape (D, J), mm.
     """
 
     motion: Any

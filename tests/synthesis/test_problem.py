@@ -126,7 +126,10 @@ def test_missing_mechanism_file_names_the_file(tmp_path: Path) -> None:
 
 def test_allowable_rows_are_checked() -> None:
     bad = copy.deepcopy(GOOD)
-    bad["allowable"] = [{"links": [3, 2], "pressure_angle": 120, "rotations": {"Q": 10}}]
+    bad["allowable"] = [{"links": [3, 2], "pressure_angle": 120, "rotations": {"Q": 10},
+                         "workspace": {"x": [5, 1], "y": [0, 1]}}]
     text = "\n".join(_messages(bad))
     assert "allowable[0] 'pressure_angle': must lie in (0, 90] degrees" in text
+    assert "allowable[0].workspace 'x': expected [min, max] with min < max (mm); found [5, 1]" \
+        in text
     assert "unknown revolute joint 'Q'" in text

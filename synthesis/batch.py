@@ -117,13 +117,17 @@ def find_tables(folder: str | os.PathLike[str]) -> list[Path]:
                   in TABLE_SUFFIXES and not p.name.startswith("."))
 
 
-def _existence(analysis: Any, lang: str) -> tuple[str, list[str]]:
-    """Existence over the cycle: the status word and the failures in words."""
+def _kinematic_checks(analysis: Any, lang: str) -> tuple[str, list[str], list[str]]:
+    """The table's assembly variants against the dimensions, and the existence over the
+    cycle: the existence status word, the variant problems and the existence problems."""
     from assur import REASONS, build_model, check_existence
+    from synthesis.coursework.variants import variant_findings
 
     model = build_model(analysis)
-    report = check_existence(model, points=EXISTENCE_POINTS)
+    variants = [text for _row, text in variant_findings(
+        model, analysis.chain.identification or (), lang)]
     found = []
+    report = check_existence(model, points=EXISTENCE_POINTS)
     crank = model.drive == "crank"
     for group in report.groups:
         for interval in group.intervals:
@@ -134,7 +138,7 @@ def _existence(analysis: Any, lang: str) -> tuple[str, list[str]]:
                 found.append(f"группа {group.label} не собирается при φ = {where}: {reason}")
             else:
                 found.append(f"group {group.label} does not assemble for φ = {where}: {reason}")
-    return ("whole cycle" if report.all_exist else "fails"), found
+    return ("whole cycle" if report.all_exist else "fails"), variants, found
 
 
 def _load(path: Path) -> Chain:
@@ -195,8 +199,10 @@ def check_table(path: str | os.PathLike[str], *, lang: str = "en",
     existence = "no dimensions"
     if analysis.decomposed and analysis.applicable and (chain.geometry or chain.group_params):
         try:
-            existence, failures = _existence(analysis, lang)
-            found += failures
+            existence, variants, failures = _kinematic_checks(analysis, lang)
+            if variants:
+                identification = "differs"
+            found += variants + failures
         except AssurError as exc:
             existence = "not checked"
             found.append(str(exc).replace("\n", " "))

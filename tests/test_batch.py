@@ -33,11 +33,13 @@ def _circles(a: complex, ra: float, b: complex, rb: float) -> complex:
 
 
 def four_bar(crank: float, coupler: float, rocker: float, frame: float,
-             identification: list | None = None) -> dict:
-    """A four-bar chain table with a sketch at crank angle 0."""
+             identification: list | None = None, *, left: bool = True) -> dict:
+    """A four-bar chain table with a sketch at crank angle 0; the joint C left of B → D
+    (the course's variant +1 of the RRR dyad) or, mirrored in the line BD, right of it."""
     a, d = 0j, complex(frame, 0)
     b = a + crank
     c = _circles(b, coupler, d, rocker)
+    c = c if left else c.conjugate()  # B and D lie on the x-axis
     table = {"mechanism": {"name": "four-bar", "pairs": [
         {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
         {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}],
@@ -182,3 +184,14 @@ def test_reports_for_readable_tables(tmp_path):
 def test_not_a_folder(tmp_path, capsys):
     assert main(["batch", str(tmp_path / "missing")]) == 2
     assert "not a folder" in capsys.readouterr().err
+
+
+def test_assembly_variant_against_the_sketch(tmp_path):
+    right = tmp_path / "right.yaml"  # C drawn right of B → D: variant −1, the table says +1
+    right.write_text(yaml.safe_dump(four_bar(30, 90, 80, 100, GOOD_ROWS, left=False)), "utf-8")
+    row = check_table(right)
+    assert (row.verdict, row.identification) == ("problems", "differs")
+    assert "'variant'" in row.problem and "variant -1, the table says 1" in row.problem
+    fixed = [dict(GOOD_ROWS[0]), dict(GOOD_ROWS[1], variant=-1)]
+    right.write_text(yaml.safe_dump(four_bar(30, 90, 80, 100, fixed, left=False)), "utf-8")
+    assert check_table(right).identification == "matches"

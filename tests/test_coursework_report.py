@@ -251,3 +251,17 @@ def test_report_renders_in_chromium(tmp_path, course_html):
     coloured = (pixels.max(axis=2) - pixels.min(axis=2)) > 60
     bands = {int(y) // 1000 for y in np.nonzero(coloured.any(axis=1))[0]}
     assert len(bands) >= 4
+
+
+def test_variant_against_the_sketch_in_the_report(tmp_path):
+    from test_batch import GOOD_ROWS, four_bar
+
+    table = tmp_path / "right.yaml"  # C right of B → D: the sketch assembles variant −1
+    table.write_text(yaml.safe_dump(four_bar(30, 90, 80, 100, GOOD_ROWS, left=False)), "utf-8")
+    report = build_report(table, points=36, lang="ru")
+    assert report.facts["identification"] == "differs"
+    assert [m["field"] for m in report.facts["mismatches"]] == ["variant"]
+    page = _parse(render_html(report))
+    assert [r[8] for r in page.tables["identification"] if r] == ["–", "-1"]
+    assert "по размерам группа собирается в варианте -1, в таблице указано 1" in "".join(
+        page.text)

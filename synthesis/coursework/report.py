@@ -235,19 +235,26 @@ def _identification_section(analysis: Any, chain: Chain, lang: str, report: Cour
                 f'{esc(term("none_given", lang))}</p>'
         return Section("identification", heading("identification", lang), body)
     mismatches = check_identification(analysis, chain.identification)
-    report.facts["identification"] = "differs" if mismatches else "matches"
+    problems = [f"{m.label} {m.field}: {m.message_ru if lang == 'ru' else m.message}"
+                for m in mismatches]
     report.facts["mismatches"] = [m.to_dict() for m in mismatches]
-    if not mismatches:
+    if model is not None:
+        from synthesis.coursework.variants import variant_findings
+
+        found = variant_findings(model, chain.identification, lang)
+        problems += [text for _row, text in found]
+        report.facts["mismatches"] += [{"row": row, "field": "variant", "message": text}
+                                       for row, text in found]
+    report.facts["identification"] = "differs" if problems else "matches"
+    if not problems:
         summary[verdict_key] = term("matches", lang)
         body += (f'<p class="ok" id="student-table">{esc(verdict_key)} '
                  f"({len(chain.identification)}): {esc(term('matches', lang))}</p>")
     else:
-        summary[verdict_key] = f"{term('differs', lang)} ({len(mismatches)})"
-        items = "".join(f"<li>{esc(m.label)} <b>{esc(m.field)}</b>: "
-                        f"{esc(m.message_ru if lang == 'ru' else m.message)}</li>"
-                        for m in mismatches)
+        summary[verdict_key] = f"{term('differs', lang)} ({len(problems)})"
+        items = "".join(f"<li>{esc(text)}</li>" for text in problems)
         body += (f'<p class="bad" id="student-table">{esc(verdict_key)}: '
-                 f"{esc(term('differs', lang))} ({len(mismatches)})</p>"
+                 f"{esc(term('differs', lang))} ({len(problems)})</p>"
                  f'<ul class="findings">{items}</ul>')
     return Section("identification", heading("identification", lang), body)
 

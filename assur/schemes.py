@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from assur.classification import roman as roman_numeral
 from assur.errors import AssurError
 from assur.model import Chain, LinkId, Pair, PairId, PairType, id_key
 from assur.tables import atomic_write_bytes
@@ -52,7 +53,6 @@ __all__ = [
     "scheme_bytes",
 ]
 
-_ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI", 7: "VII", 8: "VIII"}
 _KIND_STRINGS = {1: "RRR", 2: "RRP", 3: "RPR", 4: "PRP", 5: "RPP"}
 _KIND_STRINGS_RU = {1: "ВВВ", 2: "ВВП", 3: "ВПВ", 4: "ПВП", 5: "ВПП"}
 _GROUP_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b",
@@ -79,8 +79,8 @@ def roman(value: Any) -> str:
     """
     if value is None:
         return "–"
-    if isinstance(value, int) and not isinstance(value, bool):
-        return _ROMAN.get(value, str(value))
+    if isinstance(value, int) and not isinstance(value, bool) and value > 0:
+        return roman_numeral(value)
     return str(value)
 
 

@@ -75,3 +75,13 @@ def test_registered_as_a_built_in_case(capsys):
     assert main(["case", "fourbar-velocity-ratio", "--e", "0.3", "--n-star", "0.5",
                  "--delta", "-1", "--psi1", "20"]) == 2
     assert "'delta'" in capsys.readouterr().err
+
+
+def test_no_solution_answer_in_russian(capsys):
+    assert run(["--e", "0.3", "--n-star", "1.2", "--delta", "0.05", "--psi1", "20",
+                "--lang", "ru"]) == 1
+    text = capsys.readouterr().out
+    assert "такого механизма нет" in text and "обратном ходе" in text
+    assert run(["--e", "0.3", "--n-star", "0.5", "--delta", "0.05", "--psi1", "35",
+                "--lang", "ru"]) == 1
+    assert "самый широкий" in capsys.readouterr().out

@@ -8,16 +8,23 @@ from __future__ import annotations
 
 from synthesis.cases.fourbar_velocity_ratio.check import CheckResult, check_design
 from synthesis.cases.fourbar_velocity_ratio.conditions import Design, NoSolution, Request
-from synthesis.cases.fourbar_velocity_ratio.modern_solver import ModernResult, solve_modern
+from synthesis.cases.fourbar_velocity_ratio.messages import Message
+from synthesis.cases.fourbar_velocity_ratio.modern_solver import (
+    ModernResult,
+    attainable_zone,
+    solve_modern,
+)
 from synthesis.cases.fourbar_velocity_ratio.paper_solver import PaperResult, solve_paper
 
 __all__ = [
     "CheckResult",
     "Design",
+    "Message",
     "ModernResult",
     "NoSolution",
     "PaperResult",
     "Request",
+    "attainable_zone",
     "check_design",
     "solve_modern",
     "solve_paper",

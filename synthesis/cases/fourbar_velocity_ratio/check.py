@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import minimize_scalar
 
-from assur import REASONS, solve_rrr
+from assur import solve_rrr
 from synthesis.cases.fourbar_velocity_ratio.conditions import Design
 
 __all__ = ["CheckResult", "check_design", "grashof_type", "ratio_by_construction"]
@@ -162,7 +162,7 @@ def check_design(design: Design, *, samples: int = 4096, value_tol: float = 1e-7
     if not out.assembles:
         first = int(np.argmin(dyad.exists))
         out.failures.append(("assembly", {"theta_deg": math.degrees(theta[first]) % 360.0,
-                                          "why": REASONS[int(dyad.reason[first])][0]}))
+                                          "reason_code": int(dyad.reason[first])}))
         return out
 
     end = dyad.c

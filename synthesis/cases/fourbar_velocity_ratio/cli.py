@@ -11,7 +11,12 @@ from typing import Any
 
 from assur import TableReader
 from synthesis.cases.fourbar_velocity_ratio.conditions import NoSolution, Request
-from synthesis.cases.fourbar_velocity_ratio.report import no_solution_text, summary, to_dict
+from synthesis.cases.fourbar_velocity_ratio.report import (
+    message_dict,
+    no_solution_text,
+    summary,
+    to_dict,
+)
 from synthesis.cases.fourbar_velocity_ratio.study import METHODS, run_study
 
 __all__ = ["HELP", "NAME", "add_args", "read_request", "run"]
@@ -120,11 +125,11 @@ def run(args: argparse.Namespace) -> int:
         study = run_study(request, method)
     except NoSolution as exc:
         if args.json:
-            json.dump({"case": NAME, "passed": False, "no_solution": str(exc)}, sys.stdout,
-                      indent=2, ensure_ascii=False)
+            json.dump({"case": NAME, "passed": False, "no_solution": message_dict(exc.message)},
+                      sys.stdout, indent=2, ensure_ascii=False)
             print()
         else:
-            sys.stdout.write(no_solution_text(str(exc), args.lang))
+            sys.stdout.write(no_solution_text(exc.message, args.lang))
         return 1
     if args.json:
         json.dump(to_dict(study), sys.stdout, indent=2, ensure_ascii=False)

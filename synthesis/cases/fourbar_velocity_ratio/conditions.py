@@ -33,6 +33,7 @@ from synthesis.cases.fourbar_velocity_ratio.kinematics import (
     rocker_angle,
     velocity_ratio,
 )
+from synthesis.cases.fourbar_velocity_ratio.messages import Message
 
 __all__ = [
     "FORMS",
@@ -56,7 +57,17 @@ _ANGLE_TOL = 1e-7
 
 
 class NoSolution(AssurError):
-    """No crank-rocker can satisfy the request; the message says why."""
+    """No crank-rocker can satisfy the request; ``message`` says why (in both languages).
+
+    Parameters
+    ----------
+    message : Message
+        The reason.
+    """
+
+    def __init__(self, message: Message) -> None:
+        self.message = message
+        super().__init__(str(message))
 
 
 @dataclass(frozen=True)
@@ -103,28 +114,21 @@ class Request:
         missing = [name for name, value in (("e", self.e), ("delta", self.delta),
                                             ("psi2", self.psi2)) if value is None]
         if len(missing) != 1:
-            raise NoSolution("give exactly two of e, delta and psi2 (the third one is found); "
-                             f"left out: {', '.join(missing) or 'none'}")
+            raise NoSolution(Message("unknowns", {"missing": ", ".join(missing) or "—"}))
         reasons = []
         if not math.isfinite(self.n_star) or self.n_star == 0.0:
-            reasons.append(f"the peak ratio n* must be a non-zero number; found {self.n_star}")
+            reasons.append(Message("n_star_zero", {"n_star": self.n_star}))
         elif self.n_star >= 1.0:
-            reasons.append(f"n* = {self.n_star:g} ≥ 1 on the forward stroke: the rocker of a "
-                           "crank-rocker always turns slower than the crank while both turn the "
-                           "same way (n < 1 there); a ratio of magnitude ≥ 1 exists only on the "
-                           "return stroke (give a negative n*)")
+            reasons.append(Message("forward_ge_one", {"n_star": self.n_star}))
         if self.e is not None and not 0.0 < self.e < 1.0:
-            reasons.append(f"the crank of a crank-rocker is its shortest link, 0 < e < 1 (frame "
-                           f"= 1); found e = {self.e:g}")
+            reasons.append(Message("crank_range", {"e": self.e}))
         if self.delta is not None and not 0.0 < self.delta < 1.0:
-            reasons.append(f"the allowed variation δ must lie in (0, 1); found {self.delta:g}")
-        for name, value in (("psi1", self.psi1), ("psi2", self.psi2)):
+            reasons.append(Message("delta_range", {"delta": self.delta}))
+        for name, value in (("ψ′", self.psi1), ("ψ″", self.psi2)):
             if value is not None and not 0.0 < value < math.pi:
-                reasons.append(f"the zone angle {name} must lie between 0° and 180° (the ratio "
-                               f"changes sign within half a turn of its peak); found "
-                               f"{math.degrees(value):g}°")
+                reasons.append(Message("zone_range", {"name": name, "value": math.degrees(value)}))
         if reasons:
-            raise NoSolution("no such mechanism: " + "; ".join(reasons))
+            raise NoSolution(Message("no_such_mechanism", {"details": reasons}))
 
 
 @dataclass(frozen=True)
@@ -289,7 +293,7 @@ def design_from_unknowns(request: Request, x: ArrayLike) -> Design:
                   psi1=request.psi1, psi2=psi2)
 
 
-def design_defect(design: Design, accuracy: float = 1e-9) -> str | None:
+def design_defect(design: Design, accuracy: float = 1e-9) -> Message | None:
     """Why a root of the conditions is not the design asked for; None if it is.
 
     A root of (18)–(20) can sit on a minimum of the ratio, on a local peak lower than the
@@ -308,24 +312,22 @@ def design_defect(design: Design, accuracy: float = 1e-9) -> str | None:
     d = design
     margin = float(grashof_margin(d.e, d.c, d.r))
     if margin <= 0.0:
-        return f"not a Grashof crank-rocker (the Grashof margin is {margin:.3g} ≤ 0)"
+        return Message("not_grashof", {"margin": margin})
     sign = 1.0 if d.n_star > 0 else -1.0
     theta = d.theta2 + np.linspace(-np.pi, np.pi, _PEAK_SAMPLES + 1)
     n, _, _, exists = ratio_and_derivative(d.e, d.c, d.r, theta)
     if not exists.all():
-        return "the chain does not close over the whole turn"
+        return Message("no_closure")
     step = 1e-4
     _, slope, _, _ = ratio_and_derivative(d.e, d.c, d.r, d.theta2 + np.array([-step, step]))
     if sign * (slope[1] - slope[0]) >= 0.0:
-        return "θ2 is where the ratio is least, not where it peaks"
+        return Message("trough")
     peak = float(np.max(sign * n))
     if peak > abs(d.n_star) * (1.0 + accuracy):
         at = math.degrees(float(theta[np.argmax(sign * n)]) % (2 * math.pi))
-        return (f"the peak at θ2 is only a local one: the ratio reaches {sign * peak:.6g} at "
-                f"θ = {at:.2f}°")
+        return Message("local_peak", {"peak": sign * peak, "at": at})
     for direction, edge in ((-1.0, d.theta1), (1.0, d.theta3)):
         end = zone_end(d.e, d.c, d.r, d.theta2, d.n_end, sign, direction)
         if not abs(end - edge) <= max(_ANGLE_TOL, 100.0 * accuracy):
-            return ("the ratio leaves the band [n_end, n*] inside the zone (it first falls to "
-                    f"n_end at θ = {math.degrees(end):.4f}°, not at {math.degrees(edge):.4f}°)")
+            return Message("leaves_band", {"end": math.degrees(end), "edge": math.degrees(edge)})
     return None

@@ -36,6 +36,7 @@ from synthesis.cases.fourbar_velocity_ratio.kinematics import (
     transmission_angle,
     velocity_ratio,
 )
+from synthesis.cases.fourbar_velocity_ratio.messages import Message
 
 __all__ = ["ModernResult", "attainable_zone", "min_transmission_angle", "solve_modern"]
 
@@ -55,9 +56,9 @@ class ModernResult:
     ----------
     designs : list of Design
         Every distinct design meeting the request, largest minimum transmission angle first.
-    rejected : list of (Design, str)
+    rejected : list of (Design, Message)
         Roots of the conditions that are not acceptable designs, with the reason.
-    reason : str or None
+    reason : Message or None
         Why there is no design, when ``designs`` is empty.
     evaluations : int
         Designs evaluated (grid points plus residual calls of the root finders).
@@ -67,8 +68,8 @@ class ModernResult:
 
     request: Request
     designs: list[Design] = field(default_factory=list)
-    rejected: list[tuple[Design, str]] = field(default_factory=list)
-    reason: str | None = None
+    rejected: list[tuple[Design, Message]] = field(default_factory=list)
+    reason: Message | None = None
     evaluations: int = 0
     seconds: float = 0.0
 
@@ -330,25 +331,22 @@ def _polish(request: Request, x0: NDArray[np.float64], xtol: float
     return solution.x.copy(), int(solution.nfev)
 
 
-def _no_design_reason(request: Request, ranges: dict[str, float]) -> str:
-    """A sentence saying why the scan and the root finder found no design."""
+def _no_design_reason(request: Request, ranges: dict[str, float]) -> Message:
+    """Why the scan and the root finder found no design."""
     low, high = sorted((ranges["peak_min"], ranges["peak_max"]))
     if request.form != "crank" and not low <= request.n_star <= high:
-        return (f"no crank-rocker with e = {request.e:g} has its peak ratio at n* = "
-                f"{request.n_star:g}: the scan of the crank-rocker domain finds peaks between "
-                f"{low:.4g} and {high:.4g} only")
+        return Message("peak_range", {"e": request.e, "n_star": request.n_star, "low": low,
+                                      "high": high})
     if "psi1_min" in ranges:
-        head = (f"no crank-rocker with e = {request.e:g} and peak n* = {request.n_star:g} keeps "
-                f"the ratio within δ = {request.delta:g} over ψ′ = "
-                f"{math.degrees(request.psi1):.4g}°: ")
-        low, high = (math.degrees(ranges[k]) for k in ("psi1_min", "psi1_max"))
+        values = {"e": request.e, "n_star": request.n_star, "delta": request.delta,
+                  "psi1": math.degrees(request.psi1)}
         if request.psi1 > ranges["psi1_max"]:
-            return head + f"the widest such zone found is about {high:.3g}°"
+            return Message("zone_wide", {**values, "edge": math.degrees(ranges["psi1_max"])})
         if request.psi1 < ranges["psi1_min"]:
-            return head + f"the narrowest such zone found is about {low:.3g}°"
-        return (head + f"zones from about {low:.3g}° to {high:.3g}° are attainable on separate "
-                "branches of the design curve, but none of this width")
-    return "no crank-rocker in the Grashof domain meets all the prescribed values at once"
+            return Message("zone_narrow", {**values, "edge": math.degrees(ranges["psi1_min"])})
+        return Message("zone_gap", {**values, "low": math.degrees(ranges["psi1_min"]),
+                                    "high": math.degrees(ranges["psi1_max"])})
+    return Message("no_design")
 
 
 def attainable_zone(request: Request) -> tuple[float, float] | None:

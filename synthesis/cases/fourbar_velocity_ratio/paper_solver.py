@@ -37,12 +37,17 @@ from synthesis.cases.fourbar_velocity_ratio.conditions import (
     paper_functions,
 )
 from synthesis.cases.fourbar_velocity_ratio.kinematics import coupler_bounds
+from synthesis.cases.fourbar_velocity_ratio.messages import Message
 
 __all__ = ["PaperResult", "solve_paper"]
 
 
 class _NoRoot(Exception):
-    """A loop of the scheme found no sign change or did not converge."""
+    """A loop of the scheme found no sign change or did not converge (``message`` says which)."""
+
+    def __init__(self, message: Message) -> None:
+        super().__init__(str(message))
+        self.message = message
 
 
 @dataclass
@@ -53,10 +58,10 @@ class PaperResult:
     ----------
     design : Design or None
         The root reached by the scheme.
-    defect : str or None
+    defect : Message or None
         Why that root is not the design asked for (see
         :func:`~.conditions.design_defect`); None for a good design.
-    reason : str or None
+    reason : Message or None
         Why the scheme stopped without a root.
     evaluations : int
         Evaluations of the functions (18)–(20).
@@ -68,8 +73,8 @@ class PaperResult:
 
     request: Request
     design: Design | None = None
-    defect: str | None = None
-    reason: str | None = None
+    defect: Message | None = None
+    reason: Message | None = None
     evaluations: int = 0
     iterations: dict[str, int] = field(default_factory=lambda: {"theta2": 0, "c": 0, "r": 0})
     seconds: float = 0.0
@@ -87,14 +92,14 @@ def _false_position(function: Callable[[float], float], a: float, fa: float, b: 
         x = b - fb * (b - a) / (fb - fa)
         fx = function(x)
         if not math.isfinite(fx):
-            raise _NoRoot("a function turned undefined inside its bracket")
+            raise _NoRoot(Message("undefined_in_bracket"))
         if abs(fx) < tol:
             return x, iteration
         if math.copysign(1.0, fx) == math.copysign(1.0, fa):
             a, fa = x, fx
         else:
             b, fb = x, fx
-    raise _NoRoot(f"false position did not reach |F| < {tol:g} in {max_iter} iterations")
+    raise _NoRoot(Message("no_convergence", {"tol": tol, "count": max_iter}))
 
 
 def _scan(function: Callable[[float], float], values: list[float]
@@ -108,7 +113,7 @@ def _scan(function: Callable[[float], float], values: list[float]
         if previous is not None and math.copysign(1.0, fx) != math.copysign(1.0, previous[1]):
             return previous[0], previous[1], x, fx
         previous = (x, fx)
-    raise _NoRoot("no sign change over the stepped values")
+    raise _NoRoot(Message("no_sign_change"))
 
 
 class _Scheme:
@@ -153,13 +158,13 @@ class _Scheme:
             self.iterations["theta2"] += count
             self.theta2 = theta
             return theta
-        raise _NoRoot("F1 (18) does not change sign over a turn of θ2")
+        raise _NoRoot(Message("f1_no_sign_change"))
 
     def middle(self, r: float) -> tuple[float, float]:
         """Steps b–j: c (and θ2) with F1 = F2 = 0 for the given r."""
         lo, hi = (float(v) for v in coupler_bounds(self.request.e, r))
         if not lo < hi:
-            raise _NoRoot("the coupler interval of step b is empty")
+            raise _NoRoot(Message("empty_coupler_interval"))
 
         def f2(c: float) -> float:
             try:
@@ -232,8 +237,7 @@ def solve_paper(request: Request, *, tol: float = 1e-6, epsilon: float = 1e-3,
     request.check()
     result = PaperResult(request)
     if request.form != "paper":
-        result.reason = ("the paper's scheme is written for its own form (e, n*, δ, ψ′ given); "
-                         "use the modern solver for the other forms")
+        result.reason = Message("paper_form_only")
         return result
     clock = time.perf_counter()
     scheme = _Scheme(request, tol, epsilon, theta_start, theta_step, c_steps, r_step, r_steps,
@@ -241,12 +245,12 @@ def solve_paper(request: Request, *, tol: float = 1e-6, epsilon: float = 1e-3,
     try:
         c, r, theta2 = scheme.outer()
     except _NoRoot as exc:
-        result.reason = f"the scheme stopped: {exc}"
+        result.reason = Message("stopped", {"why": exc.message})
     else:
         design = design_from_unknowns(request, [c, r, theta2 % (2 * math.pi)])
         result.design = design
         result.defect = (design_defect(design, accuracy=10.0 * tol) if math.isfinite(design.psi2)
-                         else "the ratio never falls back to n_end after θ2")
+                         else Message("never_back"))
     result.evaluations = scheme.evaluations
     result.iterations = scheme.iterations
     result.seconds = time.perf_counter() - clock

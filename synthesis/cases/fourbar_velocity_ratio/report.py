@@ -5,12 +5,14 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from assur import REASONS
 from synthesis.cases.fourbar_velocity_ratio.check import CheckResult
 from synthesis.cases.fourbar_velocity_ratio.conditions import Design, Request, condition_residuals
+from synthesis.cases.fourbar_velocity_ratio.messages import Message
 from synthesis.cases.fourbar_velocity_ratio.modern_solver import min_transmission_angle
 from synthesis.cases.fourbar_velocity_ratio.study import Study
 
-__all__ = ["no_solution_text", "summary", "to_dict"]
+__all__ = ["message_dict", "no_solution_text", "summary", "to_dict"]
 
 _TEXT: dict[str, dict[str, str]] = {
     "title": {"en": "Four-bar for a prescribed velocity ratio over a zone",
@@ -55,7 +57,6 @@ _TEXT: dict[str, dict[str, str]] = {
     "rejected": {"en": "roots of the conditions that are not the design asked for:",
                  "ru": "корни условий, не являющиеся искомым механизмом:"},
     "none": {"en": "no design: {r}", "ru": "решения нет: {r}"},
-    "stopped": {"en": "stopped without a root: {r}", "ru": "остановилась без корня: {r}"},
     "paper_root": {"en": "root reached: {s:.3f} s, {n} evaluations, false-position iterations "
                          "θ2/c/r = {i}",
                    "ru": "найден корень: {s:.3f} с, вычислений: {n}, итераций ложного "
@@ -141,6 +142,8 @@ def _check_lines(check: CheckResult, lang: str) -> list[str]:
         shown = dict(values)
         if code == "grashof" and lang == "ru":
             shown["kind"] = _KINDS.get(str(shown["kind"]), shown["kind"])
+        if code == "assembly":
+            shown["why"] = REASONS[int(shown["reason_code"])][0 if lang == "en" else 1]
         lines.append("  ✗ " + _FAILURES[code][lang].format(**shown))
     return lines
 
@@ -158,23 +161,23 @@ def summary(study: Study, lang: str = "en") -> str:
             lines += ["    " + s for s in _check_lines(check, lang)]
         if m.rejected:
             lines.append("  " + _t("rejected", lang))
-            lines += [f"    c = {d.c:.8g}, r = {d.r:.8g}, θ2 = {math.degrees(d.theta2):.4f}°: {why}"
-                      for d, why in m.rejected]
+            lines += [f"    c = {d.c:.8g}, r = {d.r:.8g}, θ2 = {math.degrees(d.theta2):.4f}°: "
+                      f"{why.text(lang)}" for d, why in m.rejected]
         if m.reason:
-            lines.append("  " + _t("none", lang, r=m.reason))
+            lines.append("  " + _t("none", lang, r=m.reason.text(lang)))
         lines.append("")
     if study.paper is not None:
         p = study.paper
         lines.append(_t("paper", lang) + ":")
         if p.design is None:
-            lines.append("  " + _t("stopped", lang, r=p.reason))
+            lines.append("  " + p.reason.text(lang))
         else:
             iterations = "/".join(str(p.iterations[k]) for k in ("theta2", "c", "r"))
             lines.append("  " + _t("paper_root", lang, s=p.seconds, n=p.evaluations,
                                    i=iterations))
             lines += ["    " + s for s in _design_lines(p.design, lang)]
             if p.defect:
-                lines.append("    " + _t("wrong_root", lang, d=p.defect))
+                lines.append("    " + _t("wrong_root", lang, d=p.defect.text(lang)))
             if study.paper_check is not None:
                 lines += ["    " + s for s in _check_lines(study.paper_check, lang)]
             if study.paper_match is not None:
@@ -185,9 +188,16 @@ def summary(study: Study, lang: str = "en") -> str:
     return "\n".join(lines) + "\n"
 
 
-def no_solution_text(reason: str, lang: str = "en") -> str:
+def no_solution_text(reason: Message, lang: str = "en") -> str:
     """The answer to a request that no crank-rocker can meet."""
-    return f"{_t('title', lang)}\n\n{_t('none', lang, r=reason)}\n"
+    return f"{_t('title', lang)}\n\n{_t('none', lang, r=reason.text(lang))}\n"
+
+
+def message_dict(message: Message | None) -> dict[str, str] | None:
+    """A message for JSON: its code and both wordings."""
+    if message is None:
+        return None
+    return {"code": message.code, "en": message.text("en"), "ru": message.text("ru")}
 
 
 def _request_dict(request: Request) -> dict[str, Any]:
@@ -213,13 +223,15 @@ def to_dict(study: Study) -> dict[str, Any]:
         m = study.modern
         out["modern"] = {
             "designs": [_design_dict(d, c) for d, c in zip(m.designs, study.modern_checks)],
-            "rejected": [{"design": d.as_dict(), "why": why} for d, why in m.rejected],
-            "reason": m.reason, "evaluations": m.evaluations, "seconds": m.seconds}
+            "rejected": [{"design": d.as_dict(), "why": message_dict(why)}
+                         for d, why in m.rejected],
+            "reason": message_dict(m.reason), "evaluations": m.evaluations, "seconds": m.seconds}
     if study.paper is not None:
         p = study.paper
         out["paper"] = {
             "design": None if p.design is None else _design_dict(p.design, study.paper_check),
-            "wrong_root": p.defect, "reason": p.reason, "evaluations": p.evaluations,
+            "wrong_root": message_dict(p.defect), "reason": message_dict(p.reason),
+            "evaluations": p.evaluations,
             "iterations": p.iterations, "seconds": p.seconds,
             "matches_modern_design": None if study.paper_match is None else study.paper_match + 1,
             "distance_to_modern": None if study.paper_match is None else study.paper_distance}

@@ -4,18 +4,30 @@ The public API is re-exported here; :mod:`synthesis` uses nothing else.
 """
 
 from assur.errors import AssemblyError, AssurError, AssurWarning, Issue, StructureError, TableError
-from assur.tables import TableReader, atomic_write_bytes, atomic_write_text
+from assur.tables import (
+    MISSING,
+    Node,
+    TableReader,
+    atomic_write_bytes,
+    atomic_write_text,
+    describe,
+    normalise_id,
+)
 
 __all__ = [
     "AssemblyError",
     "AssurError",
     "AssurWarning",
     "Issue",
+    "MISSING",
+    "Node",
     "StructureError",
     "TableError",
     "TableReader",
     "atomic_write_bytes",
     "atomic_write_text",
+    "describe",
+    "normalise_id",
 ]
 
 # --- structure: chains, decomposition, diagnostics, identification tables (structure owner) ---
@@ -30,7 +42,8 @@ from assur.identification import (  # noqa: E402
 )
 from assur.model import Chain, Drive, Input, Link, LinkId, Pair, PairId, PairType  # noqa: E402
 from assur.structure import StructuralAnalysis, analyse_structure  # noqa: E402
-from assur.structure_report import structure_report  # noqa: E402
+from assur.identification import COLUMNS as IDENTIFICATION_COLUMNS  # noqa: E402
+from assur.structure_report import group_description, structure_report  # noqa: E402
 
 __all__ += [
     "AssurGroup",
@@ -52,6 +65,8 @@ __all__ += [
     "identification_table",
     "load_chain",
     "structure_report",
+    "group_description",
+    "IDENTIFICATION_COLUMNS",
 ]
 
 # --- kinematics: group solvers, mechanism analysis, existence (kinematics owner) ---
@@ -161,6 +176,7 @@ from assur.schemes import (  # noqa: E402
     draw_formalised_scheme,
     draw_structural_scheme,
     group_graph,
+    roman,
     save_schemes,
     scheme_bytes,
     scheme_figure,
@@ -173,6 +189,7 @@ __all__ += [
     "draw_formalised_scheme",
     "draw_structural_scheme",
     "group_graph",
+    "roman",
     "save_schemes",
     "scheme_bytes",
     "scheme_figure",

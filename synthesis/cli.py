@@ -18,7 +18,7 @@ import sys
 from collections.abc import Sequence
 from types import ModuleType
 
-from assur.errors import AssurError
+from assur import AssurError
 
 __all__ = ["main"]
 

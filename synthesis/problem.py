@@ -53,8 +53,7 @@ import numpy as np
 import numpy.typing as npt
 
 import assur
-from assur import TableError, TableReader
-from assur.tables import MISSING, Node, normalise_id
+from assur import MISSING, Node, TableError, TableReader, normalise_id
 
 __all__ = [
     "ControlPoints",

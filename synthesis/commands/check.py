@@ -45,7 +45,7 @@ def run(args: argparse.Namespace) -> int:
     chain = load_chain(args.table)
     analysis = analyse_structure(chain)
     if args.plot:
-        from assur.schemes import save_schemes
+        from assur import save_schemes
 
         save_schemes(chain, analysis, args.plot, lang=args.lang)
     try:

@@ -31,6 +31,7 @@ from assur import (
     AssurError,
     Chain,
     analyse_structure,
+    check_identification,
     atomic_write_text,
     chain_from_dict,
     load_chain,
@@ -170,8 +171,6 @@ def check_table(path: str | os.PathLike[str], *, lang: str = "en",
     -------
     BatchRow
     """
-    from assur.identification import check_identification
-
     start = time.perf_counter()
     path = Path(path)
     name = str(path.relative_to(root)) if root is not None else str(path)

@@ -22,9 +22,12 @@ from assur import (
     AssurError,
     Chain,
     PairType,
+    StructureError,
     analyse_structure,
     atomic_write_text,
     chain_from_dict,
+    check_identification,
+    identification_table,
     load_chain,
     scheme_bytes,
 )
@@ -212,9 +215,6 @@ def _identification_section(analysis: Any, chain: Chain, lang: str, report: Cour
                             model: Any) -> Section:
     """The program's identification table (assembly variants of L1/L2 from the dimensions,
     when there are any) and the verdict on the table given in the file."""
-    from assur import StructureError
-    from assur.identification import COLUMNS, check_identification, identification_table
-
     header = ("L", "seq", "i−1", "j−1", "i", "j", "i+1", "j+1", "variant", "out_code")
     try:
         rows = identification_table(analysis)
@@ -224,7 +224,7 @@ def _identification_section(analysis: Any, chain: Chain, lang: str, report: Cour
         if model is not None:  # σ of the RRR and RRP dyads as the dimensions assemble them
             sigma = {(g.i, g.j): g.sigma for g in model.groups if g.kind in (1, 2)}
             rows = [replace(r, variant=sigma.get((r.i, r.j), r.variant)) for r in rows]
-        body = table(header, ([_cell(getattr(r, c)) for c in COLUMNS] for r in rows),
+        body = table(header, ([_cell(v) for v in r.to_dict().values()] for r in rows),
                      table_id="identification")
     summary = report.summary
     verdict_key = term("student_table", lang)

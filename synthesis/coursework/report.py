@@ -27,11 +27,12 @@ from assur import (
     atomic_write_text,
     chain_from_dict,
     check_identification,
+    group_description,
     identification_table,
     load_chain,
+    roman,
     scheme_bytes,
 )
-from assur.schemes import roman
 from synthesis.coursework.page import Section, esc, figure, figure_html, page, table
 from synthesis.i18n import check_lang, heading, term
 
@@ -171,8 +172,6 @@ def _counts_section(analysis: Any, lang: str) -> Section:
 
 
 def _groups_section(analysis: Any, lang: str) -> Section:
-    from assur.structure_report import group_description
-
     rows = []
     for group in (*analysis.input_groups, *analysis.groups):
         external = ", ".join(f"{p} ({g}→{k})" for p, g, k in group.external)

@@ -22,6 +22,10 @@ __all__ = [
 class AssurError(Exception):
     """Root of the program's exceptions."""
 
+    def text(self, lang: str = "en") -> str:
+        """The message for the user in ``lang`` ('en' or 'ru'; English where no translation)."""
+        return str(self)
+
 
 @dataclass(frozen=True, slots=True)
 class Issue:
@@ -33,13 +37,21 @@ class Issue:
         Where the problem is: table, row and field, e.g. ``pairs[3] (id 'D') 'guide'``.
     message : str
         What was expected and what was found, as one sentence.
+    message_ru : str
+        The same in Russian; empty where no translation exists (the English one is shown).
     """
 
     location: str
     message: str
+    message_ru: str = ""
+
+    def text(self, lang: str = "en") -> str:
+        """Location and message in ``lang``."""
+        message = self.message_ru if lang == "ru" and self.message_ru else self.message
+        return f"{self.location}: {message}" if self.location else message
 
     def __str__(self) -> str:
-        return f"{self.location}: {self.message}" if self.location else self.message
+        return self.text("en")
 
 
 class TableError(AssurError, ValueError):
@@ -56,12 +68,16 @@ class TableError(AssurError, ValueError):
     def __init__(self, source: str, issues: list[Issue]) -> None:
         self.source = source
         self.issues = list(issues)
-        super().__init__(self._text())
+        super().__init__(self.text("en"))
 
-    def _text(self) -> str:
+    def text(self, lang: str = "en") -> str:
+        """Every problem, one per line under a count header, in ``lang``."""
         count = len(self.issues)
-        head = f"{count} problem{'s' if count != 1 else ''} in {self.source}:"
-        return "\n".join([head, *(f"  - {issue}" for issue in self.issues)])
+        if lang == "ru":
+            head = f"{self.source}: найдено ошибок: {count}"
+        else:
+            head = f"{count} problem{'s' if count != 1 else ''} in {self.source}:"
+        return "\n".join([head, *(f"  - {issue.text(lang)}" for issue in self.issues)])
 
 
 class StructureError(AssurError, ValueError):

@@ -66,24 +66,34 @@ _KINDS: dict[str, tuple[str, Callable[[Any], bool]]] = {
 }
 
 
-def describe(value: Any) -> str:
+_KINDS_RU = {
+    "number": "число", "int": "целое число", "str": "текст",
+    "id": "номер (целое число или текст)", "list": "список",
+    "mapping": "словарь (ключ: значение)", "bool": "true или false", "any": "значение",
+}
+
+
+def describe(value: Any, lang: str = "en") -> str:
     """Say briefly what a found value is, for error messages.
 
-    >>> describe("abc"), describe(None), describe([1, 2])
-    ("'abc' (a text)", 'nothing (null)', 'a list of 2 items')
+    >>> describe("abc"), describe(None), describe([1, 2]), describe([1, 2], "ru")
+    ("'abc' (a text)", 'nothing (null)', 'a list of 2 items', 'список из 2 элементов')
     """
+    ru = lang == "ru"
     if value is None:
-        return "nothing (null)"
+        return "пусто (null)" if ru else "nothing (null)"
     if isinstance(value, bool):
         return f"{value!r} (true/false)"
     if isinstance(value, (int, float)):
         return f"{value!r}"
     if isinstance(value, str):
-        return f"{value!r} (a text)"
+        return f"{value!r} ({'текст' if ru else 'a text'})"
     if isinstance(value, list):
+        if ru:
+            return f"список из {len(value)} элементов"
         return f"a list of {len(value)} item{'s' if len(value) != 1 else ''}"
     if isinstance(value, dict):
-        return "a mapping"
+        return "словарь" if ru else "a mapping"
     return type(value).__name__
 
 
@@ -122,18 +132,22 @@ class TableReader:
         try:
             text = path.read_text(encoding="utf-8")
         except FileNotFoundError:
-            raise TableError(source, [Issue("", "the file does not exist")]) from None
+            raise TableError(source, [Issue("", "the file does not exist",
+                                            "такого файла нет")]) from None
         except IsADirectoryError:
-            raise TableError(source, [Issue("", "this is a folder, not a table file")]) from None
+            raise TableError(source, [Issue("", "this is a folder, not a table file",
+                                            "это папка, а не файл таблицы")]) from None
         except (OSError, UnicodeDecodeError) as exc:
-            raise TableError(source, [Issue("", f"the file cannot be read ({exc})")]) from None
+            raise TableError(source, [Issue("", f"the file cannot be read ({exc})",
+                                            f"файл не читается ({exc})")]) from None
         try:
             data = yaml.safe_load(text)
         except yaml.YAMLError as exc:
             mark = getattr(exc, "problem_mark", None)
             where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else ""
             problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
-            raise TableError(source, [Issue(where, f"this is not valid YAML: {problem}")]) from None
+            raise TableError(source, [Issue(where, f"this is not valid YAML: {problem}",
+                                            f"это не корректный YAML: {problem}")]) from None
         return cls(data, source)
 
     @classmethod
@@ -141,15 +155,16 @@ class TableReader:
         """Wrap data that is already parsed (a dict from Python code or a test)."""
         return cls(data, source)
 
-    def add(self, location: str, message: str) -> None:
-        """Record one problem."""
-        self.issues.append(Issue(location, message))
+    def add(self, location: str, message: str, message_ru: str = "") -> None:
+        """Record one problem (with its Russian wording where the caller has one)."""
+        self.issues.append(Issue(location, message, message_ru))
 
     def root(self, allowed: Iterable[str] | None = None, *, name: str = "") -> Node:
         """The top of the document, which must be a mapping."""
         if not isinstance(self.data, dict):
             self.add(name, f"expected a mapping of tables at the top of the file; found "
-                           f"{describe(self.data)}")
+                           f"{describe(self.data)}",
+                     f"в начале файла ожидался словарь таблиц; найдено {describe(self.data, 'ru')}")
             return Node(self, name, {}, allowed)
         return Node(self, name, self.data, allowed)
 
@@ -175,9 +190,12 @@ class Node:
             for key in mapping:
                 if key not in allowed:
                     hint = difflib.get_close_matches(str(key), allowed, n=1, cutoff=0.6)
-                    tail = f"; did you mean {hint[0]!r}?" if hint else (
-                        f"; expected one of {', '.join(repr(k) for k in allowed)}")
-                    reader.add(location, f"unknown key {key!r}{tail}")
+                    keys = ", ".join(repr(k) for k in allowed)
+                    tail = f"; did you mean {hint[0]!r}?" if hint else f"; expected one of {keys}"
+                    tail_ru = (f"; возможно, имелось в виду {hint[0]!r}?" if hint
+                               else f"; допустимы: {keys}")
+                    reader.add(location, f"unknown key {key!r}{tail}",
+                               f"неизвестный ключ {key!r}{tail_ru}")
 
     def _where(self, key: str) -> str:
         return f"{self.location} {key!r}".strip() if self.location else repr(key)
@@ -187,7 +205,8 @@ class Node:
         return key in self.mapping
 
     def get(self, key: str, *, kind: str = "any", required: bool = True, default: Any = MISSING,
-            check: Callable[[Any], str | None] | None = None, nullable: bool = False) -> Any:
+            check: Callable[[Any], str | tuple[str, str] | None] | None = None,
+            nullable: bool = False) -> Any:
         """Read one field.
 
         Parameters
@@ -201,7 +220,8 @@ class Node:
         default : object
             Value for an absent optional field.
         check : callable, optional
-            Returns a text describing the rule broken ("must be positive"), or None.
+            Returns a text describing the rule broken ("must be positive"), or an
+            (English, Russian) pair of such texts, or None.
         nullable : bool
             Whether an explicit null is accepted (returned as None).
 
@@ -212,8 +232,9 @@ class Node:
         """
         if key not in self.mapping:
             if required:
-                self.reader.add(self._where(key), f"this field is missing; expected "
-                                                  f"{_KINDS[kind][0]}")
+                self.reader.add(self._where(key),
+                                f"this field is missing; expected {_KINDS[kind][0]}",
+                                f"поле отсутствует; ожидалось {_KINDS_RU[kind]}")
                 return MISSING
             return default
         value = self.mapping[key]
@@ -223,14 +244,17 @@ class Node:
         if kind == "number" and isinstance(value, str):
             value = _parse_number(value)
         if not test(value):
-            self.reader.add(self._where(key), f"expected {label}; found {describe(value)}")
+            self.reader.add(self._where(key), f"expected {label}; found {describe(value)}",
+                            f"ожидалось {_KINDS_RU[kind]}; найдено {describe(value, 'ru')}")
             return MISSING
         if kind == "id":
             value = normalise_id(value)
         if check is not None:
             rule = check(value)
             if rule:
-                self.reader.add(self._where(key), f"{rule}; found {describe(value)}")
+                rule_en, rule_ru = rule if isinstance(rule, tuple) else (rule, "")
+                self.reader.add(self._where(key), f"{rule_en}; found {describe(value)}",
+                                f"{rule_ru}; найдено {describe(value, 'ru')}" if rule_ru else "")
                 return MISSING
         return value
 
@@ -242,8 +266,10 @@ class Node:
         if value is MISSING or (not required and value is default):
             return value
         if value not in options:
-            self.reader.add(self._where(key), f"expected one of "
-                            f"{', '.join(repr(o) for o in options)}; found {describe(value)}")
+            options_text = ", ".join(repr(o) for o in options)
+            self.reader.add(self._where(key),
+                            f"expected one of {options_text}; found {describe(value)}",
+                            f"ожидалось одно из: {options_text}; найдено {describe(value, 'ru')}")
             return MISSING
         return value
 
@@ -266,7 +292,9 @@ class Node:
             where = f"{table}[{index}]"
             if not isinstance(row, dict):
                 self.reader.add(where, f"expected a row (a mapping such as {{id: A, ...}}); "
-                                       f"found {describe(row)}")
+                                       f"found {describe(row)}",
+                                f"ожидалась строка таблицы (словарь вида {{id: A, ...}}); "
+                                f"найдено {describe(row, 'ru')}")
                 continue
             name = label(row) if label else None
             if name:
@@ -294,8 +322,15 @@ def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> None:
     try:
         with os.fdopen(handle, "wb") as stream:
             stream.write(data)
+        os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
 
+
+def _umask() -> int:
+    """The process's file-creation mask (read by setting it and putting it back)."""
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask

@@ -52,7 +52,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         return int(args.handler(args))
     except AssurError as exc:
-        print(str(exc), file=sys.stderr)
+        print(exc.text(getattr(args, "lang", "en")), file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)

@@ -44,6 +44,7 @@ __all__ = [
     "value_deviations",
     "workspace_penalty",
     "zone_deviations",
+    "zone_residuals",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -56,9 +57,10 @@ Objective = Literal["lexicographic", "weighted"]
 def value_deviations(output: FloatArray, target: FloatArray, weights: FloatArray) -> FloatArray:
     """Weighted deviations of a scalar output (task classes 1 and 2).
 
-    Class 1 (rotating output ψ) and class 2 (slider output S)::
+    Class 1 (rotating output ψ, or its velocity ratio n = dψ/dφ) and class 2 (slider
+    output S)::
 
-        Δ_K = E_K · (F(φ_K, x) − F*_K)
+        Δ_K = E_K · (F(φ_K, x) − F*_K),   F = ψ, n or S
 
     Parameters
     ----------
@@ -85,10 +87,15 @@ def zone_deviations(output: FloatArray, lower: FloatArray, upper: FloatArray,
 
         Δ(φ_K) = max(0, ψ_lo,K − ψ(φ_K), ψ(φ_K) − ψ_hi,K),   Δ_K = E_K · Δ(φ_K)
 
+    With the velocity ratio as the output (``output: ratio``) ψ is replaced by
+    n = dψ/dφ and the limits by n_lo,K, n_hi,K; a band [n*(1 − δ), n*] over a zone of crank
+    angles keeps the ratio within δ of its prescribed maximum n*, and a row with
+    n_lo = n_hi is an equality n(φ_K) = n_K.
+
     Parameters
     ----------
     output : array_like, shape (D, K)
-        Reproduced ψ(φ_K).
+        Reproduced ψ(φ_K) (or n(φ_K)).
     lower, upper : array_like, shape (K,)
         Limit curves at the control angles (lower ≤ upper).
     weights : array_like, shape (K,)
@@ -102,6 +109,40 @@ def zone_deviations(output: FloatArray, lower: FloatArray, upper: FloatArray,
     output = np.asarray(output)
     outside = np.maximum(np.asarray(lower) - output, output - np.asarray(upper))
     return np.asarray(weights) * np.maximum(outside, 0.0)
+
+
+def zone_residuals(output: FloatArray, lower: FloatArray, upper: FloatArray,
+                   weights: FloatArray) -> FloatArray:
+    """Signed form of :func:`zone_deviations`, for the least-squares refinement.
+
+    Notes
+    -----
+    ::
+
+        r_K = E_K · [min(0, F(φ_K) − F_lo,K) + max(0, F(φ_K) − F_hi,K)],   |r_K| = Δ_K
+
+    negative below the lower limit, positive above the upper one, 0 inside.  Where the two
+    limits coincide (an equality row, F_lo = F_hi = F_K) this is the smooth
+    ``E_K·(F(φ_K) − F_K)``; the unsigned Δ_K would have a V-shaped kink at the solution that
+    spoils a finite-difference Jacobian.
+
+    Parameters
+    ----------
+    output : array_like, shape (D, K)
+        Reproduced ψ(φ_K) or n(φ_K).
+    lower, upper : array_like, shape (K,)
+        Limit curves at the control angles (lower ≤ upper).
+    weights : array_like, shape (K,)
+        Weights E_K.
+
+    Returns
+    -------
+    ndarray, shape (D, K)
+    """
+    output = np.asarray(output)
+    below = np.minimum(output - np.asarray(lower), 0.0)
+    above = np.maximum(output - np.asarray(upper), 0.0)
+    return np.asarray(weights) * (below + above)
 
 
 def timed_path_deviations(points: ComplexArray, targets: ComplexArray,
@@ -408,8 +449,9 @@ class Criteria:
         Weighted deviations Δ_K (NaN where P1 > 0).
     residuals : ndarray, shape (D, R)
         Smooth signed components whose sum of squares is Σ_K Δ_K² (for the local
-        refinement): Δ_K itself for classes 1–2, the two coordinates of
-        E_K·(Ж − P_K) for classes 3–4.
+        refinement): Δ_K itself for classes 1–2 (for a class-1 zone the signed
+        overshoot of :func:`zone_residuals`), the two coordinates of E_K·(Ж − P_K) for
+        classes 3–4.
     """
 
     p1: FloatArray

@@ -11,6 +11,9 @@ Outputs (``method.md`` §4.5):
 * class 1, ψ: the angle of the output link, unwrapped along the grid and measured from its
   value at φ = 0 (counter-clockwise positive); at a control angle φ_K the value is the grid
   value at the nearest grid angle plus the wrapped difference of the two raw angles;
+* class 1 with ``output: ratio``, n: the velocity ratio n(φ) = dψ/dφ of the output link, its
+  first analog, computed exactly by forward differentiation of the group solvers (jets) at
+  the control angles only (see :meth:`Evaluator.ratio`);
 * class 2, S: the slider coordinate of the output link on its guide, measured from its value
   at φ = 0;
 * classes 3–4, Ж: a tracing point of the output link (its attachment point N/M, or a named
@@ -52,7 +55,8 @@ class Analysis:
     grid : ndarray, shape (N,)
         Crank rotation of the analysis grid (radians from the start position).
     output_grid : ndarray, shape (D, N)
-        The controlled output over the grid (ψ rad, S mm, or Ж complex).
+        The controlled output over the grid (ψ rad, n, S mm, or Ж complex); the ratio n only
+        when analysed with ``curve=True`` (NaN otherwise).
     output_control : ndarray, shape (D, K)
         The output at the control points (for class 3: the nearest path points).
     phi_control : ndarray, shape (D, K)
@@ -140,10 +144,55 @@ class Evaluator:
     # ------------------------------------------------------------------------ criteria
     def __call__(self, x: npt.ArrayLike) -> C.Criteria:
         """Criteria of the designs X, shape (D, q)."""
-        return self.analyse(x).criteria
+        return self.analyse(x, curve=False).criteria
 
-    def analyse(self, x: npt.ArrayLike) -> Analysis:
-        """Analyse the designs X over the grid and the control angles."""
+    def ratio(self, model: Any, phi: FloatArray) -> FloatArray:
+        """Velocity ratio of the output link at crank rotations φ, shape (D, len(φ)).
+
+        Parameters
+        ----------
+        model : KinematicModel
+            The model of the designs (:meth:`model`).
+        phi : ndarray, shape (M,)
+            Crank rotations from the start position (radians).
+
+        Returns
+        -------
+        ndarray, shape (D, M)
+            n(φ); NaN where the chain does not assemble.
+
+        Notes
+        -----
+        The ratio is the first analog of the output angle ψ with respect to the crank
+        rotation φ (the input coordinate of the analysis, positive in the crank's direction
+        s; ψ counter-clockwise positive)::
+
+            n(φ) = dψ/dφ
+
+        It is the ``d1`` part of the link angle when the analysis carries jets
+        (``assur.analyse(model, φ, analogs=True)``): every group solver is differentiated
+        in forward mode, so n is exact to rounding, not a finite difference.  For a
+        four-bar driven counter-clockwise (s = +1; crank l₁ at angle φ₁, coupler angle φ_i,
+        rocker l_j at angle φ_j, each frame's axis pointing to the joint C) this is the
+        classical ``n = l₁·sin(φ₁ − φ_i) / (l_j·sin(φ_j − φ_i))``.  Analogs cost about
+        four times the positions alone, so the criteria evaluate them at the control
+        angles only.
+        """
+        motion = assur.analyse(model, phi, analogs=True)
+        shape = np.broadcast_shapes(model.design_shape, np.shape(phi))
+        return np.atleast_2d(np.broadcast_to(motion.link_angle(self.output_link).d1, shape))
+
+    def analyse(self, x: npt.ArrayLike, *, curve: bool = True) -> Analysis:
+        """Analyse the designs X over the grid and the control angles.
+
+        Parameters
+        ----------
+        x : array_like, shape (D, q)
+            Designs (varied parameters in table units).
+        curve : bool
+            Also the velocity ratio over the grid (class 1 with ``output: ratio``; the
+            criteria need it only at the control angles, so the search leaves it out).
+        """
         x = np.atleast_2d(np.asarray(x, dtype=float))
         d = x.shape[0]
         model = self.model(x)
@@ -160,12 +209,17 @@ class Evaluator:
                 nearest = np.rint(self.control_phi / (2 * np.pi) * n).astype(int) % n
                 wrap = np.angle(np.exp(1j * (raw[:, n:] - raw[:, nearest])))
                 out = out_grid[:, nearest] + wrap
+                if self.problem.output.ratio:
+                    out = self.ratio(model, self.control_phi)
+                    out_grid = (self.ratio(model, self.grid) if curve
+                                else np.full((d, n), np.nan))
                 phi_c = np.broadcast_to(self.control_phi, out.shape)
                 if control.zone:
                     dev = C.zone_deviations(out, control.lower, control.upper, control.weight)
+                    res = C.zone_residuals(out, control.lower, control.upper, control.weight)
                 else:
                     dev = C.value_deviations(out, control.value, control.weight)
-                res = dev
+                    res = dev
             elif cls == 2:
                 s = _full(assur.values(motion.sliders[self._slider_pair].s), d,
                           self.positions.size)

@@ -7,7 +7,6 @@ Matplotlib is imported lazily with the Agg backend; nothing is ever shown on scr
 
 from __future__ import annotations
 
-import math
 import os
 from pathlib import Path
 from typing import Any
@@ -22,11 +21,13 @@ __all__ = ["plot_convergence", "plot_mechanism", "plot_output", "save_plots"]
 
 _LABELS = {
     "en": {"phi": "crank rotation φ, deg", "psi": "output angle ψ, deg",
+           "n": "velocity ratio n = dψ/dφ",
            "S": "slider displacement S, mm", "x": "x, mm", "y": "y, mm",
            "dev": "deviation Δ_K", "target": "control points", "reproduced": "reproduced",
            "trial": "trial", "seconds": "wall time, s", "best": "best Q (feasible)",
            "zone": "tolerance zone", "mechanism": "mechanism at φ = 0", "path": "path of Ж"},
     "ru": {"phi": "угол поворота кривошипа φ, град", "psi": "угол выходного звена ψ, град",
+           "n": "передаточное отношение n = dψ/dφ",
            "S": "перемещение ползуна S, мм", "x": "x, мм", "y": "y, мм",
            "dev": "отклонение Δ_K", "target": "контрольные точки",
            "reproduced": "воспроизводимая функция", "trial": "испытание",
@@ -57,7 +58,7 @@ def plot_output(problem: Problem, analysis: Analysis, *, axes: Any = None,
     control = problem.control
     out = analysis.output_grid[0]
     if problem.task_class in (1, 2):
-        scale = math.degrees(1.0) if problem.task_class == 1 else 1.0
+        scale = problem.output_scale
         phi = np.degrees(analysis.grid)
         ax.plot(phi, np.real(out) * scale, label=t["reproduced"])
         cphi = np.degrees(control.phi)
@@ -69,7 +70,8 @@ def plot_output(problem: Problem, analysis: Analysis, *, axes: Any = None,
         else:
             ax.plot(cphi, control.value * scale, "o", label=t["target"])
         ax.set_xlabel(t["phi"])
-        ax.set_ylabel(t["psi"] if problem.task_class == 1 else t["S"])
+        ax.set_ylabel(t["S"] if problem.task_class == 2
+                      else t["n"] if problem.output.ratio else t["psi"])
         twin = ax.twinx()
         twin.bar(cphi, analysis.criteria.deviations[0], width=3.0, color="tab:red", alpha=0.5)
         twin.set_ylabel(t["dev"])

@@ -7,7 +7,9 @@ complete example of each task class):
     ``control_points`` (N_z), ``direction`` (s: +1 counter-clockwise, −1 clockwise),
     ``groups`` (N_Q, L0 included), ``task_class`` (1–4), ``grid`` (positions of the
     analysis grid over a full crank turn), optional ``accuracy`` ([Q], stop rule a),
-    ``objective`` (``lexicographic`` | ``weighted``), ``p2_weight`` (λ of the weighted form).
+    ``objective`` (``lexicographic`` | ``weighted``), ``p2_weight`` (λ of the weighted form),
+    ``output`` (class 1 only: ``angle``, the output link's angle ψ, the default; or
+    ``ratio``, its velocity ratio n = dψ/dφ, the first analog).
 ``mechanism`` or ``structure_identification``
     The structure identification: a path (relative to the problem file) of an
     identification table, or its rows inline.  The rows' ``params:`` give the values of the
@@ -30,11 +32,13 @@ complete example of each task class):
     joints, mm).
 ``control_points``
     Tables 2.12–2.15, columns by class: 1 ``K, phi, psi, E`` (or ``psi_lo, psi_hi`` for a
-    zone), 2 ``K, phi, S, E``, 3 ``K, x, y, E``, 4 ``K, phi, x, y, E`` (φ, ψ in degrees;
+    zone; with ``output: ratio`` the columns ``n``, ``n_lo``, ``n_hi`` instead, plain
+    numbers), 2 ``K, phi, S, E``, 3 ``K, x, y, E``, 4 ``K, phi, x, y, E`` (φ, ψ in degrees;
     E defaults to 1).
 ``search``
     Optional defaults of the search: ``budget`` (log2 of the LPτ trials), ``seed``,
-    ``refine``, ``shrink_passes``, ``stall``, ``time_limit``.
+    ``refine``, ``shrink_passes``, ``stall``, ``time_limit``, ``refine_evaluations``
+    (evaluations per refinement start; an ill-conditioned task may need more than 200).
 
 :func:`load_problem` reads and checks everything and raises one
 :class:`~assur.errors.TableError` listing every problem (file, table, row, field).
@@ -59,6 +63,7 @@ __all__ = [
     "ControlPoints",
     "DEFAULT_PRESSURE_ANGLE",
     "GroupKey",
+    "OUTPUT_QUANTITIES",
     "Output",
     "Parameter",
     "Problem",
@@ -77,8 +82,13 @@ _TOP = ("schema_version", "name", "general", "mechanism", "structure_identificat
         "frame", "group_models", "output", "parameters", "allowable", "control_points",
         "search")
 _GENERAL = ("control_points", "direction", "groups", "task_class", "grid", "accuracy",
-            "objective", "p2_weight")
-_SEARCH = ("budget", "seed", "refine", "shrink_passes", "stall", "time_limit")
+            "objective", "p2_weight", "output")
+_SEARCH = ("budget", "seed", "refine", "shrink_passes", "stall", "time_limit",
+           "refine_evaluations")
+#: Class-1 outputs: the output link's angle ψ, or its velocity ratio n = dψ/dφ.
+OUTPUT_QUANTITIES = ("angle", "ratio")
+#: Control-point columns of the target value and of the zone limits, per class-1 output.
+_VALUE_COLUMNS = {"angle": ("psi", "psi_lo", "psi_hi"), "ratio": ("n", "n_lo", "n_hi")}
 _POINT_COLUMNS = {
     1: ("K", "phi", "psi", "psi_lo", "psi_hi", "E"),
     2: ("K", "phi", "S", "E"),
@@ -126,13 +136,14 @@ class ControlPoints:
     phi : ndarray, shape (K,)
         Crank rotation from the start position (classes 1, 2, 4; NaN for class 3).
     value : ndarray, shape (K,)
-        ψ_K (radians) or S_K (mm) (classes 1–2; NaN for a class-1 zone).
+        ψ_K (radians), n_K (the velocity ratio, dimensionless) or S_K (mm) (classes 1–2;
+        NaN for a class-1 zone).
     point : ndarray of complex, shape (K,)
         Required points x_K + i·y_K (classes 3–4).
     weight : ndarray, shape (K,)
         Weights E_K.
     lower, upper : ndarray, shape (K,) or None
-        Limits of a class-1 tolerance zone (radians).
+        Limits of a class-1 tolerance zone (radians, or plain numbers for the ratio).
     """
 
     phi: FloatArray
@@ -152,11 +163,18 @@ class ControlPoints:
 class Output:
     """The controlled output: the angle or slider of ``link``, or a point on it.
 
-    ``point`` is ``'N'``/``'M'`` (an attachment point) or the name of a tracing point.
+    ``point`` is ``'N'``/``'M'`` (an attachment point) or the name of a tracing point;
+    ``quantity`` (class 1) is ``'angle'`` (ψ) or ``'ratio'`` (n = dψ/dφ).
     """
 
     link: Any
     point: str | None = None
+    quantity: str = "angle"
+
+    @property
+    def ratio(self) -> bool:
+        """Whether the controlled output is the velocity ratio n = dψ/dφ."""
+        return self.quantity == "ratio"
 
 
 @dataclass(frozen=True)
@@ -191,7 +209,22 @@ class Problem:
     @property
     def class_name(self) -> str:
         """The task class in words."""
+        if self.output.ratio:
+            return "velocity ratio n(φ) = dψ/dφ"
         return _CLASS_NAMES[self.task_class]
+
+    @property
+    def output_unit(self) -> str:
+        """Internal unit of the controlled output: ``'rad'`` (ψ), ``'mm'`` (S, Ж) or ``'1'``
+        (the dimensionless ratio n)."""
+        if self.task_class == 1:
+            return "1" if self.output.ratio else "rad"
+        return "mm"
+
+    @property
+    def output_scale(self) -> float:
+        """Table units per internal unit of the output (degrees per radian for ψ, else 1)."""
+        return math.degrees(1.0) if self.output_unit == "rad" else 1.0
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -302,6 +335,12 @@ def _read(reader: TableReader, base: Path) -> Problem:
                                         required=False, default="lexicographic")
         g["p2_weight"] = general.get("p2_weight", kind="number", required=False, default=1.0,
                                      check=_positive)
+        g["output"] = general.choice("output", OUTPUT_QUANTITIES, required=False,
+                                     default="angle")
+        if general.has("output") and g["task_class"] in (2, 3, 4):
+            reader.add("general 'output'", f"only task class 1 chooses its output (angle or "
+                                           f"ratio); task class {g['task_class']} controls "
+                                           f"{_CLASS_NAMES[g['task_class']]}; remove 'output'")
     mechanism = _read_mechanism(reader, top, base)
     rows = mechanism.get("structure_identification") or []
     groups = {_row_key(row): row for row in rows if isinstance(row, dict)}
@@ -320,8 +359,10 @@ def _read(reader: TableReader, base: Path) -> Problem:
         issue.location.startswith(("mechanism", "structure_identification", "parameters", "frame"))
         for issue in reader.issues)
     task_class = g.get("task_class", MISSING)
-    output = _read_output(top, task_class, groups)
-    control = _read_control(top, task_class, g.get("n_points", MISSING))
+    quantity = g.get("output", "angle")
+    output = _read_output(top, task_class, groups,
+                          quantity if quantity in OUTPUT_QUANTITIES else "angle")
+    control = _read_control(top, task_class, g.get("n_points", MISSING), quantity)
     pressure, rotations, boxes = _read_allowable(top, groups)
     models = tuple(top.get("group_models", kind="list", required=False, default=[]) or [])
     search = _read_search(top)
@@ -448,10 +489,11 @@ def _merge_parameters(top: Node, groups: dict[GroupKey, Any]) -> None:
             params[column] = value
 
 
-def _read_output(top: Node, task_class: Any, groups: dict[GroupKey, Any]) -> Output:
+def _read_output(top: Node, task_class: Any, groups: dict[GroupKey, Any],
+                 quantity: str = "angle") -> Output:
     node = top.child("output", allowed=("link", "point"))
     if node is None:
-        return Output(None)
+        return Output(None, quantity=quantity)
     link = node.get("link", kind="id")
     point = node.get("point", kind="str", required=False, default=None)
     members = {k for key in groups for k in key}
@@ -463,15 +505,32 @@ def _read_output(top: Node, task_class: Any, groups: dict[GroupKey, Any]) -> Out
     elif task_class in (1, 2) and point is not None:
         top.reader.add("output 'point'", f"task class {task_class} controls the link itself; "
                                          f"remove 'point' or choose class 3 or 4")
-    return Output(link, point)
+    return Output(link, point, quantity)
 
 
-def _read_control(top: Node, task_class: Any, n_points: Any) -> ControlPoints:
-    columns = _POINT_COLUMNS.get(task_class, ("K", "phi", "psi", "psi_lo", "psi_hi", "S", "x",
-                                              "y", "E"))
+def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any = "angle"
+                  ) -> ControlPoints:
+    """Tables 2.12–2.15.
+
+    Class 1 reads ψ (degrees → radians) or, with ``output: ratio``, the dimensionless ratio n
+    (columns ``n``, ``n_lo``, ``n_hi``); an invalid ``output`` (already reported) accepts the
+    columns of both, so that it is reported once.
+    """
+    if task_class == 1 and quantity in _VALUE_COLUMNS:
+        names = _VALUE_COLUMNS[quantity]
+        columns: tuple[str, ...] = ("K", "phi", *names, "E")
+    elif task_class == 1:
+        names = _VALUE_COLUMNS["angle"]
+        columns = ("K", "phi", *(c for v in _VALUE_COLUMNS.values() for c in v), "E")
+    else:
+        names = _VALUE_COLUMNS["angle"]
+        columns = _POINT_COLUMNS.get(task_class, ("K", "phi", "psi", "psi_lo", "psi_hi", "S",
+                                                  "x", "y", "E"))
+    value_col, lo_col, hi_col = names
+    convert = _num if quantity == "ratio" else _deg
     rows = list(top.rows("control_points", columns))
     k = len(rows)
-    phi, value, lo, hi, xy, weight = (np.full(k, np.nan) for _ in range(6))
+    phi, value, lo, hi, weight = (np.full(k, np.nan) for _ in range(5))
     point = np.full(k, np.nan, dtype=complex)
     zone_rows = 0
     for n, row in enumerate(rows):
@@ -484,26 +543,26 @@ def _read_control(top: Node, task_class: Any, n_points: Any) -> ControlPoints:
         if task_class in (1, 2, 4):
             phi[n] = _deg(row.get("phi", kind="number"))
         if task_class == 1:
-            if row.has("psi_lo") or row.has("psi_hi"):
+            if row.has(lo_col) or row.has(hi_col):
                 zone_rows += 1
-                lo[n] = _deg(row.get("psi_lo", kind="number"))
-                hi[n] = _deg(row.get("psi_hi", kind="number"))
-                if row.has("psi"):
-                    row.reader.add(f"{row.location} 'psi'", "a zone row gives psi_lo and psi_hi, "
-                                                             "not psi")
+                lo[n] = convert(row.get(lo_col, kind="number"))
+                hi[n] = convert(row.get(hi_col, kind="number"))
+                if row.has(value_col):
+                    row.reader.add(f"{row.location} {value_col!r}",
+                                   f"a zone row gives {lo_col} and {hi_col}, not {value_col}")
                 elif lo[n] > hi[n]:
-                    row.reader.add(f"{row.location} 'psi_hi'", f"the upper limit must not be "
-                                                               f"below the lower one "
-                                                               f"({math.degrees(lo[n]):g})")
+                    row.reader.add(f"{row.location} {hi_col!r}",
+                                   f"the upper limit must not be below the lower one "
+                                   f"({row.mapping[lo_col]:g})")
             else:
-                value[n] = _deg(row.get("psi", kind="number"))
+                value[n] = convert(row.get(value_col, kind="number"))
         elif task_class == 2:
             value[n] = _num(row.get("S", kind="number"))
         elif task_class in (3, 4):
             point[n] = complex(_num(row.get("x", kind="number")), _num(row.get("y", kind="number")))
     if 0 < zone_rows < k:
-        top.reader.add("control_points", f"either every row is a zone (psi_lo, psi_hi) or none "
-                                         f"is; {zone_rows} of {k} rows are")
+        top.reader.add("control_points", f"either every row is a zone ({lo_col}, {hi_col}) or "
+                                         f"none is; {zone_rows} of {k} rows are")
     if n_points not in (None, MISSING) and k != n_points:
         top.reader.add("general 'control_points'", f"the control-point table has {k} rows; "
                                                    f"found {n_points}")
@@ -598,7 +657,8 @@ def _read_search(top: Node) -> dict[str, Any]:
     checks = {"budget": ("int", lambda v: None if 0 <= v <= 24 else "must lie in 0..24"),
               "seed": ("int", None), "refine": ("bool", None),
               "shrink_passes": ("int", lambda v: None if 0 <= v <= 10 else "must lie in 0..10"),
-              "stall": ("int", _positive), "time_limit": ("number", _positive)}
+              "stall": ("int", _positive), "time_limit": ("number", _positive),
+              "refine_evaluations": ("int", _positive)}
     for key, (kind, check) in checks.items():
         value = node.get(key, kind=kind, required=False, default=None, check=check,
                          nullable=True)

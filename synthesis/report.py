@@ -33,6 +33,8 @@ _WORDS: dict[str, tuple[str, str]] = {
     "title": ("Synthesis of {name}: task class {cls} ({what})",
               "Синтез {name}: задача класса {cls} ({what})"),
     "class1": ("rotating output ψ(φ)", "вращательное движение выходного звена ψ(φ)"),
+    "class1_ratio": ("velocity ratio n(φ) = dψ/dφ of the rotating output",
+                     "передаточное отношение n(φ) = dψ/dφ выходного звена"),
     "class2": ("slider output S(φ)", "поступательное движение выходного звена S(φ)"),
     "class3": ("tracing-point path without timing", "траектория точки без согласования"),
     "class4": ("tracing-point path with timing", "траектория точки с согласованием по φ"),
@@ -40,6 +42,7 @@ _WORDS: dict[str, tuple[str, str]] = {
                "Найденные параметры (единицы таблиц: мм, градусы)"),
     "rad": ("rad", "рад"),
     "mm": ("mm", "мм"),
+    "1": ("", ""),
     "param": ("parameter", "параметр"),
     "initial": ("initial", "начальное"),
     "lower": ("lower", "левая граница"),
@@ -122,7 +125,6 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
     """
     c = analysis.criteria
     control = problem.control
-    degrees = problem.task_class == 1
     out = analysis.output_control[0]
     trials = _feasible_trials(problem, result, top)
     points = []
@@ -135,7 +137,7 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
         if problem.task_class != 3:
             row["phi"] = math.degrees(control.phi[k])
         if problem.task_class in (1, 2):
-            scale = math.degrees(1.0) if degrees else 1.0
+            scale = problem.output_scale
             if control.zone:
                 row.update(lower=float(control.lower[k]) * scale,
                            upper=float(control.upper[k]) * scale)
@@ -153,7 +155,8 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
         "initial": problem.design(problem.initial),
         "bounds": {p.name: [p.lower, p.upper] for p in problem.parameters},
         "Q": _num(c.q[0]),
-        "unit": "rad" if problem.task_class == 1 else "mm",
+        "unit": problem.output_unit,
+        "output": problem.output.quantity,
         "Q_rms": _num(np.sqrt(np.mean((c.deviations[0] / control.weight) ** 2))),
         "P1": float(c.p1[0]),
         "P2": _num(c.p2[0]),
@@ -236,8 +239,8 @@ def _feasible_trials(problem: Problem, result: SearchResult, top: int) -> list[d
 def text_report(data: dict[str, Any], lang: str = "en") -> str:
     """The report of :func:`summary` data as text in English or Russian."""
     w = lambda key: _w(key, lang)  # noqa: E731
-    lines = [w("title").format(name=data["name"], cls=data["task_class"],
-                               what=w(f"class{data['task_class']}")), ""]
+    what = f"class{data['task_class']}" + ("_ratio" if data.get("output") == "ratio" else "")
+    lines = [w("title").format(name=data["name"], cls=data["task_class"], what=w(what)), ""]
     lines += [w("design"),
               f"  {w('param'):<22} {w('initial'):>12} {w('lower'):>12} {w('upper'):>12} "
               f"{w('found'):>14}"]

@@ -411,7 +411,7 @@ def settings_for(problem: Any, **overrides: Any) -> SearchSettings:
     ----------
     problem : Problem
         Supplies ``search`` (``budget``, ``seed``, ``refine``, ``shrink_passes``, ``stall``,
-        ``time_limit``), ``accuracy`` ([Q]), ``objective`` and ``p2_weight``.
+        ``time_limit``, ``refine_evaluations``), ``accuracy`` ([Q]), ``objective`` and ``p2_weight``.
     **overrides
         Fields of :class:`SearchSettings`; None leaves the problem's value.
     """
@@ -420,6 +420,7 @@ def settings_for(problem: Any, **overrides: Any) -> SearchSettings:
         "budget_log2": table.get("budget", 12), "seed": table.get("seed", 0),
         "refine": table.get("refine", False), "shrink_passes": table.get("shrink_passes", 0),
         "stall": table.get("stall"), "time_limit": table.get("time_limit"),
+        "refine_evaluations": table.get("refine_evaluations", 200),
         "q_required": problem.accuracy, "objective": problem.objective,
         "p2_weight": problem.p2_weight}
     values.update({k: v for k, v in overrides.items() if v is not None})

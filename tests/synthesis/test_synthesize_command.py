@@ -41,6 +41,16 @@ def _reanalyse(problem: dict[str, Any], result: Path) -> float:
     motion = assur.analyse(model, np.concatenate([[0.0], phi]))
     assert motion.exists.all()
     weights = np.array([row.get("E", 1.0) for row in control])
+    if task == 1 and general.get("output") == "ratio":
+        # n = dψ/dφ by a fourth-order central difference of the positions (no analogs)
+        h = 1e-3
+        stencil = phi[:, None] + h * np.array([-2.0, -1.0, 1.0, 2.0])
+        angle = assur.unwrap(assur.values(assur.analyse(model, stencil.ravel()).link_angle(
+            output["link"])).reshape(stencil.shape))
+        n = (angle[:, 0] - 8 * angle[:, 1] + 8 * angle[:, 2] - angle[:, 3]) / (12 * h)
+        lo = np.array([row["n_lo"] for row in control])
+        hi = np.array([row["n_hi"] for row in control])
+        return float(np.max(weights * np.maximum(0.0, np.maximum(lo - n, n - hi))))
     if task == 1:
         angle = assur.values(motion.link_angle(output["link"]))
         psi = np.degrees(np.angle(np.exp(1j * (angle[1:] - angle[0]))))

@@ -349,10 +349,8 @@ def _row_label(row: dict[str, Any]) -> str | None:
     parts = []
     if "L" in row:
         parts.append(f"L{row['L']}")
-    links = [str(row[key]) for key in ("i", "j") if row.get(key) is not None]
-    if links:
-        parts.append(f"links {', '.join(links)}")
-    return " ".join(parts) or None
+    parts.extend(f"{key} = {row[key]}" for key in ("i", "j") if row.get(key) is not None)
+    return ", ".join(parts) or None
 
 
 def _read_rows(top: Node, *, required: bool) -> list[tuple[dict[str, Any], str]]:

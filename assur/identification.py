@@ -58,7 +58,7 @@ class Mismatch:
     row : int or None
         Index of the row in the user's table (None for a missing row or a table-level count).
     label : str
-        Where, e.g. ``structure_identification[2] (L2, links 9, 8)``.
+        Where, e.g. ``structure_identification[2] (L2, i = 9, j = 8)``; the same in both languages.
     field : str
         The column (``"i_plus_1"``) or count (``"W"``); ``"row"`` for a missing row.
     expected, found : object
@@ -314,8 +314,8 @@ def _text(value: Any) -> str:
 
 
 def _label(table: str, index: int, row: Mapping[str, Any]) -> str:
-    links = ", ".join(str(row[k]) for k in ("i", "j") if row.get(k) is not None)
-    return f"{table}[{index}] (L{row.get('L')}, links {links})"
+    roles = ", ".join(f"{k} = {row[k]}" for k in ("i", "j") if row.get(k) is not None)
+    return f"{table}[{index}] (L{row.get('L')}, {roles})"
 
 
 def _mismatch(index: int | None, label: str, field: str, expected: Any, found: Any,

@@ -59,8 +59,8 @@ def test_wrong_identification_table_is_reported_field_by_field(
     assert main(["check", str(path)]) == 0
     out = capsys.readouterr().out
     assert "differs from the analysis (2 mismatch(es))" in out
-    assert "structure_identification[3] (L3, links 6, 7) 'i_minus_1': expected 2, found 3" in out
-    assert "structure_identification[4] (L3, links 4, 5) 'L': expected 4, found 3" in out
+    assert "structure_identification[3] (L3, i = 6, j = 7) 'i_minus_1': expected 2, found 3" in out
+    assert "structure_identification[4] (L3, i = 4, j = 5) 'L': expected 4, found 3" in out
 
 
 @pytest.mark.parametrize("path", BROKEN, ids=[p.stem for p in BROKEN])

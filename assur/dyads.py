@@ -14,6 +14,7 @@ below the assigned tolerance δ) and a ``reason`` code (see :data:`REASONS`).
 
 from __future__ import annotations
 
+import cmath
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -44,6 +45,10 @@ ROUNDOFF = 64.0 * np.finfo(float).eps
 
 #: Positions per block in the plain-array kernels of large calls.
 BLOCK = 8192
+
+#: Number types (shape (), never a jet).
+_NUMBERS = frozenset({int, float, complex, np.float64, np.complex128})
+_REALS = frozenset({int, float, np.float64})
 
 
 class Reason(IntEnum):
@@ -136,17 +141,23 @@ def _branch(sigma: float | np.ndarray) -> float | np.ndarray:
     return np.where(sigma < 0, -1.0, 1.0)
 
 
-def _shape(*args: object) -> tuple[int, ...]:
-    """Broadcast shape of the values of ``args`` (cheap when they share one shape)."""
-    shapes = {a.v.shape if type(a) is Jet else getattr(a, "shape", ()) for a in args}
-    shapes.discard(())
-    if len(shapes) <= 1:
-        return shapes.pop() if shapes else ()
-    return np.broadcast_shapes(*shapes)
-
-
-def _has_jet(*args: object) -> bool:
-    return Jet in map(type, args)
+def _layout(*args: object) -> tuple[tuple[int, ...], bool]:
+    """Broadcast shape of the values of ``args`` and whether any of them is a jet."""
+    shape: tuple[int, ...] = ()
+    jets = False
+    for a in args:
+        kind = type(a)
+        if kind in _NUMBERS:
+            continue
+        if kind is np.ndarray:
+            this = a.shape
+        elif kind is Jet:
+            this, jets = a.v.shape, True
+        else:
+            this = np.shape(a)
+        if this != shape and this:
+            shape = np.broadcast_shapes(shape, this) if shape else this
+    return shape, jets
 
 
 @lru_cache(maxsize=256, typed=True)
@@ -160,7 +171,47 @@ def _constant(x: object, shape: tuple[int, ...]) -> np.ndarray:
     return np.ndarray(shape, base.dtype, base, 0, (0,) * len(shape))
 
 
-_TRUE, _ASSEMBLES, _ONE = True, np.int8(Reason.ASSEMBLES), 1.0
+def _finite(x: np.ndarray) -> bool:
+    """Whether every element of the array ``x`` is finite.
+
+    Also False when a square overflows (elements beyond about 1e154): then the caller takes
+    its general path, which gives the same result.
+
+    One dot product (a single library call) for a vector, else one sum.
+    """
+    return cmath.isfinite(x.dot(x) if x.ndim == 1 else np.add.reduce(x, axis=None))
+
+
+def _zero_dim(*values: Value) -> tuple[Value, ...]:
+    """Real Python numbers as 0-d float64 arrays, other values unchanged.
+
+    With a float64 array, numpy applies a 0-d array sooner than a Python number, with the
+    same result.
+    """
+    return tuple(np.array(x, np.float64) if type(x) in _REALS else x for x in values)
+
+
+@lru_cache(maxsize=64)
+def _assembled(shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Margin 1, ``exists`` True and reason 0 over ``shape``: read-only views, cached."""
+    return (_constant(1.0, shape), _constant(True, shape),
+            _constant(np.int8(Reason.ASSEMBLES), shape))
+
+
+_new = object.__new__
+
+
+def _solution(
+    c: Value, origin_i: Value, angle_i: Value, origin_j: Value | None, angle_j: Value | None,
+    s_i: Value | None, s_j: Value | None, margin: np.ndarray, exists: np.ndarray,
+    reason: np.ndarray,
+) -> DyadSolution:
+    """A :class:`DyadSolution` filled in one step (the frozen ``__init__`` sets field by field)."""
+    solution = _new(DyadSolution)
+    solution.__dict__.update(
+        c=c, origin_i=origin_i, angle_i=angle_i, origin_j=origin_j, angle_j=angle_j, s_i=s_i,
+        s_j=s_j, margin=margin, exists=exists, reason=reason)
+    return solution
 
 
 def _spread(x: Value, shape: tuple[int, ...]) -> Value:
@@ -194,12 +245,26 @@ def _clip_roundoff(margin: np.ndarray, radicand: Value) -> tuple[np.ndarray, Val
     return margin, radicand
 
 
-def _blank(x: Value | None, bad: np.ndarray) -> Value | None:
-    """``x`` with NaN where ``bad``."""
-    if x is None:
-        return None
-    nan = complex(np.nan, np.nan) if np.iscomplexobj(J.value(x)) else np.nan
-    return J.where(bad, nan, x)
+def _blank(geometry: tuple[Value | None, ...], bad: np.ndarray) -> tuple[Value | None, ...]:
+    """The outputs ``geometry`` with NaN where ``bad`` (an output repeated is blanked once)."""
+    done: dict[int, Value] = {}
+    for x in geometry:
+        if x is not None and id(x) not in done:
+            nan = complex(np.nan, np.nan) if np.iscomplexobj(J.value(x)) else np.nan
+            done[id(x)] = J.where(bad, nan, x)
+    return tuple(None if x is None else done[id(x)] for x in geometry)
+
+
+def _undefined(inputs: tuple[Value, ...], shape: tuple[int, ...]) -> np.ndarray:
+    """Mask of the positions where some input is NaN or infinite."""
+    undefined = np.zeros(shape, dtype=bool)
+    for x in inputs:
+        if type(x) in _NUMBERS:
+            if not cmath.isfinite(x):
+                undefined[...] = True
+        else:
+            undefined |= ~np.isfinite(J.value(x))
+    return undefined
 
 
 def _finish(
@@ -209,36 +274,34 @@ def _finish(
     delta: float | np.ndarray,
     failure: Callable[[], np.ndarray],
     geometry: tuple[Value | None, ...],
+    jets: bool,
     valid: np.ndarray | None = None,
     lowest: float | None = None,
 ) -> DyadSolution:
     """Existence mask, reason codes and NaN blanking common to all solvers.
 
     ``shape`` is the broadcast shape of the solver's arguments ``inputs``; ``geometry`` holds
-    the outputs ``c, origin_i, angle_i, origin_j, angle_j, s_i, s_j``. ``failure()`` returns
-    the reason code of each position as if it failed; it is evaluated only when some position
-    does fail. ``valid`` (optional) is a further condition of existence; ``lowest`` is the
-    smallest margin when the caller already knows it.
+    the outputs ``c, origin_i, angle_i, origin_j, angle_j, s_i, s_j``, made jets if ``jets``
+    (some argument is a jet). ``failure()`` returns the reason code of each position as if it
+    failed; it is evaluated only when some position does fail. ``valid`` (optional) is a
+    further condition of existence; ``lowest`` is the smallest margin when the caller already
+    knows it.
     """
     margin = margin if margin.shape == shape else np.broadcast_to(margin, shape)
-    if Jet in map(type, geometry):  # constant outputs become jets too
+    if jets:  # constant outputs become jets too
         geometry = tuple(x if x is None or type(x) is Jet else Jet(x) for x in geometry)
     if lowest is None:
         lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
-    if lowest >= (delta if type(delta) is float else np.max(delta)) and (
+    if lowest >= (delta if type(delta) in _NUMBERS else np.max(delta)) and (
             valid is None or valid.all()):
-        exists = _constant(_TRUE, shape)  # one reduction found every position assembled
-        reason = _constant(_ASSEMBLES, shape)
+        _, exists, reason = _assembled(shape)  # one reduction found every position assembled
     else:
         exists = margin >= delta if valid is None else (margin >= delta) & valid
         bad = ~exists
-        undefined = np.zeros(shape, dtype=bool)
-        for x in inputs:
-            undefined |= ~np.isfinite(J.value(x))
-        codes = np.where(undefined, Reason.UNDEFINED_INPUT, failure())
+        codes = np.where(_undefined(inputs, shape), Reason.UNDEFINED_INPUT, failure())
         reason = np.where(bad, codes, Reason.ASSEMBLES).astype(np.int8)
-        geometry = tuple(_blank(x, bad) for x in geometry)
-    return DyadSolution(*geometry, margin, exists, reason)
+        geometry = _blank(geometry, bad)
+    return _solution(*geometry, margin, exists, reason)
 
 
 def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
@@ -258,24 +321,24 @@ def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
     DyadSolution
         ``c`` = crank pin, ``origin_i`` = O₁, ``angle_i`` = φ₁; margin 1 (always assembles).
     """
-    shape = _shape(o, length, angle)
-    if type(angle) is np.ndarray and angle.shape == shape and not _has_jet(o, length) \
-            and getattr(o, "ndim", 0) == 0 and getattr(length, "ndim", 0) == 0 \
-            and np.isfinite(np.add.reduce(angle, axis=None) + o + length):
+    if (type(angle) is np.ndarray and angle.ndim and type(o) in _NUMBERS
+            and type(length) in _NUMBERS and cmath.isfinite(o) and cmath.isfinite(length)
+            and _finite(angle)):
         pin = J.expi(angle)  # finite inputs: the fast path needs no error state
         xy = pin.view(np.float64)  # scale the interleaved (x, y) pairs in place
-        np.multiply(xy, length, out=xy)
-        pin += o
-        return DyadSolution(pin, _spread(o, shape), angle, None, None, None, None,
-                            _constant(_ONE, shape), _constant(_TRUE, shape),
-                            _constant(_ASSEMBLES, shape))
+        xy *= length
+        if o != 0:
+            pin += o
+        return _solution(pin, _constant(o, angle.shape), angle, None, None, None, None,
+                         *_assembled(angle.shape))
+    shape, jets = _layout(o, length, angle)
     with np.errstate(all="ignore"):
         pin = length * J.expi(angle)
         pin = np.add(pin, o, out=pin) if type(pin) is np.ndarray else pin + o
         margin = np.where(np.isfinite(J.value(pin)), 1.0, np.nan)
     return _finish(
         shape, (o, length, angle), margin, 0.0, lambda: Reason.UNDEFINED_INPUT,
-        (pin, _spread(o, shape), _spread(angle, shape), None, None, None, None),
+        (pin, _spread(o, shape), _spread(angle, shape), None, None, None, None), jets,
     )
 
 
@@ -310,8 +373,8 @@ def solve_rrr(
     near both toggle positions; ``sin = σ·sqrt((1 − c)(1 + c))`` then fixes the branch.
     """
     s = _branch(sigma)
-    shape = _shape(h_i, h_j, l_i, l_j, s)
-    if _has_jet(h_i, h_j, l_i, l_j) or not shape:
+    shape, jets = _layout(h_i, h_j, l_i, l_j, s)
+    if jets or not shape:
         c, angle_i, angle_j, margin, d = _rrr_generic(h_i, h_j, l_i, l_j, s)
         lowest = None
     else:
@@ -324,7 +387,7 @@ def solve_rrr(
 
     return _finish(
         shape, (h_i, h_j, l_i, l_j, s), margin, delta, failure,
-        (c, _spread(h_i, shape), angle_i, _spread(h_j, shape), angle_j, None, None),
+        (c, _spread(h_i, shape), angle_i, _spread(h_j, shape), angle_j, None, None), jets,
         lowest=lowest,
     )
 
@@ -374,6 +437,7 @@ def _rrr_arrays(
     return (*outputs, lowest)
 
 
+@np.errstate(all="ignore")
 def _rrr_kernel(
     h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.ndarray,
     shape: tuple[int, ...], out: tuple[np.ndarray, ...] | None = None,
@@ -391,50 +455,51 @@ def _rrr_kernel(
     area of the triangle H_i C H_j). The small factor at each toggle is a difference of
     inputs, so Δ and the margin ``min(g₁, g₂)/(2·l_i·d)`` keep full relative accuracy there.
     """
-    with np.errstate(all="ignore"):
-        rx = np.subtract(h_j.real, h_i.real)  # r = H_j − H_i, as contiguous x and y
-        ry = np.subtract(h_j.imag, h_i.imag)
-        if rx.shape != shape:
-            rx, ry = (np.array(np.broadcast_to(t, shape)) for t in (rx, ry))
-        d2 = rx * rx
-        d2 += ry * ry
-        q = np.divide(0.5, d2)
-        x = d2 + (l_i * l_i - l_j * l_j)
-        x *= q
-        c, angle_i, angle_j, margin, d = out if out is not None else (None,) * 5
-        d = np.sqrt(d2, out=d)
-        l_sum, l_dif = l_i + l_j, l_j - l_i
-        disc = l_sum - d
-        disc *= d + l_dif  # 2·l_i·d·(1 − c), c = cos of the angle at H_i
-        wx = d - l_dif
-        wx *= l_sum + d  # 2·l_i·d·(1 + c)
-        margin = np.minimum(disc, wx, out=margin)
-        margin /= d
-        margin /= 2.0 * l_i
-        disc *= wx
-        lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
-        if not lowest >= 0.0:
-            tiny = (margin < 0.0) & (margin > -ROUNDOFF)
-            margin[tiny] = 0.0
-            disc[tiny] = 0.0
-            lowest = np.minimum.reduce(margin, axis=None)
-        y = np.sqrt(disc, out=disc)  # NaN only where the dyad does not exist
-        y *= q
-        if type(s) is not float:
-            y *= s
-        elif s < 0.0:
-            np.negative(y, out=y)
-        np.multiply(rx, x, out=wx)
-        wx -= np.multiply(ry, y, out=q)
-        wy = np.multiply(rx, y, out=y)
-        wy += np.multiply(ry, x, out=x)  # (wx, wy) = C − H_i
-        angle_i = np.arctan2(wy, wx, out=angle_i)
-        c = np.empty(shape, dtype=complex) if c is None else c
-        np.add(h_i.real, wx, out=c.real)
-        np.add(h_i.imag, wy, out=c.imag)
-        wx -= rx
-        wy -= ry  # C − H_j
-        angle_j = np.arctan2(wy, wx, out=angle_j)
+    rx = np.subtract(h_j.real, h_i.real)  # r = H_j − H_i, as contiguous x and y
+    ry = np.subtract(h_j.imag, h_i.imag)
+    if rx.shape != shape:
+        rx, ry = (np.array(np.broadcast_to(t, shape)) for t in (rx, ry))
+    half, k, l_sum, l_dif, two_l = 0.5, l_i * l_i - l_j * l_j, l_i + l_j, l_j - l_i, 2.0 * l_i
+    if rx.dtype == np.float64:
+        half, k, l_sum, l_dif, two_l = _zero_dim(half, k, l_sum, l_dif, two_l)
+    d2 = rx * rx
+    d2 += ry * ry
+    q = np.divide(half, d2)
+    x = d2 + k
+    x *= q
+    c, angle_i, angle_j, margin, d = out if out is not None else (None,) * 5
+    d = np.sqrt(d2, out=d)
+    disc = l_sum - d
+    disc *= d + l_dif  # 2·l_i·d·(1 − c), c = cos of the angle at H_i
+    wx = d - l_dif
+    wx *= l_sum + d  # 2·l_i·d·(1 + c)
+    margin = np.minimum(disc, wx, out=margin)
+    margin /= d
+    margin /= two_l
+    disc *= wx
+    lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
+    if not lowest >= 0.0:
+        tiny = (margin < 0.0) & (margin > -ROUNDOFF)
+        margin[tiny] = 0.0
+        disc[tiny] = 0.0
+        lowest = np.minimum.reduce(margin, axis=None)
+    y = np.sqrt(disc, out=disc)  # NaN only where the dyad does not exist
+    y *= q
+    if type(s) is not float:
+        y *= s
+    elif s < 0.0:
+        np.negative(y, out=y)
+    np.multiply(rx, x, out=wx)
+    wx -= np.multiply(ry, y, out=q)
+    wy = np.multiply(rx, y, out=y)
+    wy += np.multiply(ry, x, out=x)  # (wx, wy) = C − H_i
+    angle_i = np.arctan2(wy, wx, out=angle_i)
+    c = np.empty(shape, dtype=complex) if c is None else c
+    np.add(h_i.real, wx, out=c.real)
+    np.add(h_i.imag, wy, out=c.imag)
+    wx -= rx
+    wy -= ry  # C − H_j
+    angle_j = np.arctan2(wy, wx, out=angle_j)
     return c, angle_i, angle_j, margin, d, lowest
 
 
@@ -467,7 +532,7 @@ def solve_rrp(
         ``c`` = C; link i frame at C along θ, link j frame at H_j towards C; ``s_i`` = S.
     """
     s = _branch(sigma)
-    shape = _shape(h_j, a, theta, e, l_j, s)
+    shape, jets = _layout(h_j, a, theta, e, l_j, s)
     with np.errstate(all="ignore"):
         u = J.expi(theta)
         w = J.conj(u) * (h_j - a) - 1j * e  # (p + j·h): H_j in the frame of the path of C
@@ -480,7 +545,7 @@ def solve_rrp(
         angle_j = J.arg(c - h_j)
     return _finish(
         shape, (h_j, a, theta, e, l_j, s), margin, delta, lambda: Reason.ROD_TOO_SHORT,
-        (c, c, _spread(theta, shape), _spread(h_j, shape), angle_j, slide, None),
+        (c, c, _spread(theta, shape), _spread(h_j, shape), angle_j, slide, None), jets,
     )
 
 
@@ -513,7 +578,7 @@ def solve_rpr(
     angle with no branch ambiguity.
     """
     s = _branch(sigma)
-    shape = _shape(h_i, h_j, h, s)
+    shape, jets = _layout(h_i, h_j, h, s)
     with np.errstate(all="ignore"):
         r = h_j - h_i
         rho = J.abs(r)
@@ -530,7 +595,7 @@ def solve_rpr(
 
     return _finish(
         shape, (h_i, h_j, h, s), margin, delta, failure,
-        (c, _spread(h_i, shape), angle_i, _spread(h_j, shape), angle_i, t, None),
+        (c, _spread(h_i, shape), angle_i, _spread(h_j, shape), angle_i, t, None), jets,
     )
 
 
@@ -559,7 +624,7 @@ def solve_prp(
     ``sin(θ_j − θ_i)`` is taken from the angle difference, not from the cross product of the
     two unit vectors, so nearly parallel guides keep full relative accuracy in the divisor.
     """
-    shape = _shape(a, theta_i, e_i, b, theta_j, e_j)
+    shape, jets = _layout(a, theta_i, e_i, b, theta_j, e_j)
     with np.errstate(all="ignore"):
         u_i, u_j = J.expi(theta_i), J.expi(theta_j)
         sin_ij = J.imag(J.expi(theta_j - theta_i))
@@ -570,7 +635,7 @@ def solve_prp(
         margin = np.where(np.isfinite(J.value(c)), np.abs(J.value(sin_ij)), np.nan)
     return _finish(
         shape, (a, theta_i, e_i, b, theta_j, e_j), margin, delta, lambda: Reason.GUIDES_PARALLEL,
-        (c, c, _spread(theta_i, shape), c, _spread(theta_j, shape), slide_i, slide_j),
+        (c, c, _spread(theta_i, shape), c, _spread(theta_j, shape), slide_i, slide_j), jets,
         valid=margin > ROUNDOFF,
     )
 
@@ -598,7 +663,7 @@ def solve_rpp(
         ``c`` = C (``H_j + T·u(θ_T)``); link i frame at C along θ_S, link j frame at H_j along
         θ_T; ``s_i`` = S, ``s_j`` = T.
     """
-    shape = _shape(h_j, gamma, a, theta_s, e)
+    shape, jets = _layout(h_j, gamma, a, theta_s, e)
     with np.errstate(all="ignore"):
         theta_t = theta_s + gamma
         u_s, u_t = J.expi(theta_s), J.expi(theta_t)
@@ -612,5 +677,5 @@ def solve_rpp(
         shape, (h_j, gamma, a, theta_s, e), margin, delta, lambda: Reason.GUIDES_PARALLEL,
         (c, c, _spread(theta_s, shape), _spread(h_j, shape), _spread(theta_t, shape), slide,
          t),
-        valid=margin > ROUNDOFF,
+        jets, valid=margin > ROUNDOFF,
     )

@@ -10,6 +10,12 @@ of each request is placed inside the range the grid scan reports as attainable
 the existence of a design; for δ → 0 the zone of the example (20° at δ = 0.05) is scaled by
 √(δ/0.05), the width of a smooth peak at depth δ.
 
+The last table runs the shipped problem table
+``input_tables/problems/class1_fourbar_velocity_ratio.yaml`` (task class 1 with the velocity
+ratio as the output) through the public loop — :func:`synthesis.problem.load_problem`,
+:class:`~synthesis.evaluate.Evaluator`, :func:`synthesis.search.search` with the table's own
+search settings and several seeds — beside the modern solver.
+
 Run ``python benchmarks/bench_fourbar_velocity_ratio.py`` (``--quick`` for a shorter run).
 The tables are quoted in ``docs/case_fourbar_velocity_ratio.md``.
 """
@@ -19,6 +25,7 @@ from __future__ import annotations
 import argparse
 import math
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -26,6 +33,7 @@ from synthesis.cases.fourbar_velocity_ratio.check import check_design
 from synthesis.cases.fourbar_velocity_ratio.conditions import (
     NoSolution,
     Request,
+    condition_residuals,
     design_defect,
     design_from_unknowns,
     form_residuals,
@@ -35,10 +43,15 @@ from synthesis.cases.fourbar_velocity_ratio.modern_solver import attainable_zone
 from synthesis.cases.fourbar_velocity_ratio.paper_solver import solve_paper
 from synthesis.cases.fourbar_velocity_ratio.study import paper_check_tolerance
 from synthesis.criteria import Criteria
-from synthesis.search import SearchSettings, search
+from synthesis.evaluate import Evaluator
+from synthesis.problem import load_problem
+from synthesis.search import SearchSettings, search, settings_for
 
 DEG = math.pi / 180.0
 EXAMPLE = Request(n_star=0.5, psi1=20 * DEG, e=0.3, delta=0.05)
+PROBLEM = (Path(__file__).resolve().parents[1] / "input_tables" / "problems"
+           / "class1_fourbar_velocity_ratio.yaml")
+FRAME_MM = 100.0   # the problem table's frame S
 
 
 def extended_root(request: Request, x: np.ndarray) -> np.ndarray | None:
@@ -237,6 +250,54 @@ def table_search() -> None:
           f"{'passed' if paper.ok else 'failed'} |")
 
 
+def _verdict(design) -> str:
+    check = check_design(design)
+    if check.passed:
+        return "passed"
+    return "failed: " + ", ".join(code for code, _ in check.failures)
+
+
+def _residuals(design) -> str:
+    """The three conditions of the paper's form, as table cells."""
+    values = condition_residuals(design)
+    return " | ".join(f"{values[key]:.1e}" for key in ("n(θ2) − n*", "dn/dθ(θ2)",
+                                                        "n(θ1) − n_end"))
+
+
+def table_problem(seeds: range) -> None:
+    """The shipped problem table (class 1, output: ratio) through B1–B4, beside the modern
+    solver: design, residuals of the paper's conditions, the check, time and designs."""
+    refs = references(EXAMPLE)
+    print("\n### The same task as a class-1 problem table "
+          "(`input_tables/problems/class1_fourbar_velocity_ratio.yaml`)\n")
+    print("| method | c | r | θ2, ° | ψ″, ° | Q | n(θ2) − n* | dn/dθ(θ2) | n(θ1) − n_end | "
+          "correct digits | check | time, s | designs evaluated |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    problem = load_problem(PROBLEM)
+    for seed in seeds:
+        evaluator = Evaluator(problem)
+        result, seconds = timed(search, evaluator, problem.lower, problem.upper,
+                                problem.initial, settings_for(problem, seed=seed))
+        theta2, c, r = result.x
+        x = np.array([c / FRAME_MM, r / FRAME_MM, math.radians(theta2) % (2 * math.pi)])
+        design = design_from_unknowns(EXAMPLE, x)
+        got, _ = digits(x, refs)
+        crit = result.criteria
+        state = "" if crit.p1[0] == 0 and crit.p2[0] == 0 else f" (P1 = {crit.p1[0]:.3g}, " \
+                                                              f"P2 = {crit.p2[0]:.3g})"
+        print(f"| problem table, seed {seed}{state} | {x[0]:.9f} | {x[1]:.9f} | "
+              f"{theta2 % 360:.6f} | {math.degrees(design.psi2):.4f} | {crit.q[0]:.1e} | "
+              f"{_residuals(design)} | {got:.1f} | {_verdict(design)} | {seconds:.2f} | "
+              f"{len(result.trials)} |")
+    modern, seconds = timed(solve_modern, EXAMPLE)
+    for k, d in enumerate(modern.designs):
+        x = unknowns(d)
+        cost = f"{seconds:.2f} | {modern.evaluations}" if k == 0 else "(same run) | "
+        print(f"| modern solver, design {k + 1} | {d.c:.9f} | {d.r:.9f} | "
+              f"{math.degrees(d.theta2) % 360:.6f} | {math.degrees(d.psi2):.4f} | | "
+              f"{_residuals(d)} | {digits(x, refs)[0]:.1f} | {_verdict(d)} | {cost} |")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="skip the extremes table")
@@ -245,6 +306,7 @@ def main() -> None:
     if not args.quick:
         table_extremes()
     table_search()
+    table_problem(range(2) if args.quick else range(6))
 
 
 if __name__ == "__main__":

@@ -206,11 +206,16 @@ def _solution(
     s_i: Value | None, s_j: Value | None, margin: np.ndarray, exists: np.ndarray,
     reason: np.ndarray,
 ) -> DyadSolution:
-    """A :class:`DyadSolution` filled in one step (the frozen ``__init__`` sets field by field)."""
+    """A :class:`DyadSolution` with its fields stored directly.
+
+    The generated frozen ``__init__`` sets them one by one through ``object.__setattr__``.
+    """
     solution = _new(DyadSolution)
-    solution.__dict__.update(
-        c=c, origin_i=origin_i, angle_i=angle_i, origin_j=origin_j, angle_j=angle_j, s_i=s_i,
-        s_j=s_j, margin=margin, exists=exists, reason=reason)
+    fields = solution.__dict__
+    fields["c"], fields["origin_i"], fields["angle_i"] = c, origin_i, angle_i
+    fields["origin_j"], fields["angle_j"], fields["s_i"], fields["s_j"] = (
+        origin_j, angle_j, s_i, s_j)
+    fields["margin"], fields["exists"], fields["reason"] = margin, exists, reason
     return solution
 
 
@@ -321,16 +326,22 @@ def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
     DyadSolution
         ``c`` = crank pin, ``origin_i`` = O₁, ``angle_i`` = φ₁; margin 1 (always assembles).
     """
-    if (type(angle) is np.ndarray and angle.ndim and type(o) in _NUMBERS
-            and type(length) in _NUMBERS and cmath.isfinite(o) and cmath.isfinite(length)
-            and _finite(angle)):
+    if type(angle) is np.ndarray and angle.ndim and type(o) in _NUMBERS and cmath.isfinite(o) \
+            and (type(length) in _REALS and math.isfinite(length)
+                 or type(length) is np.ndarray and length.dtype == float and _finite(length)) \
+            and _finite(angle):
         pin = J.expi(angle)  # finite inputs: the fast path needs no error state
-        xy = pin.view(np.float64)  # scale the interleaved (x, y) pairs in place
-        xy *= length
+        if type(length) is np.ndarray:  # scale the (x, y) pairs by the lengths (many designs)
+            xy = np.multiply(length[..., None], pin.view(np.float64).reshape(*pin.shape, 2))
+            pin = xy.view(np.complex128)[..., 0]
+        else:  # scale the interleaved (x, y) pairs in place
+            xy = pin.view(np.float64)
+            xy *= length
         if o != 0:
             pin += o
-        return _solution(pin, _constant(o, angle.shape), angle, None, None, None, None,
-                         *_assembled(angle.shape))
+        shape = pin.shape
+        return _solution(pin, _constant(o, shape), _spread(angle, shape), None, None, None,
+                         None, *_assembled(shape))
     shape, jets = _layout(o, length, angle)
     with np.errstate(all="ignore"):
         pin = length * J.expi(angle)

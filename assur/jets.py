@@ -207,7 +207,8 @@ def arg(z: Jet | ArrayLike) -> Jet | np.ndarray:
 def expi(theta: Jet | ArrayLike) -> Jet | np.ndarray:
     """Unit vector ``u(θ) = exp(1j*θ)`` of a real angle θ."""
     if not isinstance(theta, Jet):
-        t = np.asarray(theta, dtype=float)
+        t = theta if type(theta) is np.ndarray and theta.dtype == float else np.asarray(
+            theta, dtype=float)
         u = np.empty(t.shape, dtype=complex)
         np.cos(t, out=u.real)
         np.sin(t, out=u.imag)

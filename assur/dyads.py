@@ -230,24 +230,21 @@ def _spread(x: Value, shape: tuple[int, ...]) -> Value:
     return np.broadcast_to(x, shape)
 
 
-def _roundoff(margin: np.ndarray) -> np.ndarray | None:
-    """Mask of margin deficits within roundoff (to be read as the toggle position itself).
+def _clip_roundoff(margin: np.ndarray, radicand: Value) -> tuple[np.ndarray, Value, float]:
+    """Margin and radicand with deficits within roundoff set to 0, and the smallest margin.
 
-    Returns None in the usual case of no negative margin, found with one reduction.
+    A deficit within roundoff is read as the toggle position itself. In the usual case of no
+    negative margin one reduction finds that out (and the smallest margin).
     """
-    if margin.ndim and np.minimum.reduce(margin, axis=None) >= 0.0:
-        return None
+    lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
+    if lowest >= 0.0:
+        return margin, radicand, lowest
     tiny = (margin < 0.0) & (margin > -ROUNDOFF)
-    return tiny if tiny.any() else None
-
-
-def _clip_roundoff(margin: np.ndarray, radicand: Value) -> tuple[np.ndarray, Value]:
-    """Margin and radicand with deficits within roundoff set to 0."""
-    tiny = _roundoff(margin)
-    if tiny is not None:
+    if tiny.any():
         margin = np.where(tiny, 0.0, margin)
         radicand = J.where(tiny, 0.0, radicand)
-    return margin, radicand
+        lowest = np.minimum.reduce(margin, axis=None)
+    return margin, radicand, lowest
 
 
 def _blank(geometry: tuple[Value | None, ...], bad: np.ndarray) -> tuple[Value | None, ...]:
@@ -280,7 +277,7 @@ def _finish(
     failure: Callable[[], np.ndarray],
     geometry: tuple[Value | None, ...],
     jets: bool,
-    valid: np.ndarray | None = None,
+    above: float | None = None,
     lowest: float | None = None,
 ) -> DyadSolution:
     """Existence mask, reason codes and NaN blanking common to all solvers.
@@ -288,9 +285,9 @@ def _finish(
     ``shape`` is the broadcast shape of the solver's arguments ``inputs``; ``geometry`` holds
     the outputs ``c, origin_i, angle_i, origin_j, angle_j, s_i, s_j``, made jets if ``jets``
     (some argument is a jet). ``failure()`` returns the reason code of each position as if it
-    failed; it is evaluated only when some position does fail. ``valid`` (optional) is a
-    further condition of existence; ``lowest`` is the smallest margin when the caller already
-    knows it.
+    failed; it is evaluated only when some position does fail. ``above`` (optional) is a
+    further condition of existence, ``margin > above``; ``lowest`` is the smallest margin when
+    the caller already knows it.
     """
     margin = margin if margin.shape == shape else np.broadcast_to(margin, shape)
     if jets:  # constant outputs become jets too
@@ -298,10 +295,12 @@ def _finish(
     if lowest is None:
         lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
     if lowest >= (delta if type(delta) in _NUMBERS else np.max(delta)) and (
-            valid is None or valid.all()):
+            above is None or lowest > above):
         _, exists, reason = _assembled(shape)  # one reduction found every position assembled
     else:
-        exists = margin >= delta if valid is None else (margin >= delta) & valid
+        exists = margin >= delta
+        if above is not None:
+            exists &= margin > above
         bad = ~exists
         codes = np.where(_undefined(inputs, shape), Reason.UNDEFINED_INPUT, failure())
         reason = np.where(bad, codes, Reason.ASSEMBLES).astype(np.int8)
@@ -386,8 +385,7 @@ def solve_rrr(
     s = _branch(sigma)
     shape, jets = _layout(h_i, h_j, l_i, l_j, s)
     if jets or not shape:
-        c, angle_i, angle_j, margin, d = _rrr_generic(h_i, h_j, l_i, l_j, s)
-        lowest = None
+        c, angle_i, angle_j, margin, d, lowest = _rrr_generic(h_i, h_j, l_i, l_j, s)
     else:
         c, angle_i, angle_j, margin, d, lowest = _rrr_arrays(h_i, h_j, l_i, l_j, s, shape)
 
@@ -403,20 +401,23 @@ def solve_rrr(
     )
 
 
+@np.errstate(all="ignore")
 def _rrr_generic(h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.ndarray) -> tuple:
-    """RRR dyad for any arguments (jets too): C, φ_i, φ_j, margin, hinge distance d (value)."""
-    with np.errstate(all="ignore"):
-        r = h_j - h_i
-        d = J.abs(r)
-        two_ld = 2.0 * l_i * d
-        one_minus_c = (d + l_j - l_i) * (l_i + l_j - d) / two_ld
-        one_plus_c = (d + l_i - l_j) * (l_i + l_j + d) / two_ld
-        margin = np.minimum(J.value(one_minus_c), J.value(one_plus_c))
-        margin, sin2 = _clip_roundoff(margin, one_minus_c * one_plus_c)
-        k = l_i / d
-        # C − H_i = r · (l_i/d) · (cos + j·σ·sin), cos = ((1 + c) − (1 − c))/2
-        arm_i = r * (k * 0.5 * (one_plus_c - one_minus_c) + 1j * (k * s * J.sqrt(sin2)))
-        return h_i + arm_i, J.arg(arm_i), J.arg(arm_i - r), margin, J.value(d)
+    """RRR dyad for any arguments (jets too).
+
+    Returns C, φ_i, φ_j, the margin, the hinge distance d (value) and the smallest margin.
+    """
+    r = h_j - h_i
+    d = J.abs(r)
+    two_ld = 2.0 * l_i * d
+    one_minus_c = (d + l_j - l_i) * (l_i + l_j - d) / two_ld
+    one_plus_c = (d + l_i - l_j) * (l_i + l_j + d) / two_ld
+    margin = np.minimum(J.value(one_minus_c), J.value(one_plus_c))
+    margin, sin2, lowest = _clip_roundoff(margin, one_minus_c * one_plus_c)
+    k = l_i / d
+    # C − H_i = r · (l_i/d) · (cos + j·σ·sin), cos = ((1 + c) − (1 − c))/2
+    arm_i = r * (k * 0.5 * (one_plus_c - one_minus_c) + 1j * (k * s * J.sqrt(sin2)))
+    return h_i + arm_i, J.arg(arm_i), J.arg(arm_i - r), margin, J.value(d), lowest
 
 
 def _blocks(shape: tuple[int, ...]) -> list[slice]:
@@ -544,20 +545,28 @@ def solve_rrp(
     """
     s = _branch(sigma)
     shape, jets = _layout(h_j, a, theta, e, l_j, s)
-    with np.errstate(all="ignore"):
-        u = J.expi(theta)
-        w = J.conj(u) * (h_j - a) - 1j * e  # (p + j·h): H_j in the frame of the path of C
-        p, h = J.real(w), J.imag(w)
-        habs = J.abs(h)
-        margin = 1.0 - J.value(habs) / J.value(l_j)
-        margin, leg2 = _clip_roundoff(margin, (l_j - habs) * (l_j + habs))
-        slide = p + s * J.sqrt(leg2)
-        c = a + (slide + 1j * e) * u
-        angle_j = J.arg(c - h_j)
+    c, angle_j, slide, margin, lowest = _rrp_geometry(h_j, a, theta, e, l_j, s)
     return _finish(
         shape, (h_j, a, theta, e, l_j, s), margin, delta, lambda: Reason.ROD_TOO_SHORT,
         (c, c, _spread(theta, shape), _spread(h_j, shape), angle_j, slide, None), jets,
+        lowest=lowest,
     )
+
+
+@np.errstate(all="ignore")
+def _rrp_geometry(
+    h_j: Value, a: Value, theta: Value, e: Value, l_j: Value, s: float | np.ndarray,
+) -> tuple:
+    """RRP dyad: C, φ_j, S, the margin and the smallest margin."""
+    u = J.expi(theta)
+    w = J.conj(u) * (h_j - a) - 1j * e  # (p + j·h): H_j in the frame of the path of C
+    p, h = J.real(w), J.imag(w)
+    habs = J.abs(h)
+    margin = 1.0 - J.value(habs) / J.value(l_j)
+    margin, leg2, lowest = _clip_roundoff(margin, (l_j - habs) * (l_j + habs))
+    slide = p + s * J.sqrt(leg2)
+    c = a + (slide + 1j * e) * u
+    return c, J.arg(c - h_j), slide, margin, lowest
 
 
 def solve_rpr(
@@ -590,24 +599,30 @@ def solve_rpr(
     """
     s = _branch(sigma)
     shape, jets = _layout(h_i, h_j, h, s)
-    with np.errstate(all="ignore"):
-        r = h_j - h_i
-        rho = J.abs(r)
-        habs = J.abs(h)
-        margin = 1.0 - J.value(habs) / J.value(rho)
-        margin, leg2 = _clip_roundoff(margin, (rho - habs) * (rho + habs))
-        t = s * J.sqrt(leg2)
-        turned = r * (t - 1j * h)  # = ρ²·u(φ_i)
-        angle_i = J.arg(turned)
-        c = h_i + t * turned / (rho * rho)
+    c, angle_i, t, margin, rho, lowest = _rpr_geometry(h_i, h_j, h, s)
 
     def failure() -> np.ndarray:
-        return np.where(J.value(rho) == 0.0, Reason.COINCIDENT_HINGES, Reason.OFFSET_TOO_LARGE)
+        return np.where(rho == 0.0, Reason.COINCIDENT_HINGES, Reason.OFFSET_TOO_LARGE)
 
     return _finish(
         shape, (h_i, h_j, h, s), margin, delta, failure,
         (c, _spread(h_i, shape), angle_i, _spread(h_j, shape), angle_i, t, None), jets,
+        lowest=lowest,
     )
+
+
+@np.errstate(all="ignore")
+def _rpr_geometry(h_i: Value, h_j: Value, h: Value, s: float | np.ndarray) -> tuple:
+    """RPR dyad: H_i + T·u(φ_i), φ_i, T, the margin, ρ (value) and the smallest margin."""
+    r = h_j - h_i
+    rho = J.abs(r)
+    habs = J.abs(h)
+    margin = 1.0 - J.value(habs) / J.value(rho)
+    margin, leg2, lowest = _clip_roundoff(margin, (rho - habs) * (rho + habs))
+    t = s * J.sqrt(leg2)
+    turned = r * (t - 1j * h)  # = ρ²·u(φ_i)
+    c = h_i + t * turned / (rho * rho)
+    return c, J.arg(turned), t, margin, J.value(rho), lowest
 
 
 def solve_prp(
@@ -636,19 +651,27 @@ def solve_prp(
     two unit vectors, so nearly parallel guides keep full relative accuracy in the divisor.
     """
     shape, jets = _layout(a, theta_i, e_i, b, theta_j, e_j)
-    with np.errstate(all="ignore"):
-        u_i, u_j = J.expi(theta_i), J.expi(theta_j)
-        sin_ij = J.imag(J.expi(theta_j - theta_i))
-        r = (b + 1j * e_j * u_j) - (a + 1j * e_i * u_i)
-        slide_i = J.cross(r, u_j) / sin_ij
-        slide_j = J.cross(r, u_i) / sin_ij
-        c = a + (slide_i + 1j * e_i) * u_i
-        margin = np.where(np.isfinite(J.value(c)), np.abs(J.value(sin_ij)), np.nan)
+    c, slide_i, slide_j, margin = _prp_geometry(a, theta_i, e_i, b, theta_j, e_j)
     return _finish(
         shape, (a, theta_i, e_i, b, theta_j, e_j), margin, delta, lambda: Reason.GUIDES_PARALLEL,
         (c, c, _spread(theta_i, shape), c, _spread(theta_j, shape), slide_i, slide_j), jets,
-        valid=margin > ROUNDOFF,
+        above=ROUNDOFF,
     )
+
+
+@np.errstate(all="ignore")
+def _prp_geometry(
+    a: Value, theta_i: Value, e_i: Value, b: Value, theta_j: Value, e_j: Value,
+) -> tuple:
+    """PRP dyad: C, S_i, S_j and the margin (NaN where C is undefined)."""
+    u_i, u_j = J.expi(theta_i), J.expi(theta_j)
+    sin_ij = J.imag(J.expi(theta_j - theta_i))
+    r = (b + 1j * e_j * u_j) - (a + 1j * e_i * u_i)
+    slide_i = J.cross(r, u_j) / sin_ij
+    slide_j = J.cross(r, u_i) / sin_ij
+    c = a + (slide_i + 1j * e_i) * u_i
+    margin = np.where(np.isfinite(J.value(c)), np.abs(J.value(sin_ij)), np.nan)
+    return c, slide_i, slide_j, margin
 
 
 def solve_rpp(
@@ -675,18 +698,24 @@ def solve_rpp(
         θ_T; ``s_i`` = S, ``s_j`` = T.
     """
     shape, jets = _layout(h_j, gamma, a, theta_s, e)
-    with np.errstate(all="ignore"):
-        theta_t = theta_s + gamma
-        u_s, u_t = J.expi(theta_s), J.expi(theta_t)
-        minus_sin = -J.imag(J.expi(gamma))  # cross(u_T, u_S) = −sin γ
-        r = a + 1j * e * u_s - h_j
-        t = J.cross(r, u_s) / minus_sin
-        slide = J.cross(r, u_t) / minus_sin
-        c = h_j + t * u_t
-        margin = np.where(np.isfinite(J.value(c)), np.abs(J.value(minus_sin)), np.nan)
+    c, theta_t, slide, t, margin = _rpp_geometry(h_j, gamma, a, theta_s, e)
     return _finish(
         shape, (h_j, gamma, a, theta_s, e), margin, delta, lambda: Reason.GUIDES_PARALLEL,
         (c, c, _spread(theta_s, shape), _spread(h_j, shape), _spread(theta_t, shape), slide,
          t),
-        jets, valid=margin > ROUNDOFF,
+        jets, above=ROUNDOFF,
     )
+
+
+@np.errstate(all="ignore")
+def _rpp_geometry(h_j: Value, gamma: Value, a: Value, theta_s: Value, e: Value) -> tuple:
+    """RPP dyad: C, θ_T, S, T and the margin (NaN where C is undefined)."""
+    theta_t = theta_s + gamma
+    u_s, u_t = J.expi(theta_s), J.expi(theta_t)
+    minus_sin = -J.imag(J.expi(gamma))  # cross(u_T, u_S) = −sin γ
+    r = a + 1j * e * u_s - h_j
+    t = J.cross(r, u_s) / minus_sin
+    slide = J.cross(r, u_t) / minus_sin
+    c = h_j + t * u_t
+    margin = np.where(np.isfinite(J.value(c)), np.abs(J.value(minus_sin)), np.nan)
+    return c, theta_t, slide, t, margin

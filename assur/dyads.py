@@ -257,15 +257,18 @@ def _blank(geometry: tuple[Value | None, ...], bad: np.ndarray) -> tuple[Value |
     return tuple(None if x is None else done[id(x)] for x in geometry)
 
 
-def _undefined(inputs: tuple[Value, ...], shape: tuple[int, ...]) -> np.ndarray:
-    """Mask of the positions where some input is NaN or infinite."""
-    undefined = np.zeros(shape, dtype=bool)
+def _undefined(inputs: tuple[Value, ...]) -> np.ndarray | bool:
+    """Mask of the positions where some input is NaN or infinite (False: nowhere).
+
+    An array input found finite by one reduction needs no elementwise test.
+    """
+    undefined: np.ndarray | bool = False
     for x in inputs:
-        if type(x) in _NUMBERS:
-            if not cmath.isfinite(x):
-                undefined[...] = True
-        else:
-            undefined |= ~np.isfinite(J.value(x))
+        v = J.value(x)
+        kind = type(v)
+        if kind in _NUMBERS and cmath.isfinite(v) or kind is np.ndarray and _finite(v):
+            continue
+        undefined = undefined | ~np.isfinite(v)
     return undefined
 
 
@@ -302,8 +305,11 @@ def _finish(
         if above is not None:
             exists &= margin > above
         bad = ~exists
-        codes = np.where(_undefined(inputs, shape), Reason.UNDEFINED_INPUT, failure())
-        reason = np.where(bad, codes, Reason.ASSEMBLES).astype(np.int8)
+        reason = np.zeros(bad.shape, dtype=np.int8)
+        np.copyto(reason, failure(), where=bad)
+        undefined = _undefined(inputs)
+        if undefined is not False:
+            np.copyto(reason, Reason.UNDEFINED_INPUT, where=bad & undefined)
         geometry = _blank(geometry, bad)
     return _solution(*geometry, margin, exists, reason)
 
@@ -445,7 +451,7 @@ def _rrr_arrays(
     for rows in _blocks(shape):
         part = [x if getattr(x, "ndim", 0) == 0 else x[rows] for x in args]
         block = tuple(out[rows] for out in outputs)
-        lowest = min(lowest, _rrr_kernel(*part, block[0].shape, block)[-1])
+        lowest = np.minimum(lowest, _rrr_kernel(*part, block[0].shape, block)[-1])  # NaN stays
     return (*outputs, lowest)
 
 

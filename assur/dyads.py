@@ -247,13 +247,24 @@ def _clip_roundoff(margin: np.ndarray, radicand: Value) -> tuple[np.ndarray, Val
     return margin, radicand, lowest
 
 
-def _blank(geometry: tuple[Value | None, ...], bad: np.ndarray) -> tuple[Value | None, ...]:
-    """The outputs ``geometry`` with NaN where ``bad`` (an output repeated is blanked once)."""
+def _blank(
+    geometry: tuple[Value | None, ...], bad: np.ndarray, owned: tuple[Value, ...],
+) -> tuple[Value | None, ...]:
+    """The outputs ``geometry`` with NaN where ``bad`` (an output repeated is blanked once).
+
+    Arrays in ``owned`` (made by the solver for this call) are blanked in place; the others
+    (inputs passed through, constant views) are copied.
+    """
     done: dict[int, Value] = {}
+    fresh = {id(x) for x in owned if type(x) is np.ndarray and x.shape == bad.shape}
     for x in geometry:
         if x is not None and id(x) not in done:
             nan = complex(np.nan, np.nan) if np.iscomplexobj(J.value(x)) else np.nan
-            done[id(x)] = J.where(bad, nan, x)
+            if id(x) in fresh:
+                np.copyto(x, nan, where=bad)
+                done[id(x)] = x
+            else:
+                done[id(x)] = J.where(bad, nan, x)
     return tuple(None if x is None else done[id(x)] for x in geometry)
 
 
@@ -282,6 +293,7 @@ def _finish(
     jets: bool,
     above: float | None = None,
     lowest: float | None = None,
+    owned: tuple[Value, ...] = (),
 ) -> DyadSolution:
     """Existence mask, reason codes and NaN blanking common to all solvers.
 
@@ -290,7 +302,8 @@ def _finish(
     (some argument is a jet). ``failure()`` returns the reason code of each position as if it
     failed; it is evaluated only when some position does fail. ``above`` (optional) is a
     further condition of existence, ``margin > above``; ``lowest`` is the smallest margin when
-    the caller already knows it.
+    the caller already knows it; ``owned`` lists the outputs made for this call (blanked in
+    place).
     """
     margin = margin if margin.shape == shape else np.broadcast_to(margin, shape)
     if jets:  # constant outputs become jets too
@@ -310,7 +323,7 @@ def _finish(
         undefined = _undefined(inputs)
         if undefined is not False:
             np.copyto(reason, Reason.UNDEFINED_INPUT, where=bad & undefined)
-        geometry = _blank(geometry, bad)
+        geometry = _blank(geometry, bad, owned)
     return _solution(*geometry, margin, exists, reason)
 
 
@@ -403,7 +416,7 @@ def solve_rrr(
     return _finish(
         shape, (h_i, h_j, l_i, l_j, s), margin, delta, failure,
         (c, _spread(h_i, shape), angle_i, _spread(h_j, shape), angle_j, None, None), jets,
-        lowest=lowest,
+        lowest=lowest, owned=(c, angle_i, angle_j),
     )
 
 
@@ -555,7 +568,7 @@ def solve_rrp(
     return _finish(
         shape, (h_j, a, theta, e, l_j, s), margin, delta, lambda: Reason.ROD_TOO_SHORT,
         (c, c, _spread(theta, shape), _spread(h_j, shape), angle_j, slide, None), jets,
-        lowest=lowest,
+        lowest=lowest, owned=(c, angle_j, slide),
     )
 
 
@@ -613,7 +626,7 @@ def solve_rpr(
     return _finish(
         shape, (h_i, h_j, h, s), margin, delta, failure,
         (c, _spread(h_i, shape), angle_i, _spread(h_j, shape), angle_i, t, None), jets,
-        lowest=lowest,
+        lowest=lowest, owned=(c, angle_i, t),
     )
 
 
@@ -661,7 +674,7 @@ def solve_prp(
     return _finish(
         shape, (a, theta_i, e_i, b, theta_j, e_j), margin, delta, lambda: Reason.GUIDES_PARALLEL,
         (c, c, _spread(theta_i, shape), c, _spread(theta_j, shape), slide_i, slide_j), jets,
-        above=ROUNDOFF,
+        above=ROUNDOFF, owned=(c, slide_i, slide_j),
     )
 
 
@@ -709,7 +722,7 @@ def solve_rpp(
         shape, (h_j, gamma, a, theta_s, e), margin, delta, lambda: Reason.GUIDES_PARALLEL,
         (c, c, _spread(theta_s, shape), _spread(h_j, shape), _spread(theta_t, shape), slide,
          t),
-        jets, above=ROUNDOFF,
+        jets, above=ROUNDOFF, owned=(c, slide, t),
     )
 
 

@@ -85,6 +85,11 @@ _WORDS: dict[str, tuple[str, str]] = {
     "history": ("improvements of the best design", "улучшения лучшего решения"),
     "trial": ("trial", "испытание"),
     "stage": ("stage", "этап"),
+    "stage_initial": ("initial", "начальное"),
+    "stage_lptau": ("LPτ", "ЛПτ"),
+    "stage_shrink": ("shrink", "сужение"),
+    "stage_refine": ("refine", "уточнение"),
+    "seconds": ("s", "с"),
     "table": ("Feasible passive trials, best {n} by Q (the designer may pick any)",
               "Допустимые пассивные испытания, лучшие {n} по Q (проектировщик выбирает "
               "любое)"),
@@ -310,15 +315,16 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
     s = data["search"]
     lines += ["", w("search"),
               f"  {w('trials')}: {s['trials']}   {w('feasible_trials')}: {s['feasible_trials']}",
-              f"  {w('stop')}: {w(s['stop'] + '_stop')}   {w('time')}: {s['seconds']:.2f} s   "
+              f"  {w('stop')}: {w(s['stop'] + '_stop')}   {w('time')}: {s['seconds']:.2f} {w('seconds')}   "
               f"seed {s['seed']}, 2^{s['budget_log2']} LPτ",
               f"  {w('history')}:"]
     history = s["history"]
     if len(history) > 12:
         history = history[:6] + history[-6:]
     for h in history:
-        lines.append(f"    {w('trial')} {int(h['trial']):>7}  {h['seconds']:8.3f} s  "
-                     f"{h['stage']:<8} P1={h['p1']:.4g} P2={_fmt(h['p2'])} Q={_fmt(h['q'])}")
+        lines.append(f"    {w('trial')} {int(h['trial']):>7}  "
+                     f"{h['seconds']:8.3f} {w('seconds')}  "
+                     f"{w('stage_' + h['stage']):<10} P1={h['p1']:.4g} P2={_fmt(h['p2'])} Q={_fmt(h['q'])}")
     table = data["feasible_table"]
     if table:
         names = list(data["design"])
@@ -326,7 +332,8 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
                   "  " + f"{w('trial'):>7} {w('stage'):<8} {'Q':>12} "
                   + " ".join(f"{n:>16}" for n in names)]
         for row in table:
-            lines.append(f"  {row['trial']:>7} {row['stage']:<8} {row['Q']:>12.5g} "
+            stage = w("stage_" + row["stage"])
+            lines.append(f"  {row['trial']:>7} {stage:<8} {row['Q']:>12.5g} "
                          + " ".join(f"{row[n]:>16.8g}" for n in names))
     return "\n".join(lines) + "\n"
 

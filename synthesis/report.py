@@ -315,7 +315,8 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
     s = data["search"]
     lines += ["", w("search"),
               f"  {w('trials')}: {s['trials']}   {w('feasible_trials')}: {s['feasible_trials']}",
-              f"  {w('stop')}: {w(s['stop'] + '_stop')}   {w('time')}: {s['seconds']:.2f} {w('seconds')}   "
+              f"  {w('stop')}: {w(s['stop'] + '_stop')}   "
+              f"{w('time')}: {s['seconds']:.2f} {w('seconds')}   "
               f"seed {s['seed']}, 2^{s['budget_log2']} LPτ",
               f"  {w('history')}:"]
     history = s["history"]
@@ -324,7 +325,8 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
     for h in history:
         lines.append(f"    {w('trial')} {int(h['trial']):>7}  "
                      f"{h['seconds']:8.3f} {w('seconds')}  "
-                     f"{w('stage_' + h['stage']):<10} P1={h['p1']:.4g} P2={_fmt(h['p2'])} Q={_fmt(h['q'])}")
+                     f"{w('stage_' + h['stage']):<10} "
+                     f"P1={h['p1']:.4g} P2={_fmt(h['p2'])} Q={_fmt(h['q'])}")
     table = data["feasible_table"]
     if table:
         names = list(data["design"])

@@ -650,7 +650,10 @@ def _read_tracing(sketch: _Sketch, build: _Builder) -> tuple[TracePoint, ...]:
 
 def _read_margin(reader: TableReader, value: Any, build: _Builder) -> dict[str, float]:
     labels = [g.label for g in build.groups if g.kind != 0]
-    ok = (lambda v: isinstance(v, (int, float)) and not isinstance(v, bool) and 0 <= v < 1)
+
+    def ok(v: Any) -> bool:
+        return isinstance(v, (int, float)) and not isinstance(v, bool) and 0 <= v < 1
+
     if value is None:
         return {}
     if ok(value):

@@ -411,7 +411,8 @@ def settings_for(problem: Any, **overrides: Any) -> SearchSettings:
     ----------
     problem : Problem
         Supplies ``search`` (``budget``, ``seed``, ``refine``, ``shrink_passes``, ``stall``,
-        ``time_limit``, ``refine_evaluations``), ``accuracy`` ([Q]), ``objective`` and ``p2_weight``.
+        ``time_limit``, ``refine_evaluations``), ``accuracy`` ([Q]), ``objective`` and
+        ``p2_weight``.
     **overrides
         Fields of :class:`SearchSettings`; None leaves the problem's value.
     """

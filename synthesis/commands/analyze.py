@@ -56,8 +56,10 @@ _TEXT = {
     "trace": ("tracing point {name}", "точка {name}"),
     "pressure": ("Pressure angles at C (L1/L2 with a two-hinge rod, [α] = 45°):",
                  "Углы давления в паре C (L1/L2 с двухшарнирным звеном, [α] = 45°):"),
-    "no_pressure": ("Pressure angles: no L1/L2 group has a two-hinge rod, so the course computes none.",
-                    "Углы давления: нет групп L1/L2 с двухшарнирным звеном, по методике они не вычисляются."),
+    "no_pressure": ("Pressure angles: no L1/L2 group has a two-hinge rod, so the course "
+                    "computes none.",
+                    "Углы давления: нет групп L1/L2 с двухшарнирным звеном, по методике они "
+                    "не вычисляются."),
     "alpha": ("{label}, pair {pair}: max {a:.2f}° at {at}",
               "{label}, пара {pair}: макс. {a:.2f}° при {at}"),
     "rotations": ("Relative rotation in the revolute joints (swing):",
@@ -338,7 +340,8 @@ def table_csv(motion: Any, report: Any, omega: float | None = None) -> str:
     def add(name: str, jet: Any, complex_: bool) -> None:
         parts = [("", jet.v), ("_d1", jet.d1), ("_d2", jet.d2)]
         if omega is not None:
-            parts += [("_vel", assur.velocity(jet, omega)), ("_acc", assur.acceleration(jet, omega))]
+            parts += [("_vel", assur.velocity(jet, omega)),
+                      ("_acc", assur.acceleration(jet, omega))]
         for suffix, data in parts:
             data = np.broadcast_to(data, motion.q.shape)
             if complex_:

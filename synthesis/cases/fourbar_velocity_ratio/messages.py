@@ -20,8 +20,8 @@ TEMPLATES: dict[str, dict[str, str]] = {
     "n_star_zero": {"en": "the peak ratio n* must be a non-zero number; found {n_star}",
                     "ru": "максимум отношения n* должен быть ненулевым числом; задано {n_star}"},
     "forward_ge_one": {
-        "en": "n* = {n_star:g} ≥ 1 on the forward stroke: the rocker of a crank-rocker always turns "
-              "slower than the crank while both turn the same way (n < 1 there); a ratio of "
+        "en": "n* = {n_star:g} ≥ 1 on the forward stroke: the rocker of a crank-rocker always "
+              "turns slower than the crank while both turn the same way (n < 1 there); a ratio of "
               "magnitude ≥ 1 exists only on the return stroke (give a negative n*)",
         "ru": "n* = {n_star:g} ≥ 1 на прямом ходе: коромысло кривошипно-коромыслового механизма, "
               "вращаясь в ту же сторону, что и кривошип, всегда вращается медленнее (там n < 1); "
@@ -46,7 +46,8 @@ TEMPLATES: dict[str, dict[str, str]] = {
               "{low:.4g} и {high:.4g}"},
     "zone_wide": {
         "en": "no crank-rocker with e = {e:g} and peak n* = {n_star:g} keeps the ratio within "
-              "δ = {delta:g} over ψ′ = {psi1:.4g}°: the widest such zone found is about {edge:.3g}°",
+              "δ = {delta:g} over ψ′ = {psi1:.4g}°: the widest such zone found is about "
+              "{edge:.3g}°",
         "ru": "ни один кривошипно-коромысловый механизм с e = {e:g} и максимумом n* = {n_star:g} "
               "не держит отношение в пределах δ = {delta:g} на ψ′ = {psi1:.4g}°: самый широкий "
               "найденный участок около {edge:.3g}°"},

@@ -4,13 +4,13 @@
 The scan covers the whole Grashof crank-rocker domain: the rocker as ``r = r_min/u`` with
 ``r_min = max(e, e/|n*|)`` (every design has r ≥ e/|n*|, because n = ±e/r where crank and rocker
 are parallel) and ``u ∈ (0, 1)``; the coupler as ``c = c_lo + t·(c_hi − c_lo)`` with
-``t ∈ (0, 1)`` between the Grashof limits (spaced densely near both limits, down to about 5e-5 of the
-interval, because the peak becomes sharp and the design curve ends there); for the ``crank`` form also e ∈ (0, 1). At each grid
-design the peak of the ratio over the turn and the zone widths at the end value are read from
-a sampled n(θ); the local minima of the mismatch with the request are the starts. Every root
-is then classified (:func:`~.conditions.design_defect`), so that the answer lists every
-distinct design that meets the request, best transmission first, and names the roots that do
-not.
+``t ∈ (0, 1)`` between the Grashof limits (spaced densely near both limits, down to about 5e-5
+of the interval, because the peak becomes sharp and the design curve ends there); for the
+``crank`` form also e ∈ (0, 1). At each grid design the peak of the ratio over the turn and
+the zone widths at the end value are read from a sampled n(θ); the local minima of the
+mismatch with the request are the starts. Every root is then classified
+(:func:`~.conditions.design_defect`), so that the answer lists every distinct design that meets
+the request, best transmission first, and names the roots that do not.
 """
 
 from __future__ import annotations

@@ -105,10 +105,13 @@ def zone_deviations(output: FloatArray, lower: FloatArray, upper: FloatArray,
     -------
     ndarray, shape (D, K)
         Non-negative weighted deviations (0 inside the zone).
+
+    Notes
+    -----
+    With lower ≤ upper and E_K ≥ 0 (both checked by the problem reader) at most one of the
+    two overshoots is positive, so Δ_K = |r_K| of :func:`zone_residuals`.
     """
-    output = np.asarray(output)
-    outside = np.maximum(np.asarray(lower) - output, output - np.asarray(upper))
-    return np.asarray(weights) * np.maximum(outside, 0.0)
+    return np.abs(zone_residuals(output, lower, upper, weights))
 
 
 def zone_residuals(output: FloatArray, lower: FloatArray, upper: FloatArray,

@@ -323,7 +323,6 @@ class _Topology:
                                      f"{group.group_class}; only dyads (class II) are solved")
         self.pairs = {pair.id: pair for pair in chain.pairs}
         self.drive = chain.inputs[0]
-        self.analysis = analysis
         self.groups = list(analysis.groups)
         self.composite_group = next((g for g in self.groups if g.composite), None)
         self.labels = {group: f"L{group.kind}({_link_text(group.i)},{_link_text(group.j)})"
@@ -344,9 +343,6 @@ class _Topology:
             return link, pairs[0].id
         raise AssertionError("not a crank drive")  # pragma: no cover
 
-    def ext_pair(self, group: Any, side: str) -> Any:
-        return self.pairs[group.pair_i if side == "i" else group.pair_j]
-
 
 def _link_text(link: Any) -> str:
     if isinstance(link, (tuple, frozenset, list, set)):
@@ -357,10 +353,12 @@ def _link_text(link: Any) -> str:
 # ----------------------------------------------------------------------- sketch form
 
 
+def _is_number(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+
 def _vector(value: Any) -> complex | None:
-    if (isinstance(value, list) and len(value) == 2 and all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-            for v in value)):
+    if isinstance(value, list) and len(value) == 2 and all(_is_number(v) for v in value):
         return complex(value[0], value[1])
     return None
 
@@ -373,7 +371,7 @@ class _Sketch:
         raw = {normalise_id(k) if not isinstance(k, int) else k: v
                for k, v in chain.geometry.items()}
         self.raw = raw
-        joints = {pair.origin if pair.origin is not None else pair.id for pair in chain.pairs}
+        joints = {_joint_key(pair) for pair in chain.pairs}
         self.joint_ids = joints
         allowed = [str(j) for j in joints] + list(_RESERVED)
         for key in raw:
@@ -406,33 +404,37 @@ class _Sketch:
                 self.points[key] = vec
         direction = node.get("direction", required=False, default=None)
         if direction is not None and direction is not MISSING:
-            if isinstance(direction, (int, float)) and not isinstance(direction, bool) \
-                    and math.isfinite(direction):
+            vec = _vector(direction)
+            if _is_number(direction):
                 self.directions[key] = math.radians(direction)
-            elif _vector(direction) is not None and _vector(direction) != 0:
-                self.directions[key] = cmath.phase(_vector(direction))
+            elif vec is not None and vec != 0:
+                self.directions[key] = cmath.phase(vec)
             else:
                 self.reader.add(f"{where} 'direction'", f"expected an angle in degrees or a "
                                                         f"vector [dx, dy]; found "
                                                         f"{describe(direction)}")
 
     def point(self, pair: Any) -> complex | None:
-        key = pair.origin if pair.origin is not None else pair.id
-        if key in self.points:
-            return self.points[key]
-        self.reader.add(f"geometry {key!r}", f"the {pair.type.value} pair {key!r} "
-                                             f"(links {pair.links[0]}–{pair.links[1]}) needs "
-                                             f"'point: [x, y]' at the reference position")
-        return None
+        """The sketched point of a pair; None (and the problem recorded) when missing."""
+        return self._entry(self.points, pair, pair.type.value,
+                           "'point: [x, y]' at the reference position")
 
     def direction(self, pair: Any) -> float | None:
-        key = pair.origin if pair.origin is not None else pair.id
-        if key in self.directions:
-            return self.directions[key]
-        self.reader.add(f"geometry {key!r}", f"the slider pair {key!r} (links "
-                                             f"{pair.links[0]}–{pair.links[1]}) needs "
-                                             f"'direction' (degrees or [dx, dy])")
+        """The sketched slide direction (radians); None (and recorded) when missing."""
+        return self._entry(self.directions, pair, "slider", "'direction' (degrees or [dx, dy])")
+
+    def _entry(self, entries: Mapping[PairId, Any], pair: Any, kind: str, needs: str) -> Any:
+        key = _joint_key(pair)
+        if key in entries:
+            return entries[key]
+        self.reader.add(f"geometry {key!r}", f"the {kind} pair {key!r} (links "
+                                             f"{pair.links[0]}–{pair.links[1]}) needs {needs}")
         return None
+
+
+def _joint_key(pair: Any) -> PairId:
+    """The key of a pair in the sketch: its joint (origin) for a split compound hinge."""
+    return pair.origin if pair.origin is not None else pair.id
 
 
 class _Builder:
@@ -463,14 +465,19 @@ class _Builder:
             self.put(label, cols[1], point.imag)
             return Anchor(link, label, cols[0], cols[1], False)
         owner = self.owner[link]
-        local = self.local(link, point)
         count = self.attach_count.get(link, 0)
         self.attach_count[link] = count + 1
         if owner.kind == 0 and count == 0:
-            self.put(owner.label, "l_1", abs(local))
+            self.put(owner.label, "l_1", abs(self.local(link, point)))
             return Anchor(link, owner.label, "l_1", None, True)
         letter = "N" if self.links[link][1] == "i" else "M"
-        suffix = letter if count == 0 else f"{letter}{count + 1}"
+        return self.polar(link, point, letter if count == 0 else f"{letter}{count + 1}")
+
+    def polar(self, link: LinkId, point: complex, suffix: str) -> Anchor:
+        """A point fixed on a moving link: columns ``l_<suffix>``, ``beta_<suffix>`` of its
+        owner group, polar in the link's frame."""
+        owner = self.owner[link]
+        local = self.local(link, point)
         self.put(owner.label, f"l_{suffix}", abs(local))
         self.put(owner.label, f"beta_{suffix}", math.degrees(cmath.phase(local)))
         return Anchor(link, owner.label, f"l_{suffix}", f"beta_{suffix}", True)
@@ -638,13 +645,7 @@ def _read_tracing(sketch: _Sketch, build: _Builder) -> tuple[TracePoint, ...]:
             reader.add(f"{where} 'link'", f"expected a moving link of the mechanism; found "
                                           f"{describe(link)}")
             continue
-        owner = build.owner[link]
-        local = build.local(link, point)
-        col = f"{name}"
-        build.put(owner.label, f"l_{col}", abs(local))
-        build.put(owner.label, f"beta_{col}", math.degrees(cmath.phase(local)))
-        points.append(TracePoint(str(name), Anchor(link, owner.label, f"l_{col}",
-                                                   f"beta_{col}", True)))
+        points.append(TracePoint(str(name), build.polar(link, point, f"{name}")))
     return tuple(points)
 
 
@@ -681,7 +682,7 @@ def _sketch_crank(topo: _Topology, sketch: _Sketch, build: _Builder) -> None:
     if pivot is None or pin is None:
         return  # recorded; the groups hinged to the crank are skipped too
     if pin == pivot:
-        sketch.reader.add(f"geometry {pins[0].origin!r}", "the crank pin coincides with the "
+        sketch.reader.add(f"geometry {_joint_key(pins[0])!r}", "the crank pin coincides with the "
                                                           "crank pivot (zero crank length)")
         return
     angle = cmath.phase(pin - pivot)
@@ -714,9 +715,7 @@ def _sketch_group(topo: _Topology, sketch: _Sketch, build: _Builder, group: Any,
         hi, hj, c = sketch.point(pi), sketch.point(pj), sketch.point(pc)
         if not need([hi, hj, c]):
             return
-        driven = None
-        if group.composite:
-            driven = "i" if _composite_side(group) == "i" else "j"
+        driven = _composite_side(group) if group.composite else None
         anchor_i = build.attachment(i_prev, hi, label, "i")
         anchor_j = build.attachment(j_prev, hj, label, "j")
         build.put(label, "l_i", abs(c - hi))
@@ -769,9 +768,9 @@ def _sketch_group(topo: _Topology, sketch: _Sketch, build: _Builder, group: Any,
         us, ut = cmath.exp(1j * ts), cmath.exp(1j * tt)
         denominator = _cross(ut, us)
         if abs(denominator) < 1e-12:
-            reader.add(f"geometry {pc.origin!r} 'direction'", f"the guides of group {label} are "
-                                                              f"parallel: the group cannot be "
-                                                              f"assembled")
+            reader.add(f"geometry {_joint_key(pc)!r} 'direction'",
+                       f"the guides of group {label} are parallel: the group cannot be "
+                       f"assembled")
             return
         c = hj + _cross(a - hj, us) / denominator * ut
         anchor_j = build.attachment(j_prev, hj, label, "j")
@@ -914,15 +913,11 @@ def _param_values(node: Node | None, kind: int, build: _Builder, label: str, *,
         build.params[f"{label}.{column}"] = value
 
 
-def _is_number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
-
-
 def _param_anchor(topo: _Topology, build: _Builder, link: LinkId, label: str,
                   cols: tuple[str, str], reader: TableReader, node: Node | None) -> Anchor:
     """An external hinge: absolute columns on the frame, supplied N/M on a moving link."""
     if link == topo.frame:
-        _need_numbers(build, label, cols, reader, node, "the hinge lies on the frame")
+        _need_numbers(cols, reader, node, "the hinge lies on the frame")
         return Anchor(link, label, cols[0], cols[1], False)
     if node is not None:
         for col in cols:
@@ -940,8 +935,8 @@ def _param_anchor(topo: _Topology, build: _Builder, link: LinkId, label: str,
     return Anchor(link, owner.label, f"l_{letter}", f"beta_{letter}", True)
 
 
-def _need_numbers(build: _Builder, label: str, cols: tuple[str, ...], reader: TableReader,
-                  node: Node | None, why: str) -> None:
+def _need_numbers(cols: tuple[str, ...], reader: TableReader, node: Node | None,
+                  why: str) -> None:
     """Report coordinate columns written 'A' although the point is on the frame."""
     for col in cols:
         if node is not None and node.mapping.get(col) == SUPPLIED:
@@ -954,7 +949,7 @@ def _param_guide(topo: _Topology, build: _Builder, pair: Any, carrier: LinkId, l
                  node: Node | None) -> Guide:
     x, y, beta, offset = cols
     if carrier == topo.frame:
-        _need_numbers(build, label, (x, y), reader, node, "the guide is on the frame")
+        _need_numbers((x, y), reader, node, "the guide is on the frame")
     for col in (x, y):
         name = f"{label}.{col}"
         if name not in build.params:

@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import io
 import math
 from pathlib import Path
 
 import numpy as np
 
-from assur import atomic_write_bytes
+from synthesis.cases.figures import write_figure
 from synthesis.cases.fourbar_velocity_ratio.conditions import Design
 from synthesis.cases.fourbar_velocity_ratio.kinematics import rocker_angle, velocity_ratio
 
@@ -67,9 +66,7 @@ def save_plot(design: Design, path: str | Path, lang: str = "en") -> Path:
     right.grid(True, alpha=0.3)
     right.legend(loc="best")
     fig.tight_layout()
-    path = Path(path)
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format=path.suffix.lstrip(".") or "png", dpi=120)
-    plt.close(fig)
-    atomic_write_bytes(path, buffer.getvalue())
-    return path
+    try:
+        return write_figure(fig, path)
+    finally:
+        plt.close(fig)

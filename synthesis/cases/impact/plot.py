@@ -3,13 +3,12 @@ chart comparing the two models."""
 
 from __future__ import annotations
 
-import io
 import os
 from typing import Any, Literal
 
 import numpy as np
 
-from assur import atomic_write_bytes
+from synthesis.cases.figures import write_figure
 from synthesis.cases.impact.data import PAPER_IMPULSE_UNIT
 from synthesis.cases.impact.study import ImpactStudy
 
@@ -56,11 +55,7 @@ def plot_case(study: ImpactStudy, lang: Lang = "en", row: int | None = None) -> 
 
 def save_plot(study: ImpactStudy, path: str | os.PathLike[str], lang: Lang = "en") -> None:
     """Draw the case and write it atomically; the format follows the file suffix."""
-    figure = plot_case(study, lang)
-    buffer = io.BytesIO()
-    suffix = os.path.splitext(os.fspath(path))[1].lstrip(".").lower() or "png"
-    figure.savefig(buffer, format=suffix, dpi=120)
-    atomic_write_bytes(path, buffer.getvalue())
+    write_figure(plot_case(study, lang), path)
 
 
 def _xy(point: complex) -> tuple[float, float]:

@@ -6,14 +6,13 @@ pyplot, nothing is shown); files are written atomically.
 
 from __future__ import annotations
 
-import io
 import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from assur import atomic_write_bytes
+from synthesis.cases.figures import write_figure
 from synthesis.cases.tracker.geometry import proportions, stroke
 from synthesis.cases.tracker.model import TrackerMotion
 from synthesis.cases.tracker.patent import EXAMPLE, SERIES
@@ -206,13 +205,6 @@ def _drawings(study: Study, lang: str) -> list[tuple[str, TrackerMotion, str, fl
     return out
 
 
-def _write(fig: Figure, path: Path, dpi: int) -> Path:
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format="png", dpi=dpi)
-    atomic_write_bytes(path, buffer.getvalue())
-    return path
-
-
 def save_plots(study: Study, directory: str | Path, lang: str = "en", *,
                dpi: int = 120) -> list[Path]:
     """Write the design charts and the designs' drawings as PNG files (``dpi`` dots/inch).
@@ -224,9 +216,10 @@ def save_plots(study: Study, directory: str | Path, lang: str = "en", *,
         ``tracker_refined.png`` and ``tracker_synthesis.png`` for the designs there are.
     """
     directory = Path(directory)
-    paths = [_write(chart_figure(study, lang), directory / "tracker_charts.png", dpi)]
+    paths = [write_figure(chart_figure(study, lang), directory / "tracker_charts.png",
+                           dpi=dpi)]
     for name, motion, title, body in _drawings(study, lang):
-        paths.append(_write(mechanism_figure(motion, title=title, body=body, lang=lang,
-                                             min_clearance=study.task.min_clearance),
-                            directory / f"tracker_{name}.png", dpi))
+        paths.append(write_figure(mechanism_figure(motion, title=title, body=body, lang=lang,
+                                                   min_clearance=study.task.min_clearance),
+                                  directory / f"tracker_{name}.png", dpi=dpi))
     return paths

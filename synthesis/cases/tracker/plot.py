@@ -48,12 +48,12 @@ _LABELS = {
 
 
 def _printed(quantity: str, k5: float | None) -> tuple[list[float], list[float]]:
-    points = [(k2, value) for series in SERIES if series.quantity == quantity
-              and series.source != "Tabel 1" and (k5 is None or series.k5 == k5)
-              for k2, value in series.values.items()]
-    if quantity in ("d", "k_d") and not points:
-        points = [(k2, value) for series in SERIES if series.quantity == quantity
-                  and (k5 is None or series.k5 == k5) for k2, value in series.values.items()]
+    matching = [series for series in SERIES if series.quantity == quantity
+                and (k5 is None or series.k5 == k5)]
+    drawn = [series for series in matching if series.source != "Tabel 1"]
+    if quantity in ("d", "k_d") and not any(series.values for series in drawn):
+        drawn = matching
+    points = [(k2, value) for series in drawn for k2, value in series.values.items()]
     return [p[0] for p in points], [p[1] for p in points]
 
 
@@ -87,7 +87,8 @@ def chart_figure(study: Study, lang: str = "en") -> Figure:
     ax.set(title=text["stroke"], xlabel=text["b"], ylabel=text["a"])
     ax.legend(fontsize=7)
 
-    one = proportions(task.stroke, k2, k5s[0])
+    curves = {k5: proportions(task.stroke, k2, k5) for k5 in k5s}
+    one = curves[k5s[0]]
     ax = axes[0, 1]
     ax.plot(k2, np.degrees(one.b_min), label="b_min")
     ax.axhline(math.degrees(task.min_transmission), color="r", lw=0.8, ls=":",
@@ -110,7 +111,7 @@ def chart_figure(study: Study, lang: str = "en") -> Figure:
               (axes[1, 2], ("k_g",), text["kg"]))
     for ax, quantities, title in panels:
         for index, k5 in enumerate(k5s):
-            values = proportions(task.stroke, k2, k5)
+            values = curves[k5]
             for quantity, style in zip(quantities, ("-", "--"), strict=False):
                 ax.plot(k2, getattr(values, quantity), style, color=f"C{index}",
                         label=f"{quantity}, k5 = {k5:g}")

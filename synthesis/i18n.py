@@ -15,7 +15,7 @@ Examples
 
 from __future__ import annotations
 
-__all__ = ["LANGUAGES", "TERMS", "check_lang", "heading", "term"]
+__all__ = ["LANGUAGES", "TERMS", "check_lang", "heading", "in_language", "term"]
 
 LANGUAGES = ("en", "ru")
 
@@ -108,6 +108,24 @@ def check_lang(lang: str) -> str:
     return lang
 
 
+def in_language(pair: tuple[str, str], lang: str) -> str:
+    """The text of an ``(English, Russian)`` pair in ``lang``.
+
+    Every bilingual table of the package (:data:`TERMS`, the sentences of the reports, the
+    reasons for which a group does not assemble) holds such pairs.
+
+    Raises
+    ------
+    ValueError
+        If ``lang`` is not ``"en"`` or ``"ru"``.
+
+    >>> in_language(("crank", "кривошип"), "ru")
+    'кривошип'
+    """
+    english, russian = pair
+    return russian if check_lang(lang) == "ru" else english
+
+
 def term(key: str, lang: str = "en") -> str:
     """The course's word for ``key`` in ``lang`` (``"en"`` or ``"ru"``).
 
@@ -116,8 +134,7 @@ def term(key: str, lang: str = "en") -> str:
     KeyError
         If the term is not in :data:`TERMS`.
     """
-    english, russian = TERMS[key]
-    return russian if check_lang(lang) == "ru" else english
+    return in_language(TERMS[key], lang)
 
 
 def heading(key: str, lang: str = "en") -> str:

@@ -22,12 +22,11 @@ import yaml
 
 from assur import atomic_write_text
 from synthesis.evaluate import Analysis
+from synthesis.i18n import LANGUAGES, in_language
 from synthesis.problem import Problem
 from synthesis.search import SearchResult
 
 __all__ = ["LANGUAGES", "summary", "text_report", "write_result", "write_trials"]
-
-LANGUAGES = ("en", "ru")
 
 _WORDS: dict[str, tuple[str, str]] = {
     "title": ("Synthesis of {name}: task class {cls} ({what})",
@@ -105,9 +104,7 @@ _WORDS: dict[str, tuple[str, str]] = {
 
 
 def _w(key: str, lang: str) -> str:
-    if lang not in LANGUAGES:
-        raise ValueError(f"language must be one of {', '.join(LANGUAGES)}; got {lang!r}")
-    return _WORDS[key][lang == "ru"]
+    return in_language(_WORDS[key], lang)
 
 
 def _num(value: Any) -> float | None:

@@ -34,7 +34,7 @@ from assur import (
     scheme_bytes,
 )
 from synthesis.coursework.page import Section, esc, figure, figure_html, page, table
-from synthesis.i18n import check_lang, heading, term
+from synthesis.i18n import check_lang, heading, in_language, term
 
 __all__ = ["CourseworkReport", "build_report", "is_problem", "render_html", "write_report"]
 
@@ -314,7 +314,7 @@ def _existence_section(model: Any, lang: str, points: int, report: CourseworkRep
     for group in existence.groups:
         where = "; ".join(
             (f"{math.degrees(i.start):.2f}°…{math.degrees(i.end):.2f}°" if crank
-             else f"{i.start:.3f}…{i.end:.3f}") + f" ({REASONS[i.reason][lang == 'ru']})"
+             else f"{i.start:.3f}…{i.end:.3f}") + f" ({in_language(REASONS[i.reason], lang)})"
             for i in group.intervals) or "–"
         verdict = term("whole_cycle" if group.assembles else "fails", lang)
         condition = CONDITIONS.get(group.kind, "").split("  (")[0]  # the inequality alone

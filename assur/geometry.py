@@ -372,7 +372,6 @@ class _Sketch:
                for k, v in chain.geometry.items()}
         self.raw = raw
         joints = {_joint_key(pair) for pair in chain.pairs}
-        self.joint_ids = joints
         allowed = [str(j) for j in joints] + list(_RESERVED)
         for key in raw:
             if key not in joints and key not in _RESERVED:
@@ -496,16 +495,18 @@ class _Builder:
             self.put(label, offset, e)
         return Guide(pair.id, carrier, Anchor(carrier, label, x, y, False), beta, offset)
 
-    def add(self, group: GroupModel, frame_i: tuple[complex, float],
-            frame_j: tuple[complex, float] | None) -> None:
+    def add(self, group: GroupModel, frame_i: tuple[complex, float] | None = None,
+            frame_j: tuple[complex, float] | None = None) -> None:
+        """Record a group: the owner and side of its links and, in the sketch form, their
+        frames at the reference position."""
         self.groups.append(group)
-        self.frames[group.i] = frame_i
-        self.links[group.i] = (group.label, "i")
-        self.owner[group.i] = group
-        if group.j is not None and frame_j is not None:
-            self.frames[group.j] = frame_j
-            self.links[group.j] = (group.label, "j")
-            self.owner[group.j] = group
+        for link, side, frame in ((group.i, "i", frame_i), (group.j, "j", frame_j)):
+            if link is None:
+                continue
+            if frame is not None:
+                self.frames[link] = frame
+            self.links[link] = (group.label, side)
+            self.owner[link] = group
         if group.driven is not None:
             frame = frame_i if group.driven == "i" else frame_j
             for member in group.composite:
@@ -694,7 +695,6 @@ def _sketch_crank(topo: _Topology, sketch: _Sketch, build: _Builder) -> None:
     build.add(group, (pivot, angle), None)
     build.params[f"{label}.l_1"] = abs(pin - pivot)
     build.put(label, "phi_1_0", math.degrees(angle))
-    build.attach_count[crank] = 0
 
 
 def _sketch_group(topo: _Topology, sketch: _Sketch, build: _Builder, group: Any,
@@ -812,7 +812,7 @@ def model_from_params(analysis: Any) -> KinematicModel:
     chain = topo.chain
     reader = TableReader.from_data({}, source=chain.source)
     build = _Builder(topo)
-    rows = {key: value for key, value in chain.group_params.items()}
+    rows = chain.group_params
     variants = {}
     for row in chain.identification or ():
         key = (row["i"],) if row["L"] == 0 else (row["i"], row["j"])
@@ -832,7 +832,7 @@ def model_from_params(analysis: Any) -> KinematicModel:
     group0 = GroupModel(label0, 0, 1, crank, None,
                         hinge_i=Anchor(topo.frame, label0, "x_O1", "y_O1", False),
                         pairs={"H_i": driven})
-    build.add(group0, (0j, 0.0), None)
+    build.add(group0)
     tracing: list[TracePoint] = []
     for seq, group in enumerate(topo.groups, start=2):
         label = topo.labels[group]
@@ -840,11 +840,7 @@ def model_from_params(analysis: Any) -> KinematicModel:
         node = _param_node(reader, rows, key, label, group.kind)
         _param_values(node, group.kind, build, label, supplied_ok=True)
         model = _param_group(topo, build, group, label, seq, variants.get(key), reader, node)
-        build.groups.append(model)
-        build.links[group.i] = (label, "i")
-        build.links[group.j] = (label, "j")
-        build.owner[group.i] = model
-        build.owner[group.j] = model
+        build.add(model)
         tracing.extend(_param_tracing(node, model, build))
     reader.raise_if_any()
     return KinematicModel(name=chain.name, frame=topo.frame, groups=tuple(build.groups),
@@ -861,8 +857,7 @@ def _param_node(reader: TableReader, rows: dict[Any, Any], key: tuple[Any, ...],
         reader.add(where, f"the row of group {label} has no 'params:'; expected the columns "
                           f"{', '.join(KIND_COLUMNS[kind])}")
         return None
-    allowed = None  # extra columns (delta, s, tracing points) are checked below
-    return Node(reader, where, value, allowed)
+    return Node(reader, where, value, None)  # the columns are checked by _param_values
 
 
 def _param_values(node: Node | None, kind: int, build: _Builder, label: str, *,

@@ -343,6 +343,29 @@ class _Topology:
             return link, pairs[0].id
         raise AssertionError("not a crank drive")  # pragma: no cover
 
+    def input_group(self) -> GroupModel:
+        """The input group L0: the crank, hinged to the frame at O_1."""
+        crank, driven = self.crank()
+        label = f"L0({crank})"
+        return GroupModel(label, 0, 1, crank, None,
+                          hinge_i=Anchor(self.frame, label, "x_O1", "y_O1", False),
+                          pairs={"H_i": driven})
+
+    def pair_roles(self, group: Any) -> dict[str, PairId]:
+        """Role → pair id of a dyad's external pairs i, j and its internal pair C."""
+        ids = {"i": group.pair_i, "j": group.pair_j, "c": group.pair_c}
+        return {role: ids[side] for role, side in _PAIR_ROLES[group.kind]}
+
+
+#: The roles of a dyad's pairs i, c, j by kind, in the order the groups list them.
+_PAIR_ROLES: dict[int, tuple[tuple[str, str], ...]] = {
+    1: (("H_i", "i"), ("H_j", "j"), ("C", "c")),
+    2: (("P_i", "i"), ("C", "c"), ("H_j", "j")),
+    3: (("H_i", "i"), ("P_c", "c"), ("H_j", "j")),
+    4: (("P_i", "i"), ("C", "c"), ("P_j", "j")),
+    5: (("P_i", "i"), ("P_c", "c"), ("H_j", "j")),
+}
+
 
 def _link_text(link: Any) -> str:
     if isinstance(link, (tuple, frozenset, list, set)):
@@ -675,8 +698,8 @@ def _read_margin(reader: TableReader, value: Any, build: _Builder) -> dict[str, 
 
 
 def _sketch_crank(topo: _Topology, sketch: _Sketch, build: _Builder) -> None:
-    crank, driven = topo.crank()
-    label = f"L0({crank})"
+    group = topo.input_group()
+    crank, driven, label = group.i, group.pairs["H_i"], group.label
     pivot = sketch.point(topo.pairs[driven])
     pins = [p for p in topo.chain.pairs if crank in p.links and p.id != driven]
     pin = sketch.point(pins[0]) if pins else None
@@ -689,11 +712,8 @@ def _sketch_crank(topo: _Topology, sketch: _Sketch, build: _Builder) -> None:
     angle = cmath.phase(pin - pivot)
     build.put(label, "x_O1", pivot.real)
     build.put(label, "y_O1", pivot.imag)
-    group = GroupModel(label, 0, 1, crank, None,
-                       hinge_i=Anchor(topo.frame, label, "x_O1", "y_O1", False),
-                       pairs={"H_i": driven})
     build.add(group, (pivot, angle), None)
-    build.params[f"{label}.l_1"] = abs(pin - pivot)
+    build.put(label, "l_1", abs(pin - pivot))
     build.put(label, "phi_1_0", math.degrees(angle))
 
 
@@ -701,6 +721,7 @@ def _sketch_group(topo: _Topology, sketch: _Sketch, build: _Builder, group: Any,
                   seq: int) -> None:
     label = topo.labels[group]
     pi, pj, pc = (topo.pairs[group.pair_i], topo.pairs[group.pair_j], topo.pairs[group.pair_c])
+    roles = topo.pair_roles(group)
     kind = group.kind
     i_prev, j_prev = group.i_minus_1, group.j_minus_1
     reader = sketch.reader
@@ -722,7 +743,7 @@ def _sketch_group(topo: _Topology, sketch: _Sketch, build: _Builder, group: Any,
         build.put(label, "l_j", abs(c - hj))
         sigma = _sign(_cross(hj - hi, c - hi))
         model = GroupModel(label, 1, seq, group.i, group.j, sigma, anchor_i, anchor_j,
-                           pairs={"H_i": pi.id, "H_j": pj.id, "C": pc.id}, driven=driven,
+                           pairs=roles, driven=driven,
                            composite=tuple(group.composite or ()))
         build.add(model, (hi, cmath.phase(c - hi)), (hj, cmath.phase(c - hj)))
     elif kind == 2:
@@ -735,7 +756,7 @@ def _sketch_group(topo: _Topology, sketch: _Sketch, build: _Builder, group: Any,
         guide = build.guide(pi, i_prev, base, theta, label, ("x_Ak", "y_Ak", "beta_g", "e"), c)
         sigma = _sign(_dot(c - hj, cmath.exp(1j * theta)))
         model = GroupModel(label, 2, seq, group.i, group.j, sigma, None, anchor_j, guide,
-                           pairs={"P_i": pi.id, "C": pc.id, "H_j": pj.id})
+                           pairs=roles)
         build.add(model, (c, theta), (hj, cmath.phase(c - hj)))
     elif kind == 3:
         hi, hj, theta = sketch.point(pi), sketch.point(pj), sketch.direction(pc)
@@ -747,7 +768,7 @@ def _sketch_group(topo: _Topology, sketch: _Sketch, build: _Builder, group: Any,
         build.put(label, "d", _cross(axis, hj - hi))
         sigma = _sign(_dot(axis, hj - hi))
         model = GroupModel(label, 3, seq, group.i, group.j, sigma, anchor_i, anchor_j,
-                           pairs={"H_i": pi.id, "P_c": pc.id, "H_j": pj.id})
+                           pairs=roles)
         build.add(model, (hi, theta), (hj, theta))
     elif kind == 4:
         c = sketch.point(pc)
@@ -758,7 +779,7 @@ def _sketch_group(topo: _Topology, sketch: _Sketch, build: _Builder, group: Any,
         gi = build.guide(pi, i_prev, a, ti, label, ("x_Ak", "y_Ak", "beta_i", "e_i"), c)
         gj = build.guide(pj, j_prev, b, tj, label, ("x_Bk", "y_Bk", "beta_j", "e_j"), c)
         model = GroupModel(label, 4, seq, group.i, group.j, 1, None, None, gi, gj,
-                           pairs={"P_i": pi.id, "C": pc.id, "P_j": pj.id})
+                           pairs=roles)
         build.add(model, (c, ti), (c, tj))
     elif kind == 5:
         hj, a, ts, tt = (sketch.point(pj), sketch.point(pi), sketch.direction(pi),
@@ -777,7 +798,7 @@ def _sketch_group(topo: _Topology, sketch: _Sketch, build: _Builder, group: Any,
         build.put(label, "gamma", math.degrees(_wrap(tt - ts)))
         gi = build.guide(pi, i_prev, a, ts, label, ("x_Ak", "y_Ak", "beta_S", "e"), c)
         model = GroupModel(label, 5, seq, group.i, group.j, 1, None, anchor_j, gi,
-                           pairs={"P_i": pi.id, "P_c": pc.id, "H_j": pj.id})
+                           pairs=roles)
         build.add(model, (c, ts), (hj, tt))
     else:  # pragma: no cover - the structure analyzer gives kinds 1..5 only
         raise StructureError(f"unsupported group kind {kind}")
@@ -820,18 +841,15 @@ def model_from_params(analysis: Any) -> KinematicModel:
     if topo.composite_group is not None:
         raise StructureError(f"{chain.source}: an actuator input needs the chain form with a "
                              f"'geometry:' sketch")
-    crank, driven = topo.crank()
+    group0 = topo.input_group()
+    crank, label0 = group0.i, group0.label
     direction = 1
-    label0 = f"L0({crank})"
     node0 = _param_node(reader, rows, (crank,), label0, 0)
     _param_values(node0, 0, build, label0, supplied_ok=False)
     if node0 is not None:
         s = node0.get("s", kind="int", required=False, default=1,
                       check=lambda v: None if v in (1, -1) else "s must be +1 or −1")
         direction = s if s in (1, -1) else 1
-    group0 = GroupModel(label0, 0, 1, crank, None,
-                        hinge_i=Anchor(topo.frame, label0, "x_O1", "y_O1", False),
-                        pairs={"H_i": driven})
     build.add(group0)
     tracing: list[TracePoint] = []
     for seq, group in enumerate(topo.groups, start=2):
@@ -955,43 +973,33 @@ def _param_guide(topo: _Topology, build: _Builder, pair: Any, carrier: LinkId, l
 
 def _param_group(topo: _Topology, build: _Builder, group: Any, label: str, seq: int,
                  variant: Any, reader: TableReader, node: Node | None) -> GroupModel:
-    pi, pj, pc = (topo.pairs[group.pair_i], topo.pairs[group.pair_j], topo.pairs[group.pair_c])
+    pi, pj = topo.pairs[group.pair_i], topo.pairs[group.pair_j]
+    roles = topo.pair_roles(group)
     kind = group.kind
     i_prev, j_prev = group.i_minus_1, group.j_minus_1
     sigma = 1 if variant in (None, 0) else _sign(variant)
-    if kind == 1:
-        return GroupModel(label, 1, seq, group.i, group.j, sigma,
-                          _param_anchor(topo, build, i_prev, label, ("x_Hi", "y_Hi"), reader,
-                                        node),
-                          _param_anchor(topo, build, j_prev, label, ("x_Hj", "y_Hj"), reader,
-                                        node),
-                          pairs={"H_i": pi.id, "H_j": pj.id, "C": pc.id})
+
+    def hinge(link: LinkId, cols: tuple[str, str]) -> Anchor:
+        return _param_anchor(topo, build, link, label, cols, reader, node)
+
+    def guide(pair: Any, carrier: LinkId, cols: tuple[str, str, str, str | None]) -> Guide:
+        return _param_guide(topo, build, pair, carrier, label, cols, reader, node)
+
+    if kind in (1, 3):
+        return GroupModel(label, kind, seq, group.i, group.j, sigma,
+                          hinge(i_prev, ("x_Hi", "y_Hi")), hinge(j_prev, ("x_Hj", "y_Hj")),
+                          pairs=roles)
     if kind == 2:
         return GroupModel(label, 2, seq, group.i, group.j, sigma, None,
-                          _param_anchor(topo, build, j_prev, label, ("x_Hj", "y_Hj"), reader,
-                                        node),
-                          _param_guide(topo, build, pi, i_prev, label,
-                                       ("x_Ak", "y_Ak", "beta_g", "e"), reader, node),
-                          pairs={"P_i": pi.id, "C": pc.id, "H_j": pj.id})
-    if kind == 3:
-        return GroupModel(label, 3, seq, group.i, group.j, sigma,
-                          _param_anchor(topo, build, i_prev, label, ("x_Hi", "y_Hi"), reader,
-                                        node),
-                          _param_anchor(topo, build, j_prev, label, ("x_Hj", "y_Hj"), reader,
-                                        node),
-                          pairs={"H_i": pi.id, "P_c": pc.id, "H_j": pj.id})
+                          hinge(j_prev, ("x_Hj", "y_Hj")),
+                          guide(pi, i_prev, ("x_Ak", "y_Ak", "beta_g", "e")), pairs=roles)
     if kind == 4:
         return GroupModel(label, 4, seq, group.i, group.j, 1, None, None,
-                          _param_guide(topo, build, pi, i_prev, label,
-                                       ("x_Ak", "y_Ak", "beta_i", "e_i"), reader, node),
-                          _param_guide(topo, build, pj, j_prev, label,
-                                       ("x_Bk", "y_Bk", "beta_j", "e_j"), reader, node),
-                          pairs={"P_i": pi.id, "C": pc.id, "P_j": pj.id})
+                          guide(pi, i_prev, ("x_Ak", "y_Ak", "beta_i", "e_i")),
+                          guide(pj, j_prev, ("x_Bk", "y_Bk", "beta_j", "e_j")), pairs=roles)
     return GroupModel(label, 5, seq, group.i, group.j, 1, None,
-                      _param_anchor(topo, build, j_prev, label, ("x_Hj", "y_Hj"), reader, node),
-                      _param_guide(topo, build, pi, i_prev, label,
-                                   ("x_Ak", "y_Ak", "beta_S", "e"), reader, node),
-                      pairs={"P_i": pi.id, "P_c": pc.id, "H_j": pj.id})
+                      hinge(j_prev, ("x_Hj", "y_Hj")),
+                      guide(pi, i_prev, ("x_Ak", "y_Ak", "beta_S", "e")), pairs=roles)
 
 
 def _param_tracing(node: Node | None, group: GroupModel, build: _Builder

@@ -141,6 +141,7 @@ class _Terms:
     lever4: NDArray[np.float64]    # rocker lever of the restitution law
     sign: NDArray[np.float64]      # direction of the friction impulse on the rocker, ±1
     slip: NDArray[np.float64]      # tangential slip before impact
+    approach: NDArray[np.float64]  # approach before impact with the restitution lever
 
 
 def _terms(data: ImpactData, position: ImpactPosition, lever: Lever) -> _Terms:
@@ -150,9 +151,11 @@ def _terms(data: ImpactData, position: ImpactPosition, lever: Lever) -> _Terms:
     s4, c4 = np.sin(psi - position.theta4), np.cos(psi - position.theta4)
     arm_f4 = data.r4 * c4 + data.clearance
     slip = _tangential(data, position.omega2, position.omega3, position.omega4, c2, c3, arm_f4)
-    return _Terms(s2=s2, s3=s3, c2=c2, c3=c3, s4=s4, arm_f4=arm_f4,
-                  lever4=restitution_lever(data, position, lever),
-                  sign=np.where(slip >= 0.0, 1.0, -1.0), slip=slip)
+    lever4 = restitution_lever(data, position, lever)
+    approach = (data.r2 * position.omega2 * s2 + data.r3 * position.omega3 * s3
+                - lever4 * position.omega4)
+    return _Terms(s2=s2, s3=s3, c2=c2, c3=c3, s4=s4, arm_f4=arm_f4, lever4=lever4,
+                  sign=np.where(slip >= 0.0, 1.0, -1.0), slip=slip, approach=approach)
 
 
 def _tangential(data: ImpactData, omega2: NDArray[np.float64], omega3: NDArray[np.float64],
@@ -176,9 +179,14 @@ def _coupler_velocity(data: ImpactData, position: ImpactPosition, omega2: NDArra
             + 1j * (data.r3 / 2.0) * omega3 * np.exp(1j * position.theta3))
 
 
-def _batched_solve(matrix: NDArray[np.float64], rhs: NDArray[np.float64],
+def _batched_solve(rows: list[list[NDArray[np.float64]]], rhs: list[NDArray[np.float64]],
                    exists: NDArray[np.bool_]) -> NDArray[np.float64]:
-    """Solve the systems where there is an impact; NaN elsewhere."""
+    """Solve the systems given row by row where there is an impact; NaN elsewhere.
+
+    The solution's last axis holds the unknowns in the order of the columns.
+    """
+    matrix = np.stack([np.stack(row, axis=-1) for row in rows], axis=-2)
+    rhs = np.stack(rhs, axis=-1)
     out = np.full(rhs.shape, np.nan)
     out[exists] = np.linalg.solve(matrix[exists], rhs[exists][..., None])[..., 0]
     return out
@@ -237,11 +245,9 @@ def solve_paper(data: ImpactData, position: ImpactPosition, *, k: float | None =
         # full slip
         [zero, zero, zero, zero, zero, zero, zero, mu * t.sign, -one],
     ]
-    approach = data.r2 * w2 * t.s2 + data.r3 * w3 * t.s3 - t.lever4 * w4
     rhs = [zero, zero, data.m3 * v3.real, data.m3 * v3.imag, data.inertia3 * w3,
-           data.inertia_o2 * w2, data.inertia_o4 * w4, k * approach, zero]
-    matrix = np.stack([np.stack(row, axis=-1) for row in rows], axis=-2)
-    x = _batched_solve(matrix, np.stack(rhs, axis=-1), position.exists)
+           data.inertia_o2 * w2, data.inertia_o4 * w4, k * t.approach, zero]
+    x = _batched_solve(rows, rhs, position.exists)
     w2p, w3p, w4p, x3p, y3p, rax, ray, normal, friction = np.moveaxis(x, -1, 0)
     r_a = rax + 1j * ray
     dv2 = 1j * (data.r2 / 2.0) * (w2p - w2) * np.exp(1j * th2)
@@ -274,11 +280,9 @@ def solve_townsend_mansour(data: ImpactData, position: ImpactPosition, *,
         [-data.r3 * t.s3, t.lever4, zero, zero],
         [zero, zero, mu * t.sign, -one],
     ]
-    approach = data.r2 * w2 * t.s2 + data.r3 * w3 * t.s3 - t.lever4 * w4
-    rhs = [data.inertia_a3 * w3, data.inertia_o4 * w4,
-           k * approach + data.r2 * w2 * t.s2, zero]
-    matrix = np.stack([np.stack(row, axis=-1) for row in rows], axis=-2)
-    x = _batched_solve(matrix, np.stack(rhs, axis=-1), position.exists)
+    rhs = [data.inertia_a3 * w3, data.inertia_o4 * w4, k * t.approach + data.r2 * w2 * t.s2,
+           zero]
+    x = _batched_solve(rows, rhs, position.exists)
     w3p, w4p, normal, friction = np.moveaxis(x, -1, 0)
     w2p = np.where(position.exists, w2, np.nan)
     v3p = _coupler_velocity(data, position, w2p, w3p)

@@ -61,6 +61,17 @@ KIND_COLUMNS: dict[int, tuple[str, ...]] = {
         "beta_M"),
 }
 
+#: Columns of the external hinges H_i, H_j of a dyad.
+_HINGE_COLUMNS = {"i": ("x_Hi", "y_Hi"), "j": ("x_Hj", "y_Hj")}
+
+#: Columns (base x, y, direction β, offset e) of the external guides of a dyad, by kind and side.
+_GUIDE_COLUMNS: dict[tuple[int, str], tuple[str, str, str, str | None]] = {
+    (2, "i"): ("x_Ak", "y_Ak", "beta_g", "e"),
+    (4, "i"): ("x_Ak", "y_Ak", "beta_i", "e_i"),
+    (4, "j"): ("x_Bk", "y_Bk", "beta_j", "e_j"),
+    (5, "i"): ("x_Ak", "y_Ak", "beta_S", "e"),
+}
+
 #: The symbol of a value supplied by an earlier group (``method.md`` §4.3).
 SUPPLIED = "A"
 
@@ -482,7 +493,7 @@ class _Builder:
     def attachment(self, link: LinkId, point: complex, label: str, side: str) -> Anchor:
         """Anchor of an external hinge of group ``label`` at ``point`` on ``link``."""
         if link == self.topo.frame:
-            cols = ("x_Hi", "y_Hi") if side == "i" else ("x_Hj", "y_Hj")
+            cols = _HINGE_COLUMNS[side]
             self.put(label, cols[0], point.real)
             self.put(label, cols[1], point.imag)
             return Anchor(link, label, cols[0], cols[1], False)
@@ -753,7 +764,7 @@ def _sketch_group(topo: _Topology, sketch: _Sketch, build: _Builder, group: Any,
             return
         anchor_j = build.attachment(j_prev, hj, label, "j")
         build.put(label, "l_j", abs(c - hj))
-        guide = build.guide(pi, i_prev, base, theta, label, ("x_Ak", "y_Ak", "beta_g", "e"), c)
+        guide = build.guide(pi, i_prev, base, theta, label, _GUIDE_COLUMNS[2, "i"], c)
         sigma = _sign(_dot(c - hj, cmath.exp(1j * theta)))
         model = GroupModel(label, 2, seq, group.i, group.j, sigma, None, anchor_j, guide,
                            pairs=roles)
@@ -776,8 +787,8 @@ def _sketch_group(topo: _Topology, sketch: _Sketch, build: _Builder, group: Any,
                         sketch.direction(pj))
         if not need([c, a, ti, b, tj]):
             return
-        gi = build.guide(pi, i_prev, a, ti, label, ("x_Ak", "y_Ak", "beta_i", "e_i"), c)
-        gj = build.guide(pj, j_prev, b, tj, label, ("x_Bk", "y_Bk", "beta_j", "e_j"), c)
+        gi = build.guide(pi, i_prev, a, ti, label, _GUIDE_COLUMNS[4, "i"], c)
+        gj = build.guide(pj, j_prev, b, tj, label, _GUIDE_COLUMNS[4, "j"], c)
         model = GroupModel(label, 4, seq, group.i, group.j, 1, None, None, gi, gj,
                            pairs=roles)
         build.add(model, (c, ti), (c, tj))
@@ -796,7 +807,7 @@ def _sketch_group(topo: _Topology, sketch: _Sketch, build: _Builder, group: Any,
         c = hj + _cross(a - hj, us) / denominator * ut
         anchor_j = build.attachment(j_prev, hj, label, "j")
         build.put(label, "gamma", math.degrees(_wrap(tt - ts)))
-        gi = build.guide(pi, i_prev, a, ts, label, ("x_Ak", "y_Ak", "beta_S", "e"), c)
+        gi = build.guide(pi, i_prev, a, ts, label, _GUIDE_COLUMNS[5, "i"], c)
         model = GroupModel(label, 5, seq, group.i, group.j, 1, None, anchor_j, gi,
                            pairs=roles)
         build.add(model, (c, ts), (hj, tt))
@@ -987,19 +998,19 @@ def _param_group(topo: _Topology, build: _Builder, group: Any, label: str, seq: 
 
     if kind in (1, 3):
         return GroupModel(label, kind, seq, group.i, group.j, sigma,
-                          hinge(i_prev, ("x_Hi", "y_Hi")), hinge(j_prev, ("x_Hj", "y_Hj")),
+                          hinge(i_prev, _HINGE_COLUMNS["i"]), hinge(j_prev, _HINGE_COLUMNS["j"]),
                           pairs=roles)
     if kind == 2:
         return GroupModel(label, 2, seq, group.i, group.j, sigma, None,
-                          hinge(j_prev, ("x_Hj", "y_Hj")),
-                          guide(pi, i_prev, ("x_Ak", "y_Ak", "beta_g", "e")), pairs=roles)
+                          hinge(j_prev, _HINGE_COLUMNS["j"]),
+                          guide(pi, i_prev, _GUIDE_COLUMNS[2, "i"]), pairs=roles)
     if kind == 4:
         return GroupModel(label, 4, seq, group.i, group.j, 1, None, None,
-                          guide(pi, i_prev, ("x_Ak", "y_Ak", "beta_i", "e_i")),
-                          guide(pj, j_prev, ("x_Bk", "y_Bk", "beta_j", "e_j")), pairs=roles)
+                          guide(pi, i_prev, _GUIDE_COLUMNS[4, "i"]),
+                          guide(pj, j_prev, _GUIDE_COLUMNS[4, "j"]), pairs=roles)
     return GroupModel(label, 5, seq, group.i, group.j, 1, None,
-                      hinge(j_prev, ("x_Hj", "y_Hj")),
-                      guide(pi, i_prev, ("x_Ak", "y_Ak", "beta_S", "e")), pairs=roles)
+                      hinge(j_prev, _HINGE_COLUMNS["j"]),
+                      guide(pi, i_prev, _GUIDE_COLUMNS[5, "i"]), pairs=roles)
 
 
 def _param_tracing(node: Node | None, group: GroupModel, build: _Builder

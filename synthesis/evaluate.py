@@ -203,16 +203,17 @@ class Evaluator:
         control = self.problem.control
         with np.errstate(invalid="ignore"):
             if cls == 1:
-                raw = _full(motion.link_angle(self.output_link), d, self.positions.size)
-                grid = assur.unwrap(raw[:, :n])
-                out_grid = grid - grid[:, :1]
-                nearest = np.rint(self.control_phi / (2 * np.pi) * n).astype(int) % n
-                wrap = np.angle(np.exp(1j * (raw[:, n:] - raw[:, nearest])))
-                out = out_grid[:, nearest] + wrap
                 if self.problem.output.ratio:
                     out = self.ratio(model, self.control_phi)
                     out_grid = (self.ratio(model, self.grid) if curve
                                 else np.full((d, n), np.nan))
+                else:
+                    raw = _full(motion.link_angle(self.output_link), d, self.positions.size)
+                    grid = assur.unwrap(raw[:, :n])
+                    out_grid = grid - grid[:, :1]
+                    nearest = np.rint(self.control_phi / (2 * np.pi) * n).astype(int) % n
+                    wrap = np.angle(np.exp(1j * (raw[:, n:] - raw[:, nearest])))
+                    out = out_grid[:, nearest] + wrap
                 phi_c = np.broadcast_to(self.control_phi, out.shape)
                 if control.zone:
                     dev = C.zone_deviations(out, control.lower, control.upper, control.weight)

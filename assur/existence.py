@@ -285,18 +285,18 @@ def _shortfall(model: KinematicModel, motion: Motion, group: GroupModel, at: int
     margin = float(np.broadcast_to(sol.margin, motion.q.shape)[at])
     delta = float(np.max(model.params.get(group.column("delta"), 0.0)))
     value = model.value
+
+    def hinge(role: str) -> complex:
+        return np.broadcast_to(J.value(motion.joints[group.pairs[role]]), motion.q.shape)[at]
+
     if group.kind == 1:
-        h_i = np.broadcast_to(J.value(motion.joints[group.pairs["H_i"]]), motion.q.shape)[at]
-        h_j = np.broadcast_to(J.value(motion.joints[group.pairs["H_j"]]), motion.q.shape)[at]
-        d = abs(h_j - h_i)
+        d = abs(hinge("H_j") - hinge("H_i"))
         l_i = float(motion.q[at]) if group.driven == "i" else float(value(group.column("l_i")))
         l_j = float(motion.q[at]) if group.driven == "j" else float(value(group.column("l_j")))
         return float(max(d - (l_i + l_j), abs(l_i - l_j) - d)), "mm"
     if group.kind == 2:
         return float(-margin * float(value(group.column("l_j")))), "mm"
     if group.kind == 3:
-        h_i = np.broadcast_to(J.value(motion.joints[group.pairs["H_i"]]), motion.q.shape)[at]
-        h_j = np.broadcast_to(J.value(motion.joints[group.pairs["H_j"]]), motion.q.shape)[at]
-        return float(-margin * abs(h_j - h_i)), "mm"
+        return float(-margin * abs(hinge("H_j") - hinge("H_i"))), "mm"
     angle = math.degrees(math.asin(min(max(margin, 0.0), 1.0)))
     return float(math.degrees(math.asin(min(delta, 1.0))) - angle), "deg"

@@ -17,6 +17,8 @@ from numpy.typing import NDArray
 from synthesis.cases.impact.data import ImpactData
 from synthesis.cases.impact.models import (
     ImpactResult,
+    pin_offset,
+    restitution_lever,
     solve_paper,
     solve_townsend_mansour,
 )
@@ -104,10 +106,7 @@ class AlphaSlip:
 
 def alpha_slip(data: ImpactData, position: ImpactPosition) -> AlphaSlip:
     """Quantify the α-sign slip of the source's restitution law at the given positions."""
-    gap = position.psi - position.theta4
-    xi = data.clearance
-    rho = np.sqrt(data.r4 ** 2 + xi ** 2 + 2.0 * data.r4 * xi * np.cos(gap))
-    alpha = np.arcsin(xi / rho * np.sin(gap))
+    _, alpha = pin_offset(data, position)
     energy: dict[str, NDArray[np.float64]] = {}
     exact: dict[str, NDArray[np.float64]] = {}
     restitution: dict[str, NDArray[np.float64]] = {}
@@ -117,6 +116,7 @@ def alpha_slip(data: ImpactData, position: ImpactPosition) -> AlphaSlip:
         energy[printed.model] = -energy_balance(data, position, printed).relative_loss
         exact[right.model] = -energy_balance(data, position, right).relative_loss
         restitution[printed.model] = -printed.approach_after / printed.approach_before
-    lever_error = rho * np.sin(gap + alpha) / (data.r4 * np.sin(gap)) - 1.0
+    lever_error = (restitution_lever(data, position, "paper")
+                   / restitution_lever(data, position, "exact") - 1.0)
     return AlphaSlip(alpha=alpha, lever_error=lever_error,
                      energy_error=energy, exact_energy_error=exact, restitution=restitution)

@@ -27,6 +27,7 @@ __all__ = [
     "MODELS",
     "ImpactResult",
     "Lever",
+    "pin_offset",
     "restitution_lever",
     "solve_paper",
     "solve_townsend_mansour",
@@ -104,6 +105,21 @@ class ImpactResult:
         }
 
 
+def pin_offset(data: ImpactData, position: ImpactPosition
+               ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """ρ and α of (8): the distance from O4 to the pin centre and its angle to the rocker.
+
+    Returns
+    -------
+    rho, alpha : ndarray
+        Of the positions' shape; ρ in metres, α in radians.
+    """
+    gap = position.psi - position.theta4
+    xi = data.clearance
+    rho = np.sqrt(data.r4 ** 2 + xi ** 2 + 2.0 * data.r4 * xi * np.cos(gap))
+    return rho, np.arcsin(xi / rho * np.sin(gap))
+
+
 def restitution_lever(data: ImpactData, position: ImpactPosition,
                       lever: Lever = "paper") -> NDArray[np.float64]:
     """The rocker's lever in the restitution law: v_B4n = lever · θ4'.
@@ -122,9 +138,7 @@ def restitution_lever(data: ImpactData, position: ImpactPosition,
     gap = position.psi - position.theta4
     if lever == "exact":
         return data.r4 * np.sin(gap)
-    xi = data.clearance
-    rho = np.sqrt(data.r4 ** 2 + xi ** 2 + 2.0 * data.r4 * xi * np.cos(gap))
-    alpha = np.arcsin(xi / rho * np.sin(gap))
+    rho, alpha = pin_offset(data, position)
     return rho * np.sin(gap + alpha)
 
 

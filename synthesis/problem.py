@@ -207,13 +207,6 @@ class Problem:
     search: dict[str, Any] = field(default_factory=dict)
 
     @property
-    def class_name(self) -> str:
-        """The task class in words."""
-        if self.output.ratio:
-            return "velocity ratio n(φ) = dψ/dφ"
-        return _CLASS_NAMES[self.task_class]
-
-    @property
     def output_unit(self) -> str:
         """Internal unit of the controlled output: ``'rad'`` (ψ), ``'mm'`` (S, Ж) or ``'1'``
         (the dimensionless ratio n)."""

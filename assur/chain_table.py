@@ -28,6 +28,7 @@ from assur.tables import MISSING, Node, TableReader, describe, normalise_id
 __all__ = [
     "IDENTIFICATION_FIELDS",
     "chain_from_dict",
+    "group_key",
     "load_chain",
     "pair_label",
     "recentre_hinge",
@@ -484,9 +485,13 @@ def _group_params(rows: list[tuple[dict[str, Any], str]] | None
     params: dict[tuple[LinkId, ...], dict[str, Any]] = {}
     for row, _ in rows or []:
         if row.get("params") is not None:
-            key = (row["i"],) if row["L"] == 0 else (row["i"], row["j"])
-            params[key] = row["params"]
+            params[group_key(row)] = row["params"]
     return params
+
+
+def group_key(row: dict[str, Any]) -> tuple[LinkId, ...]:
+    """The links of the group of an identification row: ``(i,)`` for L0, else ``(i, j)``."""
+    return (row["i"],) if row["L"] == 0 else (row["i"], row["j"])
 
 
 # ------------------------------------------------------------------------------ helpers

@@ -31,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+from assur.chain_table import group_key
 from assur.errors import Issue, StructureError, TableError
 from assur.model import LinkId, PairId, PairType
 from assur.tables import MISSING, Node, TableReader, describe, normalise_id
@@ -845,10 +846,7 @@ def model_from_params(analysis: Any) -> KinematicModel:
     reader = TableReader.from_data({}, source=chain.source)
     build = _Builder(topo)
     rows = chain.group_params
-    variants = {}
-    for row in chain.identification or ():
-        key = (row["i"],) if row["L"] == 0 else (row["i"], row["j"])
-        variants[key] = row.get("variant")
+    variants = {group_key(row): row.get("variant") for row in chain.identification or ()}
     if topo.composite_group is not None:
         raise StructureError(f"{chain.source}: an actuator input needs the chain form with a "
                              f"'geometry:' sketch")

@@ -14,7 +14,13 @@ from typing import Any, Literal
 
 import numpy as np
 
-from synthesis.cases.tracker.design import PATENT_TASK, Design, Violation, design_table
+from synthesis.cases.tracker.design import (
+    PATENT_TASK,
+    Design,
+    DesignTable,
+    Violation,
+    design_table,
+)
 from synthesis.cases.tracker.patent import CHOSEN, EXAMPLE, K2, SERIES
 from synthesis.cases.tracker.reproduction import ANGLES, Comparison
 from synthesis.cases.tracker.study import Study, Verification, worst
@@ -202,22 +208,24 @@ def violation_text(violation: Violation, lang: Lang = "en") -> str:
                                                   l=convert(violation.limit))
 
 
+def _table_designs(table: DesignTable) -> list[Design]:
+    """The designs of the table's cells, k5 by k5, each over every k2."""
+    return [table.design(i, j) for j in range(table.values.k5.shape[1])
+            for i in range(table.values.k2.shape[0])]
+
+
 def _design_rows(study: Study, lang: Lang) -> list[str]:
-    table = study.table
-    v = table.values
     mm = "mm" if lang == "en" else "мм"
     head = ["k5", "k2", "b_min°", "c°", "d°", "k_d", "k_i", "k_s", "k_g", f"l_d {mm}",
             f"l_s {mm}", f"l_g {mm}", ""]
     rows = [head]
-    for j in range(v.k5.shape[1]):
-        for i in range(v.k2.shape[0]):
-            design = table.design(i, j)
-            rows.append([f"{design.k5:g}", f"{design.k2:g}",
-                         *(f"{math.degrees(x):.2f}" for x in (design.b_min, design.c, design.d)),
-                         *(f"{x:.3f}" for x in (design.k_d, design.k_i, design.k_s, design.k_g)),
-                         *(f"{x:.1f}" for x in (design.l_d, design.l_s, design.l_g)),
-                         _t("verdict_ok", lang) if design.admissible
-                         else "; ".join(violation_text(v, lang) for v in design.violations)])
+    for design in _table_designs(study.table):
+        rows.append([f"{design.k5:g}", f"{design.k2:g}",
+                     *(f"{math.degrees(x):.2f}" for x in (design.b_min, design.c, design.d)),
+                     *(f"{x:.3f}" for x in (design.k_d, design.k_i, design.k_s, design.k_g)),
+                     *(f"{x:.1f}" for x in (design.l_d, design.l_s, design.l_g)),
+                     _t("verdict_ok", lang) if design.admissible
+                     else "; ".join(violation_text(v, lang) for v in design.violations)])
     return _table(rows)
 
 
@@ -507,8 +515,7 @@ def to_dict(study: Study) -> dict[str, Any]:
              "k_i": d.k_i, "k_s": d.k_s, "k_g": d.k_g, "lengths_mm": d.lengths(),
              "admissible": d.admissible,
              "violations": [violation_text(v) for v in d.violations]}
-            for d in (table.design(i, j) for j in range(table.values.k5.shape[1])
-                      for i in range(table.values.k2.shape[0]))]
+            for d in _table_designs(table)]
     return {
         "case": "tracker",
         "task": {"stroke_deg": math.degrees(task.stroke),

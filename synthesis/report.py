@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 import yaml
 
 from assur import atomic_write_text
@@ -229,11 +230,18 @@ def _binding(problem: Problem, result: SearchResult, analysis: Analysis) -> list
     return out
 
 
-def _feasible_trials(problem: Problem, result: SearchResult, top: int) -> list[dict[str, Any]]:
+def _feasible_order(result: SearchResult) -> npt.NDArray[np.intp]:
+    """Indices of the feasible passive trials (P1 = P2 = 0, not a refinement step), best Q
+    first."""
     c = result.trial_criteria
     passive = np.array([stage != "refine" for stage in result.stage])
     ok = np.flatnonzero((c.p1 == 0) & (c.p2 == 0) & np.isfinite(c.q) & passive)
-    order = ok[np.argsort(c.q[ok], kind="stable")][:top]
+    return ok[np.argsort(c.q[ok], kind="stable")]
+
+
+def _feasible_trials(problem: Problem, result: SearchResult, top: int) -> list[dict[str, Any]]:
+    c = result.trial_criteria
+    order = _feasible_order(result)[:top]
     return [{"trial": int(k), "stage": result.stage[k], "Q": float(c.q[k]),
              **problem.design(result.trials[k])} for k in order]
 
@@ -372,9 +380,7 @@ def write_trials(path: str | os.PathLike[str], problem: Problem, result: SearchR
     import io
 
     c = result.trial_criteria
-    passive = np.array([stage != "refine" for stage in result.stage])
-    ok = np.flatnonzero((c.p1 == 0) & (c.p2 == 0) & np.isfinite(c.q) & passive)
-    order = ok[np.argsort(c.q[ok], kind="stable")]
+    order = _feasible_order(result)
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(["trial", "stage", "Q", *problem.names])

@@ -25,17 +25,15 @@ _LABELS = {
 
 def save_plot(design: Design, path: str | Path, lang: str = "en") -> Path:
     """Draw the design and write the picture (format from the file suffix) atomically."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
 
     words = _LABELS[lang]
     d = design
     theta = np.linspace(0.0, 2.0 * np.pi, 1441)
     phi, _ = rocker_angle(d.e, d.c, d.r, theta)
     n = velocity_ratio(d.e, d.r, theta, phi)
-    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 5), width_ratios=(3, 2))
+    fig = Figure(figsize=(12, 5))
+    left, right = fig.subplots(1, 2, width_ratios=(3, 2))
     degrees = np.degrees(theta)
     left.plot(degrees, n, color="C0")
     low, high = sorted((d.n_end, d.n_star))
@@ -66,7 +64,4 @@ def save_plot(design: Design, path: str | Path, lang: str = "en") -> Path:
     right.grid(True, alpha=0.3)
     right.legend(loc="best")
     fig.tight_layout()
-    try:
-        return write_figure(fig, path)
-    finally:
-        plt.close(fig)
+    return write_figure(fig, path)

@@ -313,9 +313,8 @@ class Evaluator:
         if self.problem.rotations:
             swings = {}
             for item in assur.joint_rotations(motion):
-                theta = _full(item.theta, d, size)[:, :n]
-                swings[item.pair] = (np.max(np.nan_to_num(theta), axis=1)
-                                     - np.min(np.nan_to_num(theta), axis=1))
+                theta = np.nan_to_num(_full(item.theta, d, size)[:, :n])
+                swings[item.pair] = np.ptp(theta, axis=1)
             for label, limits in self.problem.rotations.items():
                 group = motion.model.group(label)
                 rotation[label] = np.stack([swings[group.pairs[role]] for role in limits],

@@ -224,7 +224,7 @@ def _moving_links(model: Any) -> list[Any]:
 
 def _floats(values: Any) -> list[float | None]:
     array = np.asarray(values, dtype=float).ravel()
-    return [float(v) if math.isfinite(v) else None for v in array]
+    return [_nan(v) for v in array]
 
 
 def _xy(z: Any, prefix: str = "") -> dict[str, list[float | None]]:

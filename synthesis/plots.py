@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from assur import atomic_write_bytes, values
 from synthesis.evaluate import Analysis
 from synthesis.problem import Problem
 from synthesis.search import SearchResult
@@ -98,15 +99,18 @@ def plot_mechanism(problem: Problem, analysis: Analysis, *, axes: Any = None,
     motion = analysis.motion
     model = motion.model
     at = 0
+
+    def start(point: Any) -> complex:
+        return complex(np.broadcast_to(values(point), (1, motion.q.size))[0, at])
+
     points: dict[Any, list[complex]] = {}
     for pid, (kind, links, _) in model.pair_links.items():
         if kind == "R" and pid in motion.joints:
-            z = complex(np.broadcast_to(np.asarray(_value(motion.joints[pid])),
-                                        (1, motion.q.size))[0, at])
+            z = start(motion.joints[pid])
             for link in links:
                 points.setdefault(link, []).append(z)
     for state in motion.sliders.values():
-        z = complex(np.broadcast_to(np.asarray(_value(state.point)), (1, motion.q.size))[0, at])
+        z = start(state.point)
         points.setdefault(state.slider, []).append(z)
         points.setdefault(state.carrier, []).append(z)
     if problem.task_class in (3, 4):
@@ -156,8 +160,6 @@ def plot_convergence(result: SearchResult, *, axes: Any = None, lang: str = "en"
 def save_plots(folder: str | os.PathLike[str], problem: Problem, result: SearchResult,
                analysis: Analysis, *, lang: str = "en") -> list[Path]:
     """Write ``output.png``, ``mechanism.png`` and ``convergence.png`` into ``folder``."""
-    from assur import atomic_write_bytes
-
     plt = _pyplot()
     folder = Path(folder)
     written = []
@@ -179,6 +181,3 @@ def save_plots(folder: str | os.PathLike[str], problem: Problem, result: SearchR
         written.append(path)
     return written
 
-
-def _value(x: Any) -> Any:
-    return getattr(x, "v", x)

@@ -316,6 +316,12 @@ def _synthesis_column(answer: SynthesisAnswer) -> dict[str, str]:
     return out
 
 
+def _kg_gap(study: Study) -> float:
+    """Largest difference of the printed k_g from the geometry where no agreement is expected."""
+    return max(c.deviation for c in study.comparisons
+               if c.quantity == "k_g" and c.tolerance is None)
+
+
 def inconsistencies(study: Study, lang: Lang = "en") -> list[str]:
     """The patent's inconsistencies, each as one sentence with the numbers that show it."""
     from synthesis.cases.tracker.geometry import proportions
@@ -324,8 +330,7 @@ def inconsistencies(study: Study, lang: Lang = "en") -> list[str]:
     at = proportions(a, np.array(K2), EXAMPLE["k5"])
     b22 = math.degrees(float(at.b_min[-1]))
     k_s22 = float(at.k_s[-1])
-    kg_rows = [c for c in study.comparisons if c.quantity == "k_g" and c.tolerance is None]
-    kg_gap = max(c.deviation for c in kg_rows)
+    kg_gap = _kg_gap(study)
     kg_printed = ", ".join(f"{at_k:g}" for at_k in
                            next(s for s in SERIES if s.source == "fig. 12").values.values())
     kg_computed = ", ".join(f"{x:.3f}" for x in at.k_g)
@@ -433,9 +438,7 @@ def summary(study: Study, lang: Lang = "en") -> str:
                                                                 "k_s", "k_g")}
     out.append("  " + _t("worst", lang).format(items=", ".join(
         f"{q} {worst(study.comparisons, q):.3f} ({tol:g})" for q, tol in tolerances.items())))
-    kg = [c.deviation for c in study.comparisons
-          if c.quantity == "k_g" and c.tolerance is None]
-    out += ["  " + _t("kg_differs", lang).format(dk=max(kg)), ""]
+    out += ["  " + _t("kg_differs", lang).format(dk=_kg_gap(study)), ""]
     out += [_t("procedure", lang) + ":"]
     k2min = study.table.k2_min
     out.append("  " + (_t("etapa1", lang).format(b=math.degrees(task.min_transmission),

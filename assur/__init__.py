@@ -4,12 +4,11 @@ The public API is re-exported here; :mod:`synthesis` uses nothing else.
 """
 
 from assur.errors import AssemblyError, AssurError, AssurWarning, Issue, StructureError, TableError
-from assur.tables import (
+from assur.io.files import atomic_write_bytes, atomic_write_text
+from assur.io.reader import (
     MISSING,
     Node,
     TableReader,
-    atomic_write_bytes,
-    atomic_write_text,
     describe,
     normalise_id,
 )
@@ -31,19 +30,19 @@ __all__ = [
 ]
 
 # --- structure: chains, decomposition, diagnostics, identification tables (structure owner) ---
-from assur.chain_table import chain_from_dict, load_chain  # noqa: E402
-from assur.classification import AssurGroup  # noqa: E402
-from assur.diagnostics import Diagnostic  # noqa: E402
-from assur.identification import (  # noqa: E402
+from assur.io.chain_table import chain_from_dict, load_chain  # noqa: E402
+from assur.structure.classification import AssurGroup  # noqa: E402
+from assur.structure.diagnostics import Diagnostic  # noqa: E402
+from assur.structure.identification import (  # noqa: E402
     IdentificationRow,
     Mismatch,
     check_identification,
     identification_table,
 )
 from assur.model import Chain, Drive, Input, Link, LinkId, Pair, PairId, PairType  # noqa: E402
-from assur.structure import StructuralAnalysis, analyse_structure  # noqa: E402
-from assur.identification import COLUMNS as IDENTIFICATION_COLUMNS  # noqa: E402
-from assur.structure_report import group_description, structure_report  # noqa: E402
+from assur.structure.analysis import StructuralAnalysis, analyse_structure  # noqa: E402
+from assur.structure.identification import COLUMNS as IDENTIFICATION_COLUMNS  # noqa: E402
+from assur.structure.report import group_description, structure_report  # noqa: E402
 
 __all__ += [
     "AssurGroup",
@@ -70,8 +69,8 @@ __all__ += [
 ]
 
 # --- kinematics: group solvers, mechanism analysis, existence (kinematics owner) ---
-from assur import jets  # noqa: E402
-from assur.dyads import (  # noqa: E402
+from assur.kinematics import jets  # noqa: E402
+from assur.kinematics.dyads import (  # noqa: E402
     REASONS,
     DyadSolution,
     Reason,
@@ -82,7 +81,7 @@ from assur.dyads import (  # noqa: E402
     solve_rrp,
     solve_rrr,
 )
-from assur.jets import Jet  # noqa: E402
+from assur.kinematics.jets import Jet  # noqa: E402
 
 __all__ += [
     "REASONS",
@@ -97,7 +96,7 @@ __all__ += [
     "solve_rrp",
     "solve_rrr",
 ]
-from assur.existence import (  # noqa: E402
+from assur.kinematics.existence import (  # noqa: E402
     CONDITIONS,
     ExistenceReport,
     FailureInterval,
@@ -105,7 +104,7 @@ from assur.existence import (  # noqa: E402
     check_existence,
     first_failure,
 )
-from assur.geometry import (  # noqa: E402
+from assur.kinematics.model import (  # noqa: E402
     KIND_COLUMNS,
     GroupModel,
     KinematicModel,
@@ -114,7 +113,7 @@ from assur.geometry import (  # noqa: E402
     model_from_params,
     model_from_sketch,
 )
-from assur.kinematics import (  # noqa: E402
+from assur.kinematics.analysis import (  # noqa: E402
     Motion,
     SliderState,
     acceleration,
@@ -124,7 +123,7 @@ from assur.kinematics import (  # noqa: E402
     values,
     velocity,
 )
-from assur.transmission import (  # noqa: E402
+from assur.kinematics.transmission import (  # noqa: E402
     JointRotation,
     PressureAngle,
     binary_links,
@@ -160,7 +159,7 @@ __all__ += [
     "values",
     "velocity",
 ]
-from assur.drawing import (  # noqa: E402
+from assur.plot.mechanism import (  # noqa: E402
     draw_mechanism,
     figure_for,
     save_animation_gif,
@@ -170,7 +169,7 @@ from assur.drawing import (  # noqa: E402
 __all__ += ["draw_mechanism", "figure_for", "save_animation_gif", "save_mechanism_png"]
 
 # --- schemes: structural scheme pictures (coursework owner) ---
-from assur.schemes import (  # noqa: E402
+from assur.plot.schemes import (  # noqa: E402
     PictureFormatError,
     SchemeLayout,
     draw_formalised_scheme,

@@ -5,7 +5,7 @@ normalisation (§2.2): every pair joins exactly two links, a hinge shared by k l
 become k − 1 binary pairs that remember the user's joint id in :attr:`Pair.origin`.
 
 Link and pair ids are whole numbers or texts; digit-only texts are turned into numbers
-(:func:`assur.tables.normalise_id`), so ``"3"`` and ``3`` name the same link.
+(:func:`assur.io.reader.normalise_id`), so ``"3"`` and ``3`` name the same link.
 """
 
 from __future__ import annotations

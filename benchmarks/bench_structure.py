@@ -5,7 +5,7 @@ kind drawn from L1–L5 with a fixed seed) is attached to two distinct known lin
 the frame and the last few links, so that the layering grows deep (hundreds of levels) as
 well as wide. The script times
 
-(a) the peeling loop alone (``assur.decomposition.peel``), and
+(a) the peeling loop alone (``assur.structure.peeling.peel``), and
 (b) the whole ``analyse_structure`` (counts, peeling, classification, diagnostics, formula),
 (c) ``identification_table`` on the result,
 
@@ -23,8 +23,8 @@ import time
 import numpy as np
 
 from assur import analyse_structure, chain_from_dict
-from assur.decomposition import body_graph, peel
-from assur.identification import identification_table
+from assur.structure.peeling import body_graph, peel
+from assur.structure.identification import identification_table
 
 _KINDS = {
     1: [("R", "a", "u", None), ("R", "u", "v", None), ("R", "v", "b", None)],

@@ -138,7 +138,7 @@ class Evaluator:
         origin, angle = motion.frames[self.output_link]
         length = model.value(f"{self.label}.l_{name}")
         beta = model.value(f"{self.label}.beta_{name}")
-        return origin + length * assur.jets.expi(angle + beta) if isinstance(
+        return origin + length * assur.kinematics.jets.expi(angle + beta) if isinstance(
             angle, assur.Jet) else origin + length * np.exp(1j * (angle + beta))
 
     # ------------------------------------------------------------------------ criteria

@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 from PIL import Image
 
 from assur import analyse_structure, chain_from_dict, load_chain
-from assur.schemes import group_graph, save_schemes, scheme_bytes, scheme_layout
+from assur.plot.schemes import group_graph, save_schemes, scheme_bytes, scheme_layout
 
 # method.md §3.5: the groups of fig. 1.25 and the formalised scheme's edges
 # ("an edge means uses a link of"), with the hinge that makes each attachment.

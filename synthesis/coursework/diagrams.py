@@ -3,7 +3,7 @@
 * :func:`existence_figure` — the existence margin of every group over the cycle, the
   tolerance δ and the intervals where a group does not assemble;
 * :func:`mechanism_figure` — the mechanism at four positions of the cycle, with the paths
-  of its joints (drawn by :func:`assur.drawing.draw_mechanism`);
+  of its joints (drawn by :func:`assur.plot.mechanism.draw_mechanism`);
 * :func:`kinematic_figures` — the diagrams of the link angles ψ and the slider
   displacements S over the crank angle, with their first and second analogs
   (dψ/dφ, d²ψ/dφ², dS/dφ, d²S/dφ²), and the pressure angles of the L1/L2 groups.
@@ -57,7 +57,7 @@ def existence_figure(report: Any, model: Any, *, lang: str = "en") -> Any:
     Parameters
     ----------
     report : ExistenceReport
-        From :func:`assur.existence.check_existence`.
+        From :func:`assur.kinematics.existence.check_existence`.
     model : KinematicModel
     lang : {"en", "ru"}
 
@@ -105,7 +105,7 @@ def kinematic_figures(motion: Any, *, lang: str = "en") -> list[tuple[str, Any]]
     Parameters
     ----------
     motion : Motion
-        From :func:`assur.kinematics.analyse` with ``analogs=True``.
+        From :func:`assur.kinematics.analysis.analyse` with ``analogs=True``.
     lang : {"en", "ru"}
 
     Returns

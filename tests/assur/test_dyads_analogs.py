@@ -14,8 +14,8 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 
-from assur import jets as J
-from assur.dyads import (
+from assur.kinematics import jets as J
+from assur.kinematics.dyads import (
     DyadSolution,
     solve_input,
     solve_prp,
@@ -24,7 +24,7 @@ from assur.dyads import (
     solve_rrp,
     solve_rrr,
 )
-from assur.jets import Jet
+from assur.kinematics.jets import Jet
 
 PHI = np.linspace(0.0, 2.0 * np.pi, 25)
 H1, H2 = 1e-5, 1e-4

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from assur.dyads import (
+from assur.kinematics.dyads import (
     REASONS,
     Reason,
     solve_input,

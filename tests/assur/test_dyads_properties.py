@@ -21,7 +21,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from assur.dyads import (
+from assur.kinematics.dyads import (
     DyadSolution,
     solve_prp,
     solve_rpp,

@@ -13,7 +13,7 @@ import pytest
 
 from assur import analyse_structure, chain_from_dict, load_chain
 from assur.errors import StructureError
-from assur.identification import check_identification, identification_table
+from assur.structure.identification import check_identification, identification_table
 
 ROOT = Path(__file__).resolve().parents[2]
 COURSE = ROOT / "input_tables" / "course_11_link.yaml"

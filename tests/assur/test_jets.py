@@ -14,8 +14,8 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 
-from assur import jets as J
-from assur.jets import Jet
+from assur.kinematics import jets as J
+from assur.kinematics.jets import Jet
 
 T = np.linspace(-1.2, 1.3, 11)  # parameter values (the "crank angle")
 H1, H2 = 1e-5, 1e-4  # central-difference steps for first and second derivatives

@@ -6,7 +6,7 @@ import hypothesis.strategies as st
 from hypothesis import given
 
 from assur import analyse_structure, chain_from_dict
-from assur.structure_report import structure_report
+from assur.structure.report import structure_report
 
 STEPHENSON = [("A", 0, 1), ("B", 1, 5), ("C", 1, 2), ("D", 2, 3), ("E", 3, 4), ("F", 4, 5),
               ("G", 0, 4)]
@@ -134,7 +134,7 @@ def test_report_speaks_the_course_terms() -> None:
 def test_groups_larger_than_the_search_limit_are_still_found() -> None:
     # the triad of tests/assur/chains/x01_triad.yaml with the subset search limited to 2
     # links: the leftover component {2,3,4,5} has d = 12 − 12 = 0 and is taken whole
-    from assur.decomposition import body_graph, peel
+    from assur.structure.peeling import body_graph, peel
 
     pairs = [("A", 0, 1), ("B", 1, 2), ("C", 2, 4), ("D", 3, 4), ("E", 3, 0), ("F", 4, 5),
              ("G", 5, 0)]

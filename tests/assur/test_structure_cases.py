@@ -14,7 +14,7 @@ import pytest
 import yaml
 
 from assur import analyse_structure, chain_from_dict
-from assur.tables import normalise_id
+from assur.io.reader import normalise_id
 
 CHAINS = sorted((Path(__file__).parent / "chains").glob("*.yaml"))
 

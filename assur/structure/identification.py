@@ -12,10 +12,10 @@ from collections.abc import Iterable, Mapping
 from dataclasses import asdict, dataclass
 from typing import Any
 
-from assur.classification import AssurGroup
+from assur.structure.classification import AssurGroup
 from assur.errors import StructureError
 from assur.model import LinkId, PairType, id_key
-from assur.structure import StructuralAnalysis
+from assur.structure.analysis import StructuralAnalysis
 
 __all__ = ["COLUMNS", "OUT_CODES", "IdentificationRow", "Mismatch", "check_identification",
            "identification_table"]

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 import networkx as nx
 
-from assur.diagnostics import Diagnostic, diagnostic
+from assur.structure.diagnostics import Diagnostic, diagnostic
 from assur.model import Chain, LinkId, PairId, id_key
 
 __all__ = ["S_MAX", "BodyGraph", "Peeling", "RawGroup", "body_graph", "peel"]

@@ -13,8 +13,8 @@ from typing import Any
 
 import networkx as nx
 
-from assur.decomposition import BodyGraph, RawGroup
-from assur.diagnostics import Diagnostic, diagnostic
+from assur.structure.peeling import BodyGraph, RawGroup
+from assur.structure.diagnostics import Diagnostic, diagnostic
 from assur.model import LinkId, PairId, id_key
 
 __all__ = ["DYAD_NAMES", "AssurGroup", "classify", "input_group", "roman", "subscript"]

@@ -2,7 +2,7 @@
 
 Formulas and sign conventions follow ``method.md`` §2.0–2.6; ``docs/group_solvers.md`` gives
 the summary. Points are complex numbers ``x + 1j*y``; angles are radians. Every argument may
-be a number, an ndarray or a :class:`~assur.jets.Jet`; all of them broadcast together, so
+be a number, an ndarray or a :class:`~assur.kinematics.jets.Jet`; all of them broadcast together, so
 parameters shaped ``(D, 1)`` (D candidate designs) and crank angles shaped ``(N,)`` give
 results shaped ``(D, N)``. When any argument is a jet, every geometric output is a jet
 carrying exact first and second derivatives (velocity and acceleration analogs).
@@ -23,8 +23,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from assur import jets as J
-from assur.jets import Jet
+from assur.kinematics import jets as J
+from assur.kinematics.jets import Jet
 
 __all__ = [
     "REASONS",

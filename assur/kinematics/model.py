@@ -31,10 +31,10 @@ from typing import Any
 
 import numpy as np
 
-from assur.chain_table import group_key
+from assur.io.chain_table import group_key
 from assur.errors import Issue, StructureError, TableError
 from assur.model import LinkId, PairId, PairType
-from assur.tables import MISSING, Node, TableReader, describe, normalise_id
+from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
 
 __all__ = [
     "KIND_COLUMNS",
@@ -295,8 +295,8 @@ def load_model(path: str | os.PathLike[str]) -> KinematicModel:
     StructureError
         When the chain is not a class II mechanism with one input.
     """
-    from assur.chain_table import load_chain
-    from assur.structure import analyse_structure
+    from assur.io.chain_table import load_chain
+    from assur.structure.analysis import analyse_structure
 
     return build_model(analyse_structure(load_chain(path)))
 

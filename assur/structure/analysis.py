@@ -1,14 +1,14 @@
 """Structural analysis of a planar chain: mobility, Assur groups, formula, diagnostics.
 
 :func:`analyse_structure` is the entry point. It counts n, p5, p4 and W = 3n − 2p5 − p4,
-peels the chain into its input groups and Assur groups (:mod:`assur.decomposition`),
-classifies them (:mod:`assur.classification`), writes the structure formula
+peels the chain into its input groups and Assur groups (:mod:`assur.structure.peeling`),
+classifies them (:mod:`assur.structure.classification`), writes the structure formula
 (формула строения) in Artobolevsky's notation, finds the mechanism class and gives the
 DGTU applicability verdict (``method.md`` §1.1) with every failed condition named.
 
 Examples
 --------
->>> from assur.chain_table import chain_from_dict
+>>> from assur.io.chain_table import chain_from_dict
 >>> chain = chain_from_dict({"mechanism": {"pairs": [
 ...     {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
 ...     {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}],
@@ -23,12 +23,12 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Any
 
-from assur.chain_table import recentre_hinge
-from assur.classification import AssurGroup, classify, input_group, roman
-from assur.decomposition import BodyGraph, Peeling, body_graph, peel
-from assur.diagnostics import Diagnostic, diagnostic
+from assur.io.chain_table import recentre_hinge
+from assur.structure.classification import AssurGroup, classify, input_group, roman
+from assur.structure.peeling import BodyGraph, Peeling, body_graph, peel
+from assur.structure.diagnostics import Diagnostic, diagnostic
 from assur.model import Chain, Drive, LinkId, PairType, id_key
-from assur.rank_test import RankResult, pose_from_geometry, rank_test
+from assur.structure.rank_test import RankResult, pose_from_geometry, rank_test
 
 __all__ = ["AssurGroup", "Diagnostic", "StructuralAnalysis", "analyse_structure"]
 
@@ -133,7 +133,7 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
     Parameters
     ----------
     chain : Chain
-        From :func:`assur.chain_table.load_chain` or built in code.
+        From :func:`assur.io.chain_table.load_chain` or built in code.
     suggest : bool
         Whether to try extra inputs for an under-constrained leftover and suggest those that
         complete the decomposition.

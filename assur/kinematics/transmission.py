@@ -20,9 +20,9 @@ from typing import Any
 
 import numpy as np
 
-from assur import jets as J
-from assur.geometry import GroupModel, KinematicModel
-from assur.kinematics import Motion, unwrap
+from assur.kinematics import jets as J
+from assur.kinematics.model import GroupModel, KinematicModel
+from assur.kinematics.analysis import Motion, unwrap
 from assur.model import LinkId, PairId
 
 __all__ = [

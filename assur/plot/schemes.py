@@ -31,10 +31,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from assur.classification import roman as roman_numeral
+from assur.structure.classification import roman as roman_numeral
 from assur.errors import AssurError
 from assur.model import Chain, LinkId, Pair, PairId, PairType, id_key
-from assur.tables import atomic_write_bytes
+from assur.io.files import atomic_write_bytes
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
@@ -160,7 +160,7 @@ def group_graph(chain: Chain, analysis: Any) -> list[tuple[str, str, tuple[PairI
     ----------
     chain : Chain
     analysis : StructuralAnalysis
-        The result of :func:`assur.structure.analyse_structure`.
+        The result of :func:`assur.structure.analysis.analyse_structure`.
 
     Returns
     -------

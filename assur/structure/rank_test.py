@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from assur.model import Chain, LinkId, Pair, PairId, PairType
-from assur.tables import normalise_id
+from assur.io.reader import normalise_id
 
 __all__ = ["RankResult", "constraint_jacobian", "pose_from_geometry", "rank_test"]
 

@@ -23,7 +23,7 @@ from typing import Any
 
 from assur.errors import TableError
 from assur.model import Chain, Drive, LinkId, Pair, PairId, PairType, id_key
-from assur.tables import MISSING, Node, TableReader, describe, normalise_id
+from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
 
 __all__ = [
     "IDENTIFICATION_FIELDS",

@@ -17,8 +17,8 @@ from typing import Any
 
 import numpy as np
 
-from assur.kinematics import Motion, values
-from assur.tables import atomic_write_bytes
+from assur.kinematics.analysis import Motion, values
+from assur.io.files import atomic_write_bytes
 
 __all__ = ["draw_mechanism", "figure_for", "save_animation_gif", "save_mechanism_png"]
 

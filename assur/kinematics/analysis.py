@@ -1,10 +1,10 @@
 """Kinematic analysis of a mechanism over the input cycle, groups solved in layering order.
 
-:func:`analyse` solves every group of a :class:`~assur.geometry.KinematicModel` at all input
+:func:`analyse` solves every group of a :class:`~assur.kinematics.model.KinematicModel` at all input
 positions at once (crank angles φ, or actuator lengths) and returns a :class:`Motion`: every
 link's pose, every revolute joint, every slider pair (point, slider coordinate, guide line),
 every tracing point, and each group's existence margin. With ``analogs=True`` the input
-coordinate is fed as a :class:`~assur.jets.Jet`, so every quantity also carries its exact
+coordinate is fed as a :class:`~assur.kinematics.jets.Jet`, so every quantity also carries its exact
 first and second derivatives with respect to the input coordinate (velocity and
 acceleration analogs); :func:`velocity` and :func:`acceleration` turn them into time
 derivatives for a given crank speed.
@@ -21,11 +21,11 @@ from typing import Any
 
 import numpy as np
 
-from assur import dyads
-from assur import jets as J
-from assur.dyads import DyadSolution
-from assur.geometry import Anchor, GroupModel, Guide, KinematicModel
-from assur.jets import Jet
+from assur.kinematics import dyads
+from assur.kinematics import jets as J
+from assur.kinematics.dyads import DyadSolution
+from assur.kinematics.model import Anchor, GroupModel, Guide, KinematicModel
+from assur.kinematics.jets import Jet
 from assur.model import LinkId, PairId
 
 __all__ = [
@@ -71,7 +71,7 @@ class Motion:
         Input coordinate: crank rotation φ from the reference position (radians) or actuator
         length (mm).
     solutions : dict
-        Group label → :class:`~assur.dyads.DyadSolution` (layering order).
+        Group label → :class:`~assur.kinematics.dyads.DyadSolution` (layering order).
     frames : dict
         Link → (origin, angle) of its local frame.
     joints : dict
@@ -137,7 +137,7 @@ def analyse(model: KinematicModel, q: np.ndarray | None = None, *, points: int =
     -------
     Motion
         NaN where a group (or an earlier one) does not assemble; see ``solutions[...]
-        .exists``, ``.margin`` and ``.reason``, and :mod:`assur.existence`.
+        .exists``, ``.margin`` and ``.reason``, and :mod:`assur.kinematics.existence`.
     """
     q = input_grid(model, points) if q is None else np.asarray(q, dtype=float)
     coordinate: Value = Jet(q, 1.0, 0.0) if analogs else q

@@ -18,10 +18,10 @@ from typing import Any
 
 import numpy as np
 
-from assur import jets as J
-from assur.dyads import REASONS
-from assur.geometry import GroupModel, KinematicModel
-from assur.kinematics import Motion, analyse
+from assur.kinematics import jets as J
+from assur.kinematics.dyads import REASONS
+from assur.kinematics.model import GroupModel, KinematicModel
+from assur.kinematics.analysis import Motion, analyse
 
 __all__ = [
     "CONDITIONS",
@@ -54,7 +54,7 @@ class FailureInterval:
         between grid positions. For a full-turn crank an interval may wrap past 2π (then
         ``end < start``).
     reason : int
-        Solver reason code at the worst position (:data:`assur.dyads.REASONS`).
+        Solver reason code at the worst position (:data:`assur.kinematics.dyads.REASONS`).
     worst_margin : float
         The smallest normalised margin inside the interval (to compare with δ).
     worst_at : float

@@ -1,7 +1,7 @@
 """Text report of a structural analysis, in English or Russian, in the course's own terms.
 
->>> from assur.chain_table import chain_from_dict
->>> from assur.structure import analyse_structure
+>>> from assur.io.chain_table import chain_from_dict
+>>> from assur.structure.analysis import analyse_structure
 >>> chain = chain_from_dict({"mechanism": {"pairs": [
 ...     {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
 ...     {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}],
@@ -14,9 +14,9 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from assur.classification import AssurGroup, roman
-from assur.identification import COLUMNS, IdentificationRow, Mismatch
-from assur.structure import StructuralAnalysis
+from assur.structure.classification import AssurGroup, roman
+from assur.structure.identification import COLUMNS, IdentificationRow, Mismatch
+from assur.structure.analysis import StructuralAnalysis
 
 __all__ = ["group_description", "structure_report"]
 

@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from synthesis.batch import run_batch
+from synthesis.app.batch import run_batch
 
 ROOT = Path(__file__).resolve().parent.parent
 

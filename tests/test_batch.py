@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from synthesis.batch import check_table, run_batch
+from synthesis.app.batch import check_table, run_batch
 from synthesis.cli import main
 
 ROOT = Path(__file__).resolve().parent.parent

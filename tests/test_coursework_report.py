@@ -19,7 +19,7 @@ import yaml
 from PIL import Image
 
 from synthesis.cli import main
-from synthesis.coursework import build_report, render_html, write_report
+from synthesis.app.coursework import build_report, render_html, write_report
 
 ROOT = Path(__file__).resolve().parent.parent
 COURSE = ROOT / "input_tables" / "course_11_link.yaml"

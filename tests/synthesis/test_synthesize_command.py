@@ -14,7 +14,7 @@ import yaml
 
 import assur
 from synthesis.cli import main
-from synthesis.commands import synthesize
+from synthesis.cli.commands import synthesize
 from synthesis.evaluate import Evaluator
 from synthesis.problem import load_problem
 

@@ -33,7 +33,7 @@ from assur import (
     roman,
     scheme_bytes,
 )
-from synthesis.coursework.page import Section, esc, figure, figure_html, page, table
+from synthesis.app.coursework.page import Section, esc, figure, figure_html, page, table
 from synthesis.i18n import check_lang, heading, in_language, term
 
 __all__ = ["CourseworkReport", "build_report", "is_problem", "render_html", "write_report"]
@@ -238,7 +238,7 @@ def _identification_section(analysis: Any, chain: Chain, lang: str, report: Cour
                 for m in mismatches]
     report.facts["mismatches"] = [m.to_dict() for m in mismatches]
     if model is not None:
-        from synthesis.coursework.variants import variant_findings
+        from synthesis.app.coursework.variants import variant_findings
 
         found = variant_findings(model, chain.identification, lang)
         problems += [text for _row, text in found]
@@ -306,7 +306,7 @@ def _kinematic_sections(model: Any, why_not: str, lang: str, points: int,
 
 def _existence_section(model: Any, lang: str, points: int, report: CourseworkReport) -> Section:
     from assur import CONDITIONS, REASONS, check_existence
-    from synthesis.coursework.diagrams import existence_figure
+    from synthesis.app.coursework.diagrams import existence_figure
 
     existence = check_existence(model, points=points)
     crank = model.drive == "crank"
@@ -335,7 +335,7 @@ def _existence_section(model: Any, lang: str, points: int, report: CourseworkRep
 
 def _motion_section(model: Any, lang: str, points: int) -> Section:
     from assur import analyse
-    from synthesis.coursework.diagrams import kinematic_figures, mechanism_figure
+    from synthesis.app.coursework.diagrams import kinematic_figures, mechanism_figure
 
     motion = analyse(model, points=points, analogs=True)
     body = figure(mechanism_figure(motion, lang=lang), heading("mechanism", lang),

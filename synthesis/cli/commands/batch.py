@@ -28,7 +28,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Check the folder; exit 0 whatever the tables contain (the rows say it)."""
-    from synthesis.batch import run_batch, summary, write_csv
+    from synthesis.app.batch import run_batch, summary, write_csv
 
     if args.jobs is not None and args.jobs < 1:
         print(f"--jobs must be a positive whole number; got {args.jobs}", file=sys.stderr)

@@ -31,7 +31,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Build and write the report; print where it went (or the key values as JSON)."""
-    from synthesis.coursework import write_report
+    from synthesis.app.coursework import write_report
 
     if args.points < 8:
         print(f"--points must be at least 8; got {args.points}", file=sys.stderr)

@@ -1,6 +1,6 @@
 """The ``assur`` command: one console script for the whole program.
 
-Each subcommand is a module of :mod:`synthesis.commands` that defines ``NAME`` (the word
+Each subcommand is a module of :mod:`synthesis.cli.commands` that defines ``NAME`` (the word
 typed after ``assur``), ``HELP`` (one line), ``add_args(parser)`` and ``run(args) -> int``.
 The modules are found automatically, so adding a command means adding one module.
 
@@ -24,7 +24,7 @@ __all__ = ["main"]
 
 
 def _command_modules() -> list[ModuleType]:
-    import synthesis.commands as package
+    import synthesis.cli.commands as package
 
     modules = [importlib.import_module(f"{package.__name__}.{info.name}")
                for info in pkgutil.iter_modules(package.__path__) if not info.name.startswith("_")]

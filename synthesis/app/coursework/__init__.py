@@ -5,7 +5,7 @@ kinematics, synthesis) and :func:`render_html` turns the result into the page;
 :func:`write_report` does both and writes the file.
 """
 
-from synthesis.coursework.report import (
+from synthesis.app.coursework.report import (
     CourseworkReport,
     build_report,
     is_problem,

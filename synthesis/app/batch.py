@@ -122,7 +122,7 @@ def _kinematic_checks(analysis: Any, lang: str) -> tuple[str, list[str], list[st
     """The table's assembly variants against the dimensions, and the existence over the
     cycle: the existence status word, the variant problems and the existence problems."""
     from assur import REASONS, build_model, check_existence
-    from synthesis.coursework.variants import variant_findings
+    from synthesis.app.coursework.variants import variant_findings
 
     model = build_model(analysis)
     variants = [text for _row, text in variant_findings(
@@ -144,7 +144,7 @@ def _kinematic_checks(analysis: Any, lang: str) -> tuple[str, list[str], list[st
 
 def _load(path: Path) -> Chain:
     """The chain of a table; for a synthesis problem, its mechanism at the initial design."""
-    from synthesis.coursework import is_problem
+    from synthesis.app.coursework import is_problem
 
     if is_problem(path):
         from synthesis.problem import load_problem
@@ -217,7 +217,7 @@ def _check_one(job: tuple[str, str, str, str | None]) -> BatchRow:
     try:
         row = check_table(path, lang=lang, root=root)
         if reports is not None and row.verdict != "error":
-            from synthesis.coursework import write_report
+            from synthesis.app.coursework import write_report
 
             write_report(path, Path(reports) / Path(name).with_suffix(".html"), lang=lang)
         return row

@@ -1,0 +1,125 @@
+"""One catalogue of every sentence a user reads, in every language the program speaks.
+
+The catalogue is a set of gettext PO files, one per language, in ``assur/locale/``:
+``en.po``, ``ru.po``, … Each entry's ``msgid`` is a stable code (``"table.unknown_key"``,
+``"reason.rrr.too_far"``) and its ``msgstr`` the sentence, with named fields in
+:meth:`str.format` syntax (``"{found} (expected {expected})"``, ``"{worst:.3g} mm"``).
+Entries that depend on a count have plural forms (``msgid_plural`` and ``msgstr[0]``, …,
+as the file's ``Plural-Forms`` header says), which Russian needs.
+
+Code never holds a user-visible sentence: it holds a code and numbers (a :class:`Message`),
+and the sentence is rendered here, in one place. A teacher adds a language by copying
+``en.po`` to ``<lang>.po`` and translating every ``msgstr``; ``--lang <lang>`` then works
+everywhere. The PO files are read with Babel and compiled in memory for :mod:`gettext`.
+
+Examples
+--------
+>>> render("lang.unknown", "en", found="de", known="en, ru")
+"no catalogue for language 'de'; the languages are en, ru"
+>>> Message("lang.unknown", {"found": "de", "known": "en, ru"}).text("ru")
+"нет каталога для языка 'de'; есть языки: en, ru"
+>>> render("count.problems", "ru", n=5)
+'5 ошибок'
+"""
+
+from __future__ import annotations
+
+import gettext
+import io
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+__all__ = ["Message", "catalogue", "check_lang", "languages", "render"]
+
+LOCALE = Path(__file__).with_name("locale")
+DEFAULT = "en"
+
+
+@cache
+def languages() -> tuple[str, ...]:
+    """The languages that have a catalogue file, English first."""
+    found = sorted(p.stem for p in LOCALE.glob("*.po"))
+    return tuple(sorted(found, key=lambda lang: (lang != DEFAULT, lang)))
+
+
+def check_lang(lang: str) -> str:
+    """Return ``lang`` if a catalogue exists for it.
+
+    Raises
+    ------
+    ValueError
+        If there is no ``assur/locale/<lang>.po``; the message lists the languages.
+    """
+    if lang not in languages():
+        raise ValueError(render("lang.unknown", DEFAULT, found=lang,
+                                known=", ".join(languages())))
+    return lang
+
+
+@cache
+def catalogue(lang: str) -> gettext.GNUTranslations:
+    """The compiled catalogue of ``lang`` (read once per process)."""
+    from babel.messages.mofile import write_mo
+    from babel.messages.pofile import read_po
+
+    with (LOCALE / f"{lang}.po").open("rb") as stream:
+        parsed = read_po(stream, locale=None)
+    buffer = io.BytesIO()
+    write_mo(buffer, parsed, use_fuzzy=False)
+    buffer.seek(0)
+    return gettext.GNUTranslations(buffer)
+
+
+def _lookup(code: str, lang: str, count: int | None) -> str | None:
+    translations = catalogue(lang)
+    missing = object()
+    if count is None:
+        found = translations._catalog.get(code, missing)  # type: ignore[attr-defined]
+    else:
+        index = translations.plural(count)  # type: ignore[attr-defined]
+        found = translations._catalog.get((code, index), missing)  # type: ignore[attr-defined]
+    return None if found is missing or found == "" else str(found)
+
+
+def render(code: str, lang: str = DEFAULT, /, **data: Any) -> str:
+    """The sentence of ``code`` in ``lang`` with ``data`` filled in.
+
+    A plural entry takes its count from ``data["n"]``. A code missing from a language falls
+    back to English, and a code missing everywhere is shown as itself with its data, so a
+    user never meets an exception here; the catalogue test keeps both from happening.
+    """
+    count = data.get("n") if isinstance(data.get("n"), int) else None
+    for language in (lang, DEFAULT):
+        if language not in languages():
+            continue
+        template = _lookup(code, language, count)
+        if template is None and count is not None:
+            template = _lookup(code, language, None)
+        if template is not None:
+            try:
+                return template.format(**data)
+            except (KeyError, IndexError, ValueError):
+                break
+    shown = ", ".join(f"{k}={v!r}" for k, v in data.items())
+    return f"{code}({shown})" if shown else code
+
+
+@dataclass(frozen=True, slots=True)
+class Message:
+    """A sentence not yet rendered: its catalogue code and the numbers and names it shows.
+
+    Results and errors carry messages, so one object can be shown in any language.
+    """
+
+    code: str
+    data: Mapping[str, Any] = field(default_factory=dict)
+
+    def text(self, lang: str = DEFAULT) -> str:
+        """The sentence in ``lang``."""
+        return render(self.code, lang, **self.data)
+
+    def __str__(self) -> str:
+        return self.text(DEFAULT)

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from assur.text import Message
+
 __all__ = [
     "AssurError",
     "AssurWarning",
@@ -35,19 +37,23 @@ class Issue:
     ----------
     location : str
         Where the problem is: table, row and field, e.g. ``pairs[3] (id 'D') 'guide'``.
-    message : str
-        What was expected and what was found, as one sentence.
+    message : Message or str
+        What was expected and what was found, as one sentence: a catalogue message
+        (:class:`assur.text.Message`), or an English text still to be moved into the catalogue.
     message_ru : str
-        The same in Russian; empty where no translation exists (the English one is shown).
+        With an English text only: the same in Russian; empty where none exists.
     """
 
     location: str
-    message: str
+    message: Message | str
     message_ru: str = ""
 
     def text(self, lang: str = "en") -> str:
         """Location and message in ``lang``."""
-        message = self.message_ru if lang == "ru" and self.message_ru else self.message
+        if isinstance(self.message, Message):
+            message = self.message.text(lang)
+        else:
+            message = self.message_ru if lang == "ru" and self.message_ru else self.message
         return f"{self.location}: {message}" if self.location else message
 
     def __str__(self) -> str:

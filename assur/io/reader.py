@@ -26,6 +26,7 @@ from typing import Any
 import yaml
 
 from assur.errors import Issue, TableError
+from assur.text import Message
 
 __all__ = [
     "MISSING",
@@ -152,8 +153,19 @@ class TableReader:
         """Wrap data that is already parsed (a dict from Python code or a test)."""
         return cls(data, source)
 
+    def problem(self, location: str, code: str, /, **data: Any) -> None:
+        """Record one problem: the catalogue code of its sentence and the values it shows.
+
+        >>> reader = TableReader.from_data({}, source="demo.yaml")
+        >>> reader.problem("links[2]", "lang.unknown", found="de", known="en")
+        >>> reader.issues[0].text("en")
+        "links[2]: no catalogue for language 'de'; the languages are en"
+        """
+        self.issues.append(Issue(location, Message(code, data)))
+
     def add(self, location: str, message: str, message_ru: str = "") -> None:
-        """Record one problem (with its Russian wording where the caller has one)."""
+        """Record one problem as English (and Russian) text; to be replaced by
+        :meth:`problem` wherever a sentence has moved into the catalogue."""
         self.issues.append(Issue(location, message, message_ru))
 
     def root(self, allowed: Iterable[str] | None = None, *, name: str = "") -> Node:

@@ -12,6 +12,7 @@ from assur.io.reader import (
     describe,
     normalise_id,
 )
+from assur.text import Message
 
 __all__ = [
     "AssemblyError",
@@ -19,6 +20,7 @@ __all__ = [
     "AssurWarning",
     "Issue",
     "MISSING",
+    "Message",
     "Node",
     "StructureError",
     "TableError",
@@ -74,6 +76,7 @@ from assur.kinematics.dyads import (  # noqa: E402
     REASONS,
     DyadSolution,
     Reason,
+    reason_text,
     solve_input,
     solve_prp,
     solve_rpp,
@@ -89,6 +92,7 @@ __all__ += [
     "Jet",
     "Reason",
     "jets",
+    "reason_text",
     "solve_input",
     "solve_prp",
     "solve_rpp",

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from assur.text import Message
+from assur.text import Message, render
 
 __all__ = [
     "AssurError",
@@ -25,7 +25,8 @@ class AssurError(Exception):
     """Root of the program's exceptions."""
 
     def text(self, lang: str = "en") -> str:
-        """The message for the user in ``lang`` ('en' or 'ru'; English where no translation)."""
+        """The message for the user in ``lang`` (a language of :func:`assur.text.languages`;
+        English where no translation)."""
         return str(self)
 
 
@@ -77,12 +78,13 @@ class TableError(AssurError, ValueError):
         super().__init__(self.text("en"))
 
     def text(self, lang: str = "en") -> str:
-        """Every problem, one per line under a count header, in ``lang``."""
-        count = len(self.issues)
-        if lang == "ru":
-            head = f"{self.source}: найдено ошибок: {count}"
-        else:
-            head = f"{count} problem{'s' if count != 1 else ''} in {self.source}:"
+        """Every problem, one per line under a count header, in ``lang``.
+
+        >>> error = TableError("t.yaml", [Issue("'links'", Message("value.kind.list"))] * 2)
+        >>> error.text("en").splitlines()[0], error.text("ru").splitlines()[0]
+        ('2 problems in t.yaml:', 't.yaml: найдены 2 ошибки')
+        """
+        head = render("table.problems", lang, n=len(self.issues), source=self.source)
         return "\n".join([head, *(f"  - {issue.text(lang)}" for issue in self.issues)])
 
 

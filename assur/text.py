@@ -87,10 +87,14 @@ def _lookup(code: str, lang: str, count: int | None) -> str | None:
 def render(code: str, lang: str = DEFAULT, /, **data: Any) -> str:
     """The sentence of ``code`` in ``lang`` with ``data`` filled in.
 
-    A plural entry takes its count from ``data["n"]``. A code missing from a language falls
-    back to English, and a code missing everywhere is shown as itself with its data, so a
-    user never meets an exception here; the catalogue test keeps both from happening.
+    A plural entry takes its count from ``data["n"]``. A field whose value is a
+    :class:`Message` (a part of the sentence, such as a description of a found value) is
+    rendered in ``lang`` first. A code missing from a language falls back to English, and a
+    code missing everywhere is shown as itself with its data, so a user never meets an
+    exception here; the catalogue test keeps both from happening.
     """
+    data = {key: value.text(lang) if isinstance(value, Message) else value
+            for key, value in data.items()}
     count = data.get("n") if isinstance(data.get("n"), int) else None
     for language in (lang, DEFAULT):
         if language not in languages():

@@ -57,7 +57,7 @@ import numpy as np
 import numpy.typing as npt
 
 import assur
-from assur import MISSING, Node, TableError, TableReader, normalise_id
+from assur import MISSING, Message, Node, TableError, TableReader, normalise_id
 
 __all__ = [
     "ControlPoints",
@@ -306,8 +306,8 @@ def problem_from_dict(data: Any, source: str = "<data>", base: str | os.PathLike
     return _read(TableReader.from_data(data, source), Path(base))
 
 
-def _positive(v: Any) -> str | None:
-    return None if v > 0 else "must be positive"
+def _positive(v: Any) -> Message | None:
+    return None if v > 0 else Message("rule.positive")
 
 
 def _read(reader: TableReader, base: Path) -> Problem:
@@ -321,7 +321,8 @@ def _read(reader: TableReader, base: Path) -> Problem:
         g["n_groups"] = general.get("groups", kind="int", check=_positive)
         g["task_class"] = general.choice("task_class", [1, 2, 3, 4])
         g["grid"] = general.get("grid", kind="int", required=False, default=360,
-                                check=lambda v: None if v >= 8 else "must be at least 8")
+                                check=lambda v: None if v >= 8 else
+                                Message("rule.at_least", {"low": 8}))
         g["accuracy"] = general.get("accuracy", kind="number", required=False, default=None,
                                     check=_positive)
         g["objective"] = general.choice("objective", ["lexicographic", "weighted"],
@@ -396,8 +397,7 @@ def _build_model(reader: TableReader, mechanism: dict[str, Any]) -> Any:
         chain = assur.chain_from_dict(mechanism, source=reader.source)
         return assur.build_model(assur.analyse_structure(chain))
     except TableError as exc:
-        for issue in exc.issues:
-            reader.add(issue.location, issue.message)
+        reader.issues.extend(exc.issues)
     except assur.StructureError as exc:
         reader.add("structure_identification", str(exc))
     return None
@@ -583,7 +583,7 @@ def _read_allowable(top: Node, groups: dict[GroupKey, Any]
         else:
             angle = row.get("pressure_angle", kind="number", required=False, default=None,
                             check=lambda v: None if 0 < v <= 90 else
-                            "must lie in (0, 90] degrees, or be 'default'")
+                            Message("rule.pressure_angle"))
         turns = row.child("rotations", required=False)
         limits = {}
         if turns is not None:
@@ -647,9 +647,11 @@ def _read_search(top: Node) -> dict[str, Any]:
     if node is None:
         return {}
     out: dict[str, Any] = {}
-    checks = {"budget": ("int", lambda v: None if 0 <= v <= 24 else "must lie in 0..24"),
+    checks = {"budget": ("int", lambda v: None if 0 <= v <= 24 else
+                         Message("rule.in_range", {"range": "0..24"})),
               "seed": ("int", None), "refine": ("bool", None),
-              "shrink_passes": ("int", lambda v: None if 0 <= v <= 10 else "must lie in 0..10"),
+              "shrink_passes": ("int", lambda v: None if 0 <= v <= 10 else
+                                Message("rule.in_range", {"range": "0..10"})),
               "stall": ("int", _positive), "time_limit": ("number", _positive),
               "refine_evaluations": ("int", _positive)}
     for key, (kind, check) in checks.items():

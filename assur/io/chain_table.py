@@ -24,6 +24,7 @@ from typing import Any
 from assur.errors import TableError
 from assur.model import Chain, Drive, LinkId, Pair, PairId, PairType, id_key
 from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
+from assur.text import Message
 
 __all__ = [
     "IDENTIFICATION_FIELDS",
@@ -361,7 +362,7 @@ def _read_rows(top: Node, *, required: bool) -> list[tuple[dict[str, Any], str]]
     for row in top.rows("structure_identification", IDENTIFICATION_FIELDS, required=required,
                         label=_row_label):
         kind = row.get("L", kind="int", check=lambda v: None if 0 <= v <= 5 else
-                       "the group kind L must be 0 (input group) to 5")
+                       Message("rule.group_kind"))
         clean: dict[str, Any] = {"L": kind}
         dyad = kind is not MISSING and kind != 0
         for key in ("i", "i_minus_1"):

@@ -10,7 +10,7 @@ Examples
 >>> reader = TableReader.from_data({"links": [0, 1], "framee": 0}, source="demo.yaml")
 >>> top = reader.root(allowed={"links", "frame"})
 >>> _ = top.get("links", kind="list")
->>> reader.issues[0].message
+>>> reader.issues[0].text("en")
 "unknown key 'framee'; did you mean 'frame'?"
 """
 
@@ -23,7 +23,7 @@ from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
-import yaml
+import yaml  # type: ignore[import-untyped]
 
 from assur.errors import Issue, TableError
 from assur.text import Message
@@ -49,50 +49,42 @@ class _Missing:
 
 MISSING: Any = _Missing()
 
-_KINDS: dict[str, tuple[str, Callable[[Any], bool]]] = {
-    "number": ("a number", lambda v: isinstance(v, (int, float)) and not isinstance(v, bool)
-               and math.isfinite(v)),
-    "int": ("a whole number", lambda v: isinstance(v, int) and not isinstance(v, bool)),
-    "str": ("a text", lambda v: isinstance(v, str)),
-    "id": ("an id (a whole number or a text)",
-           lambda v: (isinstance(v, int) and not isinstance(v, bool)) or
-           (isinstance(v, str) and v.strip() != "")),
-    "list": ("a list", lambda v: isinstance(v, list)),
-    "mapping": ("a mapping (key: value)", lambda v: isinstance(v, dict)),
-    "bool": ("true or false", lambda v: isinstance(v, bool)),
-    "any": ("a value", lambda v: True),
+#: Kind of a field → its test; ``value.kind.<kind>`` in the catalogue names the kind.
+_KINDS: dict[str, Callable[[Any], bool]] = {
+    "number": lambda v: isinstance(v, (int, float)) and not isinstance(v, bool)
+    and math.isfinite(v),
+    "int": lambda v: isinstance(v, int) and not isinstance(v, bool),
+    "str": lambda v: isinstance(v, str),
+    "id": lambda v: (isinstance(v, int) and not isinstance(v, bool))
+    or (isinstance(v, str) and v.strip() != ""),
+    "list": lambda v: isinstance(v, list),
+    "mapping": lambda v: isinstance(v, dict),
+    "bool": lambda v: isinstance(v, bool),
+    "any": lambda v: True,
 }
 
 
-_KINDS_RU = {
-    "number": "число", "int": "целое число", "str": "текст",
-    "id": "номер (целое число или текст)", "list": "список",
-    "mapping": "словарь (ключ: значение)", "bool": "true или false", "any": "значение",
-}
-
-
-def describe(value: Any, lang: str = "en") -> str:
+def describe(value: Any) -> Message:
     """Say briefly what a found value is, for error messages.
 
-    >>> describe("abc"), describe(None), describe([1, 2]), describe([1, 2], "ru")
-    ("'abc' (a text)", 'nothing (null)', 'a list of 2 items', 'список из 2 элементов')
+    >>> [describe(v).text("en") for v in ("abc", None, [1, 2], 2.5)]
+    ["'abc' (a text)", 'nothing (null)', 'a list of 2 items', '2.5']
+    >>> describe([1, 2]).text("ru")
+    'список из 2 элементов'
     """
-    ru = lang == "ru"
     if value is None:
-        return "пусто (null)" if ru else "nothing (null)"
+        return Message("value.null")
     if isinstance(value, bool):
-        return f"{value!r} (true/false)"
+        return Message("value.bool", {"value": value})
     if isinstance(value, (int, float)):
-        return f"{value!r}"
+        return Message("value.number", {"value": value})
     if isinstance(value, str):
-        return f"{value!r} ({'текст' if ru else 'a text'})"
+        return Message("value.text", {"value": value})
     if isinstance(value, list):
-        if ru:
-            return f"список из {len(value)} элементов"
-        return f"a list of {len(value)} item{'s' if len(value) != 1 else ''}"
+        return Message("value.list", {"n": len(value)})
     if isinstance(value, dict):
-        return "словарь" if ru else "a mapping"
-    return type(value).__name__
+        return Message("value.mapping")
+    return Message("value.other", {"type": type(value).__name__})
 
 
 def normalise_id(value: Any) -> Any:
@@ -130,23 +122,22 @@ class TableReader:
         try:
             text = path.read_text(encoding="utf-8")
         except FileNotFoundError:
-            raise TableError(source, [Issue("", "the file does not exist",
-                                            "такого файла нет")]) from None
+            message = Message("table.file_missing")
         except IsADirectoryError:
-            raise TableError(source, [Issue("", "this is a folder, not a table file",
-                                            "это папка, а не файл таблицы")]) from None
+            message = Message("table.file_is_folder")
         except (OSError, UnicodeDecodeError) as exc:
-            raise TableError(source, [Issue("", f"the file cannot be read ({exc})",
-                                            f"файл не читается ({exc})")]) from None
-        try:
-            data = yaml.safe_load(text)
-        except yaml.YAMLError as exc:
-            mark = getattr(exc, "problem_mark", None)
-            where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else ""
-            problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
-            raise TableError(source, [Issue(where, f"this is not valid YAML: {problem}",
-                                            f"это не корректный YAML: {problem}")]) from None
-        return cls(data, source)
+            message = Message("table.file_unreadable", {"error": str(exc)})
+        else:
+            try:
+                return cls(yaml.safe_load(text), source)
+            except yaml.YAMLError as exc:
+                mark = getattr(exc, "problem_mark", None)
+                problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
+                message = (Message("table.not_yaml_at", {"line": mark.line + 1,
+                                                         "column": mark.column + 1,
+                                                         "problem": problem})
+                           if mark else Message("table.not_yaml", {"problem": problem}))
+        raise TableError(source, [Issue("", message)])
 
     @classmethod
     def from_data(cls, data: Any, source: str = "<data>") -> TableReader:
@@ -171,9 +162,7 @@ class TableReader:
     def root(self, allowed: Iterable[str] | None = None, *, name: str = "") -> Node:
         """The top of the document, which must be a mapping."""
         if not isinstance(self.data, dict):
-            self.add(name, f"expected a mapping of tables at the top of the file; found "
-                           f"{describe(self.data)}",
-                     f"в начале файла ожидался словарь таблиц; найдено {describe(self.data, 'ru')}")
+            self.problem(name, "table.top_not_mapping", found=describe(self.data))
             return Node(self, name, {}, allowed)
         return Node(self, name, self.data, allowed)
 
@@ -199,12 +188,11 @@ class Node:
             for key in mapping:
                 if key not in allowed:
                     hint = difflib.get_close_matches(str(key), allowed, n=1, cutoff=0.6)
-                    keys = ", ".join(repr(k) for k in allowed)
-                    tail = f"; did you mean {hint[0]!r}?" if hint else f"; expected one of {keys}"
-                    tail_ru = (f"; возможно, имелось в виду {hint[0]!r}?" if hint
-                               else f"; допустимы: {keys}")
-                    reader.add(location, f"unknown key {key!r}{tail}",
-                               f"неизвестный ключ {key!r}{tail_ru}")
+                    if hint:
+                        reader.problem(location, "table.unknown_key_hint", key=key, hint=hint[0])
+                    else:
+                        reader.problem(location, "table.unknown_key", key=key,
+                                       keys=", ".join(repr(k) for k in allowed))
 
     def _where(self, key: str) -> str:
         return f"{self.location} {key!r}".strip() if self.location else repr(key)
@@ -214,7 +202,7 @@ class Node:
         return key in self.mapping
 
     def get(self, key: str, *, kind: str = "any", required: bool = True, default: Any = MISSING,
-            check: Callable[[Any], str | tuple[str, str] | None] | None = None,
+            check: Callable[[Any], Message | None] | None = None,
             nullable: bool = False) -> Any:
         """Read one field.
 
@@ -229,8 +217,8 @@ class Node:
         default : object
             Value for an absent optional field.
         check : callable, optional
-            Returns a text describing the rule broken ("must be positive"), or an
-            (English, Russian) pair of such texts, or None.
+            Returns the rule the value breaks, as a catalogue message
+            (``Message("rule.positive")``: "must be positive"), or None.
         nullable : bool
             Whether an explicit null is accepted (returned as None).
 
@@ -241,29 +229,26 @@ class Node:
         """
         if key not in self.mapping:
             if required:
-                self.reader.add(self._where(key),
-                                f"this field is missing; expected {_KINDS[kind][0]}",
-                                f"поле отсутствует; ожидалось {_KINDS_RU[kind]}")
+                self.reader.problem(self._where(key), "table.missing",
+                                    expected=Message(f"value.kind.{kind}"))
                 return MISSING
             return default
         value = self.mapping[key]
         if value is None and nullable:
             return None
-        label, test = _KINDS[kind]
         if kind == "number" and isinstance(value, str):
             value = _parse_number(value)
-        if not test(value):
-            self.reader.add(self._where(key), f"expected {label}; found {describe(value)}",
-                            f"ожидалось {_KINDS_RU[kind]}; найдено {describe(value, 'ru')}")
+        if not _KINDS[kind](value):
+            self.reader.problem(self._where(key), "table.wrong_kind",
+                                expected=Message(f"value.kind.{kind}"), found=describe(value))
             return MISSING
         if kind == "id":
             value = normalise_id(value)
         if check is not None:
             rule = check(value)
-            if rule:
-                rule_en, rule_ru = rule if isinstance(rule, tuple) else (rule, "")
-                self.reader.add(self._where(key), f"{rule_en}; found {describe(value)}",
-                                f"{rule_ru}; найдено {describe(value, 'ru')}" if rule_ru else "")
+            if rule is not None:
+                self.reader.problem(self._where(key), "table.rule_broken", rule=rule,
+                                    found=describe(value))
                 return MISSING
         return value
 
@@ -275,10 +260,8 @@ class Node:
         if value is MISSING or (not required and value is default):
             return value
         if value not in options:
-            options_text = ", ".join(repr(o) for o in options)
-            self.reader.add(self._where(key),
-                            f"expected one of {options_text}; found {describe(value)}",
-                            f"ожидалось одно из: {options_text}; найдено {describe(value, 'ru')}")
+            self.reader.problem(self._where(key), "table.not_an_option",
+                                options=", ".join(repr(o) for o in options), found=describe(value))
             return MISSING
         return value
 
@@ -300,10 +283,7 @@ class Node:
         for index, row in enumerate(value):
             where = f"{table}[{index}]"
             if not isinstance(row, dict):
-                self.reader.add(where, f"expected a row (a mapping such as {{id: A, ...}}); "
-                                       f"found {describe(row)}",
-                                f"ожидалась строка таблицы (словарь вида {{id: A, ...}}); "
-                                f"найдено {describe(row, 'ru')}")
+                self.reader.problem(where, "table.not_a_row", found=describe(row))
                 continue
             name = label(row) if label else None
             if name:

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import cmath
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from enum import IntEnum
 from functools import lru_cache
@@ -25,11 +25,13 @@ import numpy as np
 
 from assur.kinematics import jets as J
 from assur.kinematics.jets import Jet
+from assur.text import render
 
 __all__ = [
     "REASONS",
     "DyadSolution",
     "Reason",
+    "reason_text",
     "solve_input",
     "solve_prp",
     "solve_rpp",
@@ -64,26 +66,35 @@ class Reason(IntEnum):
     UNDEFINED_INPUT = 7
 
 
-#: Reason code → (English sentence, Russian sentence).
-REASONS: dict[int, tuple[str, str]] = {
-    Reason.ASSEMBLES: ("the group assembles", "группа собирается"),
-    Reason.STRETCHED: (
-        "hinges too far apart (chain stretched)",
-        "шарниры слишком далеко друг от друга (цепь вытянута)",
-    ),
-    Reason.FOLDED: ("hinges too close (folded)", "шарниры слишком близко (цепь сложена)"),
-    Reason.ROD_TOO_SHORT: ("rod cannot reach the guide", "шатун не достаёт до направляющей"),
-    Reason.OFFSET_TOO_LARGE: (
-        "guide offset larger than hinge distance",
-        "смещение направляющей больше расстояния между шарнирами",
-    ),
-    Reason.GUIDES_PARALLEL: ("guides parallel", "направляющие параллельны"),
-    Reason.COINCIDENT_HINGES: ("coincident hinges", "шарниры совпадают"),
-    Reason.UNDEFINED_INPUT: (
-        "input position undefined (an earlier group does not assemble)",
-        "положение входа не определено (предыдущая группа не собирается)",
-    ),
-}
+def reason_text(code: int, lang: str = "en") -> str:
+    """Why a group does not assemble, as a sentence in ``lang``.
+
+    The sentence of :class:`Reason` ``R`` is the catalogue entry ``reason.<r>``
+    (``Reason.FOLDED`` → ``reason.folded``, :mod:`assur.text`).
+
+    >>> reason_text(Reason.FOLDED), reason_text(Reason.FOLDED, "ru")
+    ('hinges too close (folded)', 'шарниры слишком близко (цепь сложена)')
+    """
+    return render(f"reason.{Reason(code).name.lower()}", lang)
+
+
+class _Reasons(Mapping[int, tuple[str, str]]):
+    """Reason code → (English sentence, Russian sentence), read from the catalogue."""
+
+    def __getitem__(self, code: int) -> tuple[str, str]:
+        if code not in set(Reason):
+            raise KeyError(code)
+        return reason_text(code, "en"), reason_text(code, "ru")
+
+    def __iter__(self) -> Iterator[int]:
+        return iter(int(r) for r in Reason)
+
+    def __len__(self) -> int:
+        return len(Reason)
+
+
+#: Reason code → (English sentence, Russian sentence); :func:`reason_text` gives any language.
+REASONS: Mapping[int, tuple[str, str]] = _Reasons()
 
 
 @dataclass(frozen=True)

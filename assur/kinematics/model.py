@@ -35,6 +35,7 @@ from assur.io.chain_table import group_key
 from assur.errors import Issue, StructureError, TableError
 from assur.model import LinkId, PairId, PairType
 from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
+from assur.text import Message
 
 __all__ = [
     "KIND_COLUMNS",
@@ -700,7 +701,7 @@ def _read_margin(reader: TableReader, value: Any, build: _Builder) -> dict[str, 
         out = {}
         for label in labels:
             v = node.get(label, kind="number", required=False, default=None,
-                         check=lambda v: None if 0 <= v < 1 else "δ must lie in [0, 1)")
+                         check=lambda v: None if 0 <= v < 1 else Message("rule.margin"))
             if v not in (None, MISSING):
                 out[label] = v
         return out
@@ -857,7 +858,8 @@ def model_from_params(analysis: Any) -> KinematicModel:
     _param_values(node0, 0, build, label0, supplied_ok=False)
     if node0 is not None:
         s = node0.get("s", kind="int", required=False, default=1,
-                      check=lambda v: None if v in (1, -1) else "s must be +1 or −1")
+                      check=lambda v: None if v in (1, -1) else
+                      Message("rule.plus_minus_one", {"name": "s"}))
         direction = s if s in (1, -1) else 1
     build.add(group0)
     tracing: list[TracePoint] = []

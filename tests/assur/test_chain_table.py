@@ -40,7 +40,7 @@ def test_every_problem_is_reported_at_once() -> None:
         {"id": "C", "type": "P", "links": [2, 0]}], "inputs": [1], "framee": 0}}
     with pytest.raises(TableError) as info:
         chain_from_dict(data, source="many.yaml")
-    messages = [issue.message for issue in info.value.issues]
+    messages = [str(issue.message) for issue in info.value.issues]
     assert len(messages) == 4
     assert any("self pair" in m for m in messages)
     assert any("found 'X'" in m for m in messages)
@@ -151,6 +151,6 @@ def test_chain_form_may_carry_a_table_to_check() -> None:
 def test_a_missing_pairs_table_is_not_blamed_on_the_inputs() -> None:
     with pytest.raises(TableError) as info:
         chain_from_dict({"mechanism": {"pairz": [], "inputs": [1]}}, source="typo.yaml")
-    assert [issue.message for issue in info.value.issues] == [
+    assert [str(issue.message) for issue in info.value.issues] == [
         "unknown key 'pairz'; did you mean 'pairs'?",
         "this field is missing; expected a list"]

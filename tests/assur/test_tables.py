@@ -7,7 +7,7 @@ import stat
 
 import pytest
 
-from assur import TableError, TableReader, atomic_write_text
+from assur import Message, TableError, TableReader, atomic_write_text
 from synthesis.cli import main
 
 BAD = """mechanism:
@@ -25,7 +25,7 @@ def _read(data: dict) -> TableReader:
     top.get("frame", kind="id")
     for row in top.rows("pairs", allowed={"id", "type"}, label=lambda r: f"id {r.get('id')!r}"):
         row.choice("type", ("R", "P"))
-        row.get("id", kind="id", check=lambda v: ("must not be 0", "не может быть 0")
+        row.get("id", kind="id", check=lambda v: Message("rule.not_zero", {"name": "id"})
                 if v == 0 else None)
     return reader
 
@@ -38,7 +38,7 @@ def test_every_problem_is_collected_with_its_place() -> None:
         "'links': expected a list; found 3",
         "'frame': this field is missing; expected an id (a whole number or a text)",
         "pairs[0] (id 0) 'type': expected one of 'R', 'P'; found 'Q' (a text)",
-        "pairs[0] (id 0) 'id': must not be 0; found 0",
+        "pairs[0] (id 0) 'id': id must not be zero; found 0",
         "pairs[1]: expected a row (a mapping such as {id: A, ...}); found 7",
     ]
     with pytest.raises(TableError, match=r"^6 problems in t\.yaml:"):
@@ -49,11 +49,47 @@ def test_russian_wording_of_the_same_problems() -> None:
     reader = _read({"links": 3, "framee": 0, "pairs": [{"id": 0, "type": "Q"}]})
     texts = [issue.text("ru") for issue in reader.issues]
     assert texts[0] == "неизвестный ключ 'framee'; возможно, имелось в виду 'frame'?"
-    assert texts[1] == "'links': ожидалось список; найдено 3"
-    assert texts[3] == "pairs[0] (id 0) 'type': ожидалось одно из: 'R', 'P'; найдено 'Q' (текст)"
-    assert texts[4] == "pairs[0] (id 0) 'id': не может быть 0; найдено 0"
+    assert texts[1] == "'links': ожидается список; найдено 3"
+    assert texts[2] == "'frame': поле отсутствует; ожидается номер (целое число или текст)"
+    assert texts[3] == "pairs[0] (id 0) 'type': ожидается одно из: 'R', 'P'; найдено 'Q' (текст)"
+    assert texts[4] == "pairs[0] (id 0) 'id': значение id не может быть нулём; найдено 0"
     error = TableError("t.yaml", reader.issues)
-    assert error.text("ru").splitlines()[0] == "t.yaml: найдено ошибок: 5"
+    assert error.text("ru").splitlines()[0] == "t.yaml: найдено 5 ошибок"
+
+
+@pytest.mark.parametrize(("count", "english", "russian"), [
+    (1, "1 problem in t.yaml:", "t.yaml: найдена 1 ошибка"),
+    (3, "3 problems in t.yaml:", "t.yaml: найдены 3 ошибки"),
+    (11, "11 problems in t.yaml:", "t.yaml: найдено 11 ошибок"),
+    (21, "21 problems in t.yaml:", "t.yaml: найдена 21 ошибка"),
+    (24, "24 problems in t.yaml:", "t.yaml: найдены 24 ошибки"),
+])
+def test_header_counts_problems_with_plural_forms(count, english, russian) -> None:
+    reader = TableReader.from_data({"links": list(range(count))}, source="t.yaml")
+    for row in reader.root().rows("links"):
+        pass
+    error = TableError("t.yaml", reader.issues)
+    assert len(error.issues) == count
+    assert error.text("en").splitlines()[0] == english
+    assert error.text("ru").splitlines()[0] == russian
+
+
+@pytest.mark.parametrize(("value", "english", "russian"), [
+    (None, "nothing (null)", "пусто (null)"),
+    (True, "True (true/false)", "True (true/false)"),
+    (2.5, "2.5", "2.5"),
+    ("abc", "'abc' (a text)", "'abc' (текст)"),
+    ([1], "a list of 1 item", "список из 1 элемента"),
+    ([1, 2, 3], "a list of 3 items", "список из 3 элементов"),
+    ({"a": 1}, "a mapping", "словарь"),
+])
+def test_a_found_value_is_described_in_both_languages(value, english, russian) -> None:
+    reader = TableReader.from_data({"x": value}, source="t.yaml")
+    reader.root().get("x", kind="int")
+    prefix_en = "'x': expected a whole number; found "
+    prefix_ru = "'x': ожидается целое число; найдено "
+    assert reader.issues[0].text("en") == prefix_en + english
+    assert reader.issues[0].text("ru") == prefix_ru + russian
 
 
 def test_command_line_reports_in_the_chosen_language(tmp_path, capsys) -> None:
@@ -66,13 +102,32 @@ def test_command_line_reports_in_the_chosen_language(tmp_path, capsys) -> None:
     assert "3 problems in" in capsys.readouterr().err
 
 
+def test_top_of_the_file_must_be_a_mapping() -> None:
+    reader = TableReader.from_data([1, 2], source="t.yaml")
+    reader.root()
+    assert [issue.text("ru") for issue in reader.issues] == [
+        "в начале файла ожидается словарь таблиц; найдено список из 2 элементов"]
+
+
 def test_invalid_yaml_names_line_and_column(tmp_path) -> None:
     table = tmp_path / "broken.yaml"
     table.write_text("mechanism:\n  links: [0, 1\n", encoding="utf-8")
     with pytest.raises(TableError) as caught:
         TableReader.from_path(table)
     issue = caught.value.issues[0]
-    assert issue.location.startswith("line ") and "not valid YAML" in issue.message
+    assert issue.text("en").startswith("line 3, column 1: this is not valid YAML: expected")
+    assert issue.text("ru").startswith("строка 3, столбец 1: это некорректный YAML: expected")
+
+
+def test_missing_file_and_folder_are_named(tmp_path) -> None:
+    for path, english, russian in [(tmp_path / "none.yaml", "the file does not exist",
+                                    "такого файла нет"),
+                                   (tmp_path, "this is a folder, not a table file",
+                                    "это папка, а не файл таблицы")]:
+        with pytest.raises(TableError) as caught:
+            TableReader.from_path(path)
+        assert caught.value.text("en") == f"1 problem in {path}:\n  - {english}"
+        assert caught.value.text("ru") == f"{path}: найдена 1 ошибка\n  - {russian}"
 
 
 def test_atomic_write_leaves_no_temporary_file_and_honours_umask(tmp_path) -> None:

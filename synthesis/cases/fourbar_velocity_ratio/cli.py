@@ -9,7 +9,7 @@ import math
 import sys
 from typing import Any
 
-from assur import TableReader
+from assur import Message, TableReader
 from synthesis.cases.fourbar_velocity_ratio.conditions import NoSolution, Request
 from synthesis.cases.fourbar_velocity_ratio.report import (
     message_dict,
@@ -52,8 +52,9 @@ def add_args(parser: argparse.ArgumentParser) -> None:
 
 
 def _open_interval(low: float, high: float, what: str):
-    def rule(value: float) -> str | None:
-        return None if low < value < high else f"{what} must lie between {low:g} and {high:g}"
+    def rule(value: float) -> Message | None:
+        return None if low < value < high else Message("rule.between",
+                                                       {"name": what, "low": low, "high": high})
     return rule
 
 
@@ -70,7 +71,7 @@ def read_request(data: dict[str, Any], source: str) -> tuple[Request, str]:
     node = root.child(TABLE, allowed=[dest for _, dest, _ in _FIELDS] + ["method"])
     values: dict[str, Any] = {}
     rules = {"e": _open_interval(0.0, math.inf, "e"),
-             "n_star": lambda v: None if v != 0 else "n* must not be zero",
+             "n_star": lambda v: None if v != 0 else Message("rule.not_zero", {"name": "n*"}),
              "delta": _open_interval(0.0, 1.0, "δ"),
              "psi1_deg": _open_interval(0.0, 180.0, "ψ′"),
              "psi2_deg": _open_interval(0.0, 180.0, "ψ″")}

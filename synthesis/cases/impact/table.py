@@ -10,7 +10,7 @@ import math
 import os
 from typing import Any
 
-from assur import TableReader
+from assur import Message, TableReader
 from synthesis.cases.impact.data import ImpactData
 
 __all__ = ["impact_data_from_dict", "impact_table_dict", "read_impact_table"]
@@ -19,16 +19,16 @@ _TOP = ("schema_version", "lengths_mm", "masses_kg", "inertias_kg_mm2", "clearan
         "omega4_rad_s", "k", "mu", "sigma")
 
 
-def _positive(value: float) -> str | None:
-    return None if value > 0 else "must be positive"
+def _positive(value: float) -> Message | None:
+    return None if value > 0 else Message("rule.positive")
 
 
-def _non_negative(value: float) -> str | None:
-    return None if value >= 0 else "must be zero or positive"
+def _non_negative(value: float) -> Message | None:
+    return None if value >= 0 else Message("rule.non_negative")
 
 
-def _unit_interval(value: float) -> str | None:
-    return None if 0 <= value <= 1 else "must lie between 0 (plastic) and 1 (elastic)"
+def _unit_interval(value: float) -> Message | None:
+    return None if 0 <= value <= 1 else Message("rule.restitution")
 
 
 def read_impact_table(path: str | os.PathLike[str]) -> ImpactData:
@@ -45,7 +45,7 @@ def impact_data_from_dict(data: dict[str, Any], source: str = "<data>") -> Impac
 def _read(reader: TableReader) -> ImpactData:
     top = reader.root(allowed=_TOP)
     top.get("schema_version", kind="int", required=False, default=1,
-            check=lambda v: None if v == 1 else "this program reads schema_version 1")
+            check=lambda v: None if v == 1 else Message("rule.schema_version", {"version": 1}))
     values: dict[str, Any] = {}
     lengths = top.child("lengths_mm", allowed=("r1", "r2", "r3", "r4"))
     if lengths is not None:
@@ -65,7 +65,7 @@ def _read(reader: TableReader) -> ImpactData:
         values["theta2"] = crank.get("theta2_deg", kind="number")
         values["omega2"] = crank.get("omega2_rad_s", kind="number")
     omega4 = top.get("omega4_rad_s", kind="list",
-                     check=lambda v: None if v else "must list at least one rocker speed")
+                     check=lambda v: None if v else Message("rule.rocker_speeds"))
     values["k"] = top.get("k", kind="number", check=_unit_interval)
     values["mu"] = top.get("mu", kind="number", check=_non_negative)
     values["sigma"] = top.choice("sigma", (1, -1))

@@ -12,7 +12,7 @@ import math
 import os
 from typing import Any
 
-from assur import TableReader
+from assur import Message, TableReader
 from synthesis.cases.tracker.design import PATENT_TASK, DesignTask
 
 __all__ = ["FIELDS", "OPTIONS", "load_task", "task_from_data"]
@@ -35,12 +35,12 @@ OPTIONS: dict[str, str] = {
 }
 """The command-line option that overrides each field."""
 
-_RANGES: dict[str, tuple[float, float, str]] = {
-    "stroke_deg": (0.0, 360.0, "must lie strictly between 0 and 360"),
-    "min_transmission_deg": (0.0, 90.0, "must lie in [0, 90)"),
-    "l1_mm": (0.0, math.inf, "must be positive"),
-    "actuator_stroke_mm": (0.0, math.inf, "must be positive"),
-    "min_clearance_mm": (0.0, math.inf, "must not be negative"),
+_RANGES: dict[str, tuple[float, float, Message]] = {
+    "stroke_deg": (0.0, 360.0, Message("rule.strictly_between", {"low": 0, "high": 360})),
+    "min_transmission_deg": (0.0, 90.0, Message("rule.in_range", {"range": "[0, 90)"})),
+    "l1_mm": (0.0, math.inf, Message("rule.positive")),
+    "actuator_stroke_mm": (0.0, math.inf, Message("rule.positive")),
+    "min_clearance_mm": (0.0, math.inf, Message("rule.non_negative")),
 }
 
 
@@ -55,28 +55,28 @@ def _defaults() -> dict[str, Any]:
 def _in_range(name: str) -> Any:
     low, high, rule = _RANGES[name]
 
-    def check(value: float) -> str | None:
+    def check(value: float) -> Message | None:
         inside = low <= value < high if name in ("min_transmission_deg", "min_clearance_mm") \
             else low < value < high
         return None if inside else rule
     return check
 
 
-def _ratios(value: list[Any]) -> str | None:
+def _ratios(value: list[Any]) -> Message | None:
     if not value:
-        return "needs at least one value"
+        return Message("rule.list_not_empty")
     if any(isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v)
            for v in value):
-        return "every value must be a number"
+        return Message("rule.list_numbers")
     if any(v <= 1.0 for v in value):
-        return "every value must be greater than 1"
+        return Message("rule.list_greater", {"low": 1})
     return None
 
 
 def _read(reader: TableReader, overrides: dict[str, Any], *, required: bool = True) -> DesignTask:
     top = reader.root(allowed=("schema_version", "design_task"))
     top.get("schema_version", kind="int", required=False, default=1,
-            check=lambda v: None if v == 1 else "this program reads schema_version 1")
+            check=lambda v: None if v == 1 else Message("rule.schema_version", {"version": 1}))
     body = top.child("design_task", allowed=tuple(FIELDS), required=required)
     values = _defaults()
     if body is not None:

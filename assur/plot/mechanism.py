@@ -5,7 +5,9 @@
 circles, frame pivots with a hatched support, sliders as blocks on their guide lines, guides
 over the whole stroke, link and joint labels, and the paths of the tracing points and of the
 moving joints over the cycle. :func:`save_mechanism_png` and :func:`save_animation_gif` write
-files atomically; matplotlib is imported lazily with the Agg backend and never shows windows.
+files atomically. Only matplotlib's object API is used: figures are
+:class:`matplotlib.figure.Figure` objects that pyplot never sees, so drawing here neither
+switches the process's backend nor shows a window.
 """
 
 from __future__ import annotations
@@ -13,26 +15,20 @@ from __future__ import annotations
 import io
 import math
 import os
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from assur.kinematics.analysis import Motion, values
 from assur.io.files import atomic_write_bytes
+from assur.kinematics.analysis import Motion, values
+from assur.text import render
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Circle
 
 __all__ = ["draw_mechanism", "figure_for", "save_animation_gif", "save_mechanism_png"]
-
-_LABELS = {"en": ("crank angle φ = {:.1f}°", "actuator length {:.1f} mm", "does not assemble"),
-           "ru": ("угол кривошипа φ = {:.1f}°", "длина привода {:.1f} мм", "не собирается")}
-
-
-def _pyplot() -> Any:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def _at(x: Any, index: int) -> Any:
@@ -53,20 +49,52 @@ def _bounds(motion: Motion) -> tuple[float, float, float, float]:
     return x0 - pad, x1 + pad, y0 - pad, y1 + pad
 
 
-def figure_for(motion: Motion, size: float = 7.0) -> tuple[Any, Any]:
-    """A new figure and axes sized to the mechanism's working space."""
-    plt = _pyplot()
+def figure_for(motion: Motion, size: float = 7.0) -> tuple[Figure, Axes]:
+    """A new figure with one axes sized and scaled to the mechanism's working space.
+
+    Parameters
+    ----------
+    motion : Motion
+        The analysed mechanism; every joint, slider base and tracing point over the cycle
+        fits in the axes' limits (with a margin of 8 %).
+    size : float
+        Width of the figure, inches; the height follows the working space's aspect.
+
+    Returns
+    -------
+    figure : matplotlib.figure.Figure
+        Not attached to pyplot: nothing is shown, and the figure is freed with its last
+        reference.
+    axes : matplotlib.axes.Axes
+        With equal aspect and the limits of the working space.
+
+    Examples
+    --------
+    >>> import assur
+    >>> chain = assur.chain_from_dict({"mechanism": {"name": "four-bar", "inputs": [1], "pairs": [
+    ...     {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
+    ...     {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}]},
+    ...     "geometry": {"A": {"point": [0, 0]}, "B": {"point": [20, 35]},
+    ...                  "C": {"point": [110, 80]}, "D": {"point": [100, 0]}}})
+    >>> motion = assur.analyse(assur.build_model(assur.analyse_structure(chain)), points=36)
+    >>> fig, ax = assur.figure_for(motion)
+    >>> ax.get_aspect(), float(fig.get_figwidth())
+    (1.0, 7.0)
+    """
+    from matplotlib.figure import Figure
+
     x0, x1, y0, y1 = _bounds(motion)
     aspect = (y1 - y0) / max(x1 - x0, 1e-12)
-    fig, ax = plt.subplots(figsize=(size, max(3.0, min(size * aspect, 2 * size)) + 0.4))
+    fig = Figure(figsize=(size, max(3.0, min(size * aspect, 2 * size)) + 0.4))
+    ax = fig.add_subplot()
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
     ax.set_aspect("equal")
     return fig, ax
 
 
-def draw_mechanism(motion: Motion, index: int = 0, ax: Any = None, *, paths: bool = True,
-                   labels: bool = True, lang: str = "en") -> Any:
+def draw_mechanism(motion: Motion, index: int = 0, ax: Axes | None = None, *,
+                   paths: bool = True, labels: bool = True, lang: str = "en") -> Axes:
     """Draw the mechanism at one analysed position.
 
     Parameters
@@ -75,17 +103,34 @@ def draw_mechanism(motion: Motion, index: int = 0, ax: Any = None, *, paths: boo
         One design (positions shaped ``(N,)``).
     index : int
         Which position.
-    ax : matplotlib axes, optional
-        Where to draw (a new figure when None).
+    ax : matplotlib.axes.Axes, optional
+        Where to draw; a new figure from :func:`figure_for` when None. Drawing on the
+        caller's axes changes nothing else: no backend switch, no new pyplot figure.
     paths : bool
         Draw the traced paths of the tracing points and the moving joints.
     labels : bool
         Write link numbers and joint names.
-    lang : {'en', 'ru'}
+    lang : str
+        Language of the title and axis labels (a catalogue of :mod:`assur.text`).
 
     Returns
     -------
-    matplotlib axes
+    matplotlib.axes.Axes
+        The axes drawn on; its title gives the input position and says when the mechanism
+        does not assemble there.
+
+    Examples
+    --------
+    >>> import assur
+    >>> chain = assur.chain_from_dict({"mechanism": {"name": "four-bar", "inputs": [1], "pairs": [
+    ...     {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
+    ...     {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}]},
+    ...     "geometry": {"A": {"point": [0, 0]}, "B": {"point": [20, 35]},
+    ...                  "C": {"point": [110, 80]}, "D": {"point": [100, 0]}}})
+    >>> motion = assur.analyse(assur.build_model(assur.analyse_structure(chain)), points=36)
+    >>> ax = assur.draw_mechanism(motion, 9)
+    >>> ax.get_title()
+    'four-bar: crank angle φ = 90.0°'
     """
     if ax is None:
         _, ax = figure_for(motion)
@@ -118,8 +163,8 @@ def draw_mechanism(motion: Motion, index: int = 0, ax: Any = None, *, paths: boo
         u = np.exp(1j * angle)
         line_base = base + 1j * float(np.asarray(slider.offset).ravel()[0]) * u
         ends = line_base + np.array([lo - margin, hi + margin]) * u
-        style = {"color": "0.35", "lw": 2.2 if slider.carrier == frame else 1.4, "zorder": 2}
-        ax.plot(ends.real, ends.imag, "-", **style)
+        ax.plot(ends.real, ends.imag, "-", color="0.35",
+                lw=2.2 if slider.carrier == frame else 1.4, zorder=2)
         if slider.carrier == frame:
             normal = -1j * u * 0.6 * r
             ticks = np.linspace(0, 1, 8)
@@ -137,9 +182,9 @@ def draw_mechanism(motion: Motion, index: int = 0, ax: Any = None, *, paths: boo
                 points_of.setdefault(link, []).append(z)
     for pid, slider in motion.sliders.items():
         points_of.setdefault(slider.slider, []).append(_at(slider.point, index))
-    for point in model.tracing:
-        z = _at(motion.tracing[point.name], index)
-        points_of.setdefault(point.anchor.link, []).append(z)
+    for traced in model.tracing:
+        z = _at(motion.tracing[traced.name], index)
+        points_of.setdefault(traced.anchor.link, []).append(z)
     colours = ["tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:brown", "tab:olive",
                "tab:cyan", "tab:pink"]
     for n, (link, pts) in enumerate(sorted(points_of.items(), key=lambda kv: str(kv[0]))):
@@ -191,20 +236,19 @@ def draw_mechanism(motion: Motion, index: int = 0, ax: Any = None, *, paths: boo
             ax.plot([z.real], [z.imag], "o", color="tab:red", ms=5, zorder=6)
             if labels:
                 ax.text(z.real + r, z.imag + r, name, color="tab:red", fontsize=9, zorder=6)
-    words = _LABELS.get(lang, _LABELS["en"])
     q = float(motion.q[index])
-    title = (words[0].format(math.degrees(q)) if model.drive == "crank"
-             else words[1].format(q))
+    title = (render("plot.crank_angle", lang, angle=math.degrees(q)) if model.drive == "crank"
+             else render("plot.actuator_length", lang, length=q))
     if not bool(np.asarray(motion.exists).ravel()[index]):
-        title += f" — {words[2]}"
+        title += " — " + render("plot.does_not_assemble", lang)
     ax.set_title(f"{model.name}: {title}", fontsize=10)
-    ax.set_xlabel("x, mm")
-    ax.set_ylabel("y, mm")
+    ax.set_xlabel(render("plot.x_mm", lang))
+    ax.set_ylabel(render("plot.y_mm", lang))
     ax.grid(True, lw=0.3, alpha=0.5)
     return ax
 
 
-def _circle(z: complex, r: float) -> Any:
+def _circle(z: complex, r: float) -> Circle:
     from matplotlib.patches import Circle
 
     return Circle((z.real, z.imag), r, facecolor="white", edgecolor="black", lw=1.2, zorder=5)
@@ -212,25 +256,98 @@ def _circle(z: complex, r: float) -> Any:
 
 def save_mechanism_png(motion: Motion, path: str | os.PathLike[str], index: int = 0, *,
                        lang: str = "en", dpi: int = 120) -> None:
-    """Draw the mechanism at one position with its paths and write a PNG atomically."""
-    plt = _pyplot()
+    """Draw the mechanism at one position with its paths and write a PNG atomically.
+
+    Parameters
+    ----------
+    motion : Motion
+        The analysed mechanism.
+    path : str or path-like
+        The file to write (replaced atomically when it exists).
+    index : int
+        Which position.
+    lang : str
+        Language of the title and axis labels.
+    dpi : int
+        Dots per inch.
+
+    Raises
+    ------
+    OSError
+        When the file cannot be written.
+
+    Examples
+    --------
+    >>> import assur
+    >>> chain = assur.chain_from_dict({"mechanism": {"name": "four-bar", "inputs": [1], "pairs": [
+    ...     {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
+    ...     {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}]},
+    ...     "geometry": {"A": {"point": [0, 0]}, "B": {"point": [20, 35]},
+    ...                  "C": {"point": [110, 80]}, "D": {"point": [100, 0]}}})
+    >>> motion = assur.analyse(assur.build_model(assur.analyse_structure(chain)), points=36)
+    >>> import tempfile, pathlib
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder, "four_bar.png")
+    ...     assur.save_mechanism_png(motion, path, index=3)
+    ...     path.read_bytes()[1:4]
+    b'PNG'
+    """
     fig, ax = figure_for(motion)
     draw_mechanism(motion, index, ax, lang=lang)
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=dpi, bbox_inches="tight")
-    plt.close(fig)
     atomic_write_bytes(path, buffer.getvalue())
 
 
 def save_animation_gif(motion: Motion, path: str | os.PathLike[str], *, frames: int = 72,
                        duration_ms: int = 60, lang: str = "en", dpi: int = 80) -> None:
-    """Animate a whole cycle (``frames`` evenly chosen positions) and write a GIF atomically."""
+    """Animate a whole cycle and write a looping GIF atomically.
+
+    Parameters
+    ----------
+    motion : Motion
+        The analysed mechanism.
+    path : str or path-like
+        The file to write (replaced atomically when it exists).
+    frames : int
+        How many evenly chosen positions are shown (all of them when there are fewer).
+    duration_ms : int
+        How long each frame is shown, milliseconds.
+    lang : str
+        Language of the title and axis labels.
+    dpi : int
+        Dots per inch.
+
+    Raises
+    ------
+    OSError
+        When the file cannot be written.
+
+    Examples
+    --------
+    >>> import assur
+    >>> chain = assur.chain_from_dict({"mechanism": {"name": "four-bar", "inputs": [1], "pairs": [
+    ...     {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
+    ...     {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}]},
+    ...     "geometry": {"A": {"point": [0, 0]}, "B": {"point": [20, 35]},
+    ...                  "C": {"point": [110, 80]}, "D": {"point": [100, 0]}}})
+    >>> motion = assur.analyse(assur.build_model(assur.analyse_structure(chain)), points=36)
+    >>> import tempfile, pathlib
+    >>> from PIL import Image
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder, "four_bar.gif")
+    ...     assur.save_animation_gif(motion, path, frames=4, dpi=40)
+    ...     with Image.open(path) as gif:
+    ...         gif.n_frames
+    4
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
     from PIL import Image
 
-    plt = _pyplot()
     n = motion.q.size
     picks = np.unique(np.linspace(0, n - 1, min(frames, n)).round().astype(int))
     fig, ax = figure_for(motion, size=6.0)
+    canvas = FigureCanvasAgg(fig)
     limits = ax.get_xlim(), ax.get_ylim()
     images = []
     for index in picks:
@@ -240,10 +357,10 @@ def save_animation_gif(motion: Motion, path: str | os.PathLike[str], *, frames: 
         ax.set_aspect("equal")
         draw_mechanism(motion, int(index), ax, lang=lang)
         fig.set_dpi(dpi)
-        fig.canvas.draw()
-        rgba = np.asarray(fig.canvas.buffer_rgba())
-        images.append(Image.fromarray(rgba[..., :3].copy()).convert("P", palette=Image.ADAPTIVE))
-    plt.close(fig)
+        canvas.draw()
+        rgba = np.asarray(canvas.buffer_rgba())
+        frame_rgb = Image.fromarray(rgba[..., :3].copy())
+        images.append(frame_rgb.convert("P", palette=Image.Palette.ADAPTIVE))
     buffer = io.BytesIO()
     images[0].save(buffer, format="GIF", save_all=True, append_images=images[1:],
                    duration=duration_ms, loop=0)

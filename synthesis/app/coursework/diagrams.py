@@ -12,24 +12,18 @@
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from synthesis.i18n import heading, term
+from assur import ExistenceReport, KinematicModel, Motion
+from assur.text import render
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 __all__ = ["existence_figure", "kinematic_figures", "mechanism_figure"]
-
-_WORDS = {
-    "en": {"angles": "Angles of the links ψ", "sliders": "Slider displacements S",
-           "first": "first analog", "second": "second analog", "link": "link",
-           "pair": "pair", "delta": "δ (allowed margin)", "fails": "does not assemble",
-           "pressure": "Pressure angles", "coordinate": "actuator length, mm"},
-    "ru": {"angles": "Углы поворота звеньев ψ", "sliders": "Перемещения ползунов S",
-           "first": "аналог скорости", "second": "аналог ускорения", "link": "звено",
-           "pair": "пара", "delta": "δ (допустимый запас)", "fails": "не собирается",
-           "pressure": "Углы давления", "coordinate": "длина привода, мм"},
-}
 
 
 def _parts(x: Any, shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -39,19 +33,20 @@ def _parts(x: Any, shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.n
                  for part in (v, d1, d2))
 
 
-def _new_figure(size: tuple[float, float]) -> Any:
+def _new_figure(size: tuple[float, float]) -> Figure:
     from matplotlib.figure import Figure
 
     return Figure(figsize=size, layout="constrained")
 
 
-def _axis(model: Any, q: np.ndarray, lang: str) -> tuple[np.ndarray, str]:
+def _axis(model: KinematicModel, q: np.ndarray, lang: str) -> tuple[np.ndarray, str]:
     if model.drive == "crank":
-        return np.degrees(q), f"{term('crank_angle', lang)} φ, °"
-    return q, _WORDS[lang]["coordinate"]
+        return np.degrees(q), render("plot.crank_angle_deg", lang)
+    return q, render("plot.actuator_length_mm", lang)
 
 
-def existence_figure(report: Any, model: Any, *, lang: str = "en") -> Any:
+def existence_figure(report: ExistenceReport, model: KinematicModel, *,
+                     lang: str = "en") -> Figure:
     """The existence margins of the groups over the cycle.
 
     Parameters
@@ -65,7 +60,6 @@ def existence_figure(report: Any, model: Any, *, lang: str = "en") -> Any:
     -------
     matplotlib Figure
     """
-    words = _WORDS[lang]
     fig = _new_figure((8.0, 3.8))
     ax = fig.add_subplot()
     x, xlabel = _axis(model, report.q, lang)
@@ -78,10 +72,10 @@ def existence_figure(report: Any, model: Any, *, lang: str = "en") -> Any:
                             color=line.get_color(), alpha=0.15, lw=0)
     ax.axhline(0.0, color="black", lw=0.8)
     if not report.all_exist:
-        ax.plot([], [], color="grey", alpha=0.3, lw=6, label=words["fails"])
+        ax.plot([], [], color="grey", alpha=0.3, lw=6, label=render("plot.does_not_assemble", lang))
     ax.set_xlabel(xlabel)
-    ax.set_ylabel(term("margin", lang))
-    ax.set_title(heading("existence", lang), fontsize=11)
+    ax.set_ylabel(render("plot.existence_margin", lang))
+    ax.set_title(render("plot.existence", lang), fontsize=11)
     ax.grid(alpha=0.3)
     if model.drive == "crank":
         ax.set_xticks(np.arange(0, 361, 45))
@@ -90,7 +84,7 @@ def existence_figure(report: Any, model: Any, *, lang: str = "en") -> Any:
     return fig
 
 
-def _analog_axes(fig: Any, xlabel: str, ylabels: tuple[str, str, str]) -> list[Any]:
+def _analog_axes(fig: Figure, xlabel: str, ylabels: tuple[str, str, str]) -> list[Axes]:
     axes = fig.subplots(3, 1, sharex=True)
     for ax, label in zip(axes, ylabels):
         ax.set_ylabel(label, fontsize=9)
@@ -99,7 +93,7 @@ def _analog_axes(fig: Any, xlabel: str, ylabels: tuple[str, str, str]) -> list[A
     return list(axes)
 
 
-def kinematic_figures(motion: Any, *, lang: str = "en") -> list[tuple[str, Any]]:
+def kinematic_figures(motion: Motion, *, lang: str = "en") -> list[tuple[str, Figure]]:
     """Kinematic diagrams of one design over the cycle.
 
     Parameters
@@ -116,10 +110,10 @@ def kinematic_figures(motion: Any, *, lang: str = "en") -> list[tuple[str, Any]]
     """
     from assur import pressure_angles, unwrap
 
-    words = _WORDS[lang]
     model = motion.model
     x, xlabel = _axis(model, motion.q, lang)
-    figures: list[tuple[str, Any]] = []
+    figures: list[tuple[str, Figure]] = []
+    analogs = f"{render('plot.first_analog', lang)}, {render('plot.second_analog', lang)}"
     crank = {g.i for g in model.groups if g.kind == 0}
     rotating = []
     for link, (_origin, angle) in motion.frames.items():
@@ -133,12 +127,13 @@ def kinematic_figures(motion: Any, *, lang: str = "en") -> list[tuple[str, Any]]
         fig = _new_figure((8.0, 7.0))
         axes = _analog_axes(fig, xlabel, ("ψ, °", "dψ/dφ", "d²ψ/dφ²"))
         for link, psi, first, second in rotating:
-            axes[0].plot(x, np.degrees(psi), lw=1.3, label=f"{words['link']} {link}")
+            axes[0].plot(x, np.degrees(psi), lw=1.3, label=render("plot.link", lang, link=link))
             axes[1].plot(x, first, lw=1.3)
             axes[2].plot(x, second, lw=1.3)
         axes[0].legend(fontsize=7.5, ncol=4)
-        axes[0].set_title(words["angles"], fontsize=11)
-        figures.append((f"{words['angles']}: {words['first']}, {words['second']}", fig))
+        title = render("plot.link_angles", lang)
+        axes[0].set_title(title, fontsize=11)
+        figures.append((f"{title}: {analogs}", fig))
     sliders = []
     for pid, state in motion.sliders.items():
         value, first, second = _parts(state.s, x.shape)
@@ -146,29 +141,32 @@ def kinematic_figures(motion: Any, *, lang: str = "en") -> list[tuple[str, Any]]
             sliders.append((pid, state.slider, value, first, second))
     if sliders:
         fig = _new_figure((8.0, 7.0))
-        axes = _analog_axes(fig, xlabel, ("S, mm", "dS/dφ, mm", "d²S/dφ², mm"))
+        axes = _analog_axes(fig, xlabel, (render("plot.s_mm", lang), render("plot.ds_mm", lang),
+                                          render("plot.d2s_mm", lang)))
         for pid, slider, value, first, second in sliders:
-            label = f"{words['pair']} {pid} ({words['link']} {slider})"
+            label = render("plot.slider_of_pair", lang, pair=pid, link=slider)
             axes[0].plot(x, value, lw=1.3, label=label)
             axes[1].plot(x, first, lw=1.3)
             axes[2].plot(x, second, lw=1.3)
         axes[0].legend(fontsize=7.5, ncol=3)
-        axes[0].set_title(words["sliders"], fontsize=11)
-        figures.append((f"{words['sliders']}: {words['first']}, {words['second']}", fig))
+        title = render("plot.slider_displacements", lang)
+        axes[0].set_title(title, fontsize=11)
+        figures.append((f"{title}: {analogs}", fig))
     angles = pressure_angles(motion)
     if angles:
         fig = _new_figure((8.0, 3.2))
         ax = fig.add_subplot()
         for item in angles:
             ax.plot(x, np.degrees(np.broadcast_to(item.alpha, x.shape)), lw=1.4,
-                    label=f"{item.label}: {term('pair', lang)} {item.pair}, "
-                          f"max {math.degrees(item.maximum):.1f}°")
+                    label=render("plot.pressure_angle_of_pair", lang, group=item.label,
+                                 pair=item.pair, maximum=math.degrees(item.maximum)))
         ax.set_xlabel(xlabel)
-        ax.set_ylabel(f"{term('pressure_angle', lang)} α, °")
-        ax.set_title(words["pressure"], fontsize=11)
+        title = render("plot.pressure_angles", lang)
+        ax.set_ylabel(render("plot.pressure_angle_deg", lang))
+        ax.set_title(title, fontsize=11)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7.5)
-        figures.append((words["pressure"], fig))
+        figures.append((title, fig))
     if model.drive == "crank":
         for _caption, fig in figures:
             for ax in fig.axes:
@@ -177,7 +175,7 @@ def kinematic_figures(motion: Any, *, lang: str = "en") -> list[tuple[str, Any]]
     return figures
 
 
-def mechanism_figure(motion: Any, *, lang: str = "en", positions: int = 4) -> Any:
+def mechanism_figure(motion: Motion, *, lang: str = "en", positions: int = 4) -> Figure:
     """The mechanism at ``positions`` evenly spaced positions of the cycle (2 per row).
 
     Parameters

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from assur import atomic_write_bytes, values
+from assur import LinkId, atomic_write_bytes, values
 from assur.text import render
 from synthesis.evaluate import Analysis
 from synthesis.problem import Problem
@@ -40,8 +40,35 @@ def plot_output(problem: Problem, analysis: Analysis, *, axes: Axes | None = Non
                 lang: str = "en") -> Axes:
     """The reproduced output against the targets, with the deviations at the control points.
 
-    Returns the main ``Axes``; the deviations are drawn on a twin axis (classes 1–2) or as
-    segments from each required point to the reproduced one (classes 3–4).
+    Parameters
+    ----------
+    problem : Problem
+        The synthesis problem (its task class, control points and output).
+    analysis : Analysis
+        One design analysed over the grid (the first row is drawn).
+    axes : matplotlib.axes.Axes, optional
+        Where to draw; the axes of a new figure when None. Drawing on the caller's axes
+        changes nothing else: no backend switch, no new pyplot figure.
+    lang : str
+        Language of the labels.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The main axes; the deviations are drawn on a twin axis (classes 1–2) or as segments
+        from each required point to the reproduced one (classes 3–4).
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> from synthesis.evaluate import Evaluator
+    >>> from synthesis.problem import load_problem
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables" / "problems"
+    >>> problem = load_problem(tables / "class1_fourbar_rocker.yaml")
+    >>> analysis = Evaluator(problem).analyse(problem.initial[None, :])
+    >>> plot_output(problem, analysis).get_ylabel()
+    'output angle ψ, deg'
     """
     ax = _axes(axes, (7, 5))
     control = problem.control
@@ -82,7 +109,35 @@ def plot_output(problem: Problem, analysis: Analysis, *, axes: Axes | None = Non
 
 def plot_mechanism(problem: Problem, analysis: Analysis, *, axes: Axes | None = None,
                    lang: str = "en") -> Axes:
-    """The mechanism at the start position φ = 0 (joints and links), with the output path."""
+    """The mechanism at the start position φ = 0 (joints and links), with the output path.
+
+    Parameters
+    ----------
+    problem : Problem
+        The synthesis problem (the output path and control points of classes 3–4).
+    analysis : Analysis
+        One design analysed over the grid (the first row is drawn).
+    axes : matplotlib.axes.Axes, optional
+        Where to draw; the axes of a new figure when None.
+    lang : str
+        Language of the labels.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> from synthesis.evaluate import Evaluator
+    >>> from synthesis.problem import load_problem
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables" / "problems"
+    >>> problem = load_problem(tables / "class1_fourbar_rocker.yaml")
+    >>> analysis = Evaluator(problem).analyse(problem.initial[None, :])
+    >>> plot_mechanism(problem, analysis, lang="ru").get_title()
+    'механизм при φ = 0'
+    """
     ax = _axes(axes, (7, 6))
     motion = analysis.motion
     model = motion.model
@@ -91,7 +146,7 @@ def plot_mechanism(problem: Problem, analysis: Analysis, *, axes: Axes | None = 
     def start(point: Any) -> complex:
         return complex(np.broadcast_to(values(point), (1, motion.q.size))[0, at])
 
-    points: dict[Any, list[complex]] = {}
+    points: dict[LinkId, list[complex]] = {}
     for pid, (kind, links, _) in model.pair_links.items():
         if kind == "R" and pid in motion.joints:
             z = start(motion.joints[pid])
@@ -125,7 +180,35 @@ def plot_mechanism(problem: Problem, analysis: Analysis, *, axes: Axes | None = 
 
 
 def plot_convergence(result: SearchResult, *, axes: Axes | None = None, lang: str = "en") -> Axes:
-    """Best Q of the feasible designs against the trial number (log scale)."""
+    """Best Q of the feasible designs against the trial number (log scale).
+
+    Parameters
+    ----------
+    result : SearchResult
+        A finished search; the first trials of the shrink and refine stages are marked.
+    axes : matplotlib.axes.Axes, optional
+        Where to draw; the axes of a new figure when None.
+    lang : str
+        Language of the labels.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from synthesis.criteria import Criteria
+    >>> from synthesis.search import SearchSettings, search
+    >>> def evaluate(x):
+    ...     dev = x - np.array([0.3, 0.7])
+    ...     zero = np.zeros(len(x))
+    ...     return Criteria(zero, zero, np.max(np.abs(dev), axis=1), dev, dev)
+    >>> result = search(evaluate, [0, 0], [1, 1], [0.5, 0.5], SearchSettings(budget_log2=6))
+    >>> ax = plot_convergence(result)
+    >>> ax.get_yscale(), ax.get_xlabel()
+    ('log', 'trial')
+    """
     ax = _axes(axes, (7, 4))
     c = result.trial_criteria
     ok = (c.p1 == 0) & (c.p2 == 0) & np.isfinite(c.q)
@@ -147,7 +230,47 @@ def plot_convergence(result: SearchResult, *, axes: Axes | None = None, lang: st
 
 def save_plots(folder: str | os.PathLike[str], problem: Problem, result: SearchResult,
                analysis: Analysis, *, lang: str = "en") -> list[Path]:
-    """Write ``output.png``, ``mechanism.png`` and ``convergence.png`` into ``folder``."""
+    """Write ``output.png``, ``mechanism.png`` and ``convergence.png`` into ``folder``.
+
+    Parameters
+    ----------
+    folder : str or path-like
+        An existing folder; the files in it are replaced atomically.
+    problem : Problem
+    result : SearchResult
+    analysis : Analysis
+        The best design of ``result`` analysed over the grid.
+    lang : str
+        Language of the labels.
+
+    Returns
+    -------
+    list of Path
+        The files written.
+
+    Raises
+    ------
+    OSError
+        When a file cannot be written.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> from synthesis.evaluate import Evaluator
+    >>> from synthesis.problem import load_problem
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables" / "problems"
+    >>> problem = load_problem(tables / "class1_fourbar_rocker.yaml")
+    >>> from synthesis.search import search, settings_for
+    >>> evaluator = Evaluator(problem)
+    >>> result = search(evaluator, problem.lower, problem.upper, problem.initial,
+    ...                 settings_for(problem, budget_log2=4))
+    >>> analysis = evaluator.analyse(result.x[None, :])
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     [path.name for path in save_plots(folder, problem, result, analysis)]
+    ['output.png', 'mechanism.png', 'convergence.png']
+    """
     from matplotlib.figure import Figure
 
     folder = Path(folder)

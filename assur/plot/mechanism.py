@@ -21,6 +21,7 @@ import numpy as np
 
 from assur.io.files import atomic_write_bytes
 from assur.kinematics.analysis import Motion, values
+from assur.model import LinkId
 from assur.text import render
 
 if TYPE_CHECKING:
@@ -70,13 +71,10 @@ def figure_for(motion: Motion, size: float = 7.0) -> tuple[Figure, Axes]:
 
     Examples
     --------
+    >>> from pathlib import Path
     >>> import assur
-    >>> chain = assur.chain_from_dict({"mechanism": {"name": "four-bar", "inputs": [1], "pairs": [
-    ...     {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
-    ...     {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}]},
-    ...     "geometry": {"A": {"point": [0, 0]}, "B": {"point": [20, 35]},
-    ...                  "C": {"point": [110, 80]}, "D": {"point": [100, 0]}}})
-    >>> motion = assur.analyse(assur.build_model(assur.analyse_structure(chain)), points=36)
+    >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
+    >>> motion = assur.analyse(model, points=36)
     >>> fig, ax = assur.figure_for(motion)
     >>> ax.get_aspect(), float(fig.get_figwidth())
     (1.0, 7.0)
@@ -121,16 +119,13 @@ def draw_mechanism(motion: Motion, index: int = 0, ax: Axes | None = None, *,
 
     Examples
     --------
+    >>> from pathlib import Path
     >>> import assur
-    >>> chain = assur.chain_from_dict({"mechanism": {"name": "four-bar", "inputs": [1], "pairs": [
-    ...     {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
-    ...     {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}]},
-    ...     "geometry": {"A": {"point": [0, 0]}, "B": {"point": [20, 35]},
-    ...                  "C": {"point": [110, 80]}, "D": {"point": [100, 0]}}})
-    >>> motion = assur.analyse(assur.build_model(assur.analyse_structure(chain)), points=36)
+    >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
+    >>> motion = assur.analyse(model, points=36)
     >>> ax = assur.draw_mechanism(motion, 9)
     >>> ax.get_title()
-    'four-bar: crank angle φ = 90.0°'
+    'four-bar (crank-rocker): crank angle φ = 90.0°'
     """
     if ax is None:
         _, ax = figure_for(motion)
@@ -174,7 +169,7 @@ def draw_mechanism(motion: Motion, index: int = 0, ax: Axes | None = None, *,
                         [p.imag, (p + normal + 0.5 * normal * 1j).imag], "-", color="0.5",
                         lw=0.6, zorder=2)
     # links: bars between their joints, plates for three or more
-    points_of: dict[Any, list[complex]] = {}
+    points_of: dict[LinkId, list[complex]] = {}
     for pid, (kind, links, _) in model.pair_links.items():
         if kind == "R" and pid in motion.joints:
             z = _at(motion.joints[pid], index)
@@ -278,13 +273,10 @@ def save_mechanism_png(motion: Motion, path: str | os.PathLike[str], index: int 
 
     Examples
     --------
+    >>> from pathlib import Path
     >>> import assur
-    >>> chain = assur.chain_from_dict({"mechanism": {"name": "four-bar", "inputs": [1], "pairs": [
-    ...     {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
-    ...     {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}]},
-    ...     "geometry": {"A": {"point": [0, 0]}, "B": {"point": [20, 35]},
-    ...                  "C": {"point": [110, 80]}, "D": {"point": [100, 0]}}})
-    >>> motion = assur.analyse(assur.build_model(assur.analyse_structure(chain)), points=36)
+    >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
+    >>> motion = assur.analyse(model, points=36)
     >>> import tempfile, pathlib
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     path = pathlib.Path(folder, "four_bar.png")
@@ -325,13 +317,10 @@ def save_animation_gif(motion: Motion, path: str | os.PathLike[str], *, frames: 
 
     Examples
     --------
+    >>> from pathlib import Path
     >>> import assur
-    >>> chain = assur.chain_from_dict({"mechanism": {"name": "four-bar", "inputs": [1], "pairs": [
-    ...     {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
-    ...     {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}]},
-    ...     "geometry": {"A": {"point": [0, 0]}, "B": {"point": [20, 35]},
-    ...                  "C": {"point": [110, 80]}, "D": {"point": [100, 0]}}})
-    >>> motion = assur.analyse(assur.build_model(assur.analyse_structure(chain)), points=36)
+    >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
+    >>> motion = assur.analyse(model, points=36)
     >>> import tempfile, pathlib
     >>> from PIL import Image
     >>> with tempfile.TemporaryDirectory() as folder:

@@ -54,11 +54,22 @@ def existence_figure(report: ExistenceReport, model: KinematicModel, *,
     report : ExistenceReport
         From :func:`assur.kinematics.existence.check_existence`.
     model : KinematicModel
-    lang : {"en", "ru"}
+    lang : str
+        Language of the labels.
 
     Returns
     -------
-    matplotlib Figure
+    matplotlib.figure.Figure
+        Not attached to pyplot.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
+    >>> fig = existence_figure(assur.check_existence(model, points=36), model)
+    >>> fig.axes[0].get_title()
+    'Existence of the groups over the cycle'
     """
     fig = _new_figure((8.0, 3.8))
     ax = fig.add_subplot()
@@ -100,13 +111,23 @@ def kinematic_figures(motion: Motion, *, lang: str = "en") -> list[tuple[str, Fi
     ----------
     motion : Motion
         From :func:`assur.kinematics.analysis.analyse` with ``analogs=True``.
-    lang : {"en", "ru"}
+    lang : str
+        Language of the labels and captions.
 
     Returns
     -------
-    list of (caption, matplotlib Figure)
-        Link angles, slider displacements (each with both analogs) and pressure angles,
-        where the mechanism has them.
+    list of (str, matplotlib.figure.Figure)
+        Captions and figures: link angles, slider displacements (each with both analogs)
+        and pressure angles, where the mechanism has them.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
+    >>> motion = assur.analyse(model, points=36, analogs=True)
+    >>> [caption for caption, _ in kinematic_figures(motion, lang="ru")]
+    ['Углы поворота звеньев ψ: аналог скорости, аналог ускорения', 'Углы давления']
     """
     from assur import pressure_angles, unwrap
 
@@ -182,12 +203,24 @@ def mechanism_figure(motion: Motion, *, lang: str = "en", positions: int = 4) ->
     ----------
     motion : Motion
         One design over the cycle.
-    lang : {"en", "ru"}
+    lang : str
+        Language of the titles and labels.
     positions : int
+        How many positions are drawn.
 
     Returns
     -------
-    matplotlib Figure
+    matplotlib.figure.Figure
+        Not attached to pyplot.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
+    >>> fig = mechanism_figure(assur.analyse(model, points=36), positions=2)
+    >>> [ax.get_title().split(": ")[1] for ax in fig.axes]
+    ['crank angle φ = 0.0°', 'crank angle φ = 180.0°']
     """
     from assur import draw_mechanism
 

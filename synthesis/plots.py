@@ -264,7 +264,7 @@ def save_plots(folder: str | os.PathLike[str], problem: Problem, result: SearchR
     >>> from synthesis.search import search, settings_for
     >>> evaluator = Evaluator(problem)
     >>> result = search(evaluator, problem.lower, problem.upper, problem.initial,
-    ...                 settings_for(problem, budget_log2=4))
+    ...                 settings_for(problem, budget_log2=4, refine=False))
     >>> analysis = evaluator.analyse(result.x[None, :])
     >>> import tempfile
     >>> with tempfile.TemporaryDirectory() as folder:

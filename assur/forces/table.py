@@ -1,0 +1,1 @@
+def read_forces(root, chain): pass

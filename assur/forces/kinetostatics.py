@@ -280,14 +280,14 @@ def _known_loads(bodies: _Bodies, motion: Motion, data: ForceData, omega: float)
     total = np.zeros(bodies.shape)
     scale = np.zeros(bodies.shape)
 
-    def work(term: np.ndarray) -> None:
+    def work(term: Any) -> None:
         nonlocal total, scale
         total = total + term
         scale = scale + np.abs(term)
 
     w2 = omega * omega
     for link, mass in data.masses.items():
-        angle = motion.frames[link][1]
+        angle = _angle(motion, link)
         spin = -mass.inertia * w2 * angle.d2
         if mass.mass > 0 and mass.centre is not None:
             centre = carried(link, mass.centre)
@@ -308,8 +308,14 @@ def _known_loads(bodies: _Bodies, motion: Motion, data: ForceData, omega: float)
             torque = _value(load.torque, motion.q, periodic) + np.zeros(bodies.shape)
             bodies.add(load.link, np.zeros(bodies.shape, complex), bodies.origins[load.link],
                        torque)
-            work(torque * motion.frames[load.link][1].d1)
+            work(torque * _angle(motion, load.link).d1)
     return Power(total, scale)
+
+
+def _angle(motion: Motion, link: LinkId) -> Jet:
+    angle = motion.frames[link][1]
+    assert isinstance(angle, Jet), "a motion with analogs"
+    return angle
 
 
 def _value(value: complex | float | Tabulated, q: np.ndarray, periodic: bool) -> Any:

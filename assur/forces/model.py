@@ -132,7 +132,7 @@ class ForceData:
     --------
     >>> data = ForceData({2: Mass(1.2, 80 + 60j, 0.004)}, (Load(3, torque=-20.0),), -9.81j)
     >>> data.weight(2)
-    (-0-11.772j)
+    -11.772j
     """
 
     masses: Mapping[LinkId, Mass] = field(default_factory=dict)

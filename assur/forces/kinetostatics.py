@@ -15,7 +15,8 @@ group does not assemble or a reaction is indeterminate is NaN with a reason, nev
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -99,14 +100,15 @@ class ForceAnalysis:
         Σ |power terms| / |θ_in′|: the power balance is round-off when small beside it.
     reactions : dict
         Pair → :class:`Reaction`.
-    residuals : dict
-        Moving link → :class:`~assur.forces.checks.LinkResidual`.
     reason : ndarray, int8
         :class:`~assur.forces.groups.ForceReason` per position (0 where solved).
     singular : ndarray, object
         The label of the singular group, None elsewhere.
     ill_conditioned : ndarray, bool
         A group's normalised determinant is below 1e-6 (reactions grow like its inverse).
+    known, origins, input_link
+        What the residuals are computed from: every moving link's known loads (resultant
+        force, N, and moment about its origin, N·m), its origin (m), and the driven link.
     """
 
     omega: float
@@ -117,10 +119,34 @@ class ForceAnalysis:
     power_balance: np.ndarray
     power_scale: np.ndarray
     reactions: dict[PairId, Reaction]
-    residuals: dict[LinkId, LinkResidual]
     reason: np.ndarray
     singular: np.ndarray
     ill_conditioned: np.ndarray
+    known: dict[LinkId, tuple[np.ndarray, np.ndarray]] = field(repr=False)
+    origins: dict[LinkId, np.ndarray] = field(repr=False)
+    input_link: LinkId = field(repr=False)
+
+    @cached_property
+    def residuals(self) -> dict[LinkId, LinkResidual]:
+        """Moving link → its Newton–Euler residual (:class:`~assur.forces.checks.LinkResidual`)
+        from the reported reactions and driving torque (computed when first asked for).
+
+        Examples
+        --------
+        >>> import numpy as np, assur
+        >>> from assur.forces import ForceData, Load
+        >>> model = assur.load_model("input_tables/four_bar.yaml")
+        >>> motion = assur.analyse(model, np.radians([0.0, 90.0]), analogs=True)
+        >>> result = kinetostatics(motion, ForceData(loads=(Load(3, torque=-15.0),)))
+        >>> bool(max(r.moment.max() for r in result.residuals.values()) < 1e-12)
+        True
+        """
+        with np.errstate(all="ignore"):
+            return link_residuals(
+                self.known, self.origins,
+                {pid: (r.links, r.x + 1j * r.y, r.point, r.moment)
+                 for pid, r in self.reactions.items()},
+                {self.input_link: self.driving})
 
     def message(self, index: Any) -> Message | None:
         """Why the forces at one position are not given (None where they are).
@@ -192,8 +218,7 @@ def kinetostatics(motion: Motion, data: ForceData, omega: float = 0.0) -> ForceA
     with np.errstate(all="ignore"):
         bodies = _Bodies(motion, shape)
         power = _known_loads(bodies, motion, data, omega)
-        known = {link: (bodies.forces[link].copy(), bodies.moments[link].copy())
-                 for link in bodies.forces}
+        known = {link: (bodies.forces[link], bodies.moments[link]) for link in bodies.forces}
         reactions, reason, singular, ill = _groups(bodies, motion)
         crank = model.groups[0]
         pivot = bodies.joint(crank.pairs["H_i"])
@@ -203,17 +228,14 @@ def kinetostatics(motion: Motion, data: ForceData, omega: float = 0.0) -> ForceA
                              -bodies.force(crank.i), pivot))
         driving = np.where(reason > ForceReason.NOT_ASSEMBLED, np.nan, driving)
         lever, scale = lever_torque(power, float(model.direction))
-        residuals = link_residuals(
-            known, bodies.origins,
-            {pid: (r.links, r.x + 1j * r.y, r.point, r.moment) for pid, r in reactions.items()},
-            {crank.i: driving})
     reason = np.where(~np.asarray(motion.exists) & (reason == 0), ForceReason.NOT_ASSEMBLED,
                       reason).astype(np.int8)
     return ForceAnalysis(omega=float(omega), gravity=complex(data.gravity),
                          drive="driving_torque", driving=driving, driving_lever=lever,
                          power_balance=driving - lever, power_scale=scale,
-                         reactions=reactions, residuals=residuals, reason=reason,
-                         singular=singular, ill_conditioned=ill)
+                         reactions=reactions, reason=reason, singular=singular,
+                         ill_conditioned=ill, known=known, origins=bodies.origins,
+                         input_link=crank.i)
 
 
 class _Bodies:
@@ -242,7 +264,7 @@ class _Bodies:
 
     def normal(self, pair: PairId) -> np.ndarray:
         if pair not in self._normals:
-            self._normals[pair] = 1j * np.asarray(J.expi(values(self.motion.sliders[pair].angle)))
+            self._normals[pair] = 1j * expi(values(self.motion.sliders[pair].angle))
         return self._normals[pair]
 
     def force(self, link: LinkId) -> np.ndarray:
@@ -254,10 +276,19 @@ class _Bodies:
     def add(self, link: LinkId, force: np.ndarray, point: np.ndarray,
             couple: np.ndarray | None = None) -> None:
         """A force at a point of the link, and a couple."""
+        self.load(link, force, point - self.origins[link], couple)
+
+    def load(self, link: LinkId, force: np.ndarray, arm: np.ndarray,
+             couple: np.ndarray | None = None) -> None:
+        """A force at the point ``origin + arm`` of the link, and a couple."""
+        moment = cross(arm, force)
         self.forces[link] = self.forces[link] + force
-        moment = cross(point - self.origins[link], force)
         self.moments[link] = self.moments[link] + (moment if couple is None else
                                                    moment + couple)
+
+    def turn(self, link: LinkId, couple: np.ndarray) -> None:
+        """A couple on the link."""
+        self.moments[link] = self.moments[link] + couple
 
 
 def _known_loads(bodies: _Bodies, motion: Motion, data: ForceData, omega: float) -> Power:
@@ -265,57 +296,69 @@ def _known_loads(bodies: _Bodies, motion: Motion, data: ForceData, omega: float)
     power per unit input speed (§6.1)."""
     model = motion.model
     sketch = analyse(model, np.zeros(1)).frames
-    rotors: dict[LinkId, Any] = {}
+    rotors: dict[LinkId, np.ndarray] = {}
+    w2 = omega * omega
 
-    def carried(link: LinkId, x: complex) -> Jet:
-        """A point fixed on the link, sketched at x (mm): position and analogs in m."""
-        origin, angle = motion.frames[link]
+    def carried(link: LinkId, x: complex) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """A point fixed on the link, sketched at x (mm): its arm from the link's origin, its
+        velocity and acceleration analogs, in m."""
+        origin, angle = _jet(motion.frames[link][0]), _angle(motion, link)
         origin0, angle0 = sketch[link]
-        local = (x - values(origin0)) * np.exp(-1j * values(angle0)) * MM
         if link not in rotors:
-            rotors[link] = J.expi(angle)
-        return origin * MM + local * rotors[link]
+            rotors[link] = expi(angle.v)
+        local = (x - values(origin0)) * np.exp(-1j * values(angle0)) * MM
+        arm = local * rotors[link]
+        return (arm, origin.d1 * MM + arm * (1j * angle.d1),
+                origin.d2 * MM + arm * (1j * angle.d2 - angle.d1 * angle.d1))
 
     periodic = model.drive == "crank"
-    total = np.zeros(bodies.shape)
-    scale = np.zeros(bodies.shape)
-
-    def work(term: Any) -> None:
-        nonlocal total, scale
-        total = total + term
-        scale = scale + np.abs(term)
-
-    w2 = omega * omega
+    terms = []
     for link, mass in data.masses.items():
         angle = _angle(motion, link)
         spin = -mass.inertia * w2 * angle.d2
         if mass.mass > 0 and mass.centre is not None:
-            centre = carried(link, mass.centre)
-            force = data.weight(link) - mass.mass * w2 * centre.d2
-            bodies.add(link, force, centre.v, spin)
-            work(J.dot(data.weight(link), centre.d1))
-            work(J.dot(-mass.mass * w2 * centre.d2, centre.d1))
+            arm, velocity, acceleration = carried(link, mass.centre)
+            force = data.weight(link) - mass.mass * w2 * acceleration
+            bodies.load(link, force, arm, spin)
+            terms.append(J.dot(force, velocity))
         else:
-            bodies.add(link, np.zeros(bodies.shape, complex), bodies.origins[link], spin)
-        work(spin * angle.d1)
+            bodies.turn(link, spin)
+        terms.append(spin * angle.d1)
     for load in data.loads:
         if load.force is not None and load.point is not None:
-            point = carried(load.link, load.point)
-            force = _value(load.force, motion.q, periodic)
-            bodies.add(load.link, force + np.zeros(bodies.shape), point.v)
-            work(J.dot(force, point.d1))
+            arm, velocity, _ = carried(load.link, load.point)
+            force = _value(load.force, motion.q, periodic) + np.zeros(bodies.shape)
+            bodies.load(load.link, force, arm)
+            terms.append(J.dot(force, velocity))
         if load.torque is not None:
             torque = _value(load.torque, motion.q, periodic) + np.zeros(bodies.shape)
-            bodies.add(load.link, np.zeros(bodies.shape, complex), bodies.origins[load.link],
-                       torque)
-            work(torque * _angle(motion, load.link).d1)
-    return Power(total, scale)
+            bodies.turn(load.link, torque)
+            terms.append(torque * _angle(motion, load.link).d1)
+    zero = np.zeros(bodies.shape)
+    return Power(sum(terms, zero), sum((np.abs(t) for t in terms), zero))
+
+
+def expi(angle: np.ndarray) -> np.ndarray:
+    """exp(i·angle), computed once when the angle is one value broadcast over the positions
+    (a guide on the frame).
+
+    Examples
+    --------
+    >>> expi(np.broadcast_to(np.pi / 2, (3,))).round(12).tolist()
+    [1j, 1j, 1j]
+    """
+    if angle.ndim and not any(angle.strides):
+        return np.broadcast_to(np.asarray(J.expi(angle.flat[0])), angle.shape)
+    return np.asarray(J.expi(angle))
 
 
 def _angle(motion: Motion, link: LinkId) -> Jet:
-    angle = motion.frames[link][1]
-    assert isinstance(angle, Jet), "a motion with analogs"
-    return angle
+    return _jet(motion.frames[link][1])
+
+
+def _jet(x: Any) -> Jet:
+    assert isinstance(x, Jet), "a motion with analogs"
+    return x
 
 
 def _value(value: complex | float | Tabulated, q: np.ndarray, periodic: bool) -> Any:

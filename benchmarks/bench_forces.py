@@ -1,0 +1,84 @@
+"""Speed of the force analysis on the course's 11-link example next to its kinematics (one core).
+
+Prints positions per second for the kinematics with analogs (what the force analysis needs),
+for the force analysis of that motion (masses on every link, the tabulated resistance on
+slider 11, gravity), and for both together, for one design over a long grid of crank angles
+and for a batch of designs × 360 angles; then the ratio force analysis / kinematics.
+
+Run: ``python benchmarks/bench_forces.py [--repeat 5] [--positions 100000] [--wall]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+import assur
+from assur.forces import kinetostatics, read_forces
+from assur.forces.table import SECTIONS
+
+TABLE = Path(__file__).resolve().parent.parent / "input_tables" / "course_11_link_forces.yaml"
+
+
+def best_time(call, repeat: int, clock) -> float:
+    """The fastest of ``repeat`` runs, after a warm-up run."""
+    call()
+    best = float("inf")
+    for _ in range(repeat):
+        start = clock()
+        call()
+        best = min(best, clock() - start)
+    return best
+
+
+def load() -> tuple[assur.KinematicModel, assur.forces.ForceData]:
+    """The example's model and its force sections."""
+    data = yaml.safe_load(TABLE.read_text(encoding="utf-8"))
+    chain = assur.chain_from_dict({k: v for k, v in data.items() if k not in SECTIONS},
+                                  str(TABLE))
+    reader = assur.TableReader.from_data(data, str(TABLE))
+    forces = read_forces(reader.root(), chain)
+    reader.raise_if_any()
+    assert forces is not None
+    return assur.build_model(assur.analyse_structure(chain)), forces
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--positions", type=int, default=100_000)
+    parser.add_argument("--designs", type=int, default=300)
+    parser.add_argument("--wall", action="store_true",
+                        help="measure elapsed time (time.perf_counter) instead of CPU time")
+    args = parser.parse_args()
+    clock = time.perf_counter if args.wall else time.process_time
+    model, data = load()
+    rows = []
+    phi = np.linspace(0.0, 2 * np.pi, args.positions, endpoint=False)
+    rng = np.random.default_rng(1)
+    batch = model.with_params({"L1(2,3).l_i": rng.uniform(138, 142, (args.designs, 1)),
+                               "L2(9,8).l_j": rng.uniform(125, 135, (args.designs, 1))})
+    for label, design, q in (("one design", model, phi),
+                             (f"{args.designs} designs x 360", batch,
+                              assur.input_grid(model, 360))):
+        count = int(np.prod(np.broadcast_shapes(design.design_shape, q.shape)))
+        motion = assur.analyse(design, q, analogs=True)
+        t_kin = best_time(lambda: assur.analyse(design, q, analogs=True), args.repeat, clock)
+        t_force = best_time(lambda: kinetostatics(motion, data, 10.0), args.repeat, clock)
+        rows.append((label, count, t_kin, t_force))
+    print(f"{TABLE.name}, {'wall' if args.wall else 'CPU'} time, best of {args.repeat}")
+    print(f"{'run':<22}{'positions':>11}{'kinematics/s':>15}{'forces/s':>13}{'both/s':>12}"
+          f"{'forces/kin':>12}")
+    for label, count, t_kin, t_force in rows:
+        print(f"{label:<22}{count:>11}{count / t_kin:>15,.0f}{count / t_force:>13,.0f}"
+              f"{count / (t_kin + t_force):>12,.0f}{t_force / t_kin:>12.2f}")
+    sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main()

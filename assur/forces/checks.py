@@ -24,7 +24,8 @@ class LinkResidual:
     """The Newton–Euler residual of one link, relative to its largest term.
 
     ``force`` = |Σ F| / max |force term|, ``moment`` = |Σ M| / max |moment term| (moments
-    about the link's frame origin); 0 where every term is 0, NaN where not solved.
+    about the link's frame origin; the size of the moment of a force R at arm r is |r|·|R|);
+    0 where every term is 0, NaN where not solved.
     """
 
     force: np.ndarray
@@ -105,25 +106,27 @@ def link_residuals(known: Mapping[LinkId, tuple[np.ndarray, np.ndarray]],
     out = {}
     for link, (force, moment) in known.items():
         origin = origins[link]
-        forces = [force]
-        moments = [moment]
+        forces = [(force, np.abs(force))]
+        moments = [(moment, np.abs(moment))]
         if link in torques:
-            moments.append(torques[link])
+            moments.append((torques[link], np.abs(torques[link])))
         for (a, b), r, point, couple in reactions.values():
             if link not in (a, b):
                 continue
             sign = 1.0 if link == b else -1.0
-            forces.append(sign * r)
-            moments.append(sign * cross(point - origin, r))
+            size = np.abs(r)
+            arm = point - origin
+            forces.append((sign * r, size))
+            moments.append((sign * cross(arm, r), np.abs(arm) * size))
             if couple is not None:
-                moments.append(sign * couple)
+                moments.append((sign * couple, np.abs(couple)))
         out[link] = LinkResidual(_relative(forces), _relative(moments))
     return out
 
 
-def _relative(terms: list[np.ndarray]) -> np.ndarray:
-    """|Σ terms| / max |term| (0 where all terms vanish)."""
-    total = np.abs(sum(terms[1:], terms[0]))
-    largest = np.maximum.reduce([np.abs(t) for t in terms])
+def _relative(terms: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+    """|Σ terms| / the largest term's size (0 where every term vanishes)."""
+    total = np.abs(sum((t for t, _ in terms[1:]), terms[0][0]))
+    largest = np.maximum.reduce([size for _, size in terms])
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.asarray(np.where(largest > 0, total / largest, total))

@@ -312,7 +312,7 @@ def _known_loads(bodies: _Bodies, motion: Motion, data: ForceData, omega: float)
                 origin.d2 * MM + arm * (1j * angle.d2 - angle.d1 * angle.d1))
 
     periodic = model.drive == "crank"
-    terms = []
+    terms: list[Any] = []
     for link, mass in data.masses.items():
         angle = _angle(motion, link)
         spin = -mass.inertia * w2 * angle.d2

@@ -11,6 +11,7 @@ to 1e-9 relative; the power balance and every link's residual hold at every asse
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -240,3 +241,14 @@ def test_a_batch_of_designs_equals_the_loop_over_them() -> None:
         for pid, reaction in alone.reactions.items():
             np.testing.assert_allclose(together.reactions[pid].x[k], reaction.x, rtol=1e-12,
                                        atol=1e-9)
+
+
+def test_a_wrong_reaction_shows_in_the_residuals_of_its_two_links() -> None:
+    model, data = _design("L2", 1)
+    result = kinetostatics(assur.analyse(model, PHI, analogs=True), data, OMEGA)
+    solved = result.reason == 0
+    wrong = dataclasses.replace(result.reactions["B"], x=result.reactions["B"].x * (1 + 1e-6))
+    broken = dataclasses.replace(result, reactions={**result.reactions, "B": wrong})
+    for link, residual in broken.residuals.items():
+        worst = np.max(residual.force[solved])
+        assert (worst > 1e-8) == (link in (1, 2)), link

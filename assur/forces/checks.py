@@ -8,13 +8,13 @@ reported reactions alone, the forces and moments on every moving link.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
 
 from assur.forces.groups import cross
-from assur.model import LinkId, PairId
+from assur.model import LinkId
 
 __all__ = ["LinkResidual", "Power", "lever_torque", "link_residuals"]
 
@@ -71,9 +71,8 @@ def lever_torque(power: Power, rate: float) -> tuple[np.ndarray, np.ndarray]:
 
 def link_residuals(known: Mapping[LinkId, tuple[np.ndarray, np.ndarray]],
                    origins: Mapping[LinkId, np.ndarray],
-                   reactions: Mapping[PairId, tuple[tuple[LinkId, LinkId], np.ndarray,
-                                                    np.ndarray, np.ndarray | None]],
-                   torques: Mapping[LinkId, np.ndarray]) -> dict[LinkId, LinkResidual]:
+                   reactions: Iterable[tuple[tuple[LinkId, LinkId], np.ndarray, np.ndarray,
+                                             np.ndarray | None]]) -> dict[LinkId, LinkResidual]:
     """Σ F and Σ M on every moving link from its known loads and the reported reactions.
 
     Parameters
@@ -82,11 +81,10 @@ def link_residuals(known: Mapping[LinkId, tuple[np.ndarray, np.ndarray]],
         Link → (resultant known force, N; its moment about the link's origin, N·m).
     origins : mapping
         Link → its origin (m, complex).
-    reactions : mapping
-        Pair → ((a, b), force of a on b (N, complex), its point (m), couple of a on b about
-        that point (N·m) or None).
-    torques : mapping
-        Link → a driving torque applied to it (N·m).
+    reactions : iterable
+        ((a, b), force of a on b (N, complex), its point (m), couple of a on b about that
+        point (N·m) or None) for every pair, and the drive in the same form (the frame's
+        driving torque on the crank, or the actuator's force on its sliding member).
 
     Returns
     -------
@@ -98,8 +96,7 @@ def link_residuals(known: Mapping[LinkId, tuple[np.ndarray, np.ndarray]],
     A link pushed by 5 N at its origin and held by a pair with the frame:
 
     >>> z = np.zeros(1)
-    >>> out = link_residuals({1: (z + 5, z)}, {1: z + 0j},
-    ...                      {"A": ((0, 1), z - 5 + 0j, z + 0j, None)}, {})
+    >>> out = link_residuals({1: (z + 5, z)}, {1: z + 0j}, [((0, 1), z - 5 + 0j, z + 0j, None)])
     >>> float(out[1].force[0]), float(out[1].moment[0])
     (0.0, 0.0)
     """
@@ -108,9 +105,7 @@ def link_residuals(known: Mapping[LinkId, tuple[np.ndarray, np.ndarray]],
         origin = origins[link]
         forces = [(force, np.abs(force))]
         moments = [(moment, np.abs(moment))]
-        if link in torques:
-            moments.append((torques[link], np.abs(torques[link])))
-        for (a, b), r, point, couple in reactions.values():
+        for (a, b), r, point, couple in reactions:
             if link not in (a, b):
                 continue
             sign = 1.0 if link == b else -1.0

@@ -26,6 +26,7 @@ from assur.forces.groups import EQUATIONS, ForceReason, Transfer, cross
 from assur.forces.model import ForceData, Tabulated
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import Motion, analyse, values
+from assur.kinematics.model import GroupModel
 from assur.kinematics.jets import Jet
 from assur.model import LinkId, PairId
 from assur.text import Message
@@ -106,9 +107,10 @@ class ForceAnalysis:
         The label of the singular group, None elsewhere.
     ill_conditioned : ndarray, bool
         A group's normalised determinant is below 1e-6 (reactions grow like its inverse).
-    known, origins, input_link
+    known, origins, drive_load
         What the residuals are computed from: every moving link's known loads (resultant
-        force, N, and moment about its origin, N·m), its origin (m), and the driven link.
+        force, N, and moment about its origin, N·m), its origin (m), and the drive as a load
+        (the driving torque on the crank, or the actuator's force on its two members).
     """
 
     omega: float
@@ -124,7 +126,7 @@ class ForceAnalysis:
     ill_conditioned: np.ndarray
     known: dict[LinkId, tuple[np.ndarray, np.ndarray]] = field(repr=False)
     origins: dict[LinkId, np.ndarray] = field(repr=False)
-    input_link: LinkId = field(repr=False)
+    drive_load: Any = field(repr=False)
 
     @cached_property
     def residuals(self) -> dict[LinkId, LinkResidual]:
@@ -144,9 +146,8 @@ class ForceAnalysis:
         with np.errstate(all="ignore"):
             return link_residuals(
                 self.known, self.origins,
-                {pid: (r.links, r.x + 1j * r.y, r.point, r.moment)
-                 for pid, r in self.reactions.items()},
-                {self.input_link: self.driving})
+                [*((r.links, r.x + 1j * r.y, r.point, r.moment)
+                   for r in self.reactions.values()), self.drive_load])
 
     def message(self, index: Any) -> Message | None:
         """Why the forces at one position are not given (None where they are).
@@ -216,26 +217,68 @@ def kinetostatics(motion: Motion, data: ForceData, omega: float = 0.0) -> ForceA
     model = motion.model
     shape = np.shape(motion.exists)
     with np.errstate(all="ignore"):
-        bodies = _Bodies(motion, shape)
-        power = _known_loads(bodies, motion, data, omega)
+        frames = _frames(motion)
+        bodies = _Bodies(motion, frames, shape)
+        power = _known_loads(bodies, motion, frames, data, omega)
         known = {link: (bodies.forces[link], bodies.moments[link]) for link in bodies.forces}
-        reactions, reason, singular, ill = _groups(bodies, motion)
-        crank = model.groups[0]
-        pivot = bodies.joint(crank.pairs["H_i"])
-        driving = -bodies.moment(crank.i, pivot)
-        reactions[crank.pairs["H_i"]] = _oriented(
-            motion, Transfer(crank.pairs["H_i"], model.frame, crank.i,
-                             -bodies.force(crank.i), pivot))
+        reactions, reason, singular, ill, actuator = _groups(bodies, motion)
+        if actuator is None:
+            driving, drive = _crank(bodies, motion, reactions)
+            rate = float(model.direction)
+        else:
+            driving, drive = actuator
+            rate = MM
         driving = np.where(reason > ForceReason.NOT_ASSEMBLED, np.nan, driving)
-        lever, scale = lever_torque(power, float(model.direction))
+        lever, scale = lever_torque(power, rate)
     reason = np.where(~np.asarray(motion.exists) & (reason == 0), ForceReason.NOT_ASSEMBLED,
                       reason).astype(np.int8)
     return ForceAnalysis(omega=float(omega), gravity=complex(data.gravity),
-                         drive="driving_torque", driving=driving, driving_lever=lever,
-                         power_balance=driving - lever, power_scale=scale,
-                         reactions=reactions, reason=reason, singular=singular,
-                         ill_conditioned=ill, known=known, origins=bodies.origins,
-                         input_link=crank.i)
+                         drive="driving_torque" if actuator is None else "driving_force",
+                         driving=driving, driving_lever=lever, power_balance=driving - lever,
+                         power_scale=scale, reactions=reactions, reason=reason,
+                         singular=singular, ill_conditioned=ill, known=known,
+                         origins=bodies.origins, drive_load=drive)
+
+
+#: A load given with the reactions to the residual check: the two links (the load acts on
+#: the second, its opposite on the first), force (N), point (m), couple (N·m) or None.
+DriveLoad = tuple[tuple[LinkId, LinkId], np.ndarray, np.ndarray, "np.ndarray | None"]
+
+
+def _crank(bodies: _Bodies, motion: Motion, reactions: dict[PairId, Reaction]
+           ) -> tuple[np.ndarray, DriveLoad]:
+    """The input group L0: the frame's reaction at O_1 and the driving torque (§4.6)."""
+    model = motion.model
+    crank = model.groups[0]
+    pivot = bodies.joint(crank.pairs["H_i"])
+    driving = -bodies.moment(crank.i, pivot)
+    reactions[crank.pairs["H_i"]] = _oriented(
+        motion, Transfer(crank.pairs["H_i"], model.frame, crank.i, -bodies.force(crank.i),
+                         pivot))
+    return driving, ((model.frame, crank.i), np.zeros(bodies.shape, complex), pivot, driving)
+
+
+def _frames(motion: Motion) -> dict[LinkId, tuple[Jet, Jet]]:
+    """The frame (origin, angle) of every moving link; an actuator's member hinged at the
+    composite's internal joint C slides along the other member, so its origin is C (§3)."""
+    model = motion.model
+    frames = {link: (_jet(origin), _jet(angle)) for link, (origin, angle) in motion.frames.items()
+              if link != model.frame}
+    group = _driven(model)
+    if group is not None:
+        member = _member(model, group, group.pairs["C"])
+        frames[member] = (_jet(motion.joints[group.pairs["C"]]), frames[member][1])
+    return frames
+
+
+def _driven(model: Any) -> GroupModel | None:
+    """The RRR group holding a linear actuator, if the input is one."""
+    return next((group for group in model.groups if group.driven is not None), None)
+
+
+def _member(model: Any, group: GroupModel, pair: PairId) -> LinkId:
+    """The member of an actuator's composite link that a pair touches."""
+    return next(link for link in model.pair_links[pair][1] if link in group.composite)
 
 
 class _Bodies:
@@ -244,12 +287,12 @@ class _Bodies:
     Implements :class:`~assur.forces.groups.Loads` for the group equations.
     """
 
-    def __init__(self, motion: Motion, shape: tuple[int, ...]) -> None:
+    def __init__(self, motion: Motion, frames: dict[LinkId, tuple[Jet, Jet]],
+                 shape: tuple[int, ...]) -> None:
         self.motion = motion
         self.shape = shape
-        moving = [link for link in motion.frames if link != motion.model.frame]
-        self.origins = {link: np.broadcast_to(values(motion.frames[link][0]) * MM, shape)
-                        for link in moving}
+        moving = list(frames)
+        self.origins = {link: np.broadcast_to(frames[link][0].v * MM, shape) for link in moving}
         self.forces = {link: np.zeros(shape, complex) for link in moving}
         self.moments = {link: np.zeros(shape) for link in moving}
         self._points: dict[PairId, np.ndarray] = {}
@@ -291,22 +334,23 @@ class _Bodies:
         self.moments[link] = self.moments[link] + couple
 
 
-def _known_loads(bodies: _Bodies, motion: Motion, data: ForceData, omega: float) -> Power:
+def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet, Jet]],
+                 data: ForceData, omega: float) -> Power:
     """Weights, inertia forces and torques, and the external loads of every link (§3); their
     power per unit input speed (§6.1)."""
     model = motion.model
-    sketch = analyse(model, np.zeros(1)).frames
+    sketch = _frames(analyse(model, _sketched(model), analogs=True))
     rotors: dict[LinkId, np.ndarray] = {}
     w2 = omega * omega
 
     def carried(link: LinkId, x: complex) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """A point fixed on the link, sketched at x (mm): its arm from the link's origin, its
         velocity and acceleration analogs, in m."""
-        origin, angle = _jet(motion.frames[link][0]), _angle(motion, link)
+        origin, angle = frames[link]
         origin0, angle0 = sketch[link]
         if link not in rotors:
             rotors[link] = expi(angle.v)
-        local = (x - values(origin0)) * np.exp(-1j * values(angle0)) * MM
+        local = (x - origin0.v) * np.exp(-1j * angle0.v) * MM
         arm = local * rotors[link]
         return (arm, origin.d1 * MM + arm * (1j * angle.d1),
                 origin.d2 * MM + arm * (1j * angle.d2 - angle.d1 * angle.d1))
@@ -314,7 +358,7 @@ def _known_loads(bodies: _Bodies, motion: Motion, data: ForceData, omega: float)
     periodic = model.drive == "crank"
     terms: list[Any] = []
     for link, mass in data.masses.items():
-        angle = _angle(motion, link)
+        angle = frames[link][1]
         spin = -mass.inertia * w2 * angle.d2
         if mass.mass > 0 and mass.centre is not None:
             arm, velocity, acceleration = carried(link, mass.centre)
@@ -333,7 +377,7 @@ def _known_loads(bodies: _Bodies, motion: Motion, data: ForceData, omega: float)
         if load.torque is not None:
             torque = _value(load.torque, motion.q, periodic) + np.zeros(bodies.shape)
             bodies.turn(load.link, torque)
-            terms.append(torque * _angle(motion, load.link).d1)
+            terms.append(torque * frames[load.link][1].d1)
     zero = np.zeros(bodies.shape)
     return Power(sum(terms, zero), sum((np.abs(t) for t in terms), zero))
 
@@ -352,8 +396,13 @@ def expi(angle: np.ndarray) -> np.ndarray:
     return np.asarray(J.expi(angle))
 
 
-def _angle(motion: Motion, link: LinkId) -> Jet:
-    return _jet(motion.frames[link][1])
+def _sketched(model: Any) -> np.ndarray:
+    """The input coordinate of the sketched position: φ = 0, or the actuator's length."""
+    group = _driven(model)
+    if group is None:
+        return np.zeros(1)
+    length = model.params[group.column("l_j" if group.driven == "j" else "l_i")]
+    return np.atleast_1d(np.asarray(length, dtype=float))
 
 
 def _jet(x: Any) -> Jet:
@@ -365,17 +414,24 @@ def _value(value: complex | float | Tabulated, q: np.ndarray, periodic: bool) ->
     return value.at(q, periodic=periodic) if isinstance(value, Tabulated) else value
 
 
-def _groups(bodies: _Bodies, motion: Motion) -> tuple[dict[PairId, Reaction], np.ndarray,
-                                                      np.ndarray, np.ndarray]:
+def _groups(bodies: _Bodies, motion: Motion
+            ) -> tuple[dict[PairId, Reaction], np.ndarray, np.ndarray, np.ndarray,
+                       tuple[np.ndarray, DriveLoad] | None]:
     """Solve the dyads from the last attached back; their reactions on earlier links join
-    those links' loads (§5)."""
+    those links' loads (§5). Returns the reactions, reasons, singular groups, ill-conditioned
+    positions and, for an actuator input, its driving force and its load on the members."""
+    model = motion.model
     shape = bodies.shape
     reactions: dict[PairId, Reaction] = {}
     reason = np.zeros(shape, np.int8)
     singular = np.full(shape, None, dtype=object)
     ill = np.zeros(shape, bool)
     blocked = np.zeros(shape, bool)
-    for group in reversed(motion.model.groups[1:]):
+    actuator = None
+    for group in reversed(model.groups):
+        if group.kind == 0:
+            continue
+        members = _merge(bodies, group) if group.driven is not None else None
         solved = EQUATIONS[f"L{group.kind}"](group, bodies)
         here = solved.determinant <= SINGULAR
         new = here & ~blocked
@@ -384,15 +440,76 @@ def _groups(bodies: _Bodies, motion: Motion) -> tuple[dict[PairId, Reaction], np
             singular[new] = group.label
         blocked |= here
         ill |= solved.determinant < NEAR
-        own = (group.i, group.j)
+        own = (group.i, group.j, *group.composite)
         for transfer in solved.transfers:
             if blocked.any():
                 transfer = _blanked(transfer, blocked)
+            if members is not None:
+                transfer = _to_member(model, group, transfer)
             reactions[transfer.pair] = _oriented(motion, transfer)
-            if transfer.source not in own and transfer.source != motion.model.frame:
+            if transfer.source not in own and transfer.source != model.frame:
                 bodies.add(transfer.source, -transfer.force, transfer.point,
                            None if transfer.couple is None else -transfer.couple)
-    return reactions, reason, singular, ill
+        if members is not None:
+            actuator = _split(bodies, motion, group, members, reactions)
+    return reactions, reason, singular, ill, actuator
+
+
+def _merge(bodies: _Bodies, group: GroupModel) -> dict[LinkId, tuple[np.ndarray, np.ndarray]]:
+    """Make an actuator's composite one body for its RRR group (§4.6): the loads of its
+    members summed on the member that stands for it. Returns the members' own loads."""
+    side = group.j if group.driven == "j" else group.i
+    assert side is not None
+    own = {link: (bodies.forces[link], bodies.moments[link]) for link in group.composite}
+    origin = bodies.origins[side]
+    bodies.forces[side] = sum((f for f, _ in own.values()), np.zeros(bodies.shape, complex))
+    bodies.moments[side] = sum((m - cross(origin - bodies.origins[link], f)
+                                for link, (f, m) in own.items()), np.zeros(bodies.shape))
+    return own
+
+
+def _to_member(model: Any, group: GroupModel, transfer: Transfer) -> Transfer:
+    """A transfer of an actuator's group with the composite replaced by the member that the
+    pair actually touches."""
+    source, target = transfer.source, transfer.target
+    if source in group.composite:
+        source = _member(model, group, transfer.pair)
+    if target in group.composite:
+        target = _member(model, group, transfer.pair)
+    return Transfer(transfer.pair, source, target, transfer.force, transfer.point,
+                    transfer.normal, transfer.couple)
+
+
+def _split(bodies: _Bodies, motion: Motion, group: GroupModel,
+           members: dict[LinkId, tuple[np.ndarray, np.ndarray]],
+           reactions: dict[PairId, Reaction]) -> tuple[np.ndarray, DriveLoad]:
+    """The actuator's force and the reaction in its driven pair from the equilibrium of the
+    member hinged at C (§4.6)."""
+    model = motion.model
+    pair_c = group.pairs["C"]
+    member = _member(model, group, pair_c)
+    c = bodies.joint(pair_c)
+    on_member = reactions[pair_c]
+    sign = 1.0 if on_member.links[1] == member else -1.0
+    from_partner = sign * (on_member.x + 1j * on_member.y)   # force of the partner on m_C
+    force, moment = members[member]
+    moment_c = moment - cross(c - bodies.origins[member], force)
+    pair = next(pid for pid, (kind, links, _) in model.pair_links.items()
+                if kind == "P" and set(links) <= set(group.composite))
+    slider = motion.sliders[pair]
+    hinge = group.pairs["H_j" if group.driven == "j" else "H_i"]
+    ends = {member: c, next(m for m in group.composite if m != member): bodies.joint(hinge)}
+    axis = ends[slider.slider] - ends[slider.carrier]
+    axis = axis / np.abs(axis)
+    flip = 1.0 if member == slider.slider else -1.0
+    push = -flip * (force + from_partner)                   # force of the carrier on the slider
+    couple = -flip * moment_c
+    driving = np.asarray(J.dot(push, axis))
+    n = bodies.normal(pair)
+    normal = np.asarray(J.dot(push, n))
+    reactions[pair] = _oriented(motion, Transfer(pair, slider.carrier, slider.slider,
+                                                 normal * n, c, normal, couple))
+    return driving, ((slider.carrier, slider.slider), driving * axis, c, None)
 
 
 def _blanked(transfer: Transfer, blocked: np.ndarray) -> Transfer:

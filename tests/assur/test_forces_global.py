@@ -127,11 +127,15 @@ def _fixed(frames: dict, frames0: dict, link, x: complex) -> Jet:
     return (p + w * J.expi(theta)) * MM
 
 
-def _global(motion: assur.Motion, data: ForceData, omega: float) -> dict:
-    """Every pair's reaction and the driving torque from one linear system per position."""
+def _global(motion: assur.Motion, data: ForceData, omega: float, sketched: float = 0.0) -> dict:
+    """Every pair's reaction and the drive from one linear system per position.
+
+    The drive is a torque on the crank, or for an actuator (whose length at the sketch is
+    ``sketched``) a force pushing its two hinges apart.
+    """
     model = motion.model
     frames = _frames(motion)
-    frames0 = _frames(assur.analyse(model, np.zeros(1), analogs=True))
+    frames0 = _frames(assur.analyse(model, np.array([sketched]), analogs=True))
     links = sorted(frames)
     row = {link: 3 * k for k, link in enumerate(links)}
     pairs = list(model.pair_links)
@@ -162,8 +166,23 @@ def _global(motion: assur.Motion, data: ForceData, omega: float) -> dict:
                 a[:, r + 1, c] += sign * n.imag
                 a[:, r + 2, c] += sign * (point.real * n.imag - point.imag * n.real)
                 a[:, r + 2, c + 1] += sign
-    crank = model.groups[0].i
-    a[:, row[crank] + 2, size - 1] = 1.0
+    if model.drive == "crank":
+        a[:, row[model.groups[0].i] + 2, size - 1] = 1.0
+    else:
+        pid = next(p for p, (kind, links, _) in model.pair_links.items()
+                   if kind == "P" and model.links[links[0]] == model.links[links[1]])
+        slider = motion.sliders[pid]
+        hinges = {link: next(motion.joints[p].v for p, (kind, links, _) in
+                             model.pair_links.items() if kind == "R" and link in links)
+                  for link in (slider.carrier, slider.slider)}
+        e = hinges[slider.slider] - hinges[slider.carrier]
+        e = e / np.abs(e)
+        k = slider.point.v * MM
+        for link, sign in ((slider.slider, 1.0), (slider.carrier, -1.0)):
+            r = row[link]
+            a[:, r, size - 1] += sign * e.real
+            a[:, r + 1, size - 1] += sign * e.imag
+            a[:, r + 2, size - 1] += sign * (k.real * e.imag - k.imag * e.real)
     w2 = omega * omega
 
     def known(link, force, point, torque) -> None:
@@ -252,3 +271,56 @@ def test_a_wrong_reaction_shows_in_the_residuals_of_its_two_links() -> None:
     for link, residual in broken.residuals.items():
         worst = np.max(residual.force[solved])
         assert (worst > 1e-8) == (link in (1, 2)), link
+
+
+def _boom(seed: int) -> tuple[assur.KinematicModel, ForceData, float]:
+    """A random boom lifted by a hydraulic cylinder (2) with its rod (3): the input is the
+    cylinder's own prismatic pair; returns the model, loads and the sketched length."""
+    rng = np.random.default_rng(seed)
+    b = complex(*rng.uniform(60, 140, 2)) * complex(1, -0.5)
+    c = complex(rng.uniform(120, 200), rng.uniform(30, 90))
+    length = abs(c - b)
+    data = {"mechanism": {"pairs": [{"id": "A", "type": "R", "links": [0, 1]},
+                                    {"id": "B", "type": "R", "links": [0, 2]},
+                                    {"id": "Pd", "type": "P", "links": [2, 3], "guide": 2},
+                                    {"id": "C", "type": "R", "links": [3, 1]}],
+                          "inputs": [{"pair": "Pd"}]},
+            "geometry": {"A": {"point": [0, 0]}, "B": {"point": [b.real, b.imag]},
+                         "C": {"point": [c.real, c.imag]},
+                         "input": {"stroke": [0.95 * length, 1.05 * length]}}}
+    model = assur.build_model(assur.analyse_structure(assur.chain_from_dict(data)))
+
+    def near() -> complex:
+        return complex(*rng.uniform(-50, 250, 2))
+
+    masses = {link: Mass(float(rng.uniform(0.5, 5.0)), near(), float(rng.uniform(0, 0.05)))
+              for link in (1, 2, 3)}
+    loads = (Load(1, force=complex(*rng.uniform(-900, 900, 2)), point=near()),
+             Load(3, torque=float(rng.uniform(-20, 20))))
+    return model, ForceData(masses, loads, complex(0, -9.81)), length
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_actuator_force_equals_the_global_solve(seed: int) -> None:
+    model, data, length = _boom(seed)
+    q = np.linspace(*model.input_range, 25)
+    motion = assur.analyse(model, q, analogs=True)
+    speed = 40.0  # mm/s
+    result = kinetostatics(motion, data, speed)
+    with np.errstate(invalid="ignore"):  # NaN where the boom cannot be assembled
+        expected = _global(motion, data, speed, length)
+    assert result.drive == "driving_force"
+    solved = result.reason == 0
+    assert np.array_equal(solved, motion.exists) and solved.sum() >= 5
+    scale = np.max([np.abs(expected[p][0][solved]) for p in ("A", "B", "C")], axis=0)
+    pairs = {"A": ("x", "y"), "B": ("x", "y"), "C": ("x", "y"), "Pd": ("normal", "moment")}
+    for pid, parts in pairs.items():
+        for part, want in zip(parts, expected[pid]):
+            got = getattr(result.reactions[pid], part)
+            np.testing.assert_array_less(np.abs(got - want)[solved], 1e-9 * scale)
+    np.testing.assert_array_less(np.abs(result.driving - expected["driving"])[solved],
+                                 1e-9 * scale)
+    assert np.all(np.abs(result.power_balance[solved]) <= 1e-10 * result.power_scale[solved])
+    for residual in result.residuals.values():
+        assert np.max(residual.force[solved]) <= 1e-10
+        assert np.max(residual.moment[solved]) <= 1e-10

@@ -36,7 +36,9 @@ __all__ = ["ForceAnalysis", "Reaction", "kinetostatics"]
 #: Millimetres to metres.
 MM = 1e-3
 
-#: A normalised determinant at or below this is the singular position itself (null).
+#: A normalised determinant, or a group's existence margin, at or below this is the singular
+#: position itself (null): the margin of a toggle is the square of its determinant, and the
+#: kinematics holds it only to round-off.
 SINGULAR = 1e-12
 
 #: Below this the reactions are flagged as ill-conditioned (they grow like 1/determinant).
@@ -433,7 +435,8 @@ def _groups(bodies: _Bodies, motion: Motion
             continue
         members = _merge(bodies, group) if group.driven is not None else None
         solved = EQUATIONS[f"L{group.kind}"](group, bodies)
-        here = solved.determinant <= SINGULAR
+        here = (solved.determinant <= SINGULAR) | (motion.solutions[group.label].margin
+                                                   <= SINGULAR)
         new = here & ~blocked
         if new.any():
             reason[new] = solved.singular

@@ -15,37 +15,15 @@ import sys
 import time
 from pathlib import Path
 
+import bench_mechanism
 import numpy as np
-import yaml
+from bench_mechanism import best_time
 
 import assur
-from assur.forces import kinetostatics, read_forces
-from assur.forces.table import SECTIONS
+from assur.forces import kinetostatics
+from assur.forces.table import load_with_forces
 
 TABLE = Path(__file__).resolve().parent.parent / "input_tables" / "course_11_link_forces.yaml"
-
-
-def best_time(call, repeat: int, clock) -> float:
-    """The fastest of ``repeat`` runs, after a warm-up run."""
-    call()
-    best = float("inf")
-    for _ in range(repeat):
-        start = clock()
-        call()
-        best = min(best, clock() - start)
-    return best
-
-
-def load() -> tuple[assur.KinematicModel, assur.forces.ForceData]:
-    """The example's model and its force sections."""
-    data = yaml.safe_load(TABLE.read_text(encoding="utf-8"))
-    chain = assur.chain_from_dict({k: v for k, v in data.items() if k not in SECTIONS},
-                                  str(TABLE))
-    reader = assur.TableReader.from_data(data, str(TABLE))
-    forces = read_forces(reader.root(), chain)
-    reader.raise_if_any()
-    assert forces is not None
-    return assur.build_model(assur.analyse_structure(chain)), forces
 
 
 def main() -> None:
@@ -56,8 +34,10 @@ def main() -> None:
     parser.add_argument("--wall", action="store_true",
                         help="measure elapsed time (time.perf_counter) instead of CPU time")
     args = parser.parse_args()
-    clock = time.perf_counter if args.wall else time.process_time
-    model, data = load()
+    if args.wall:
+        bench_mechanism.CLOCK = time.perf_counter
+    model, data = load_with_forces(TABLE)
+    assert data is not None
     rows = []
     phi = np.linspace(0.0, 2 * np.pi, args.positions, endpoint=False)
     rng = np.random.default_rng(1)
@@ -68,8 +48,8 @@ def main() -> None:
                               assur.input_grid(model, 360))):
         count = int(np.prod(np.broadcast_shapes(design.design_shape, q.shape)))
         motion = assur.analyse(design, q, analogs=True)
-        t_kin = best_time(lambda: assur.analyse(design, q, analogs=True), args.repeat, clock)
-        t_force = best_time(lambda: kinetostatics(motion, data, 10.0), args.repeat, clock)
+        t_kin = best_time(lambda: assur.analyse(design, q, analogs=True), args.repeat)
+        t_force = best_time(lambda: kinetostatics(motion, data, 10.0), args.repeat)
         rows.append((label, count, t_kin, t_force))
     print(f"{TABLE.name}, {'wall' if args.wall else 'CPU'} time, best of {args.repeat}")
     print(f"{'run':<22}{'positions':>11}{'kinematics/s':>15}{'forces/s':>13}{'both/s':>12}"

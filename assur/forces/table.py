@@ -23,13 +23,17 @@ True
 from __future__ import annotations
 
 import math
-from typing import Any
+import os
+from typing import TYPE_CHECKING, Any
 
 from assur.forces.model import ForceData, Load, Mass, Tabulated
-from assur.io.reader import MISSING, Node, describe, normalise_id
+from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
 from assur.model import Chain, LinkId, PairType
 
-__all__ = ["SECTIONS", "read_forces"]
+if TYPE_CHECKING:  # pragma: no cover
+    from assur.kinematics.model import KinematicModel
+
+__all__ = ["SECTIONS", "load_with_forces", "read_forces"]
 
 #: The top-level keys this reader owns.
 SECTIONS = ("masses", "loads", "gravity")
@@ -73,6 +77,37 @@ def read_forces(root: Node, chain: Chain) -> ForceData | None:
     if len(reader.issues) > before or not (root.has("masses") or root.has("loads")):
         return None
     return ForceData(masses, loads, gravity)
+
+
+def load_with_forces(path: str | os.PathLike[str]
+                     ) -> tuple[KinematicModel, ForceData | None]:
+    """The kinematic model of a chain table and its force sections.
+
+    The mechanism is built from the table without the force sections, which are read with
+    :func:`read_forces` from the whole table.
+
+    Raises
+    ------
+    TableError
+        For a problem of the chain, or every problem of the force sections at once.
+
+    Examples
+    --------
+    >>> model, data = load_with_forces("input_tables/four_bar_gravity.yaml")
+    >>> model.groups[1].label, data.gravity
+    ('L1(2,3)', -9.81j)
+    """
+    from assur.io.chain_table import chain_from_dict
+    from assur.kinematics.model import build_model
+    from assur.structure.analysis import analyse_structure
+
+    reader = TableReader.from_path(path)
+    rest = {k: v for k, v in reader.data.items() if k not in SECTIONS} if isinstance(
+        reader.data, dict) else reader.data
+    chain = chain_from_dict(rest, reader.source)
+    forces = read_forces(reader.root(), chain)
+    reader.raise_if_any()
+    return build_model(analyse_structure(chain)), forces
 
 
 def _actuated(chain: Chain) -> bool:

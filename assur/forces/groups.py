@@ -16,12 +16,14 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 from enum import IntEnum
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
-from assur.kinematics.model import GroupModel
 from assur.model import LinkId, PairId
+
+if TYPE_CHECKING:  # pragma: no cover
+    from assur.kinematics.model import GroupModel
 
 __all__ = ["EQUATIONS", "ForceReason", "Loads", "Solved", "Transfer", "cross", "outer_link"]
 
@@ -87,7 +89,7 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     >>> float(cross(np.array(1 + 0j), np.array(1j)))
     1.0
     """
-    return np.asarray((np.conj(a) * b).imag)
+    return np.asarray(a.real * b.imag - a.imag * b.real)
 
 
 def outer_link(group: GroupModel, side: str) -> LinkId:

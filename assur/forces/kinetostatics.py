@@ -171,7 +171,7 @@ class ForceAnalysis:
 
 
 def kinetostatics(motion: Motion, data: ForceData, omega: float = 0.0) -> ForceAnalysis:
-    """Joint reactions and the driving torque at every analysed position.
+    """Joint reactions and the driving torque (or force) at every analysed position.
 
     Parameters
     ----------
@@ -180,7 +180,7 @@ def kinetostatics(motion: Motion, data: ForceData, omega: float = 0.0) -> ForceA
     data : ForceData
         Masses, loads and gravity (table units: sketch points in mm).
     omega : float
-        Constant input speed (rad/s); 0 gives the static analysis.
+        Constant input speed (rad/s; mm/s for an actuator); 0 gives the static analysis.
 
     Returns
     -------
@@ -195,11 +195,12 @@ def kinetostatics(motion: Motion, data: ForceData, omega: float = 0.0) -> ForceA
     -----
     Groups are solved in reverse layering order; each solved group's reactions on links of
     earlier groups join those links' known loads. The crank's equilibrium then gives the
-    driving torque ``M_d = −M_1(O_1)`` and the frame's reaction at O_1.
+    driving torque ``M_d = −M_1(O_1)`` and the frame's reaction at O_1; an actuator's force
+    comes from the equilibrium of the member hinged at its group's internal joint.
 
     Examples
     --------
-    The four-bar of ``docs/forces.md`` §8.2 with only the torque on the rocker, statically:
+    A four-bar with only a torque on the rocker, statically:
 
     >>> import numpy as np, assur
     >>> from assur.forces import ForceData, Load
@@ -530,9 +531,10 @@ def _blanked(transfer: Transfer, blocked: np.ndarray) -> Transfer:
 def _oriented(motion: Motion, transfer: Transfer) -> Reaction:
     """The reaction as the force of the pair's first listed link on its second (§5.5)."""
     links = motion.model.pair_links[transfer.pair][1]
-    sign = 1.0 if links == (transfer.source, transfer.target) else -1.0
-    force = sign * transfer.force
+    if links == (transfer.source, transfer.target):
+        return Reaction(transfer.pair, links, transfer.force.real, transfer.force.imag,
+                        transfer.normal, transfer.couple, transfer.point)
+    force = -transfer.force
     return Reaction(transfer.pair, links, force.real, force.imag,
-                    None if transfer.normal is None else sign * transfer.normal,
-                    None if transfer.couple is None else sign * transfer.couple,
-                    transfer.point)
+                    None if transfer.normal is None else -transfer.normal,
+                    None if transfer.couple is None else -transfer.couple, transfer.point)

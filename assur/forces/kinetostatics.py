@@ -80,6 +80,24 @@ class Reaction:
     moment: np.ndarray | None
     point: np.ndarray
 
+    @property
+    def acting_point(self) -> np.ndarray | None:
+        """Prismatic pairs: where the normal force acts on the guide line, K + (M/N)·u (m);
+        NaN where N is 0. None for a revolute pair.
+
+        Examples
+        --------
+        >>> r = Reaction("P", (0, 1), np.array([0.0]), np.array([2.0]), np.array([2.0]),
+        ...              np.array([0.5]), np.array([0j]))
+        >>> r.acting_point.tolist()
+        [(0.25+0j)]
+        """
+        if self.normal is None or self.moment is None:
+            return None
+        with np.errstate(all="ignore"):
+            along = -1j * (self.x + 1j * self.y) / self.normal
+            return np.asarray(self.point + self.moment / self.normal * along)
+
 
 @dataclass(frozen=True)
 class ForceAnalysis:

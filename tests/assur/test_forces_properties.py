@@ -144,3 +144,16 @@ def test_listing_a_pair_the_other_way_negates_its_reaction() -> None:
         np.testing.assert_array_equal(getattr(other.reactions["3-0"], part),
                                       -getattr(base.reactions["3-0"], part))
     np.testing.assert_array_equal(other.driving, base.driving)
+
+
+def test_the_normal_force_acts_where_its_moment_about_k_is_the_couple() -> None:
+    model, data = load("course_11_link_forces.yaml")
+    result = kinetostatics(assur.analyse(model, points=36, analogs=True), data, 10.0)
+    for pid in ("10-11", "11-0", "6-7", "3-4"):
+        reaction = result.reactions[pid]
+        force = reaction.x + 1j * reaction.y
+        arm = reaction.acting_point - reaction.point
+        moment = (arm.conjugate() * force).imag
+        np.testing.assert_allclose(moment, reaction.moment, rtol=1e-9, atol=1e-12)
+        np.testing.assert_allclose((arm.conjugate() * force).real, 0.0, atol=1e-9)
+    assert result.reactions["0-1"].acting_point is None

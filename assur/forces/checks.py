@@ -1,4 +1,4 @@
-"""The checks of a force analysis (``docs/forces.md`` §6).
+"""The checks of a force analysis (``docs/forces.md`` §5).
 
 :func:`lever_torque` is the driving torque by the principle of virtual power (Zhukovsky's
 lever in analytic form): the sum of the powers of every load and inertia force per unit

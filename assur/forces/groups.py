@@ -1,4 +1,4 @@
-"""The closed-form equilibrium of each kind of dyad (``docs/forces.md`` §4).
+"""The closed-form equilibrium of each kind of dyad (``docs/forces.md`` §3).
 
 One function per kind, registered in :data:`EQUATIONS` under the kind's label (``"L1"`` …
 ``"L5"``). Each takes the group and a :class:`Loads` view of the known loads of its links
@@ -111,7 +111,7 @@ def outer_link(group: GroupModel, side: str) -> LinkId:
 
 
 def _rrr(group: GroupModel, loads: Loads) -> Solved:
-    """L1 RRR: R_pi at H_i, R_qj at H_j, R_ji at C (§4.1)."""
+    """L1 RRR: R_pi at H_i, R_qj at H_j, R_ji at C."""
     roles = group.pairs
     j = group.j
     assert j is not None
@@ -131,7 +131,7 @@ def _rrr(group: GroupModel, loads: Loads) -> Solved:
 
 
 def _rrp(group: GroupModel, loads: Loads) -> Solved:
-    """L2 RRP: slider i on the guide of p (N·n and M_pi at C), rod j (§4.2)."""
+    """L2 RRP: slider i on the guide of p (N·n and M_pi at C), rod j."""
     roles = group.pairs
     j = group.j
     assert j is not None
@@ -152,8 +152,7 @@ def _rrp(group: GroupModel, loads: Loads) -> Solved:
 
 
 def _rpr(group: GroupModel, loads: Loads) -> Solved:
-    """L3 RPR: kulisa i (H_i to p), block j (H_j to q), internal N·n and M_ij at K = H_j
-    (§4.3)."""
+    """L3 RPR: kulisa i (H_i to p), block j (H_j to q), internal N·n and M_ij at K = H_j."""
     roles = group.pairs
     j = group.j
     assert j is not None
@@ -172,7 +171,7 @@ def _rpr(group: GroupModel, loads: Loads) -> Solved:
 
 
 def _prp(group: GroupModel, loads: Loads) -> Solved:
-    """L4 PRP: i on the guide of p, j on the guide of q, hinge C (§4.4)."""
+    """L4 PRP: i on the guide of p, j on the guide of q, hinge C."""
     roles = group.pairs
     j = group.j
     assert j is not None
@@ -194,7 +193,7 @@ def _prp(group: GroupModel, loads: Loads) -> Solved:
 
 def _rpp(group: GroupModel, loads: Loads) -> Solved:
     """L5 RPP: j hinged at H_j carries the guide u_T of i; i also slides on the guide u_S of
-    p; both prismatic pairs act at K = C (§4.5)."""
+    p; both prismatic pairs act at K = C."""
     roles = group.pairs
     j = group.j
     assert j is not None

@@ -268,7 +268,7 @@ DriveLoad = tuple[tuple[LinkId, LinkId], np.ndarray, np.ndarray, "np.ndarray | N
 
 def _crank(bodies: _Bodies, motion: Motion, reactions: dict[PairId, Reaction]
            ) -> tuple[np.ndarray, DriveLoad]:
-    """The input group L0: the frame's reaction at O_1 and the driving torque (§4.6)."""
+    """The input group L0: the frame's reaction at O_1 and the driving torque."""
     model = motion.model
     crank = model.groups[0]
     pivot = bodies.joint(crank.pairs["H_i"])
@@ -281,7 +281,7 @@ def _crank(bodies: _Bodies, motion: Motion, reactions: dict[PairId, Reaction]
 
 def _frames(motion: Motion) -> dict[LinkId, tuple[Jet, Jet]]:
     """The frame (origin, angle) of every moving link; an actuator's member hinged at the
-    composite's internal joint C slides along the other member, so its origin is C (§3)."""
+    composite's internal joint C slides along the other member, so its origin is C."""
     model = motion.model
     frames = {link: (_jet(origin), _jet(angle)) for link, (origin, angle) in motion.frames.items()
               if link != model.frame}
@@ -303,7 +303,7 @@ def _member(model: Any, group: GroupModel, pair: PairId) -> LinkId:
 
 
 class _Bodies:
-    """The known loads of every moving link, accumulated over the positions (§3).
+    """The known loads of every moving link, accumulated over the positions.
 
     Implements :class:`~assur.forces.groups.Loads` for the group equations.
     """
@@ -357,8 +357,8 @@ class _Bodies:
 
 def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet, Jet]],
                  data: ForceData, omega: float) -> Power:
-    """Weights, inertia forces and torques, and the external loads of every link (§3); their
-    power per unit input speed (§6.1)."""
+    """Weights, inertia forces and torques, and the external loads of every link; their power
+    per unit input speed (the power balance)."""
     model = motion.model
     sketch = _frames(analyse(model, _sketched(model), analogs=True))
     rotors: dict[LinkId, np.ndarray] = {}
@@ -439,7 +439,7 @@ def _groups(bodies: _Bodies, motion: Motion
             ) -> tuple[dict[PairId, Reaction], np.ndarray, np.ndarray, np.ndarray,
                        tuple[np.ndarray, DriveLoad] | None]:
     """Solve the dyads from the last attached back; their reactions on earlier links join
-    those links' loads (§5). Returns the reactions, reasons, singular groups, ill-conditioned
+    those links' loads. Returns the reactions, reasons, singular groups, ill-conditioned
     positions and, for an actuator input, its driving force and its load on the members."""
     model = motion.model
     shape = bodies.shape
@@ -478,7 +478,7 @@ def _groups(bodies: _Bodies, motion: Motion
 
 
 def _merge(bodies: _Bodies, group: GroupModel) -> dict[LinkId, tuple[np.ndarray, np.ndarray]]:
-    """Make an actuator's composite one body for its RRR group (§4.6): the loads of its
+    """Make an actuator's composite one body for its RRR group: the loads of its
     members summed on the member that stands for it. Returns the members' own loads."""
     side = group.j if group.driven == "j" else group.i
     assert side is not None
@@ -506,7 +506,7 @@ def _split(bodies: _Bodies, motion: Motion, group: GroupModel,
            members: dict[LinkId, tuple[np.ndarray, np.ndarray]],
            reactions: dict[PairId, Reaction]) -> tuple[np.ndarray, DriveLoad]:
     """The actuator's force and the reaction in its driven pair from the equilibrium of the
-    member hinged at C (§4.6)."""
+    member hinged at C."""
     model = motion.model
     pair_c = group.pairs["C"]
     member = _member(model, group, pair_c)
@@ -547,7 +547,7 @@ def _blanked(transfer: Transfer, blocked: np.ndarray) -> Transfer:
 
 
 def _oriented(motion: Motion, transfer: Transfer) -> Reaction:
-    """The reaction as the force of the pair's first listed link on its second (§5.5)."""
+    """The reaction as the force of the pair's first listed link on its second."""
     links = motion.model.pair_links[transfer.pair][1]
     if links == (transfer.source, transfer.target):
         return Reaction(transfer.pair, links, transfer.force.real, transfer.force.imag,

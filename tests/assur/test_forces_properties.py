@@ -1,5 +1,5 @@
 """Properties of the force analysis: the toggle as data, scaling with ω², linearity in the
-loads, rotation of the whole problem, the listing of a pair (``docs/forces.md`` §6.3)."""
+loads, rotation of the whole problem, the listing of a pair."""
 
 from __future__ import annotations
 

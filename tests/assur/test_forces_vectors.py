@@ -133,7 +133,7 @@ def test_vectors_are_reproduced(case: str) -> None:
 
 @pytest.mark.parametrize("case", list(CASES))
 def test_checks_hold_over_the_cycle(case: str) -> None:
-    """Power balance and every link's residual at 360 positions (§6.1, §6.2)."""
+    """Power balance and every link's residual at 360 positions (``docs/forces.md`` §5)."""
     model, data = load(CASES[case][0])
     result = kinetostatics(assur.analyse(model, points=360, analogs=True), data, OMEGA)
     assert np.all(result.reason == 0)

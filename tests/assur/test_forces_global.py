@@ -324,3 +324,22 @@ def test_actuator_force_equals_the_global_solve(seed: int) -> None:
     for residual in result.residuals.values():
         assert np.max(residual.force[solved]) <= 1e-10
         assert np.max(residual.moment[solved]) <= 1e-10
+
+
+@pytest.mark.parametrize("kind", list(CHAINS))
+def test_a_thousand_designs_in_one_call_keep_the_balances(kind: str) -> None:
+    """Every dimension of the dyad varied by up to ±10 % over 1000 designs × 36 angles."""
+    model, data = _design(kind, 5)
+    rng = np.random.default_rng(7)
+    varied = {name: value * rng.uniform(0.9, 1.1, (1000, 1)) + rng.uniform(-2, 2, (1000, 1))
+              for name, value in model.params.items()
+              if name.startswith(f"{kind}(") and not name.endswith(".delta")}
+    batch = model.with_params(varied)
+    result = kinetostatics(assur.analyse(batch, PHI[::4], analogs=True), data, OMEGA)
+    solved = result.reason == 0
+    assert result.driving.shape == (1000, 12) and solved.sum() > 3000
+    assert np.all(np.abs(result.power_balance[solved]) <= 1e-10 * result.power_scale[solved])
+    for residual in result.residuals.values():
+        assert np.max(residual.force[solved]) <= 1e-10
+        assert np.max(residual.moment[solved]) <= 1e-10
+    assert np.all(np.isnan(result.driving[~solved]))

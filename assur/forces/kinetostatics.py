@@ -328,7 +328,7 @@ class _Bodies:
 
     def normal(self, pair: PairId) -> np.ndarray:
         if pair not in self._normals:
-            self._normals[pair] = 1j * expi(values(self.motion.sliders[pair].angle))
+            self._normals[pair] = 1j * _expi(values(self.motion.sliders[pair].angle))
         return self._normals[pair]
 
     def force(self, link: LinkId) -> np.ndarray:
@@ -370,7 +370,7 @@ def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet
         origin, angle = frames[link]
         origin0, angle0 = sketch[link]
         if link not in rotors:
-            rotors[link] = expi(angle.v)
+            rotors[link] = _expi(angle.v)
         local = (x - origin0.v) * np.exp(-1j * angle0.v) * MM
         arm = local * rotors[link]
         return (arm, origin.d1 * MM + arm * (1j * angle.d1),
@@ -392,24 +392,24 @@ def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet
     for load in data.loads:
         if load.force is not None and load.point is not None:
             arm, velocity, _ = carried(load.link, load.point)
-            force = _value(load.force, motion.q, periodic) + np.zeros(bodies.shape)
+            force = _value(load.force, motion.q, periodic)
             bodies.load(load.link, force, arm)
             terms.append(J.dot(force, velocity))
         if load.torque is not None:
-            torque = _value(load.torque, motion.q, periodic) + np.zeros(bodies.shape)
+            torque = _value(load.torque, motion.q, periodic)
             bodies.turn(load.link, torque)
             terms.append(torque * frames[load.link][1].d1)
     zero = np.zeros(bodies.shape)
     return Power(sum(terms, zero), sum((np.abs(t) for t in terms), zero))
 
 
-def expi(angle: np.ndarray) -> np.ndarray:
+def _expi(angle: np.ndarray) -> np.ndarray:
     """exp(i·angle), computed once when the angle is one value broadcast over the positions
     (a guide on the frame).
 
     Examples
     --------
-    >>> expi(np.broadcast_to(np.pi / 2, (3,))).round(12).tolist()
+    >>> _expi(np.broadcast_to(np.pi / 2, (3,))).round(12).tolist()
     [1j, 1j, 1j]
     """
     if angle.ndim and not any(angle.strides):

@@ -25,7 +25,8 @@ from assur.model import LinkId, PairId
 if TYPE_CHECKING:  # pragma: no cover
     from assur.kinematics.model import GroupModel
 
-__all__ = ["EQUATIONS", "ForceReason", "Loads", "Solved", "Transfer", "cross", "outer_link"]
+__all__ = ["EQUATIONS", "ForceReason", "Loads", "Solved", "Transfer", "cross", "dot",
+           "outer_link"]
 
 
 class ForceReason(IntEnum):
@@ -90,6 +91,17 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     1.0
     """
     return np.asarray(a.real * b.imag - a.imag * b.real)
+
+
+def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Planar dot product ``a_x·b_x + a_y·b_y`` of complex vectors.
+
+    Examples
+    --------
+    >>> float(dot(np.array(1 + 2j), np.array(3 - 1j)))
+    1.0
+    """
+    return np.asarray(a.real * b.real + a.imag * b.imag)
 
 
 def outer_link(group: GroupModel, side: str) -> LinkId:

@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from assur.forces.checks import LinkResidual, Power, lever_torque, link_residuals
-from assur.forces.groups import EQUATIONS, ForceReason, Transfer, cross
+from assur.forces.groups import EQUATIONS, ForceReason, Transfer, cross, dot
 from assur.forces.model import ForceData, Tabulated
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import Motion, analyse, values
@@ -385,7 +385,7 @@ def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet
             arm, velocity, acceleration = carried(link, mass.centre)
             force = data.weight(link) - mass.mass * w2 * acceleration
             bodies.load(link, force, arm, spin)
-            terms.append(J.dot(force, velocity))
+            terms.append(dot(force, velocity))
         else:
             bodies.turn(link, spin)
         terms.append(spin * angle.d1)
@@ -394,7 +394,7 @@ def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet
             arm, velocity, _ = carried(load.link, load.point)
             force = _value(load.force, motion.q, periodic)
             bodies.load(load.link, force, arm)
-            terms.append(J.dot(force, velocity))
+            terms.append(dot(force, velocity))
         if load.torque is not None:
             torque = _value(load.torque, motion.q, periodic)
             bodies.turn(load.link, torque)
@@ -526,9 +526,9 @@ def _split(bodies: _Bodies, motion: Motion, group: GroupModel,
     flip = 1.0 if member == slider.slider else -1.0
     push = -flip * (force + from_partner)                   # force of the carrier on the slider
     couple = -flip * moment_c
-    driving = np.asarray(J.dot(push, axis))
+    driving = np.asarray(dot(push, axis))
     n = bodies.normal(pair)
-    normal = np.asarray(J.dot(push, n))
+    normal = np.asarray(dot(push, n))
     reactions[pair] = _oriented(motion, Transfer(pair, slider.carrier, slider.slider,
                                                  normal * n, c, normal, couple))
     return driving, ((slider.carrier, slider.slider), driving * axis, c, None)

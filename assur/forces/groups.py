@@ -13,7 +13,7 @@ array over the positions (and designs); nothing loops over them.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from enum import IntEnum
 from typing import TYPE_CHECKING, Protocol
@@ -122,104 +122,100 @@ def outer_link(group: GroupModel, side: str) -> LinkId:
     return guide.carrier
 
 
+def _dyad(group: GroupModel) -> tuple[Mapping[str, PairId], LinkId, LinkId]:
+    """The pair roles and the two links of a dyad."""
+    assert group.j is not None, "a dyad has two links"
+    return group.pairs, group.i, group.j
+
+
 def _rrr(group: GroupModel, loads: Loads) -> Solved:
     """L1 RRR: R_pi at H_i, R_qj at H_j, R_ji at C."""
-    roles = group.pairs
-    j = group.j
-    assert j is not None
+    roles, i, j = _dyad(group)
     h_i, h_j, c = (loads.joint(roles[r]) for r in ("H_i", "H_j", "C"))
     a, b = h_i - c, h_j - c
-    f_i = loads.force(group.i)
+    f_i = loads.force(i)
     f = f_i + loads.force(j)
     d = cross(a, b)
-    r1 = -loads.moment(group.i, c)
+    r1 = -loads.moment(i, c)
     r2 = loads.moment(j, c) - cross(b, f)
     r_pi = (r1 * b - r2 * a) / d
     return Solved((
-        Transfer(roles["H_i"], outer_link(group, "i"), group.i, r_pi, h_i),
+        Transfer(roles["H_i"], outer_link(group, "i"), i, r_pi, h_i),
         Transfer(roles["H_j"], outer_link(group, "j"), j, -f - r_pi, h_j),
-        Transfer(roles["C"], j, group.i, -(r_pi + f_i), c),
+        Transfer(roles["C"], j, i, -(r_pi + f_i), c),
     ), np.abs(d) / (np.abs(a) * np.abs(b)), ForceReason.TOGGLE)
 
 
 def _rrp(group: GroupModel, loads: Loads) -> Solved:
     """L2 RRP: slider i on the guide of p (N·n and M_pi at C), rod j."""
-    roles = group.pairs
-    j = group.j
-    assert j is not None
+    roles, i, j = _dyad(group)
     c, h_j = loads.joint(roles["C"]), loads.joint(roles["H_j"])
     n = loads.normal(roles["P_i"])
     b = h_j - c
-    f_i = loads.force(group.i)
+    f_i = loads.force(i)
     f = f_i + loads.force(j)
     bn = cross(b, n)
     normal = (loads.moment(j, c) - cross(b, f)) / bn
     along = normal * n
     return Solved((
-        Transfer(roles["P_i"], outer_link(group, "i"), group.i, along, c, normal,
-                 -loads.moment(group.i, c)),
+        Transfer(roles["P_i"], outer_link(group, "i"), i, along, c, normal,
+                 -loads.moment(i, c)),
         Transfer(roles["H_j"], outer_link(group, "j"), j, -f - along, h_j),
-        Transfer(roles["C"], j, group.i, -(along + f_i), c),
+        Transfer(roles["C"], j, i, -(along + f_i), c),
     ), np.abs(bn) / np.abs(b), ForceReason.TOGGLE)
 
 
 def _rpr(group: GroupModel, loads: Loads) -> Solved:
     """L3 RPR: kulisa i (H_i to p), block j (H_j to q), internal N·n and M_ij at K = H_j."""
-    roles = group.pairs
-    j = group.j
-    assert j is not None
+    roles, i, j = _dyad(group)
     h_i, k = loads.joint(roles["H_i"]), loads.joint(roles["H_j"])
     n = loads.normal(roles["P_c"])
     couple = -loads.moment(j, k)
     t = cross(k - h_i, n)
-    normal = (loads.moment(group.i, h_i) - couple) / t
+    normal = (loads.moment(i, h_i) - couple) / t
     along = normal * n
     return Solved((
-        Transfer(roles["H_i"], outer_link(group, "i"), group.i, along - loads.force(group.i),
+        Transfer(roles["H_i"], outer_link(group, "i"), i, along - loads.force(i),
                  h_i),
         Transfer(roles["H_j"], outer_link(group, "j"), j, -along - loads.force(j), k),
-        Transfer(roles["P_c"], group.i, j, along, k, normal, couple),
+        Transfer(roles["P_c"], i, j, along, k, normal, couple),
     ), np.abs(t) / np.abs(k - h_i), ForceReason.INDETERMINATE)
 
 
 def _prp(group: GroupModel, loads: Loads) -> Solved:
     """L4 PRP: i on the guide of p, j on the guide of q, hinge C."""
-    roles = group.pairs
-    j = group.j
-    assert j is not None
+    roles, i, j = _dyad(group)
     c = loads.joint(roles["C"])
     n_i, n_j = loads.normal(roles["P_i"]), loads.normal(roles["P_j"])
-    f_i = loads.force(group.i)
+    f_i = loads.force(i)
     f = f_i + loads.force(j)
     den = cross(n_i, n_j)
     normal_i = cross(n_j, f) / den
     normal_j = cross(f, n_i) / den
     return Solved((
-        Transfer(roles["P_i"], outer_link(group, "i"), group.i, normal_i * n_i, c, normal_i,
-                 -loads.moment(group.i, c)),
+        Transfer(roles["P_i"], outer_link(group, "i"), i, normal_i * n_i, c, normal_i,
+                 -loads.moment(i, c)),
         Transfer(roles["P_j"], outer_link(group, "j"), j, normal_j * n_j, c, normal_j,
                  -loads.moment(j, c)),
-        Transfer(roles["C"], j, group.i, -(normal_i * n_i + f_i), c),
+        Transfer(roles["C"], j, i, -(normal_i * n_i + f_i), c),
     ), np.abs(den), ForceReason.PARALLEL_GUIDES)
 
 
 def _rpp(group: GroupModel, loads: Loads) -> Solved:
     """L5 RPP: j hinged at H_j carries the guide u_T of i; i also slides on the guide u_S of
     p; both prismatic pairs act at K = C."""
-    roles = group.pairs
-    j = group.j
-    assert j is not None
+    roles, i, j = _dyad(group)
     c, h_j = loads.joint(roles["P_c"]), loads.joint(roles["H_j"])
     n_t, n_s = loads.normal(roles["P_c"]), loads.normal(roles["P_i"])
-    f_i = loads.force(group.i)
+    f_i = loads.force(i)
     den = cross(n_t, n_s)
     inner = cross(n_s, f_i) / den
     outer = cross(f_i, n_t) / den
     couple = loads.moment(j, h_j) - inner * cross(c - h_j, n_t)
     return Solved((
-        Transfer(roles["P_c"], j, group.i, inner * n_t, c, inner, couple),
-        Transfer(roles["P_i"], outer_link(group, "i"), group.i, outer * n_s, c, outer,
-                 -loads.moment(group.i, c) - couple),
+        Transfer(roles["P_c"], j, i, inner * n_t, c, inner, couple),
+        Transfer(roles["P_i"], outer_link(group, "i"), i, outer * n_s, c, outer,
+                 -loads.moment(i, c) - couple),
         Transfer(roles["H_j"], outer_link(group, "j"), j, inner * n_t - loads.force(j), h_j),
     ), np.abs(den), ForceReason.PARALLEL_GUIDES)
 

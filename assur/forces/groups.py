@@ -110,7 +110,9 @@ def outer_link(group: GroupModel, side: str) -> LinkId:
     Examples
     --------
     >>> import assur
-    >>> model = assur.load_model("input_tables/four_bar.yaml")
+    >>> from pathlib import Path; import assur
+    >>> TABLES = Path(assur.__file__).parents[1] / "input_tables"
+    >>> model = assur.load_model(TABLES / "four_bar.yaml")
     >>> outer_link(model.groups[1], "i"), outer_link(model.groups[1], "j")
     (1, 0)
     """

@@ -157,7 +157,9 @@ class ForceAnalysis:
         --------
         >>> import numpy as np, assur
         >>> from assur.forces import ForceData, Load
-        >>> model = assur.load_model("input_tables/four_bar.yaml")
+        >>> from pathlib import Path; import assur
+        >>> TABLES = Path(assur.__file__).parents[1] / "input_tables"
+        >>> model = assur.load_model(TABLES / "four_bar.yaml")
         >>> motion = assur.analyse(model, np.radians([0.0, 90.0]), analogs=True)
         >>> result = kinetostatics(motion, ForceData(loads=(Load(3, torque=-15.0),)))
         >>> bool(max(r.moment.max() for r in result.residuals.values()) < 1e-12)
@@ -176,7 +178,9 @@ class ForceAnalysis:
         --------
         >>> import numpy as np, assur
         >>> from assur.forces import ForceData, Load
-        >>> model = assur.load_model("input_tables/four_bar.yaml")
+        >>> from pathlib import Path; import assur
+        >>> TABLES = Path(assur.__file__).parents[1] / "input_tables"
+        >>> model = assur.load_model(TABLES / "four_bar.yaml")
         >>> motion = assur.analyse(model, np.array([0.0]), analogs=True)
         >>> result = kinetostatics(motion, ForceData(loads=(Load(3, torque=-15.0),)), 10.0)
         >>> result.message(0) is None
@@ -222,7 +226,9 @@ def kinetostatics(motion: Motion, data: ForceData, omega: float = 0.0) -> ForceA
 
     >>> import numpy as np, assur
     >>> from assur.forces import ForceData, Load
-    >>> model = assur.load_model("input_tables/four_bar.yaml")
+    >>> from pathlib import Path; import assur
+    >>> TABLES = Path(assur.__file__).parents[1] / "input_tables"
+    >>> model = assur.load_model(TABLES / "four_bar.yaml")
     >>> motion = assur.analyse(model, np.radians([0.0, 90.0]), analogs=True)
     >>> result = kinetostatics(motion, ForceData(loads=(Load(3, torque=-15.0),)))
     >>> bool(np.all(np.abs(result.power_balance) < 1e-12))

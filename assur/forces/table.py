@@ -61,7 +61,9 @@ def read_forces(root: Node, chain: Chain) -> ForceData | None:
     Examples
     --------
     >>> from assur import TableReader, load_chain
-    >>> chain = load_chain("input_tables/four_bar.yaml")
+    >>> from pathlib import Path; import assur
+    >>> TABLES = Path(assur.__file__).parents[1] / "input_tables"
+    >>> chain = load_chain(TABLES / "four_bar.yaml")
     >>> reader = TableReader.from_data({"loads": [{"link": 3, "torque": -15}],
     ...                                 "gravity": [0, -9.81]})
     >>> read_forces(reader.root(), chain).gravity
@@ -93,7 +95,9 @@ def load_with_forces(path: str | os.PathLike[str]
 
     Examples
     --------
-    >>> model, data = load_with_forces("input_tables/four_bar_gravity.yaml")
+    >>> from pathlib import Path; import assur
+    >>> TABLES = Path(assur.__file__).parents[1] / "input_tables"
+    >>> model, data = load_with_forces(TABLES / "four_bar_gravity.yaml")
     >>> model.groups[1].label, data.gravity
     ('L1(2,3)', -9.81j)
     """

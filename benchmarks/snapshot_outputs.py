@@ -102,8 +102,11 @@ def compare(old: Path, new: Path, rtol: float) -> int:
     changed = 0
     for name in names:
         a, b = old / name, new / name
-        if not a.exists() or not b.exists():
-            print(f"MISSING {'new' if not b.exists() else 'old'}  {name}")
+        if not a.exists():
+            print(f"new input  {name}")
+            continue
+        if not b.exists():
+            print(f"MISSING now  {name}")
             changed += 1
             continue
         diff = differences(json.loads(a.read_text("utf-8")), json.loads(b.read_text("utf-8")),
@@ -112,7 +115,8 @@ def compare(old: Path, new: Path, rtol: float) -> int:
         for line in diff[:10]:
             print(f"    {line}")
         changed += bool(diff)
-    print(f"{len(names)} inputs compared, {len(names) - changed} same, {changed} differ "
+    old_names = [name for name in names if (old / name).exists()]
+    print(f"{len(old_names)} inputs compared, {len(old_names) - changed} same, {changed} differ "
           f"(relative tolerance {rtol:g})")
     return changed
 

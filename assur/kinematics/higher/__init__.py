@@ -1,0 +1,1 @@
+"""Kinematics of the triad (class III) and the class IV group of order 2."""

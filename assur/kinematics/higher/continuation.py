@@ -1,0 +1,453 @@
+"""Following the sketched assembly mode over the crank cycle (§1.6–§1.8).
+
+The mode of the sketch is followed forward from φ = 0 by a predictor from the exact analogs
+and a Newton corrector, with step control and a test that the corrector stays in the root's
+own basin, so that it never moves to a neighbouring mode. Where the mode ends (two modes
+merge at a change point) the backward pass from φ = 0 finds the other end; the angles in
+between do not assemble. Every design has its own angle and step: the designs advance
+together under masks, one crank step after another.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+from dataclasses import dataclass
+from enum import IntEnum
+from typing import Any
+
+import numpy as np
+
+from assur.kinematics import jets as J
+from assur.kinematics.dyads import Reason
+from assur.kinematics.higher.groups import HigherGroup, det_rows, hadamard, values
+from assur.kinematics.higher.modes import (
+    AssemblyModes,
+    assembly_modes,
+    coefficients,
+    newton,
+    roots,
+    select_mode,
+    solve,
+    weights,
+    TAU,
+)
+from assur.kinematics.jets import Jet
+from assur.text import Message
+
+__all__ = ["HigherReason", "HigherSolution", "REASON_CODES", "follow_mode", "analogs"]
+
+TWO_PI = 2.0 * np.pi
+#: Largest crank step of the continuation (rad).
+H_MAX = np.radians(2.0)
+#: Below this step the mode ends (rad).
+H_MIN = 1e-10
+#: Newton iterations of the corrector and its convergence bound on the scaled step.
+ITERATIONS = 4
+CONVERGED = 1e-10
+#: A mode that ends with a margin up to this ends at a change point.
+CHANGE = 1e-4
+#: After a full turn the joints are back at the sketch within this times L.
+CLOSED = 1e-9
+
+Inputs = Callable[[Any], Any]
+
+
+class HigherReason(IntEnum):
+    """Why the followed mode is missing at a position (codes after the dyads' 0–7)."""
+
+    MODE_ENDS = 8
+    NOT_FOLLOWED = 9
+
+
+#: Reason code → catalogue code of its sentence.
+REASON_CODES: dict[int, str] = {
+    HigherReason.MODE_ENDS: "higher.reason.mode_ends",
+    HigherReason.NOT_FOLLOWED: "higher.reason.not_followed",
+}
+
+
+def _part(v: Any, name: str) -> np.ndarray:
+    return np.asarray(getattr(v, name)) if isinstance(v, Jet) else np.zeros(np.shape(v))
+
+
+def analogs(group: HigherGroup, k: Any, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Velocity and acceleration analogs x′, x″ of the unknowns by implicit differentiation.
+
+    Parameters
+    ----------
+    group : Triad or ClassIV
+        The group.
+    k : TriadInputs or ClassIVInputs
+        Its inputs at the position as jets in the crank angle φ.
+    x : ndarray, shape (..., n)
+        A solution there.
+
+    Returns
+    -------
+    x1, x2 : ndarray, shape (..., n)
+        dx/dφ from J x′ = −∂F/∂φ, and d²x/dφ² from J x″ = −(d²F/dφ² with x″ = 0).
+
+    Examples
+    --------
+    A class IV group whose hinge H_a moves along x at unit speed:
+
+    >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
+    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> k = ClassIVInputs(Jet(-12.5-20j, 1.0, 0.0), 140.5+22j)
+    >>> x1, x2 = analogs(g, k, np.zeros(2))
+    >>> x1.shape
+    (2,)
+    """
+    jac = group.jacobian(x, values(k))
+    cols = [Jet(x[..., i], 0.0, 0.0) for i in range(group.n)]
+    f = group.residual(cols, k)
+    x1 = solve(jac, -np.stack(np.broadcast_arrays(*(_part(v, "d1") for v in f)), axis=-1))
+    cols = [Jet(x[..., i], x1[..., i], 0.0) for i in range(group.n)]
+    f = group.residual(cols, k)
+    x2 = solve(jac, -np.stack(np.broadcast_arrays(*(_part(v, "d2") for v in f)), axis=-1))
+    return x1, x2
+
+
+def separation(group: HigherGroup, k: Any, x: np.ndarray) -> np.ndarray:
+    """A lower bound on the distance from the root E* of x to every other root of p.
+
+    The Taylor shift q_j = p⁽ʲ⁺¹⁾(E*)/(j+1)! and Fujiwara's bound on the deflated polynomial
+    give ρ ≥ 1 / (2·max_j |q_j/q_0|^{1/j}) (§1.6, test (c)).
+    """
+    coef = coefficients(group, k)
+    z = np.exp(1j * x[..., group.eliminated])
+    n = coef.shape[-1] - 1
+    b = [coef[..., i] for i in range(n, -1, -1)]
+    shifted = []
+    for order in range(n + 1):
+        for i in range(1, n + 1 - order):
+            b[i] = b[i] + z * b[i - 1]
+        shifted.append(b[n - order])
+    q = shifted[1:]
+    with np.errstate(all="ignore"):
+        worst = np.max([np.abs(q[j] / q[0]) ** (1.0 / j) for j in range(1, len(q))], axis=0)
+        return np.asarray(0.5 / worst)
+
+
+def _finite(k: Any) -> np.ndarray:
+    """True where every input of the record is finite."""
+    out: Any = True
+    for f in dataclasses.fields(k):
+        v = getattr(k, f.name)
+        for item in v if isinstance(v, tuple) else (v,):
+            if item is not None:
+                out = out & np.isfinite(J.value(item))
+    return np.asarray(out)
+
+
+@dataclass(frozen=True, eq=False)
+class _Pass:
+    """The mode followed in one direction: records at the targets and where it ended."""
+
+    x: np.ndarray
+    out: dict[str, np.ndarray]
+    end: np.ndarray
+    why: np.ndarray
+
+    @property
+    def reached(self) -> np.ndarray:
+        return ~np.isnan(self.x[..., 0])
+
+
+def _store(store: dict[str, np.ndarray], rows: np.ndarray, j: np.ndarray,
+           found: dict[str, Any], shape: tuple[int, int]) -> None:
+    """Write the jets (or values) of the designs ``rows`` at their target indices."""
+    for name, v in found.items():
+        parts = (v.v, v.d1, v.d2) if isinstance(v, Jet) else (v,)
+        if name not in store:
+            dtype = complex if any(np.iscomplexobj(p) for p in parts) else float
+            store[name] = np.full((len(parts),) + shape, np.nan, dtype=dtype)
+        for i, p in enumerate(parts):
+            store[name][i, rows, j[rows]] = np.broadcast_to(p, shape[:1])[rows]
+
+
+def _outputs(group: HigherGroup, k: Any, x: np.ndarray, x1: np.ndarray, x2: np.ndarray,
+             rows: np.ndarray) -> dict[str, Any]:
+    """Joints ("p.") and rotations ("r.") as jets, and the margin, at a solution."""
+    cols = [Jet(x[:, i], x1[:, i], x2[:, i]) for i in range(group.n)]
+    found: dict[str, Any] = {"p." + a: b for a, b in group.joints(cols, k).items()}
+    found.update({"r." + a: b for a, b in group.rotations(cols, k).items()})
+    found["margin"] = hadamard(rows)
+    return found
+
+
+def _follow(group: HigherGroup, inputs: Inputs, x0: np.ndarray, targets: np.ndarray,
+            s: float, done: np.ndarray) -> _Pass:
+    """Follow x0 from φ = 0 through φ = s·t for the increasing targets t (the pass of §1.6)."""
+    d, n_t = x0.shape[0], len(targets)
+    scale = weights(group)
+    store: dict[str, np.ndarray] = {}
+    rec = np.full((d, n_t, group.n), np.nan)
+    t, h = np.zeros(d), np.full(d, H_MAX)
+    j = np.zeros(d, dtype=int)
+    end, why = np.full(d, np.inf), np.zeros(d, dtype=np.int8)
+    done = done.copy()
+    x = np.where(done[:, None], group.drawn(), x0)
+    k = inputs(Jet(np.zeros(d), 1.0, 0.0))
+    x1, x2 = analogs(group, k, x)
+    jac, rows, _ = group.lines(x, values(k))
+    sign = np.sign(det_rows(jac))
+    _store(store, np.zeros(0, dtype=int), j, _outputs(group, k, x, x1, x2, rows), (d, n_t))
+    while not done.all():
+        active = ~done
+        goal = targets[np.minimum(j, n_t - 1)]
+        hs = np.where(active, np.minimum(h, goal - t), 0.0)
+        k = inputs(Jet(s * (t + hs), 1.0, 0.0))
+        kv = values(k)
+        guess = x + (s * hs)[:, None] * x1 + 0.5 * (hs * hs)[:, None] * x2
+        xn, step = newton(group, kv, guess, ITERATIONS, CONVERGED)
+        with np.errstate(all="ignore"):
+            jac, rows, _ = group.lines(xn, kv)
+            apart = (np.abs(xn - guess) * scale).sum(axis=-1)
+            ok = active & (step <= CONVERGED) & (np.sign(det_rows(jac)) == sign) \
+                & (apart <= 0.25 * separation(group, kv, xn))
+            n1, n2 = analogs(group, k, xn)
+        hit = ok & (hs >= goal - t)
+        t = np.where(hit, goal, np.where(ok, t + hs, t))
+        x = np.where(ok[:, None], xn, x)
+        x1 = np.where(ok[:, None], n1, x1)
+        x2 = np.where(ok[:, None], n2, x2)
+        h = np.where(ok, np.minimum(2.0 * h, H_MAX), 0.5 * hs)
+        if hit.any():
+            hits = np.flatnonzero(hit)
+            rec[hits, j[hits]] = xn[hits]
+            _store(store, hits, j, _outputs(group, k, xn, n1, n2, rows), (d, n_t))
+        j = j + hit
+        stuck = active & ~ok & (h < H_MIN)
+        if stuck.any():
+            with np.errstate(all="ignore"):
+                margin = group.margin(x, values(inputs(s * t)))
+            code = np.where(~_finite(kv), Reason.UNDEFINED_INPUT,
+                            np.where(margin <= CHANGE, HigherReason.MODE_ENDS,
+                                     HigherReason.NOT_FOLLOWED))
+            end = np.where(stuck, t, end)
+            why = np.where(stuck, code, why).astype(np.int8)
+        done = done | stuck | (j >= n_t)
+    return _Pass(x=rec, out=store, end=end, why=why)
+
+
+@dataclass(frozen=True, eq=False)
+class HigherSolution:
+    """The sketched mode of a triad or a class IV group over the requested crank angles.
+
+    Attributes
+    ----------
+    joints : dict of str to ndarray or Jet, complex, shape (..., N)
+        The internal joints (triad: P1, P2, P3; class IV: C, D, E, F); jets with the exact
+        analogs when asked for. NaN where the group does not exist.
+    rotations : dict of str to ndarray or Jet, shape (..., N)
+        The rotation of each link from the sketch (triad: base, leash1–3; class IV: a, b, c,
+        d). A point drawn at z⁰ on a link with origin O is at O + (z⁰ − O⁰)·e^{i·rotation}.
+    x : ndarray, shape (..., N, n)
+        The unknowns: (W_x, W_y, θ) with W = P₁ − A₁, or (θ_a, θ_c).
+    margin : ndarray, shape (..., N)
+        The Hadamard ratio of the constraint lines where the mode is followed; where it is not,
+        −min|ln|E|| over the roots of p off the unit circle (0 at a change point). NaN where
+        an input is undefined.
+    exists : ndarray, bool, shape (..., N)
+        The mode is followed there and ``margin >= delta``.
+    reason : ndarray, int8, shape (..., N)
+        0, 7 (an earlier group fails), 8 (:attr:`HigherReason.MODE_ENDS`) or 9
+        (:attr:`HigherReason.NOT_FOLLOWED`).
+    ends : ndarray, shape (..., 2)
+        The crank angles φ_f, φ_b in (0, 2π) where the forward and the backward pass from the
+        sketch stop; NaN where the mode assembles over the whole turn.
+    end_reasons : ndarray, int8, shape (..., 2)
+        Why each pass stopped (7, 8 or 9; 0 where it did not).
+    closed : ndarray, bool
+        False where a full turn without a change point does not bring the mode back to the
+        sketch (a circuit of more than one turn).
+    found : ndarray, bool
+        The sketch picks a mode (§1.5).
+    modes : AssemblyModes
+        Every real mode at the sketch position.
+    """
+
+    joints: dict[str, Any]
+    rotations: dict[str, Any]
+    x: np.ndarray
+    margin: np.ndarray
+    exists: np.ndarray
+    reason: np.ndarray
+    ends: np.ndarray
+    end_reasons: np.ndarray
+    closed: np.ndarray
+    found: np.ndarray
+    modes: AssemblyModes
+
+    def notes(self, design: int = 0) -> list[Message]:
+        """What a user is told about one design: the sketch, the ends, the return.
+
+        Examples
+        --------
+        >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
+        >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+        >>> sol = follow_mode(g, lambda phi: ClassIVInputs(-12.5-20j, 140.5+22j), [0.0])
+        >>> [m.text() for m in sol.notes()]
+        ['6 real assembly modes at the sketch']
+        """
+        index = (design,) if self.found.ndim else ()
+        out = [Message("higher.modes.count", {"n": int(self.modes.count[index])})]
+        if not self.found[index]:
+            out.append(Message("higher.sketch.no_mode"))
+        codes = {Reason.UNDEFINED_INPUT: "higher.end.input",
+                 HigherReason.MODE_ENDS: "higher.end.change_point",
+                 HigherReason.NOT_FOLLOWED: "higher.end.lost"}
+        for angle, code in zip(self.ends[index], self.end_reasons[index], strict=True):
+            if code:
+                out.append(Message(codes[int(code)], {"angle": float(np.degrees(angle))}))
+        if not self.closed[index]:
+            out.append(Message("higher.not_closed"))
+        return out
+
+
+def _gap(group: HigherGroup, k: Any) -> np.ndarray:
+    """−min|ln|E|| over the roots of p off the unit circle (the margin where a mode is gone)."""
+    with np.errstate(all="ignore"):
+        size = np.abs(np.log(np.abs(roots(coefficients(group, k)))))
+        return np.asarray(-np.where(size > TAU, size, np.inf).min(axis=-1))
+
+
+def _designs(group: HigherGroup, inputs: Inputs) -> tuple[int, ...]:
+    """The design shape: () for one design, (D,) for many."""
+    first = values(inputs(np.zeros(1)))
+    shapes = [np.shape(group.size)]
+    for f in dataclasses.fields(first):
+        v = getattr(first, f.name)
+        shapes += [np.shape(item) for item in (v if isinstance(v, tuple) else (v,))
+                   if item is not None]
+    shape = np.broadcast_shapes(*shapes)
+    return () if shape in ((), (1,)) and np.shape(group.size) == () else shape
+
+
+def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool = False,
+                delta: float | np.ndarray = 0.0) -> HigherSolution:
+    """Positions of the sketched assembly mode over the crank cycle, for one or many designs.
+
+    Parameters
+    ----------
+    group : Triad or ClassIV
+        The group; drawn values of shape () or (D,).
+    inputs : callable
+        ``inputs(phi)`` → :class:`TriadInputs` or :class:`ClassIVInputs`: the external
+        hinges and guides at the crank angles ``phi`` (shape (D,), each design at its own
+        angle), for a plain array and for a :class:`Jet` in φ. The continuation calls it at
+        every step.
+    phi : array_like, shape (N,)
+        Crank angles from the sketch (rad); reduced modulo 2π.
+    analogs : bool
+        Return the joints and rotations as jets with the exact analogs.
+    delta : float or ndarray
+        The assigned tolerance: the group exists where ``margin >= delta``.
+
+    Returns
+    -------
+    HigherSolution
+
+    Notes
+    -----
+    The mode is picked at φ = 0 by :func:`select_mode` among all real modes and followed
+    forward to 2π; if it ends at a change point it is followed backward from 0 to the other
+    end (§1.6). Each step: the predictor x + h·x′ + ½h²·x″ from the exact analogs, at most
+    4 Newton iterations, and acceptance only if Newton converged, det J keeps its sign and
+    the correction is under a quarter of a lower bound on the distance to every other root
+    of p; otherwise the step is halved. A step below 1e-10 rad ends the mode.
+
+    Examples
+    --------
+    The class IV group of test vector V2 driven by a crank O–B:
+
+    >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
+    >>> from assur.kinematics.jets import expi
+    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> crank = lambda phi: ClassIVInputs((-12.5-20j) * expi(phi), 140.5+22j)
+    >>> sol = follow_mode(g, crank, np.radians([60.0, 150.0]))
+    >>> np.round(sol.joints["C"], 6).tolist()
+    [(56.068701+80.176725j), (77.60907+105.948616j)]
+    """
+    phi = np.asarray(phi, dtype=float).reshape(-1)
+    shape = _designs(group, inputs)
+    d = int(np.prod(shape))
+    k0 = values(inputs(np.zeros(d)))
+    modes = assembly_modes(group, k0)
+    x0, found = select_mode(group, k0, modes)
+    x0 = np.broadcast_to(x0, (d, group.n))
+    found = np.broadcast_to(found, (d,))
+    wrapped = np.mod(phi, TWO_PI)
+    order = np.argsort(wrapped, kind="stable")
+    unsort = np.argsort(order)
+    grid = wrapped[order]
+    n = len(grid)
+    ahead = _follow(group, inputs, x0, np.append(grid, TWO_PI), 1.0, ~found)
+    around = ahead.reached[:, -1]
+    size = np.broadcast_to(group.size, (d,))
+    with np.errstate(all="ignore"):
+        home = np.max([np.abs(ahead.out["p." + a][0, :, -1] - np.broadcast_to(v, (d,)))
+                       for a, v in group.joints(x0, k0).items()], axis=0)
+    closed = ~around | (home <= CLOSED * size)
+    back_targets = TWO_PI - grid[grid > 0][::-1]
+    behind = _follow(group, inputs, x0, back_targets, -1.0, ~found | around)
+    back_index = np.full(n, -1)
+    back_index[grid > 0] = np.arange(len(back_targets))[::-1]
+    use_ahead = ahead.reached[:, :n]
+    use_behind = ~use_ahead & (back_index >= 0) & behind.reached[:, back_index]
+    reached = (use_ahead | use_behind)[:, unsort]
+
+    def merge(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        merged = np.where(use_ahead, a[..., :n], np.where(use_behind, b[..., back_index], np.nan))
+        return np.asarray(merged[..., unsort])
+
+    x = np.stack([merge(ahead.x[..., i], behind.x[..., i]) for i in range(group.n)], axis=-1)
+    margin = merge(ahead.out["margin"], behind.out["margin"])[0]
+    reason = np.zeros((d, n), dtype=np.int8)
+    merged_ends = (ahead.why == HigherReason.MODE_ENDS) & (behind.why == HigherReason.MODE_ENDS)
+    for column in np.flatnonzero(~reached.all(axis=0)):
+        kv = values(inputs(np.full(d, phi[column])))
+        defined = _finite(kv)
+        gone = ~reached[:, column]
+        margin[:, column] = np.where(gone, np.where(defined, _gap(group, kv), np.nan),
+                                     margin[:, column])
+        reason[:, column] = np.where(
+            gone, np.where(defined, np.where(found & merged_ends, HigherReason.MODE_ENDS,
+                                             HigherReason.NOT_FOLLOWED),
+                           Reason.UNDEFINED_INPUT), 0)
+    with np.errstate(invalid="ignore"):
+        exists = reached & (margin >= np.asarray(delta)[..., None])
+    reason = np.where(reached & ~exists, HigherReason.MODE_ENDS, reason).astype(np.int8)
+
+    def final(name: str) -> Any:
+        parts = [np.where(exists, part, np.nan) for part in
+                 merge(ahead.out[name], behind.out[name])]
+        return Jet(*parts) if analogs else parts[0]
+
+    ends = np.stack([np.where(ahead.why > 0, ahead.end, np.nan),
+                     np.where(behind.why > 0, TWO_PI - behind.end, np.nan)], axis=-1)
+    solution = HigherSolution(
+        joints={a[2:]: final(a) for a in ahead.out if a.startswith("p.")},
+        rotations={a[2:]: final(a) for a in ahead.out if a.startswith("r.")},
+        x=np.where(exists[..., None], x, np.nan), margin=margin, exists=exists, reason=reason,
+        ends=ends, end_reasons=np.stack([ahead.why, behind.why], axis=-1), closed=closed,
+        found=found, modes=modes)
+    return _squeeze(solution) if shape == () else solution
+
+
+def _squeeze(solution: HigherSolution) -> HigherSolution:
+    """The solution of a single design without its design axis."""
+    def one(v: Any) -> Any:
+        if isinstance(v, Jet):
+            return Jet(v.v[0], v.d1[0], v.d2[0])
+        if isinstance(v, dict):
+            return {a: one(b) for a, b in v.items()}
+        if isinstance(v, AssemblyModes):
+            return AssemblyModes(**{f.name: one(getattr(v, f.name))
+                                    for f in dataclasses.fields(v)})
+        return np.asarray(v)[0]
+
+    return HigherSolution(**{f.name: one(getattr(solution, f.name))
+                             for f in dataclasses.fields(solution)})

@@ -1,0 +1,466 @@
+"""Geometry and equations of the triad (class III) and the class IV group of order 2.
+
+Each group is a frozen record of its drawn (sketch) geometry. Its methods give the reduced
+loop equations F(x) = 0 and their Jacobian, the constraint lines that fix the margin, the
+eliminant Φ(θ) sampled on the unit circle, the recovery of the other unknowns from θ, and
+the joints and link rotations of a solution (``docs/higher_groups.md`` §1–§3).
+
+Points are complex numbers; every drawn value may be a number or an array of shape (D,)
+(D candidate designs). The inputs at a crank position (the external hinges and guides carried
+by known links) come as :class:`TriadInputs` or :class:`ClassIVInputs`, numbers, arrays or
+:class:`~assur.kinematics.jets.Jet`. The residuals accept jets, so that the analogs follow by
+implicit differentiation; the Jacobians, the lines and the eliminant take plain arrays.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from abc import ABC, abstractmethod
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any, Literal, TypeVar
+
+import numpy as np
+
+from assur.kinematics import jets as J
+from assur.kinematics.jets import Jet
+from assur.text import render
+
+__all__ = [
+    "ClassIV", "ClassIVInputs", "HigherGroup", "Leash", "Triad", "TriadInputs", "expand", "values",
+]
+
+Value = Jet | np.ndarray | complex | float
+#: Leash kinds, internal pair first: a bar, a block hinged to the base on a guide of a known
+#: link, a leash hinged to a known link sliding along a guide of the base.
+Leash = Literal["RR", "RP", "PR"]
+T = TypeVar("T")
+
+
+def expand(record: T) -> T:
+    """A copy of a dataclass record with every array field given a trailing axis.
+
+    Design values of shape (D,) then broadcast against candidates or samples of shape (D, K).
+    """
+    def grow(v: Any) -> Any:
+        if v is None or isinstance(v, str):
+            return v
+        if isinstance(v, tuple):
+            return tuple(grow(item) for item in v)
+        return np.asarray(v)[..., None]
+
+    changes = {f.name: grow(getattr(record, f.name)) for f in dataclasses.fields(record)  # type: ignore[arg-type]
+               if f.init}
+    return dataclasses.replace(record, **changes)  # type: ignore[type-var]
+
+
+def values(record: T) -> T:
+    """A copy of an inputs record with every jet replaced by its value."""
+    changes = {f.name: (tuple(J.value(v) if v is not None else None for v in item)
+                        if isinstance(item := getattr(record, f.name), tuple) else J.value(item))
+               for f in dataclasses.fields(record)}  # type: ignore[arg-type]
+    return dataclasses.replace(record, **changes)  # type: ignore[type-var]
+
+
+def det_rows(rows: np.ndarray) -> np.ndarray:
+    """Determinants of stacked square matrices, NaN where an entry is not finite."""
+    finite = np.isfinite(rows).all(axis=(-2, -1))
+    safe = np.where(finite[..., None, None], rows, 0.0)
+    return np.where(finite, np.linalg.det(safe), np.nan)
+
+
+def hadamard(rows: np.ndarray) -> np.ndarray:
+    """|det R| / Π‖R_k‖: 1 for orthogonal rows, 0 for dependent ones (the margin's form)."""
+    norms = np.prod(np.linalg.norm(rows, axis=-1), axis=-1)
+    return np.abs(det_rows(rows)) / norms
+
+
+class HigherGroup(ABC):
+    """What the mode finder and the continuation need from a four-link group."""
+
+    #: Number of unknowns (3 for a triad, 2 for the class IV group).
+    n: int
+    #: Index of the eliminated angle θ among the unknowns.
+    eliminated: int
+    #: Scale of each unknown for step norms: True for a length (divided by L).
+    lengths: tuple[bool, ...]
+
+    @property
+    @abstractmethod
+    def degree(self) -> int:
+        """Degree m of the trigonometric eliminant Φ(θ); p(E) = E^m Φ has degree 2m."""
+
+    @property
+    @abstractmethod
+    def size(self) -> np.ndarray:
+        """L, the largest distance between the drawn joints of the group."""
+
+    @abstractmethod
+    def drawn(self) -> np.ndarray:
+        """The unknowns of the drawn pose, shape (..., n)."""
+
+    @property
+    @abstractmethod
+    def sketch(self) -> dict[str, Value]:
+        """The drawn positions of the joints named as in :meth:`joints`."""
+
+    @abstractmethod
+    def residual(self, x: Sequence[Value], k: Any) -> list[Value]:
+        """The reduced loop equations F(x) (lengths, in the drawing's unit)."""
+
+    @abstractmethod
+    def lines(self, x: np.ndarray, k: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Jacobian (..., n, n), margin rows (..., n, n) of the constraint lines, and P₁ or H_a."""
+
+    @abstractmethod
+    def eliminant(self, e: np.ndarray, k: Any) -> np.ndarray:
+        """Φ at the unit complex numbers ``e`` (group and inputs expanded by one axis)."""
+
+    @abstractmethod
+    def recover(self, e: np.ndarray, k: Any) -> np.ndarray:
+        """The unknowns (..., n) at the root ``e`` of Φ (group and inputs expanded)."""
+
+    @abstractmethod
+    def joints(self, x: Sequence[Value], k: Any) -> dict[str, Value]:
+        """The internal joints of the group by name."""
+
+    @abstractmethod
+    def rotations(self, x: Sequence[Value], k: Any) -> dict[str, Value]:
+        """The rotation of each link of the group from the sketch, by name."""
+
+    def jacobian(self, x: np.ndarray, k: Any) -> np.ndarray:
+        """∂F/∂x, shape (..., n, n)."""
+        return self.lines(x, k)[0]
+
+    def margin(self, x: np.ndarray, k: Any) -> np.ndarray:
+        """The Hadamard ratio of the constraint lines, 0 at a change point (§1.7, §3.2)."""
+        return hadamard(self.lines(x, k)[1])
+
+
+def _columns(x: np.ndarray | Sequence[Value]) -> list[Value]:
+    if isinstance(x, np.ndarray):
+        return [x[..., i] for i in range(x.shape[-1])]
+    return list(x)
+
+
+@dataclass(frozen=True, eq=False)
+class TriadInputs:
+    """The known data of a triad at one crank position.
+
+    Attributes
+    ----------
+    a : tuple of 3 complex
+        Per leash: the external hinge A_k (R–R, P–R) or the point Q_k of the guide (R–P, the
+        drawn hinge P_k⁰ carried by the guide's link).
+    u : tuple of 3 complex or None
+        Per leash: the unit direction u_k of the guide of an R–P leash; None otherwise.
+    """
+
+    a: tuple[Value, Value, Value]
+    u: tuple[Value | None, Value | None, Value | None] = (None, None, None)
+
+
+@dataclass(frozen=True, eq=False)
+class Triad(HigherGroup):
+    """A class III group of order 3: a base with three internal pairs and three leashes.
+
+    Parameters
+    ----------
+    leashes : tuple of 3 of {"RR", "RP", "PR"}
+        Leash kinds, internal pair first. The first must be "RR" (put a bar first).
+    base : tuple of 3 complex
+        Drawn points of the base: the hinge P_k⁰ (R–R, R–P) or a point of the base's guide
+        (P–R, usually the drawn slider point).
+    external : tuple of 3 complex
+        Drawn external points: the hinge A_k⁰ (R–R, P–R) or a point of the guide (R–P).
+    guide : tuple of 3 complex or None
+        Drawn unit guide directions: of the known link's guide (R–P) or of the base's guide
+        (P–R); None for a bar.
+
+    Examples
+    --------
+    >>> t = Triad(("RR", "RR", "RR"), (169.5+57j, 174+92.5j, 127.5+52j),
+    ...           (112.8+67.2j, 189.5+151j, -4.9+124.9j))
+    >>> t.degree, round(float(t.size), 3)
+    (3, 202.015)
+    """
+
+    leashes: tuple[Leash, Leash, Leash]
+    base: tuple[Value, Value, Value]
+    external: tuple[Value, Value, Value]
+    guide: tuple[Value | None, Value | None, Value | None] = (None, None, None)
+
+    n = 3
+    eliminated = 2
+    lengths = (True, True, False)
+
+    def __post_init__(self) -> None:
+        if self.leashes[0] != "RR":
+            raise ValueError(render("higher.error.first_leash", found="–".join(self.leashes[0])))
+        for kind, u in zip(self.leashes, self.guide, strict=True):
+            if kind not in ("RR", "RP", "PR"):
+                raise ValueError(render("higher.error.leash_kind", found=kind))
+            if kind != "RR" and u is None:
+                raise ValueError(render("higher.error.guide_missing", found=kind))
+
+    # --- drawn dimensions -----------------------------------------------------------------
+
+    def _offset(self, k: int) -> Value:
+        """b_k (or s_k for P–R) = drawn base point − P₁⁰."""
+        return np.asarray(self.base[k]) - np.asarray(self.base[0])
+
+    def _length(self, k: int) -> np.ndarray:
+        return np.abs(np.asarray(self.base[k]) - np.asarray(self.external[k]))
+
+    @property
+    def degree(self) -> int:
+        """3, or 2 when leashes 2 and 3 are both R–P or both P–R (§2.2)."""
+        return 2 if self.leashes[1] == self.leashes[2] != "RR" else 3
+
+    @property
+    def size(self) -> np.ndarray:
+        """L of the drawn base and external points."""
+        pts = np.broadcast_arrays(*(np.asarray(p, dtype=complex)
+                                    for p in self.base + self.external))
+        stack = np.stack(pts, axis=-1)
+        return np.asarray(np.abs(stack[..., :, None] - stack[..., None, :]).max(axis=(-2, -1)))
+
+    def drawn(self) -> np.ndarray:
+        """(W⁰_x, W⁰_y, 0) with W⁰ = P₁⁰ − A₁⁰."""
+        w = np.asarray(self.base[0]) - np.asarray(self.external[0])
+        return np.stack(np.broadcast_arrays(w.real, w.imag, np.zeros(np.shape(w))), axis=-1)
+
+    @property
+    def sketch(self) -> dict[str, Value]:
+        """P1, P2, P3 as drawn."""
+        return {f"P{i + 1}": (self.external[i] if kind == "PR" else self.base[i])
+                for i, kind in enumerate(self.leashes)}
+
+    # --- equations ------------------------------------------------------------------------
+
+    def _pose(self, x: Sequence[Value], k: TriadInputs) -> tuple[Value, Value]:
+        """P₁ and E = e^{iθ}."""
+        return k.a[0] + (x[0] + 1j * x[1]), J.expi(x[2])
+
+    def residual(self, x: Sequence[Value], k: TriadInputs) -> list[Value]:
+        """f_k: (|P_k − A_k|² − r_k²)/(2r_k), n_k·(P_k − Q_k) or n_k·(P₁ + s_kE − A_k)."""
+        p1, e = self._pose(_columns(x), k)
+        out: list[Value] = []
+        for i, kind in enumerate(self.leashes):
+            point = p1 + self._offset(i) * e
+            if kind == "RR":
+                r = self._length(i)
+                arm = point - k.a[i]
+                out.append((J.dot(arm, arm) - r * r) / (2.0 * r))
+            elif kind == "RP":
+                out.append(J.dot(1j * k.u[i], point - k.a[i]))
+            else:
+                out.append(J.dot(1j * self.guide[i] * e, point - k.a[i]))
+        return out
+
+    def _constraints(self, x: np.ndarray, k: TriadInputs
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Line directions ν_k, line points X_k, base points and P₁, stacked over k."""
+        p1, e = self._pose(_columns(x), k)
+        nu, at, base = [], [], []
+        for i, kind in enumerate(self.leashes):
+            point = p1 + self._offset(i) * e
+            base.append(point)
+            if kind == "RR":
+                nu.append((point - k.a[i]) / self._length(i))
+                at.append(point)
+            elif kind == "RP":
+                nu.append(1j * np.asarray(k.u[i]))
+                at.append(point)
+            else:
+                nu.append(1j * np.asarray(self.guide[i]) * e)
+                at.append(np.asarray(k.a[i]))
+        stack = [np.stack(np.broadcast_arrays(*v), axis=-1) for v in (nu, at, base)]
+        return stack[0], stack[1], stack[2], np.asarray(p1)
+
+    def lines(self, x: np.ndarray, k: TriadInputs) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Rows [ν_k, cross(X_k − P₁, ν_k)] and the margin rows about the base centroid."""
+        nu, at, base, p1 = self._constraints(x, k)
+        jac = np.stack([nu.real, nu.imag, J.cross(at - p1[..., None], nu)], axis=-1)
+        centre = base.mean(axis=-1, keepdims=True)
+        spread = np.sqrt((np.abs(base - centre) ** 2).mean(axis=-1, keepdims=True))
+        unit = nu / np.abs(nu)
+        rows = np.stack([unit.real, unit.imag, J.cross(at - centre, unit) / spread], axis=-1)
+        return jac, rows, p1
+
+    def _linear(self, e: np.ndarray, k: TriadInputs) -> tuple[list[Any], list[Any]]:
+        """a_k·W = p_k (k = 2, 3) at the base rotation E (§2.2)."""
+        a1 = np.asarray(k.a[0])
+        r1 = self._length(0)
+        coef, rhs = [], []
+        for i in (1, 2):
+            kind = self.leashes[i]
+            ai = np.asarray(k.a[i])
+            offset = self._offset(i) * e
+            if kind == "RR":
+                v = offset - (ai - a1)
+                coef.append(v)
+                rhs.append((self._length(i) ** 2 - r1 ** 2 - np.abs(v) ** 2) / 2.0)
+            else:
+                normal = 1j * np.asarray(k.u[i]) if kind == "RP" else 1j * self.guide[i] * e
+                coef.append(normal)
+                rhs.append(J.dot(normal, ai - a1 - offset))
+        return coef, rhs
+
+    def eliminant(self, e: np.ndarray, k: TriadInputs) -> np.ndarray:
+        """Φ(θ) = |p₂a₃ − p₃a₂|² − r₁² cross(a₂, a₃)²."""
+        (a2, a3), (p2, p3) = self._linear(e, k)
+        m = p2 * a3 - p3 * a2
+        return np.asarray(np.abs(m) ** 2 - (self._length(0) * J.cross(a2, a3)) ** 2)
+
+    def recover(self, e: np.ndarray, k: TriadInputs) -> np.ndarray:
+        """W = −i(p₂a₃ − p₃a₂)/cross(a₂, a₃), θ = arg E."""
+        (a2, a3), (p2, p3) = self._linear(e, k)
+        w = -1j * (p2 * a3 - p3 * a2) / J.cross(a2, a3)
+        return np.stack(np.broadcast_arrays(w.real, w.imag, np.angle(e)), axis=-1)
+
+    def joints(self, x: Sequence[Value], k: TriadInputs) -> dict[str, Value]:
+        """P1, P2, P3: the internal pairs (for a P–R leash, the slider at its hinge A_k)."""
+        p1, e = self._pose(_columns(x), k)
+        return {f"P{i + 1}": (k.a[i] if kind == "PR" else p1 + self._offset(i) * e)
+                for i, kind in enumerate(self.leashes)}
+
+    def rotations(self, x: Sequence[Value], k: TriadInputs) -> dict[str, Value]:
+        """base: θ; leash1–3: the rotation of each leash (a P–R leash turns with the base)."""
+        cols = _columns(x)
+        p1, e = self._pose(cols, k)
+        out: dict[str, Value] = {"base": cols[2]}
+        for i, kind in enumerate(self.leashes):
+            if kind == "RR":
+                drawn = np.asarray(self.base[i]) - np.asarray(self.external[i])
+                out[f"leash{i + 1}"] = J.arg((p1 + self._offset(i) * e - k.a[i]) / drawn)
+            elif kind == "RP":
+                out[f"leash{i + 1}"] = J.arg(k.u[i] / np.asarray(self.guide[i]))
+            else:
+                out[f"leash{i + 1}"] = cols[2]
+        return out
+
+
+@dataclass(frozen=True, eq=False)
+class ClassIVInputs:
+    """The known data of a class IV group at one crank position: H_a and H_c."""
+
+    h_a: Value
+    h_c: Value
+
+
+@dataclass(frozen=True, eq=False)
+class ClassIV(HigherGroup):
+    """The class IV group of order 2: the contour a–b–c–d, external hinges on a and c.
+
+    Parameters
+    ----------
+    h_a, c, f : complex
+        Drawn points of link a: its external hinge and the internal hinges C (to b), F (to d).
+    h_c, d, e : complex
+        Drawn points of link c: its external hinge and the internal hinges D (to b), E (to d).
+
+    Examples
+    --------
+    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> g.degree, g.n
+    (3, 2)
+    """
+
+    h_a: Value
+    c: Value
+    f: Value
+    h_c: Value
+    d: Value
+    e: Value
+
+    n = 2
+    eliminated = 0
+    lengths = (False, False)
+
+    @property
+    def degree(self) -> int:
+        """3 (§3.2)."""
+        return 3
+
+    @property
+    def size(self) -> np.ndarray:
+        """L of the six drawn hinges."""
+        pts = np.broadcast_arrays(*(np.asarray(p, dtype=complex) for p in
+                                    (self.h_a, self.c, self.f, self.h_c, self.d, self.e)))
+        stack = np.stack(pts, axis=-1)
+        return np.asarray(np.abs(stack[..., :, None] - stack[..., None, :]).max(axis=(-2, -1)))
+
+    def drawn(self) -> np.ndarray:
+        """θ_a = θ_c = 0."""
+        return np.zeros(np.shape(self.size) + (2,))
+
+    @property
+    def sketch(self) -> dict[str, Value]:
+        """C, D, E, F as drawn."""
+        return {"C": self.c, "D": self.d, "E": self.e, "F": self.f}
+
+    def _arms(self) -> tuple[Value, Value, Value, Value, Value, Value]:
+        """γ_C, γ_F, δ_D, δ_E and the lengths l_b, l_d."""
+        g_c, g_f = np.asarray(self.c) - self.h_a, np.asarray(self.f) - self.h_a
+        d_d, d_e = np.asarray(self.d) - self.h_c, np.asarray(self.e) - self.h_c
+        return (g_c, g_f, d_d, d_e, np.abs(np.asarray(self.c) - self.d),
+                np.abs(np.asarray(self.f) - self.e))
+
+    def _points(self, x: Sequence[Value], k: ClassIVInputs) -> tuple[Value, ...]:
+        g_c, g_f, d_d, d_e, _, _ = self._arms()
+        ea, ec = J.expi(x[0]), J.expi(x[1])
+        return k.h_a + g_c * ea, k.h_a + g_f * ea, k.h_c + d_d * ec, k.h_c + d_e * ec
+
+    def residual(self, x: Sequence[Value], k: ClassIVInputs) -> list[Value]:
+        """g_b = (|C − D|² − l_b²)/(2l_b), g_d = (|F − E|² − l_d²)/(2l_d)."""
+        c, f, d, e = self._points(_columns(x), k)
+        *_, lb, ld = self._arms()
+        return [(J.dot(c - d, c - d) - lb * lb) / (2.0 * lb),
+                (J.dot(f - e, f - e) - ld * ld) / (2.0 * ld)]
+
+    def lines(self, x: np.ndarray, k: ClassIVInputs
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The Jacobian of §3.1 and its columns divided by the radii of a and c."""
+        c, f, d, e = (np.asarray(p) for p in self._points(_columns(x), k))
+        *_, lb, ld = self._arms()
+        ha, hc = np.asarray(k.h_a), np.asarray(k.h_c)
+        nb, nd = (c - d) / lb, (f - e) / ld
+        jac = np.stack([np.stack([J.cross(c - ha, nb), -J.cross(d - hc, nb)], axis=-1),
+                        np.stack([J.cross(f - ha, nd), -J.cross(e - hc, nd)], axis=-1)], axis=-2)
+        g_c, g_f, d_d, d_e, _, _ = self._arms()
+        radii = np.stack(np.broadcast_arrays(
+            np.sqrt((np.abs(g_c) ** 2 + np.abs(g_f) ** 2) / 2.0),
+            np.sqrt((np.abs(d_d) ** 2 + np.abs(d_e) ** 2) / 2.0)), axis=-1)
+        return jac, jac / radii[..., None, :], ha
+
+    def _linear(self, e: np.ndarray, k: ClassIVInputs) -> tuple[Any, Any, Any, Any]:
+        """α_b·E_c = π_b, α_d·E_c = π_d at E_a = e (§3.2)."""
+        g_c, g_f, d_d, d_e, lb, ld = self._arms()
+        c = np.asarray(k.h_a) + g_c * e - k.h_c
+        f = np.asarray(k.h_a) + g_f * e - k.h_c
+        return (c * np.conj(d_d), (np.abs(c) ** 2 + np.abs(d_d) ** 2 - lb ** 2) / 2.0,
+                f * np.conj(d_e), (np.abs(f) ** 2 + np.abs(d_e) ** 2 - ld ** 2) / 2.0)
+
+    def eliminant(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
+        """Φ_IV(θ_a) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)²."""
+        ab, pb, ad, pd = self._linear(e, k)
+        return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - J.cross(ab, ad) ** 2)
+
+    def recover(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
+        """θ_a = arg E_a, θ_c = arg E_c with E_c = −i(π_bα_d − π_dα_b)/cross(α_b, α_d)."""
+        ab, pb, ad, pd = self._linear(e, k)
+        ec = -1j * (pb * ad - pd * ab) / J.cross(ab, ad)
+        return np.stack(np.broadcast_arrays(np.angle(e), np.angle(ec)), axis=-1)
+
+    def joints(self, x: Sequence[Value], k: ClassIVInputs) -> dict[str, Value]:
+        """C, D, E, F."""
+        c, f, d, e = self._points(_columns(x), k)
+        return {"C": c, "D": d, "E": e, "F": f}
+
+    def rotations(self, x: Sequence[Value], k: ClassIVInputs) -> dict[str, Value]:
+        """a: θ_a, b: of C→D, c: θ_c, d: of F→E, all from the sketch."""
+        cols = _columns(x)
+        c, f, d, e = self._points(cols, k)
+        return {"a": cols[0], "b": J.arg((d - c) / (np.asarray(self.d) - self.c)),
+                "c": cols[1], "d": J.arg((e - f) / (np.asarray(self.e) - self.f))}

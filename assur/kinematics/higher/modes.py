@@ -1,0 +1,247 @@
+"""Every real assembly mode of a triad or a class IV group at one position (§1.4, §1.5).
+
+The eliminant Φ(θ) is a trigonometric polynomial of degree m. It is sampled at 2m + 2 points
+of the unit circle and its coefficients read off an FFT; the roots of p(E) = E^m·Φ are the
+eigenvalues of its companion matrix, batched over designs. Roots on the unit circle give the
+candidates, each completed and polished by Newton's method on the reduced equations, then
+deduplicated on the joint positions.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from assur.kinematics.higher.groups import HigherGroup, det_rows, expand, hadamard
+
+__all__ = ["AssemblyModes", "assembly_modes", "coefficients", "newton", "select_mode"]
+
+#: Roots with |ln|E|| up to this are candidates for real modes.
+TAU = 1e-6
+#: A polished candidate is a mode when max|F| ≤ ACCEPT·L.
+ACCEPT = 1e-9
+#: Two modes are one when no joint differs by more than SAME·L.
+SAME = 1e-7
+#: The complex NaN of a missing point.
+NAN = complex(np.nan, np.nan)
+
+
+def coefficients(group: HigherGroup, k: Any) -> np.ndarray:
+    """Coefficients p_0 … p_2m of p(E) = Σ φ_{n−m} Eⁿ, shape (..., 2m + 1).
+
+    Parameters
+    ----------
+    group : HigherGroup
+        The group (drawn values of shape () or (D,)).
+    k : TriadInputs or ClassIVInputs
+        Its inputs at one position, plain arrays.
+
+    Returns
+    -------
+    ndarray, complex
+        The coefficients in increasing powers of E. The FFT bin m + 1 (not returned) is zero
+        up to roundoff, since Φ has degree m.
+
+    Examples
+    --------
+    >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
+    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> p = coefficients(g, ClassIVInputs(-12.5-20j, 140.5+22j))
+    >>> p.shape, bool(np.allclose(p, np.conj(p[::-1])))
+    ((7,), True)
+    """
+    m = group.degree
+    samples = 2 * m + 2
+    e = np.exp(2j * np.pi * np.arange(samples) / samples)
+    with np.errstate(all="ignore"):
+        phi = expand(group).eliminant(e, expand(k))
+    bins = np.fft.fft(phi, axis=-1) / samples
+    return np.asarray(bins[..., np.arange(-m, m + 1) % samples])
+
+
+def roots(coef: np.ndarray) -> np.ndarray:
+    """All roots of the polynomials (increasing powers), NaN where a coefficient is not finite.
+
+    A vanishing leading coefficient (two coincident hinges) sends its roots to a large
+    modulus, far off the unit circle, instead of failing.
+    """
+    n = coef.shape[-1] - 1
+    size = np.abs(coef).max(axis=-1, keepdims=True)
+    good = np.isfinite(coef).all(axis=-1) & (size[..., 0] > 0)
+    safe = np.where(good[..., None], coef, 1.0)
+    lead = safe[..., -1:]
+    floor = 1e-14 * np.where(good[..., None], size, 1.0)
+    lead = np.where(np.abs(lead) < floor, floor, lead)
+    companion = np.zeros(coef.shape[:-1] + (n, n), dtype=complex)
+    companion[..., 0, :] = -safe[..., -2::-1] / lead
+    companion[..., np.arange(1, n), np.arange(n - 1)] = 1.0
+    found = np.linalg.eigvals(companion)
+    return np.where(good[..., None], found, np.nan)
+
+
+def solve(jac: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """x with jac·x = rhs by Cramer's rule, stacked; NaN (never an error) if jac is singular."""
+    n = jac.shape[-1]
+    mats = np.repeat(jac[..., None, :, :], n + 1, axis=-3)
+    for j in range(n):
+        mats[..., j + 1, :, j] = rhs
+    dets = det_rows(mats)
+    with np.errstate(all="ignore"):
+        return np.asarray(dets[..., 1:] / dets[..., :1])
+
+
+def weights(group: HigherGroup) -> np.ndarray:
+    """Per-unknown scale of step norms: 1/L for a length, 1 for an angle."""
+    length = np.asarray(group.lengths)
+    return np.where(length, 1.0 / np.asarray(group.size)[..., None], 1.0)
+
+
+def newton(group: HigherGroup, k: Any, x: np.ndarray, iterations: int,
+           tol: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """Newton's method on the reduced equations.
+
+    Stops after ``iterations`` steps, or earlier once every step is at most ``tol``. Returns
+    the iterate and the scaled size of the last step (lengths divided by L, plus angles).
+    """
+    scale = weights(group)
+    step = np.full(x.shape[:-1], np.inf)
+    with np.errstate(all="ignore"):
+        for _ in range(iterations):
+            f = np.stack(np.broadcast_arrays(*group.residual(x, k)), axis=-1)
+            dx = solve(group.jacobian(x, k), -f)
+            x = x + dx
+            step = np.abs(dx * scale).sum(axis=-1)
+            if not (step > tol).any():
+                break
+    return x, step
+
+
+@dataclass(frozen=True, eq=False)
+class AssemblyModes:
+    """The real assembly modes of a group at one position.
+
+    Attributes
+    ----------
+    x : ndarray, shape (..., 2m, n)
+        The unknowns of each mode ((W_x, W_y, θ) of a triad, (θ_a, θ_c) of a class IV
+        group), sorted by the eliminated angle θ; NaN rows after the last mode.
+    count : ndarray, int
+        The number of real modes (0, 2, 4 or 6 away from change points).
+    joints : dict of str to ndarray, shape (..., 2m)
+        The internal joints of each mode.
+    margin, det_sign : ndarray, shape (..., 2m)
+        The margin (§1.7) and the sign of det J of each mode.
+    roots : ndarray, complex, shape (..., 2m)
+        Every root E of p, on the unit circle or not.
+    """
+
+    x: np.ndarray
+    count: np.ndarray
+    joints: dict[str, np.ndarray]
+    margin: np.ndarray
+    det_sign: np.ndarray
+    roots: np.ndarray
+
+
+def assembly_modes(group: HigherGroup, k: Any) -> AssemblyModes:
+    """Every real assembly mode at one position, for one design or many at once.
+
+    Parameters
+    ----------
+    group : Triad or ClassIV
+        The group; drawn values of shape () or (D,).
+    k : TriadInputs or ClassIVInputs
+        Its inputs (external hinges, guides) at the position, plain arrays.
+
+    Returns
+    -------
+    AssemblyModes
+        The modes, their joints, margins and det J signs. A position with undefined inputs
+        has no mode (count 0).
+
+    Examples
+    --------
+    The class IV group of test vector V2 has six modes at the sketch:
+
+    >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
+    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> modes = assembly_modes(g, ClassIVInputs(-12.5-20j, 140.5+22j))
+    >>> int(modes.count), np.round(np.degrees(modes.x[3]), 6).tolist()
+    (6, [-28.133111, 35.047478])
+    """
+    found = roots(coefficients(group, k))
+    wide, kk = expand(group), expand(k)
+    with np.errstate(all="ignore"):
+        near = np.abs(np.log(np.abs(found))) <= TAU
+        x = wide.recover(found / np.abs(found), kk)
+        x, _ = newton(wide, kk, x, 3)
+        f = np.stack(np.broadcast_arrays(*wide.residual(x, kk)), axis=-1)
+        size = np.asarray(group.size)[..., None]
+        valid = near & (np.abs(f).max(axis=-1) <= ACCEPT * size)
+        points = wide.joints(x, kk)
+        stack = np.stack(np.broadcast_arrays(*points.values()), axis=-1)
+        apart = np.abs(stack[..., :, None, :] - stack[..., None, :, :]).max(axis=-1)
+        same = (apart <= SAME * size[..., None]) & valid[..., :, None]
+        earlier = np.tril(np.ones(same.shape[-2:], dtype=bool), -1).T
+        valid &= ~(same & earlier).any(axis=-2)
+        theta = np.where(valid, x[..., group.eliminated], np.inf)
+        order = np.argsort(theta, axis=-1)
+        valid = np.take_along_axis(valid, order, axis=-1)
+        x = np.where(valid[..., None], np.take_along_axis(x, order[..., None], axis=-2), np.nan)
+        jac, rows, _ = wide.lines(x, kk)
+        margin = hadamard(rows)
+        points = {name: np.where(valid, np.take_along_axis(np.broadcast_to(p, valid.shape),
+                                                           order, axis=-1), NAN)
+                  for name, p in points.items()}
+    return AssemblyModes(x=x, count=valid.sum(axis=-1), joints=points, margin=margin,
+                         det_sign=np.sign(det_rows(jac)), roots=found)
+
+
+def select_mode(group: HigherGroup, k: Any, modes: AssemblyModes
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """The mode of the sketch: the one nearest the drawn joints, with the drawn sign of det J.
+
+    Parameters
+    ----------
+    group : Triad or ClassIV
+        The group.
+    k : TriadInputs or ClassIVInputs
+        Its inputs at the sketch position (φ = 0).
+    modes : AssemblyModes
+        The modes there, from :func:`assembly_modes`.
+
+    Returns
+    -------
+    x : ndarray, shape (..., n)
+        The chosen mode (NaN where there is none).
+    found : ndarray, bool
+        False where no mode has the drawn sign, or the nearest is not at most half as far
+        from the drawing as the second nearest (§1.5), or the chosen mode is a change point.
+
+    Examples
+    --------
+    >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
+    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> k = ClassIVInputs(-12.5-20j, 140.5+22j)
+    >>> x, found = select_mode(g, k, assembly_modes(g, k))
+    >>> bool(found), bool(np.allclose(x, 0.0, atol=1e-12))
+    (True, True)
+    """
+    drawn = group.sketch
+    with np.errstate(all="ignore"):
+        sq = sum(np.abs(modes.joints[name] - np.asarray(drawn[name])[..., None]) ** 2
+                 for name in drawn)
+        rms = np.sqrt(np.asarray(sq) / len(drawn))
+        sign = np.sign(det_rows(group.jacobian(group.drawn(), k)))
+        rms = np.where(np.isnan(rms), np.inf, rms)
+        ranked = np.sort(rms, axis=-1)
+        own = np.where(modes.det_sign == sign[..., None], rms, np.inf)
+        best = np.argmin(own, axis=-1)
+        nearest = np.take_along_axis(own, best[..., None], axis=-1)[..., 0]
+        x = np.take_along_axis(modes.x, best[..., None, None], axis=-2)[..., 0, :]
+        margin = np.take_along_axis(modes.margin, best[..., None], axis=-1)[..., 0]
+        found = np.isfinite(nearest) & (nearest == ranked[..., 0]) \
+            & (nearest <= 0.5 * ranked[..., 1]) & (margin >= 1e-6)
+    return np.where(found[..., None], x, np.nan), found

@@ -307,11 +307,15 @@ class HigherSolution:
         return out
 
 
-def _gap(group: HigherGroup, k: Any) -> np.ndarray:
-    """−min|ln|E|| over the roots of p off the unit circle (the margin where a mode is gone)."""
+def _gap(group: HigherGroup, k: Any, rows: np.ndarray) -> np.ndarray:
+    """−min|ln|E|| over the roots of p off the unit circle (the margin where a mode is gone),
+    for the designs ``rows`` (NaN elsewhere)."""
+    coef = np.broadcast_to(coefficients(group, k), (len(rows),) + (2 * group.degree + 1,))
+    out = np.full(len(rows), np.nan)
     with np.errstate(all="ignore"):
-        size = np.abs(np.log(np.abs(roots(coefficients(group, k)))))
-        return np.asarray(-np.where(size > TAU, size, np.inf).min(axis=-1))
+        size = np.abs(np.log(np.abs(roots(coef[rows]))))
+        out[rows] = -np.where(size > TAU, size, np.inf).min(axis=-1)
+    return out
 
 
 def _designs(group: HigherGroup, inputs: Inputs) -> tuple[int, ...]:
@@ -411,7 +415,7 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
         kv = values(inputs(np.full(d, phi[column])))
         defined = _finite(kv)
         gone = ~reached[:, column]
-        margin[:, column] = np.where(gone, np.where(defined, _gap(group, kv), np.nan),
+        margin[:, column] = np.where(gone, np.where(defined, _gap(group, kv, gone), np.nan),
                                      margin[:, column])
         reason[:, column] = np.where(
             gone, np.where(defined, np.where(found & merged_ends, HigherReason.MODE_ENDS,

@@ -15,6 +15,7 @@ implicit differentiation; the Jacobians, the lines and the eliminant take plain 
 from __future__ import annotations
 
 import dataclasses
+from functools import cached_property
 from abc import ABC, abstractmethod
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -62,11 +63,25 @@ def values(record: T) -> T:
     return dataclasses.replace(record, **changes)  # type: ignore[type-var]
 
 
+def cofactors(m: np.ndarray) -> tuple[list[list[np.ndarray]], np.ndarray]:
+    """Cofactors C[i][j] and determinants of stacked 2×2 or 3×3 matrices, in closed form.
+
+    NaN entries give NaN results; a singular matrix gives determinant 0, never an error.
+    """
+    e = [[m[..., i, j] for j in range(m.shape[-1])] for i in range(m.shape[-1])]
+    if m.shape[-1] == 2:
+        cof = [[e[1][1], -e[1][0]], [-e[0][1], e[0][0]]]
+    else:
+        cof = [[e[(i + 1) % 3][(j + 1) % 3] * e[(i + 2) % 3][(j + 2) % 3]
+                - e[(i + 1) % 3][(j + 2) % 3] * e[(i + 2) % 3][(j + 1) % 3]
+                for j in range(3)] for i in range(3)]
+    det = sum(e[0][j] * cof[0][j] for j in range(len(e)))
+    return cof, np.asarray(det)
+
+
 def det_rows(rows: np.ndarray) -> np.ndarray:
-    """Determinants of stacked square matrices, NaN where an entry is not finite."""
-    finite = np.isfinite(rows).all(axis=(-2, -1))
-    safe = np.where(finite[..., None, None], rows, 0.0)
-    return np.where(finite, np.linalg.det(safe), np.nan)
+    """Determinants of stacked 2×2 or 3×3 matrices."""
+    return cofactors(rows)[1]
 
 
 def hadamard(rows: np.ndarray) -> np.ndarray:
@@ -143,6 +158,11 @@ def _columns(x: np.ndarray | Sequence[Value]) -> list[Value]:
     return list(x)
 
 
+def _line_rows(nu: np.ndarray, at: np.ndarray, origin: np.ndarray, radius: Any) -> np.ndarray:
+    """Rows [ν_k, cross(X_k − O, ν_k)/radius] of the lines through X_k along ν_k."""
+    return np.stack([nu.real, nu.imag, J.cross(at - origin, nu) / radius], axis=-1)
+
+
 @dataclass(frozen=True, eq=False)
 class TriadInputs:
     """The known data of a triad at one crank position.
@@ -205,19 +225,29 @@ class Triad(HigherGroup):
 
     # --- drawn dimensions -----------------------------------------------------------------
 
-    def _offset(self, k: int) -> Value:
+    @cached_property
+    def _offsets(self) -> tuple[np.ndarray, ...]:
         """b_k (or s_k for P–R) = drawn base point − P₁⁰."""
-        return np.asarray(self.base[k]) - np.asarray(self.base[0])
+        return tuple(np.asarray(b) - np.asarray(self.base[0]) for b in self.base)
+
+    @cached_property
+    def _lengths(self) -> tuple[np.ndarray, ...]:
+        """|P_k⁰ − A_k⁰| (the leash length r_k of a bar)."""
+        return tuple(np.abs(np.asarray(b) - np.asarray(a))
+                     for b, a in zip(self.base, self.external, strict=True))
+
+    def _offset(self, k: int) -> np.ndarray:
+        return self._offsets[k]
 
     def _length(self, k: int) -> np.ndarray:
-        return np.abs(np.asarray(self.base[k]) - np.asarray(self.external[k]))
+        return self._lengths[k]
 
     @property
     def degree(self) -> int:
         """3, or 2 when leashes 2 and 3 are both R–P or both P–R (§2.2)."""
         return 2 if self.leashes[1] == self.leashes[2] != "RR" else 3
 
-    @property
+    @cached_property
     def size(self) -> np.ndarray:
         """L of the drawn base and external points."""
         pts = np.broadcast_arrays(*(np.asarray(p, dtype=complex)
@@ -278,15 +308,18 @@ class Triad(HigherGroup):
         stack = [np.stack(np.broadcast_arrays(*v), axis=-1) for v in (nu, at, base)]
         return stack[0], stack[1], stack[2], np.asarray(p1)
 
+    def jacobian(self, x: np.ndarray, k: TriadInputs) -> np.ndarray:
+        """Rows [ν_k, cross(X_k − P₁, ν_k)]: the line coordinates of the constraint lines."""
+        nu, at, _, p1 = self._constraints(x, k)
+        return _line_rows(nu, at, p1[..., None], 1.0)
+
     def lines(self, x: np.ndarray, k: TriadInputs) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Rows [ν_k, cross(X_k − P₁, ν_k)] and the margin rows about the base centroid."""
+        """The Jacobian and the margin rows about the base centroid."""
         nu, at, base, p1 = self._constraints(x, k)
-        jac = np.stack([nu.real, nu.imag, J.cross(at - p1[..., None], nu)], axis=-1)
         centre = base.mean(axis=-1, keepdims=True)
         spread = np.sqrt((np.abs(base - centre) ** 2).mean(axis=-1, keepdims=True))
-        unit = nu / np.abs(nu)
-        rows = np.stack([unit.real, unit.imag, J.cross(at - centre, unit) / spread], axis=-1)
-        return jac, rows, p1
+        rows = _line_rows(nu / np.abs(nu), at, centre, spread)
+        return _line_rows(nu, at, p1[..., None], 1.0), rows, p1
 
     def _linear(self, e: np.ndarray, k: TriadInputs) -> tuple[list[Any], list[Any]]:
         """a_k·W = p_k (k = 2, 3) at the base rotation E (§2.2)."""
@@ -383,7 +416,7 @@ class ClassIV(HigherGroup):
         """3 (§3.2)."""
         return 3
 
-    @property
+    @cached_property
     def size(self) -> np.ndarray:
         """L of the six drawn hinges."""
         pts = np.broadcast_arrays(*(np.asarray(p, dtype=complex) for p in

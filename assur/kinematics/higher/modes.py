@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from assur.kinematics.higher.groups import HigherGroup, det_rows, expand, hadamard
+from assur.kinematics.higher.groups import HigherGroup, cofactors, det_rows, expand, hadamard
 
 __all__ = ["AssemblyModes", "assembly_modes", "coefficients", "newton", "select_mode"]
 
@@ -82,14 +82,12 @@ def roots(coef: np.ndarray) -> np.ndarray:
 
 
 def solve(jac: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-    """x with jac·x = rhs by Cramer's rule, stacked; NaN (never an error) if jac is singular."""
-    n = jac.shape[-1]
-    mats = np.repeat(jac[..., None, :, :], n + 1, axis=-3)
-    for j in range(n):
-        mats[..., j + 1, :, j] = rhs
-    dets = det_rows(mats)
+    """x with jac·x = rhs (stacked 2×2 or 3×3) by Cramer's rule; NaN, never an error, if singular."""
+    cof, det = cofactors(jac)
+    n = len(cof)
     with np.errstate(all="ignore"):
-        return np.asarray(dets[..., 1:] / dets[..., :1])
+        return np.stack([sum(cof[i][j] * rhs[..., i] for i in range(n)) / det
+                         for j in range(n)], axis=-1)
 
 
 def weights(group: HigherGroup) -> np.ndarray:

@@ -159,7 +159,7 @@ def _store(store: dict[str, np.ndarray], rows: np.ndarray, j: np.ndarray,
            found: dict[str, Any], shape: tuple[int, int]) -> None:
     """Write the jets (or values) of the designs ``rows`` at their target indices."""
     for name, v in found.items():
-        parts = (v.v, v.d1, v.d2) if isinstance(v, Jet) else (v,)
+        parts = (v.v, v.d1, v.d2) if isinstance(v, Jet) else (v, 0.0 * v, 0.0 * v)
         if name not in store:
             dtype = complex if any(np.iscomplexobj(p) for p in parts) else float
             store[name] = np.full((len(parts),) + shape, np.nan, dtype=dtype)

@@ -24,7 +24,6 @@ from assur.kinematics.higher import (
     assembly_modes,
     follow_mode,
 )
-from assur.kinematics.higher.modes import coefficients, roots
 
 DEG = np.pi / 180.0
 TWO_PI = 2 * np.pi

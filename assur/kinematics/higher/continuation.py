@@ -296,7 +296,7 @@ class HigherSolution:
         out = [Message("higher.modes.count", {"n": int(self.modes.count[index])})]
         if not self.found[index]:
             out.append(Message("higher.sketch.no_mode"))
-        codes = {Reason.UNDEFINED_INPUT: "higher.end.input",
+        codes: dict[int, str] = {Reason.UNDEFINED_INPUT: "higher.end.input",
                  HigherReason.MODE_ENDS: "higher.end.change_point",
                  HigherReason.NOT_FOLLOWED: "higher.end.lost"}
         for angle, code in zip(self.ends[index], self.end_reasons[index], strict=True):
@@ -316,6 +316,17 @@ def _gap(group: HigherGroup, k: Any, rows: np.ndarray) -> np.ndarray:
         size = np.abs(np.log(np.abs(roots(coef[rows]))))
         out[rows] = -np.where(size > TAU, size, np.inf).min(axis=-1)
     return out
+
+
+def _spread(k: Any, d: int) -> Any:
+    """The inputs record with every value broadcast to the D designs."""
+    def spread(v: Any) -> Any:
+        if isinstance(v, tuple):
+            return tuple(spread(item) for item in v)
+        return None if v is None else np.broadcast_to(v, (d,))
+
+    return dataclasses.replace(k, **{f.name: spread(getattr(k, f.name))
+                                     for f in dataclasses.fields(k)})
 
 
 def _designs(group: HigherGroup, inputs: Inputs) -> tuple[int, ...]:
@@ -378,7 +389,7 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
     phi = np.asarray(phi, dtype=float).reshape(-1)
     shape = _designs(group, inputs)
     d = int(np.prod(shape))
-    k0 = values(inputs(np.zeros(d)))
+    k0 = _spread(values(inputs(np.zeros(d))), d)
     modes = assembly_modes(group, k0)
     x0, found = select_mode(group, k0, modes)
     x0 = np.broadcast_to(x0, (d, group.n))
@@ -395,10 +406,10 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
         home = np.max([np.abs(ahead.out["p." + a][0, :, -1] - np.broadcast_to(v, (d,)))
                        for a, v in group.joints(x0, k0).items()], axis=0)
     closed = ~around | (home <= CLOSED * size)
-    back_targets = TWO_PI - grid[grid > 0][::-1]
+    back_targets = np.append(TWO_PI - grid[grid > 0][::-1], TWO_PI)
     behind = _follow(group, inputs, x0, back_targets, -1.0, ~found | around)
     back_index = np.full(n, -1)
-    back_index[grid > 0] = np.arange(len(back_targets))[::-1]
+    back_index[grid > 0] = np.arange(len(back_targets) - 1)[::-1]
     use_ahead = ahead.reached[:, :n]
     use_behind = ~use_ahead & (back_index >= 0) & behind.reached[:, back_index]
     reached = (use_ahead | use_behind)[:, unsort]

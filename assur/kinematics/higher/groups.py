@@ -24,14 +24,17 @@ from typing import Any, Literal, TypeVar
 import numpy as np
 
 from assur.kinematics import jets as J
-from assur.kinematics.jets import Jet
 from assur.text import render
 
 __all__ = [
     "ClassIV", "ClassIVInputs", "HigherGroup", "Leash", "Triad", "TriadInputs", "expand", "values",
 ]
 
-Value = Jet | np.ndarray | complex | float
+#: A number, an ndarray or a :class:`~assur.kinematics.jets.Jet` (points complex, angles and
+#: lengths real).
+Value = Any
+#: The unknowns: an ndarray (..., n) or a sequence of n values (jets for the analogs).
+Unknowns = Sequence[Value] | np.ndarray
 #: Leash kinds, internal pair first: a bar, a block hinged to the base on a guide of a known
 #: link, a leash hinged to a known link sliding along a guide of the base.
 Leash = Literal["RR", "RP", "PR"]
@@ -120,7 +123,7 @@ class HigherGroup(ABC):
         """The drawn positions of the joints named as in :meth:`joints`."""
 
     @abstractmethod
-    def residual(self, x: Sequence[Value], k: Any) -> list[Value]:
+    def residual(self, x: Unknowns, k: Any) -> list[Value]:
         """The reduced loop equations F(x) (lengths, in the drawing's unit)."""
 
     @abstractmethod
@@ -136,11 +139,11 @@ class HigherGroup(ABC):
         """The unknowns (..., n) at the root ``e`` of Φ (group and inputs expanded)."""
 
     @abstractmethod
-    def joints(self, x: Sequence[Value], k: Any) -> dict[str, Value]:
+    def joints(self, x: Unknowns, k: Any) -> dict[str, Value]:
         """The internal joints of the group by name."""
 
     @abstractmethod
-    def rotations(self, x: Sequence[Value], k: Any) -> dict[str, Value]:
+    def rotations(self, x: Unknowns, k: Any) -> dict[str, Value]:
         """The rotation of each link of the group from the sketch, by name."""
 
     def jacobian(self, x: np.ndarray, k: Any) -> np.ndarray:
@@ -152,10 +155,15 @@ class HigherGroup(ABC):
         return hadamard(self.lines(x, k)[1])
 
 
-def _columns(x: np.ndarray | Sequence[Value]) -> list[Value]:
+def _columns(x: Unknowns) -> list[Value]:
     if isinstance(x, np.ndarray):
         return [x[..., i] for i in range(x.shape[-1])]
     return list(x)
+
+
+def _cross(a: Any, b: Any) -> np.ndarray:
+    """cross(a, b) = Im(ā b) of plain complex arrays."""
+    return np.asarray((np.conj(a) * b).imag)
 
 
 def _line_rows(nu: np.ndarray, at: np.ndarray, origin: np.ndarray, radius: Any) -> np.ndarray:
@@ -177,7 +185,7 @@ class TriadInputs:
     """
 
     a: tuple[Value, Value, Value]
-    u: tuple[Value | None, Value | None, Value | None] = (None, None, None)
+    u: tuple[Value, Value, Value] = (None, None, None)
 
 
 @dataclass(frozen=True, eq=False)
@@ -202,13 +210,13 @@ class Triad(HigherGroup):
     >>> t = Triad(("RR", "RR", "RR"), (169.5+57j, 174+92.5j, 127.5+52j),
     ...           (112.8+67.2j, 189.5+151j, -4.9+124.9j))
     >>> t.degree, round(float(t.size), 3)
-    (3, 202.015)
+    (3, 196.144)
     """
 
     leashes: tuple[Leash, Leash, Leash]
     base: tuple[Value, Value, Value]
     external: tuple[Value, Value, Value]
-    guide: tuple[Value | None, Value | None, Value | None] = (None, None, None)
+    guide: tuple[Value, Value, Value] = (None, None, None)
 
     n = 3
     eliminated = 2
@@ -268,11 +276,11 @@ class Triad(HigherGroup):
 
     # --- equations ------------------------------------------------------------------------
 
-    def _pose(self, x: Sequence[Value], k: TriadInputs) -> tuple[Value, Value]:
+    def _pose(self, x: Unknowns, k: TriadInputs) -> tuple[Value, Value]:
         """P₁ and E = e^{iθ}."""
         return k.a[0] + (x[0] + 1j * x[1]), J.expi(x[2])
 
-    def residual(self, x: Sequence[Value], k: TriadInputs) -> list[Value]:
+    def residual(self, x: Unknowns, k: TriadInputs) -> list[Value]:
         """f_k: (|P_k − A_k|² − r_k²)/(2r_k), n_k·(P_k − Q_k) or n_k·(P₁ + s_kE − A_k)."""
         p1, e = self._pose(_columns(x), k)
         out: list[Value] = []
@@ -352,13 +360,13 @@ class Triad(HigherGroup):
         w = -1j * (p2 * a3 - p3 * a2) / J.cross(a2, a3)
         return np.stack(np.broadcast_arrays(w.real, w.imag, np.angle(e)), axis=-1)
 
-    def joints(self, x: Sequence[Value], k: TriadInputs) -> dict[str, Value]:
+    def joints(self, x: Unknowns, k: TriadInputs) -> dict[str, Value]:
         """P1, P2, P3: the internal pairs (for a P–R leash, the slider at its hinge A_k)."""
         p1, e = self._pose(_columns(x), k)
         return {f"P{i + 1}": (k.a[i] if kind == "PR" else p1 + self._offset(i) * e)
                 for i, kind in enumerate(self.leashes)}
 
-    def rotations(self, x: Sequence[Value], k: TriadInputs) -> dict[str, Value]:
+    def rotations(self, x: Unknowns, k: TriadInputs) -> dict[str, Value]:
         """base: θ; leash1–3: the rotation of each leash (a P–R leash turns with the base)."""
         cols = _columns(x)
         p1, e = self._pose(cols, k)
@@ -440,12 +448,12 @@ class ClassIV(HigherGroup):
         return (g_c, g_f, d_d, d_e, np.abs(np.asarray(self.c) - self.d),
                 np.abs(np.asarray(self.f) - self.e))
 
-    def _points(self, x: Sequence[Value], k: ClassIVInputs) -> tuple[Value, ...]:
+    def _points(self, x: Unknowns, k: ClassIVInputs) -> tuple[Value, ...]:
         g_c, g_f, d_d, d_e, _, _ = self._arms()
         ea, ec = J.expi(x[0]), J.expi(x[1])
         return k.h_a + g_c * ea, k.h_a + g_f * ea, k.h_c + d_d * ec, k.h_c + d_e * ec
 
-    def residual(self, x: Sequence[Value], k: ClassIVInputs) -> list[Value]:
+    def residual(self, x: Unknowns, k: ClassIVInputs) -> list[Value]:
         """g_b = (|C − D|² − l_b²)/(2l_b), g_d = (|F − E|² − l_d²)/(2l_d)."""
         c, f, d, e = self._points(_columns(x), k)
         *_, lb, ld = self._arms()
@@ -459,8 +467,8 @@ class ClassIV(HigherGroup):
         *_, lb, ld = self._arms()
         ha, hc = np.asarray(k.h_a), np.asarray(k.h_c)
         nb, nd = (c - d) / lb, (f - e) / ld
-        jac = np.stack([np.stack([J.cross(c - ha, nb), -J.cross(d - hc, nb)], axis=-1),
-                        np.stack([J.cross(f - ha, nd), -J.cross(e - hc, nd)], axis=-1)], axis=-2)
+        jac = np.stack([np.stack([_cross(c - ha, nb), -_cross(d - hc, nb)], axis=-1),
+                        np.stack([_cross(f - ha, nd), -_cross(e - hc, nd)], axis=-1)], axis=-2)
         g_c, g_f, d_d, d_e, _, _ = self._arms()
         radii = np.stack(np.broadcast_arrays(
             np.sqrt((np.abs(g_c) ** 2 + np.abs(g_f) ** 2) / 2.0),
@@ -478,20 +486,20 @@ class ClassIV(HigherGroup):
     def eliminant(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
         """Φ_IV(θ_a) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)²."""
         ab, pb, ad, pd = self._linear(e, k)
-        return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - J.cross(ab, ad) ** 2)
+        return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - _cross(ab, ad) ** 2)
 
     def recover(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
         """θ_a = arg E_a, θ_c = arg E_c with E_c = −i(π_bα_d − π_dα_b)/cross(α_b, α_d)."""
         ab, pb, ad, pd = self._linear(e, k)
-        ec = -1j * (pb * ad - pd * ab) / J.cross(ab, ad)
+        ec = -1j * (pb * ad - pd * ab) / _cross(ab, ad)
         return np.stack(np.broadcast_arrays(np.angle(e), np.angle(ec)), axis=-1)
 
-    def joints(self, x: Sequence[Value], k: ClassIVInputs) -> dict[str, Value]:
+    def joints(self, x: Unknowns, k: ClassIVInputs) -> dict[str, Value]:
         """C, D, E, F."""
         c, f, d, e = self._points(_columns(x), k)
         return {"C": c, "D": d, "E": e, "F": f}
 
-    def rotations(self, x: Sequence[Value], k: ClassIVInputs) -> dict[str, Value]:
+    def rotations(self, x: Unknowns, k: ClassIVInputs) -> dict[str, Value]:
         """a: θ_a, b: of C→D, c: θ_c, d: of F→E, all from the sketch."""
         cols = _columns(x)
         c, f, d, e = self._points(cols, k)

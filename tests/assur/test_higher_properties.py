@@ -16,14 +16,8 @@ import pytest
 
 from assur import solve_rrr
 from assur.kinematics import jets as J
-from assur.kinematics.higher import (
-    ClassIV,
-    ClassIVInputs,
-    Triad,
-    TriadInputs,
-    assembly_modes,
-    follow_mode,
-)
+from assur.kinematics.higher import ClassIV, ClassIVInputs, Triad, TriadInputs
+from assur.kinematics.higher import assembly_modes, follow_mode
 
 DEG = np.pi / 180.0
 TWO_PI = 2 * np.pi
@@ -83,15 +77,20 @@ def _col(v: Any) -> np.ndarray:
 # --- rigidity over full cycles ----------------------------------------------------------------
 
 
+def _cycle(designs: Designs) -> tuple[np.ndarray, Any, np.ndarray, np.ndarray]:
+    """The sketched modes every 5°: angles, solution, where they exist, L there."""
+    phi = np.arange(0, 360, 5.0) * DEG
+    solution = follow_mode(designs.group, designs.inputs, phi)
+    ok = solution.exists
+    assert ok.mean() > 0.5
+    return phi, solution, ok, np.broadcast_to(_col(designs.group.size), ok.shape)[ok]
+
+
 @pytest.mark.parametrize("last", ["RR", "RP"])
 def test_triad_links_stay_rigid_over_the_cycle(last: str) -> None:
     designs = random_triads(11, 60, last)
     group = designs.group
-    phi = np.arange(0, 360, 5.0) * DEG
-    solution = follow_mode(group, designs.inputs, phi)
-    ok = solution.exists
-    assert ok.mean() > 0.5
-    size = np.broadcast_to(_col(group.size), ok.shape)[ok]
+    phi, solution, ok, size = _cycle(designs)
     p = [solution.joints[f"P{i}"] for i in (1, 2, 3)]
     drawn = [_col(b) for b in group.base]
     errors = [np.abs(np.abs(p[i] - p[j]) - np.abs(drawn[i] - drawn[j]))
@@ -111,11 +110,7 @@ def test_triad_links_stay_rigid_over_the_cycle(last: str) -> None:
 def test_class_iv_links_stay_rigid_over_the_cycle() -> None:
     designs = random_class_iv(12, 60)
     g = designs.group
-    phi = np.arange(0, 360, 5.0) * DEG
-    solution = follow_mode(g, designs.inputs, phi)
-    ok = solution.exists
-    assert ok.mean() > 0.5
-    size = np.broadcast_to(_col(g.size), ok.shape)[ok]
+    phi, solution, ok, size = _cycle(designs)
     j = solution.joints
     h_a, h_c = designs.pin_at(phi), _col(designs.fixed[0])
     pairs = [((j["C"], h_a), (g.c, g.h_a)), ((j["F"], h_a), (g.f, g.h_a)),

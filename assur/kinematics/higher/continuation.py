@@ -191,7 +191,7 @@ def _follow(group: HigherGroup, inputs: Inputs, x0: np.ndarray, targets: np.ndar
     x = np.where(done[:, None], group.drawn(), x0)
     k = inputs(Jet(np.zeros(d), 1.0, 0.0))
     x1, x2 = analogs(group, k, x)
-    jac, rows, _ = group.lines(x, values(k))
+    jac, rows = group.lines(x, values(k))
     sign = np.sign(det_rows(jac))
     _store(store, np.zeros(0, dtype=int), j, _outputs(group, k, x, x1, x2, rows), (d, n_t))
     while not done.all():
@@ -203,7 +203,7 @@ def _follow(group: HigherGroup, inputs: Inputs, x0: np.ndarray, targets: np.ndar
         guess = x + (s * hs)[:, None] * x1 + 0.5 * (hs * hs)[:, None] * x2
         xn, step = newton(group, kv, guess, ITERATIONS, CONVERGED)
         with np.errstate(all="ignore"):
-            jac, rows, _ = group.lines(xn, kv)
+            jac, rows = group.lines(xn, kv)
             apart = (np.abs(xn - guess) * scale).sum(axis=-1)
             ok = active & (step <= CONVERGED) & (np.sign(det_rows(jac)) == sign) \
                 & (apart <= 0.25 * separation(group, kv, xn))

@@ -127,8 +127,8 @@ class HigherGroup(ABC):
         """The reduced loop equations F(x) (lengths, in the drawing's unit)."""
 
     @abstractmethod
-    def lines(self, x: np.ndarray, k: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Jacobian (..., n, n), margin rows (..., n, n) of the constraint lines, and P₁ or H_a."""
+    def lines(self, x: np.ndarray, k: Any) -> tuple[np.ndarray, np.ndarray]:
+        """The Jacobian (..., n, n) and the margin rows (..., n, n) of the constraint lines."""
 
     @abstractmethod
     def eliminant(self, e: np.ndarray, k: Any) -> np.ndarray:
@@ -321,13 +321,13 @@ class Triad(HigherGroup):
         nu, at, _, p1 = self._constraints(x, k)
         return _line_rows(nu, at, p1[..., None], 1.0)
 
-    def lines(self, x: np.ndarray, k: TriadInputs) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def lines(self, x: np.ndarray, k: TriadInputs) -> tuple[np.ndarray, np.ndarray]:
         """The Jacobian and the margin rows about the base centroid."""
         nu, at, base, p1 = self._constraints(x, k)
         centre = base.mean(axis=-1, keepdims=True)
         spread = np.sqrt((np.abs(base - centre) ** 2).mean(axis=-1, keepdims=True))
         rows = _line_rows(nu / np.abs(nu), at, centre, spread)
-        return _line_rows(nu, at, p1[..., None], 1.0), rows, p1
+        return _line_rows(nu, at, p1[..., None], 1.0), rows
 
     def _linear(self, e: np.ndarray, k: TriadInputs) -> tuple[list[Any], list[Any]]:
         """a_k·W = p_k (k = 2, 3) at the base rotation E (§2.2)."""
@@ -460,8 +460,7 @@ class ClassIV(HigherGroup):
         return [(J.dot(c - d, c - d) - lb * lb) / (2.0 * lb),
                 (J.dot(f - e, f - e) - ld * ld) / (2.0 * ld)]
 
-    def lines(self, x: np.ndarray, k: ClassIVInputs
-              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def lines(self, x: np.ndarray, k: ClassIVInputs) -> tuple[np.ndarray, np.ndarray]:
         """The Jacobian of §3.1 and its columns divided by the radii of a and c."""
         c, f, d, e = (np.asarray(p) for p in self._points(_columns(x), k))
         *_, lb, ld = self._arms()
@@ -473,7 +472,7 @@ class ClassIV(HigherGroup):
         radii = np.stack(np.broadcast_arrays(
             np.sqrt((np.abs(g_c) ** 2 + np.abs(g_f) ** 2) / 2.0),
             np.sqrt((np.abs(d_d) ** 2 + np.abs(d_e) ** 2) / 2.0)), axis=-1)
-        return jac, jac / radii[..., None, :], ha
+        return jac, jac / radii[..., None, :]
 
     def _linear(self, e: np.ndarray, k: ClassIVInputs) -> tuple[Any, Any, Any, Any]:
         """α_b·E_c = π_b, α_d·E_c = π_d at E_a = e (§3.2)."""

@@ -188,7 +188,7 @@ def assembly_modes(group: HigherGroup, k: Any) -> AssemblyModes:
         order = np.argsort(theta, axis=-1)
         valid = np.take_along_axis(valid, order, axis=-1)
         x = np.where(valid[..., None], np.take_along_axis(x, order[..., None], axis=-2), np.nan)
-        jac, rows, _ = wide.lines(x, kk)
+        jac, rows = wide.lines(x, kk)
         margin = hadamard(rows)
         points = {name: np.where(valid, np.take_along_axis(np.broadcast_to(p, valid.shape),
                                                            order, axis=-1), NAN)

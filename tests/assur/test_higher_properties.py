@@ -308,3 +308,24 @@ def test_analogs_against_central_differences(kind: str) -> None:
         for fd, analog in (((v[:, 2] - v[:, 1]) / (2 * h), v1[:, 0]),
                            ((v1[:, 2] - v1[:, 1]) / (2 * h), jet.d2[:, :n])):
             assert (np.abs(fd - analog) <= 1e-6 * (unit + np.abs(analog)))[ok].all(), name
+
+
+# --- the neighbour test's separation bound ----------------------------------------------------
+
+
+def test_separation_bound_is_below_the_distance_to_every_other_root() -> None:
+    """ρ of the step acceptance test is a lower bound on the distance from a mode's root E* to
+    every other root of p (here from all roots by eigenvalues), and not a loose one."""
+    from assur.kinematics.higher.continuation import separation
+    from assur.kinematics.higher.groups import expand
+
+    designs = random_triads(61, 400)
+    k = designs.inputs(np.zeros(400))
+    modes = assembly_modes(designs.group, k)
+    e = np.exp(1j * modes.x[..., 2])
+    apart = np.abs(modes.roots[:, None, :] - e[..., None])
+    apart = np.where(apart < 1e-7, np.inf, apart).min(axis=-1)  # drop E* itself
+    bound = separation(expand(designs.group), expand(k), modes.x)
+    real = ~np.isnan(modes.x[..., 0])
+    assert (bound[real] <= apart[real] * (1 + 1e-9)).all()
+    assert np.median(bound[real] / apart[real]) > 0.1

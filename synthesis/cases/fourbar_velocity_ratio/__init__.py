@@ -6,9 +6,9 @@ The public entry points are :func:`solve_modern`, :func:`solve_paper` and :func:
 
 from __future__ import annotations
 
+from assur.text import Message
 from synthesis.cases.fourbar_velocity_ratio.check import CheckResult, check_design
 from synthesis.cases.fourbar_velocity_ratio.conditions import Design, NoSolution, Request
-from synthesis.cases.fourbar_velocity_ratio.messages import Message
 from synthesis.cases.fourbar_velocity_ratio.modern_solver import (
     ModernResult,
     attainable_zone,

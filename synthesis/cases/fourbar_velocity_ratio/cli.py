@@ -10,6 +10,7 @@ import sys
 from typing import Any
 
 from assur import Message, TableReader
+from assur.text import languages
 from synthesis.cases.fourbar_velocity_ratio.conditions import NoSolution, Request
 from synthesis.cases.fourbar_velocity_ratio.report import (
     message_dict,
@@ -47,7 +48,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         help="solver: modern (default), paper or both")
     parser.add_argument("--json", action="store_true", help="print the results as JSON")
     parser.add_argument("--plot", metavar="FILE", help="write a picture of the design (PNG, SVG…)")
-    parser.add_argument("--lang", choices=("en", "ru"), default="en",
+    parser.add_argument("--lang", choices=languages(), default="en",
                         help="language of the report")
 
 
@@ -85,11 +86,10 @@ def read_request(data: dict[str, Any], source: str) -> tuple[Request, str]:
         given = [k for k, v in zip(("e", "delta", "psi2_deg"), optional)
                  if isinstance(v, (int, float))]
         if len(given) == 3:
-            reader.add(TABLE, "e, delta and psi2_deg are all given: with e given, prescribing "
-                              "both zones over-determines the problem; leave one of them out")
+            reader.problem(TABLE, "case.fourbar.table.all_three")
         elif len(given) < 2 and all(v is None or isinstance(v, (int, float)) for v in optional):
-            reader.add(TABLE, "give two of e, delta and psi2_deg (the third one is found); "
-                              f"found only {', '.join(given) or 'none'}")
+            reader.problem(TABLE, "case.fourbar.table.two_of_three",
+                           given=", ".join(given) or Message("case.fourbar.table.none_given"))
     reader.raise_if_any()
 
     def angle(key: str) -> float | None:

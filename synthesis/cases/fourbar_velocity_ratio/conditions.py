@@ -27,13 +27,13 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
 from assur import AssurError
+from assur.text import Message
 from synthesis.cases.fourbar_velocity_ratio.kinematics import (
     grashof_margin,
     ratio_and_derivative,
     rocker_angle,
     velocity_ratio,
 )
-from synthesis.cases.fourbar_velocity_ratio.messages import Message
 
 __all__ = [
     "FORMS",
@@ -114,21 +114,26 @@ class Request:
         missing = [name for name, value in (("e", self.e), ("delta", self.delta),
                                             ("psi2", self.psi2)) if value is None]
         if len(missing) != 1:
-            raise NoSolution(Message("unknowns", {"missing": ", ".join(missing) or "—"}))
+            raise NoSolution(Message("case.fourbar.unknowns",
+                                     {"missing": ", ".join(missing) or "—"}))
         reasons = []
         if not math.isfinite(self.n_star) or self.n_star == 0.0:
-            reasons.append(Message("n_star_zero", {"n_star": self.n_star}))
+            reasons.append(Message("case.fourbar.n_star_zero", {"n_star": self.n_star}))
         elif self.n_star >= 1.0:
-            reasons.append(Message("forward_ge_one", {"n_star": self.n_star}))
+            reasons.append(Message("case.fourbar.forward_ge_one", {"n_star": self.n_star}))
         if self.e is not None and not 0.0 < self.e < 1.0:
-            reasons.append(Message("crank_range", {"e": self.e}))
+            reasons.append(Message("case.fourbar.crank_range", {"e": self.e}))
         if self.delta is not None and not 0.0 < self.delta < 1.0:
-            reasons.append(Message("delta_range", {"delta": self.delta}))
+            reasons.append(Message("case.fourbar.delta_range", {"delta": self.delta}))
         for name, value in (("ψ′", self.psi1), ("ψ″", self.psi2)):
             if value is not None and not 0.0 < value < math.pi:
-                reasons.append(Message("zone_range", {"name": name, "value": math.degrees(value)}))
+                reasons.append(Message("case.fourbar.zone_range",
+                                       {"name": name, "value": math.degrees(value)}))
         if reasons:
-            raise NoSolution(Message("no_such_mechanism", {"details": reasons}))
+            details = reasons[-1]
+            for reason in reversed(reasons[:-1]):
+                details = Message("case.common.joined", {"first": reason, "rest": details})
+            raise NoSolution(Message("case.fourbar.no_such_mechanism", {"details": details}))
 
 
 @dataclass(frozen=True)
@@ -312,22 +317,23 @@ def design_defect(design: Design, accuracy: float = 1e-9) -> Message | None:
     d = design
     margin = float(grashof_margin(d.e, d.c, d.r))
     if margin <= 0.0:
-        return Message("not_grashof", {"margin": margin})
+        return Message("case.fourbar.not_grashof", {"margin": margin})
     sign = 1.0 if d.n_star > 0 else -1.0
     theta = d.theta2 + np.linspace(-np.pi, np.pi, _PEAK_SAMPLES + 1)
     n, _, _, exists = ratio_and_derivative(d.e, d.c, d.r, theta)
     if not exists.all():
-        return Message("no_closure")
+        return Message("case.fourbar.no_closure")
     step = 1e-4
     _, slope, _, _ = ratio_and_derivative(d.e, d.c, d.r, d.theta2 + np.array([-step, step]))
     if sign * (slope[1] - slope[0]) >= 0.0:
-        return Message("trough")
+        return Message("case.fourbar.trough")
     peak = float(np.max(sign * n))
     if peak > abs(d.n_star) * (1.0 + accuracy):
         at = math.degrees(float(theta[np.argmax(sign * n)]) % (2 * math.pi))
-        return Message("local_peak", {"peak": sign * peak, "at": at})
+        return Message("case.fourbar.local_peak", {"peak": sign * peak, "at": at})
     for direction, edge in ((-1.0, d.theta1), (1.0, d.theta3)):
         end = zone_end(d.e, d.c, d.r, d.theta2, d.n_end, sign, direction)
         if not abs(end - edge) <= max(_ANGLE_TOL, 100.0 * accuracy):
-            return Message("leaves_band", {"end": math.degrees(end), "edge": math.degrees(edge)})
+            return Message("case.fourbar.leaves_band",
+                           {"end": math.degrees(end), "edge": math.degrees(edge)})
     return None

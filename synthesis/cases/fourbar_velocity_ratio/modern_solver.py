@@ -23,6 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq, root
 
+from assur.text import Message
 from synthesis.cases.fourbar_velocity_ratio.conditions import (
     Design,
     Request,
@@ -36,7 +37,6 @@ from synthesis.cases.fourbar_velocity_ratio.kinematics import (
     transmission_angle,
     velocity_ratio,
 )
-from synthesis.cases.fourbar_velocity_ratio.messages import Message
 
 __all__ = ["ModernResult", "attainable_zone", "min_transmission_angle", "solve_modern"]
 
@@ -335,18 +335,20 @@ def _no_design_reason(request: Request, ranges: dict[str, float]) -> Message:
     """Why the scan and the root finder found no design."""
     low, high = sorted((ranges["peak_min"], ranges["peak_max"]))
     if request.form != "crank" and not low <= request.n_star <= high:
-        return Message("peak_range", {"e": request.e, "n_star": request.n_star, "low": low,
-                                      "high": high})
+        return Message("case.fourbar.peak_range", {"e": request.e, "n_star": request.n_star,
+                                                   "low": low, "high": high})
     if "psi1_min" in ranges:
         values = {"e": request.e, "n_star": request.n_star, "delta": request.delta,
                   "psi1": math.degrees(request.psi1)}
         if request.psi1 > ranges["psi1_max"]:
-            return Message("zone_wide", {**values, "edge": math.degrees(ranges["psi1_max"])})
+            return Message("case.fourbar.zone_wide",
+                           {**values, "edge": math.degrees(ranges["psi1_max"])})
         if request.psi1 < ranges["psi1_min"]:
-            return Message("zone_narrow", {**values, "edge": math.degrees(ranges["psi1_min"])})
-        return Message("zone_gap", {**values, "low": math.degrees(ranges["psi1_min"]),
-                                    "high": math.degrees(ranges["psi1_max"])})
-    return Message("no_design")
+            return Message("case.fourbar.zone_narrow",
+                           {**values, "edge": math.degrees(ranges["psi1_min"])})
+        return Message("case.fourbar.zone_gap", {**values, "low": math.degrees(ranges["psi1_min"]),
+                                                 "high": math.degrees(ranges["psi1_max"])})
+    return Message("case.fourbar.no_design")
 
 
 def attainable_zone(request: Request) -> tuple[float, float] | None:

@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from assur.text import Message
 from synthesis.cases.fourbar_velocity_ratio.conditions import (
     Design,
     Request,
@@ -37,7 +38,6 @@ from synthesis.cases.fourbar_velocity_ratio.conditions import (
     paper_functions,
 )
 from synthesis.cases.fourbar_velocity_ratio.kinematics import coupler_bounds
-from synthesis.cases.fourbar_velocity_ratio.messages import Message
 
 __all__ = ["PaperResult", "solve_paper"]
 
@@ -92,14 +92,14 @@ def _false_position(function: Callable[[float], float], a: float, fa: float, b: 
         x = b - fb * (b - a) / (fb - fa)
         fx = function(x)
         if not math.isfinite(fx):
-            raise _NoRoot(Message("undefined_in_bracket"))
+            raise _NoRoot(Message("case.fourbar.undefined_in_bracket"))
         if abs(fx) < tol:
             return x, iteration
         if math.copysign(1.0, fx) == math.copysign(1.0, fa):
             a, fa = x, fx
         else:
             b, fb = x, fx
-    raise _NoRoot(Message("no_convergence", {"tol": tol, "count": max_iter}))
+    raise _NoRoot(Message("case.fourbar.no_convergence", {"tol": tol, "count": max_iter}))
 
 
 def _scan(function: Callable[[float], float], values: list[float]
@@ -113,7 +113,7 @@ def _scan(function: Callable[[float], float], values: list[float]
         if previous is not None and math.copysign(1.0, fx) != math.copysign(1.0, previous[1]):
             return previous[0], previous[1], x, fx
         previous = (x, fx)
-    raise _NoRoot(Message("no_sign_change"))
+    raise _NoRoot(Message("case.fourbar.no_sign_change"))
 
 
 class _Scheme:
@@ -158,13 +158,13 @@ class _Scheme:
             self.iterations["theta2"] += count
             self.theta2 = theta
             return theta
-        raise _NoRoot(Message("f1_no_sign_change"))
+        raise _NoRoot(Message("case.fourbar.f1_no_sign_change"))
 
     def middle(self, r: float) -> tuple[float, float]:
         """Steps b–j: c (and θ2) with F1 = F2 = 0 for the given r."""
         lo, hi = (float(v) for v in coupler_bounds(self.request.e, r))
         if not lo < hi:
-            raise _NoRoot(Message("empty_coupler_interval"))
+            raise _NoRoot(Message("case.fourbar.empty_coupler_interval"))
 
         def f2(c: float) -> float:
             try:
@@ -237,7 +237,7 @@ def solve_paper(request: Request, *, tol: float = 1e-6, epsilon: float = 1e-3,
     request.check()
     result = PaperResult(request)
     if request.form != "paper":
-        result.reason = Message("paper_form_only")
+        result.reason = Message("case.fourbar.paper_form_only")
         return result
     clock = time.perf_counter()
     scheme = _Scheme(request, tol, epsilon, theta_start, theta_step, c_steps, r_step, r_steps,
@@ -245,12 +245,12 @@ def solve_paper(request: Request, *, tol: float = 1e-6, epsilon: float = 1e-3,
     try:
         c, r, theta2 = scheme.outer()
     except _NoRoot as exc:
-        result.reason = Message("stopped", {"why": exc.message})
+        result.reason = Message("case.fourbar.stopped", {"why": exc.message})
     else:
         design = design_from_unknowns(request, [c, r, theta2 % (2 * math.pi)])
         result.design = design
         result.defect = (design_defect(design, accuracy=10.0 * tol) if math.isfinite(design.psi2)
-                         else Message("never_back"))
+                         else Message("case.fourbar.never_back"))
     result.evaluations = scheme.evaluations
     result.iterations = scheme.iterations
     result.seconds = time.perf_counter() - clock

@@ -7,6 +7,7 @@ import argparse
 import json
 from typing import Any
 
+from assur.text import languages
 from synthesis.cases.impact.data import PAPER
 from synthesis.cases.impact.report import report_json, report_text
 from synthesis.cases.impact.study import run_study
@@ -40,7 +41,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print the results as JSON")
     parser.add_argument("--plot", metavar="FILE",
                         help="draw the mechanism and the model comparison (PNG, SVG, PDF)")
-    parser.add_argument("--lang", choices=("en", "ru"), default="en", help="report language")
+    parser.add_argument("--lang", choices=languages(), default="en", help="report language")
 
 
 def _table(args: argparse.Namespace) -> dict[str, Any]:

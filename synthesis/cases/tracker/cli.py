@@ -6,7 +6,8 @@ import argparse
 import json
 import sys
 
-from assur import Issue, TableError
+from assur import Issue, Message, TableError, describe
+from assur.text import languages
 from synthesis.cases.tracker.report import summary, to_dict
 from synthesis.cases.tracker.study import run_study
 from synthesis.cases.tracker.task import load_task
@@ -44,7 +45,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--seed", type=int, default=0, help="seed of the synthesis (default 0)")
     parser.add_argument("--json", action="store_true", help="print the results as JSON")
     parser.add_argument("--plot", metavar="DIR", help="write the charts and drawings here")
-    parser.add_argument("--lang", choices=("en", "ru"), default="en",
+    parser.add_argument("--lang", choices=languages(), default="en",
                         help="language of the report")
 
 
@@ -53,8 +54,9 @@ def run(args: argparse.Namespace) -> int:
     names = [dest for _, dest, *_ in _OPTIONS] + ["k2", "k5"]
     overrides = {name: getattr(args, name) for name in names if getattr(args, name) is not None}
     if not 0 <= args.budget <= 20:
-        raise TableError("command line", [Issue("option '--budget'", f"must lie in [0, 20]; "
-                                                                      f"found {args.budget}")])
+        rule = Message("rule.in_range", {"range": "[0, 20]"})
+        raise TableError("command line", [Issue("option '--budget'", Message(
+            "table.rule_broken", {"rule": rule, "found": describe(args.budget)}))])
     study = run_study(load_task(args.table, overrides), budget_log2=args.budget or None,
                       seed=args.seed, progress=args.budget >= 14)
     if args.json:

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from assur.text import render
 from synthesis.cases.figures import write_figure
 from synthesis.cases.tracker.geometry import proportions, stroke
 from synthesis.cases.tracker.model import TrackerMotion
@@ -25,26 +26,10 @@ if TYPE_CHECKING:
 __all__ = ["chart_figure", "mechanism_figure", "plot_mechanism", "save_plots"]
 
 _CHART_K5 = (1.8, 2.0, 2.2)
-_LABELS = {
-    "en": {"b": "smallest transmission angle b_min, °", "a": "platform stroke a, °",
-           "k2": "k2 = l2/l1", "deg": "angle, °", "ratio": "ratio to l1", "patent": "patent",
-           "stroke": "stroke a(b_min) for each k2 (fig. 4)", "bmin": "b_min (fig. 4)",
-           "cd": "c and d (figs. 5, 6)", "kdi": "k_d and k_i (figs. 7, 8)",
-           "ks": "k_s (figs. 9, 13, 15)", "kg": "k_g (figs. 12, 14, 16)",
-           "allowed": "allowed", "required": "required",
-           "retracted": "actuator retracted", "extended": "actuator extended",
-           "mech": "k2 = {k2:.3f}, k5 = {k5:.3f}, l1 = {l1:g} mm: stroke {a:.1f}°",
-           "x": "x, mm", "y": "y, mm", "clear": "post clearance l_g ≥ {g:g} mm"},
-    "ru": {"b": "наименьший угол передачи b_min, °", "a": "ход платформы a, °",
-           "k2": "k2 = l2/l1", "deg": "угол, °", "ratio": "отношение к l1", "patent": "патент",
-           "stroke": "ход a(b_min) для каждого k2 (рис. 4)", "bmin": "b_min (рис. 4)",
-           "cd": "c и d (рис. 5, 6)", "kdi": "k_d и k_i (рис. 7, 8)",
-           "ks": "k_s (рис. 9, 13, 15)", "kg": "k_g (рис. 12, 14, 16)",
-           "allowed": "допустимо", "required": "требуется",
-           "retracted": "привод втянут", "extended": "привод выдвинут",
-           "mech": "k2 = {k2:.3f}, k5 = {k5:.3f}, l1 = {l1:g} мм: ход {a:.1f}°",
-           "x": "x, мм", "y": "y, мм", "clear": "зазор до стойки l_g ≥ {g:g} мм"},
-}
+
+
+def _label(key: str, lang: str, **data: float) -> str:
+    return render(f"case.tracker.plot.{key}", lang, **data)
 
 
 def _printed(quantity: str, k5: float | None) -> tuple[list[float], list[float]]:
@@ -65,7 +50,6 @@ def chart_figure(study: Study, lang: str = "en") -> Figure:
     """
     from matplotlib.figure import Figure
 
-    text = _LABELS[lang]
     task = study.task
     fig = Figure(figsize=(14, 8.5))
     axes = fig.subplots(2, 3, gridspec_kw={"left": 0.05, "right": 0.99, "bottom": 0.06,
@@ -81,10 +65,10 @@ def chart_figure(study: Study, lang: str = "en") -> Figure:
         ax.plot(np.degrees(b), np.degrees(stroke(b, value)), label=f"k2 = {value:g}")
     ax.axhline(a_deg, color="k", lw=0.8, ls="--")
     ax.axvline(math.degrees(task.min_transmission), color="r", lw=0.8, ls=":",
-               label=f"b_min.ad ({text['allowed']})")
+               label=f"b_min.ad ({_label('allowed', lang)})")
     table_b = np.degrees(study.table.values.b_min[:, 0])
     ax.plot(table_b, np.full_like(table_b, a_deg), "ko", ms=4)
-    ax.set(title=text["stroke"], xlabel=text["b"], ylabel=text["a"])
+    ax.set(title=_label("stroke", lang), xlabel=_label("b", lang), ylabel=_label("a", lang))
     ax.legend(fontsize=7)
 
     curves = {k5: proportions(task.stroke, k2, k5) for k5 in k5s}
@@ -92,10 +76,10 @@ def chart_figure(study: Study, lang: str = "en") -> Figure:
     ax = axes[0, 1]
     ax.plot(k2, np.degrees(one.b_min), label="b_min")
     ax.axhline(math.degrees(task.min_transmission), color="r", lw=0.8, ls=":",
-               label=text["allowed"])
+               label=_label("allowed", lang))
     if patent:
-        ax.plot(*_printed("b_min", None), "kx", label=text["patent"])
-    ax.set(title=text["bmin"], xlabel=text["k2"], ylabel=text["deg"])
+        ax.plot(*_printed("b_min", None), "kx", label=_label("patent", lang))
+    ax.set(title=_label("bmin", lang), xlabel=_label("k2", lang), ylabel=_label("deg", lang))
     ax.legend(fontsize=7)
 
     ax = axes[0, 2]
@@ -104,11 +88,12 @@ def chart_figure(study: Study, lang: str = "en") -> Figure:
     if patent:
         for quantity in ("c", "d"):
             ax.plot(*_printed(quantity, None), "kx")
-    ax.set(title=text["cd"], xlabel=text["k2"], ylabel=text["deg"])
+    ax.set(title=_label("cd", lang), xlabel=_label("k2", lang), ylabel=_label("deg", lang))
     ax.legend(fontsize=7)
 
-    panels = ((axes[1, 0], ("k_d", "k_i"), text["kdi"]), (axes[1, 1], ("k_s",), text["ks"]),
-              (axes[1, 2], ("k_g",), text["kg"]))
+    panels = ((axes[1, 0], ("k_d", "k_i"), _label("kdi", lang)),
+              (axes[1, 1], ("k_s",), _label("ks", lang)),
+              (axes[1, 2], ("k_g",), _label("kg", lang)))
     for ax, quantities, title in panels:
         for index, k5 in enumerate(k5s):
             values = curves[k5]
@@ -117,12 +102,12 @@ def chart_figure(study: Study, lang: str = "en") -> Figure:
                         label=f"{quantity}, k5 = {k5:g}")
                 if patent:
                     ax.plot(*_printed(quantity, k5), "x", color=f"C{index}",
-                            label=text["patent"] if index == 0 and style == "-" else None)
-        ax.set(title=title, xlabel=text["k2"], ylabel=text["ratio"])
+                            label=_label("patent", lang) if index == 0 and style == "-" else None)
+        ax.set(title=title, xlabel=_label("k2", lang), ylabel=_label("ratio", lang))
     axes[1, 1].axhline(task.actuator_stroke / task.l1, color="r", lw=0.8, ls=":",
-                       label=text["allowed"])
+                       label=_label("allowed", lang))
     axes[1, 2].axhline(task.min_clearance / task.l1, color="r", lw=0.8, ls=":",
-                       label=text["required"])
+                       label=_label("required", lang))
     for ax, _, _ in panels:
         ax.legend(fontsize=7)
     return fig
@@ -140,7 +125,8 @@ def plot_mechanism(motion: TrackerMotion, ax: Axes, *, title: str, body: float,
     title : str
     body : float
         Length of the actuator's cylinder drawn from E (mm).
-    lang : {'en', 'ru'}
+    lang : str
+        A language of the catalogue.
     min_clearance : float, optional
         Draws the required clearance around the post as a dotted circle.
 
@@ -148,14 +134,13 @@ def plot_mechanism(motion: TrackerMotion, ax: Axes, *, title: str, body: float,
     -------
     Axes
     """
-    text = _LABELS[lang]
     m = motion
     ax.plot(m.b.real, m.b.imag, color="0.7", lw=0.8)
     ax.plot(m.c.real, m.c.imag, color="0.7", lw=0.8)
     base = np.array([complex(m.d[0]), complex(m.a[0]), complex(m.e[0])])
     ax.plot(base.real, base.imag, color="k", lw=1.0)
-    for index, colour, label in ((0, "tab:blue", text["retracted"]),
-                                 (-1, "tab:red", text["extended"])):
+    for index, colour, label in ((0, "tab:blue", _label("retracted", lang)),
+                                 (-1, "tab:red", _label("extended", lang))):
         a, b, c, d, e = (complex(p[index]) for p in (m.a, m.b, m.c, m.d, m.e))
         ax.plot([a.real, b.real], [a.imag, b.imag], color=colour, lw=4, solid_capstyle="round",
                 label=label)
@@ -172,9 +157,10 @@ def plot_mechanism(motion: TrackerMotion, ax: Axes, *, title: str, body: float,
     if min_clearance:
         angle = np.linspace(0.0, 2.0 * np.pi, 181)
         ax.plot(min_clearance * np.cos(angle), min_clearance * np.sin(angle), "k:", lw=0.8,
-                label=text["clear"].format(g=min_clearance))
+                label=_label("clear", lang, g=min_clearance))
     ax.set_aspect("equal")
-    ax.set(title=title, xlabel=text["x"], ylabel=text["y"])
+    ax.set(title=title, xlabel=render("case.common.axis.x_mm", lang),
+           ylabel=render("case.common.axis.y_mm", lang))
     ax.legend(fontsize=7, loc="lower left")
     return ax
 
@@ -191,17 +177,16 @@ def mechanism_figure(motion: TrackerMotion, *, title: str, body: float, lang: st
 
 
 def _drawings(study: Study, lang: str) -> list[tuple[str, TrackerMotion, str, float]]:
-    text = _LABELS[lang]["mech"]
     out = []
     for name, check in (("chosen", study.chosen), ("refined", study.refined)):
         if check is not None:
             d = check.design
-            out.append((name, check.motion, text.format(k2=d.k2, k5=d.k5, l1=d.l1,
-                                                        a=math.degrees(check.stroke)), d.l_i))
+            out.append((name, check.motion, _label("mech", lang, k2=d.k2, k5=d.k5, l1=d.l1,
+                                                   a=math.degrees(check.stroke)), d.l_i))
     answer = study.synthesis
     if answer is not None:
-        title = text.format(k2=answer.k2, k5=answer.k5, l1=answer.task.l1,
-                            a=math.degrees(answer.check.stroke)) + " (B1–B5)"
+        title = _label("mech", lang, k2=answer.k2, k5=answer.k5, l1=answer.task.l1,
+                       a=math.degrees(answer.check.stroke)) + " (B1–B5)"
         out.append(("synthesis", answer.check, title, answer.l_i))
     return out
 

@@ -4,30 +4,23 @@ chart comparing the two models."""
 from __future__ import annotations
 
 import os
-from typing import Any, Literal
+from typing import Any
 
 import numpy as np
 
+from assur.text import render
 from synthesis.cases.figures import write_figure
 from synthesis.cases.impact.data import PAPER_IMPULSE_UNIT
 from synthesis.cases.impact.study import ImpactStudy
 
 __all__ = ["plot_case", "save_plot"]
 
-Lang = Literal["en", "ru"]
+Lang = str
+_MODEL_KEY = {"TM": "model_tm", "P": "model_p"}
 
-_LABELS: dict[str, dict[str, str]] = {
-    "mechanism": {"en": "Mechanism at impact (θ4' = {w4:g} rad/s, model P)",
-                  "ru": "Механизм в момент удара (θ4' = {w4:g} рад/с, модель P)"},
-    "jumps": {"en": "Velocity jumps, rad/s", "ru": "Скачки скоростей, рад/с"},
-    "impulses": {"en": "Impulses, 1e-4 N·s", "ru": "Импульсы, 1e-4 Н·с"},
-    "normal": {"en": "impact normal u(ψ)", "ru": "нормаль удара u(ψ)"},
-    "x": {"en": "x, mm", "ru": "x, мм"},
-    "y": {"en": "y, mm", "ru": "y, мм"},
-    "zoom": {"en": "bearing B (ξ exaggerated)", "ru": "шарнир B (ξ увеличен)"},
-    "TM": {"en": "[2] Townsend–Mansour", "ru": "[2] Таунсенд–Мансур"},
-    "P": {"en": "P (the source)", "ru": "P (статья)"},
-}
+
+def _label(key: str, lang: Lang, **data: float) -> str:
+    return render(f"case.impact.plot.{key}", lang, **data)
 
 
 def plot_case(study: ImpactStudy, lang: Lang = "en", row: int | None = None) -> Any:
@@ -36,7 +29,8 @@ def plot_case(study: ImpactStudy, lang: Lang = "en", row: int | None = None) -> 
     Parameters
     ----------
     study : ImpactStudy
-    lang : {'en', 'ru'}
+    lang : str
+        A language of the catalogue.
     row : int, optional
         Which rocker velocity (index into ``study.data.omega4``) the mechanism panel shows;
         by default the first one with an impact.
@@ -64,10 +58,10 @@ def _xy(point: complex) -> tuple[float, float]:
 
 def _draw_mechanism(ax: Any, study: ImpactStudy, lang: Lang, row: int) -> None:
     p, d = study.position, study.data
-    ax.set_title(_LABELS["mechanism"][lang].format(w4=float(p.omega4[row])), fontsize=10)
+    ax.set_title(_label("mechanism", lang, w4=float(p.omega4[row])), fontsize=10)
     ax.set_aspect("equal")
-    ax.set_xlabel(_LABELS["x"][lang])
-    ax.set_ylabel(_LABELS["y"][lang])
+    ax.set_xlabel(render("case.common.axis.x_mm", lang))
+    ax.set_ylabel(render("case.common.axis.y_mm", lang))
     if not p.exists[row]:
         return
     o2, o4 = 0j, complex(p.o4[row])
@@ -84,7 +78,7 @@ def _draw_mechanism(ax: Any, study: ImpactStudy, lang: Lang, row: int) -> None:
     reach = 0.25 * d.r1
     ax.annotate("", _xy(pin + reach * u_psi), _xy(pin),
                 arrowprops={"arrowstyle": "->", "color": "k", "ls": ":"})
-    ax.annotate(_LABELS["normal"][lang], _xy(pin + reach * u_psi), fontsize=8)
+    ax.annotate(_label("normal", lang), _xy(pin + reach * u_psi), fontsize=8)
     result = study.results["P"]
     scale = 0.4 * d.r1 / max(float(result.normal[row]), 1e-300)
     on_pin = -(float(result.normal[row]) + 1j * float(result.friction[row])) * u_psi
@@ -124,7 +118,7 @@ def _draw_bearing(ax: Any, study: ImpactStudy, lang: Lang, row: int) -> None:
     inset.set_ylim(-1.3 * radius * 1e3, 1.3 * radius * 1e3)
     inset.set_xticks([])
     inset.set_yticks([])
-    inset.set_xlabel(_LABELS["zoom"][lang], fontsize=7)
+    inset.set_xlabel(_label("zoom", lang), fontsize=7)
 
 
 def _draw_comparison(jumps: Any, impulses: Any, study: ImpactStudy, lang: Lang) -> None:
@@ -138,7 +132,7 @@ def _draw_comparison(jumps: Any, impulses: Any, study: ImpactStudy, lang: Lang) 
         dw = [res.omega2[row] - p.omega2[row], res.omega3[row] - p.omega3[row],
               res.omega4[row] - p.omega4[row]]
         imp = [res.normal[row], abs(res.r_a[row]), abs(res.r_o2[row])]
-        label = f"{_LABELS[model][lang]}, θ4' = {p.omega4[row]:g}"
+        label = f"{_label(_MODEL_KEY[model], lang)}, θ4' = {p.omega4[row]:g}"
         hatch = "" if model == "TM" else "//"
         colour = f"C{rows.index(row)}"
         offset = (slot - len(rows) + 0.5) * width
@@ -149,7 +143,7 @@ def _draw_comparison(jumps: Any, impulses: Any, study: ImpactStudy, lang: Lang) 
     for ax, names, key in ((jumps, names_w, "jumps"), (impulses, names_i, "impulses")):
         ax.set_xticks(np.arange(3), names)
         ax.axhline(0.0, color="k", lw=0.8)
-        ax.set_title(_LABELS[key][lang], fontsize=10)
+        ax.set_title(_label(key, lang), fontsize=10)
         ax.grid(axis="y", alpha=0.3)
     if rows:
         impulses.set_ylim(top=impulses.get_ylim()[1] * (1.0 + 0.08 * 2 * len(rows)))

@@ -23,14 +23,9 @@ from synthesis.cases.impact.data import ImpactData
 
 __all__ = ["REASONS", "ImpactPosition", "impact_position"]
 
-#: Why a position has no impact: code → (English, Russian).
-REASONS: dict[int, tuple[str, str]] = {
-    0: ("impact", "удар"),
-    1: ("the four-bar does not assemble at this crank angle",
-        "четырёхзвенник не собирается при этом угле кривошипа"),
-    2: ("the rocker moves with the pin (no lag, no approach): no impact",
-        "коромысло движется вместе с пальцем (нет отставания и сближения): удара нет"),
-}
+#: Why a position has no impact: reason code → catalogue code of the sentence.
+REASONS: tuple[str, ...] = ("case.impact.reason.impact", "case.impact.reason.not_assembled",
+                            "case.impact.reason.no_approach")
 
 
 @dataclass(frozen=True, slots=True)

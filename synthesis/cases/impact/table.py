@@ -10,7 +10,7 @@ import math
 import os
 from typing import Any
 
-from assur import Message, TableReader
+from assur import Message, TableReader, describe
 from synthesis.cases.impact.data import ImpactData
 
 __all__ = ["impact_data_from_dict", "impact_table_dict", "read_impact_table"]
@@ -73,12 +73,12 @@ def _read(reader: TableReader) -> ImpactData:
         for index, item in enumerate(omega4):
             if isinstance(item, bool) or not isinstance(item, (int, float)) \
                     or not math.isfinite(item):
-                reader.add(f"'omega4_rad_s'[{index}]", f"expected a number; found {item!r}")
+                reader.problem(f"'omega4_rad_s'[{index}]", "table.wrong_kind",
+                               expected=Message("value.kind.number"), found=describe(item))
     r4, clearance = values.get("r4"), values["clearance"]
     if r4 and clearance and clearance >= 2 * r4:
-        reader.add("'clearance_mm'", f"must be smaller than 2·r4 = {2 * r4:g} mm (the pin and "
-                                     f"the bearing centre both lie on the rocker's circle); "
-                                     f"found {clearance!r}")
+        reader.problem("'clearance_mm'", "case.impact.table.clearance", limit=2 * r4,
+                       found=clearance)
     reader.raise_if_any()
     return ImpactData(
         r1=values["r1"] / 1e3, r2=values["r2"] / 1e3, r3=values["r3"] / 1e3,

@@ -86,10 +86,9 @@ def read_request(data: dict[str, Any], source: str) -> tuple[Request, str]:
         given = [k for k, v in zip(("e", "delta", "psi2_deg"), optional)
                  if isinstance(v, (int, float))]
         if len(given) == 3:
-            reader.problem(TABLE, "case.fourbar.table.all_three")
+            reader.problem(TABLE, "case.fourbar.overdetermined")
         elif len(given) < 2 and all(v is None or isinstance(v, (int, float)) for v in optional):
-            reader.problem(TABLE, "case.fourbar.table.two_of_three",
-                           given=", ".join(given) or Message("case.fourbar.table.none_given"))
+            reader.problem(TABLE, "case.fourbar.underdetermined", given=", ".join(given) or "—")
     reader.raise_if_any()
 
     def angle(key: str) -> float | None:

@@ -6,7 +6,7 @@ import argparse
 import json
 import sys
 
-from assur import Issue, Message, TableError, describe
+from assur import Issue, Message, TableError
 from assur.text import languages
 from synthesis.cases.tracker.report import summary, to_dict
 from synthesis.cases.tracker.study import run_study
@@ -54,9 +54,8 @@ def run(args: argparse.Namespace) -> int:
     names = [dest for _, dest, *_ in _OPTIONS] + ["k2", "k5"]
     overrides = {name: getattr(args, name) for name in names if getattr(args, name) is not None}
     if not 0 <= args.budget <= 20:
-        rule = Message("rule.in_range", {"range": "[0, 20]"})
         raise TableError("command line", [Issue("option '--budget'", Message(
-            "table.rule_broken", {"rule": rule, "found": describe(args.budget)}))])
+            "case.tracker.budget", {"found": args.budget}))])
     study = run_study(load_task(args.table, overrides), budget_log2=args.budget or None,
                       seed=args.seed, progress=args.budget >= 14)
     if args.json:

@@ -196,3 +196,7 @@ def test_a_third_language_is_one_file(tmp_path, monkeypatch, fresh_catalogues) -
         assert text.render(code, "xx", **data) == f"«{text.render(code, 'en', **data)}»"
     error = TableError("t.yaml", [Issue("'x'", Message("value.kind.list"))] * 2)
     assert error.text("xx").splitlines() == ["«2 problems in t.yaml:»", *["  - 'x': «a list»"] * 2]
+
+
+def test_no_sentence_is_left_in_the_built_in_cases() -> None:
+    assert _places_left(sorted((ROOT / "synthesis" / "cases").rglob("*.py"))) == []

@@ -84,8 +84,16 @@ def _figures(study: Study, lang: Lang) -> list[str]:
                  if c.quantity == series.quantity and c.source == series.source
                  and c.k5 == series.k5}
         rows.append([series.quantity, "" if series.k5 is None else f"{series.k5:g}",
-                     series.source, *(_cell(cells[k], lang) if k in cells else "" for k in K2)])
+                     _source(series.source, lang),
+                     *(_cell(cells[k], lang) if k in cells else "" for k in K2)])
     return _table(rows)
+
+
+def _source(source: str, lang: Lang) -> str:
+    """Where a printed series comes from (``"fig. 12"``) in ``lang``."""
+    if source.startswith("fig. "):
+        return _t("fig", lang, number=source.removeprefix("fig. "))
+    return source
 
 
 def violation_text(violation: Violation, lang: Lang = "en") -> str:

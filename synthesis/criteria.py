@@ -466,6 +466,10 @@ class Criteria:
     def __len__(self) -> int:
         return int(self.p1.shape[0])
 
+    def arrays(self) -> tuple[FloatArray, ...]:
+        """The five arrays, in field order."""
+        return self.p1, self.p2, self.q, self.deviations, self.residuals
+
     def take(self, index: npt.ArrayLike) -> Criteria:
         """The criteria of a subset of the designs."""
         return Criteria(self.p1[index], self.p2[index], self.q[index], self.deviations[index],

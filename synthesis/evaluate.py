@@ -34,6 +34,8 @@ import numpy as np
 import numpy.typing as npt
 
 import assur
+from assur import Issue, KinematicModel, Motion, TableError
+from assur.text import Message
 from synthesis import criteria as C
 from synthesis.problem import Problem
 
@@ -71,7 +73,7 @@ class Analysis:
         Group label → largest excursion of each joint outside its box, shape (D, J), mm.
     """
 
-    motion: Any
+    motion: Motion
     grid: FloatArray
     output_grid: npt.NDArray[Any]
     output_control: npt.NDArray[Any]
@@ -90,6 +92,14 @@ class Evaluator:
     problem : Problem
     grid : int, optional
         Positions of the analysis grid (default: the problem's ``grid``).
+
+    Raises
+    ------
+    TableError
+        When the problem gives an allowable pressure angle to a group that has none (the
+        check needs an analysis, so it is made here rather than when the table is read).
+    StructureError
+        For task class 2 when the output link has no prismatic pair.
 
     Examples
     --------
@@ -110,15 +120,30 @@ class Evaluator:
         self._slider_pair = self._find_slider() if problem.task_class == 2 else None
         self.lower = problem.lower
         self.upper = problem.upper
+        self._check_pressure_angles()
+
+    def _check_pressure_angles(self) -> None:
+        """Pressure angles exist only for L1/L2 groups with a two-hinge rod
+        (``method.md`` §2.7); which groups have one is known from an analysis."""
+        wanted = self.problem.pressure_angles
+        if not wanted:
+            return
+        motion = assur.analyse(self.problem.model, np.zeros(1))
+        computed = {item.label for item in assur.pressure_angles(motion)}
+        issues = [Issue(f"allowable ({label}) 'pressure_angle'",
+                        Message("problem.pressure_none", {"group": label}))
+                  for label in wanted if label not in computed]
+        if issues:
+            raise TableError(self.problem.source, issues)
 
     # ------------------------------------------------------------------ model and motion
-    def model(self, x: npt.ArrayLike) -> Any:
+    def model(self, x: npt.ArrayLike) -> KinematicModel:
         """The kinematic model with the varied parameters of the designs X, shape (D, q)."""
         x = np.atleast_2d(np.asarray(x, dtype=float))
         return self.problem.model.with_params(
             {name: x[:, k:k + 1] for k, name in enumerate(self.problem.names)})
 
-    def _find_slider(self) -> Any:
+    def _find_slider(self) -> assur.PairId:
         pairs = self.problem.model.pair_links
         frame = self.problem.model.frame
         options = [pid for pid, (kind, links, carrier) in pairs.items()
@@ -130,7 +155,7 @@ class Evaluator:
                                        f"2 needs a slider")
         return options[0]
 
-    def _point(self, motion: Any, model: Any) -> Any:
+    def _point(self, motion: Motion, model: KinematicModel) -> Any:
         """The tracing point Ж of the output link over the analysed positions."""
         name = self.problem.output.point
         if name in motion.tracing:
@@ -146,7 +171,7 @@ class Evaluator:
         """Criteria of the designs X, shape (D, q)."""
         return self.analyse(x, curve=False).criteria
 
-    def ratio(self, model: Any, phi: FloatArray) -> FloatArray:
+    def ratio(self, model: KinematicModel, phi: FloatArray) -> FloatArray:
         """Velocity ratio of the output link at crank rotations φ, shape (D, len(φ)).
 
         Parameters
@@ -261,7 +286,8 @@ class Evaluator:
         return Analysis(motion, self.grid, out_grid, out, np.asarray(phi_c),
                         C.Criteria(p1, p2, q, dev, res), pressure, rotation, workspace)
 
-    def _nearest(self, model: Any, phi: FloatArray) -> tuple[FloatArray, npt.NDArray[Any]]:
+    def _nearest(self, model: KinematicModel, phi: FloatArray
+                 ) -> tuple[FloatArray, npt.NDArray[Any]]:
         """Newton refinement in φ of the nearest path points (class 3).
 
         The start (from the grid polygon) is already within O(h²) of the minimum, so two
@@ -281,7 +307,7 @@ class Evaluator:
             point = jet.v + jet.d1 * step + 0.5 * jet.d2 * step ** 2
         return phi, np.asarray(point)
 
-    def _existence(self, motion: Any, model: Any, d: int) -> FloatArray:
+    def _existence(self, motion: Motion, model: KinematicModel, d: int) -> FloatArray:
         """P1 over all analysed positions (``criteria.existence_penalty``)."""
         shape = (d, self.positions.size)
         first = np.zeros(shape, dtype=int)
@@ -299,7 +325,7 @@ class Evaluator:
             violation = np.where(new, v, violation)
         return C.existence_penalty(first, violation, len(model.groups))
 
-    def _desirable(self, motion: Any, d: int, n: int
+    def _desirable(self, motion: Motion, d: int, n: int
                    ) -> tuple[dict[str, FloatArray], dict[str, FloatArray]]:
         """Largest pressure angles (D, 1) and joint rotation ranges (D, J) over the grid."""
         pressure: dict[str, FloatArray] = {}
@@ -321,7 +347,7 @@ class Evaluator:
                                            axis=1)
         return pressure, rotation
 
-    def _workspace(self, motion: Any, d: int, n: int) -> dict[str, FloatArray]:
+    def _workspace(self, motion: Motion, d: int, n: int) -> dict[str, FloatArray]:
         """Largest excursion of each group's revolute joints outside its box, (D, J) mm."""
         out: dict[str, FloatArray] = {}
         size = self.positions.size

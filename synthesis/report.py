@@ -22,6 +22,7 @@ import numpy.typing as npt
 import yaml
 
 from assur import atomic_write_text
+from synthesis.criteria import criterion_rms
 from synthesis.evaluate import Analysis
 from synthesis.i18n import LANGUAGES, in_language
 from synthesis.problem import Problem
@@ -160,7 +161,7 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
         "Q": _num(c.q[0]),
         "unit": problem.output_unit,
         "output": problem.output.quantity,
-        "Q_rms": _num(np.sqrt(np.mean((c.deviations[0] / control.weight) ** 2))),
+        "Q_rms": _num(criterion_rms(c.deviations[0], control.weight)),
         "P1": float(c.p1[0]),
         "P2": _num(c.p2[0]),
         "accuracy": problem.accuracy,
@@ -185,9 +186,9 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
             "feasible_trials": int(np.sum((result.trial_criteria.p1 == 0)
                                           & (result.trial_criteria.p2 == 0))),
             "stop": result.stop, "message": result.message,
-            "seconds": result.elapsed, "seed": result.settings.seed,
+            "seconds": result.elapsed, "seed": result.seed,
             "budget_log2": result.settings.budget_log2, "refine": result.settings.refine,
-            "history": result.history,
+            "history": [h.as_dict() for h in result.history],
         },
         "feasible_table": trials,
     }
@@ -322,7 +323,7 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
               f"  {w('trials')}: {s['trials']}   {w('feasible_trials')}: {s['feasible_trials']}",
               f"  {w('stop')}: {w(s['stop'] + '_stop')}   "
               f"{w('time')}: {s['seconds']:.2f} {w('seconds')}   "
-              f"seed {s['seed']}, 2^{s['budget_log2']} LPτ",
+              f"seed {'—' if s['seed'] is None else s['seed']}, 2^{s['budget_log2']} LPτ",
               f"  {w('history')}:"]
     history = s["history"]
     if len(history) > 12:
@@ -363,7 +364,8 @@ def write_result(path: str | os.PathLike[str], problem: Problem, result: SearchR
     head = [f"# Result of the synthesis of {problem.source} (task class {problem.task_class})",
             f"# Q = {_fmt(data['Q'])}, P1 = {_fmt(data['P1'])}, P2 = {_fmt(data['P2'])}, "
             f"RMS = {_fmt(data['Q_rms'])}",
-            f"# seed {result.settings.seed}, {data['search']['trials']} trials, "
+            f"# seed {'—' if result.seed is None else result.seed}, "
+            f"{data['search']['trials']} trials, "
             f"stop: {result.stop}"]
     body = yaml.safe_dump(table, sort_keys=False, allow_unicode=True, default_flow_style=None,
                           width=100)

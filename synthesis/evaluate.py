@@ -205,7 +205,9 @@ class Evaluator:
         """
         motion = assur.analyse(model, phi, analogs=True)
         shape = np.broadcast_shapes(model.design_shape, np.shape(phi))
-        return np.atleast_2d(np.broadcast_to(motion.link_angle(self.output_link).d1, shape))
+        angle = motion.link_angle(self.output_link)
+        assert isinstance(angle, assur.Jet)  # analogs=True carries jets
+        return np.atleast_2d(np.broadcast_to(angle.d1, shape))
 
     def analyse(self, x: npt.ArrayLike, *, curve: bool = True) -> Analysis:
         """Analyse the designs X over the grid and the control angles.
@@ -226,6 +228,8 @@ class Evaluator:
         p1 = self._existence(motion, model, d)
         cls = self.problem.task_class
         control = self.problem.control
+        out: npt.NDArray[Any]
+        out_grid: npt.NDArray[Any]
         with np.errstate(invalid="ignore"):
             if cls == 1:
                 if self.problem.output.ratio:
@@ -240,13 +244,14 @@ class Evaluator:
                     wrap = np.angle(np.exp(1j * (raw[:, n:] - raw[:, nearest])))
                     out = out_grid[:, nearest] + wrap
                 phi_c = np.broadcast_to(self.control_phi, out.shape)
-                if control.zone:
+                if control.lower is not None and control.upper is not None:  # a zone
                     dev = C.zone_deviations(out, control.lower, control.upper, control.weight)
                     res = C.zone_residuals(out, control.lower, control.upper, control.weight)
                 else:
                     dev = C.value_deviations(out, control.value, control.weight)
                     res = dev
             elif cls == 2:
+                assert self._slider_pair is not None
                 s = _full(assur.values(motion.sliders[self._slider_pair].s), d,
                           self.positions.size)
                 out_grid = s[:, :n] - s[:, :1]
@@ -338,9 +343,9 @@ class Evaluator:
                     pressure[item.label] = np.max(alpha, axis=1)[:, None]
         if self.problem.rotations:
             swings = {}
-            for item in assur.joint_rotations(motion):
-                theta = np.nan_to_num(_full(item.theta, d, size)[:, :n])
-                swings[item.pair] = np.ptp(theta, axis=1)
+            for joint in assur.joint_rotations(motion):
+                theta = np.nan_to_num(_full(joint.theta, d, size)[:, :n])
+                swings[joint.pair] = np.ptp(theta, axis=1)
             for label, limits in self.problem.rotations.items():
                 group = motion.model.group(label)
                 rotation[label] = np.stack([swings[group.pairs[role]] for role in limits],

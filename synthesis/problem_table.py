@@ -19,7 +19,7 @@ Examples
 >>> from synthesis.problem_table import read_problem
 >>> problem = read_problem("input_tables/problems/class1_fourbar_rocker.yaml")
 >>> problem.task_class, len(problem.parameters), problem.search["budget"]
-(1, 5, 10)
+(1, 3, 10)
 """
 
 from __future__ import annotations
@@ -475,7 +475,7 @@ def _read_box(row: Node) -> tuple[float, float, float, float] | None:
     node = row.child("workspace", ("x", "y"), required=False)
     if node is None:
         return None
-    out = []
+    out: list[float] = []
     for axis in ("x", "y"):
         value = node.get(axis, kind="list")
         if value is MISSING:

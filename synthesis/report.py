@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 import numpy.typing as npt
-import yaml
+import yaml  # type: ignore[import-untyped]
 
 from assur import atomic_write_text
 from synthesis.criteria import criterion_rms
@@ -142,7 +142,7 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
             row["phi"] = math.degrees(control.phi[k])
         if problem.task_class in (1, 2):
             scale = problem.output_scale
-            if control.zone:
+            if control.lower is not None and control.upper is not None:  # a zone
                 row.update(lower=float(control.lower[k]) * scale,
                            upper=float(control.upper[k]) * scale)
             else:
@@ -194,7 +194,7 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
     }
 
 
-def _margins(analysis: Analysis) -> dict[str, dict[str, float]]:
+def _margins(analysis: Analysis) -> dict[str, dict[str, float | None]]:
     motion = analysis.motion
     n = analysis.grid.size
     out = {}
@@ -225,9 +225,9 @@ def _binding(problem: Problem, result: SearchResult, analysis: Analysis) -> list
         if v[0, 0] >= 0.95 * problem.pressure_angles[label]:
             out.append({"kind": "pressure", "group": label})
     for label, info in _margins(analysis).items():
-        if info["min_margin"] is not None and info["min_margin"] < info["delta"] + 0.02:
-            out.append({"kind": "margin", "group": label, "margin": info["min_margin"],
-                        "delta": info["delta"]})
+        margin, delta = info["min_margin"], info["delta"]
+        if margin is not None and delta is not None and margin < delta + 0.02:
+            out.append({"kind": "margin", "group": label, "margin": margin, "delta": delta})
     return out
 
 

@@ -31,16 +31,19 @@ import sys
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
-from scipy import optimize
-from scipy.stats import qmc
+from scipy import optimize  # type: ignore[import-untyped]
+from scipy.stats import qmc  # type: ignore[import-untyped]
 
 from assur import AssurError
 from assur.text import Message
 from synthesis.criteria import Criteria, Objective, merit
+
+if TYPE_CHECKING:
+    from synthesis.problem import Problem
 
 __all__ = ["STOP_REASONS", "Improvement", "SearchResult", "SearchSettings", "SettingError",
            "search", "setting_problem", "settings_for"]
@@ -424,6 +427,7 @@ class _Search:
         for k in range(s.shrink_passes):
             half = half * s.shrink
             centre = self.best_x
+            assert centre is not None  # trial 0 is always recorded first
             lower = np.maximum(centre - half, self.lower)
             upper = np.minimum(centre + half, self.upper)
             self.passive(lower, upper, 2 ** max(s.budget_log2 - 2, 4), 1 + k, "shrink")
@@ -572,7 +576,7 @@ def _concat(parts: list[Criteria]) -> Criteria:
                       for name in ("p1", "p2", "q", "deviations", "residuals")))
 
 
-def settings_for(problem: Any, **overrides: Any) -> SearchSettings:
+def settings_for(problem: Problem, **overrides: Any) -> SearchSettings:
     """Search settings of a problem: its ``search`` table, then the given overrides.
 
     Parameters
@@ -592,8 +596,7 @@ def settings_for(problem: Any, **overrides: Any) -> SearchSettings:
     SettingError
         When an override breaks its rule (the same rule as in the problem table).
     """
-    settings: SearchSettings = problem.settings
-    return replace(settings, **{k: v for k, v in overrides.items() if v is not None})
+    return replace(problem.settings, **{k: v for k, v in overrides.items() if v is not None})
 
 
 def _bounds(lower: npt.ArrayLike, upper: npt.ArrayLike, initial: npt.ArrayLike

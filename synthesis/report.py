@@ -22,91 +22,18 @@ import numpy.typing as npt
 import yaml  # type: ignore[import-untyped]
 
 from assur import atomic_write_text
+from assur.text import render
 from synthesis.criteria import criterion_rms
 from synthesis.evaluate import Analysis
-from synthesis.i18n import LANGUAGES, in_language
+from synthesis.i18n import LANGUAGES
 from synthesis.problem import Problem
 from synthesis.search import SearchResult
 
 __all__ = ["LANGUAGES", "summary", "text_report", "write_result", "write_trials"]
 
-_WORDS: dict[str, tuple[str, str]] = {
-    "title": ("Synthesis of {name}: task class {cls} ({what})",
-              "Синтез {name}: задача класса {cls} ({what})"),
-    "class1": ("rotating output ψ(φ)", "вращательное движение выходного звена ψ(φ)"),
-    "class1_ratio": ("velocity ratio n(φ) = dψ/dφ of the rotating output",
-                     "передаточное отношение n(φ) = dψ/dφ выходного звена"),
-    "class2": ("slider output S(φ)", "поступательное движение выходного звена S(φ)"),
-    "class3": ("tracing-point path without timing", "траектория точки без согласования"),
-    "class4": ("tracing-point path with timing", "траектория точки с согласованием по φ"),
-    "design": ("Design (varied parameters, table units: mm, degrees)",
-               "Найденные параметры (единицы таблиц: мм, градусы)"),
-    "rad": ("rad", "рад"),
-    "mm": ("mm", "мм"),
-    "1": ("", ""),
-    "param": ("parameter", "параметр"),
-    "initial": ("initial", "начальное"),
-    "lower": ("lower", "левая граница"),
-    "upper": ("upper", "правая граница"),
-    "found": ("found", "найдено"),
-    "criteria": ("Criteria", "Критерии"),
-    "q": ("Q = max |Δ_K| (accuracy)", "Q = max |Δ_K| (точность)"),
-    "rms": ("RMS deviation", "среднеквадратичное отклонение"),
-    "p1": ("P1 (existence over the cycle)", "P1 (существование на всём цикле)"),
-    "p2": ("P2 (desirable conditions)", "P2 (желательные условия)"),
-    "required": ("required accuracy [Q]", "требуемая точность [Q]"),
-    "favourable": ("favourable mechanism", "благоприятный механизм"),
-    "yes": ("yes", "да"),
-    "no": ("no", "нет"),
-    "deviations": ("Deviations at the control points", "Отклонения в контрольных точках"),
-    "target": ("target", "задано"),
-    "reproduced": ("reproduced", "воспроизведено"),
-    "pressure": ("Pressure angles (largest over the cycle)",
-                 "Углы давления (наибольшие за цикл)"),
-    "allowed": ("allowable", "допускаемый"),
-    "rotations": ("Relative rotations in joints", "Относительные повороты в шарнирах"),
-    "binding": ("Conditions that bind", "Активные условия"),
-    "workspace": ("Working space of the joints (mm)", "Рабочее пространство шарниров (мм)"),
-    "outside": ("largest excursion outside", "наибольший выход за пределы"),
-    "at_bound": ("{p} is at its {side} bound", "{p} на {side} границе"),
-    "side_lower": ("lower", "левой"),
-    "side_upper": ("upper", "правой"),
-    "margin": ("smallest existence margin of {g}: {m:.4g} (δ = {d:g})",
-               "наименьший запас существования {g}: {m:.4g} (δ = {d:g})"),
-    "alternance": ("|Δ_K| reaches Q at control points {k}",
-                   "|Δ_K| достигает Q в контрольных точках {k}"),
-    "near_limit": ("pressure angle of {g} is within 5 % of [α]",
-                   "угол давления {g} в пределах 5 % от [α]"),
-    "none": ("none", "нет"),
-    "search": ("Search", "Поиск"),
-    "trials": ("trials", "испытаний"),
-    "feasible_trials": ("feasible trials (P1 = P2 = 0)", "допустимых испытаний (P1 = P2 = 0)"),
-    "stop": ("stop", "остановка"),
-    "time": ("wall time", "время"),
-    "history": ("improvements of the best design", "улучшения лучшего решения"),
-    "trial": ("trial", "испытание"),
-    "stage": ("stage", "этап"),
-    "stage_initial": ("initial", "начальное"),
-    "stage_lptau": ("LPτ", "ЛПτ"),
-    "stage_shrink": ("shrink", "сужение"),
-    "stage_refine": ("refine", "уточнение"),
-    "seconds": ("s", "с"),
-    "table": ("Feasible passive trials, best {n} by Q (the designer may pick any)",
-              "Допустимые пассивные испытания, лучшие {n} по Q (проектировщик выбирает "
-              "любое)"),
-    "not_feasible": ("No feasible design was found: P1 > 0 or P2 > 0.",
-                     "Допустимого решения не найдено: P1 > 0 или P2 > 0."),
-    "favourable_stop": ("a favourable mechanism was found", "найден благоприятный механизм"),
-    "stall_stop": ("no progress", "нет улучшения"),
-    "budget_stop": ("trial budget used up", "исчерпан бюджет испытаний"),
-    "time_stop": ("time limit used up", "исчерпан лимит времени"),
-    "interrupted_stop": ("interrupted (Ctrl-C), best design kept",
-                         "прервано (Ctrl-C), сохранено лучшее решение"),
-}
-
-
-def _w(key: str, lang: str) -> str:
-    return in_language(_WORDS[key], lang)
+def _w(key: str, lang: str, **data: Any) -> str:
+    """A sentence of the report from the catalogue (codes ``synth.report.<key>``)."""
+    return render(f"synth.report.{key}", lang, **data)
 
 
 def _num(value: Any) -> float | None:
@@ -249,9 +176,11 @@ def _feasible_trials(problem: Problem, result: SearchResult, top: int) -> list[d
 
 def text_report(data: dict[str, Any], lang: str = "en") -> str:
     """The report of :func:`summary` data as text in English or Russian."""
-    w = lambda key: _w(key, lang)  # noqa: E731
+    def w(key: str, **data: Any) -> str:
+        return _w(key, lang, **data)
+
     what = f"class{data['task_class']}" + ("_ratio" if data.get("output") == "ratio" else "")
-    lines = [w("title").format(name=data["name"], cls=data["task_class"], what=w(what)), ""]
+    lines = [w("title", name=data["name"], cls=data["task_class"], what=w(what)), ""]
     lines += [w("design"),
               f"  {w('param'):<22} {w('initial'):>12} {w('lower'):>12} {w('upper'):>12} "
               f"{w('found'):>14}"]
@@ -260,7 +189,7 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
         lines.append(f"  {name:<22} {data['initial'][name]:>12.6g} {lo:>12.6g} {hi:>12.6g} "
                      f"{value:>14.9g}")
     yes_no = lambda flag: w("yes") if flag else w("no")  # noqa: E731
-    unit = w(data["unit"])
+    unit = "" if data["unit"] == "1" else w(data["unit"])  # the ratio n has no unit
     in_degrees = (f" ({math.degrees(data['Q']):.6g}°)"
                   if data["unit"] == "rad" and data["Q"] is not None else "")
     lines += ["", w("criteria"),
@@ -309,14 +238,14 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
         lines.append(f"  {w('none')}")
     for item in data["binding"]:
         if item["kind"] == "bound":
-            lines.append("  " + w("at_bound").format(p=item["parameter"],
-                                                     side=w(f"side_{item['side']}")))
+            lines.append("  " + w("at_bound", p=item["parameter"],
+                                           side=w(f"side_{item['side']}")))
         elif item["kind"] == "alternance":
-            lines.append("  " + w("alternance").format(k=", ".join(map(str, item["points"]))))
+            lines.append("  " + w("alternance", k=", ".join(map(str, item["points"]))))
         elif item["kind"] == "pressure":
-            lines.append("  " + w("near_limit").format(g=item["group"]))
+            lines.append("  " + w("near_limit", g=item["group"]))
         else:
-            lines.append("  " + w("margin").format(g=item["group"], m=item["margin"],
+            lines.append("  " + w("margin", g=item["group"], m=item["margin"],
                                                    d=item["delta"]))
     s = data["search"]
     lines += ["", w("search"),
@@ -336,7 +265,7 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
     table = data["feasible_table"]
     if table:
         names = list(data["design"])
-        lines += ["", w("table").format(n=len(table)),
+        lines += ["", w("table", n=len(table)),
                   "  " + f"{w('trial'):>7} {w('stage'):<8} {'Q':>12} "
                   + " ".join(f"{n:>16}" for n in names)]
         for row in table:

@@ -37,7 +37,7 @@ import assur
 from assur import Issue, KinematicModel, Motion, TableError
 from assur.text import Message
 from synthesis import criteria as C
-from synthesis.problem import Problem
+from synthesis.problem import Problem, output_slider
 
 __all__ = ["Analysis", "Evaluator"]
 
@@ -98,9 +98,6 @@ class Evaluator:
     TableError
         When the problem gives an allowable pressure angle to a group that has none (the
         check needs an analysis, so it is made here rather than when the table is read).
-    StructureError
-        For task class 2 when the output link has no prismatic pair.
-
     Examples
     --------
     ``Evaluator(problem)(X)`` gives the :class:`~synthesis.criteria.Criteria` of the rows of
@@ -117,7 +114,8 @@ class Evaluator:
         model = problem.model
         self.output_link = problem.output.link
         self.label, self.side = model.links[self.output_link]
-        self._slider_pair = self._find_slider() if problem.task_class == 2 else None
+        self._slider_pair = (output_slider(model, self.output_link) if problem.task_class == 2
+                             else None)
         self.lower = problem.lower
         self.upper = problem.upper
         self._check_pressure_angles()
@@ -142,18 +140,6 @@ class Evaluator:
         x = np.atleast_2d(np.asarray(x, dtype=float))
         return self.problem.model.with_params(
             {name: x[:, k:k + 1] for k, name in enumerate(self.problem.names)})
-
-    def _find_slider(self) -> assur.PairId:
-        pairs = self.problem.model.pair_links
-        frame = self.problem.model.frame
-        options = [pid for pid, (kind, links, carrier) in pairs.items()
-                   if kind == "P" and self.output_link in links and carrier != self.output_link]
-        options.sort(key=lambda pid: pairs[pid][2] != frame)
-        if not options:
-            raise assur.StructureError(f"{self.problem.source}: output link "
-                                       f"{self.output_link!r} has no prismatic pair; task class "
-                                       f"2 needs a slider")
-        return options[0]
 
     def _point(self, motion: Motion, model: KinematicModel) -> Any:
         """The tracing point Ж of the output link over the analysed positions."""

@@ -61,7 +61,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from assur import KinematicModel, LinkId, normalise_id
+from assur import KinematicModel, LinkId, PairId, normalise_id
 from synthesis.criteria import Objective
 from synthesis.search import SearchSettings
 
@@ -74,7 +74,9 @@ __all__ = [
     "Parameter",
     "Problem",
     "load_problem",
+    "output_slider",
     "problem_from_dict",
+    "row_key",
 ]
 
 #: The links of a group as the tables name it: ``(i,)`` for L0, ``(i, j)`` for a dyad.
@@ -278,6 +280,19 @@ class Problem:
         for p, value in zip(self.parameters, np.asarray(x, dtype=float)):
             rows[p.links]["params"][p.column] = _clean(float(value))
         return table
+
+
+def output_slider(model: KinematicModel, link: LinkId) -> PairId | None:
+    """The prismatic pair whose slider coordinate S is the output of task class 2.
+
+    A pair of ``link`` that ``link`` does not carry (the link slides in it), on a guide of the
+    frame if there is one; None when the link has no such pair.
+    """
+    pairs = model.pair_links
+    options = [pid for pid, (kind, links, carrier) in pairs.items()
+               if kind == "P" and link in links and carrier != link]
+    options.sort(key=lambda pid: pairs[pid][2] != model.frame)
+    return options[0] if options else None
 
 
 def row_key(row: Mapping[str, Any]) -> GroupKey:

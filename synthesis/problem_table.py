@@ -44,6 +44,7 @@ from synthesis.problem import (
     Output,
     Parameter,
     Problem,
+    output_slider,
     row_key,
 )
 from synthesis.search import setting_problem
@@ -158,8 +159,8 @@ def _read(reader: TableReader, base: Path) -> Problem:
         if not parameters:
             reader.problem("parameters", "problem.nothing_varied")
         _check_rotations(reader, model, {labels[k]: v for k, v in rotations.items()})
-        if output.link is not MISSING and output.link not in model.links:
-            reader.problem("output 'link'", "problem.output_not_moving", link=output.link)
+        if output.link is not MISSING:
+            _check_output(reader, model, output.link, general.task_class)
     reader.raise_if_any()
     if foreign is not None:
         raise foreign
@@ -497,6 +498,15 @@ def _check_rotations(reader: TableReader, model: KinematicModel,
             if role not in joints:
                 reader.problem(f"allowable ({label}) 'rotations'", "problem.joint_unknown",
                                joint=role, group=label, joints=", ".join(joints) or "—")
+
+
+def _check_output(reader: TableReader, model: KinematicModel, link: assur.LinkId,
+                  task_class: Any) -> None:
+    """The output link moves; in task class 2 it slides in a prismatic pair."""
+    if link not in model.links:
+        reader.problem("output 'link'", "problem.output_not_moving", link=link)
+    elif task_class == 2 and output_slider(model, link) is None:
+        reader.problem("output 'link'", "problem.output_no_slider", link=link)
 
 
 def _read_search(top: Node) -> dict[str, Any]:

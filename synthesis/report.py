@@ -14,6 +14,7 @@ from __future__ import annotations
 import json
 import math
 import os
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -280,25 +281,24 @@ def _fmt(value: Any) -> str:
 
 
 def write_result(path: str | os.PathLike[str], problem: Problem, result: SearchResult,
-                 data: dict[str, Any]) -> None:
+                 data: Mapping[str, Any], lang: str = "en") -> None:
     """Write the identification table of the best design (YAML, or JSON for ``.json``).
 
     The file is a mechanism table that ``assur analyze`` reads; the criteria stand in comment
-    lines at the top of a YAML file (a JSON file carries only the table).
+    lines at the top of a YAML file, in ``lang`` (a JSON file carries only the table).
     """
     table = problem.mechanism_table(result.x)
     if Path(path).suffix.lower() == ".json":
         atomic_write_text(path, json.dumps(table, indent=2, ensure_ascii=False) + "\n")
         return
-    head = [f"# Result of the synthesis of {problem.source} (task class {problem.task_class})",
-            f"# Q = {_fmt(data['Q'])}, P1 = {_fmt(data['P1'])}, P2 = {_fmt(data['P2'])}, "
-            f"RMS = {_fmt(data['Q_rms'])}",
-            f"# seed {'—' if result.seed is None else result.seed}, "
-            f"{data['search']['trials']} trials, "
-            f"stop: {result.stop}"]
+    seed = "—" if result.seed is None else result.seed
+    head = _w("result_head", lang, source=problem.source, cls=problem.task_class,
+              q=_fmt(data["Q"]), p1=_fmt(data["P1"]), p2=_fmt(data["P2"]),
+              rms=_fmt(data["Q_rms"]), seed=seed, trials=data["search"]["trials"],
+              stop=result.stop)
     body = yaml.safe_dump(table, sort_keys=False, allow_unicode=True, default_flow_style=None,
                           width=100)
-    atomic_write_text(path, "\n".join(head) + "\n" + body)
+    atomic_write_text(path, "".join(f"# {line}\n" for line in head.splitlines()) + body)
 
 
 def write_trials(path: str | os.PathLike[str], problem: Problem, result: SearchResult) -> int:

@@ -209,3 +209,11 @@ def test_a_mechanism_file_reports_its_own_problems(tmp_path: Path) -> None:
     assert caught.value.source == str(tmp_path / "chain.yaml")
     assert any(issue.location.startswith("structure_identification[1]")
                and "i_minus_one" in str(issue) for issue in caught.value.issues)
+
+
+def test_a_stroke_task_needs_a_sliding_output_link() -> None:
+    bad = copy.deepcopy(GOOD)
+    bad["output"] = {"link": 2}  # the rod of the RRP group: two revolute pairs, no slider
+    assert _messages(bad) == [
+        "output 'link': link 2 has no prismatic pair to slide in; task class 2 controls the "
+        "displacement S of a slider"]

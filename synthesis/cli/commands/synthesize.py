@@ -58,7 +58,7 @@ def run(args: argparse.Namespace) -> int:
     outcome = synthesize(problem, settings, progress=not args.quiet)
     result, data = outcome.result, dict(outcome.summary)
     if args.out:
-        write_result(args.out, problem, result, data)
+        write_result(args.out, problem, result, data, lang=args.lang)
         data["result_file"] = args.out
     if args.trials:
         data["trials_file"] = args.trials

@@ -70,24 +70,7 @@ Bounds = dict[tuple[GroupKey, str], tuple[float, float, float]]
 
 
 def read_problem(path: str | os.PathLike[str]) -> Problem:
-    """Read and check a problem file (:func:`synthesis.problem.load_problem`).
-
-    Parameters
-    ----------
-    path : path-like
-        The YAML problem table.
-
-    Returns
-    -------
-    Problem
-
-    Raises
-    ------
-    TableError
-        Listing every problem of the file.
-    StructureError
-        When the mechanism is not one the kinematics solves.
-    """
+    """The reader behind :func:`synthesis.problem.load_problem` (which see)."""
     return _read(TableReader.from_path(path), Path(path).parent)
 
 

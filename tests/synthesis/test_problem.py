@@ -112,12 +112,18 @@ def test_nothing_varied_and_missing_mechanism() -> None:
     assert any("mechanism: this field is missing" in m for m in _messages(bad))
 
 
-def test_missing_mechanism_file_names_the_file(tmp_path: Path) -> None:
+def _with_mechanism_file(tmp_path: Path, name: str) -> Path:
+    """A copy of GOOD in tmp_path whose identification table is the file ``name``."""
     data = copy.deepcopy(GOOD)
     del data["structure_identification"]
-    data["mechanism"] = "nowhere.yaml"
+    data["mechanism"] = name
     path = tmp_path / "problem.yaml"
     path.write_text(yaml.safe_dump(data), encoding="utf-8")
+    return path
+
+
+def test_missing_mechanism_file_names_the_file(tmp_path: Path) -> None:
+    path = _with_mechanism_file(tmp_path, "nowhere.yaml")
     with pytest.raises(TableError) as caught:
         load_problem(path)
     assert "nowhere.yaml: the file does not exist" in str(caught.value)
@@ -199,13 +205,8 @@ def test_a_mechanism_file_reports_its_own_problems(tmp_path: Path) -> None:
     rows[1]["i_minus_one"] = 0
     (tmp_path / "chain.yaml").write_text(yaml.safe_dump({"structure_identification": rows}),
                                          encoding="utf-8")
-    data = copy.deepcopy(GOOD)
-    del data["structure_identification"]
-    data["mechanism"] = "chain.yaml"
-    path = tmp_path / "problem.yaml"
-    path.write_text(yaml.safe_dump(data), encoding="utf-8")
     with pytest.raises(TableError) as caught:
-        load_problem(path)
+        load_problem(_with_mechanism_file(tmp_path, "chain.yaml"))
     assert caught.value.source == str(tmp_path / "chain.yaml")
     assert any(issue.location.startswith("structure_identification[1]")
                and "i_minus_one" in str(issue) for issue in caught.value.issues)

@@ -81,11 +81,9 @@ def read_request(data: dict[str, Any], source: str) -> tuple[Request, str]:
         given = [k for k, v in zip(("e", "delta", "psi2_deg"), optional)
                  if isinstance(v, (int, float))]
         if len(given) == 3:
-            reader.add(TABLE, "e, delta and psi2_deg are all given: with e given, prescribing "
-                              "both zones over-determines the problem; leave one of them out")
+            reader.problem(TABLE, "case.fourbar.overdetermined")
         elif len(given) < 2 and all(v is None or isinstance(v, (int, float)) for v in optional):
-            reader.add(TABLE, "give two of e, delta and psi2_deg (the third one is found); "
-                              f"found only {', '.join(given) or 'none'}")
+            reader.problem(TABLE, "case.fourbar.underdetermined", given=", ".join(given) or "—")
     reader.raise_if_any()
 
     def angle(key: str) -> float | None:

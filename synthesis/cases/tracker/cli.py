@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from assur import Issue, TableError
+from assur import Issue, Message, TableError
 from synthesis.cases.command import add_output_args, add_table_arg, emit
 from synthesis.cases.tracker.report import summary, to_dict
 from synthesis.cases.tracker.study import run_study
@@ -49,8 +49,8 @@ def run(args: argparse.Namespace) -> int:
     names = [dest for _, dest, *_ in _OPTIONS] + ["k2", "k5"]
     overrides = {name: getattr(args, name) for name in names if getattr(args, name) is not None}
     if not 0 <= args.budget <= 20:
-        raise TableError("command line", [Issue("option '--budget'", f"must lie in [0, 20]; "
-                                                                      f"found {args.budget}")])
+        raise TableError("command line", [Issue("option '--budget'", Message(
+            "case.tracker.budget", {"found": args.budget}))])
     study = run_study(load_task(args.table, overrides), budget_log2=args.budget or None,
                       seed=args.seed, progress=args.budget >= 14)
     emit(args, lambda: to_dict(study), lambda lang: summary(study, lang))

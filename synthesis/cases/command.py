@@ -15,13 +15,14 @@ import argparse
 import json
 import sys
 from collections.abc import Callable, Mapping
-from typing import Any, Protocol
+from typing import Any, Protocol, runtime_checkable
 
 from assur.text import languages
 
 __all__ = ["Case", "add_output_args", "add_table_arg", "emit"]
 
 
+@runtime_checkable
 class Case(Protocol):
     """The command module of a built-in case (``synthesis/cases/<name>/cli.py``)."""
 

@@ -35,8 +35,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
-from scipy import optimize  # type: ignore[import-untyped]
-from scipy.stats import qmc  # type: ignore[import-untyped]
+from scipy import optimize
+from scipy.stats import qmc
 
 from assur import AssurError
 from assur.text import Message
@@ -620,7 +620,7 @@ def _bounds(lower: npt.ArrayLike, upper: npt.ArrayLike, initial: npt.ArrayLike
 
 def _check_rng(rng: Any) -> RNG:
     if rng is None or isinstance(rng, np.random.Generator) or (_whole(rng) and rng >= 0):
-        return rng  # type: ignore[no-any-return]
+        return rng
     raise SettingError(Message("search.rng", {"found": rng}))
 
 

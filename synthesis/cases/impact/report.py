@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from typing import Any, Literal
+from typing import Any
 
 import numpy as np
 
@@ -13,7 +13,7 @@ from synthesis.cases.impact.study import ImpactStudy
 
 __all__ = ["report_json", "report_text"]
 
-Lang = Literal["en", "ru"]
+Lang = str  # a language of the catalogue (assur.text.languages())
 
 _TEXT: dict[str, dict[str, str]] = {
     "title": {

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Any, Literal
+from typing import Any
 
 import numpy as np
 
@@ -28,7 +28,7 @@ from synthesis.cases.tracker.synthesis_problem import SynthesisAnswer
 
 __all__ = ["Lang", "inconsistencies", "notes", "summary", "to_dict", "violation_text"]
 
-Lang = Literal["en", "ru"]
+Lang = str  # a language of the catalogue (assur.text.languages())
 
 _T: dict[str, tuple[str, str]] = {
     "title": ("Rhomboid orientation mechanism of a solar tracker driven by a linear actuator "

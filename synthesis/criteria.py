@@ -22,6 +22,7 @@ Two designs, three control points of a class-2 task (slider stroke law):
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
 
@@ -466,7 +467,11 @@ class Criteria:
     def __len__(self) -> int:
         return int(self.p1.shape[0])
 
-    def take(self, index: npt.ArrayLike) -> Criteria:
+    def arrays(self) -> tuple[FloatArray, ...]:
+        """The five arrays, in field order."""
+        return self.p1, self.p2, self.q, self.deviations, self.residuals
+
+    def take(self, index: Sequence[int] | npt.NDArray[np.intp]) -> Criteria:
         """The criteria of a subset of the designs."""
         return Criteria(self.p1[index], self.p2[index], self.q[index], self.deviations[index],
                         self.residuals[index])

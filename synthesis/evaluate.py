@@ -34,8 +34,10 @@ import numpy as np
 import numpy.typing as npt
 
 import assur
+from assur import Issue, KinematicModel, Motion, TableError
+from assur.text import Message
 from synthesis import criteria as C
-from synthesis.problem import Problem
+from synthesis.problem import Problem, output_slider
 
 __all__ = ["Analysis", "Evaluator"]
 
@@ -71,7 +73,7 @@ class Analysis:
         Group label → largest excursion of each joint outside its box, shape (D, J), mm.
     """
 
-    motion: Any
+    motion: Motion
     grid: FloatArray
     output_grid: npt.NDArray[Any]
     output_control: npt.NDArray[Any]
@@ -91,6 +93,11 @@ class Evaluator:
     grid : int, optional
         Positions of the analysis grid (default: the problem's ``grid``).
 
+    Raises
+    ------
+    TableError
+        When the problem gives an allowable pressure angle to a group that has none (the
+        check needs an analysis, so it is made here rather than when the table is read).
     Examples
     --------
     ``Evaluator(problem)(X)`` gives the :class:`~synthesis.criteria.Criteria` of the rows of
@@ -107,30 +114,34 @@ class Evaluator:
         model = problem.model
         self.output_link = problem.output.link
         self.label, self.side = model.links[self.output_link]
-        self._slider_pair = self._find_slider() if problem.task_class == 2 else None
+        self._slider_pair = (output_slider(model, self.output_link) if problem.task_class == 2
+                             else None)
         self.lower = problem.lower
         self.upper = problem.upper
+        self._check_pressure_angles()
+
+    def _check_pressure_angles(self) -> None:
+        """Pressure angles exist only for L1/L2 groups with a two-hinge rod
+        (``method.md`` §2.7); which groups have one is known from an analysis."""
+        wanted = self.problem.pressure_angles
+        if not wanted:
+            return
+        motion = assur.analyse(self.problem.model, np.zeros(1))
+        computed = {item.label for item in assur.pressure_angles(motion)}
+        issues = [Issue(f"allowable ({label}) 'pressure_angle'",
+                        Message("problem.pressure_none", {"group": label}))
+                  for label in wanted if label not in computed]
+        if issues:
+            raise TableError(self.problem.source, issues)
 
     # ------------------------------------------------------------------ model and motion
-    def model(self, x: npt.ArrayLike) -> Any:
+    def model(self, x: npt.ArrayLike) -> KinematicModel:
         """The kinematic model with the varied parameters of the designs X, shape (D, q)."""
         x = np.atleast_2d(np.asarray(x, dtype=float))
         return self.problem.model.with_params(
             {name: x[:, k:k + 1] for k, name in enumerate(self.problem.names)})
 
-    def _find_slider(self) -> Any:
-        pairs = self.problem.model.pair_links
-        frame = self.problem.model.frame
-        options = [pid for pid, (kind, links, carrier) in pairs.items()
-                   if kind == "P" and self.output_link in links and carrier != self.output_link]
-        options.sort(key=lambda pid: pairs[pid][2] != frame)
-        if not options:
-            raise assur.StructureError(f"{self.problem.source}: output link "
-                                       f"{self.output_link!r} has no prismatic pair; task class "
-                                       f"2 needs a slider")
-        return options[0]
-
-    def _point(self, motion: Any, model: Any) -> Any:
+    def _point(self, motion: Motion, model: KinematicModel) -> Any:
         """The tracing point Ж of the output link over the analysed positions."""
         name = self.problem.output.point
         if name in motion.tracing:
@@ -146,7 +157,7 @@ class Evaluator:
         """Criteria of the designs X, shape (D, q)."""
         return self.analyse(x, curve=False).criteria
 
-    def ratio(self, model: Any, phi: FloatArray) -> FloatArray:
+    def ratio(self, model: KinematicModel, phi: FloatArray) -> FloatArray:
         """Velocity ratio of the output link at crank rotations φ, shape (D, len(φ)).
 
         Parameters
@@ -180,7 +191,9 @@ class Evaluator:
         """
         motion = assur.analyse(model, phi, analogs=True)
         shape = np.broadcast_shapes(model.design_shape, np.shape(phi))
-        return np.atleast_2d(np.broadcast_to(motion.link_angle(self.output_link).d1, shape))
+        angle = motion.link_angle(self.output_link)
+        assert isinstance(angle, assur.Jet)  # analogs=True carries jets
+        return np.atleast_2d(np.broadcast_to(angle.d1, shape))
 
     def analyse(self, x: npt.ArrayLike, *, curve: bool = True) -> Analysis:
         """Analyse the designs X over the grid and the control angles.
@@ -201,6 +214,8 @@ class Evaluator:
         p1 = self._existence(motion, model, d)
         cls = self.problem.task_class
         control = self.problem.control
+        out: npt.NDArray[Any]
+        out_grid: npt.NDArray[Any]
         with np.errstate(invalid="ignore"):
             if cls == 1:
                 if self.problem.output.ratio:
@@ -215,13 +230,14 @@ class Evaluator:
                     wrap = np.angle(np.exp(1j * (raw[:, n:] - raw[:, nearest])))
                     out = out_grid[:, nearest] + wrap
                 phi_c = np.broadcast_to(self.control_phi, out.shape)
-                if control.zone:
+                if control.lower is not None and control.upper is not None:  # a zone
                     dev = C.zone_deviations(out, control.lower, control.upper, control.weight)
                     res = C.zone_residuals(out, control.lower, control.upper, control.weight)
                 else:
                     dev = C.value_deviations(out, control.value, control.weight)
                     res = dev
             elif cls == 2:
+                assert self._slider_pair is not None
                 s = _full(assur.values(motion.sliders[self._slider_pair].s), d,
                           self.positions.size)
                 out_grid = s[:, :n] - s[:, :1]
@@ -261,7 +277,8 @@ class Evaluator:
         return Analysis(motion, self.grid, out_grid, out, np.asarray(phi_c),
                         C.Criteria(p1, p2, q, dev, res), pressure, rotation, workspace)
 
-    def _nearest(self, model: Any, phi: FloatArray) -> tuple[FloatArray, npt.NDArray[Any]]:
+    def _nearest(self, model: KinematicModel, phi: FloatArray
+                 ) -> tuple[FloatArray, npt.NDArray[Any]]:
         """Newton refinement in φ of the nearest path points (class 3).
 
         The start (from the grid polygon) is already within O(h²) of the minimum, so two
@@ -281,7 +298,7 @@ class Evaluator:
             point = jet.v + jet.d1 * step + 0.5 * jet.d2 * step ** 2
         return phi, np.asarray(point)
 
-    def _existence(self, motion: Any, model: Any, d: int) -> FloatArray:
+    def _existence(self, motion: Motion, model: KinematicModel, d: int) -> FloatArray:
         """P1 over all analysed positions (``criteria.existence_penalty``)."""
         shape = (d, self.positions.size)
         first = np.zeros(shape, dtype=int)
@@ -299,7 +316,7 @@ class Evaluator:
             violation = np.where(new, v, violation)
         return C.existence_penalty(first, violation, len(model.groups))
 
-    def _desirable(self, motion: Any, d: int, n: int
+    def _desirable(self, motion: Motion, d: int, n: int
                    ) -> tuple[dict[str, FloatArray], dict[str, FloatArray]]:
         """Largest pressure angles (D, 1) and joint rotation ranges (D, J) over the grid."""
         pressure: dict[str, FloatArray] = {}
@@ -312,16 +329,16 @@ class Evaluator:
                     pressure[item.label] = np.max(alpha, axis=1)[:, None]
         if self.problem.rotations:
             swings = {}
-            for item in assur.joint_rotations(motion):
-                theta = np.nan_to_num(_full(item.theta, d, size)[:, :n])
-                swings[item.pair] = np.ptp(theta, axis=1)
+            for joint in assur.joint_rotations(motion):
+                theta = np.nan_to_num(_full(joint.theta, d, size)[:, :n])
+                swings[joint.pair] = np.ptp(theta, axis=1)
             for label, limits in self.problem.rotations.items():
                 group = motion.model.group(label)
                 rotation[label] = np.stack([swings[group.pairs[role]] for role in limits],
                                            axis=1)
         return pressure, rotation
 
-    def _workspace(self, motion: Any, d: int, n: int) -> dict[str, FloatArray]:
+    def _workspace(self, motion: Motion, d: int, n: int) -> dict[str, FloatArray]:
         """Largest excursion of each group's revolute joints outside its box, (D, J) mm."""
         out: dict[str, FloatArray] = {}
         size = self.positions.size

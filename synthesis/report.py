@@ -14,98 +14,27 @@ from __future__ import annotations
 import json
 import math
 import os
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
-import yaml
+import yaml  # type: ignore[import-untyped]
 
 from assur import atomic_write_text
+from assur.text import render
+from synthesis.criteria import criterion_rms
 from synthesis.evaluate import Analysis
-from synthesis.i18n import LANGUAGES, in_language
+from synthesis.i18n import LANGUAGES
 from synthesis.problem import Problem
 from synthesis.search import SearchResult
 
 __all__ = ["LANGUAGES", "summary", "text_report", "write_result", "write_trials"]
 
-_WORDS: dict[str, tuple[str, str]] = {
-    "title": ("Synthesis of {name}: task class {cls} ({what})",
-              "Синтез {name}: задача класса {cls} ({what})"),
-    "class1": ("rotating output ψ(φ)", "вращательное движение выходного звена ψ(φ)"),
-    "class1_ratio": ("velocity ratio n(φ) = dψ/dφ of the rotating output",
-                     "передаточное отношение n(φ) = dψ/dφ выходного звена"),
-    "class2": ("slider output S(φ)", "поступательное движение выходного звена S(φ)"),
-    "class3": ("tracing-point path without timing", "траектория точки без согласования"),
-    "class4": ("tracing-point path with timing", "траектория точки с согласованием по φ"),
-    "design": ("Design (varied parameters, table units: mm, degrees)",
-               "Найденные параметры (единицы таблиц: мм, градусы)"),
-    "rad": ("rad", "рад"),
-    "mm": ("mm", "мм"),
-    "1": ("", ""),
-    "param": ("parameter", "параметр"),
-    "initial": ("initial", "начальное"),
-    "lower": ("lower", "левая граница"),
-    "upper": ("upper", "правая граница"),
-    "found": ("found", "найдено"),
-    "criteria": ("Criteria", "Критерии"),
-    "q": ("Q = max |Δ_K| (accuracy)", "Q = max |Δ_K| (точность)"),
-    "rms": ("RMS deviation", "среднеквадратичное отклонение"),
-    "p1": ("P1 (existence over the cycle)", "P1 (существование на всём цикле)"),
-    "p2": ("P2 (desirable conditions)", "P2 (желательные условия)"),
-    "required": ("required accuracy [Q]", "требуемая точность [Q]"),
-    "favourable": ("favourable mechanism", "благоприятный механизм"),
-    "yes": ("yes", "да"),
-    "no": ("no", "нет"),
-    "deviations": ("Deviations at the control points", "Отклонения в контрольных точках"),
-    "target": ("target", "задано"),
-    "reproduced": ("reproduced", "воспроизведено"),
-    "pressure": ("Pressure angles (largest over the cycle)",
-                 "Углы давления (наибольшие за цикл)"),
-    "allowed": ("allowable", "допускаемый"),
-    "rotations": ("Relative rotations in joints", "Относительные повороты в шарнирах"),
-    "binding": ("Conditions that bind", "Активные условия"),
-    "workspace": ("Working space of the joints (mm)", "Рабочее пространство шарниров (мм)"),
-    "outside": ("largest excursion outside", "наибольший выход за пределы"),
-    "at_bound": ("{p} is at its {side} bound", "{p} на {side} границе"),
-    "side_lower": ("lower", "левой"),
-    "side_upper": ("upper", "правой"),
-    "margin": ("smallest existence margin of {g}: {m:.4g} (δ = {d:g})",
-               "наименьший запас существования {g}: {m:.4g} (δ = {d:g})"),
-    "alternance": ("|Δ_K| reaches Q at control points {k}",
-                   "|Δ_K| достигает Q в контрольных точках {k}"),
-    "near_limit": ("pressure angle of {g} is within 5 % of [α]",
-                   "угол давления {g} в пределах 5 % от [α]"),
-    "none": ("none", "нет"),
-    "search": ("Search", "Поиск"),
-    "trials": ("trials", "испытаний"),
-    "feasible_trials": ("feasible trials (P1 = P2 = 0)", "допустимых испытаний (P1 = P2 = 0)"),
-    "stop": ("stop", "остановка"),
-    "time": ("wall time", "время"),
-    "history": ("improvements of the best design", "улучшения лучшего решения"),
-    "trial": ("trial", "испытание"),
-    "stage": ("stage", "этап"),
-    "stage_initial": ("initial", "начальное"),
-    "stage_lptau": ("LPτ", "ЛПτ"),
-    "stage_shrink": ("shrink", "сужение"),
-    "stage_refine": ("refine", "уточнение"),
-    "seconds": ("s", "с"),
-    "table": ("Feasible passive trials, best {n} by Q (the designer may pick any)",
-              "Допустимые пассивные испытания, лучшие {n} по Q (проектировщик выбирает "
-              "любое)"),
-    "not_feasible": ("No feasible design was found: P1 > 0 or P2 > 0.",
-                     "Допустимого решения не найдено: P1 > 0 или P2 > 0."),
-    "favourable_stop": ("a favourable mechanism was found", "найден благоприятный механизм"),
-    "stall_stop": ("no progress", "нет улучшения"),
-    "budget_stop": ("trial budget used up", "исчерпан бюджет испытаний"),
-    "time_stop": ("time limit used up", "исчерпан лимит времени"),
-    "interrupted_stop": ("interrupted (Ctrl-C), best design kept",
-                         "прервано (Ctrl-C), сохранено лучшее решение"),
-}
-
-
-def _w(key: str, lang: str) -> str:
-    return in_language(_WORDS[key], lang)
+def _w(key: str, lang: str, **data: Any) -> str:
+    """A sentence of the report from the catalogue (codes ``synth.report.<key>``)."""
+    return render(f"synth.report.{key}", lang, **data)
 
 
 def _num(value: Any) -> float | None:
@@ -141,7 +70,7 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
             row["phi"] = math.degrees(control.phi[k])
         if problem.task_class in (1, 2):
             scale = problem.output_scale
-            if control.zone:
+            if control.lower is not None and control.upper is not None:  # a zone
                 row.update(lower=float(control.lower[k]) * scale,
                            upper=float(control.upper[k]) * scale)
             else:
@@ -160,7 +89,7 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
         "Q": _num(c.q[0]),
         "unit": problem.output_unit,
         "output": problem.output.quantity,
-        "Q_rms": _num(np.sqrt(np.mean((c.deviations[0] / control.weight) ** 2))),
+        "Q_rms": _num(criterion_rms(c.deviations[0], control.weight)),
         "P1": float(c.p1[0]),
         "P2": _num(c.p2[0]),
         "accuracy": problem.accuracy,
@@ -185,15 +114,15 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
             "feasible_trials": int(np.sum((result.trial_criteria.p1 == 0)
                                           & (result.trial_criteria.p2 == 0))),
             "stop": result.stop, "message": result.message,
-            "seconds": result.elapsed, "seed": result.settings.seed,
+            "seconds": result.elapsed, "seed": result.seed,
             "budget_log2": result.settings.budget_log2, "refine": result.settings.refine,
-            "history": result.history,
+            "history": [h.as_dict() for h in result.history],
         },
         "feasible_table": trials,
     }
 
 
-def _margins(analysis: Analysis) -> dict[str, dict[str, float]]:
+def _margins(analysis: Analysis) -> dict[str, dict[str, float | None]]:
     motion = analysis.motion
     n = analysis.grid.size
     out = {}
@@ -224,9 +153,9 @@ def _binding(problem: Problem, result: SearchResult, analysis: Analysis) -> list
         if v[0, 0] >= 0.95 * problem.pressure_angles[label]:
             out.append({"kind": "pressure", "group": label})
     for label, info in _margins(analysis).items():
-        if info["min_margin"] is not None and info["min_margin"] < info["delta"] + 0.02:
-            out.append({"kind": "margin", "group": label, "margin": info["min_margin"],
-                        "delta": info["delta"]})
+        margin, delta = info["min_margin"], info["delta"]
+        if margin is not None and delta is not None and margin < delta + 0.02:
+            out.append({"kind": "margin", "group": label, "margin": margin, "delta": delta})
     return out
 
 
@@ -248,9 +177,11 @@ def _feasible_trials(problem: Problem, result: SearchResult, top: int) -> list[d
 
 def text_report(data: dict[str, Any], lang: str = "en") -> str:
     """The report of :func:`summary` data as text in English or Russian."""
-    w = lambda key: _w(key, lang)  # noqa: E731
+    def w(key: str, **data: Any) -> str:
+        return _w(key, lang, **data)
+
     what = f"class{data['task_class']}" + ("_ratio" if data.get("output") == "ratio" else "")
-    lines = [w("title").format(name=data["name"], cls=data["task_class"], what=w(what)), ""]
+    lines = [w("title", name=data["name"], cls=data["task_class"], what=w(what)), ""]
     lines += [w("design"),
               f"  {w('param'):<22} {w('initial'):>12} {w('lower'):>12} {w('upper'):>12} "
               f"{w('found'):>14}"]
@@ -259,7 +190,7 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
         lines.append(f"  {name:<22} {data['initial'][name]:>12.6g} {lo:>12.6g} {hi:>12.6g} "
                      f"{value:>14.9g}")
     yes_no = lambda flag: w("yes") if flag else w("no")  # noqa: E731
-    unit = w(data["unit"])
+    unit = "" if data["unit"] == "1" else w(data["unit"])  # the ratio n has no unit
     in_degrees = (f" ({math.degrees(data['Q']):.6g}°)"
                   if data["unit"] == "rad" and data["Q"] is not None else "")
     lines += ["", w("criteria"),
@@ -308,21 +239,21 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
         lines.append(f"  {w('none')}")
     for item in data["binding"]:
         if item["kind"] == "bound":
-            lines.append("  " + w("at_bound").format(p=item["parameter"],
-                                                     side=w(f"side_{item['side']}")))
+            lines.append("  " + w("at_bound", p=item["parameter"],
+                                           side=w(f"side_{item['side']}")))
         elif item["kind"] == "alternance":
-            lines.append("  " + w("alternance").format(k=", ".join(map(str, item["points"]))))
+            lines.append("  " + w("alternance", k=", ".join(map(str, item["points"]))))
         elif item["kind"] == "pressure":
-            lines.append("  " + w("near_limit").format(g=item["group"]))
+            lines.append("  " + w("near_limit", g=item["group"]))
         else:
-            lines.append("  " + w("margin").format(g=item["group"], m=item["margin"],
+            lines.append("  " + w("margin", g=item["group"], m=item["margin"],
                                                    d=item["delta"]))
     s = data["search"]
     lines += ["", w("search"),
               f"  {w('trials')}: {s['trials']}   {w('feasible_trials')}: {s['feasible_trials']}",
               f"  {w('stop')}: {w(s['stop'] + '_stop')}   "
               f"{w('time')}: {s['seconds']:.2f} {w('seconds')}   "
-              f"seed {s['seed']}, 2^{s['budget_log2']} LPτ",
+              f"seed {'—' if s['seed'] is None else s['seed']}, 2^{s['budget_log2']} LPτ",
               f"  {w('history')}:"]
     history = s["history"]
     if len(history) > 12:
@@ -335,7 +266,7 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
     table = data["feasible_table"]
     if table:
         names = list(data["design"])
-        lines += ["", w("table").format(n=len(table)),
+        lines += ["", w("table", n=len(table)),
                   "  " + f"{w('trial'):>7} {w('stage'):<8} {'Q':>12} "
                   + " ".join(f"{n:>16}" for n in names)]
         for row in table:
@@ -350,24 +281,24 @@ def _fmt(value: Any) -> str:
 
 
 def write_result(path: str | os.PathLike[str], problem: Problem, result: SearchResult,
-                 data: dict[str, Any]) -> None:
+                 data: Mapping[str, Any], lang: str = "en") -> None:
     """Write the identification table of the best design (YAML, or JSON for ``.json``).
 
     The file is a mechanism table that ``assur analyze`` reads; the criteria stand in comment
-    lines at the top of a YAML file (a JSON file carries only the table).
+    lines at the top of a YAML file, in ``lang`` (a JSON file carries only the table).
     """
     table = problem.mechanism_table(result.x)
     if Path(path).suffix.lower() == ".json":
         atomic_write_text(path, json.dumps(table, indent=2, ensure_ascii=False) + "\n")
         return
-    head = [f"# Result of the synthesis of {problem.source} (task class {problem.task_class})",
-            f"# Q = {_fmt(data['Q'])}, P1 = {_fmt(data['P1'])}, P2 = {_fmt(data['P2'])}, "
-            f"RMS = {_fmt(data['Q_rms'])}",
-            f"# seed {result.settings.seed}, {data['search']['trials']} trials, "
-            f"stop: {result.stop}"]
+    seed = "—" if result.seed is None else result.seed
+    head = _w("result_head", lang, source=problem.source, cls=problem.task_class,
+              q=_fmt(data["Q"]), p1=_fmt(data["P1"]), p2=_fmt(data["P2"]),
+              rms=_fmt(data["Q_rms"]), seed=seed, trials=data["search"]["trials"],
+              stop=result.stop)
     body = yaml.safe_dump(table, sort_keys=False, allow_unicode=True, default_flow_style=None,
                           width=100)
-    atomic_write_text(path, "\n".join(head) + "\n" + body)
+    atomic_write_text(path, "".join(f"# {line}\n" for line in head.splitlines()) + body)
 
 
 def write_trials(path: str | os.PathLike[str], problem: Problem, result: SearchResult) -> int:

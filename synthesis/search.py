@@ -26,67 +26,171 @@ Ctrl-C stops the search cleanly; the best design found so far is returned.
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
-from typing import Any
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
 from scipy import optimize
 from scipy.stats import qmc
 
+from assur import AssurError
+from assur.text import Message
 from synthesis.criteria import Criteria, Objective, merit
 
-__all__ = ["STOP_REASONS", "SearchResult", "SearchSettings", "search", "settings_for"]
+if TYPE_CHECKING:
+    from synthesis.problem import Problem
+
+__all__ = ["STOP_REASONS", "Improvement", "SearchResult", "SearchSettings", "SettingError",
+           "search", "setting_problem", "settings_for"]
 
 FloatArray = npt.NDArray[np.float64]
 Evaluator = Callable[[FloatArray], Criteria]
+#: A source of randomness in the sense of SPEC 7: a seed, a Generator, or None (the settings' seed).
+RNG = int | np.random.Generator | None
 
-STOP_REASONS = {
-    "favourable": "a favourable mechanism was found (P1 = P2 = 0, Q within the required accuracy)",
-    "stall": "no progress in the last trials",
-    "budget": "the trial budget is used up",
-    "time": "the time limit is used up",
-    "interrupted": "the search was interrupted (Ctrl-C); the best design so far is kept",
+#: Stop reason → catalogue code of its sentence.
+STOP_REASONS = {reason: f"search.stop.{reason}"
+                for reason in ("favourable", "stall", "budget", "time", "interrupted")}
+
+#: Largest budget: 2**24 LPτ trials.
+MAX_BUDGET = 24
+#: Largest number of shrinking passes.
+MAX_SHRINK_PASSES = 10
+
+
+def _whole(value: Any) -> bool:
+    return isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))
+
+
+def _real(value: Any) -> bool:
+    return (isinstance(value, (int, float, np.integer, np.floating))
+            and not isinstance(value, (bool, np.bool_)) and math.isfinite(value))
+
+
+def _optional(test: Callable[[Any], bool]) -> Callable[[Any], bool]:
+    return lambda value: value is None or test(value)
+
+
+#: The rule of every setting: field of :class:`SearchSettings` → (catalogue code, test).
+#: The same rules check the command-line options and the ``search:`` table of a problem.
+_RULES: dict[str, tuple[str, Callable[[Any], bool]]] = {
+    "budget_log2": ("search.budget", lambda v: _whole(v) and 0 <= v <= MAX_BUDGET),
+    "seed": ("search.seed", lambda v: _whole(v) and v >= 0),
+    "batch": ("search.batch", lambda v: _whole(v) and v >= 1 and (v & (v - 1)) == 0),
+    "stall": ("search.stall", _optional(lambda v: _whole(v) and v >= 1)),
+    "time_limit": ("search.time_limit", _optional(lambda v: _real(v) and v > 0)),
+    "q_required": ("search.accuracy", _optional(lambda v: _real(v) and v > 0)),
+    "objective": ("search.objective", lambda v: v in ("lexicographic", "weighted")),
+    "p2_weight": ("search.p2_weight", lambda v: _real(v) and v > 0),
+    "shrink_passes": ("search.shrink_passes",
+                      lambda v: _whole(v) and 0 <= v <= MAX_SHRINK_PASSES),
+    "shrink": ("search.shrink", lambda v: _real(v) and 0 < v < 1),
+    "refine": ("search.refine", lambda v: isinstance(v, (bool, np.bool_))),
+    "refine_starts": ("search.refine_starts", lambda v: _whole(v) and v >= 1),
+    "refine_evaluations": ("search.refine_evaluations", lambda v: _whole(v) and v >= 1),
+    "progress": ("search.progress", lambda v: isinstance(v, (bool, np.bool_))),
 }
+
+
+def setting_problem(name: str, value: Any) -> Message | None:
+    """The broken rule of one search setting, or None when the value is allowed.
+
+    Parameters
+    ----------
+    name : str
+        A field of :class:`SearchSettings` (``'budget_log2'``, ``'batch'``, ``'shrink'``, …).
+    value : object
+        The value to check.
+
+    Returns
+    -------
+    Message or None
+        The catalogue message stating the rule and the value found.
+
+    Examples
+    --------
+    >>> setting_problem("budget_log2", -3).text("en")
+    'budget (log2 of the LPτ trials) must be a whole number from 0 to 24; got -3'
+    >>> setting_problem("shrink", 0.25) is None
+    True
+    """
+    code, test = _RULES[name]
+    if test(value):
+        return None
+    return Message(code, {"found": value})
+
+
+class SettingError(AssurError, ValueError):
+    """A search setting breaks its rule (the message states the rule and the value).
+
+    The command line reports it like a table problem, with exit code 2.
+    """
+
+    def __init__(self, message: Message) -> None:
+        self.message = message
+        super().__init__(message.text("en"))
+
+    def text(self, lang: str = "en") -> str:
+        """The sentence in ``lang``."""
+        return self.message.text(lang)
 
 
 @dataclass(frozen=True)
 class SearchSettings:
-    """Options of the search.
+    """Options of the search, checked when they are made.
 
     Parameters
     ----------
     budget_log2 : int
-        The passive pass draws up to 2**budget_log2 LPτ trials.
+        The passive pass draws up to 2**budget_log2 LPτ trials (0 to 24).
     seed : int
-        Seed of the scrambled Sobol' sequence (same seed, same trials, same result).
+        Seed of the scrambled Sobol' sequence (a whole number ≥ 0; same seed, same trials,
+        same result).
     batch : int
-        Designs evaluated per call of the evaluator (a power of two).
+        Designs evaluated per call of the evaluator (a power of two, which keeps every
+        partial draw of the sequence balanced).
     stall : int or None
         Stop after this many trials without improvement (None: never).
     time_limit : float or None
-        Wall-time limit in seconds for the whole search (None: none).
+        Wall-time limit in seconds for the whole search (positive; None: none).
     q_required : float or None
-        The required accuracy [Q]; a feasible design with Q ≤ [Q] stops the search.
+        The required accuracy [Q] (positive); a feasible design with Q ≤ [Q] stops the search.
     objective : {'lexicographic', 'weighted'}
         How P1, P2 and Q are combined (see :func:`synthesis.criteria.merit`).
     p2_weight : float
-        λ of the weighted objective.
+        λ of the weighted objective (positive).
     shrink_passes : int
-        Number of passive passes in boxes shrunk around the best design.
+        Number of passive passes in boxes shrunk around the best design (0 to 10).
     shrink : float
-        Half-width factor of each shrunk box relative to the previous one.
+        Half-width factor of each shrunk box relative to the previous one, in (0, 1).
     refine : bool
         Whether to refine locally from the best trials.
     refine_starts : int
-        Number of distinct best trials the refinement starts from.
+        Number of distinct best trials the refinement starts from (≥ 1).
     refine_evaluations : int
-        Limit of residual evaluations per refinement start.
+        Limit of residual evaluations per refinement start (≥ 1).
     progress : bool
         Print progress lines on standard error.
+
+    Raises
+    ------
+    SettingError
+        For the first setting that breaks its rule; the message states the rule.
+
+    Examples
+    --------
+    >>> SearchSettings(budget_log2=8, shrink=0.5).shrink
+    0.5
+    >>> SearchSettings(batch=0)
+    Traceback (most recent call last):
+    ...
+    synthesis.search.SettingError: batch must be a power of two (1, 2, 4, …: designs per \
+evaluation); got 0
     """
 
     budget_log2: int = 12
@@ -104,10 +208,48 @@ class SearchSettings:
     refine_evaluations: int = 200
     progress: bool = False
 
+    def __post_init__(self) -> None:
+        for name in _RULES:
+            problem = setting_problem(name, getattr(self, name))
+            if problem is not None:
+                raise SettingError(problem)
 
-@dataclass
+
+@dataclass(frozen=True)
+class Improvement:
+    """One improvement of the best design during the search.
+
+    Attributes
+    ----------
+    trial : int
+        Number of the trial that improved the best (0 = the initial design).
+    seconds : float
+        Wall time since the start of the search.
+    p1, p2, q : float
+        The criteria of the new best design.
+    merit : float
+        Its scalar objective (:func:`synthesis.criteria.merit`).
+    stage : str
+        Where the trial came from: 'initial', 'lptau', 'shrink', 'refine'.
+    """
+
+    trial: int
+    seconds: float
+    p1: float
+    p2: float
+    q: float
+    merit: float
+    stage: str
+
+    def as_dict(self) -> dict[str, float | str]:
+        """Plain data for reports and JSON (the trial number as a float, as the criteria)."""
+        return {"trial": float(self.trial), "seconds": self.seconds, "p1": self.p1,
+                "p2": self.p2, "q": self.q, "merit": self.merit, "stage": self.stage}
+
+
+@dataclass(frozen=True)
 class SearchResult:
-    """What the search found.
+    """What the search found (immutable: its arrays are read-only).
 
     Attributes
     ----------
@@ -119,25 +261,36 @@ class SearchResult:
         Every evaluated design, in order (trial 0 = initial values).
     trial_criteria : Criteria
         Their criteria.
-    stage : list of str
+    stage : tuple of str
         Where each trial came from: 'initial', 'lptau', 'shrink', 'refine'.
-    history : list of dict
-        One entry per improvement of the best: trial number, seconds, P1, P2, Q, merit.
+    history : tuple of Improvement
+        One entry per improvement of the best.
     stop : str
         Key of :data:`STOP_REASONS`.
     elapsed : float
         Wall time of the search, seconds.
+    settings : SearchSettings
+        The settings of the run.
+    seed : int or None
+        The seed of the LPτ scrambling; None when the search drew from a Generator given
+        as ``rng``.
     """
 
     x: FloatArray
     criteria: Criteria
     trials: FloatArray
     trial_criteria: Criteria
-    stage: list[str]
-    history: list[dict[str, float]]
+    stage: tuple[str, ...]
+    history: tuple[Improvement, ...]
     stop: str
     elapsed: float
-    settings: SearchSettings = field(repr=False, default_factory=SearchSettings)
+    settings: SearchSettings
+    seed: int | None
+
+    def __post_init__(self) -> None:
+        for array in (self.x, self.trials, *self.criteria.arrays(),
+                      *self.trial_criteria.arrays()):
+            array.setflags(write=False)
 
     @property
     def feasible(self) -> bool:
@@ -146,8 +299,12 @@ class SearchResult:
 
     @property
     def message(self) -> str:
-        """The stop reason as a sentence."""
-        return STOP_REASONS[self.stop]
+        """The stop reason as a sentence (English; :meth:`stop_message` in any language)."""
+        return self.stop_message().text("en")
+
+    def stop_message(self) -> Message:
+        """The stop reason as a catalogue message."""
+        return Message(STOP_REASONS[self.stop])
 
 
 class _Stop(Exception):
@@ -162,16 +319,19 @@ class _Search:
     """State of one search run (the public entry point is :func:`search`)."""
 
     def __init__(self, evaluate: Evaluator, lower: FloatArray, upper: FloatArray,
-                 settings: SearchSettings) -> None:
+                 settings: SearchSettings, rng: RNG) -> None:
         self.evaluate = evaluate
         self.lower = lower
         self.upper = upper
         self.settings = settings
+        self.seed = settings.seed if rng is None else None if isinstance(
+            rng, np.random.Generator) else int(rng)
+        self.generator = rng if isinstance(rng, np.random.Generator) else None
         self.start = time.perf_counter()
         self.blocks: list[FloatArray] = []
         self.block_criteria: list[Criteria] = []
         self.stage: list[str] = []
-        self.history: list[dict[str, float]] = []
+        self.history: list[Improvement] = []
         self.count = 0
         self.best_merit = np.inf
         self.best_x: FloatArray | None = None
@@ -201,10 +361,9 @@ class _Search:
             self.best_x = np.array(x[k], dtype=float)
             self.best_criteria = criteria.take([k])
             self.last_improvement = self.count + k
-            self.history.append({
-                "trial": float(self.count + k), "seconds": self.elapsed(),
-                "p1": float(criteria.p1[k]), "p2": float(criteria.p2[k]),
-                "q": float(criteria.q[k]), "merit": self.best_merit, "stage": stage})
+            self.history.append(Improvement(
+                self.count + k, self.elapsed(), float(criteria.p1[k]), float(criteria.p2[k]),
+                float(criteria.q[k]), self.best_merit, stage))
         self.count += len(x)
         self.report()
         s = self.settings
@@ -234,13 +393,24 @@ class _Search:
         print(f"  trials {self.count:7d}  {now:7.2f} s  best {best}", file=sys.stderr, flush=True)
 
     # ----------------------------------------------------------------------- passes
-    def passive(self, lower: FloatArray, upper: FloatArray, n_total: int, seed: int,
+    def stream(self, number: int) -> np.random.Generator:
+        """The generator that scrambles pass ``number`` (0 = the first passive pass).
+
+        With a seed s, pass k draws from ``default_rng(s + k)``; with a Generator, pass 0
+        draws from it and pass k from its k-th spawned child.
+        """
+        if self.generator is None:
+            assert self.seed is not None
+            return np.random.default_rng(self.seed + number)
+        return self.generator if number == 0 else self.generator.spawn(1)[0]
+
+    def passive(self, lower: FloatArray, upper: FloatArray, n_total: int, number: int,
                 stage: str) -> None:
         """One passive pass of ``n_total`` Sobol' points scaled to [lower, upper]."""
         q = lower.size
         if q == 0:
             return
-        engine = qmc.Sobol(d=q, scramble=True, rng=np.random.default_rng(seed))
+        engine = qmc.Sobol(d=q, scramble=True, rng=self.stream(number))
         batch = max(1, min(self.settings.batch, n_total))
         drawn = 0
         while drawn < n_total:
@@ -257,9 +427,10 @@ class _Search:
         for k in range(s.shrink_passes):
             half = half * s.shrink
             centre = self.best_x
+            assert centre is not None  # trial 0 is always recorded first
             lower = np.maximum(centre - half, self.lower)
             upper = np.minimum(centre + half, self.upper)
-            self.passive(lower, upper, 2 ** max(s.budget_log2 - 2, 4), s.seed + 1 + k, "shrink")
+            self.passive(lower, upper, 2 ** max(s.budget_log2 - 2, 4), 1 + k, "shrink")
 
     def refine(self) -> None:
         """Bounded least-squares refinement from the best few distinct trials."""
@@ -382,7 +553,7 @@ class _Search:
         stop = "budget"
         try:
             self.record(initial[None, :], "initial")
-            self.passive(self.lower, self.upper, 2 ** s.budget_log2, s.seed, "lptau")
+            self.passive(self.lower, self.upper, 2 ** s.budget_log2, 0, "lptau")
             if s.shrink_passes:
                 self.shrink_passes()
             if s.refine:
@@ -395,8 +566,9 @@ class _Search:
         assert self.best_x is not None and self.best_criteria is not None
         return SearchResult(
             x=self.best_x, criteria=self.best_criteria, trials=np.concatenate(self.blocks),
-            trial_criteria=_concat(self.block_criteria), stage=self.stage,
-            history=self.history, stop=stop, elapsed=self.elapsed(), settings=s)
+            trial_criteria=_concat(self.block_criteria), stage=tuple(self.stage),
+            history=tuple(self.history), stop=stop, elapsed=self.elapsed(), settings=s,
+            seed=self.seed)
 
 
 def _concat(parts: list[Criteria]) -> Criteria:
@@ -404,32 +576,57 @@ def _concat(parts: list[Criteria]) -> Criteria:
                       for name in ("p1", "p2", "q", "deviations", "residuals")))
 
 
-def settings_for(problem: Any, **overrides: Any) -> SearchSettings:
+def settings_for(problem: Problem, **overrides: Any) -> SearchSettings:
     """Search settings of a problem: its ``search`` table, then the given overrides.
 
     Parameters
     ----------
     problem : Problem
-        Supplies ``search`` (``budget``, ``seed``, ``refine``, ``shrink_passes``, ``stall``,
-        ``time_limit``, ``refine_evaluations``), ``accuracy`` ([Q]), ``objective`` and
-        ``p2_weight``.
+        Supplies :attr:`~synthesis.problem.Problem.settings` (its ``search`` table,
+        ``accuracy`` [Q], ``objective`` and ``p2_weight``).
     **overrides
         Fields of :class:`SearchSettings`; None leaves the problem's value.
+
+    Returns
+    -------
+    SearchSettings
+
+    Raises
+    ------
+    SettingError
+        When an override breaks its rule (the same rule as in the problem table).
     """
-    table = dict(problem.search)
-    values: dict[str, Any] = {
-        "budget_log2": table.get("budget", 12), "seed": table.get("seed", 0),
-        "refine": table.get("refine", False), "shrink_passes": table.get("shrink_passes", 0),
-        "stall": table.get("stall"), "time_limit": table.get("time_limit"),
-        "refine_evaluations": table.get("refine_evaluations", 200),
-        "q_required": problem.accuracy, "objective": problem.objective,
-        "p2_weight": problem.p2_weight}
-    values.update({k: v for k, v in overrides.items() if v is not None})
-    return SearchSettings(**values)
+    return replace(problem.settings, **{k: v for k, v in overrides.items() if v is not None})
+
+
+def _bounds(lower: npt.ArrayLike, upper: npt.ArrayLike, initial: npt.ArrayLike
+            ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The box and the start as float arrays of one length, lower ≤ upper, finite bounds."""
+    arrays = tuple(np.atleast_1d(np.asarray(a, dtype=float)) for a in (lower, upper, initial))
+    if any(a.ndim != 1 for a in arrays) or len({a.size for a in arrays}) != 1:
+        raise SettingError(Message("search.bounds_shape", {
+            "lower": arrays[0].shape, "upper": arrays[1].shape, "initial": arrays[2].shape}))
+    lo, hi, x0 = arrays
+    if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
+        raise SettingError(Message("search.bounds_finite", {"lower": lo.tolist(),
+                                                            "upper": hi.tolist()}))
+    wrong = np.flatnonzero(lo > hi)
+    if wrong.size:
+        k = int(wrong[0])
+        raise SettingError(Message("search.bounds_order", {"k": k, "lower": float(lo[k]),
+                                                           "upper": float(hi[k])}))
+    return lo, hi, x0
+
+
+def _check_rng(rng: Any) -> RNG:
+    if rng is None or isinstance(rng, np.random.Generator) or (_whole(rng) and rng >= 0):
+        return rng
+    raise SettingError(Message("search.rng", {"found": rng}))
 
 
 def search(evaluate: Evaluator, lower: npt.ArrayLike, upper: npt.ArrayLike,
-           initial: npt.ArrayLike, settings: SearchSettings | None = None) -> SearchResult:
+           initial: npt.ArrayLike, settings: SearchSettings | None = None, *,
+           rng: int | np.random.Generator | None = None) -> SearchResult:
     """Search the box [lower, upper] for the best design.
 
     Parameters
@@ -437,16 +634,27 @@ def search(evaluate: Evaluator, lower: npt.ArrayLike, upper: npt.ArrayLike,
     evaluate : callable
         ``evaluate(X) -> Criteria`` for a batch ``X`` of shape (D, q).
     lower, upper : array_like, shape (q,)
-        Bounds of the varied parameters (lower < upper).
+        Bounds of the varied parameters (finite, lower ≤ upper).
     initial : array_like, shape (q,)
         The initial design x⁰ (trial 0; it may lie outside the box).
     settings : SearchSettings, optional
+    rng : int, numpy.random.Generator or None, optional
+        Source of the scrambling of the LPτ sequence (SPEC 7): None uses
+        ``settings.seed``; a whole number ≥ 0 is used as the seed instead; a Generator is
+        drawn from directly (the shrinking passes from children it spawns), and the result
+        then records no seed.
 
     Returns
     -------
     SearchResult
         Never raises for an infeasible outcome: ``result.feasible`` says whether the best
         design meets P1 = P2 = 0.
+
+    Raises
+    ------
+    SettingError
+        When the bounds are not finite, of different lengths, or a lower bound exceeds its
+        upper bound; when ``rng`` is neither None, a whole number ≥ 0 nor a Generator.
 
     Examples
     --------
@@ -459,8 +667,10 @@ def search(evaluate: Evaluator, lower: npt.ArrayLike, upper: npt.ArrayLike,
     >>> r = search(evaluate, [0, 0], [1, 1], [0.5, 0.5], SearchSettings(budget_log2=8))
     >>> bool(r.criteria.q[0] < 0.05), r.stop
     (True, 'budget')
+    >>> again = search(evaluate, [0, 0], [1, 1], [0.5, 0.5], SearchSettings(budget_log2=8),
+    ...                rng=np.random.default_rng(0))
+    >>> bool(np.all(again.x == r.x)), again.seed
+    (True, None)
     """
-    lower = np.asarray(lower, dtype=float)
-    upper = np.asarray(upper, dtype=float)
-    initial = np.asarray(initial, dtype=float)
-    return _Search(evaluate, lower, upper, settings or SearchSettings()).run(initial)
+    lo, hi, x0 = _bounds(lower, upper, initial)
+    return _Search(evaluate, lo, hi, settings or SearchSettings(), _check_rng(rng)).run(x0)

@@ -112,12 +112,18 @@ def test_nothing_varied_and_missing_mechanism() -> None:
     assert any("mechanism: this field is missing" in m for m in _messages(bad))
 
 
-def test_missing_mechanism_file_names_the_file(tmp_path: Path) -> None:
+def _with_mechanism_file(tmp_path: Path, name: str) -> Path:
+    """A copy of GOOD in tmp_path whose identification table is the file ``name``."""
     data = copy.deepcopy(GOOD)
     del data["structure_identification"]
-    data["mechanism"] = "nowhere.yaml"
+    data["mechanism"] = name
     path = tmp_path / "problem.yaml"
     path.write_text(yaml.safe_dump(data), encoding="utf-8")
+    return path
+
+
+def test_missing_mechanism_file_names_the_file(tmp_path: Path) -> None:
+    path = _with_mechanism_file(tmp_path, "nowhere.yaml")
     with pytest.raises(TableError) as caught:
         load_problem(path)
     assert "nowhere.yaml: the file does not exist" in str(caught.value)
@@ -133,3 +139,82 @@ def test_allowable_rows_are_checked() -> None:
     assert "allowable[0].workspace 'x': expected [min, max] with min < max (mm); found [5, 1]" \
         in text
     assert "unknown revolute joint 'Q'" in text
+
+
+def test_reading_leaves_the_data_alone_and_hands_assur_plain_numbers(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    import assur
+
+    def no_analysis(*args: object, **kwargs: object) -> None:
+        raise AssertionError("a table was analysed while it was read")
+
+    monkeypatch.setattr(assur, "analyse", no_analysis)
+    data = copy.deepcopy(GOOD)
+    data["allowable"] = [{"links": [3, 2], "pressure_angle": 50}]
+    problem = problem_from_dict(data, "good.yaml")
+    assert data == {**GOOD, "allowable": [{"links": [3, 2], "pressure_angle": 50}]}
+    rows = problem.mechanism["structure_identification"]
+    cells = [v for row in rows for k, v in row["params"].items() if k != "tracing"]
+    assert not any(isinstance(v, list) for v in cells)
+    # the initial values, as the table wrote them, and the input direction s of 'general'
+    assert rows[0]["params"] == {"x_O1": 0, "y_O1": 0, "l_1": 30, "phi_1_0": 0, "s": 1}
+    assert rows[1]["params"]["l_j"] == 150
+    assert problem.pressure_angles == {"L2(3,2)": math.radians(50)}
+
+
+def test_a_pressure_angle_where_none_exists_is_reported_when_evaluated() -> None:
+    from synthesis.evaluate import Evaluator
+
+    data = copy.deepcopy(GOOD)
+    data["allowable"] = [{"links": [1], "pressure_angle": 30}]
+    problem = problem_from_dict(data, "bad.yaml")
+    with pytest.raises(TableError) as caught:
+        Evaluator(problem)
+    assert caught.value.source == "bad.yaml"
+    assert [str(i) for i in caught.value.issues] == [
+        "allowable (L0(1)) 'pressure_angle': the pressure angle is computed only for L1 and L2 "
+        "groups with a two-hinge rod; L0(1) has none"]
+
+
+def test_bounds_are_checked_where_they_are_written() -> None:
+    bad = copy.deepcopy(GOOD)
+    bad["parameters"][0]["l_1"] = [10, 20, 40]
+    bad["parameters"][1]["l_j"] = [150, 120]
+    bad["structure_identification"][1]["params"] = {"e": [5, 6, 4]}
+    text = "\n".join(_messages(bad))
+    assert ("parameters[0] 'l_1': expected [initial, lower, upper] with lower ≤ initial ≤ "
+            "upper; found [10, 20, 40]") in text
+    assert ("parameters[1] 'l_j': expected a number, 'A' (supplied by an earlier group) or "
+            "[initial, lower, upper]; found [150, 120]") in text
+    # a parameters row replaces the column of the identification row: 'e' comes from it
+    assert "'e'" not in text
+
+
+def test_bounds_in_the_identification_rows_are_varied_too() -> None:
+    data = copy.deepcopy(GOOD)
+    del data["parameters"][1]["e"]
+    data["structure_identification"][1]["params"] = {"e": [5, 0, 10]}
+    problem = problem_from_dict(data, "good.yaml")
+    # columns in the order of table 2.3 (x_Hj, y_Hj, l_j, x_Ak, y_Ak, beta_g, e, …)
+    assert problem.names == ("L0(1).l_1", "L2(3,2).l_j", "L2(3,2).e")
+    np.testing.assert_array_equal(problem.lower, [20, 120, 0])
+
+
+def test_a_mechanism_file_reports_its_own_problems(tmp_path: Path) -> None:
+    rows = copy.deepcopy(GOOD["structure_identification"])
+    rows[1]["i_minus_one"] = 0
+    (tmp_path / "chain.yaml").write_text(yaml.safe_dump({"structure_identification": rows}),
+                                         encoding="utf-8")
+    with pytest.raises(TableError) as caught:
+        load_problem(_with_mechanism_file(tmp_path, "chain.yaml"))
+    assert caught.value.source == str(tmp_path / "chain.yaml")
+    assert any(issue.location.startswith("structure_identification[1]")
+               and "i_minus_one" in str(issue) for issue in caught.value.issues)
+
+
+def test_a_stroke_task_needs_a_sliding_output_link() -> None:
+    bad = copy.deepcopy(GOOD)
+    bad["output"] = {"link": 2}  # the rod of the RRP group: two revolute pairs, no slider
+    assert _messages(bad) == [
+        "output 'link': link 2 has no prismatic pair to slide in; task class 2 controls the "
+        "displacement S of a slider"]

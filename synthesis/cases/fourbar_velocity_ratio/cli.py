@@ -4,13 +4,12 @@ ratio over a zone of crank angles."""
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 from typing import Any
 
 from assur import Message, TableReader
-from assur.text import languages
+from synthesis.cases.command import add_output_args, add_table_arg, emit
 from synthesis.cases.fourbar_velocity_ratio.conditions import NoSolution, Request
 from synthesis.cases.fourbar_velocity_ratio.report import (
     message_dict,
@@ -39,17 +38,13 @@ _FIELDS = (
 
 def add_args(parser: argparse.ArgumentParser) -> None:
     """Options of the case; each overrides the value of the input table."""
-    parser.add_argument("--table", metavar="FILE.yaml",
-                        help="input table (see input_tables/case_fourbar_velocity_ratio.yaml)")
+    add_table_arg(parser, "input table (see input_tables/case_fourbar_velocity_ratio.yaml)")
     for flag, dest, text in _FIELDS:
         parser.add_argument(flag, dest=dest, type=float, metavar=dest.split("_")[0].upper(),
                             help=text)
     parser.add_argument("--method", choices=METHODS, default=None,
                         help="solver: modern (default), paper or both")
-    parser.add_argument("--json", action="store_true", help="print the results as JSON")
-    parser.add_argument("--plot", metavar="FILE", help="write a picture of the design (PNG, SVG…)")
-    parser.add_argument("--lang", choices=languages(), default="en",
-                        help="language of the report")
+    add_output_args(parser, plot="write a picture of the design (PNG, SVG…)")
 
 
 def _open_interval(low: float, high: float, what: str):
@@ -124,18 +119,11 @@ def run(args: argparse.Namespace) -> int:
     try:
         study = run_study(request, method)
     except NoSolution as exc:
-        if args.json:
-            json.dump({"case": NAME, "passed": False, "no_solution": message_dict(exc.message)},
-                      sys.stdout, indent=2, ensure_ascii=False)
-            print()
-        else:
-            sys.stdout.write(no_solution_text(exc.message, args.lang))
+        why = exc.message
+        emit(args, lambda: {"case": NAME, "passed": False, "no_solution": message_dict(why)},
+             lambda lang: no_solution_text(why, lang))
         return 1
-    if args.json:
-        json.dump(to_dict(study), sys.stdout, indent=2, ensure_ascii=False)
-        print()
-    else:
-        sys.stdout.write(summary(study, args.lang))
+    emit(args, lambda: to_dict(study), lambda lang: summary(study, lang))
     if args.plot and study.best is not None:
         from synthesis.cases.fourbar_velocity_ratio.plot import save_plot
 

@@ -4,10 +4,9 @@ Townsend–Mansour's, beside the source's Table 1."""
 from __future__ import annotations
 
 import argparse
-import json
 from typing import Any
 
-from assur.text import languages
+from synthesis.cases.command import add_output_args, add_table_arg, emit
 from synthesis.cases.impact.data import PAPER
 from synthesis.cases.impact.report import report_json, report_text
 from synthesis.cases.impact.study import run_study
@@ -24,9 +23,8 @@ HELP = ("impact in a four-bar with a clearance in a bearing: the source's model 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
     """Options of the case; each overrides the table (by default the source's data)."""
-    parser.add_argument("--table", metavar="FILE.yaml",
-                        help="input table (default: the source's data, as in "
-                             "input_tables/case_impact.yaml)")
+    add_table_arg(parser, "input table (default: the source's data, as in "
+                          "input_tables/case_impact.yaml)")
     parser.add_argument("--theta2", type=float, metavar="DEG", help="crank angle at impact")
     parser.add_argument("--omega2", type=float, metavar="RAD_S", help="crank speed before impact")
     parser.add_argument("--omega4", type=float, nargs="+", metavar="RAD_S",
@@ -38,10 +36,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--lever", choices=("paper", "exact"), default="paper",
                         help="rocker lever in the restitution law: as printed in (7)-(8) "
                              "(default) or exact")
-    parser.add_argument("--json", action="store_true", help="print the results as JSON")
-    parser.add_argument("--plot", metavar="FILE",
-                        help="draw the mechanism and the model comparison (PNG, SVG, PDF)")
-    parser.add_argument("--lang", choices=languages(), default="en", help="report language")
+    add_output_args(parser, plot="draw the mechanism and the model comparison (PNG, SVG, PDF)")
 
 
 def _table(args: argparse.Namespace) -> dict[str, Any]:
@@ -63,10 +58,7 @@ def run(args: argparse.Namespace) -> int:
     source = f"{args.table} with command-line options" if args.table else "command-line options"
     table = _table(args)
     study = run_study(impact_data_from_dict(table, source), lever=args.lever)
-    if args.json:
-        print(json.dumps(report_json(study), indent=2, ensure_ascii=False))
-    else:
-        print(report_text(study, args.lang), end="")
+    emit(args, lambda: report_json(study), lambda lang: report_text(study, lang))
     if args.plot:
         from synthesis.cases.impact.plot import save_plot
 

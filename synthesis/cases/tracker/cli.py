@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 
 from assur import Issue, Message, TableError
-from assur.text import languages
+from synthesis.cases.command import add_output_args, add_table_arg, emit
 from synthesis.cases.tracker.report import summary, to_dict
 from synthesis.cases.tracker.study import run_study
 from synthesis.cases.tracker.task import load_task
@@ -30,9 +29,8 @@ _OPTIONS = (
 
 def add_args(parser: argparse.ArgumentParser) -> None:
     """Options of the case; each overrides the value of the task table."""
-    parser.add_argument("--table", metavar="FILE.yaml",
-                        help="design task table (see input_tables/case_tracker.yaml); "
-                             "default: the patent's worked example")
+    add_table_arg(parser, "design task table (see input_tables/case_tracker.yaml); default: the "
+                          "patent's worked example")
     for flag, dest, kind, metavar, text in _OPTIONS:
         parser.add_argument(flag, dest=dest, type=kind, metavar=metavar, help=text)
     parser.add_argument("--k2", nargs="+", type=float, metavar="K2",
@@ -43,10 +41,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         help="the B1-B5 synthesis draws 2**LOG2 LPtau trials in its first pass "
                              "(default 10); 0 skips the synthesis")
     parser.add_argument("--seed", type=int, default=0, help="seed of the synthesis (default 0)")
-    parser.add_argument("--json", action="store_true", help="print the results as JSON")
-    parser.add_argument("--plot", metavar="DIR", help="write the charts and drawings here")
-    parser.add_argument("--lang", choices=languages(), default="en",
-                        help="language of the report")
+    add_output_args(parser, plot="write the charts and drawings here", plot_metavar="DIR")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -58,11 +53,7 @@ def run(args: argparse.Namespace) -> int:
             "case.tracker.budget", {"found": args.budget}))])
     study = run_study(load_task(args.table, overrides), budget_log2=args.budget or None,
                       seed=args.seed, progress=args.budget >= 14)
-    if args.json:
-        json.dump(to_dict(study), sys.stdout, indent=2, ensure_ascii=False)
-        print()
-    else:
-        sys.stdout.write(summary(study, args.lang))
+    emit(args, lambda: to_dict(study), lambda lang: summary(study, lang))
     if args.plot:
         from synthesis.cases.tracker.plot import save_plots
 

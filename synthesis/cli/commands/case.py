@@ -1,8 +1,8 @@
 """``assur case NAME``: run one of the built-in cases.
 
-Each case is a subpackage of :mod:`synthesis.cases` whose ``cli`` module defines
-``NAME``, ``HELP``, ``add_args(parser)`` and ``run(args) -> int``; they are found
-automatically.
+Each case is a subpackage of :mod:`synthesis.cases` whose ``cli`` module is a
+:class:`~synthesis.cases.command.Case` (``NAME``, ``HELP``, ``add_args(parser)``,
+``run(args) -> int``); they are found automatically.
 """
 
 from __future__ import annotations
@@ -11,6 +11,9 @@ import argparse
 import importlib
 import importlib.util
 import pkgutil
+from typing import cast
+
+from synthesis.cases.command import Case
 
 NAME = "case"
 HELP = "run a built-in case (each reproduces its published source)"
@@ -27,7 +30,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
         name = f"{package.__name__}.{info.name}.cli"
         if not info.ispkg or info.name.startswith("_") or importlib.util.find_spec(name) is None:
             continue
-        module = importlib.import_module(name)
+        module = cast(Case, importlib.import_module(name))
         sub = cases.add_parser(module.NAME, help=module.HELP, description=module.HELP)
         module.add_args(sub)
         sub.set_defaults(case_handler=module.run)

@@ -12,7 +12,7 @@ import math
 import sys
 from typing import Any
 
-from synthesis.report import summary, text_report, write_result, write_trials
+from synthesis.report import text_report, write_result, write_trials
 
 NAME = "synthesize"
 HELP = "synthesise a mechanism: passive LPτ search for the Peisakh criteria Q, P1, P2"
@@ -46,21 +46,19 @@ def add_args(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Read the problem, search, report."""
-    from synthesis.evaluate import Evaluator
+    """Read the problem, synthesise it (:func:`synthesis.synthesize.synthesize`), report."""
     from synthesis.problem import load_problem
-    from synthesis.search import search, settings_for
+    from synthesis.search import settings_for
+    from synthesis.synthesize import synthesize
 
     problem = load_problem(args.problem)
     settings = settings_for(problem, budget_log2=args.budget, seed=args.seed,
                             refine=args.refine, shrink_passes=args.shrink,
-                            time_limit=args.time_limit, progress=not args.quiet)
-    evaluator = Evaluator(problem)
-    result = search(evaluator, problem.lower, problem.upper, problem.initial, settings)
-    analysis = evaluator.analyse(result.x[None, :])
-    data = summary(problem, result, analysis)
+                            time_limit=args.time_limit)
+    outcome = synthesize(problem, settings, progress=not args.quiet)
+    result, data = outcome.result, dict(outcome.summary)
     if args.out:
-        write_result(args.out, problem, result, data)
+        write_result(args.out, problem, result, data, lang=args.lang)
         data["result_file"] = args.out
     if args.trials:
         data["trials_file"] = args.trials
@@ -68,15 +66,15 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         from synthesis.plots import save_plots
 
-        data["plots"] = [str(p) for p in save_plots(args.plot, problem, result, analysis,
-                                                    lang=args.lang)]
+        data["plots"] = [str(p) for p in save_plots(args.plot, problem, result,
+                                                    outcome.analysis, lang=args.lang)]
     if args.json:
         print(json.dumps(_plain(data), indent=2, ensure_ascii=False))
     else:
         sys.stdout.write(text_report(data, args.lang))
-    if result.stop == "interrupted":
+    if outcome.interrupted:
         return 130
-    return 0 if data["feasible"] else 1
+    return 0 if outcome.feasible else 1
 
 
 def _plain(value: Any) -> Any:

@@ -1,0 +1,523 @@
+"""The one reader of synthesis problem tables: YAML → :class:`~synthesis.problem.Problem`.
+
+Every table of a problem file (``docs/synthesis.md``) is read and checked here, once, and
+every problem found is collected into one :class:`~assur.errors.TableError`.  The
+varied-parameter cells ``[initial, lower, upper]`` are parsed here: the bounds belong to the
+synthesis, and the mechanism is handed to :mod:`assur` with plain numbers (the initial
+values), in new rows; the rows read from the table are never changed.  What :mod:`assur`
+finds wrong with the mechanism it reports under its own locations: the problems of rows
+given inline join the problem file's list, an identification table in another file raises
+its own error under its own name (after the problem file's own problems, if any).
+
+Reading runs no kinematic analysis: the kinematic model of the initial design is built
+(structure, parameters), not analysed.  The check that needs an analysis — that a group
+given an allowable pressure angle has one — is made when the problem is evaluated
+(:class:`synthesis.evaluate.Evaluator`).
+
+Examples
+--------
+>>> from synthesis.problem_table import read_problem
+>>> problem = read_problem("input_tables/problems/class1_fourbar_rocker.yaml")
+>>> problem.task_class, len(problem.parameters), problem.search["budget"]
+(1, 3, 10)
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+import assur
+from assur import MISSING, AssurError, KinematicModel, Message, Node, TableError, TableReader
+from assur import normalise_id
+from synthesis.problem import (
+    DEFAULT_PRESSURE_ANGLE,
+    OUTPUT_QUANTITIES,
+    SEARCH_FIELDS,
+    ControlPoints,
+    GroupKey,
+    Output,
+    Parameter,
+    Problem,
+    output_slider,
+    row_key,
+)
+from synthesis.search import setting_problem
+
+__all__ = ["read_problem", "read_problem_data"]
+
+_TOP = ("schema_version", "name", "general", "mechanism", "structure_identification",
+        "frame", "group_models", "output", "parameters", "allowable", "control_points",
+        "search")
+_GENERAL = ("control_points", "direction", "groups", "task_class", "grid", "accuracy",
+            "objective", "p2_weight", "output")
+#: Control-point columns of the target value and of the zone limits, per class-1 output.
+_VALUE_COLUMNS = {"angle": ("psi", "psi_lo", "psi_hi"), "ratio": ("n", "n_lo", "n_hi")}
+_POINT_COLUMNS = {
+    1: ("K", "phi", "psi", "psi_lo", "psi_hi", "E"),
+    2: ("K", "phi", "S", "E"),
+    3: ("K", "x", "y", "E"),
+    4: ("K", "phi", "x", "y", "E"),
+}
+#: Locations whose problems leave no mechanism to build.
+_STRUCTURE = ("mechanism", "structure_identification", "parameters", "frame")
+Bounds = dict[tuple[GroupKey, str], tuple[float, float, float]]
+
+
+def read_problem(path: str | os.PathLike[str]) -> Problem:
+    """The reader behind :func:`synthesis.problem.load_problem` (which see)."""
+    return _read(TableReader.from_path(path), Path(path).parent)
+
+
+def read_problem_data(data: Any, source: str = "<data>",
+                      base: str | os.PathLike[str] = ".") -> Problem:
+    """Read already parsed data (:func:`synthesis.problem.problem_from_dict`)."""
+    return _read(TableReader.from_data(data, source), Path(base))
+
+
+@dataclass(frozen=True)
+class _General:
+    """The ``general`` table; a field is :data:`MISSING` where it is absent or invalid."""
+
+    n_points: Any = MISSING
+    direction: Any = 1
+    n_groups: Any = MISSING
+    task_class: Any = MISSING
+    grid: Any = 360
+    accuracy: Any = None
+    objective: Any = "lexicographic"
+    p2_weight: Any = 1.0
+    output: Any = "angle"
+
+
+@dataclass(frozen=True)
+class _Mechanism:
+    """The identification table as given: its data, the file it is in, and the prefix of
+    the locations of its cells in this file's messages."""
+
+    data: dict[str, Any]
+    source: str
+    prefix: str = ""
+
+    @property
+    def rows(self) -> list[Any]:
+        rows = self.data.get("structure_identification")
+        return rows if isinstance(rows, list) else []
+
+
+def _positive(v: Any) -> Message | None:
+    return None if v > 0 else Message("rule.positive")
+
+
+def _read(reader: TableReader, base: Path) -> Problem:
+    top = reader.root(allowed=_TOP)
+    name = top.get("name", kind="str", required=False, default=None)
+    general = _read_general(top)
+    mechanism = _read_mechanism(reader, top, base)
+    groups = {row_key(row): row for row in mechanism.rows if isinstance(row, dict)}
+    if general.n_groups is not MISSING and mechanism.rows \
+            and general.n_groups != len(mechanism.rows):
+        reader.problem("general 'groups'", "problem.groups_count", rows=len(mechanism.rows),
+                       found=general.n_groups)
+    rows, bounds = _merge_parameters(top, mechanism, groups, general.direction)
+    quantity = general.output if general.output in OUTPUT_QUANTITIES else "angle"
+    output = _read_output(top, general.task_class, groups, quantity)
+    control = _read_control(top, general.task_class, general.n_points, general.output)
+    pressure, rotations, boxes = _read_allowable(top, groups)
+    models = tuple(top.get("group_models", kind="list", required=False, default=[]) or [])
+    search = _read_search(top)
+    structure_ok = bool(mechanism.rows) and not any(
+        issue.location.startswith(_STRUCTURE) for issue in reader.issues)
+    model, foreign = (_build_model(reader, mechanism, rows) if structure_ok else (None, None))
+    parameters: tuple[Parameter, ...] = ()
+    labels: dict[GroupKey, str] = {}
+    if model is not None:
+        labels = {(g.i,) if g.j is None else (g.i, g.j): g.label for g in model.groups}
+        parameters = _parameters(model, bounds)
+        if not parameters:
+            reader.problem("parameters", "problem.nothing_varied")
+        _check_rotations(reader, model, {labels[k]: v for k, v in rotations.items()})
+        if output.link is not MISSING:
+            _check_output(reader, model, output.link, general.task_class)
+    reader.raise_if_any()
+    if foreign is not None:
+        raise foreign
+    assert model is not None
+    return Problem(
+        source=reader.source, name=name or Path(reader.source).stem,
+        task_class=general.task_class, n_points=general.n_points,
+        direction=general.direction, n_groups=general.n_groups, grid=general.grid,
+        accuracy=general.accuracy, objective=general.objective,
+        p2_weight=float(general.p2_weight),
+        mechanism={**mechanism.data, "structure_identification": rows}, model=model,
+        parameters=parameters, control=control, output=output,
+        pressure_angles={labels[k]: v for k, v in pressure.items()},
+        rotations={labels[k]: v for k, v in rotations.items()},
+        workspace={labels[k]: v for k, v in boxes.items()},
+        group_models=models, search=search)
+
+
+def _read_general(top: Node) -> _General:
+    general = top.child("general", allowed=_GENERAL)
+    if general is None:
+        return _General()
+    task_class = general.choice("task_class", [1, 2, 3, 4])
+    out = _General(
+        n_points=general.get("control_points", kind="int", check=_positive),
+        direction=general.choice("direction", [1, -1], required=False, default=1),
+        n_groups=general.get("groups", kind="int", check=_positive),
+        task_class=task_class,
+        grid=general.get("grid", kind="int", required=False, default=360,
+                         check=lambda v: None if v >= 8 else
+                         Message("rule.at_least", {"low": 8})),
+        accuracy=general.get("accuracy", kind="number", required=False, default=None,
+                             check=_positive),
+        objective=general.choice("objective", ["lexicographic", "weighted"], required=False,
+                                 default="lexicographic"),
+        p2_weight=general.get("p2_weight", kind="number", required=False, default=1.0,
+                              check=_positive),
+        output=general.choice("output", OUTPUT_QUANTITIES, required=False, default="angle"))
+    if general.has("output") and task_class in (2, 3, 4):
+        top.reader.problem("general 'output'", "problem.output_class", task_class=task_class)
+    return out
+
+
+def _build_model(reader: TableReader, mechanism: _Mechanism, rows: list[Any]
+                 ) -> tuple[KinematicModel | None, AssurError | None]:
+    """The kinematic model of the initial design (built, not analysed).
+
+    Problems that :mod:`assur` finds in rows of this file join its list unchanged; an error
+    of another file, or of the structure, is returned to be raised as it is.
+    """
+    data = {**mechanism.data, "structure_identification": rows}
+    try:
+        chain = assur.chain_from_dict(data, source=mechanism.source)
+        return assur.build_model(assur.analyse_structure(chain)), None
+    except TableError as exc:
+        if exc.source != reader.source:
+            return None, exc
+        reader.issues.extend(exc.issues)
+    except assur.StructureError as exc:
+        return None, exc
+    return None, None
+
+
+def _read_mechanism(reader: TableReader, top: Node, base: Path) -> _Mechanism:
+    """The identification table: from a file named by ``mechanism`` or given inline."""
+    here = _Mechanism({}, reader.source)
+    if top.has("mechanism") and top.has("structure_identification"):
+        reader.problem("mechanism", "problem.mechanism_both")
+        return here
+    if top.has("structure_identification"):
+        rows = top.get("structure_identification", kind="list")
+        frame = top.get("frame", kind="id", required=False, default=0)
+        if rows is MISSING:
+            return here
+        return _Mechanism({"frame": frame, "structure_identification": rows}, reader.source)
+    path = top.get("mechanism", kind="str", required=False, default=None)
+    if path is None:
+        reader.problem("mechanism", "problem.mechanism_missing")
+        return here
+    if path is MISSING:
+        return here
+    target = base / path
+    try:
+        inner = TableReader.from_path(target)
+    except TableError as exc:
+        # the file named by this table's 'mechanism' field cannot be read: a problem of
+        # that field, told in the words of the file reader
+        for issue in exc.issues:
+            reader.problem("mechanism", "problem.mechanism_unreadable", file=str(target),
+                           problem=issue.message)
+        return here
+    data = inner.data
+    if not isinstance(data, dict) or not isinstance(data.get("structure_identification"), list):
+        reader.problem("mechanism", "problem.mechanism_no_rows", file=str(target))
+        return here
+    keep = ("frame", "structure_identification", "name", "mechanism")
+    return _Mechanism({k: v for k, v in data.items() if k in keep}, str(target),
+                      f"mechanism ({target}) ")
+
+
+def _group_of(row: Node, groups: dict[GroupKey, Any]) -> GroupKey | None:
+    links = row.get("links", kind="list")
+    if links is MISSING:
+        return None
+    key = tuple(normalise_id(v) for v in links)
+    if groups and key not in groups:
+        row.reader.problem(f"{row.location} 'links'", "problem.links_unknown", links=list(key),
+                           known=", ".join(str(list(k)) for k in groups))
+        return None
+    return key
+
+
+def _merge_parameters(top: Node, mechanism: _Mechanism, groups: dict[GroupKey, Any],
+                      direction: Any) -> tuple[list[Any], Bounds]:
+    """New identification rows with the cells of ``parameters`` and plain numbers.
+
+    Each row of ``parameters`` replaces the same columns of the identification row with the
+    same links.  A cell ``[initial, lower, upper]`` (in either table) is checked here and
+    becomes its initial value; its bounds are returned by (links, column).  The L0 row
+    gets ``s`` = the direction of ``general``.  Everything else about the columns is checked
+    by the kinematic model.
+    """
+    reader = top.reader
+    cells: dict[GroupKey, dict[str, tuple[Any, str]]] = {}
+    for row in top.rows("parameters", None, required=False):
+        key = _group_of(row, groups)
+        if key is None or key not in groups:
+            continue
+        if key in cells:
+            reader.problem(f"{row.location} 'links'", "problem.links_repeated", links=list(key))
+        cells.setdefault(key, {}).update(
+            {column: (value, f"{row.location} {column!r}")
+             for column, value in row.mapping.items() if column != "links"})
+    bounds: Bounds = {}
+    rows: list[Any] = []
+    for index, row in enumerate(mechanism.rows):
+        if not isinstance(row, dict):
+            rows.append(row)
+            continue
+        key = row_key(row)
+        given = row.get("params")
+        where = f"{mechanism.prefix}structure_identification[{index}] 'params'"
+        merged = ({column: (value, f"{where} {column!r}") for column, value in given.items()}
+                  if isinstance(given, dict) else {})
+        merged.update(cells.get(key, {}))
+        if not merged and not isinstance(given, dict):
+            rows.append(row)
+            continue
+        params = {}
+        for column, (value, location) in merged.items():
+            params[column] = _cell(reader, value, location, key, column, bounds)
+        if row.get("L") == 0 and direction in (1, -1):
+            if params.setdefault("s", direction) != direction:
+                reader.problem("general 'direction'", "problem.direction_mismatch",
+                               s=params["s"], found=direction)
+        rows.append({**row, "params": params})
+    return rows, bounds
+
+
+def _cell(reader: TableReader, value: Any, location: str, key: GroupKey, column: str,
+          bounds: Bounds) -> Any:
+    """The plain value of one parameter cell; a ``[initial, lower, upper]`` cell is checked
+    and its bounds recorded.  Other values go to the kinematic model unchanged."""
+    if column == "tracing" or not isinstance(value, list):
+        return value
+    if len(value) != 3 or not all(map(_is_number, value)):
+        reader.problem(location, "problem.cell", found=value)
+        return value
+    initial, lower, upper = (float(v) for v in value)
+    if lower > upper:
+        reader.problem(location, "problem.bounds_order", found=value)
+    elif not lower <= initial <= upper:
+        reader.problem(location, "problem.initial_outside", found=value)
+    else:
+        bounds[key, column] = (initial, lower, upper)
+    return value[0]
+
+
+def _parameters(model: KinematicModel, bounds: Bounds) -> tuple[Parameter, ...]:
+    """The varied parameters (lower < upper): groups in layering order, then the columns of
+    the kind in table order, ``delta``, and the tracing-point columns by name."""
+    out = []
+    for group in model.groups:
+        key: GroupKey = (group.i,) if group.j is None else (group.i, group.j)
+        columns = [column for (links, column) in bounds if links == key]
+        fixed = (*assur.KIND_COLUMNS[group.kind], "delta")
+        ordered = [c for c in fixed if c in columns] + sorted(c for c in columns
+                                                              if c not in fixed)
+        for column in ordered:
+            initial, lower, upper = bounds[key, column]
+            if upper > lower:
+                out.append(Parameter(f"{group.label}.{column}", initial, lower, upper, key))
+    return tuple(out)
+
+
+def _read_output(top: Node, task_class: Any, groups: dict[GroupKey, Any],
+                 quantity: str) -> Output:
+    node = top.child("output", allowed=("link", "point"))
+    if node is None:
+        return Output(MISSING, quantity=quantity)
+    link = node.get("link", kind="id")
+    point = node.get("point", kind="str", required=False, default=None)
+    members = {k for key in groups for k in key}
+    if link is not MISSING and members and link not in members:
+        top.reader.problem("output 'link'", "problem.output_link_unknown", link=link)
+    if task_class in (3, 4) and point is None:
+        top.reader.problem("output 'point'", "problem.point_needed")
+    elif task_class in (1, 2) and point is not None:
+        top.reader.problem("output 'point'", "problem.point_extra", task_class=task_class)
+    return Output(link, point, quantity)
+
+
+def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> ControlPoints:
+    """Tables 2.12–2.15.
+
+    Class 1 reads ψ (degrees → radians) or, with ``output: ratio``, the dimensionless ratio n
+    (columns ``n``, ``n_lo``, ``n_hi``); an invalid ``output`` (already reported) accepts the
+    columns of both, so that it is reported once.
+    """
+    if task_class == 1 and quantity in _VALUE_COLUMNS:
+        names = _VALUE_COLUMNS[quantity]
+        columns: tuple[str, ...] = ("K", "phi", *names, "E")
+    elif task_class == 1:
+        names = _VALUE_COLUMNS["angle"]
+        columns = ("K", "phi", *(c for v in _VALUE_COLUMNS.values() for c in v), "E")
+    else:
+        names = _VALUE_COLUMNS["angle"]
+        columns = _POINT_COLUMNS.get(task_class, ("K", "phi", "psi", "psi_lo", "psi_hi", "S",
+                                                  "x", "y", "E"))
+    value_col, lo_col, hi_col = names
+    convert = _num if quantity == "ratio" else _deg
+    rows = list(top.rows("control_points", columns))
+    k = len(rows)
+    phi, value, lo, hi, weight = (np.full(k, np.nan) for _ in range(5))
+    point = np.full(k, np.nan, dtype=complex)
+    zone_rows = 0
+    reader = top.reader
+    for n, row in enumerate(rows):
+        number = row.get("K", kind="int", required=False, default=n)
+        if number is not MISSING and number != n:
+            reader.problem(f"{row.location} 'K'", "problem.control_numbering", expected=n)
+        e = row.get("E", kind="number", required=False, default=1.0, check=_positive)
+        weight[n] = e if e is not MISSING else np.nan
+        if task_class in (1, 2, 4):
+            phi[n] = _deg(row.get("phi", kind="number"))
+        if task_class == 1:
+            if row.has(lo_col) or row.has(hi_col):
+                zone_rows += 1
+                lo[n] = convert(row.get(lo_col, kind="number"))
+                hi[n] = convert(row.get(hi_col, kind="number"))
+                if row.has(value_col):
+                    reader.problem(f"{row.location} {value_col!r}", "problem.zone_value",
+                                   lo=lo_col, hi=hi_col, value=value_col)
+                elif lo[n] > hi[n]:
+                    reader.problem(f"{row.location} {hi_col!r}", "problem.zone_order",
+                                   lower=row.mapping[lo_col])
+            else:
+                value[n] = convert(row.get(value_col, kind="number"))
+        elif task_class == 2:
+            value[n] = _num(row.get("S", kind="number"))
+        elif task_class in (3, 4):
+            point[n] = complex(_num(row.get("x", kind="number")), _num(row.get("y", kind="number")))
+    if 0 < zone_rows < k:
+        reader.problem("control_points", "problem.zone_mixed", lo=lo_col, hi=hi_col,
+                       zone=zone_rows, rows=k)
+    if n_points is not MISSING and k != n_points:
+        reader.problem("general 'control_points'", "problem.control_count", rows=k,
+                       found=n_points)
+    if k == 0 and not reader.issues:
+        reader.problem("control_points", "problem.control_empty")
+    zone = task_class == 1 and zone_rows == k and k > 0
+    return ControlPoints(phi=phi, value=value, point=point, weight=weight,
+                         lower=lo if zone else None, upper=hi if zone else None)
+
+
+def _read_allowable(top: Node, groups: dict[GroupKey, Any]
+                    ) -> tuple[dict[GroupKey, float], dict[GroupKey, dict[str, float]],
+                               dict[GroupKey, tuple[float, float, float, float]]]:
+    """Tables 2.7–2.11: allowable pressure angles and joint rotations (degrees → radians),
+    and working-space boxes of the groups' joints (mm)."""
+    pressure: dict[GroupKey, float] = {}
+    rotations: dict[GroupKey, dict[str, float]] = {}
+    boxes: dict[GroupKey, tuple[float, float, float, float]] = {}
+    for row in top.rows("allowable", ("links", "pressure_angle", "rotations", "workspace"),
+                        required=False):
+        key = _group_of(row, groups)
+        if row.mapping.get("pressure_angle") == "default":
+            angle = DEFAULT_PRESSURE_ANGLE
+        else:
+            angle = row.get("pressure_angle", kind="number", required=False, default=None,
+                            check=lambda v: None if 0 < v <= 90 else
+                            Message("rule.pressure_angle"))
+        turns = row.child("rotations", required=False)
+        limits = {}
+        if turns is not None:
+            for joint in turns.mapping:
+                value = turns.get(joint, kind="number", check=_positive)
+                if value is not MISSING:
+                    limits[str(joint)] = math.radians(value)
+        box = _read_box(row)
+        if key is None:
+            continue
+        if angle not in (None, MISSING):
+            pressure[key] = math.radians(angle)
+        if limits:
+            rotations[key] = limits
+        if box is not None:
+            boxes[key] = box
+    return pressure, rotations, boxes
+
+
+def _read_box(row: Node) -> tuple[float, float, float, float] | None:
+    node = row.child("workspace", ("x", "y"), required=False)
+    if node is None:
+        return None
+    out: list[float] = []
+    for axis in ("x", "y"):
+        value = node.get(axis, kind="list")
+        if value is MISSING:
+            return None
+        if len(value) != 2 or not all(map(_is_number, value)) or value[0] >= value[1]:
+            row.reader.problem(f"{node.location} {axis!r}", "problem.box", found=value)
+            return None
+        out.extend(float(v) for v in value)
+    return out[0], out[1], out[2], out[3]
+
+
+def _check_rotations(reader: TableReader, model: KinematicModel,
+                     rotations: dict[str, dict[str, float]]) -> None:
+    """Rotations are checked only in the group's revolute joints (``method.md`` §2.8)."""
+    for label, limits in rotations.items():
+        group = model.group(label)
+        joints = [role for role in group.pairs if not role.startswith("P")]
+        for role in limits:
+            if role not in joints:
+                reader.problem(f"allowable ({label}) 'rotations'", "problem.joint_unknown",
+                               joint=role, group=label, joints=", ".join(joints) or "—")
+
+
+def _check_output(reader: TableReader, model: KinematicModel, link: assur.LinkId,
+                  task_class: Any) -> None:
+    """The output link moves; in task class 2 it slides in a prismatic pair."""
+    if link not in model.links:
+        reader.problem("output 'link'", "problem.output_not_moving", link=link)
+    elif task_class == 2 and output_slider(model, link) is None:
+        reader.problem("output 'link'", "problem.output_no_slider", link=link)
+
+
+def _read_search(top: Node) -> dict[str, Any]:
+    """The ``search`` table, each value checked by the rule of its setting
+    (:func:`synthesis.search.setting_problem`, the same rule as on the command line)."""
+    node = top.child("search", allowed=SEARCH_FIELDS, required=False)
+    if node is None:
+        return {}
+    out: dict[str, Any] = {}
+    for key, setting in SEARCH_FIELDS.items():
+        value = node.mapping.get(key)
+        if value is None:
+            continue
+        problem = setting_problem(setting, value)
+        if problem is None:
+            out[key] = value
+        else:
+            top.reader.problem(f"search {key!r}", problem.code, **problem.data)
+    return out
+
+
+def _is_number(v: Any) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _deg(v: Any) -> float:
+    return math.radians(v) if _is_number(v) else math.nan
+
+
+def _num(v: Any) -> float:
+    return float(v) if _is_number(v) else math.nan

@@ -10,8 +10,10 @@ Two forms are read (see ``docs/tables.md``):
   the rows: every row names its group's kind, so the pair types and the guide carriers
   follow from the kind (``method.md`` §2.0).
 
-``general:``, ``geometry:`` and the rows' ``params:`` are kept untouched for the kinematic
-model. Every problem of a table is collected and raised as one
+The ``geometry:`` sketch is read here, once, into a :class:`~assur.model.Sketch`
+(:mod:`assur.io.sketch`); the identification rows become
+:class:`~assur.model.IdentificationRow` objects; ``general:`` and the rows' ``params:`` are
+kept for the kinematic model. Every problem of a table is collected and raised as one
 :class:`~assur.errors.TableError`.
 """
 
@@ -22,14 +24,25 @@ from dataclasses import replace
 from typing import Any
 
 from assur.errors import TableError
-from assur.model import Chain, Drive, LinkId, Pair, PairId, PairType, id_key
 from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
+from assur.io.sketch import Joints, read_sketch
+from assur.kinds import KINDS, kind_of
+from assur.model import (
+    Chain,
+    Drive,
+    IdentificationRow,
+    LinkId,
+    Pair,
+    PairId,
+    PairType,
+    Sketch,
+    id_key,
+)
 from assur.text import Message
 
 __all__ = [
     "IDENTIFICATION_FIELDS",
     "chain_from_dict",
-    "group_key",
     "load_chain",
     "pair_label",
     "recentre_hinge",
@@ -125,7 +138,8 @@ def _read_chain_form(reader: TableReader) -> Chain:
     _check_pairs(reader, raw_pairs, set(links))
     if known is not None or mentioned:  # no link is known when no pair row could be read
         _check_inputs(reader, inputs, set(links), raw_pairs, frame)
-    geometry = _geometry(reader, top, mech)
+    joints = {pair.id: (pair.type.value, tuple(pair.links)) for pair in raw_pairs}
+    geometry = _geometry(reader, top, mech, joints, links, frame)
     general = top.get("general", kind="mapping", required=False, default=None)
     rows = _read_rows(top, required=False)
     claims = _read_claims(top)
@@ -133,11 +147,10 @@ def _read_chain_form(reader: TableReader) -> Chain:
         return _empty(reader.source)
     input_links = [d.link for d in inputs if d.link is not None]
     pairs = _normalise(raw_pairs, frame, input_links)
-    rows_t = tuple(row for row, _ in rows) if rows else None
     return Chain(name=name or _stem(reader.source), frame=frame, links=tuple(links),
                  pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,
                  source=reader.source, group_params=_group_params(rows), names=names,
-                 identification=rows_t, claims=claims)
+                 identification=tuple(rows) if rows else None, claims=claims)
 
 
 def _read_links(mech: Node, names: dict[LinkId, str]) -> list[LinkId] | None:
@@ -326,16 +339,21 @@ def recentre_hinge(origin: PairId, links: list[LinkId] | tuple[LinkId, ...],
             for link in links if link != centre]
 
 
-def _geometry(reader: TableReader, top: Node, mech: Node | None) -> dict[str, Any] | None:
+def _geometry(reader: TableReader, top: Node, mech: Node | None, joints: Joints,
+              links: list[LinkId], frame: LinkId) -> Sketch | None:
+    """The sketch, given inside ``mechanism:`` or at the top of the file (not both)."""
     inner = mech.get("geometry", kind="mapping", required=False, default=None) if mech else None
     outer = top.get("geometry", kind="mapping", required=False, default=None)
     if isinstance(inner, dict) and isinstance(outer, dict):
-        reader.add("geometry", "give the geometry once, either inside 'mechanism:' or at the "
-                               "top of the file; found both")
-    return inner if isinstance(inner, dict) else (outer if isinstance(outer, dict) else None)
+        reader.problem("geometry", "chain.geometry_twice")
+        return None
+    data = inner if isinstance(inner, dict) else outer
+    if not isinstance(data, dict) or frame is MISSING:
+        return None
+    return read_sketch(reader, data, joints, links=links, frame=frame)
 
 
-def _read_claims(top: Node) -> dict[str, Any]:
+def _read_claims(top: Node) -> dict[str, int]:
     claims = {}
     for key in _CLAIMS:
         value = top.get(key, kind="int", required=False, default=None)
@@ -355,13 +373,14 @@ def _row_label(row: dict[str, Any]) -> str | None:
     return ", ".join(parts) or None
 
 
-def _read_rows(top: Node, *, required: bool) -> list[tuple[dict[str, Any], str]]:
-    """Read and validate identification rows; returns (clean row, location) pairs."""
-    rows: list[tuple[dict[str, Any], str]] = []
+def _read_rows(top: Node, *, required: bool) -> list[IdentificationRow]:
+    """Read and validate identification rows (every problem recorded in the reader)."""
+    rows: list[IdentificationRow] = []
+    clean_rows: list[tuple[dict[str, Any], str]] = []
     owner: dict[LinkId, str] = {}
     for row in top.rows("structure_identification", IDENTIFICATION_FIELDS, required=required,
                         label=_row_label):
-        kind = row.get("L", kind="int", check=lambda v: None if 0 <= v <= 5 else
+        kind = row.get("L", kind="int", check=lambda v: None if v in KINDS else
                        Message("rule.group_kind"))
         clean: dict[str, Any] = {"L": kind}
         dyad = kind is not MISSING and kind != 0
@@ -396,13 +415,15 @@ def _read_rows(top: Node, *, required: bool) -> list[tuple[dict[str, Any], str]]
                                                 f"{owner[link]}; a link belongs to one group")
             else:
                 owner[link] = row.location
-        rows.append((clean, row.location))
-    for clean, location in rows:
+        clean_rows.append((clean, row.location))
+    for clean, location in clean_rows:
         for key, partner in (("i_minus_1", "i"), ("j_minus_1", "j")):
             if clean[key] not in (None, MISSING) and clean[key] == clean[partner]:
                 top.reader.add(f"{location} {key!r}", f"a link cannot be joined to itself; "
                                                       f"found {clean[key]!r} for both "
                                                       f"{partner!r} and {key!r}")
+        if MISSING not in clean.values():
+            rows.append(IdentificationRow(**clean, location=location))
     return rows
 
 
@@ -412,51 +433,46 @@ def _read_table_form(reader: TableReader) -> Chain:
     name = top.get("name", kind="str", required=False, default=name)
     frame = top.get("frame", kind="id", required=False, default=0)
     rows = _read_rows(top, required=True)
-    geometry = _geometry(reader, top, None)
     general = top.get("general", kind="mapping", required=False, default=None)
     claims = _read_claims(top)
     if not rows and not reader.issues:
         reader.add("structure_identification", "the table has no rows")
-    members = {frame} | {row[k] for row, _ in rows for k in ("i", "j") if row[k] is not None}
-    for row, location in rows:
+    members = {frame} | {link for row in rows for link in (row.i, row.j) if link is not None}
+    for row in rows:
         for key in ("i_minus_1", "j_minus_1", "i_plus_1", "j_plus_1"):
             link = row.get(key)
-            if link not in (None, MISSING) and link not in members:
-                reader.add(f"{location} {key!r}", f"link {link!r} is neither the frame "
-                                                  f"{frame!r} nor the i or j of any row")
+            if link is not None and link not in members:
+                reader.add(f"{row.location} {key!r}", f"link {link!r} is neither the frame "
+                                                      f"{frame!r} nor the i or j of any row")
     if reader.issues:
         return _empty(reader.source)
     links = [frame, *sorted((m for m in members if m != frame), key=id_key)]
     pairs: list[Pair] = []
     inputs: list[Drive] = []
-    for row, _ in rows:
+    for row in rows:
         pairs.extend(_group_pairs(row, frame))
-        if row["L"] == 0:
-            inputs.append(Drive(link=row["i"]))
+        if row.L == 0:
+            inputs.append(Drive(link=row.i))
     pairs = _unique_ids(pairs)
+    joints = {pair.id: (pair.type.value, pair.links) for pair in pairs}
+    geometry = _geometry(reader, top, None, joints, links, frame)
+    reader.raise_if_any()
     return Chain(name=name or _stem(reader.source), frame=frame, links=tuple(links),
                  pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,
                  source=reader.source, group_params=_group_params(rows),
-                 identification=tuple(row for row, _ in rows), claims=claims)
+                 identification=tuple(rows), claims=claims)
 
 
-# Pair types (external of i, internal, external of j) and guide carriers per kind L1..L5
-# (method.md §2.0): "prev" = the known link i−1 / j−1, "i"/"j" = the group's own link.
-_KIND_PAIRS: dict[int, tuple[tuple[str, str | None], tuple[str, str | None],
-                             tuple[str, str | None]]] = {
-    1: (("R", None), ("R", None), ("R", None)),
-    2: (("P", "prev"), ("R", None), ("R", None)),
-    3: (("R", None), ("P", "i"), ("R", None)),
-    4: (("P", "prev"), ("R", None), ("P", "prev")),
-    5: (("P", "prev"), ("P", "j"), ("R", None)),
-}
-
-
-def _group_pairs(row: dict[str, Any], frame: LinkId) -> list[Pair]:
-    i, j, i1, j1 = row["i"], row["j"], row["i_minus_1"], row["j_minus_1"]
-    if row["L"] == 0:
+def _group_pairs(row: IdentificationRow, frame: LinkId) -> list[Pair]:
+    """The pairs of a row's group; the kind gives their types and guide carriers
+    (``method.md`` §2.0)."""
+    i, j, i1, j1 = row.i, row.j, row.i_minus_1, row.j_minus_1
+    assert i1 is not None
+    row_pairs = kind_of(row.L).row_pairs
+    if row_pairs is None:
         return [Pair(f"{i1}-{i}", PairType.R, (i1, i), None, f"{i1}-{i}")]
-    ext_i, internal, ext_j = _KIND_PAIRS[row["L"]]
+    assert j is not None and j1 is not None
+    ext_i, internal, ext_j = row_pairs
     roles = {"i": i, "j": j}
     out = []
     for (ptype, carrier), (a, b), prev in ((ext_i, (i, i1), i1), (internal, (i, j), None),
@@ -481,18 +497,8 @@ def _unique_ids(pairs: list[Pair]) -> list[Pair]:
     return out
 
 
-def _group_params(rows: list[tuple[dict[str, Any], str]] | None
-                  ) -> dict[tuple[LinkId, ...], dict[str, Any]]:
-    params: dict[tuple[LinkId, ...], dict[str, Any]] = {}
-    for row, _ in rows or []:
-        if row.get("params") is not None:
-            params[group_key(row)] = row["params"]
-    return params
-
-
-def group_key(row: dict[str, Any]) -> tuple[LinkId, ...]:
-    """The links of the group of an identification row: ``(i,)`` for L0, else ``(i, j)``."""
-    return (row["i"],) if row["L"] == 0 else (row["i"], row["j"])
+def _group_params(rows: list[IdentificationRow]) -> dict[tuple[LinkId, ...], dict[str, Any]]:
+    return {row.key: dict(row.params) for row in rows if row.params is not None}
 
 
 # ------------------------------------------------------------------------------ helpers

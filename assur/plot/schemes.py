@@ -31,9 +31,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from assur.kinds import KINDS
 from assur.structure.classification import roman as roman_numeral
 from assur.errors import AssurError
-from assur.model import Chain, LinkId, Pair, PairId, PairType, id_key
+from assur.model import Chain, LinkId, Pair, PairId, PairType, id_key, joint_key
 from assur.io.files import atomic_write_bytes
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -53,8 +54,6 @@ __all__ = [
     "scheme_bytes",
 ]
 
-_KIND_STRINGS = {1: "RRR", 2: "RRP", 3: "RPR", 4: "PRP", 5: "RPP"}
-_KIND_STRINGS_RU = {1: "ВВВ", 2: "ВВП", 3: "ВПВ", 4: "ПВП", 5: "ВПП"}
 _GROUP_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b",
                   "#e377c2", "#7f7f7f", "#bcbd22")
 _TEXT = {
@@ -136,8 +135,7 @@ def _kind_text(group: _Group, lang: str) -> str:
     """The kind of a dyad with its pair string, or the signature of a larger group."""
     kind = group.kind
     if isinstance(kind, int) and not isinstance(kind, bool):
-        table = _KIND_STRINGS_RU if lang == "ru" else _KIND_STRINGS
-        code = table.get(kind)
+        code = KINDS[kind].pair_text(lang) if kind in KINDS else ""
         return f"{kind} ({code})" if code else str(kind)
     return group.signature or "–" if kind is None else str(kind)
 
@@ -207,45 +205,14 @@ class SchemeLayout:
     from_geometry: bool
 
 
-def _geometry_entry(chain: Chain, pair: Pair) -> dict[str, Any] | None:
-    geometry = chain.geometry or {}
-    for key in (pair.id, pair.origin):
-        if key is None:
-            continue
-        for candidate in (key, str(key)):
-            entry = geometry.get(candidate)
-            if isinstance(entry, dict):
-                return entry
-    return None
-
-
-def _point(value: Any) -> complex | None:
-    if isinstance(value, (list, tuple)) and len(value) == 2 and all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
-        return complex(float(value[0]), float(value[1]))
-    return None
-
-
-def _direction(value: Any) -> complex | None:
-    """A guide direction given as a vector ``[dx, dy]`` or an angle in degrees."""
-    if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
-        return complex(math.cos(math.radians(value)), math.sin(math.radians(value)))
-    vector = _point(value)
-    return vector / abs(vector) if vector is not None and abs(vector) > 0 else None
-
-
 def _from_geometry(chain: Chain) -> tuple[dict[PairId, complex], dict[PairId, complex]] | None:
-    positions: dict[PairId, complex] = {}
-    directions: dict[PairId, complex] = {}
-    for pair in chain.pairs:
-        entry = _geometry_entry(chain, pair)
-        point = _point(entry.get("point")) if entry else None
-        if point is None:
-            return None
-        positions[pair.id] = point
-        direction = _direction(entry.get("direction")) if entry else None
-        if pair.type is PairType.P and direction is not None:
-            directions[pair.id] = direction
+    """Pair positions and unit guide directions from the chain's sketch, if it has one."""
+    sketch = chain.geometry
+    if sketch is None:
+        return None
+    positions = {pair.id: sketch.points[joint_key(pair)] for pair in chain.pairs}
+    directions = {pair.id: sketch.directions[joint_key(pair)].unit for pair in chain.pairs
+                  if pair.type is PairType.P}
     return positions, directions
 
 

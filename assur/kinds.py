@@ -39,11 +39,12 @@ import numpy as np
 
 from assur.kinematics import dyads
 from assur.kinematics import jets as J
+from assur.kinematics.dyads import Value
 from assur.model import joint_key
 from assur.text import render
 
 if TYPE_CHECKING:  # pragma: no cover
-    from assur.kinematics.analysis import Value, _State
+    from assur.kinematics.analysis import _State
     from assur.kinematics.build import _Builder
     from assur.kinematics.dyads import DyadSolution
     from assur.kinematics.model import Anchor, GroupModel, Guide
@@ -193,6 +194,12 @@ class _Shortfall:
 # ------------------------------------------------------------------------------ solvers
 
 
+def given(x: Value | None) -> Value:
+    """A solver output that the group's kind always has (a dyad's link j, its slider)."""
+    assert x is not None
+    return x
+
+
 def _solve_input(state: _State, group: GroupModel, q: Value) -> DyadSolution:
     p, col = state.p, group.column
     angle = p(col("phi_1_0")) + state.model.direction * q
@@ -205,7 +212,7 @@ def _solve_input(state: _State, group: GroupModel, q: Value) -> DyadSolution:
 
 def _solve_rrr(state: _State, group: GroupModel, q: Value) -> DyadSolution:
     p, col, roles = state.p, group.column, group.pairs
-    assert group.hinge_i is not None and group.hinge_j is not None
+    assert group.hinge_i is not None and group.hinge_j is not None and group.j is not None
     h_i, h_j = state.point(group.hinge_i), state.point(group.hinge_j)
     l_i = q if group.driven == "i" else p(col("l_i"))
     l_j = q if group.driven == "j" else p(col("l_j"))
@@ -215,20 +222,20 @@ def _solve_rrr(state: _State, group: GroupModel, q: Value) -> DyadSolution:
         state.actuator(group, sol, q)
     else:
         state.rotors[group.i] = (sol.c - sol.origin_i) / p(col("l_i"))
-        state.rotors[group.j] = (sol.c - sol.origin_j) / p(col("l_j"))
+        state.rotors[group.j] = (sol.c - given(sol.origin_j)) / p(col("l_j"))
     return sol
 
 
 def _solve_rrp(state: _State, group: GroupModel, q: Value) -> DyadSolution:
     p, col, roles = state.p, group.column, group.pairs
-    assert group.hinge_j is not None and group.guide_i is not None
+    assert group.hinge_j is not None and group.guide_i is not None and group.j is not None
     h_j = state.point(group.hinge_j)
     base, theta, e = state.guide(group.guide_i)
     sol = dyads.solve_rrp(h_j, base, theta, e, p(col("l_j")), group.sigma, state.delta(group))
     state.joints.update({roles["C"]: sol.c, roles["H_j"]: h_j})
-    state.slider(roles["P_i"], group.guide_i.carrier, group.i, sol.c, sol.s_i, base,
+    state.slider(roles["P_i"], group.guide_i.carrier, group.i, sol.c, given(sol.s_i), base,
                  sol.angle_i, e)
-    state.rotors[group.j] = (sol.c - sol.origin_j) / p(col("l_j"))
+    state.rotors[group.j] = (sol.c - given(sol.origin_j)) / p(col("l_j"))
     return sol
 
 
@@ -239,8 +246,8 @@ def _solve_rpr(state: _State, group: GroupModel, q: Value) -> DyadSolution:
     h = p(col("d"))
     sol = dyads.solve_rpr(h_i, h_j, h, group.sigma, state.delta(group))
     state.joints.update({roles["H_i"]: h_i, roles["H_j"]: h_j})
-    state.slider(roles["P_c"], group.i, group.j, h_j, sol.s_i, sol.origin_i, sol.angle_i, h)
-    r = sol.origin_j - sol.origin_i
+    state.slider(roles["P_c"], group.i, group.j, h_j, given(sol.s_i), sol.origin_i, sol.angle_i, h)
+    r = given(sol.origin_j) - sol.origin_i
     axis = r * (sol.s_i - 1j * p(col("d"))) / J.dot(r, r)
     state.rotors[group.i] = state.rotors[group.j] = axis
     return sol
@@ -253,10 +260,10 @@ def _solve_prp(state: _State, group: GroupModel, q: Value) -> DyadSolution:
     b, theta_j, e_j = state.guide(group.guide_j)
     sol = dyads.solve_prp(a, theta_i, e_i, b, theta_j, e_j, state.delta(group))
     state.joints[roles["C"]] = sol.c
-    state.slider(roles["P_i"], group.guide_i.carrier, group.i, sol.c, sol.s_i, a, sol.angle_i,
-                 e_i)
-    state.slider(roles["P_j"], group.guide_j.carrier, group.j, sol.c, sol.s_j, b, sol.angle_j,
-                 e_j)
+    state.slider(roles["P_i"], group.guide_i.carrier, group.i, sol.c, given(sol.s_i), a,
+                 sol.angle_i, e_i)
+    state.slider(roles["P_j"], group.guide_j.carrier, group.j, sol.c, given(sol.s_j), b,
+                 given(sol.angle_j), e_j)
     return sol
 
 
@@ -268,20 +275,29 @@ def _solve_rpp(state: _State, group: GroupModel, q: Value) -> DyadSolution:
     sol = dyads.solve_rpp(h_j, state.p(group.column("gamma")), a, theta_s, e,
                           state.delta(group))
     state.joints[roles["H_j"]] = h_j
-    state.slider(roles["P_i"], group.guide_i.carrier, group.i, sol.c, sol.s_i, a, sol.angle_i, e)
-    state.slider(roles["P_c"], group.j, group.i, sol.c, sol.s_j, sol.origin_j, sol.angle_j, 0.0)
+    state.slider(roles["P_i"], group.guide_i.carrier, group.i, sol.c, given(sol.s_i), a,
+                 sol.angle_i, e)
+    state.slider(roles["P_c"], group.j, group.i, sol.c, given(sol.s_j), given(sol.origin_j),
+                 given(sol.angle_j), 0.0)
     return sol
 
 
 # ------------------------------------------------------------------------ sketch builders
 
 
+def _ends(group: AssurGroup) -> tuple[LinkId, LinkId]:
+    """The known links i−1 and j−1 that a dyad attaches to."""
+    assert group.i_minus_1 is not None and group.j_minus_1 is not None
+    return group.i_minus_1, group.j_minus_1
+
+
 def _sketch_rrr(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pair],
                 label: str) -> Sketched | None:
     pi, pj, pc = pairs
+    prev_i, prev_j = _ends(group)
     hi, hj, c = build.point(pi), build.point(pj), build.point(pc)
-    anchor_i = build.attachment(group.i_minus_1, hi, label, _HI)
-    anchor_j = build.attachment(group.j_minus_1, hj, label, _HJ)
+    anchor_i = build.attachment(prev_i, hi, label, _HI)
+    anchor_j = build.attachment(prev_j, hj, label, _HJ)
     build.put(label, "l_i", abs(c - hi))
     build.put(label, "l_j", abs(c - hj))
     sigma = _sign(_cross(hj - hi, c - hi))
@@ -293,10 +309,11 @@ def _sketch_rrr(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pai
 def _sketch_rrp(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pair],
                 label: str) -> Sketched | None:
     pi, pj, pc = pairs
+    prev_i, prev_j = _ends(group)
     c, hj, base, theta = build.point(pc), build.point(pj), build.point(pi), build.direction(pi)
-    anchor_j = build.attachment(group.j_minus_1, hj, label, _HJ)
+    anchor_j = build.attachment(prev_j, hj, label, _HJ)
     build.put(label, "l_j", abs(c - hj))
-    guide = build.guide(pi, group.i_minus_1, base, theta, label, KINDS[2].guides["i"], c)
+    guide = build.guide(pi, prev_i, base, theta, label, KINDS[2].guides["i"], c)
     sigma = _sign(_dot(c - hj, cmath.exp(1j * theta)))
     return Sketched(sigma, (c, theta), (hj, cmath.phase(c - hj)), hinge_j=anchor_j,
                     guide_i=guide)
@@ -305,9 +322,10 @@ def _sketch_rrp(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pai
 def _sketch_rpr(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pair],
                 label: str) -> Sketched | None:
     pi, pj, pc = pairs
+    prev_i, prev_j = _ends(group)
     hi, hj, theta = build.point(pi), build.point(pj), build.direction(pc)
-    anchor_i = build.attachment(group.i_minus_1, hi, label, _HI)
-    anchor_j = build.attachment(group.j_minus_1, hj, label, _HJ)
+    anchor_i = build.attachment(prev_i, hi, label, _HI)
+    anchor_j = build.attachment(prev_j, hj, label, _HJ)
     axis = cmath.exp(1j * theta)
     build.put(label, "d", _cross(axis, hj - hi))
     sigma = _sign(_dot(axis, hj - hi))
@@ -317,16 +335,18 @@ def _sketch_rpr(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pai
 def _sketch_prp(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pair],
                 label: str) -> Sketched | None:
     pi, pj, pc = pairs
+    prev_i, prev_j = _ends(group)
     c = build.point(pc)
     a, ti, b, tj = build.point(pi), build.direction(pi), build.point(pj), build.direction(pj)
-    gi = build.guide(pi, group.i_minus_1, a, ti, label, KINDS[4].guides["i"], c)
-    gj = build.guide(pj, group.j_minus_1, b, tj, label, KINDS[4].guides["j"], c)
+    gi = build.guide(pi, prev_i, a, ti, label, KINDS[4].guides["i"], c)
+    gj = build.guide(pj, prev_j, b, tj, label, KINDS[4].guides["j"], c)
     return Sketched(1, (c, ti), (c, tj), guide_i=gi, guide_j=gj)
 
 
 def _sketch_rpp(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pair],
                 label: str) -> Sketched | None:
     pi, pj, pc = pairs
+    prev_i, prev_j = _ends(group)
     hj, a, ts, tt = build.point(pj), build.point(pi), build.direction(pi), build.direction(pc)
     us, ut = cmath.exp(1j * ts), cmath.exp(1j * tt)
     denominator = _cross(ut, us)
@@ -335,9 +355,9 @@ def _sketch_rpp(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pai
                       group=label)
         return None
     c = hj + _cross(a - hj, us) / denominator * ut
-    anchor_j = build.attachment(group.j_minus_1, hj, label, _HJ)
+    anchor_j = build.attachment(prev_j, hj, label, _HJ)
     build.put(label, "gamma", math.degrees(_wrap(tt - ts)))
-    gi = build.guide(pi, group.i_minus_1, a, ts, label, KINDS[5].guides["i"], c)
+    gi = build.guide(pi, prev_i, a, ts, label, KINDS[5].guides["i"], c)
     return Sketched(1, (c, ts), (hj, tt), hinge_j=anchor_j, guide_i=gi)
 
 

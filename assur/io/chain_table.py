@@ -131,7 +131,7 @@ def _read_chain_form(reader: TableReader) -> Chain:
     if links is None:
         links = [] if frame is MISSING else [frame]
         links += [link for link in dict.fromkeys(mentioned) if link not in links]
-    elif frame is not MISSING and frame not in known:
+    elif frame is not MISSING and frame not in set(links):
         reader.add("mechanism 'frame'", f"the frame {frame!r} is not in the links table "
                                         f"({_list(links)})")
     inputs = _read_inputs(mech)

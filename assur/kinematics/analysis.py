@@ -22,9 +22,10 @@ from typing import Any
 import numpy as np
 
 from assur.kinematics import jets as J
-from assur.kinematics.dyads import DyadSolution
+from assur.kinematics.dyads import DyadSolution, Value
 from assur.kinematics.jets import Jet
 from assur.kinematics.model import Anchor, GroupModel, Guide, KinematicModel
+from assur.kinds import given
 from assur.model import LinkId, PairId
 
 __all__ = [
@@ -37,8 +38,6 @@ __all__ = [
     "values",
     "velocity",
 ]
-
-Value = Jet | np.ndarray
 
 
 @dataclass(frozen=True)
@@ -224,13 +223,13 @@ class _State:
         self.solutions[group.label] = sol
         self.frames[group.i] = (sol.origin_i, sol.angle_i)
         if group.j is not None:
-            self.frames[group.j] = (sol.origin_j, sol.angle_j)
+            self.frames[group.j] = (given(sol.origin_j), given(sol.angle_j))
 
     def actuator(self, group: GroupModel, sol: DyadSolution, q: Value) -> None:
         """Frames of the actuator's members and its driven pair (s = actuator length)."""
         side = group.driven
-        origin = sol.origin_i if side == "i" else sol.origin_j
-        angle = sol.angle_i if side == "i" else sol.angle_j
+        origin = sol.origin_i if side == "i" else given(sol.origin_j)
+        angle = sol.angle_i if side == "i" else given(sol.angle_j)
         for member in group.composite:
             self.frames[member] = (origin, angle)
         pairs = self.model.pair_links

@@ -374,8 +374,8 @@ def model_from_sketch(analysis: StructuralAnalysis) -> KinematicModel:
         return build.model(direction=sketch.rotation, drive="crank", tracing=tracing)
     span = sketch.stroke
     if span is None:
-        group = build.groups[0]
-        length = build.params[group.column("l_i" if group.driven == "i" else "l_j")]
+        first = build.groups[0]
+        length = build.params[first.column("l_i" if first.driven == "i" else "l_j")]
         span = (length, length)
     return build.model(direction=1, drive="actuator", input_range=span, tracing=tracing)
 
@@ -481,7 +481,7 @@ def model_from_params(analysis: StructuralAnalysis) -> KinematicModel:
     for seq, group in enumerate(topo.groups, start=2):
         label = topo.label(group)
         kind = topo.kind(group)
-        key = (group.i, group.j)
+        key: tuple[LinkId, ...] = (group.i, group.j)  # type: ignore[assignment]
         node = _param_node(reader, rows, key, label, kind.number or 0)
         _param_values(node, kind.number or 0, build, label, supplied_ok=True)
         model = _param_group(topo, build, group, label, seq, variants.get(key), node)

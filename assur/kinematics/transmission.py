@@ -23,6 +23,7 @@ import numpy as np
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import Motion, unwrap
 from assur.kinematics.model import KinematicModel
+from assur.kinds import given
 from assur.model import LinkId, PairId
 
 __all__ = [
@@ -86,11 +87,11 @@ def binary_links(model: KinematicModel) -> set[LinkId]:
     for group in model.groups:
         if loaded & set(group.composite):
             loaded |= set(group.composite)
-    out = set()
+    out: set[LinkId] = set()
     for group in model.groups:
         if group.group_kind.is_input:
             continue
-        out |= {link for link in (group.i, group.j) if link not in loaded}
+        out |= {link for link in (group.i, group.j) if link is not None and link not in loaded}
     return out
 
 
@@ -105,7 +106,7 @@ def pressure_angles(motion: Motion) -> list[PressureAngle]:
             continue
         sol = motion.solutions[group.label]
         phi_i = np.asarray(J.value(sol.angle_i))
-        phi_j = np.asarray(J.value(sol.angle_j))
+        phi_j = np.asarray(J.value(given(sol.angle_j)))
         with np.errstate(invalid="ignore"):
             rods, alpha = rule(group, binary, phi_i, phi_j)
         if not rods:

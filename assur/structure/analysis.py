@@ -23,7 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Any
 
-import networkx as nx
+import networkx as nx  # type: ignore[import-untyped]
 
 from assur.io.chain_table import recentre_hinge
 from assur.structure.classification import AssurGroup, classify, input_group, roman
@@ -297,7 +297,8 @@ def _in_loop(finding: Diagnostic, loops: list[Diagnostic]) -> bool:
 def _idle(chain: Chain) -> list[Diagnostic]:
     """Open appendages: the far side of a bridge (seen from the frame) holding no input."""
     inputs = {link for d in chain.inputs for link in
-              ([d.link] if d.link is not None else list(chain.pair(d.pair).links))}
+              ([d.link] if d.link is not None else
+               list(chain.pair(d.pair).links) if d.pair is not None else [])}
     out = []
     for side in _appendages(chain, inputs):
         pairs = {p.id for link in side for p in chain.pairs_of(link)}
@@ -403,8 +404,11 @@ def _applicability(a: StructuralAnalysis, graph: BodyGraph) -> list[tuple[str, s
             return pair.other(chain.frame) if chain.frame in pair.links else None
         return drive.link
 
-    bad_inputs = [d for d in chain.inputs if driven_link(d) not in graph.driven
-                  or chain.pair(graph.driven[driven_link(d)]).type is not PairType.R]
+    def driven_by_hinge(drive: Drive) -> bool:
+        link = driven_link(drive)
+        return link in graph.driven and chain.pair(graph.driven[link]).type is PairType.R
+
+    bad_inputs = [d for d in chain.inputs if not driven_by_hinge(d)]
     if bad_inputs:
         names = ", ".join(str(d.link if d.link is not None else d.pair) for d in bad_inputs)
         failed.append((f"condition 3: every input must be a crank turning on the frame in a "

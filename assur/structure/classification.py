@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from itertools import combinations
 from typing import Any
 
-import networkx as nx
+import networkx as nx  # type: ignore[import-untyped]
 
 from assur.kinds import GroupKind, kind_of, kind_of_pattern
 from assur.model import LinkId, PairId, id_key
@@ -220,6 +220,7 @@ def _dyad(raw: RawGroup, graph: BodyGraph, common: dict[str, Any],
         j = ba if ta == "R" else bb
     else:  # "not_carrier"
         guide = chain.pair(pc).guide
+        assert guide is not None  # a P pair names its guide carrier
         j = bb if graph.body_of[guide] == ba else ba
     i = bb if j == ba else ba
     ext_i = _real_external(graph, ext[i][0], i)

@@ -90,6 +90,7 @@ def identification_table(analysis: StructuralAnalysis,
     rows = []
     for seq, group in enumerate((*analysis.input_groups, *analysis.groups), start=1):
         kind = group.kind or 0
+        assert group.i is not None  # an input group or a dyad names its link i
         rows.append(IdentificationRow(
             L=kind, seq=seq, i_minus_1=group.i_minus_1, j_minus_1=group.j_minus_1, i=group.i,
             j=group.j, i_plus_1=_successor(analysis, group, group.i),
@@ -148,7 +149,7 @@ def check_identification(analysis: StructuralAnalysis,
     list of Mismatch
         Empty when the table agrees with the analysis.
     """
-    rows = [r.to_dict() if isinstance(r, IdentificationRow) else dict(r) for r in rows]
+    table_rows = [r.to_dict() if isinstance(r, IdentificationRow) else dict(r) for r in rows]
     groups = (*analysis.input_groups, *analysis.groups)
     seq_of = {id(g): k for k, g in enumerate(groups, start=1)}
     frame = analysis.chain.frame
@@ -156,7 +157,7 @@ def check_identification(analysis: StructuralAnalysis,
     used: dict[int, int] = {}
     user_seq: dict[int, tuple[int, int, str]] = {}
 
-    for index, row in enumerate(rows):
+    for index, row in enumerate(table_rows):
         label = _label(table, index, row)
 
         def miss(field: str, expected: Any, found: Any, why: str = "", why_ru: str = "",

@@ -16,10 +16,10 @@ A group's level is 1 + the highest level of the known bodies its external pairs 
 from __future__ import annotations
 
 from collections import Counter, deque
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 
-import networkx as nx
+import networkx as nx  # type: ignore[import-untyped]
 
 from assur.structure.diagnostics import Diagnostic, diagnostic
 from assur.model import Chain, LinkId, PairId, id_key
@@ -43,7 +43,7 @@ class BodyGraph:
     driven: dict[LinkId, PairId]
     issues: list[Diagnostic] = field(default_factory=list)
 
-    def links(self, bodies: object) -> list[LinkId]:
+    def links(self, bodies: Iterable[LinkId]) -> list[LinkId]:
         """The real links of some bodies."""
         return sorted((link for body in bodies for link in self.members[body]), key=id_key)
 
@@ -92,6 +92,7 @@ def body_graph(chain: Chain) -> BodyGraph:
                 frozen.append(pair.id)
                 welded.add_edge(*pair.links)
             continue
+        assert drive.link is not None  # a drive names a link or a pair
         link = drive.link
         on_frame = [p for p in chain.pairs_of(link) if chain.frame in p.links]
         input_links.append(link)

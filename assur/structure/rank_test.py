@@ -102,6 +102,7 @@ def constraint_jacobian(pairs: Iterable[Pair], pose: dict[PairId, tuple[complex,
         if pair.type is PairType.R:
             rows += [row_for(pair, 1.0 + 0j, False), row_for(pair, 1j, False)]
         else:
+            assert direction is not None  # a P pair has its slide direction
             normal = 1j * direction / abs(direction)
             rows += [row_for(pair, 0j, True), row_for(pair, normal, False)]
     for pair in locked:
@@ -109,6 +110,7 @@ def constraint_jacobian(pairs: Iterable[Pair], pose: dict[PairId, tuple[complex,
         if pair.type is PairType.R:
             rows.append(row_for(pair, 0j, True))
         else:
+            assert direction is not None
             rows.append(row_for(pair, direction / abs(direction), False))
     if not rows:
         return np.zeros((0, 3 * len(columns)))

@@ -148,7 +148,7 @@ def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
         if drive.link is not None:
             name = chain.link(drive.link).name
             items.append(str(drive.link) + (f" ({name})" if name else ""))
-        else:
+        elif drive.pair is not None:
             pair = chain.pair(drive.pair)
             items.append(f"{'пара' if lang == 'ru' else 'pair'} {pair.id} "
                          f"({pair.links[0]}–{pair.links[1]})")

@@ -291,13 +291,19 @@ def _ends(group: AssurGroup) -> tuple[LinkId, LinkId]:
     return group.i_minus_1, group.j_minus_1
 
 
+def _hinges(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pair],
+            label: str) -> tuple[complex, complex, Anchor, Anchor]:
+    """The sketched external hinges H_i, H_j of a dyad and their anchors."""
+    prev_i, prev_j = _ends(group)
+    hi, hj = build.point(pairs[0]), build.point(pairs[1])
+    return (hi, hj, build.attachment(prev_i, hi, label, _HI),
+            build.attachment(prev_j, hj, label, _HJ))
+
+
 def _sketch_rrr(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pair],
                 label: str) -> Sketched | None:
-    pi, pj, pc = pairs
-    prev_i, prev_j = _ends(group)
-    hi, hj, c = build.point(pi), build.point(pj), build.point(pc)
-    anchor_i = build.attachment(prev_i, hi, label, _HI)
-    anchor_j = build.attachment(prev_j, hj, label, _HJ)
+    c = build.point(pairs[2])
+    hi, hj, anchor_i, anchor_j = _hinges(build, group, pairs, label)
     build.put(label, "l_i", abs(c - hi))
     build.put(label, "l_j", abs(c - hj))
     sigma = _sign(_cross(hj - hi, c - hi))
@@ -321,11 +327,8 @@ def _sketch_rrp(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pai
 
 def _sketch_rpr(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pair],
                 label: str) -> Sketched | None:
-    pi, pj, pc = pairs
-    prev_i, prev_j = _ends(group)
-    hi, hj, theta = build.point(pi), build.point(pj), build.direction(pc)
-    anchor_i = build.attachment(prev_i, hi, label, _HI)
-    anchor_j = build.attachment(prev_j, hj, label, _HJ)
+    theta = build.direction(pairs[2])
+    hi, hj, anchor_i, anchor_j = _hinges(build, group, pairs, label)
     axis = cmath.exp(1j * theta)
     build.put(label, "d", _cross(axis, hj - hi))
     sigma = _sign(_dot(axis, hj - hi))

@@ -82,6 +82,7 @@ def build_model(analysis: StructuralAnalysis) -> KinematicModel:
     Returns
     -------
     KinematicModel
+        Built by :func:`model_from_sketch` or :func:`model_from_params`.
 
     Raises
     ------
@@ -346,6 +347,7 @@ def model_from_sketch(analysis: StructuralAnalysis) -> KinematicModel:
     Returns
     -------
     KinematicModel
+        Parameters in table units; ``bounds`` empty.
 
     Raises
     ------
@@ -449,6 +451,7 @@ def model_from_params(analysis: StructuralAnalysis) -> KinematicModel:
     Returns
     -------
     KinematicModel
+        With the ``[initial, lower, upper]`` ranges of the rows in ``bounds``.
 
     Raises
     ------

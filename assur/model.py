@@ -19,6 +19,7 @@ __all__ = [
     "Chain",
     "Direction",
     "Drive",
+    "GroupParams",
     "IdentificationRow",
     "Input",
     "Link",
@@ -161,6 +162,29 @@ class Pair:
         return b if link == a else a
 
 
+@dataclass(frozen=True, slots=True)
+class GroupParams:
+    """The ``params:`` of an identification row, read and checked with the row.
+
+    Attributes
+    ----------
+    values : mapping
+        Column → value in table units (mm, degrees); the initial value of a range. A column
+        written ``'A'`` (supplied by an earlier group) is absent.
+    bounds : mapping
+        Column → (lower, upper) where the row gave ``[initial, lower, upper]``.
+    direction : int
+        ``s`` of the input group: +1 counter-clockwise, −1 clockwise.
+    tracing : tuple of (name, link)
+        Tracing points with columns ``l_<name>``, ``beta_<name>``.
+    """
+
+    values: Mapping[str, float]
+    bounds: Mapping[str, tuple[float, float]] = field(default_factory=dict)
+    direction: int = 1
+    tracing: tuple[tuple[str, LinkId], ...] = ()
+
+
 #: The columns of the structure-identification table, in the course's order.
 COLUMNS = ("L", "seq", "i_minus_1", "j_minus_1", "i", "j", "i_plus_1", "j_plus_1", "variant",
            "out_code")
@@ -184,7 +208,7 @@ class IdentificationRow:
     j_plus_1: LinkId | list[LinkId] | None
     variant: int | None
     out_code: str | None
-    params: Mapping[str, Any] | None = field(default=None, compare=False, repr=False)
+    params: GroupParams | None = field(default=None, compare=False, repr=False)
     location: str = field(default="", compare=False, repr=False)
 
     @property
@@ -262,7 +286,7 @@ class Chain:
     geometry: Sketch | None = None
     general: Mapping[str, Any] | None = None
     source: str = "<data>"
-    group_params: Mapping[tuple[LinkId, ...], Mapping[str, Any]] = field(default_factory=dict)
+    group_params: Mapping[tuple[LinkId, ...], GroupParams] = field(default_factory=dict)
     names: Mapping[LinkId, str] = field(default_factory=dict)
     identification: tuple[IdentificationRow, ...] | None = None
     claims: Mapping[str, int] = field(default_factory=dict)

@@ -25,11 +25,13 @@ from typing import Any
 
 from assur.errors import TableError
 from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
+from assur.io.params import read_params
 from assur.io.sketch import Joints, read_sketch
 from assur.kinds import KINDS, kind_of
 from assur.model import (
     Chain,
     Drive,
+    GroupParams,
     IdentificationRow,
     LinkId,
     Pair,
@@ -141,7 +143,7 @@ def _read_chain_form(reader: TableReader) -> Chain:
     joints = {pair.id: (pair.type.value, tuple(pair.links)) for pair in raw_pairs}
     geometry = _geometry(reader, top, mech, joints, links, frame)
     general = top.get("general", kind="mapping", required=False, default=None)
-    rows = _read_rows(top, required=False)
+    rows = _read_rows(top, frame, required=False)
     claims = _read_claims(top)
     if reader.issues:
         return _empty(reader.source)
@@ -373,7 +375,7 @@ def _row_label(row: dict[str, Any]) -> str | None:
     return ", ".join(parts) or None
 
 
-def _read_rows(top: Node, *, required: bool) -> list[IdentificationRow]:
+def _read_rows(top: Node, frame: Any, *, required: bool) -> list[IdentificationRow]:
     """Read and validate identification rows (every problem recorded in the reader)."""
     rows: list[IdentificationRow] = []
     clean_rows: list[tuple[dict[str, Any], str]] = []
@@ -423,8 +425,18 @@ def _read_rows(top: Node, *, required: bool) -> list[IdentificationRow]:
                                                       f"found {clean[key]!r} for both "
                                                       f"{partner!r} and {key!r}")
         if MISSING not in clean.values():
+            if clean["params"] is not None:
+                clean["params"] = _read_params(top.reader, clean, frame)
             rows.append(IdentificationRow(**clean, location=location))
     return rows
+
+
+def _read_params(reader: TableReader, row: dict[str, Any], frame: Any) -> GroupParams | None:
+    kind = kind_of(row["L"])
+    links = f"{row['i']}" if kind.is_input else f"{row['i']},{row['j']}"
+    return read_params(reader, f"{kind.code}({links})", row["params"], kind=row["L"],
+                       links=(row["i"], row["j"]), ends=(row["i_minus_1"], row["j_minus_1"]),
+                       frame=frame)
 
 
 def _read_table_form(reader: TableReader) -> Chain:
@@ -432,7 +444,7 @@ def _read_table_form(reader: TableReader) -> Chain:
     name = top.get("mechanism", kind="str", required=False, default=None)
     name = top.get("name", kind="str", required=False, default=name)
     frame = top.get("frame", kind="id", required=False, default=0)
-    rows = _read_rows(top, required=True)
+    rows = _read_rows(top, frame, required=True)
     general = top.get("general", kind="mapping", required=False, default=None)
     claims = _read_claims(top)
     if not rows and not reader.issues:
@@ -497,8 +509,8 @@ def _unique_ids(pairs: list[Pair]) -> list[Pair]:
     return out
 
 
-def _group_params(rows: list[IdentificationRow]) -> dict[tuple[LinkId, ...], dict[str, Any]]:
-    return {row.key: dict(row.params) for row in rows if row.params is not None}
+def _group_params(rows: list[IdentificationRow]) -> dict[tuple[LinkId, ...], GroupParams]:
+    return {row.key: row.params for row in rows if row.params is not None}
 
 
 # ------------------------------------------------------------------------------ helpers

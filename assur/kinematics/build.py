@@ -30,25 +30,23 @@ Examples
 from __future__ import annotations
 
 import cmath
-import difflib
 import math
 import os
 from collections.abc import Mapping
 from typing import Any
 
 from assur.errors import Issue, StructureError, TableError
-from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
+from assur.io.reader import Node, TableReader
 from assur.kinds import GroupKind, GuideColumns, HingeColumns, kind_of
 from assur.kinematics.model import (
     KIND_COLUMNS,
-    SUPPLIED,
     Anchor,
     GroupModel,
     Guide,
     KinematicModel,
     TracePoint,
 )
-from assur.model import LinkId, Pair, PairId, PairType, Sketch, joint_key
+from assur.model import GroupParams, LinkId, Pair, PairId, PairType, Sketch, joint_key
 from assur.structure.analysis import StructuralAnalysis
 from assur.structure.classification import AssurGroup
 from assur.text import Message
@@ -470,104 +468,42 @@ def model_from_params(analysis: StructuralAnalysis) -> KinematicModel:
         raise StructureError(f"{chain.source}: an actuator input needs the chain form with a "
                              f"'geometry:' sketch")
     group0 = topo.input_group()
-    crank, label0 = group0.i, group0.label
-    direction = 1
-    node0 = _param_node(reader, rows, (crank,), label0, 0)
-    _param_values(node0, 0, build, label0, supplied_ok=False)
-    if node0 is not None:
-        s = node0.get("s", kind="int", required=False, default=1,
-                      check=lambda v: None if v in (1, -1) else
-                      Message("rule.plus_minus_one", {"name": "s"}))
-        direction = s if s in (1, -1) else 1
+    params0 = _params(build, rows, (group0.i,), group0.label, kind_of(0))
+    direction = params0.direction if params0 is not None else 1
     build.add(group0)
     tracing: list[TracePoint] = []
     for seq, group in enumerate(topo.groups, start=2):
         label = topo.label(group)
-        kind = topo.kind(group)
         key: tuple[LinkId, ...] = (group.i, group.j)  # type: ignore[assignment]
-        node = _param_node(reader, rows, key, label, kind.number or 0)
-        _param_values(node, kind.number or 0, build, label, supplied_ok=True)
-        model = _param_group(topo, build, group, label, seq, variants.get(key), node)
+        params = _params(build, rows, key, label, topo.kind(group))
+        model = _param_group(topo, build, group, label, seq, variants.get(key))
         build.add(model)
-        tracing.extend(_param_tracing(node, model, build))
+        for name, link in params.tracing if params is not None else ():
+            tracing.append(TracePoint(name, Anchor(link, label, f"l_{name}", f"beta_{name}",
+                                                   True)))
     reader.raise_if_any()
     return build.model(direction=direction, drive="crank", tracing=tuple(tracing))
 
 
-def _param_node(reader: TableReader, rows: Mapping[tuple[LinkId, ...], Mapping[str, Any]],
-                key: tuple[Any, ...], label: str, kind: int) -> Node | None:
-    where = f"structure_identification ({label}) 'params'"
-    value = rows.get(key)
-    if value is None:
-        reader.add(where, f"the row of group {label} has no 'params:'; expected the columns "
-                          f"{', '.join(KIND_COLUMNS[kind])}")
+def _params(build: _Builder, rows: Mapping[tuple[LinkId, ...], GroupParams],
+            key: tuple[LinkId, ...], label: str, kind: GroupKind) -> GroupParams | None:
+    """The row's parameters of one group, entered in the model (None when the row has none)."""
+    params = rows.get(key)
+    if params is None:
+        build.problem(f"structure_identification ({label}) 'params'", "model.no_params",
+                      group=label, columns=", ".join(kind.columns))
         return None
-    return Node(reader, where, dict(value), None)  # the columns are checked by _param_values
-
-
-def _param_values(node: Node | None, kind: int, build: _Builder, label: str, *,
-                  supplied_ok: bool) -> None:
-    if node is None:
-        return
-    allowed = set(KIND_COLUMNS[kind]) | {"delta", "tracing"} | ({"s"} if kind == 0 else set())
-    extra = set()
-    for key in node.mapping:
-        if key in allowed:
-            continue
-        if isinstance(key, str) and key.startswith(("l_", "beta_")):
-            extra.add(key)
-            continue
-        hint = difflib.get_close_matches(str(key), sorted(allowed), n=1, cutoff=0.6)
-        node.reader.add(node.location, f"unknown column {key!r}" + (
-            f"; did you mean {hint[0]!r}?" if hint else
-            f"; the columns of L{kind} are {', '.join(KIND_COLUMNS[kind])}"))
-    for column in (*KIND_COLUMNS[kind], "delta", *sorted(extra)):
-        raw = node.mapping.get(column, MISSING)
-        if raw is MISSING:
-            if column == "delta":
-                continue
-            node.reader.add(f"{node.location} {column!r}", "this column is missing; write 0 for "
-                                                           "an absent parameter, 'A' for one "
-                                                           "supplied by an earlier group")
-            continue
-        where = f"{node.location} {column!r}"
-        if raw == SUPPLIED and supplied_ok and column.startswith(("x_", "y_")):
-            continue  # checked against the link the point lies on (_param_anchor, _param_guide)
-        if raw == SUPPLIED:
-            node.reader.add(where, "expected a number; 'A' (supplied by an earlier group) "
-                                   "applies only to coordinates of points on moving links")
-            continue
-        if isinstance(raw, list) and len(raw) == 3 and all(_is_number(v) for v in raw):
-            value, lo, hi = (float(v) for v in raw)
-            if not lo <= value <= hi:
-                node.reader.add(where, f"expected [initial, lower, upper] with lower ≤ initial "
-                                       f"≤ upper; found {raw}")
-                continue
-            build.bounds[f"{label}.{column}"] = (lo, hi)
-        elif _is_number(raw):
-            value = float(raw)
-        else:
-            node.reader.add(where, f"expected a number, 'A' (supplied by an earlier group) or "
-                                   f"[initial, lower, upper]; found {describe(raw)}")
-            continue
-        build.params[f"{label}.{column}"] = value
+    build.params.update({f"{label}.{column}": value for column, value in params.values.items()})
+    build.bounds.update({f"{label}.{column}": span for column, span in params.bounds.items()})
+    return params
 
 
 def _param_anchor(topo: _Topology, build: _Builder, link: LinkId | None, label: str,
-                  cols: HingeColumns, node: Node | None) -> Anchor:
+                  cols: HingeColumns) -> Anchor:
     """An external hinge: absolute columns on the frame, supplied N/M on a moving link."""
-    reader = build.reader
     assert link is not None
     if link == topo.frame:
-        _need_numbers(cols, reader, node, "the hinge lies on the frame")
         return Anchor(link, label, cols[0], cols[1], False)
-    if node is not None:
-        for col in cols:
-            if node.mapping.get(col) not in (SUPPLIED, None):
-                reader.add(f"{node.location} {col!r}", f"the hinge lies on moving link "
-                                                       f"{link!r}: its coordinates are supplied "
-                                                       f"by that link's group; expected 'A'; "
-                                                       f"found {describe(node.mapping.get(col))}")
     owner = build.owner.get(link)
     if owner is None:  # pragma: no cover - the layering order guarantees the owner exists
         raise StructureError(f"link {link!r} is used before its group is solved")
@@ -577,70 +513,29 @@ def _param_anchor(topo: _Topology, build: _Builder, link: LinkId | None, label: 
     return Anchor(link, owner.label, f"l_{letter}", f"beta_{letter}", True)
 
 
-def _need_numbers(cols: tuple[str, ...], reader: TableReader, node: Node | None,
-                  why: str) -> None:
-    """Report coordinate columns written 'A' although the point is on the frame."""
-    for col in cols:
-        if node is not None and node.mapping.get(col) == SUPPLIED:
-            reader.add(f"{node.location} {col!r}", f"{why}: expected its coordinate (mm); "
-                                                   f"found 'A'")
-
-
-def _param_guide(topo: _Topology, build: _Builder, pair: Pair, carrier: LinkId | None,
-                 label: str, cols: GuideColumns, node: Node | None) -> Guide:
+def _param_guide(build: _Builder, pair: Pair, carrier: LinkId | None, label: str,
+                 cols: GuideColumns) -> Guide:
     x, y, beta, offset = cols
     assert carrier is not None
-    if carrier == topo.frame:
-        _need_numbers((x, y), build.reader, node, "the guide is on the frame")
     for col in (x, y):
-        name = f"{label}.{col}"
-        if name not in build.params:
-            # 'A' on a moving carrier: the base point is the carrier's origin hinge
-            build.params[name] = 0.0
+        # 'A' on a moving carrier: the base point is the carrier's origin hinge
+        build.params.setdefault(f"{label}.{col}", 0.0)
     return Guide(pair.id, carrier, Anchor(carrier, label, x, y, False), beta, offset)
 
 
 def _param_group(topo: _Topology, build: _Builder, group: AssurGroup, label: str, seq: int,
-                 variant: Any, node: Node | None) -> GroupModel:
+                 variant: int | None) -> GroupModel:
     """The group's hinges and guides, as its kind declares their columns."""
     kind = topo.kind(group)
     pi, pj, _ = topo.dyad_pairs(group)
     prev = {"i": group.i_minus_1, "j": group.j_minus_1}
     sigma = 1 if not kind.sided or variant in (None, 0) else _sign(variant)
-    hinges = {side: _param_anchor(topo, build, prev[side], label, cols, node)
+    hinges = {side: _param_anchor(topo, build, prev[side], label, cols)
               for side, cols in kind.hinges.items()}
-    guides = {side: _param_guide(topo, build, pi if side == "i" else pj, prev[side], label,
-                                 cols, node)
+    guides = {side: _param_guide(build, pi if side == "i" else pj, prev[side], label, cols)
               for side, cols in kind.guides.items()}
     assert group.i is not None
     return GroupModel(label, group.kind or 0, seq, group.i, group.j, sigma, hinges.get("i"),
                       hinges.get("j"), guides.get("i"), guides.get("j"),
                       pairs=topo.pair_roles(group))
 
-
-def _param_tracing(node: Node | None, group: GroupModel, build: _Builder
-                   ) -> list[TracePoint]:
-    if node is None:
-        return []
-    names = node.mapping.get("tracing") or []
-    out = []
-    for entry in names if isinstance(names, list) else []:
-        if not isinstance(entry, dict) or set(entry) - {"name", "link"}:
-            node.reader.add(f"{node.location} 'tracing'", f"expected rows {{name: Ж, link: L}} "
-                                                          f"with columns l_<name>, "
-                                                          f"beta_<name>; found {describe(entry)}")
-            continue
-        name, link = str(entry.get("name")), normalise_id(entry.get("link"))
-        cols = (f"l_{name}", f"beta_{name}")
-        if link not in (group.i, group.j) or any(group.column(c) not in build.params
-                                                 for c in cols):
-            node.reader.add(f"{node.location} 'tracing'", f"tracing point {name!r} needs link "
-                                                          f"{group.i} or {group.j} and the "
-                                                          f"columns {cols[0]}, {cols[1]}")
-            continue
-        out.append(TracePoint(name, Anchor(link, group.label, cols[0], cols[1], True)))
-    return out
-
-
-def _is_number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)

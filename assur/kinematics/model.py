@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from assur.io.params import SUPPLIED
 from assur.kinds import KINDS, GroupKind, kind_of
 from assur.model import LinkId, PairId
 
@@ -38,8 +39,6 @@ __all__ = [
 KIND_COLUMNS: Mapping[int, tuple[str, ...]] = {number: kind.columns
                                                for number, kind in KINDS.items()}
 
-#: The symbol of a value supplied by an earlier group (``method.md`` §4.3).
-SUPPLIED = "A"
 
 
 

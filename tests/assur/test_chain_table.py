@@ -165,17 +165,52 @@ def test_identification_table_rebuilds_the_course_chain() -> None:
     assert len(rebuilt.identification) == 6
 
 
-def test_row_params_are_kept_per_group() -> None:
+def test_row_params_are_read_with_their_rows() -> None:
+    crank = {"x_O1": 0, "y_O1": 0, "l_1": [40, 30, 50], "phi_1_0": 90, "s": -1}
+    dyad = {"x_Hi": "A", "y_Hi": "A", "x_Hj": 100, "y_Hj": 0, "l_i": 120, "l_j": 90,
+            "l_N": 0, "beta_N": 0, "l_M": 0, "beta_M": 0, "delta": 0.1, "l_K": 30,
+            "beta_K": 45, "tracing": [{"name": "K", "link": 2}]}
     data = {"structure_identification": [
-        {"L": 0, "i_minus_1": 0, "j_minus_1": None, "i": 1, "j": None,
-         "params": {"l1": 40.0}},
-        {"L": 1, "i_minus_1": 1, "j_minus_1": 0, "i": 2, "j": 3,
-         "params": {"li": 120, "lj": 90, "extra": [1, 2]}}],
+        {"L": 0, "i_minus_1": 0, "j_minus_1": None, "i": 1, "j": None, "params": crank},
+        {"L": 1, "i_minus_1": 1, "j_minus_1": 0, "i": 2, "j": 3, "params": dyad}],
         "general": {"s": 1}}
     chain = chain_from_dict(data)
-    assert chain.group_params == {(1,): {"l1": 40.0},
-                                  (2, 3): {"li": 120, "lj": 90, "extra": [1, 2]}}
+    assert set(chain.group_params) == {(1,), (2, 3)}
+    first, second = chain.group_params[(1,)], chain.group_params[(2, 3)]
+    assert first.values == {"x_O1": 0.0, "y_O1": 0.0, "l_1": 40.0, "phi_1_0": 90.0}
+    assert first.bounds == {"l_1": (30.0, 50.0)} and first.direction == -1
+    assert "x_Hi" not in second.values and second.values["x_Hj"] == 100.0
+    assert second.values["delta"] == 0.1 and second.values["beta_K"] == 45.0
+    assert second.tracing == (("K", 2),) and second.bounds == {}
+    assert chain.identification[1].params is second
     assert chain.general == {"s": 1} and chain.geometry is None
+
+
+def test_row_params_problems_are_found_when_the_table_is_read() -> None:
+    params = {"x_Hi": 5, "y_Hi": "A", "x_Hj": "A", "y_Hj": 0, "l_i": [1, 2, 3], "l_j": "x",
+              "l_N": 0, "beta_N": "A", "l_M": 0, "lenght": 1,
+              "tracing": [{"name": "K", "link": 9}]}
+    data = {"structure_identification": [
+        {"L": 0, "i_minus_1": 0, "j_minus_1": None, "i": 1, "j": None},
+        {"L": 1, "i_minus_1": 1, "j_minus_1": 0, "i": 2, "j": 3, "params": params}]}
+    with pytest.raises(TableError) as info:
+        chain_from_dict(data, source="rows.yaml")
+    where = "structure_identification (L1(2,3)) 'params'"
+    assert [issue.text() for issue in info.value.issues] == [
+        f"{where}: unknown column 'lenght'; the columns of L1 are x_Hi, y_Hi, x_Hj, y_Hj, "
+        "l_i, l_j, l_N, beta_N, l_M, beta_M",
+        f"{where} 'x_Hi': the hinge lies on moving link 1: its coordinates are supplied by that "
+        "link's group; expected 'A'; found 5",
+        f"{where} 'x_Hj': the hinge lies on the frame: expected its coordinate (mm); found 'A'",
+        f"{where} 'l_i': expected [initial, lower, upper] with lower ≤ initial ≤ upper; "
+        "found [1, 2, 3]",
+        f"{where} 'l_j': expected a number, 'A' (supplied by an earlier group) or "
+        "[initial, lower, upper]; found 'x' (a text)",
+        f"{where} 'beta_N': expected a number; 'A' (supplied by an earlier group) applies only "
+        "to coordinates of points on moving links",
+        f"{where} 'beta_M': this column is missing; write 0 for an absent parameter, 'A' for "
+        "one supplied by an earlier group",
+        f"{where} 'tracing': tracing point 'K' needs link 2 or 3 and the columns l_K, beta_K"]
 
 
 def test_chain_form_may_carry_a_table_to_check() -> None:

@@ -15,6 +15,8 @@ from dataclasses import asdict, dataclass, field
 from enum import Enum
 from typing import Any
 
+from assur.errors import Issue
+
 __all__ = [
     "Chain",
     "Direction",
@@ -173,16 +175,26 @@ class GroupParams:
         written ``'A'`` (supplied by an earlier group) is absent.
     bounds : mapping
         Column → (lower, upper) where the row gave ``[initial, lower, upper]``.
+    supplied : frozenset of str
+        Columns written ``'A'`` (supplied by an earlier group).
     direction : int
         ``s`` of the input group: +1 counter-clockwise, −1 clockwise.
     tracing : tuple of (name, link)
         Tracing points with columns ``l_<name>``, ``beta_<name>``.
+    keys : tuple of str
+        Every key the row gave, in its order (the model checks them against the group's
+        columns).
+    problems : tuple of Issue
+        Problems of the values, reported by the model with the problems of the columns.
     """
 
     values: Mapping[str, float]
     bounds: Mapping[str, tuple[float, float]] = field(default_factory=dict)
+    supplied: frozenset[str] = frozenset()
     direction: int = 1
     tracing: tuple[tuple[str, LinkId], ...] = ()
+    keys: tuple[str, ...] = ()
+    problems: tuple[Issue, ...] = ()
 
 
 #: The columns of the structure-identification table, in the course's order.

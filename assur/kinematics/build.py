@@ -30,13 +30,14 @@ Examples
 from __future__ import annotations
 
 import cmath
+import difflib
 import math
 import os
 from collections.abc import Mapping
 from typing import Any
 
 from assur.errors import Issue, StructureError, TableError
-from assur.io.reader import Node, TableReader
+from assur.io.reader import Node, TableReader, describe
 from assur.kinds import GroupKind, GuideColumns, HingeColumns, kind_of
 from assur.kinematics.model import (
     KIND_COLUMNS,
@@ -463,20 +464,20 @@ def model_from_params(analysis: StructuralAnalysis) -> KinematicModel:
     build = _Builder(topo)
     reader = build.reader
     rows = chain.group_params
-    variants = {row.key: row.variant for row in chain.identification or ()}
+    variants: dict[tuple[LinkId | None, ...], int | None] = {
+        row.key: row.variant for row in chain.identification or ()}
     if topo.composite_group is not None:
         raise StructureError(f"{chain.source}: an actuator input needs the chain form with a "
                              f"'geometry:' sketch")
     group0 = topo.input_group()
-    params0 = _params(build, rows, (group0.i,), group0.label, kind_of(0))
+    params0 = _params(build, rows, group0, group0.label, kind_of(0))
     direction = params0.direction if params0 is not None else 1
     build.add(group0)
     tracing: list[TracePoint] = []
     for seq, group in enumerate(topo.groups, start=2):
         label = topo.label(group)
-        key: tuple[LinkId, ...] = (group.i, group.j)  # type: ignore[assignment]
-        params = _params(build, rows, key, label, topo.kind(group))
-        model = _param_group(topo, build, group, label, seq, variants.get(key))
+        params = _params(build, rows, group, label, topo.kind(group))
+        model = _param_group(topo, build, group, label, seq, variants.get((group.i, group.j)))
         build.add(model)
         for name, link in params.tracing if params is not None else ():
             tracing.append(TracePoint(name, Anchor(link, label, f"l_{name}", f"beta_{name}",
@@ -486,16 +487,72 @@ def model_from_params(analysis: StructuralAnalysis) -> KinematicModel:
 
 
 def _params(build: _Builder, rows: Mapping[tuple[LinkId, ...], GroupParams],
-            key: tuple[LinkId, ...], label: str, kind: GroupKind) -> GroupParams | None:
-    """The row's parameters of one group, entered in the model (None when the row has none)."""
+            group: AssurGroup | GroupModel, label: str, kind: GroupKind
+            ) -> GroupParams | None:
+    """The row's parameters of one group, checked against the group's kind and entered in
+    the model (None when the row has none)."""
+    where = f"structure_identification ({label}) 'params'"
+    key: tuple[LinkId, ...] = (group.i,) if kind.is_input else (group.i, group.j)  # type: ignore
     params = rows.get(key)
     if params is None:
-        build.problem(f"structure_identification ({label}) 'params'", "model.no_params",
-                      group=label, columns=", ".join(kind.columns))
+        build.problem(where, "model.no_params", group=label, columns=", ".join(kind.columns))
         return None
-    build.params.update({f"{label}.{column}": value for column, value in params.values.items()})
-    build.bounds.update({f"{label}.{column}": span for column, span in params.bounds.items()})
+    build.reader.issues.extend(params.problems)
+    allowed = set(kind.columns) | {"delta", "tracing"} | ({"s"} if kind.is_input else set())
+    extra = [column for column in params.keys if column not in allowed
+             and column.startswith(("l_", "beta_"))]
+    for column in params.keys:
+        if column not in allowed and column not in extra:
+            hint = difflib.get_close_matches(column, sorted(allowed), n=1, cutoff=0.6)
+            if hint:
+                build.problem(where, "model.unknown_column_hint", column=repr(column),
+                              hint=hint[0])
+            else:
+                build.problem(where, "model.unknown_column", column=repr(column),
+                              kind=kind.code, columns=", ".join(kind.columns))
+    rules = _coordinate_rules(build.topo.frame, group, kind)
+    for column in (*kind.columns, "delta", *sorted(extra)):
+        at = f"{where} {column!r}"
+        rule = rules.get(column)
+        if column in params.supplied:
+            if rule is None:
+                build.problem(at, "model.supplied_here")
+            elif rule[0].startswith("frame"):
+                build.problem(at, f"model.{rule[0]}_needs_number")
+        elif column not in params.values:
+            if column != "delta" and column not in params.keys:  # else: a bad value, reported
+                build.problem(at, "model.missing_column")
+        elif rule is not None and rule[0] == "moving_hinge":
+            value = params.values[column]
+            build.problem(at, "model.moving_hinge_supplied", link=repr(rule[1]),
+                          found=describe(int(value) if value.is_integer() else value))
+        else:
+            build.params[f"{label}.{column}"] = params.values[column]
+            if column in params.bounds:
+                build.bounds[f"{label}.{column}"] = params.bounds[column]
+    for name, link in params.tracing:
+        if link not in (group.i, group.j) or link is None or any(
+                f"{prefix}{name}" not in params.values for prefix in ("l_", "beta_")):
+            build.problem(f"{where} 'tracing'", "model.tracing_point", name=repr(name),
+                          i=group.i, j=group.j, l=f"l_{name}", beta=f"beta_{name}")
     return params
+
+
+def _coordinate_rules(frame: LinkId, group: AssurGroup | GroupModel, kind: GroupKind
+                      ) -> dict[str, tuple[str, LinkId | None]]:
+    """Coordinate column → (rule, link): a point on the frame needs its coordinates
+    (``"frame_hinge"``, ``"frame_guide"``); a hinge on a moving link is supplied by that
+    link's group (``"moving_hinge"``: ``'A'``); a guide base on a moving carrier may be
+    either (``"moving_guide"``)."""
+    ends: dict[str, LinkId | None] = {}
+    if isinstance(group, AssurGroup):
+        ends = {"i": group.i_minus_1, "j": group.j_minus_1}
+    out: dict[str, tuple[str, LinkId | None]] = {}
+    for part, columns in (("hinge", kind.hinges), ("guide", kind.guides)):
+        for side, cols in columns.items():
+            rule = f"frame_{part}" if ends.get(side) == frame else f"moving_{part}"
+            out.update({cols[0]: (rule, ends.get(side)), cols[1]: (rule, ends.get(side))})
+    return out
 
 
 def _param_anchor(topo: _Topology, build: _Builder, link: LinkId | None, label: str,

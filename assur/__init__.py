@@ -34,7 +34,8 @@ __all__ = [
 # --- structure: chains, decomposition, diagnostics, identification tables (structure owner) ---
 from assur.io.chain_table import chain_from_dict, load_chain  # noqa: E402
 from assur.io.sketch import with_sketch  # noqa: E402
-from assur.model import Sketch  # noqa: E402
+from assur.kinds import KINDS, GroupKind, kind_of  # noqa: E402
+from assur.model import GroupParams, Sketch  # noqa: E402
 from assur.structure.classification import AssurGroup  # noqa: E402
 from assur.structure.diagnostics import Diagnostic  # noqa: E402
 from assur.structure.identification import (  # noqa: E402
@@ -66,6 +67,10 @@ __all__ += [
     "chain_from_dict",
     "with_sketch",
     "Sketch",
+    "GroupParams",
+    "GroupKind",
+    "KINDS",
+    "kind_of",
     "check_identification",
     "identification_table",
     "load_chain",

@@ -80,9 +80,9 @@ class Sketch:
     Attributes
     ----------
     points : mapping
-        Joint id → point (complex, mm); every joint of the chain has one.
+        Joint id → point (complex, mm) of every joint the sketch gives.
     directions : mapping
-        Joint id of every slider pair → :class:`Direction`.
+        Joint id of every slider pair the sketch gives → :class:`Direction`.
     rotation : int
         Crank direction: +1 counter-clockwise (default), −1 clockwise.
     stroke : tuple of float or None
@@ -99,8 +99,9 @@ class Sketch:
     tracing: tuple[SketchTrace, ...] = ()
     margin: float | Mapping[str, float] | None = None
 
-    def pose(self, pairs: Iterable[Pair]) -> dict[PairId, tuple[complex, complex | None]]:
-        """Point and (for a P pair) slide vector of each pair, keyed by pair id.
+    def pose(self, pairs: Iterable[Pair]) -> dict[PairId, tuple[complex, complex | None]] | None:
+        """Point and (for a P pair) slide vector of each pair, keyed by pair id; None when
+        the sketch leaves out a joint.
 
         A split compound hinge finds its point under its joint id (``pair.origin``).
         """
@@ -108,6 +109,8 @@ class Sketch:
         for pair in pairs:
             key = joint_key(pair)
             direction = self.directions.get(key)
+            if key not in self.points or (pair.type.value == "P" and direction is None):
+                return None
             out[pair.id] = (self.points[key], None if direction is None or
                             pair.type.value == "R" else direction.vector)
         return out

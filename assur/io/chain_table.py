@@ -26,7 +26,7 @@ from typing import Any
 from assur.errors import TableError
 from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
 from assur.io.params import read_params
-from assur.io.sketch import Joints, read_sketch
+from assur.io.sketch import Joints, actuator_pairs, read_sketch
 from assur.kinds import KINDS, kind_of
 from assur.model import (
     Chain,
@@ -140,7 +140,7 @@ def _read_chain_form(reader: TableReader) -> Chain:
     if known is not None or mentioned:  # no link is known when no pair row could be read
         _check_inputs(reader, inputs, set(links), raw_pairs, frame)
     joints = {pair.id: (pair.type.value, tuple(pair.links)) for pair in raw_pairs}
-    geometry = _geometry(reader, top, mech, joints, links, frame)
+    geometry = _geometry(reader, top, mech, joints, links, frame, inputs)
     general = top.get("general", kind="mapping", required=False, default=None)
     rows = _read_rows(top, required=False)
     claims = _read_claims(top)
@@ -337,7 +337,7 @@ def recentre_hinge(origin: PairId, links: list[LinkId] | tuple[LinkId, ...],
 
 
 def _geometry(reader: TableReader, top: Node, mech: Node | None, joints: Joints,
-              links: list[LinkId], frame: LinkId) -> Sketch | None:
+              links: list[LinkId], frame: LinkId, inputs: list[Drive]) -> Sketch | None:
     """The sketch, given inside ``mechanism:`` or at the top of the file (not both)."""
     inner = mech.get("geometry", kind="mapping", required=False, default=None) if mech else None
     outer = top.get("geometry", kind="mapping", required=False, default=None)
@@ -347,7 +347,8 @@ def _geometry(reader: TableReader, top: Node, mech: Node | None, joints: Joints,
     data = inner if isinstance(inner, dict) else outer
     if not isinstance(data, dict) or frame is MISSING:
         return None
-    return read_sketch(reader, data, joints, links=links, frame=frame)
+    return read_sketch(reader, data, joints, links=links, frame=frame,
+                       optional=actuator_pairs(inputs, joints, frame))
 
 
 def _read_claims(top: Node) -> dict[str, int]:
@@ -456,7 +457,7 @@ def _read_table_form(reader: TableReader) -> Chain:
             inputs.append(Drive(link=row.i))
     pairs = _unique_ids(pairs)
     joints = {pair.id: (pair.type.value, pair.links) for pair in pairs}
-    geometry = _geometry(reader, top, None, joints, links, frame)
+    geometry = _geometry(reader, top, None, joints, links, frame, inputs)
     reader.raise_if_any()
     return Chain(name=name or _stem(reader.source), frame=frame, links=tuple(links),
                  pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,

@@ -8,8 +8,10 @@ or ``cw``; ``{stroke: [min, max]}`` for an actuator, mm), ``tracing``
 group label → δ).
 
 The section is read once, when the chain table is read, with every problem collected; the
-rank test, the scheme and the kinematic model all use the one :class:`Sketch`. When a table
-gives a sketch, every joint needs a point and every slider pair a direction.
+rank test, the scheme and the kinematic model all use the one :class:`Sketch`. Every joint
+needs a point and every slider pair a direction, except a driven actuator pair, which the
+kinematic model does not use (without it the rank test and the scheme do without the
+sketch).
 
 Examples
 --------
@@ -41,7 +43,7 @@ Joints = Mapping[PairId, tuple[str, tuple[LinkId, ...]]]
 
 
 def sketch_from_dict(data: Any, joints: Joints, *, links: Iterable[LinkId], frame: LinkId,
-                     source: str = "<data>") -> Sketch:
+                     source: str = "<data>", optional: Iterable[PairId] = ()) -> Sketch:
     """Read a sketch given as a mapping (see :func:`read_sketch`).
 
     Raises
@@ -50,7 +52,7 @@ def sketch_from_dict(data: Any, joints: Joints, *, links: Iterable[LinkId], fram
         Listing every problem of the sketch.
     """
     reader = TableReader.from_data({"geometry": data}, source)
-    sketch = read_sketch(reader, data, joints, links=links, frame=frame)
+    sketch = read_sketch(reader, data, joints, links=links, frame=frame, optional=optional)
     reader.raise_if_any()
     assert sketch is not None
     return sketch
@@ -74,12 +76,20 @@ def with_sketch(chain: Chain, data: Any) -> Chain:
     for pair in chain.pairs:
         joints.setdefault(joint_key(pair), (pair.type.value, pair.links))
     sketch = sketch_from_dict(data, joints, links=chain.links, frame=chain.frame,
-                              source=chain.source)
+                              source=chain.source, optional=actuator_pairs(chain.inputs, joints,
+                                                                           chain.frame))
     return replace(chain, geometry=sketch)
 
 
+def actuator_pairs(inputs: Iterable[Any], joints: Joints, frame: Any) -> set[PairId]:
+    """The driven pairs that join two moving links (actuators): their joints may be left out
+    of a sketch."""
+    return {drive.pair for drive in inputs if drive.pair in joints
+            and frame not in joints[drive.pair][1]}
+
+
 def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterable[LinkId],
-                frame: LinkId) -> Sketch | None:
+                frame: LinkId, optional: Iterable[PairId] = ()) -> Sketch | None:
     """Read the ``geometry:`` section, recording every problem in ``reader``.
 
     Parameters
@@ -92,6 +102,9 @@ def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterab
         Joint id → (pair type, links) of every joint of the chain.
     links, frame
         The chain's links and frame (tracing points lie on moving links).
+    optional : iterable of joint ids
+        Joints that may be left out: driven actuator pairs, which the kinematic model does
+        not use (the rank test and the scheme then do without the sketch).
 
     Returns
     -------
@@ -99,6 +112,7 @@ def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterab
         None when a problem was recorded.
     """
     count = len(reader.issues)
+    optional = set(optional)
     if not isinstance(data, dict):
         reader.problem("geometry", "sketch.not_mapping", found=describe(data))
         return None
@@ -116,7 +130,7 @@ def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterab
     points: dict[PairId, complex] = {}
     directions: dict[PairId, Direction] = {}
     for key, (ptype, ends) in joints.items():
-        _joint(reader, key, raw.get(key), ptype, ends, points, directions)
+        _joint(reader, key, raw.get(key), ptype, ends, points, directions, key in optional)
     rotation, stroke = _input(reader, raw.get("input"))
     tracing = _tracing(reader, raw.get("tracing"), set(links) - {frame})
     margin = _margin(reader, raw.get("margin"))
@@ -127,9 +141,11 @@ def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterab
 
 def _joint(reader: TableReader, key: PairId, value: Any, ptype: str,
            ends: tuple[LinkId, ...], points: dict[PairId, complex],
-           directions: dict[PairId, Direction]) -> None:
+           directions: dict[PairId, Direction], optional: bool) -> None:
     where = f"geometry {key!r}"
     a, b = ends[0], ends[1]
+    if value is None and optional:
+        return  # a driven actuator pair: the kinematic model does not use its point
     if value is not None and not isinstance(value, dict):
         reader.problem(where, "sketch.joint", found=describe(value))
         return

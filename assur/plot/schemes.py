@@ -202,11 +202,11 @@ class SchemeLayout:
 def _from_geometry(chain: Chain) -> tuple[dict[PairId, complex], dict[PairId, complex]] | None:
     """Pair positions and unit guide directions from the chain's sketch, if it has one."""
     sketch = chain.geometry
-    if sketch is None:
+    if sketch is None or any(joint_key(pair) not in sketch.points for pair in chain.pairs):
         return None
     positions = {pair.id: sketch.points[joint_key(pair)] for pair in chain.pairs}
     directions = {pair.id: sketch.directions[joint_key(pair)].unit for pair in chain.pairs
-                  if pair.type is PairType.P}
+                  if pair.type is PairType.P and joint_key(pair) in sketch.directions}
     return positions, directions
 
 

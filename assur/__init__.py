@@ -33,6 +33,9 @@ __all__ = [
 
 # --- structure: chains, decomposition, diagnostics, identification tables (structure owner) ---
 from assur.io.chain_table import chain_from_dict, load_chain  # noqa: E402
+from assur.io.sketch import with_sketch  # noqa: E402
+from assur.kinds import KINDS, GroupKind, kind_of  # noqa: E402
+from assur.model import GroupParams, Sketch  # noqa: E402
 from assur.structure.classification import AssurGroup  # noqa: E402
 from assur.structure.diagnostics import Diagnostic  # noqa: E402
 from assur.structure.identification import (  # noqa: E402
@@ -62,6 +65,12 @@ __all__ += [
     "StructuralAnalysis",
     "analyse_structure",
     "chain_from_dict",
+    "with_sketch",
+    "Sketch",
+    "GroupParams",
+    "GroupKind",
+    "KINDS",
+    "kind_of",
     "check_identification",
     "identification_table",
     "load_chain",
@@ -108,15 +117,13 @@ from assur.kinematics.existence import (  # noqa: E402
     check_existence,
     first_failure,
 )
-from assur.kinematics.model import (  # noqa: E402
-    KIND_COLUMNS,
-    GroupModel,
-    KinematicModel,
+from assur.kinematics.build import (  # noqa: E402
     build_model,
     load_model,
     model_from_params,
     model_from_sketch,
 )
+from assur.kinematics.model import KIND_COLUMNS, GroupModel, KinematicModel  # noqa: E402
 from assur.kinematics.analysis import (  # noqa: E402
     Motion,
     SliderState,

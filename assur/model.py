@@ -10,20 +10,29 @@ Link and pair ids are whole numbers or texts; digit-only texts are turned into n
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Iterable, Mapping
+from dataclasses import asdict, dataclass, field
 from enum import Enum
 from typing import Any
 
+from assur.errors import Issue
+
 __all__ = [
     "Chain",
+    "Direction",
     "Drive",
+    "GroupParams",
+    "IdentificationRow",
     "Input",
     "Link",
     "LinkId",
     "Pair",
     "PairId",
     "PairType",
+    "Sketch",
+    "SketchTrace",
     "id_key",
+    "joint_key",
 ]
 
 LinkId = int | str
@@ -39,6 +48,77 @@ def id_key(value: LinkId | PairId) -> tuple[int, int | str]:
     if isinstance(value, int):
         return (0, value)
     return (1, str(value))
+
+
+@dataclass(frozen=True, slots=True)
+class Direction:
+    """A slide direction as given: ``angle`` (radians from the x-axis) and ``vector`` (the
+    given vector, or the unit vector of the given angle)."""
+
+    angle: float
+    vector: complex
+
+    @property
+    def unit(self) -> complex:
+        """The unit vector along the slide line."""
+        return self.vector / abs(self.vector)
+
+
+@dataclass(frozen=True, slots=True)
+class SketchTrace:
+    """A tracing point of the sketch: its name, the link it is fixed on, its point."""
+
+    name: str
+    link: LinkId
+    point: complex
+
+
+@dataclass(frozen=True, slots=True)
+class Sketch:
+    """The mechanism at its reference position (the ``geometry:`` section).
+
+    Attributes
+    ----------
+    points : mapping
+        Joint id → point (complex, mm) of every joint the sketch gives.
+    directions : mapping
+        Joint id of every slider pair the sketch gives → :class:`Direction`.
+    rotation : int
+        Crank direction: +1 counter-clockwise (default), −1 clockwise.
+    stroke : tuple of float or None
+        Actuator lengths (min, max), mm.
+    tracing : tuple of SketchTrace
+    margin : float, mapping or None
+        δ for every group, or group label → δ.
+    """
+
+    points: Mapping[PairId, complex]
+    directions: Mapping[PairId, Direction]
+    rotation: int = 1
+    stroke: tuple[float, float] | None = None
+    tracing: tuple[SketchTrace, ...] = ()
+    margin: float | Mapping[str, float] | None = None
+
+    def pose(self, pairs: Iterable[Pair]) -> dict[PairId, tuple[complex, complex | None]] | None:
+        """Point and (for a P pair) slide vector of each pair, keyed by pair id; None when
+        the sketch leaves out a joint.
+
+        A split compound hinge finds its point under its joint id (``pair.origin``).
+        """
+        out: dict[PairId, tuple[complex, complex | None]] = {}
+        for pair in pairs:
+            key = joint_key(pair)
+            direction = self.directions.get(key)
+            if key not in self.points or (pair.type.value == "P" and direction is None):
+                return None
+            out[pair.id] = (self.points[key], None if direction is None or
+                            pair.type.value == "R" else direction.vector)
+        return out
+
+
+def joint_key(pair: Pair) -> PairId:
+    """The key of a pair in the sketch: its joint (origin) for a split compound hinge."""
+    return pair.origin if pair.origin is not None else pair.id
 
 
 class PairType(str, Enum):
@@ -88,6 +168,80 @@ class Pair:
 
 
 @dataclass(frozen=True, slots=True)
+class GroupParams:
+    """The ``params:`` of an identification row, read and checked with the row.
+
+    Attributes
+    ----------
+    values : mapping
+        Column → value in table units (mm, degrees); the initial value of a range. A column
+        written ``'A'`` (supplied by an earlier group) is absent.
+    bounds : mapping
+        Column → (lower, upper) where the row gave ``[initial, lower, upper]``.
+    supplied : frozenset of str
+        Columns written ``'A'`` (supplied by an earlier group).
+    direction : int
+        ``s`` of the input group: +1 counter-clockwise, −1 clockwise.
+    tracing : tuple of (name, link)
+        Tracing points with columns ``l_<name>``, ``beta_<name>``.
+    keys : tuple of str
+        Every key the row gave, in its order (the model checks them against the group's
+        columns).
+    problems : tuple of Issue
+        Problems of the values, reported by the model with the problems of the columns.
+    """
+
+    values: Mapping[str, float]
+    bounds: Mapping[str, tuple[float, float]] = field(default_factory=dict)
+    supplied: frozenset[str] = frozenset()
+    direction: int = 1
+    tracing: tuple[tuple[str, LinkId], ...] = ()
+    keys: tuple[str, ...] = ()
+    problems: tuple[Issue, ...] = ()
+
+
+#: The columns of the structure-identification table, in the course's order.
+COLUMNS = ("L", "seq", "i_minus_1", "j_minus_1", "i", "j", "i_plus_1", "j_plus_1", "variant",
+           "out_code")
+
+
+@dataclass(frozen=True)
+class IdentificationRow:
+    """One row of the structure-identification table; None is the source's dash.
+
+    A row read from a table may carry ``params`` (its group's parameter columns, read by the
+    kinematic model) and ``location`` (where it stands in the file); neither is a column.
+    """
+
+    L: int
+    seq: int | None
+    i_minus_1: LinkId | None
+    j_minus_1: LinkId | None
+    i: LinkId
+    j: LinkId | None
+    i_plus_1: LinkId | list[LinkId] | None
+    j_plus_1: LinkId | list[LinkId] | None
+    variant: int | None
+    out_code: str | None
+    params: GroupParams | None = field(default=None, compare=False, repr=False)
+    location: str = field(default="", compare=False, repr=False)
+
+    @property
+    def key(self) -> tuple[LinkId, ...]:
+        """The links of the row's group: ``(i,)`` for L0, else ``(i, j)``."""
+        return (self.i,) if self.L == 0 or self.j is None else (self.i, self.j)
+
+    def get(self, column: str, default: Any = None) -> Any:
+        """The value of a column by name (as in the table), ``default`` for another name."""
+        return getattr(self, column) if column in COLUMNS else default
+
+    def to_dict(self) -> dict[str, Any]:
+        """The row as a mapping with the table's keys."""
+        row = asdict(self)
+        return {key: row[key] for key in COLUMNS}
+
+
+@dataclass(frozen=True, slots=True)
 class Drive:
     """One input of the mechanism.
 
@@ -120,19 +274,19 @@ class Chain:
         The normalised pairs.
     inputs : tuple of Drive
         The inputs (входные звенья / приводы).
-    geometry : dict or None
-        The table's ``geometry`` section, untouched (a pose for the rank test and the
-        kinematic model).
-    general : dict or None
+    geometry : Sketch or None
+        The table's ``geometry`` section: the pose for the rank test, the scheme and the
+        kinematic model.
+    general : mapping or None
         The table's ``general`` section, untouched.
     source : str
         The file the chain came from.
-    group_params : dict
+    group_params : mapping
         ``(i, j)`` (a dyad) or ``(i,)`` (an input group) → the ``params`` of that row of an
-        identification table, untouched.
+        identification table.
     names : dict
         Optional human names of links.
-    identification : tuple of dict or None
+    identification : tuple of IdentificationRow or None
         The rows of an identification table given with the chain (to be checked).
     claims : dict
         Counts stated in an identification table (``n_moving_links``, ``p5``, ``p4``, ``W``,
@@ -144,13 +298,13 @@ class Chain:
     links: tuple[LinkId, ...]
     pairs: tuple[Pair, ...]
     inputs: tuple[Drive, ...]
-    geometry: dict[str, Any] | None = None
-    general: dict[str, Any] | None = None
+    geometry: Sketch | None = None
+    general: Mapping[str, Any] | None = None
     source: str = "<data>"
-    group_params: dict[tuple[LinkId, ...], dict[str, Any]] = field(default_factory=dict)
-    names: dict[LinkId, str] = field(default_factory=dict)
-    identification: tuple[dict[str, Any], ...] | None = None
-    claims: dict[str, Any] = field(default_factory=dict)
+    group_params: Mapping[tuple[LinkId, ...], GroupParams] = field(default_factory=dict)
+    names: Mapping[LinkId, str] = field(default_factory=dict)
+    identification: tuple[IdentificationRow, ...] | None = None
+    claims: Mapping[str, int] = field(default_factory=dict)
     _index: dict[str, dict[Any, Any]] = field(default_factory=dict, init=False, repr=False,
                                               compare=False)
 

@@ -81,3 +81,25 @@ def test_console_entry_point() -> None:
                             capture_output=True, text=True, encoding="utf-8", check=False)
     assert result.returncode == 0, result.stderr
     assert json.loads(result.stdout)["formula"] == FORMULA
+
+
+@pytest.mark.parametrize("table", ["four_bar.yaml", "course_11_link.yaml"])
+def test_a_sketch_typo_is_refused_alike_by_check_and_analyze(
+        table: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """A misspelt key of one joint of the sketch: both commands exit 2 with the same lines."""
+    path = tmp_path / table
+    text = (ROOT / "input_tables" / table).read_text(encoding="utf-8")
+    head, _, sketch = text.partition("geometry:")
+    path.write_text(head + "geometry:" + sketch.replace("point:", "pont:", 1), encoding="utf-8")
+    joint = yaml.safe_load(path.read_text(encoding="utf-8"))["geometry"]
+    typo = next(key for key, row in joint.items() if isinstance(row, dict) and "pont" in row)
+    errors = []
+    for command in ("check", "analyze"):
+        assert main([command, str(path)]) == 2
+        errors.append(capsys.readouterr().err)
+    assert errors[0] == errors[1]
+    lines = errors[0].splitlines()
+    assert lines[0] == f"2 problems in {path}:"
+    assert f"  - geometry {typo!r}: unknown key 'pont'; did you mean 'point'?" in lines
+    assert any(line.startswith(f"  - geometry {typo!r}: the R pair {typo!r}")
+               and "needs 'point: [x, y]'" in line for line in lines)

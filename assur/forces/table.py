@@ -102,7 +102,7 @@ def load_with_forces(path: str | os.PathLike[str]
     ('L1(2,3)', -9.81j)
     """
     from assur.io.chain_table import chain_from_dict
-    from assur.kinematics.model import build_model
+    from assur.kinematics.build import build_model
     from assur.structure.analysis import analyse_structure
 
     reader = TableReader.from_path(path)

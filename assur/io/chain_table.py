@@ -10,8 +10,10 @@ Two forms are read (see ``docs/tables.md``):
   the rows: every row names its group's kind, so the pair types and the guide carriers
   follow from the kind (``method.md`` §2.0).
 
-``general:``, ``geometry:`` and the rows' ``params:`` are kept untouched for the kinematic
-model. Every problem of a table is collected and raised as one
+The ``geometry:`` sketch is read here, once, into a :class:`~assur.model.Sketch`
+(:mod:`assur.io.sketch`); the identification rows become
+:class:`~assur.model.IdentificationRow` objects; ``general:`` and the rows' ``params:`` are
+kept for the kinematic model. Every problem of a table is collected and raised as one
 :class:`~assur.errors.TableError`.
 """
 
@@ -22,14 +24,27 @@ from dataclasses import replace
 from typing import Any
 
 from assur.errors import TableError
-from assur.model import Chain, Drive, LinkId, Pair, PairId, PairType, id_key
 from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
+from assur.io.params import read_params
+from assur.io.sketch import Joints, actuator_pairs, read_sketch
+from assur.kinds import KINDS, kind_of
+from assur.model import (
+    Chain,
+    Drive,
+    GroupParams,
+    IdentificationRow,
+    LinkId,
+    Pair,
+    PairId,
+    PairType,
+    Sketch,
+    id_key,
+)
 from assur.text import Message
 
 __all__ = [
     "IDENTIFICATION_FIELDS",
     "chain_from_dict",
-    "group_key",
     "load_chain",
     "pair_label",
     "recentre_hinge",
@@ -95,8 +110,7 @@ def _read(reader: TableReader) -> Chain:
     else:
         reader.root(allowed=None)
         if isinstance(data, dict):
-            reader.add("", "expected a 'mechanism:' table (chain form) or a "
-                           "'structure_identification:' table; found neither")
+            reader.problem("", "chain.no_table")
         raise TableError(reader.source, reader.issues)
     reader.raise_if_any()
     return chain
@@ -118,14 +132,15 @@ def _read_chain_form(reader: TableReader) -> Chain:
     if links is None:
         links = [] if frame is MISSING else [frame]
         links += [link for link in dict.fromkeys(mentioned) if link not in links]
-    elif frame is not MISSING and frame not in known:
-        reader.add("mechanism 'frame'", f"the frame {frame!r} is not in the links table "
-                                        f"({_list(links)})")
+    elif frame is not MISSING and frame not in set(links):
+        reader.problem("mechanism 'frame'", "chain.frame_not_a_link", frame=repr(frame),
+                       links=_list(links))
     inputs = _read_inputs(mech)
     _check_pairs(reader, raw_pairs, set(links))
     if known is not None or mentioned:  # no link is known when no pair row could be read
         _check_inputs(reader, inputs, set(links), raw_pairs, frame)
-    geometry = _geometry(reader, top, mech)
+    joints = {pair.id: (pair.type.value, tuple(pair.links)) for pair in raw_pairs}
+    geometry = _geometry(reader, top, mech, joints, links, frame, inputs)
     general = top.get("general", kind="mapping", required=False, default=None)
     rows = _read_rows(top, required=False)
     claims = _read_claims(top)
@@ -133,11 +148,10 @@ def _read_chain_form(reader: TableReader) -> Chain:
         return _empty(reader.source)
     input_links = [d.link for d in inputs if d.link is not None]
     pairs = _normalise(raw_pairs, frame, input_links)
-    rows_t = tuple(row for row, _ in rows) if rows else None
     return Chain(name=name or _stem(reader.source), frame=frame, links=tuple(links),
                  pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,
                  source=reader.source, group_params=_group_params(rows), names=names,
-                 identification=rows_t, claims=claims)
+                 identification=tuple(rows) if rows else None, claims=claims)
 
 
 def _read_links(mech: Node, names: dict[LinkId, str]) -> list[LinkId] | None:
@@ -159,13 +173,12 @@ def _read_links(mech: Node, names: dict[LinkId, str]) -> list[LinkId] | None:
         elif _is_id(item):
             link = normalise_id(item)
         else:
-            mech.reader.add(where, f"expected a link id (a whole number or a text) or a row "
-                                   f"{{id: ..., name: ...}}; found {describe(item)}")
+            mech.reader.problem(where, "chain.link_row", found=describe(item))
             continue
         if link is MISSING:
             continue
         if link in seen:
-            mech.reader.add(where, f"duplicate link id {link!r} (also links[{seen[link]}])")
+            mech.reader.problem(where, "chain.duplicate_link", link=repr(link), index=seen[link])
             continue
         seen[link] = index
         links.append(link)
@@ -196,40 +209,39 @@ def _read_pairs(mech: Node) -> tuple[list[_RawPair], list[LinkId]]:
         if isinstance(links, list):
             bad = [item for item in links if not _is_id(item)]
             if bad:
-                row.reader.add(row._where("links"), f"expected link ids; found "
-                                                    f"{describe(bad[0])}")
+                row.reader.problem(row._where("links"), "chain.pair_link_ids",
+                                   found=describe(bad[0]))
                 ok = False
             elif len(links) < 2:
-                row.reader.add(row._where("links"), f"a pair joins two links; found "
-                                                    f"{describe(links)}")
+                row.reader.problem(row._where("links"), "chain.pair_two_links",
+                                   found=describe(links))
                 ok = False
             else:
                 links = [normalise_id(item) for item in links]
                 mentioned.extend(links)
                 if len(set(links)) != len(links):
-                    row.reader.add(row._where("links"), f"a pair must join distinct links "
-                                                        f"(a self pair); found {links}")
+                    row.reader.problem(row._where("links"), "chain.self_pair", found=str(links))
                     ok = False
                 elif len(links) > 2 and ptype == "P":
-                    row.reader.add(row._where("links"), "only a revolute hinge may join more "
-                                                        f"than two links; found {links}")
+                    row.reader.problem(row._where("links"), "chain.compound_prismatic",
+                                       found=str(links))
                     ok = False
         if ptype == "P" and guide is None and not row.has("guide"):
-            row.reader.add(row._where("guide"), "a P pair needs the link that carries its "
-                                                "guide; this field is missing")
+            row.reader.problem(row._where("guide"), "chain.guide_missing")
             ok = False
         elif ptype == "R" and guide is not None:
-            row.reader.add(row._where("guide"), f"only a P pair has a guide; found "
-                                                f"{describe(guide)} on an R pair")
+            row.reader.problem(row._where("guide"), "chain.guide_on_revolute",
+                               found=describe(guide))
             ok = False
         elif ptype == "P" and isinstance(links, list) and guide not in (MISSING, None) and ok \
                 and guide not in links:
-            row.reader.add(row._where("guide"), f"the guide carrier must be one of the pair's "
-                                                f"links {links}; found {describe(guide)}")
+            row.reader.problem(row._where("guide"), "chain.guide_not_in_pair", links=str(links),
+                               found=describe(guide))
             ok = False
         if pid is not MISSING:
             if pid in seen:
-                row.reader.add(row._where("id"), f"duplicate pair id {pid!r} (also {seen[pid]})")
+                row.reader.problem(row._where("id"), "chain.duplicate_pair", pair=repr(pid),
+                                   other=seen[pid])
                 ok = False
             else:
                 seen[pid] = row.location
@@ -253,15 +265,13 @@ def _read_inputs(mech: Node) -> list[Drive]:
             drives.append(Drive(link=normalise_id(item)))
             continue
         if not isinstance(item, dict):
-            mech.reader.add(where, f"expected a driven link id or a row {{link: ...}} / "
-                                   f"{{pair: ...}}; found {describe(item)}")
+            mech.reader.problem(where, "chain.input_row", found=describe(item))
             continue
         row = Node(mech.reader, where, item, _INPUT)
         link = row.get("link", kind="id", required=False, default=None)
         pair = row.get("pair", kind="id", required=False, default=None)
         if link is None and pair is None and not item.keys() - set(_INPUT):
-            mech.reader.add(where, "an input names a driven 'link' or a driven 'pair'; "
-                                   "found neither")
+            mech.reader.problem(where, "chain.input_empty")
         if MISSING not in (link, pair) and (link is not None or pair is not None):
             drives.append(Drive(link=link, pair=pair))
     return drives
@@ -271,8 +281,8 @@ def _check_pairs(reader: TableReader, pairs: list[_RawPair], links: set[LinkId])
     for pair in pairs:
         for link in pair.links:
             if link not in links:
-                reader.add(f"{pair.where} 'links'", f"link {link!r} is not in the links table "
-                                                    f"({_list(links)})")
+                reader.problem(f"{pair.where} 'links'", "chain.unknown_link", link=repr(link),
+                               links=_list(links))
 
 
 def _check_inputs(reader: TableReader, inputs: list[Drive], links: set[LinkId],
@@ -282,25 +292,25 @@ def _check_inputs(reader: TableReader, inputs: list[Drive], links: set[LinkId],
     for index, drive in enumerate(inputs):
         where = f"mechanism.inputs[{index}]"
         if drive.link is not None and drive.link == frame:
-            reader.add(f"{where} 'link'", f"the frame {frame!r} cannot be an input; name the "
-                                          f"driven link that turns on it")
+            reader.problem(f"{where} 'link'", "chain.frame_input", frame=repr(frame))
         elif drive.link is not None and drive.link not in links:
-            reader.add(f"{where} 'link'", f"link {drive.link!r} is not in the links table "
-                                          f"({_list(links)})")
+            reader.problem(f"{where} 'link'", "chain.unknown_link", link=repr(drive.link),
+                           links=_list(links))
         if drive.pair is not None:
             pair = by_id.get(drive.pair)
             if pair is None:
-                reader.add(f"{where} 'pair'", f"there is no pair {drive.pair!r}; pairs: "
-                                              f"{_list(by_id)}")
+                reader.problem(f"{where} 'pair'", "chain.unknown_pair", pair=repr(drive.pair),
+                               pairs=_list(by_id))
             elif len(pair.links) != 2:
-                reader.add(f"{where} 'pair'", f"a driven pair must join exactly two links; "
-                                              f"{drive.pair!r} joins {pair.links}")
+                reader.problem(f"{where} 'pair'", "chain.driven_pair_links",
+                               pair=repr(drive.pair), links=str(pair.links))
             elif drive.link is not None and drive.link not in pair.links:
-                reader.add(f"{where} 'link'", f"link {drive.link!r} is not one of the links "
-                                              f"{pair.links} of pair {drive.pair!r}")
+                reader.problem(f"{where} 'link'", "chain.input_not_in_pair",
+                               link=repr(drive.link), links=str(pair.links),
+                               pair=repr(drive.pair))
         key = (drive.link, drive.pair)
         if key in seen:
-            reader.add(where, f"this input is given twice ({describe(drive.link or drive.pair)})")
+            reader.problem(where, "chain.input_twice", found=describe(drive.link or drive.pair))
         seen.add(key)
 
 
@@ -326,16 +336,22 @@ def recentre_hinge(origin: PairId, links: list[LinkId] | tuple[LinkId, ...],
             for link in links if link != centre]
 
 
-def _geometry(reader: TableReader, top: Node, mech: Node | None) -> dict[str, Any] | None:
+def _geometry(reader: TableReader, top: Node, mech: Node | None, joints: Joints,
+              links: list[LinkId], frame: LinkId, inputs: list[Drive]) -> Sketch | None:
+    """The sketch, given inside ``mechanism:`` or at the top of the file (not both)."""
     inner = mech.get("geometry", kind="mapping", required=False, default=None) if mech else None
     outer = top.get("geometry", kind="mapping", required=False, default=None)
     if isinstance(inner, dict) and isinstance(outer, dict):
-        reader.add("geometry", "give the geometry once, either inside 'mechanism:' or at the "
-                               "top of the file; found both")
-    return inner if isinstance(inner, dict) else (outer if isinstance(outer, dict) else None)
+        reader.problem("geometry", "chain.geometry_twice")
+        return None
+    data = inner if isinstance(inner, dict) else outer
+    if not isinstance(data, dict) or frame is MISSING:
+        return None
+    return read_sketch(reader, data, joints, links=links, frame=frame,
+                       optional=actuator_pairs(inputs, joints, frame))
 
 
-def _read_claims(top: Node) -> dict[str, Any]:
+def _read_claims(top: Node) -> dict[str, int]:
     claims = {}
     for key in _CLAIMS:
         value = top.get(key, kind="int", required=False, default=None)
@@ -355,13 +371,14 @@ def _row_label(row: dict[str, Any]) -> str | None:
     return ", ".join(parts) or None
 
 
-def _read_rows(top: Node, *, required: bool) -> list[tuple[dict[str, Any], str]]:
-    """Read and validate identification rows; returns (clean row, location) pairs."""
-    rows: list[tuple[dict[str, Any], str]] = []
+def _read_rows(top: Node, *, required: bool) -> list[IdentificationRow]:
+    """Read and validate identification rows (every problem recorded in the reader)."""
+    rows: list[IdentificationRow] = []
+    clean_rows: list[tuple[dict[str, Any], str]] = []
     owner: dict[LinkId, str] = {}
     for row in top.rows("structure_identification", IDENTIFICATION_FIELDS, required=required,
                         label=_row_label):
-        kind = row.get("L", kind="int", check=lambda v: None if 0 <= v <= 5 else
+        kind = row.get("L", kind="int", check=lambda v: None if v in KINDS else
                        Message("rule.group_kind"))
         clean: dict[str, Any] = {"L": kind}
         dyad = kind is not MISSING and kind != 0
@@ -370,12 +387,10 @@ def _read_rows(top: Node, *, required: bool) -> list[tuple[dict[str, Any], str]]
         for key in ("j", "j_minus_1"):
             clean[key] = row.get(key, kind="id", nullable=True)
             if kind == 0 and clean[key] not in (None, MISSING):
-                row.reader.add(row._where(key), f"an input group (L = 0) has no link j; "
-                                                f"expected null (the dash); found "
-                                                f"{describe(clean[key])}")
+                row.reader.problem(row._where(key), "chain.input_group_j",
+                                   found=describe(clean[key]))
             elif dyad and clean[key] is None:
-                row.reader.add(row._where(key), f"a dyad (L = {kind}) needs this link; found "
-                                                f"nothing (null)")
+                row.reader.problem(row._where(key), "chain.dyad_needs_link", kind=kind)
         for key in ("i_plus_1", "j_plus_1"):
             clean[key] = row.get(key, kind="id", required=False, default=None, nullable=True)
         clean["seq"] = row.get("seq", kind="int", required=False, default=None, nullable=True)
@@ -385,25 +400,33 @@ def _read_rows(top: Node, *, required: bool) -> list[tuple[dict[str, Any], str]]
         clean["out_code"] = None if code is None else str(code)
         clean["params"] = row.get("params", kind="mapping", required=False, default=None)
         if clean["i"] is not MISSING and clean["i"] == clean["j"]:
-            row.reader.add(row._where("j"), f"i and j must be two different links; both are "
-                                            f"{clean['i']!r}")
+            row.reader.problem(row._where("j"), "chain.same_i_j", link=repr(clean["i"]))
         for key in ("i", "j"):
             link = clean[key]
             if link in (None, MISSING):
                 continue
             if link in owner:
-                row.reader.add(row._where(key), f"link {link!r} is already a link of "
-                                                f"{owner[link]}; a link belongs to one group")
+                row.reader.problem(row._where(key), "chain.link_in_two_groups", link=repr(link),
+                                   owner=owner[link])
             else:
                 owner[link] = row.location
-        rows.append((clean, row.location))
-    for clean, location in rows:
+        clean_rows.append((clean, row.location))
+    for clean, location in clean_rows:
         for key, partner in (("i_minus_1", "i"), ("j_minus_1", "j")):
             if clean[key] not in (None, MISSING) and clean[key] == clean[partner]:
-                top.reader.add(f"{location} {key!r}", f"a link cannot be joined to itself; "
-                                                      f"found {clean[key]!r} for both "
-                                                      f"{partner!r} and {key!r}")
+                top.reader.problem(f"{location} {key!r}", "chain.joined_to_itself",
+                                   link=repr(clean[key]), a=repr(partner), b=repr(key))
+        if MISSING not in clean.values():
+            if clean["params"] is not None:
+                clean["params"] = _read_params(top.reader, clean)
+            rows.append(IdentificationRow(**clean, location=location))
     return rows
+
+
+def _read_params(reader: TableReader, row: dict[str, Any]) -> GroupParams:
+    kind = kind_of(row["L"])
+    links = f"{row['i']}" if kind.is_input else f"{row['i']},{row['j']}"
+    return read_params(reader.source, f"{kind.code}({links})", row["params"])
 
 
 def _read_table_form(reader: TableReader) -> Chain:
@@ -412,51 +435,46 @@ def _read_table_form(reader: TableReader) -> Chain:
     name = top.get("name", kind="str", required=False, default=name)
     frame = top.get("frame", kind="id", required=False, default=0)
     rows = _read_rows(top, required=True)
-    geometry = _geometry(reader, top, None)
     general = top.get("general", kind="mapping", required=False, default=None)
     claims = _read_claims(top)
     if not rows and not reader.issues:
-        reader.add("structure_identification", "the table has no rows")
-    members = {frame} | {row[k] for row, _ in rows for k in ("i", "j") if row[k] is not None}
-    for row, location in rows:
+        reader.problem("structure_identification", "chain.no_rows")
+    members = {frame} | {link for row in rows for link in (row.i, row.j) if link is not None}
+    for row in rows:
         for key in ("i_minus_1", "j_minus_1", "i_plus_1", "j_plus_1"):
             link = row.get(key)
-            if link not in (None, MISSING) and link not in members:
-                reader.add(f"{location} {key!r}", f"link {link!r} is neither the frame "
-                                                  f"{frame!r} nor the i or j of any row")
+            if link is not None and link not in members:
+                reader.problem(f"{row.location} {key!r}", "chain.link_not_in_rows",
+                               link=repr(link), frame=repr(frame))
     if reader.issues:
         return _empty(reader.source)
     links = [frame, *sorted((m for m in members if m != frame), key=id_key)]
     pairs: list[Pair] = []
     inputs: list[Drive] = []
-    for row, _ in rows:
+    for row in rows:
         pairs.extend(_group_pairs(row, frame))
-        if row["L"] == 0:
-            inputs.append(Drive(link=row["i"]))
+        if row.L == 0:
+            inputs.append(Drive(link=row.i))
     pairs = _unique_ids(pairs)
+    joints = {pair.id: (pair.type.value, pair.links) for pair in pairs}
+    geometry = _geometry(reader, top, None, joints, links, frame, inputs)
+    reader.raise_if_any()
     return Chain(name=name or _stem(reader.source), frame=frame, links=tuple(links),
                  pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,
                  source=reader.source, group_params=_group_params(rows),
-                 identification=tuple(row for row, _ in rows), claims=claims)
+                 identification=tuple(rows), claims=claims)
 
 
-# Pair types (external of i, internal, external of j) and guide carriers per kind L1..L5
-# (method.md §2.0): "prev" = the known link i−1 / j−1, "i"/"j" = the group's own link.
-_KIND_PAIRS: dict[int, tuple[tuple[str, str | None], tuple[str, str | None],
-                             tuple[str, str | None]]] = {
-    1: (("R", None), ("R", None), ("R", None)),
-    2: (("P", "prev"), ("R", None), ("R", None)),
-    3: (("R", None), ("P", "i"), ("R", None)),
-    4: (("P", "prev"), ("R", None), ("P", "prev")),
-    5: (("P", "prev"), ("P", "j"), ("R", None)),
-}
-
-
-def _group_pairs(row: dict[str, Any], frame: LinkId) -> list[Pair]:
-    i, j, i1, j1 = row["i"], row["j"], row["i_minus_1"], row["j_minus_1"]
-    if row["L"] == 0:
+def _group_pairs(row: IdentificationRow, frame: LinkId) -> list[Pair]:
+    """The pairs of a row's group; the kind gives their types and guide carriers
+    (``method.md`` §2.0)."""
+    i, j, i1, j1 = row.i, row.j, row.i_minus_1, row.j_minus_1
+    assert i1 is not None
+    row_pairs = kind_of(row.L).row_pairs
+    if row_pairs is None:
         return [Pair(f"{i1}-{i}", PairType.R, (i1, i), None, f"{i1}-{i}")]
-    ext_i, internal, ext_j = _KIND_PAIRS[row["L"]]
+    assert j is not None and j1 is not None
+    ext_i, internal, ext_j = row_pairs
     roles = {"i": i, "j": j}
     out = []
     for (ptype, carrier), (a, b), prev in ((ext_i, (i, i1), i1), (internal, (i, j), None),
@@ -481,18 +499,8 @@ def _unique_ids(pairs: list[Pair]) -> list[Pair]:
     return out
 
 
-def _group_params(rows: list[tuple[dict[str, Any], str]] | None
-                  ) -> dict[tuple[LinkId, ...], dict[str, Any]]:
-    params: dict[tuple[LinkId, ...], dict[str, Any]] = {}
-    for row, _ in rows or []:
-        if row.get("params") is not None:
-            params[group_key(row)] = row["params"]
-    return params
-
-
-def group_key(row: dict[str, Any]) -> tuple[LinkId, ...]:
-    """The links of the group of an identification row: ``(i,)`` for L0, else ``(i, j)``."""
-    return (row["i"],) if row["L"] == 0 else (row["i"], row["j"])
+def _group_params(rows: list[IdentificationRow]) -> dict[tuple[LinkId, ...], GroupParams]:
+    return {row.key: row.params for row in rows if row.params is not None}
 
 
 # ------------------------------------------------------------------------------ helpers

@@ -21,11 +21,11 @@ from typing import Any
 
 import numpy as np
 
-from assur.kinematics import dyads
 from assur.kinematics import jets as J
-from assur.kinematics.dyads import DyadSolution
-from assur.kinematics.model import Anchor, GroupModel, Guide, KinematicModel
+from assur.kinematics.dyads import DyadSolution, Value
 from assur.kinematics.jets import Jet
+from assur.kinematics.model import Anchor, GroupModel, Guide, KinematicModel
+from assur.kinds import given
 from assur.model import LinkId, PairId
 
 __all__ = [
@@ -38,8 +38,6 @@ __all__ = [
     "values",
     "velocity",
 ]
-
-Value = Jet | np.ndarray
 
 
 @dataclass(frozen=True)
@@ -218,87 +216,25 @@ class _State:
         self.sliders[pair] = SliderState(pair, carrier, slider, point, s, base, angle, offset)
 
     def solve(self, group: GroupModel, q: Value) -> None:
-        p, col = self.p, group.column
-        kind = group.kind
-        roles = group.pairs
-        if kind == 0:
-            angle = p(col("phi_1_0")) + self.model.direction * q
-            pivot = p(col("x_O1")) + 1j * p(col("y_O1"))
-            sol = dyads.solve_input(pivot, p(col("l_1")), angle)
-            self.joints[roles["H_i"]] = sol.origin_i
-        elif kind == 1:
-            h_i, h_j = self.point(group.hinge_i), self.point(group.hinge_j)
-            l_i = q if group.driven == "i" else p(col("l_i"))
-            l_j = q if group.driven == "j" else p(col("l_j"))
-            sol = dyads.solve_rrr(h_i, h_j, l_i, l_j, group.sigma, self.delta(group))
-            self.joints.update({roles["H_i"]: h_i, roles["H_j"]: h_j, roles["C"]: sol.c})
-            if group.driven is not None:
-                self._actuator(group, sol, q)
-        elif kind == 2:
-            h_j = self.point(group.hinge_j)
-            base, theta, e = self.guide(group.guide_i)
-            sol = dyads.solve_rrp(h_j, base, theta, e, p(col("l_j")), group.sigma,
-                                  self.delta(group))
-            self.joints.update({roles["C"]: sol.c, roles["H_j"]: h_j})
-            self.slider(roles["P_i"], group.guide_i.carrier, group.i, sol.c, sol.s_i, base,
-                        sol.angle_i, e)
-        elif kind == 3:
-            h_i, h_j = self.point(group.hinge_i), self.point(group.hinge_j)
-            h = p(col("d"))
-            sol = dyads.solve_rpr(h_i, h_j, h, group.sigma, self.delta(group))
-            self.joints.update({roles["H_i"]: h_i, roles["H_j"]: h_j})
-            self.slider(roles["P_c"], group.i, group.j, h_j, sol.s_i, sol.origin_i,
-                        sol.angle_i, h)
-        elif kind == 4:
-            a, theta_i, e_i = self.guide(group.guide_i)
-            b, theta_j, e_j = self.guide(group.guide_j)
-            sol = dyads.solve_prp(a, theta_i, e_i, b, theta_j, e_j, self.delta(group))
-            self.joints[roles["C"]] = sol.c
-            self.slider(roles["P_i"], group.guide_i.carrier, group.i, sol.c, sol.s_i, a,
-                        sol.angle_i, e_i)
-            self.slider(roles["P_j"], group.guide_j.carrier, group.j, sol.c, sol.s_j, b,
-                        sol.angle_j, e_j)
-        else:
-            h_j = self.point(group.hinge_j)
-            a, theta_s, e = self.guide(group.guide_i)
-            sol = dyads.solve_rpp(h_j, p(col("gamma")), a, theta_s, e, self.delta(group))
-            self.joints[roles["H_j"]] = h_j
-            self.slider(roles["P_i"], group.guide_i.carrier, group.i, sol.c, sol.s_i, a,
-                        sol.angle_i, e)
-            self.slider(roles["P_c"], group.j, group.i, sol.c, sol.s_j, sol.origin_j,
-                        sol.angle_j, 0.0)
+        """Solve one group (its kind's solver) and record its links' frames."""
+        solve = group.group_kind.solve
+        assert solve is not None  # a model holds solvable kinds only
+        sol = solve(self, group, q)
         self.solutions[group.label] = sol
         self.frames[group.i] = (sol.origin_i, sol.angle_i)
         if group.j is not None:
-            self.frames[group.j] = (sol.origin_j, sol.angle_j)
-        self._rotors(group, sol)
+            self.frames[group.j] = (given(sol.origin_j), given(sol.angle_j))
 
-    def _rotors(self, group: GroupModel, sol: DyadSolution) -> None:
-        """Unit vectors of link axes from the solved joints, where that is cheaper than
-        ``exp(1j*angle)`` (the same vectors, without trigonometric functions)."""
-        p, col, kind = self.p, group.column, group.kind
-        if kind == 0:
-            self.rotors[group.i] = (sol.c - sol.origin_i) / p(col("l_1"))
-        elif kind == 1 and group.driven is None:
-            self.rotors[group.i] = (sol.c - sol.origin_i) / p(col("l_i"))
-            self.rotors[group.j] = (sol.c - sol.origin_j) / p(col("l_j"))
-        elif kind == 2:
-            self.rotors[group.j] = (sol.c - sol.origin_j) / p(col("l_j"))
-        elif kind == 3:
-            r = sol.origin_j - sol.origin_i
-            axis = r * (sol.s_i - 1j * p(col("d"))) / J.dot(r, r)
-            self.rotors[group.i] = self.rotors[group.j] = axis
-
-    def _actuator(self, group: GroupModel, sol: DyadSolution, q: Value) -> None:
+    def actuator(self, group: GroupModel, sol: DyadSolution, q: Value) -> None:
         """Frames of the actuator's members and its driven pair (s = actuator length)."""
         side = group.driven
-        origin = sol.origin_i if side == "i" else sol.origin_j
-        angle = sol.angle_i if side == "i" else sol.angle_j
+        origin = sol.origin_i if side == "i" else given(sol.origin_j)
+        angle = sol.angle_i if side == "i" else given(sol.angle_j)
         for member in group.composite:
             self.frames[member] = (origin, angle)
         pairs = self.model.pair_links
-        driven = [pid for pid, (kind, links, _) in pairs.items()
-                  if kind == "P" and set(links) <= set(group.composite)]
+        driven = [pid for pid, (ptype, links, _) in pairs.items()
+                  if ptype == "P" and set(links) <= set(group.composite)]
         for pid in driven:
             carrier = pairs[pid][2] or group.composite[0]
             slider = next(link for link in pairs[pid][1] if link != carrier)

@@ -19,9 +19,10 @@ from typing import Any
 import numpy as np
 
 from assur.kinematics import jets as J
+from assur.kinematics.analysis import Motion, analyse
 from assur.kinematics.dyads import REASONS
 from assur.kinematics.model import GroupModel, KinematicModel
-from assur.kinematics.analysis import Motion, analyse
+from assur.kinds import KINDS, _Shortfall
 
 __all__ = [
     "CONDITIONS",
@@ -33,14 +34,7 @@ __all__ = [
 ]
 
 #: Existence inequality of each kind, as printed in reports (``method.md`` §2.1–2.5).
-CONDITIONS: dict[int, str] = {
-    0: "—",
-    1: "|l_i − l_j| ≤ |H_iH_j| ≤ l_i + l_j,  |cos ∠H_i| ≤ 1 − δ",
-    2: "|h| ≤ (1 − δ)·l_j",
-    3: "|d| ≤ (1 − δ)·|H_iH_j|",
-    4: "|sin(θ_j − θ_i)| ≥ δ",
-    5: "|sin γ| ≥ δ",
-}
+CONDITIONS: dict[int, str] = {number: kind.condition for number, kind in KINDS.items()}
 
 
 @dataclass(frozen=True)
@@ -161,7 +155,7 @@ def first_failure(motion: Motion) -> np.ndarray:
 
     Works for any shape of positions and designs, e.g. ``(D, N)``.
     """
-    dyads = [g for g in motion.model.groups if g.kind != 0]
+    dyads = [g for g in motion.model.groups if not g.group_kind.is_input]
     shape = np.shape(motion.q)
     first = np.full(np.broadcast_shapes(shape, *(np.shape(motion.solutions[g.label].exists)
                                                  for g in dyads)), -1, dtype=np.int32)
@@ -196,7 +190,7 @@ def check_existence(model: KinematicModel, q: np.ndarray | None = None, *, point
     q = motion.q
     if q.ndim != 1 or model.design_shape not in ((), (1,), (1, 1)):
         raise ValueError("check_existence works on one design over a 1-D grid of positions")
-    dyads = [g for g in model.groups if g.kind != 0]
+    dyads = [g for g in model.groups if not g.group_kind.is_input]
     first = first_failure(motion).reshape(q.shape)
     span = model.input_range[1] - model.input_range[0]
     periodic = model.drive == "crank" and math.isclose(span, 2 * math.pi) and \
@@ -280,23 +274,16 @@ def _bisect(model: KinematicModel, group: GroupModel, index: int, good: float, b
 
 def _shortfall(model: KinematicModel, motion: Motion, group: GroupModel, at: int
                ) -> tuple[float, str]:
-    """The violated condition in mm (L1–L3) or degrees (L4, L5) at one position."""
+    """The violated condition in the group's own terms at one position (the kind's rule)."""
     sol = motion.solutions[group.label]
-    margin = float(np.broadcast_to(sol.margin, motion.q.shape)[at])
-    delta = float(np.max(model.params.get(group.column("delta"), 0.0)))
-    value = model.value
 
     def hinge(role: str) -> complex:
-        return np.broadcast_to(J.value(motion.joints[group.pairs[role]]), motion.q.shape)[at]
+        return complex(np.broadcast_to(J.value(motion.joints[group.pairs[role]]),
+                                       motion.q.shape)[at])
 
-    if group.kind == 1:
-        d = abs(hinge("H_j") - hinge("H_i"))
-        l_i = float(motion.q[at]) if group.driven == "i" else float(value(group.column("l_i")))
-        l_j = float(motion.q[at]) if group.driven == "j" else float(value(group.column("l_j")))
-        return float(max(d - (l_i + l_j), abs(l_i - l_j) - d)), "mm"
-    if group.kind == 2:
-        return float(-margin * float(value(group.column("l_j")))), "mm"
-    if group.kind == 3:
-        return float(-margin * abs(hinge("H_j") - hinge("H_i"))), "mm"
-    angle = math.degrees(math.asin(min(max(margin, 0.0), 1.0)))
-    return float(math.degrees(math.asin(min(delta, 1.0))) - angle), "deg"
+    rule = group.group_kind.shortfall
+    assert rule is not None  # every dyad kind has one
+    return rule(group, _Shortfall(
+        q=float(motion.q[at]), margin=float(np.broadcast_to(sol.margin, motion.q.shape)[at]),
+        delta=float(np.max(model.params.get(group.column("delta"), 0.0))), value=model.value,
+        hinge=hinge))

@@ -21,8 +21,9 @@ from typing import Any
 import numpy as np
 
 from assur.kinematics import jets as J
-from assur.kinematics.model import GroupModel, KinematicModel
 from assur.kinematics.analysis import Motion, unwrap
+from assur.kinematics.model import KinematicModel
+from assur.kinds import given
 from assur.model import LinkId, PairId
 
 __all__ = [
@@ -86,20 +87,12 @@ def binary_links(model: KinematicModel) -> set[LinkId]:
     for group in model.groups:
         if loaded & set(group.composite):
             loaded |= set(group.composite)
-    out = set()
+    out: set[LinkId] = set()
     for group in model.groups:
-        if group.kind == 0:
+        if group.group_kind.is_input:
             continue
-        out |= {link for link in (group.i, group.j) if link not in loaded}
+        out |= {link for link in (group.i, group.j) if link is not None and link not in loaded}
     return out
-
-
-def _rod_side(group: GroupModel, binary: set[LinkId]) -> tuple[LinkId, ...]:
-    if group.kind == 1:
-        return tuple(link for link in (group.i, group.j) if link in binary)
-    if group.kind == 2:
-        return (group.j,) if group.j in binary else ()
-    return ()
 
 
 def pressure_angles(motion: Motion) -> list[PressureAngle]:
@@ -108,17 +101,16 @@ def pressure_angles(motion: Motion) -> list[PressureAngle]:
     binary = binary_links(model)
     out = []
     for group in model.groups:
-        rods = _rod_side(group, binary)
-        if not rods:
+        rule = group.group_kind.pressure
+        if rule is None:
             continue
         sol = motion.solutions[group.label]
         phi_i = np.asarray(J.value(sol.angle_i))
-        phi_j = np.asarray(J.value(sol.angle_j))
+        phi_j = np.asarray(J.value(given(sol.angle_j)))
         with np.errstate(invalid="ignore"):
-            if group.kind == 1:
-                alpha = np.arccos(np.minimum(np.abs(np.sin(phi_i - phi_j)), 1.0))
-            else:
-                alpha = np.arccos(np.minimum(np.abs(np.cos(phi_j - phi_i)), 1.0))
+            rods, alpha = rule(group, binary, phi_i, phi_j)
+        if not rods:
+            continue
         out.append(PressureAngle(group.label, group.pairs["C"], rods, alpha))
     return out
 
@@ -131,10 +123,10 @@ def joint_rotations(motion: Motion) -> list[JointRotation]:
         for role, pid in group.pairs.items():
             if not role.startswith("P"):
                 owner[pid] = group.label
-    crank_pivot = next((g.pairs["H_i"] for g in model.groups if g.kind == 0), None)
+    crank_pivot = next((g.pairs["H_i"] for g in model.groups if g.group_kind.is_input), None)
     out = []
-    for pid, (kind, links, _) in model.pair_links.items():
-        if kind != "R" or pid not in owner:
+    for pid, (ptype, links, _) in model.pair_links.items():
+        if ptype != "R" or pid not in owner:
             continue
         a, b = links
         theta = _angle(motion, a) - _angle(motion, b)

@@ -31,14 +31,18 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from assur.kinds import KINDS
 from assur.structure.classification import roman as roman_numeral
 from assur.errors import AssurError
-from assur.model import Chain, LinkId, Pair, PairId, PairType, id_key
+from assur.model import Chain, LinkId, Pair, PairId, PairType, id_key, joint_key
 from assur.io.files import atomic_write_bytes
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
+
+    from assur.structure.analysis import StructuralAnalysis
+    from assur.structure.classification import AssurGroup
 
 __all__ = [
     "PictureFormatError",
@@ -53,8 +57,6 @@ __all__ = [
     "scheme_bytes",
 ]
 
-_KIND_STRINGS = {1: "RRR", 2: "RRP", 3: "RPR", 4: "PRP", 5: "RPP"}
-_KIND_STRINGS_RU = {1: "ВВВ", 2: "ВВП", 3: "ВПВ", 4: "ПВП", 5: "ВПП"}
 _GROUP_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b",
                   "#e377c2", "#7f7f7f", "#bcbd22")
 _TEXT = {
@@ -94,50 +96,39 @@ class _Group:
     name: str
     links: tuple[LinkId, ...]
     level: int
-    group_class: Any
-    order: Any
-    kind: Any
+    group_class: int
+    order: int
+    kind: int | None
     is_input: bool
     external: tuple[tuple[PairId, LinkId, LinkId], ...]
     signature: str = ""
 
 
-def _groups(analysis: Any, chain: Chain) -> list[_Group]:
+def _groups(analysis: StructuralAnalysis, chain: Chain) -> list[_Group]:
     """Input groups and Assur groups of an analysis, in layering order."""
-    result: list[_Group] = []
-    for group in getattr(analysis, "input_groups", ()) or ():
-        result.append(_as_group(group, chain, is_input=True))
-    for group in getattr(analysis, "groups", ()) or ():
-        result.append(_as_group(group, chain, is_input=False))
+    result = [_as_group(group, is_input=True) for group in analysis.input_groups]
+    result += [_as_group(group, is_input=False) for group in analysis.groups]
     seen: set[str] = set()
     unique = []
-    for group in result:
-        if group.name not in seen:
-            seen.add(group.name)
-            unique.append(group)
+    for item in result:
+        if item.name not in seen:
+            seen.add(item.name)
+            unique.append(item)
     return sorted(unique, key=lambda g: (g.level, not g.is_input))
 
 
-def _as_group(group: Any, chain: Chain, *, is_input: bool) -> _Group:
-    links = tuple(getattr(group, "links", ()) or ())
-    external = tuple(tuple(item) for item in (getattr(group, "external", ()) or ()))
-    level = getattr(group, "level", 0)
-    is_input = is_input or level == 0
-    name = getattr(group, "label", None) or getattr(group, "name", None) or \
-        f"group({','.join(map(str, links))})"
-    return _Group(name=str(name), links=links, level=int(level or 0),
-                  group_class=getattr(group, "group_class", None),
-                  order=getattr(group, "order", None), kind=getattr(group, "kind", None),
-                  is_input=is_input, external=external,  # type: ignore[arg-type]
-                  signature=str(getattr(group, "name", "") or ""))
+def _as_group(group: AssurGroup, *, is_input: bool) -> _Group:
+    return _Group(name=group.label, links=tuple(group.links), level=group.level,
+                  group_class=group.group_class, order=group.order, kind=group.kind,
+                  is_input=is_input or group.level == 0, external=tuple(group.external),
+                  signature=group.name)
 
 
 def _kind_text(group: _Group, lang: str) -> str:
     """The kind of a dyad with its pair string, or the signature of a larger group."""
     kind = group.kind
     if isinstance(kind, int) and not isinstance(kind, bool):
-        table = _KIND_STRINGS_RU if lang == "ru" else _KIND_STRINGS
-        code = table.get(kind)
+        code = KINDS[kind].pair_text(lang) if kind in KINDS else ""
         return f"{kind} ({code})" if code else str(kind)
     return group.signature or "–" if kind is None else str(kind)
 
@@ -153,7 +144,8 @@ def _group_caption(group: _Group, lang: str) -> str:
             f"{text['order']} {group.order}, {kind}")
 
 
-def group_graph(chain: Chain, analysis: Any) -> list[tuple[str, str, tuple[PairId, ...]]]:
+def group_graph(chain: Chain, analysis: StructuralAnalysis
+                ) -> list[tuple[str, str, tuple[PairId, ...]]]:
     """Edges of the formalised structural scheme.
 
     Parameters
@@ -207,45 +199,14 @@ class SchemeLayout:
     from_geometry: bool
 
 
-def _geometry_entry(chain: Chain, pair: Pair) -> dict[str, Any] | None:
-    geometry = chain.geometry or {}
-    for key in (pair.id, pair.origin):
-        if key is None:
-            continue
-        for candidate in (key, str(key)):
-            entry = geometry.get(candidate)
-            if isinstance(entry, dict):
-                return entry
-    return None
-
-
-def _point(value: Any) -> complex | None:
-    if isinstance(value, (list, tuple)) and len(value) == 2 and all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
-        return complex(float(value[0]), float(value[1]))
-    return None
-
-
-def _direction(value: Any) -> complex | None:
-    """A guide direction given as a vector ``[dx, dy]`` or an angle in degrees."""
-    if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
-        return complex(math.cos(math.radians(value)), math.sin(math.radians(value)))
-    vector = _point(value)
-    return vector / abs(vector) if vector is not None and abs(vector) > 0 else None
-
-
 def _from_geometry(chain: Chain) -> tuple[dict[PairId, complex], dict[PairId, complex]] | None:
-    positions: dict[PairId, complex] = {}
-    directions: dict[PairId, complex] = {}
-    for pair in chain.pairs:
-        entry = _geometry_entry(chain, pair)
-        point = _point(entry.get("point")) if entry else None
-        if point is None:
-            return None
-        positions[pair.id] = point
-        direction = _direction(entry.get("direction")) if entry else None
-        if pair.type is PairType.P and direction is not None:
-            directions[pair.id] = direction
+    """Pair positions and unit guide directions from the chain's sketch, if it has one."""
+    sketch = chain.geometry
+    if sketch is None or any(joint_key(pair) not in sketch.points for pair in chain.pairs):
+        return None
+    positions = {pair.id: sketch.points[joint_key(pair)] for pair in chain.pairs}
+    directions = {pair.id: sketch.directions[joint_key(pair)].unit for pair in chain.pairs
+                  if pair.type is PairType.P and joint_key(pair) in sketch.directions}
     return positions, directions
 
 
@@ -353,7 +314,7 @@ def _shift(step: int) -> int:
     return (step + 1) // 2 * (1 if step % 2 else -1)
 
 
-def scheme_layout(chain: Chain, analysis: Any) -> SchemeLayout:
+def scheme_layout(chain: Chain, analysis: StructuralAnalysis) -> SchemeLayout:
     """Positions of pairs and links for the structural scheme.
 
     Parameters
@@ -527,7 +488,7 @@ def _link_label_place(points: list[complex], node: complex) -> tuple[complex, co
     return (points[0] if points else node), complex(6, 6)
 
 
-def draw_structural_scheme(chain: Chain, analysis: Any, *, ax: Axes | None = None,
+def draw_structural_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Axes | None = None,
                            lang: str = "en", layout: SchemeLayout | None = None) -> Axes:
     """Draw the structural scheme (fig. 1.26 of the course).
 
@@ -618,7 +579,7 @@ def _draw_group_outlines(ax: Axes, chain: Chain, groups: Sequence[_Group],
                   fontsize=8, frameon=False, ncol=1 if len(handles) > 3 else len(handles))
 
 
-def draw_formalised_scheme(chain: Chain, analysis: Any, *, ax: Axes | None = None,
+def draw_formalised_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Axes | None = None,
                            lang: str = "en") -> Axes:
     """Draw the formalised structural scheme (fig. 1.27 of the course).
 
@@ -696,7 +657,7 @@ def _new_axes(size: tuple[float, float]) -> Axes:
     return Figure(figsize=size, layout="constrained").add_subplot()
 
 
-def scheme_figure(chain: Chain, analysis: Any, *, lang: str = "en",
+def scheme_figure(chain: Chain, analysis: StructuralAnalysis, *, lang: str = "en",
                   which: str = "both") -> Figure:
     """A figure with the structural scheme, the formalised scheme, or both stacked.
 
@@ -728,7 +689,7 @@ def scheme_figure(chain: Chain, analysis: Any, *, lang: str = "en",
     return fig
 
 
-def scheme_bytes(chain: Chain, analysis: Any, fmt: str = "svg", *, lang: str = "en",
+def scheme_bytes(chain: Chain, analysis: StructuralAnalysis, fmt: str = "svg", *, lang: str = "en",
                  which: str = "both", dpi: int = 110) -> bytes:
     """The scheme picture as SVG or PNG bytes (see :func:`scheme_figure`).
 
@@ -747,7 +708,7 @@ def scheme_bytes(chain: Chain, analysis: Any, fmt: str = "svg", *, lang: str = "
     return buffer.getvalue()
 
 
-def save_schemes(chain: Chain, analysis: Any, path: str | os.PathLike[str], *,
+def save_schemes(chain: Chain, analysis: StructuralAnalysis, path: str | os.PathLike[str], *,
                  lang: str = "en", which: str = "both") -> Path:
     """Write the schemes to an SVG or PNG file (by its suffix), atomically.
 

@@ -23,11 +23,13 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Any
 
+import networkx as nx  # type: ignore[import-untyped]
+
 from assur.io.chain_table import recentre_hinge
 from assur.structure.classification import AssurGroup, classify, input_group, roman
 from assur.structure.peeling import BodyGraph, Peeling, body_graph, peel
 from assur.structure.diagnostics import Diagnostic, diagnostic
-from assur.model import Chain, Drive, LinkId, PairType, id_key
+from assur.model import Chain, Drive, LinkId, PairId, PairType, id_key
 from assur.structure.rank_test import RankResult, pose_from_geometry, rank_test
 
 __all__ = ["AssurGroup", "Diagnostic", "StructuralAnalysis", "analyse_structure"]
@@ -269,23 +271,14 @@ def _prismatic_loops(chain: Chain) -> list[Diagnostic]:
 
     r_P = |E_P| − |V_P| + c(P-subgraph) (``structure.md`` §3.3), counted per component.
     """
-    parent: dict[LinkId, LinkId] = {}
-
-    def find(link: LinkId) -> LinkId:
-        parent.setdefault(link, link)
-        while parent[link] != link:
-            parent[link] = parent[parent[link]]
-            link = parent[link]
-        return link
-
     prismatic = [pair for pair in chain.pairs if pair.type is PairType.P]
+    graph = nx.MultiGraph()
+    graph.add_edges_from((*pair.links, pair.id) for pair in prismatic)
+    component = {link: k for k, links in enumerate(nx.connected_components(graph))
+                 for link in links}
+    parts: dict[int, tuple[set[LinkId], list[PairId]]] = {}
     for pair in prismatic:
-        a, b = (find(x) for x in pair.links)
-        if a != b:
-            parent[a] = b
-    parts: dict[LinkId, tuple[set, list]] = {}
-    for pair in prismatic:
-        nodes, pids = parts.setdefault(find(pair.links[0]), (set(), []))
+        nodes, pids = parts.setdefault(component[pair.links[0]], (set(), []))
         nodes.update(pair.links)
         pids.append(pair.id)
     out = []
@@ -304,7 +297,8 @@ def _in_loop(finding: Diagnostic, loops: list[Diagnostic]) -> bool:
 def _idle(chain: Chain) -> list[Diagnostic]:
     """Open appendages: the far side of a bridge (seen from the frame) holding no input."""
     inputs = {link for d in chain.inputs for link in
-              ([d.link] if d.link is not None else list(chain.pair(d.pair).links))}
+              ([d.link] if d.link is not None else
+               list(chain.pair(d.pair).links) if d.pair is not None else [])}
     out = []
     for side in _appendages(chain, inputs):
         pairs = {p.id for link in side for p in chain.pairs_of(link)}
@@ -313,51 +307,28 @@ def _idle(chain: Chain) -> list[Diagnostic]:
 
 
 def _appendages(chain: Chain, inputs: set[LinkId]) -> list[list[LinkId]]:
-    """Maximal subtrees beyond a bridge with no input, by one depth-first search (Tarjan).
+    """Maximal sides beyond a bridge (seen from the frame) that hold no input.
 
     Parallel pairs are distinct edges, so two pairs between the same links are no bridge.
+    A bridge is an edge of the depth-first tree from the frame; its far side is the subtree
+    of its deeper end. Sides come in depth-first order, each in depth-first order.
     """
-    order: dict[LinkId, int] = {chain.frame: 0}
-    low = {chain.frame: 0}
-    visit = [chain.frame]
-    bridges: list[LinkId] = []  # child end of each bridge
-    tree_parent: dict[LinkId, LinkId] = {}
-    stack = [(chain.frame, None, iter(chain.pairs_of(chain.frame)))]
-    while stack:
-        node, via, edges = stack[-1]
-        for pair in edges:
-            if pair.id == via:
-                continue
-            nxt = pair.other(node)
-            if nxt not in order:
-                order[nxt] = low[nxt] = len(visit)
-                tree_parent[nxt] = node
-                visit.append(nxt)
-                stack.append((nxt, pair.id, iter(chain.pairs_of(nxt))))
-                break
-            low[node] = min(low[node], order[nxt])
-        else:
-            stack.pop()
-            if stack:
-                parent = stack[-1][0]
-                low[parent] = min(low[parent], low[node])
-                if low[node] > order[parent]:
-                    bridges.append(node)
-    size = {node: 1 for node in visit}
-    has_input = {node: node in inputs for node in visit}
-    for node in reversed(visit[1:]):
-        parent = tree_parent[node]
-        size[parent] += size[node]
-        has_input[parent] = has_input[parent] or has_input[node]
-    sides = []
-    covered_until = -1
-    for child in sorted(bridges, key=order.__getitem__):
-        start = order[child]
-        if start < covered_until or has_input[child]:
-            continue
-        covered_until = start + size[child]
-        sides.append(visit[start:covered_until])
-    return sides
+    graph = nx.MultiGraph()
+    graph.add_nodes_from(chain.links)
+    graph.add_edges_from((*pair.links, pair.id) for pair in chain.pairs)
+    tree = nx.dfs_tree(graph, chain.frame)
+    order = {node: k for k, node in enumerate(nx.dfs_preorder_nodes(graph, chain.frame))}
+    candidates = []
+    for a, b in nx.bridges(graph, root=chain.frame):
+        child = b if order[b] > order[a] else a
+        side = {child} | nx.descendants(tree, child)
+        if not side & inputs:
+            candidates.append((order[child], side))
+    sides: list[set[LinkId]] = []
+    for _, side in sorted(candidates, key=lambda item: item[0]):
+        if not any(side <= bigger for bigger in sides):
+            sides.append(side)
+    return [sorted(side, key=order.__getitem__) for side in sides]
 
 
 def _with_suggestions(chain: Chain, found: list[Diagnostic]) -> list[Diagnostic]:
@@ -433,8 +404,11 @@ def _applicability(a: StructuralAnalysis, graph: BodyGraph) -> list[tuple[str, s
             return pair.other(chain.frame) if chain.frame in pair.links else None
         return drive.link
 
-    bad_inputs = [d for d in chain.inputs if driven_link(d) not in graph.driven
-                  or chain.pair(graph.driven[driven_link(d)]).type is not PairType.R]
+    def driven_by_hinge(drive: Drive) -> bool:
+        link = driven_link(drive)
+        return link in graph.driven and chain.pair(graph.driven[link]).type is PairType.R
+
+    bad_inputs = [d for d in chain.inputs if not driven_by_hinge(d)]
     if bad_inputs:
         names = ", ".join(str(d.link if d.link is not None else d.pair) for d in bad_inputs)
         failed.append((f"condition 3: every input must be a crank turning on the frame in a "

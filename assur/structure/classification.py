@@ -11,16 +11,15 @@ from dataclasses import dataclass
 from itertools import combinations
 from typing import Any
 
-import networkx as nx
+import networkx as nx  # type: ignore[import-untyped]
 
-from assur.structure.peeling import BodyGraph, RawGroup
-from assur.structure.diagnostics import Diagnostic, diagnostic
+from assur.kinds import GroupKind, kind_of, kind_of_pattern
 from assur.model import LinkId, PairId, id_key
+from assur.structure.diagnostics import Diagnostic, diagnostic
+from assur.structure.peeling import BodyGraph, RawGroup
 
-__all__ = ["DYAD_NAMES", "AssurGroup", "classify", "input_group", "roman", "subscript"]
+__all__ = ["AssurGroup", "classify", "input_group", "roman", "subscript"]
 
-DYAD_NAMES = {1: "RRR", 2: "RRP", 3: "RPR", 4: "PRP", 5: "RPP"}
-_KIND = {("R", "RR"): 1, ("R", "PR"): 2, ("P", "RR"): 3, ("R", "PP"): 4, ("P", "PR"): 5}
 _SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 
@@ -93,6 +92,13 @@ class AssurGroup:
     composite: tuple[LinkId, ...] | None = None
     issues: tuple[Diagnostic, ...] = ()
     parts: tuple[tuple[LinkId, ...], ...] = ()
+
+    @property
+    def group_kind(self) -> GroupKind | None:
+        """What the group's kind means: L0 for an input group, L1–L5 for a dyad, else None."""
+        if self.group_class == 1:
+            return kind_of(0)
+        return kind_of(self.kind) if self.kind is not None else None
 
     @property
     def is_dyad(self) -> bool:
@@ -197,7 +203,7 @@ def _dyad(raw: RawGroup, graph: BodyGraph, common: dict[str, Any],
     pc = raw.internal[0]
     tc = _type(graph, pc)
     ta, tb = _type(graph, pa), _type(graph, pb)
-    kind = _KIND.get((tc, "".join(sorted((ta, tb)))))
+    kind = kind_of_pattern(tc, (ta, tb))
     frame = graph.body_of[chain.frame]
     first, second = sorted((ba, bb), key=id_key)
     ext = {ba: (pa, ka, ta), bb: (pb, kb, tb)}
@@ -205,22 +211,21 @@ def _dyad(raw: RawGroup, graph: BodyGraph, common: dict[str, Any],
         issues.append(diagnostic("E_PRISMATIC_LOOP", common["links"], [pa, pb, pc], r=1))
         return AssurGroup(group_class=2, kind=None, name="PPP", issues=tuple(issues), **common)
     on_frame = [b for b in (ba, bb) if ext[b][1] == frame]
-    if kind in (1, 4):
+    if kind.j_rule in ("frame_last", "frame_first"):
         # the link hinged to (L1) or guided by (L4) the frame is j; otherwise i < j for L1
         # and j < i for L4 (structure.md §5.4)
-        default = second if kind == 1 else first
+        default = second if kind.j_rule == "frame_last" else first
         j = on_frame[0] if len(on_frame) == 1 else default
-    elif kind == 2:
+    elif kind.j_rule == "revolute":
         j = ba if ta == "R" else bb
-    elif kind == 3:
+    else:  # "not_carrier"
         guide = chain.pair(pc).guide
+        assert guide is not None  # a P pair names its guide carrier
         j = bb if graph.body_of[guide] == ba else ba
-    else:
-        j = ba if ta == "R" else bb
     i = bb if j == ba else ba
     ext_i = _real_external(graph, ext[i][0], i)
     ext_j = _real_external(graph, ext[j][0], j)
-    return AssurGroup(group_class=2, kind=kind, name=DYAD_NAMES[kind], i=ext_i[1], j=ext_j[1],
+    return AssurGroup(group_class=2, kind=kind.number, name=kind.pairs, i=ext_i[1], j=ext_j[1],
                       pair_i=ext_i[0], pair_j=ext_j[0], pair_c=pc, i_minus_1=ext_i[2],
                       j_minus_1=ext_j[2], issues=tuple(issues), **common)
 

@@ -12,41 +12,17 @@ from collections.abc import Iterable, Mapping
 from dataclasses import asdict, dataclass
 from typing import Any
 
-from assur.structure.classification import AssurGroup
 from assur.errors import StructureError
-from assur.model import LinkId, PairType, id_key
+from assur.kinds import KINDS, kind_of
+from assur.model import COLUMNS, IdentificationRow, LinkId, PairType, id_key
 from assur.structure.analysis import StructuralAnalysis
+from assur.structure.classification import AssurGroup
 
 __all__ = ["COLUMNS", "OUT_CODES", "IdentificationRow", "Mismatch", "check_identification",
            "identification_table"]
 
-# Output-parameter codes of the source's table 1.6 per kind (meaning lost; kept as text).
-OUT_CODES = {0: "0", 1: "8;2", 2: "7;3", 3: "5", 4: "4", 5: "5"}
-_DEFAULT_VARIANT = {1: 1, 2: 1, 3: 0}
-_VARIANTS: dict[int, tuple[Any, ...]] = {0: (None,), 1: (1, -1), 2: (1, -1), 3: (0, 1, -1),
-                                         4: (None,), 5: (None,)}
-COLUMNS = ("L", "seq", "i_minus_1", "j_minus_1", "i", "j", "i_plus_1", "j_plus_1", "variant",
-           "out_code")
-
-
-@dataclass(frozen=True)
-class IdentificationRow:
-    """One row of the structure-identification table; None is the source's dash."""
-
-    L: int
-    seq: int
-    i_minus_1: LinkId | None
-    j_minus_1: LinkId | None
-    i: LinkId
-    j: LinkId | None
-    i_plus_1: Any
-    j_plus_1: Any
-    variant: int | None
-    out_code: str
-
-    def to_dict(self) -> dict[str, Any]:
-        """The row as a mapping with the table's keys."""
-        return asdict(self)
+#: Output-parameter codes of the source's table 1.6 per kind (meaning lost; kept as text).
+OUT_CODES = {number: kind.out_code for number, kind in KINDS.items()}
 
 
 @dataclass(frozen=True)
@@ -114,20 +90,25 @@ def identification_table(analysis: StructuralAnalysis,
     rows = []
     for seq, group in enumerate((*analysis.input_groups, *analysis.groups), start=1):
         kind = group.kind or 0
+        assert group.i is not None  # an input group or a dyad names its link i
         rows.append(IdentificationRow(
             L=kind, seq=seq, i_minus_1=group.i_minus_1, j_minus_1=group.j_minus_1, i=group.i,
             j=group.j, i_plus_1=_successor(analysis, group, group.i),
             j_plus_1=_successor(analysis, group, group.j) if group.j is not None else None,
             variant=_variant(kind, (variants or {}).get((group.i, group.j))),
-            out_code=OUT_CODES[kind]))
+            out_code=kind_of(kind).out_code))
     return rows
 
 
-def _variant(kind: int, sigma: int | None) -> int | None:
-    """The table's variant of a dyad with assembly sign ``sigma`` (None: not known)."""
-    if sigma is None or kind not in _DEFAULT_VARIANT:
-        return _DEFAULT_VARIANT.get(kind)
-    return 0 if kind == 3 and sigma > 0 else int(sigma)
+def _variant(number: int, sigma: int | None) -> int | None:
+    """The table's variant of a dyad with assembly sign ``sigma`` (None: not known).
+
+    A kind whose default variant is 0 (L3) writes its default branch σ = +1 as 0.
+    """
+    kind = kind_of(number)
+    if sigma is None or not kind.sided:
+        return kind.default_variant
+    return kind.default_variant if sigma > 0 else int(sigma)
 
 
 def _successor(analysis: StructuralAnalysis, group: AssurGroup, link: LinkId | None) -> Any:
@@ -144,7 +125,8 @@ def _successor(analysis: StructuralAnalysis, group: AssurGroup, link: LinkId | N
 
 def _flexible(group: AssurGroup, frame: LinkId) -> bool:
     """Whether the course leaves the choice of i and j free for this dyad."""
-    if group.kind not in (1, 4):
+    kind = group.group_kind
+    if kind is None or not kind.j_rule.startswith("frame"):
         return False
     return (group.i_minus_1 == frame) == (group.j_minus_1 == frame)
 
@@ -167,7 +149,7 @@ def check_identification(analysis: StructuralAnalysis,
     list of Mismatch
         Empty when the table agrees with the analysis.
     """
-    rows = [r.to_dict() if isinstance(r, IdentificationRow) else dict(r) for r in rows]
+    table_rows = [r.to_dict() if isinstance(r, IdentificationRow) else dict(r) for r in rows]
     groups = (*analysis.input_groups, *analysis.groups)
     seq_of = {id(g): k for k, g in enumerate(groups, start=1)}
     frame = analysis.chain.frame
@@ -175,7 +157,7 @@ def check_identification(analysis: StructuralAnalysis,
     used: dict[int, int] = {}
     user_seq: dict[int, tuple[int, int, str]] = {}
 
-    for index, row in enumerate(rows):
+    for index, row in enumerate(table_rows):
         label = _label(table, index, row)
 
         def miss(field: str, expected: Any, found: Any, why: str = "", why_ru: str = "",
@@ -212,13 +194,14 @@ def check_identification(analysis: StructuralAnalysis,
             continue
         kind = group.kind or 0
         if row.get("L") != kind:
-            miss("L", kind, row.get("L"), f"{group.label} is "
-                 f"{'the input group' if kind == 0 else f'a dyad of kind {kind} ({group.name})'}",
-                 f"{group.label} — {'начальный механизм' if kind == 0 else f'группа {kind} вида'}")
+            title = kind_of(kind)
+            article = "the" if title.is_input else "a"
+            miss("L", kind, row.get("L"), f"{group.label} is {article} {title.title('en')}",
+                 f"{group.label} — {title.title('ru')}")
         i, j = group.i, group.j
         if (user_i, user_j) != (i, j):
             if not (group.j is not None and _flexible(group, frame)):
-                rule, rule_ru = _role_rule(kind)
+                rule, rule_ru = kind_of(kind).role_rule("en"), kind_of(kind).role_rule("ru")
                 miss("i", group.i, user_i, rule, rule_ru)
                 if group.j is not None:
                     miss("j", group.j, user_j, rule, rule_ru)
@@ -228,8 +211,8 @@ def check_identification(analysis: StructuralAnalysis,
             out.extend(theirs if len(theirs) < len(ours) else ours)
         else:
             out.extend(_neighbours(analysis, group, i, j, row, index, label))
-        if row.get("variant") not in _VARIANTS[kind] and "variant" in row:
-            allowed = _VARIANTS[kind]
+        if row.get("variant") not in kind_of(kind).variants and "variant" in row:
+            allowed = kind_of(kind).variants
             miss("variant", " or ".join("null" if v is None else str(v) for v in allowed),
                  row.get("variant"), f"allowed for kind {kind}", f"допустимо для {kind} вида")
         if row.get("seq") is not None:
@@ -283,22 +266,6 @@ def _known_end(group: AssurGroup, link: LinkId | None) -> LinkId | None:
         if member == link:
             return known
     return None
-
-
-def _role_rule(kind: int) -> tuple[str, str]:
-    return {
-        0: ("i is the input link", "i — входное звено"),
-        1: ("in an RRR dyad the link hinged to the frame is j",
-            "в группе ВВВ звено, шарнирно связанное со стойкой, обозначается j"),
-        2: ("in an RRP dyad i is the slider (its external pair is prismatic), j the rod",
-            "в группе ВВП i — ползун (внешняя поступательная пара), j — шатун"),
-        3: ("in an RPR dyad i is the slotted lever carrying the guide, j the block",
-            "в группе ВПВ i — кулиса (несёт направляющую), j — камень"),
-        4: ("in a PRP dyad j is the link guided by the frame",
-            "в группе ПВП j — звено, скользящее по направляющей стойки"),
-        5: ("in an RPP dyad j is the link with the revolute pair",
-            "в группе ВПП j — звено с вращательной парой"),
-    }[kind]
 
 
 def _same(found: Any, expected: Any) -> bool:

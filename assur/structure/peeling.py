@@ -16,10 +16,10 @@ A group's level is 1 + the highest level of the known bodies its external pairs 
 from __future__ import annotations
 
 from collections import Counter, deque
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 
-import networkx as nx
+import networkx as nx  # type: ignore[import-untyped]
 
 from assur.structure.diagnostics import Diagnostic, diagnostic
 from assur.model import Chain, LinkId, PairId, id_key
@@ -43,7 +43,7 @@ class BodyGraph:
     driven: dict[LinkId, PairId]
     issues: list[Diagnostic] = field(default_factory=list)
 
-    def links(self, bodies: object) -> list[LinkId]:
+    def links(self, bodies: Iterable[LinkId]) -> list[LinkId]:
         """The real links of some bodies."""
         return sorted((link for body in bodies for link in self.members[body]), key=id_key)
 
@@ -71,15 +71,12 @@ class Peeling:
 
 
 def body_graph(chain: Chain) -> BodyGraph:
-    """Freeze actuators and find the driven pair of every input link."""
-    parent: dict[LinkId, LinkId] = {link: link for link in chain.links}
+    """Freeze actuators and find the driven pair of every input link.
 
-    def find(link: LinkId) -> LinkId:
-        while parent[link] != link:
-            parent[link] = parent[parent[link]]
-            link = parent[link]
-        return link
-
+    The links joined by frozen actuator pairs become one body, named by its smallest link.
+    """
+    welded = nx.Graph()
+    welded.add_nodes_from(chain.links)
     frozen: list[PairId] = []
     input_links: list[LinkId] = []
     driven: dict[LinkId, PairId] = {}
@@ -93,11 +90,9 @@ def body_graph(chain: Chain) -> BodyGraph:
                 driven[link] = pair.id
             else:
                 frozen.append(pair.id)
-                a, b = (find(x) for x in pair.links)
-                if a != b:
-                    low, high = sorted((a, b), key=id_key)
-                    parent[high] = low
+                welded.add_edge(*pair.links)
             continue
+        assert drive.link is not None  # a drive names a link or a pair
         link = drive.link
         on_frame = [p for p in chain.pairs_of(link) if chain.frame in p.links]
         input_links.append(link)
@@ -106,10 +101,11 @@ def body_graph(chain: Chain) -> BodyGraph:
         elif link != chain.frame:
             issues.append(diagnostic("E_INPUT_NOT_ON_FRAME", [link], [p.id for p in on_frame],
                                      k=len(on_frame)))
+    body_of = {link: min(body, key=id_key) for body in nx.connected_components(welded)
+               for link in body}
     members: dict[LinkId, list[LinkId]] = {}
     for link in chain.links:
-        members.setdefault(find(link), []).append(link)
-    body_of = {link: find(link) for link in chain.links}
+        members.setdefault(body_of[link], []).append(link)
     edges: list[tuple[PairId, LinkId, LinkId]] = []
     inner: list[PairId] = []
     frozen_set = set(frozen)

@@ -7,9 +7,9 @@ of the slide line through c. With the frame columns dropped, ``W_geom = 3n − r
 ``q_geom = rows − rank J``. Counting cannot see special dimensions (a parallelogram with an
 extra parallel crank); this test can, and it names the passive-link candidates.
 
-The pose is read from the chain's ``geometry`` table: ``<pair id>: {point: [x, y]}`` and,
-for P pairs, ``direction: [dx, dy]`` or ``direction: <angle in degrees>``. When any pair
-lacks a point the test is skipped.
+The pose is the chain's sketch (:class:`~assur.model.Sketch`, the table's ``geometry:``),
+which gives every joint a point and every slider pair a direction; without a sketch the
+test is skipped.
 """
 
 from __future__ import annotations
@@ -21,7 +21,6 @@ from typing import Any
 import numpy as np
 
 from assur.model import Chain, LinkId, Pair, PairId, PairType
-from assur.io.reader import normalise_id
 
 __all__ = ["RankResult", "constraint_jacobian", "pose_from_geometry", "rank_test"]
 
@@ -59,37 +58,17 @@ class RankResult:
 
 
 def pose_from_geometry(chain: Chain) -> dict[PairId, tuple[complex, complex | None]] | None:
-    """Pair points (and slide directions) from ``chain.geometry``, or None if incomplete."""
-    if not isinstance(chain.geometry, dict):
-        return None
-    table = {normalise_id(key): value for key, value in chain.geometry.items()}
-    pose: dict[PairId, tuple[complex, complex | None]] = {}
-    for pair in chain.pairs:
-        entry = table.get(pair.origin, table.get(pair.id))
-        point = _vector(entry.get("point")) if isinstance(entry, dict) else None
-        if point is None:
-            return None
-        direction = None
-        if pair.type is PairType.P:
-            direction = _direction(entry.get("direction"))
-            if direction is None or direction == 0:
-                return None
-        pose[pair.id] = (point, direction)
-    return pose
+    """Pair points (and slide directions) from the chain's sketch, or None without one.
 
-
-def _direction(value: Any) -> complex | None:
-    """A slide direction: a vector [dx, dy] or an angle in degrees from the x-axis."""
-    if isinstance(value, (int, float)) and not isinstance(value, bool):
-        return complex(np.cos(np.radians(value)), np.sin(np.radians(value)))
-    return _vector(value)
-
-
-def _vector(value: Any) -> complex | None:
-    if (isinstance(value, (list, tuple)) and len(value) == 2
-            and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)):
-        return complex(float(value[0]), float(value[1]))
-    return None
+    >>> from assur.io.chain_table import chain_from_dict
+    >>> chain = chain_from_dict({"mechanism": {"pairs": [
+    ...     {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "P", "links": [1, 0],
+    ...      "guide": 0}], "inputs": [1]},
+    ...     "geometry": {"A": {"point": [0, 0]}, "B": {"point": [5, 0], "direction": [2, 0]}}})
+    >>> pose_from_geometry(chain)
+    {'A': (0j, None), 'B': ((5+0j), (2+0j))}
+    """
+    return None if chain.geometry is None else chain.geometry.pose(chain.pairs)
 
 
 def constraint_jacobian(pairs: Iterable[Pair], pose: dict[PairId, tuple[complex, complex | None]],
@@ -123,6 +102,7 @@ def constraint_jacobian(pairs: Iterable[Pair], pose: dict[PairId, tuple[complex,
         if pair.type is PairType.R:
             rows += [row_for(pair, 1.0 + 0j, False), row_for(pair, 1j, False)]
         else:
+            assert direction is not None  # a P pair has its slide direction
             normal = 1j * direction / abs(direction)
             rows += [row_for(pair, 0j, True), row_for(pair, normal, False)]
     for pair in locked:
@@ -130,6 +110,7 @@ def constraint_jacobian(pairs: Iterable[Pair], pose: dict[PairId, tuple[complex,
         if pair.type is PairType.R:
             rows.append(row_for(pair, 0j, True))
         else:
+            assert direction is not None
             rows.append(row_for(pair, direction / abs(direction), False))
     if not rows:
         return np.zeros((0, 3 * len(columns)))

@@ -20,7 +20,6 @@ from assur.structure.analysis import StructuralAnalysis
 
 __all__ = ["group_description", "structure_report"]
 
-_RU_KIND = {"RRR": "ВВВ", "RRP": "ВВП", "RPR": "ВПВ", "PRP": "ПВП", "RPP": "ВПП"}
 _RU_ORDER_WORD = {2: "двухповодковая", 3: "трёхповодковая"}
 
 _T = {
@@ -66,6 +65,11 @@ def _pairs(group: AssurGroup, lang: str) -> tuple[str, str]:
     return ext, ", ".join(map(str, group.internal))
 
 
+def _pair_text(group: AssurGroup, lang: str) -> str:
+    kind = group.group_kind
+    return kind.pair_text(lang) if kind is not None else group.name
+
+
 def group_description(group: AssurGroup, lang: str = "en") -> str:
     """One line describing a group in the course's terms."""
     ru = lang == "ru"
@@ -81,7 +85,7 @@ def group_description(group: AssurGroup, lang: str = "en") -> str:
                            f"pairs)")
     elif group.is_dyad:
         head = (f"уровень {group.level}: группа Ассура {group.group_class} класса "
-                f"{group.order} порядка {group.kind} вида ({_RU_KIND[group.name]}); "
+                f"{group.order} порядка {group.kind} вида ({_pair_text(group, lang)}); "
                 f"i = {group.i}, j = {group.j}" if ru else
                 f"level {group.level}: Assur group of class {group.group_class}, order "
                 f"{group.order}, kind {group.kind} ({group.name}); i = {group.i}, j = {group.j}")
@@ -144,7 +148,7 @@ def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
         if drive.link is not None:
             name = chain.link(drive.link).name
             items.append(str(drive.link) + (f" ({name})" if name else ""))
-        else:
+        elif drive.pair is not None:
             pair = chain.pair(drive.pair)
             items.append(f"{'пара' if lang == 'ru' else 'pair'} {pair.id} "
                          f"({pair.links[0]}–{pair.links[1]})")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 
@@ -76,16 +77,53 @@ def test_text_link_ids_are_kept() -> None:
     assert chain.frame == "ground" and set(chain.moving_links) == {"crank", "rod"}
 
 
-def test_geometry_and_general_are_passed_through_untouched() -> None:
-    geometry = {"A": {"point": [0, 0]}, "anything": {"the kinematics": "reads it"}}
+_SKETCH = {"A": {"point": [0, 0]}, "B": {"point": [0, 30]}, "C": {"point": [80, 60]},
+           "D": {"point": [100, 60], "direction": [3, 4]},
+           "input": {"rotation": "cw"}, "margin": 0.05,
+           "tracing": {"K": {"link": "2", "point": [10, 50]}}}
+
+
+def test_geometry_is_read_once_into_a_typed_sketch() -> None:
     general = {"N_z": 12, "s": -1}
     data = _four_bar()
-    data["geometry"] = geometry
+    data["geometry"] = _SKETCH
     data["general"] = general
     chain = chain_from_dict(data)
-    assert chain.geometry == geometry and chain.general == general
-    inner = chain_from_dict(_four_bar(geometry=geometry))
-    assert inner.geometry == geometry
+    sketch = chain.geometry
+    assert sketch.points == {"A": 0j, "B": 30j, "C": complex(80, 60), "D": complex(100, 60)}
+    assert sketch.directions["D"].vector == complex(3, 4)
+    assert sketch.directions["D"].angle == pytest.approx(math.atan2(4, 3))
+    assert sketch.directions["D"].unit == pytest.approx(complex(0.6, 0.8))
+    assert (sketch.rotation, sketch.margin, sketch.stroke) == (-1, 0.05, None)
+    assert [(t.name, t.link, t.point) for t in sketch.tracing] == [("K", 2, complex(10, 50))]
+    assert chain.general == general
+    inner = chain_from_dict(_four_bar(geometry=_SKETCH))
+    assert inner.geometry == sketch
+
+
+def test_every_problem_of_the_sketch_is_reported_when_the_chain_is_read() -> None:
+    geometry = {"A": {"pont": [0, 0]}, "B": {"point": [0, "y"]}, "C": [1, 2],
+                "D": {"point": [0, 0], "direction": [0, 0]}, "anything": {},
+                "input": {"stroke": [5, 1]}, "margin": {"L1(2,3)": 2},
+                "tracing": {"K": {"link": 0, "point": [1, 1]}}}
+    with pytest.raises(TableError) as info:
+        chain_from_dict(_four_bar(geometry=geometry), source="sketch.yaml")
+    lines = str(info.value).splitlines()
+    assert lines[0] == "9 problems in sketch.yaml:"
+    assert set(lines[1:]) == {
+        "  - geometry 'anything': unknown key; did you mean 'tracing'?",
+        "  - geometry 'A': unknown key 'pont'; did you mean 'point'?",
+        "  - geometry 'A': the R pair 'A' (links 0–1) needs 'point: [x, y]' at the reference "
+        "position",
+        "  - geometry 'B' 'point': expected two numbers [x, y] (mm); found a list of 2 items",
+        "  - geometry 'C': expected {point: [x, y]} (and 'direction' for a slider pair); "
+        "found a list of 2 items",
+        "  - geometry 'D' 'direction': expected an angle in degrees or a vector [dx, dy]; "
+        "found a list of 2 items",
+        "  - geometry 'input' 'stroke': expected [min, max] actuator lengths (mm), "
+        "0 < min < max; found a list of 2 items",
+        "  - geometry 'margin' 'L1(2,3)': δ must lie in [0, 1); found 2",
+        "  - geometry.tracing 'K' 'link': expected a moving link of the mechanism; found 0"}
 
 
 def test_geometry_given_twice_is_an_error() -> None:
@@ -127,17 +165,44 @@ def test_identification_table_rebuilds_the_course_chain() -> None:
     assert len(rebuilt.identification) == 6
 
 
-def test_row_params_are_kept_per_group() -> None:
+def test_row_params_are_read_with_their_rows() -> None:
+    crank = {"x_O1": 0, "y_O1": 0, "l_1": [40, 30, 50], "phi_1_0": 90, "s": -1}
+    dyad = {"x_Hi": "A", "y_Hi": "A", "x_Hj": 100, "y_Hj": 0, "l_i": 120, "l_j": 90,
+            "l_N": 0, "beta_N": 0, "l_M": 0, "beta_M": 0, "delta": 0.1, "l_K": 30,
+            "beta_K": 45, "tracing": [{"name": "K", "link": 2}]}
     data = {"structure_identification": [
-        {"L": 0, "i_minus_1": 0, "j_minus_1": None, "i": 1, "j": None,
-         "params": {"l1": 40.0}},
-        {"L": 1, "i_minus_1": 1, "j_minus_1": 0, "i": 2, "j": 3,
-         "params": {"li": 120, "lj": 90, "extra": [1, 2]}}],
-        "general": {"s": 1}, "geometry": {"0-1": {"point": [0, 0]}}}
+        {"L": 0, "i_minus_1": 0, "j_minus_1": None, "i": 1, "j": None, "params": crank},
+        {"L": 1, "i_minus_1": 1, "j_minus_1": 0, "i": 2, "j": 3, "params": dyad}],
+        "general": {"s": 1}}
     chain = chain_from_dict(data)
-    assert chain.group_params == {(1,): {"l1": 40.0},
-                                  (2, 3): {"li": 120, "lj": 90, "extra": [1, 2]}}
-    assert chain.general == {"s": 1} and chain.geometry == {"0-1": {"point": [0, 0]}}
+    assert set(chain.group_params) == {(1,), (2, 3)}
+    first, second = chain.group_params[(1,)], chain.group_params[(2, 3)]
+    assert first.values == {"x_O1": 0.0, "y_O1": 0.0, "l_1": 40.0, "phi_1_0": 90.0}
+    assert first.bounds == {"l_1": (30.0, 50.0)} and first.direction == -1
+    assert "x_Hi" not in second.values and second.values["x_Hj"] == 100.0
+    assert second.values["delta"] == 0.1 and second.values["beta_K"] == 45.0
+    assert second.tracing == (("K", 2),) and second.bounds == {}
+    assert chain.identification[1].params is second
+    assert chain.general == {"s": 1} and chain.geometry is None
+
+
+def test_row_params_values_are_checked_when_the_table_is_read() -> None:
+    params = {"x_Hi": "A", "l_i": [1, 2, 3], "l_j": "x", "s": 2,
+              "tracing": ["K"]}
+    data = {"structure_identification": [
+        {"L": 0, "i_minus_1": 0, "j_minus_1": None, "i": 1, "j": None},
+        {"L": 1, "i_minus_1": 1, "j_minus_1": 0, "i": 2, "j": 3, "params": params}]}
+    found = chain_from_dict(data, source="rows.yaml").group_params[(2, 3)]
+    where = "structure_identification (L1(2,3)) 'params'"
+    assert [issue.text() for issue in found.problems] == [
+        f"{where} 'l_i': expected [initial, lower, upper] with lower ≤ initial ≤ upper; "
+        "found [1, 2, 3]",
+        f"{where} 'l_j': expected a number, 'A' (supplied by an earlier group) or "
+        "[initial, lower, upper]; found 'x' (a text)",
+        f"{where} 's': s must be +1 or −1; found 2",
+        f"{where} 'tracing': expected rows {{name: Ж, link: L}} with columns l_<name>, "
+        "beta_<name>; found 'K' (a text)"]
+    assert found.supplied == {"x_Hi"} and found.values == {}
 
 
 def test_chain_form_may_carry_a_table_to_check() -> None:
@@ -145,7 +210,9 @@ def test_chain_form_may_carry_a_table_to_check() -> None:
     data["structure_identification"] = [
         {"L": 0, "i_minus_1": 0, "j_minus_1": None, "i": 1, "j": None}]
     chain = chain_from_dict(data)
-    assert chain.identification[0]["i"] == 1
+    row = chain.identification[0]
+    assert (row.L, row.i, row.i_minus_1, row.j, row.variant) == (0, 1, 0, None, None)
+    assert row.key == (1,) and row.get("i") == 1 and row.get("params") is None
 
 
 def test_a_missing_pairs_table_is_not_blamed_on_the_inputs() -> None:

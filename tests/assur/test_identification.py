@@ -6,7 +6,6 @@ Reference data: table 1.6 of the course as transcribed in method.md §3.3
 
 from __future__ import annotations
 
-import copy
 from pathlib import Path
 
 import pytest
@@ -27,7 +26,7 @@ def course() -> object:
 
 @pytest.fixture
 def rows() -> list[dict]:
-    return [dict(row) for row in load_chain(TABLE).identification]
+    return [row.to_dict() for row in load_chain(TABLE).identification]
 
 
 def _row(rows: list[dict], kind: int) -> dict:
@@ -137,8 +136,8 @@ def test_variant_must_suit_the_kind(course: object, rows: list[dict]) -> None:
 
 def test_header_counts_are_checked() -> None:
     chain = load_chain(TABLE)
-    data = {"W": 2, "p5": 15, "structure_identification": copy.deepcopy(
-        list(chain.identification))}
+    data = {"W": 2, "p5": 15, "structure_identification": [
+        row.to_dict() for row in chain.identification]}
     rebuilt = chain_from_dict(data, source="claims.yaml")
     found = _found(check_identification(analyse_structure(rebuilt), rebuilt.identification))
     assert found == [(None, "p5", 16, 15), (None, "W", 1, 2)]

@@ -101,8 +101,8 @@ def test_constraints_hold_at_every_assembled_position_of_random_designs(
 
 def test_slider_crank_matches_its_closed_form() -> None:
     """Offset slider-crank: x_C = r cos φ + sqrt(l² − (r sin φ − e)²) (hand formula)."""
-    r, l, e = 25.0, 90.0, 10.0
-    x0 = r + math.sqrt(l * l - e * e)
+    r, rod, e = 25.0, 90.0, 10.0
+    x0 = r + math.sqrt(rod * rod - e * e)
     chain = assur.chain_from_dict({"mechanism": {"pairs": [
         {"id": "O", "type": "R", "links": [0, 1]}, {"id": "A", "type": "R", "links": [1, 2]},
         {"id": "B", "type": "R", "links": [2, 3]},
@@ -111,9 +111,9 @@ def test_slider_crank_matches_its_closed_form() -> None:
                      "B": {"point": [x0, e]}, "G": {"point": [0, e], "direction": 0}}})
     model = assur.build_model(assur.analyse_structure(chain))
     motion = assur.analyse(model, PHI, analogs=True)
-    x = r * np.cos(PHI) + np.sqrt(l * l - (r * np.sin(PHI) - e) ** 2)
+    x = r * np.cos(PHI) + np.sqrt(rod * rod - (r * np.sin(PHI) - e) ** 2)
     v = -r * np.sin(PHI) - (r * np.sin(PHI) - e) * r * np.cos(PHI) / np.sqrt(
-        l * l - (r * np.sin(PHI) - e) ** 2)
+        rod * rod - (r * np.sin(PHI) - e) ** 2)
     slider = motion.sliders["G"]
     np.testing.assert_allclose(slider.s.v, x, rtol=1e-12)
     np.testing.assert_allclose(slider.s.d1, v, rtol=1e-9, atol=1e-12)

@@ -53,18 +53,18 @@ def test_four_bar_pressure_angle_is_the_transmission_angle_defect() -> None:
 
 
 def test_slider_crank_pressure_angle_is_arcsin_of_the_offset() -> None:
-    r, l, e = 25.0, 90.0, 10.0
+    r, rod, e = 25.0, 90.0, 10.0
     model = _build(R[:2] + [{"id": "C", "type": "R", "links": [2, 3]},
                             {"id": "G", "type": "P", "links": [3, 0], "guide": 0}],
                    {"A": {"point": [0, 0]}, "B": {"point": [r, 0]},
-                    "C": {"point": [r + math.sqrt(l * l - e * e), e]},
+                    "C": {"point": [r + math.sqrt(rod * rod - e * e), e]},
                     "G": {"point": [0, e], "direction": 0}})
     motion = assur.analyse(model, PHI)
     (item,) = assur.pressure_angles(motion)
     assert item.binary == (2,)
-    expected = np.arcsin(np.abs(r * np.sin(PHI) - e) / l)
+    expected = np.arcsin(np.abs(r * np.sin(PHI) - e) / rod)
     np.testing.assert_allclose(item.alpha, expected, atol=1e-9)
-    assert item.maximum == pytest.approx(math.asin((r + e) / l), abs=1e-5)
+    assert item.maximum == pytest.approx(math.asin((r + e) / rod), abs=1e-5)
 
 
 def test_course_example_has_no_two_hinge_rod_in_l1_or_l2() -> None:

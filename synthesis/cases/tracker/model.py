@@ -18,7 +18,7 @@ radians, lengths in mm.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 from typing import Any
@@ -38,6 +38,7 @@ from assur import (
     load_chain,
     unwrap,
     values,
+    with_sketch,
 )
 
 __all__ = ["CHAIN_TABLE", "TrackerMotion", "chain", "mechanism_model", "simulate", "sketch"]
@@ -87,7 +88,7 @@ def sketch(l1: float, l2: float, l5: float, l_i: float, l_d: float) -> dict[str,
 def mechanism_model(l1: float, l2: float, l5: float, l_i: float,
                     l_d: float) -> tuple[StructuralAnalysis, KinematicModel]:
     """Structural analysis and kinematic model of one design (see :func:`sketch`)."""
-    analysis = analyse_structure(replace(chain(), geometry=sketch(l1, l2, l5, l_i, l_d)))
+    analysis = analyse_structure(with_sketch(chain(), sketch(l1, l2, l5, l_i, l_d)))
     return analysis, build_model(analysis)
 
 

@@ -33,7 +33,15 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from assur import Drive, KinematicModel, analyse, analyse_structure, build_model, values
+from assur import (
+    Drive,
+    KinematicModel,
+    analyse,
+    analyse_structure,
+    build_model,
+    values,
+    with_sketch,
+)
 from synthesis.cases.tracker.design import DesignTask
 from synthesis.cases.tracker.model import TrackerMotion, chain, simulate, sketch
 from synthesis.criteria import Criteria, bounds_penalty, existence_penalty, pressure_penalty
@@ -100,8 +108,8 @@ class Evaluator:
         l1, k2 = task.l1, float(np.mean(task.k2))
         geometry = sketch(l1, k2 * l1, 2.0 * l1, l1, 2.0 * l1)
         del geometry["input"]
-        analysis = analyse_structure(replace(chain(), inputs=(Drive(link=1),),
-                                             geometry=geometry))
+        analysis = analyse_structure(with_sketch(replace(chain(), inputs=(Drive(link=1),)),
+                                                 geometry))
         self.formula = analysis.formula
         self.model: KinematicModel = build_model(analysis)
         self._joints: dict[Any, Any] = {}

@@ -1,0 +1,244 @@
+"""The ``geometry:`` section of a chain table (the sketch) → a typed :class:`Sketch`.
+
+A sketch gives the mechanism at one reference position, as a student draws it: a point per
+joint (``<joint id>: {point: [x, y]}``) and, for a slider pair, the direction of its slide
+line (``direction: <degrees>`` or ``[dx, dy]``). Reserved keys: ``input`` (``{rotation: ccw}``
+or ``cw``; ``{stroke: [min, max]}`` for an actuator, mm), ``tracing``
+(``{name: {link: L, point: [x, y]}}``) and ``margin`` (δ in [0, 1), one number or a mapping
+group label → δ).
+
+The section is read once, when the chain table is read, with every problem collected; the
+rank test, the scheme and the kinematic model all use the one :class:`Sketch`. Every joint
+needs a point and every slider pair a direction, except a driven actuator pair, which the
+kinematic model does not use (without it the rank test and the scheme do without the
+sketch).
+
+Examples
+--------
+>>> joints = {"A": ("R", (0, 1)), "B": ("P", (1, 2))}
+>>> sketch = sketch_from_dict({"A": {"point": [0, 0]}, "B": {"point": [1, 0], "direction": 90},
+...                            "margin": 0.1}, joints, links=(0, 1, 2), frame=0)
+>>> sketch.points["B"], round(sketch.directions["B"].angle, 6), sketch.margin
+((1+0j), 1.570796, 0.1)
+"""
+
+from __future__ import annotations
+
+import cmath
+import difflib
+import math
+from collections.abc import Iterable, Mapping
+from dataclasses import replace
+from typing import Any
+
+from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
+from assur.model import Chain, Direction, LinkId, PairId, Sketch, SketchTrace, joint_key
+from assur.text import Message
+
+__all__ = ["read_sketch", "sketch_from_dict", "with_sketch"]
+
+RESERVED = ("input", "tracing", "margin")
+#: Joint id → (pair type ``"R"``/``"P"``, the links the joint joins).
+Joints = Mapping[PairId, tuple[str, tuple[LinkId, ...]]]
+
+
+def sketch_from_dict(data: Any, joints: Joints, *, links: Iterable[LinkId], frame: LinkId,
+                     source: str = "<data>", optional: Iterable[PairId] = ()) -> Sketch:
+    """Read a sketch given as a mapping (see :func:`read_sketch`).
+
+    Raises
+    ------
+    TableError
+        Listing every problem of the sketch.
+    """
+    reader = TableReader.from_data({"geometry": data}, source)
+    sketch = read_sketch(reader, data, joints, links=links, frame=frame, optional=optional)
+    reader.raise_if_any()
+    assert sketch is not None
+    return sketch
+
+
+def with_sketch(chain: Chain, data: Any) -> Chain:
+    """A copy of ``chain`` with the sketch ``data`` (a ``geometry:`` mapping), read and checked.
+
+    Raises
+    ------
+    TableError
+        Listing every problem of the sketch.
+
+    >>> from assur.io.chain_table import chain_from_dict
+    >>> chain = chain_from_dict({"mechanism": {"pairs": [
+    ...     {"id": "A", "type": "R", "links": [0, 1]}], "inputs": [1]}})
+    >>> with_sketch(chain, {"A": {"point": [1, 2]}}).geometry.points
+    {'A': (1+2j)}
+    """
+    joints: dict[PairId, tuple[str, tuple[LinkId, ...]]] = {}
+    for pair in chain.pairs:
+        joints.setdefault(joint_key(pair), (pair.type.value, pair.links))
+    sketch = sketch_from_dict(data, joints, links=chain.links, frame=chain.frame,
+                              source=chain.source, optional=actuator_pairs(chain.inputs, joints,
+                                                                           chain.frame))
+    return replace(chain, geometry=sketch)
+
+
+def actuator_pairs(inputs: Iterable[Any], joints: Joints, frame: Any) -> set[PairId]:
+    """The driven pairs that join two moving links (actuators): their joints may be left out
+    of a sketch."""
+    return {drive.pair for drive in inputs if drive.pair in joints
+            and frame not in joints[drive.pair][1]}
+
+
+def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterable[LinkId],
+                frame: LinkId, optional: Iterable[PairId] = ()) -> Sketch | None:
+    """Read the ``geometry:`` section, recording every problem in ``reader``.
+
+    Parameters
+    ----------
+    reader : TableReader
+        Collects the problems.
+    data : mapping
+        The section as parsed from YAML.
+    joints : mapping
+        Joint id → (pair type, links) of every joint of the chain.
+    links, frame
+        The chain's links and frame (tracing points lie on moving links).
+    optional : iterable of joint ids
+        Joints that may be left out: driven actuator pairs, which the kinematic model does
+        not use (the rank test and the scheme then do without the sketch).
+
+    Returns
+    -------
+    Sketch or None
+        None when a problem was recorded.
+    """
+    count = len(reader.issues)
+    optional = set(optional)
+    if not isinstance(data, dict):
+        reader.problem("geometry", "sketch.not_mapping", found=describe(data))
+        return None
+    raw = {normalise_id(key): value for key, value in data.items()}
+    allowed = [str(j) for j in joints] + list(RESERVED)
+    for key in raw:
+        if key not in joints and key not in RESERVED:
+            hint = difflib.get_close_matches(str(key), allowed, n=1, cutoff=0.5)
+            if hint:
+                reader.problem(f"geometry {key!r}", "sketch.unknown_key_hint", hint=hint[0])
+            else:
+                reader.problem(f"geometry {key!r}", "sketch.unknown_key",
+                               joints=", ".join(sorted(map(str, joints))),
+                               reserved=", ".join(RESERVED))
+    points: dict[PairId, complex] = {}
+    directions: dict[PairId, Direction] = {}
+    for key, (ptype, ends) in joints.items():
+        _joint(reader, key, raw.get(key), ptype, ends, points, directions, key in optional)
+    rotation, stroke = _input(reader, raw.get("input"))
+    tracing = _tracing(reader, raw.get("tracing"), set(links) - {frame})
+    margin = _margin(reader, raw.get("margin"))
+    if len(reader.issues) > count:
+        return None
+    return Sketch(points, directions, rotation, stroke, tracing, margin)
+
+
+def _joint(reader: TableReader, key: PairId, value: Any, ptype: str,
+           ends: tuple[LinkId, ...], points: dict[PairId, complex],
+           directions: dict[PairId, Direction], optional: bool) -> None:
+    where = f"geometry {key!r}"
+    a, b = ends[0], ends[1]
+    if value is None and optional:
+        return  # a driven actuator pair: the kinematic model does not use its point
+    if value is not None and not isinstance(value, dict):
+        reader.problem(where, "sketch.joint", found=describe(value))
+        return
+    node = Node(reader, where, value or {}, ("point", "direction"))
+    point = node.get("point", required=False, default=None)
+    if point is None:
+        reader.problem(where, "sketch.needs_point", type=ptype, joint=repr(key), a=a, b=b)
+    elif _vector(point) is None:
+        reader.problem(f"{where} 'point'", "sketch.point", found=describe(point))
+    else:
+        points[key] = _vector(point) or 0j
+    direction = node.get("direction", required=False, default=None)
+    if direction is None:
+        if ptype == "P":
+            reader.problem(where, "sketch.needs_direction", joint=repr(key), a=a, b=b)
+        return
+    vector = _vector(direction)
+    if _is_number(direction):
+        angle = math.radians(direction)
+        directions[key] = Direction(angle, complex(math.cos(angle), math.sin(angle)))
+    elif vector is not None and vector != 0:
+        directions[key] = Direction(cmath.phase(vector), vector)
+    else:
+        reader.problem(f"{where} 'direction'", "sketch.direction", found=describe(direction))
+
+
+def _input(reader: TableReader, value: Any) -> tuple[int, tuple[float, float] | None]:
+    if value is None:
+        return 1, None
+    if not isinstance(value, dict):
+        reader.problem("geometry 'input'", "sketch.input", found=describe(value))
+        return 1, None
+    node = Node(reader, "geometry 'input'", value, ("rotation", "stroke"))
+    rotation = node.choice("rotation", ["ccw", "cw"], required=False, default="ccw")
+    stroke = node.get("stroke", kind="list", required=False, default=None)
+    span = None
+    if stroke not in (None, MISSING):
+        vec = _vector(stroke)
+        if vec is None or not 0 < vec.real < vec.imag:
+            reader.problem("geometry 'input' 'stroke'", "sketch.stroke", found=describe(stroke))
+        else:
+            span = (vec.real, vec.imag)
+    return (-1 if rotation == "cw" else 1), span
+
+
+def _tracing(reader: TableReader, value: Any, moving: set[LinkId]) -> tuple[SketchTrace, ...]:
+    if value is None:
+        return ()
+    if not isinstance(value, dict):
+        reader.problem("geometry 'tracing'", "sketch.tracing", found=describe(value))
+        return ()
+    points = []
+    for name, row in value.items():
+        where = f"geometry.tracing {name!r}"
+        if not isinstance(row, dict):
+            reader.problem(where, "sketch.tracing_row", found=describe(row))
+            continue
+        node = Node(reader, where, row, ("link", "point"))
+        link = node.get("link", kind="id")
+        point = _vector(node.get("point", kind="list"))
+        if point is None and node.has("point"):
+            reader.problem(f"{where} 'point'", "sketch.tracing_point")
+        if link is not MISSING and link not in moving:
+            reader.problem(f"{where} 'link'", "sketch.tracing_link", found=describe(link))
+        elif link is not MISSING and point is not None:
+            points.append(SketchTrace(str(name), link, point))
+    return tuple(points)
+
+
+def _margin(reader: TableReader, value: Any) -> float | dict[str, float] | None:
+    if value is None:
+        return None
+    if _is_number(value) and 0 <= value < 1:
+        return float(value)
+    if not isinstance(value, dict):
+        reader.problem("geometry 'margin'", "sketch.margin", found=describe(value))
+        return None
+    node = Node(reader, "geometry 'margin'", value, None)
+    out = {}
+    for label in value:
+        delta = node.get(label, kind="number",
+                         check=lambda v: None if 0 <= v < 1 else Message("rule.margin"))
+        if delta is not MISSING:
+            out[str(label)] = float(delta)
+    return out
+
+
+def _is_number(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def _vector(value: Any) -> complex | None:
+    if isinstance(value, list) and len(value) == 2 and all(_is_number(v) for v in value):
+        return complex(value[0], value[1])
+    return None
+

@@ -1,0 +1,598 @@
+"""Builders of the kinematic model: from a chain's sketch, or from its rows' ``params:``.
+
+* :func:`model_from_sketch` — from the chain's :class:`~assur.model.Sketch` (the joint
+  coordinates at one reference position, as a student sketches the mechanism); lengths,
+  attachment points, guide directions relative to their carriers and every assembly variant
+  are derived from the sketch (``docs/kinematics.md``), by each kind's sketch rule
+  (:attr:`assur.kinds.GroupKind.sketch`);
+* :func:`model_from_params` — from the ``params:`` of the rows of an identification table
+  (the parameter columns of ``method.md`` §4.3; each kind declares its hinge and guide
+  columns in :mod:`assur.kinds`).
+
+:func:`build_model` picks the right one; :func:`load_model` reads a table file.
+
+Examples
+--------
+>>> from assur.io.chain_table import chain_from_dict
+>>> from assur.structure.analysis import analyse_structure
+>>> chain = chain_from_dict({"mechanism": {"pairs": [
+...     {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
+...     {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}],
+...     "inputs": [1]}, "geometry": {"A": {"point": [0, 0]}, "B": {"point": [0, 30]},
+...     "C": {"point": [80, 60]}, "D": {"point": [100, 0]}}})
+>>> model = build_model(analyse_structure(chain))
+>>> [group.name for group in model.groups]
+['L0 input group (1)', 'L1 RRR (2, 3)']
+>>> round(model.params["L0(1).l_1"], 6)
+30.0
+"""
+
+from __future__ import annotations
+
+import cmath
+import difflib
+import math
+import os
+from collections.abc import Mapping
+from typing import Any
+
+from assur.errors import Issue, StructureError, TableError
+from assur.io.reader import Node, TableReader, describe
+from assur.kinds import GroupKind, GuideColumns, HingeColumns, kind_of
+from assur.kinematics.model import (
+    KIND_COLUMNS,
+    Anchor,
+    GroupModel,
+    Guide,
+    KinematicModel,
+    TracePoint,
+)
+from assur.model import GroupParams, LinkId, Pair, PairId, PairType, Sketch, joint_key
+from assur.structure.analysis import StructuralAnalysis
+from assur.structure.classification import AssurGroup
+from assur.text import Message
+
+__all__ = ["build_model", "load_model", "model_from_params", "model_from_sketch"]
+
+
+def load_model(path: str | os.PathLike[str]) -> KinematicModel:
+    """Read a chain table or an identification table and build its kinematic model.
+
+    Raises
+    ------
+    TableError
+        For a table problem (all problems at once).
+    StructureError
+        When the chain is not a class II mechanism with one input.
+    """
+    from assur.io.chain_table import load_chain
+    from assur.structure.analysis import analyse_structure
+
+    return build_model(analyse_structure(load_chain(path)))
+
+
+def build_model(analysis: StructuralAnalysis) -> KinematicModel:
+    """The kinematic model of an analysed chain (from its sketch or from its row params).
+
+    Parameters
+    ----------
+    analysis : StructuralAnalysis
+
+    Returns
+    -------
+    KinematicModel
+        Built by :func:`model_from_sketch` or :func:`model_from_params`.
+
+    Raises
+    ------
+    TableError
+        When the table gives no dimensions, or for a problem of them.
+    StructureError
+        When the chain is not a class II mechanism with one input.
+    """
+    chain = analysis.chain
+    if chain.geometry is not None:
+        return model_from_sketch(analysis)
+    if chain.group_params:
+        return model_from_params(analysis)
+    raise TableError(chain.source, [Issue("geometry", Message("model.no_dimensions", {}))])
+
+
+class _Topology:
+    """Roles of the pairs of an analysed chain, common to both builders."""
+
+    def __init__(self, analysis: StructuralAnalysis) -> None:
+        chain = analysis.chain
+        self.chain = chain
+        self.frame = chain.frame
+        if not analysis.decomposed:
+            found = "; ".join(d.message for d in analysis.issues
+                              if d.code.startswith("E")) or "links left over: " + ", ".join(
+                                  map(str, analysis.leftover))
+            raise StructureError(f"{chain.source}: the chain does not split into Assur groups, "
+                                 f"so it has no kinematic model ({found}); see 'assur check'")
+        if len(chain.inputs) != 1:
+            raise StructureError(f"{chain.source}: kinematic analysis needs exactly one input; "
+                                 f"found {len(chain.inputs)}")
+        for group in analysis.groups:
+            if group.group_class != 2:
+                raise StructureError(f"{chain.source}: group {group.name} is of class "
+                                     f"{group.group_class}; only dyads (class II) are solved")
+        self.pairs = {pair.id: pair for pair in chain.pairs}
+        self.drive = chain.inputs[0]
+        self.groups = list(analysis.groups)
+        self.composite_group = next((g for g in self.groups if g.composite), None)
+        self.labels = {id(group): f"{self.kind(group).code}({_link_text(group.i)},"
+                                  f"{_link_text(group.j)})" for group in self.groups}
+
+    @staticmethod
+    def kind(group: AssurGroup) -> GroupKind:
+        """The kind of an accepted dyad."""
+        assert group.kind is not None
+        return kind_of(group.kind)
+
+    def label(self, group: AssurGroup) -> str:
+        """The group's label, the prefix of its parameter names (``"L1(2,3)"``)."""
+        return self.labels[id(group)]
+
+    def crank(self) -> tuple[LinkId, PairId]:
+        """The crank and its driven pair (to the frame)."""
+        drive = self.drive
+        if drive.link is not None:
+            link = drive.link
+            pairs = [p for p in self.chain.pairs
+                     if link in p.links and self.frame in p.links]
+            if drive.pair is not None:
+                pairs = [self.pairs[drive.pair]] if drive.pair in self.pairs else pairs
+            if len(pairs) != 1 or pairs[0].type != PairType.R:
+                raise StructureError(f"{self.chain.source}: the input link {link!r} must be a "
+                                     f"crank hinged to the frame")
+            return link, pairs[0].id
+        raise AssertionError("not a crank drive")  # pragma: no cover
+
+    def input_group(self) -> GroupModel:
+        """The input group L0: the crank, hinged to the frame at O_1."""
+        crank, driven = self.crank()
+        label = f"L0({crank})"
+        return GroupModel(label, 0, 1, crank, None,
+                          hinge_i=Anchor(self.frame, label, "x_O1", "y_O1", False),
+                          pairs={"H_i": driven})
+
+    def dyad_pairs(self, group: AssurGroup) -> tuple[Pair, Pair, Pair]:
+        """The external pair of i, the external pair of j and the internal pair."""
+        assert None not in (group.pair_i, group.pair_j, group.pair_c)
+        return (self.pairs[group.pair_i], self.pairs[group.pair_j],  # type: ignore[index]
+                self.pairs[group.pair_c])  # type: ignore[index]
+
+    def pair_roles(self, group: AssurGroup) -> dict[str, PairId]:
+        """Role → pair id of a dyad's external pairs i, j and its internal pair C."""
+        ids = {"i": group.pair_i, "j": group.pair_j, "c": group.pair_c}
+        return {role: ids[side] for role, side in self.kind(group).roles  # type: ignore[misc]
+                if ids[side] is not None}
+
+
+def _link_text(link: Any) -> str:
+    if isinstance(link, (tuple, frozenset, list, set)):
+        return "+".join(str(x) for x in link)
+    return str(link)
+
+
+class _Builder:
+    """Collects groups, parameters and link frames while a model is built.
+
+    Problems found while building (they depend on the structure, not only on the table) are
+    recorded in ``reader`` and raised together at the end.
+    """
+
+    def __init__(self, topo: _Topology, sketch: Sketch | None = None) -> None:
+        self.topo = topo
+        self.sketch = sketch
+        self.reader = TableReader.from_data({}, source=topo.chain.source)
+        self.params: dict[str, Any] = {}
+        self.groups: list[GroupModel] = []
+        self.links: dict[LinkId, tuple[str, str]] = {}
+        self.frames: dict[LinkId, tuple[complex, float]] = {topo.frame: (0j, 0.0)}
+        self.attach_count: dict[LinkId, int] = {}
+        self.owner: dict[LinkId, GroupModel] = {}
+        self.bounds: dict[str, tuple[float, float]] = {}
+
+    def point(self, pair: Pair) -> complex:
+        """The sketched point of a pair."""
+        assert self.sketch is not None
+        return self.sketch.points[joint_key(pair)]
+
+    def direction(self, pair: Pair) -> float:
+        """The sketched slide direction of a prismatic pair (radians)."""
+        assert self.sketch is not None
+        return self.sketch.directions[joint_key(pair)].angle
+
+    def problem(self, location: str, code: str, /, **data: Any) -> None:
+        """Record a problem found while building."""
+        self.reader.problem(location, code, **data)
+
+    def put(self, label: str, column: str, value: float) -> None:
+        self.params[f"{label}.{column}"] = float(value)
+
+    def local(self, link: LinkId, point: complex) -> complex:
+        origin, angle = self.frames[link]
+        return (point - origin) * cmath.exp(-1j * angle)
+
+    def attachment(self, link: LinkId, point: complex, label: str,
+                   cols: HingeColumns) -> Anchor:
+        """Anchor of an external hinge of group ``label`` at ``point`` on ``link``."""
+        if link == self.topo.frame:
+            self.put(label, cols[0], point.real)
+            self.put(label, cols[1], point.imag)
+            return Anchor(link, label, cols[0], cols[1], False)
+        owner = self.owner[link]
+        count = self.attach_count.get(link, 0)
+        self.attach_count[link] = count + 1
+        if owner.group_kind.is_input and count == 0:
+            self.put(owner.label, "l_1", abs(self.local(link, point)))
+            return Anchor(link, owner.label, "l_1", None, True)
+        letter = "N" if self.links[link][1] == "i" else "M"
+        return self.polar(link, point, letter if count == 0 else f"{letter}{count + 1}")
+
+    def polar(self, link: LinkId, point: complex, suffix: str) -> Anchor:
+        """A point fixed on a moving link: columns ``l_<suffix>``, ``beta_<suffix>`` of its
+        owner group, polar in the link's frame."""
+        owner = self.owner[link]
+        local = self.local(link, point)
+        self.put(owner.label, f"l_{suffix}", abs(local))
+        self.put(owner.label, f"beta_{suffix}", math.degrees(cmath.phase(local)))
+        return Anchor(link, owner.label, f"l_{suffix}", f"beta_{suffix}", True)
+
+    def guide(self, pair: Pair, carrier: LinkId, base: complex, theta: float, label: str,
+              cols: GuideColumns, slider_point: complex | None) -> Guide:
+        """A guide on ``carrier`` through ``base`` with absolute direction ``theta``."""
+        x, y, beta, offset = cols
+        origin_angle = self.frames[carrier][1]
+        local = self.local(carrier, base)
+        self.put(label, x, local.real)
+        self.put(label, y, local.imag)
+        self.put(label, beta, math.degrees(_wrap(theta - origin_angle)))
+        if offset is not None:
+            e = 0.0 if slider_point is None else _cross(cmath.exp(1j * theta), slider_point - base)
+            self.put(label, offset, e)
+        return Guide(pair.id, carrier, Anchor(carrier, label, x, y, False), beta, offset)
+
+    def driven_side(self, group: AssurGroup) -> str:
+        """The side (``'i'`` or ``'j'``) of a dyad that is the actuator's composite link."""
+        members = set(group.composite or ())
+        link_i: Any = group.i
+        if isinstance(link_i, (tuple, frozenset)):
+            return "i" if set(link_i) & members else "j"
+        return "i" if link_i in members or _link_text(group.i) == "+".join(map(str, members)) \
+            else "j"
+
+    def add(self, group: GroupModel, frame_i: tuple[complex, float] | None = None,
+            frame_j: tuple[complex, float] | None = None) -> None:
+        """Record a group: the owner and side of its links and, in the sketch form, their
+        frames at the reference position."""
+        self.groups.append(group)
+        for link, side, frame in ((group.i, "i", frame_i), (group.j, "j", frame_j)):
+            if link is None:
+                continue
+            if frame is not None:
+                self.frames[link] = frame
+            self.links[link] = (group.label, side)
+            self.owner[link] = group
+        if group.driven is not None:
+            frame = frame_i if group.driven == "i" else frame_j
+            for member in group.composite:
+                if frame is not None:
+                    self.frames[member] = frame
+                self.links[member] = (group.label, group.driven)
+                self.owner[member] = group
+
+    def model(self, *, direction: int, drive: str,
+              input_range: tuple[float, float] = (0.0, 2 * math.pi),
+              tracing: tuple[TracePoint, ...] = ()) -> KinematicModel:
+        """The model of what was built (after every problem was raised)."""
+        chain = self.topo.chain
+        return KinematicModel(name=chain.name, frame=self.topo.frame, groups=tuple(self.groups),
+                              params=self._ordered(), direction=direction, drive=drive,
+                              input_range=input_range, tracing=tracing, links=self.links,
+                              pair_links={p.id: (p.type.value, p.links, p.guide)
+                                          for p in chain.pairs},
+                              bounds=self.bounds, source=chain.source)
+
+    def _ordered(self) -> dict[str, Any]:
+        """Parameters in layering and column order; every dyad gets its margin δ (default 0)."""
+        out: dict[str, Any] = {}
+        for group in self.groups:
+            if not group.group_kind.is_input:
+                self.params.setdefault(group.column("delta"), 0.0)
+            extra = sorted(k for k in self.params if k.startswith(group.label + ".")
+                           and k.split(".", 1)[1] not in KIND_COLUMNS[group.kind])
+            for column in KIND_COLUMNS[group.kind]:
+                name = group.column(column)
+                if name in self.params:
+                    out[name] = self.params[name]
+            for name in extra:
+                out[name] = self.params[name]
+        return out
+
+
+def _wrap(angle: float) -> float:
+    return (angle + math.pi) % (2 * math.pi) - math.pi
+
+
+def _cross(a: complex, b: complex) -> float:
+    return (a.conjugate() * b).imag
+
+
+def _sign(value: float) -> int:
+    return -1 if value < 0 else 1
+
+
+# ----------------------------------------------------------------------- sketch form
+
+
+def model_from_sketch(analysis: StructuralAnalysis) -> KinematicModel:
+    """Build the model from a chain's sketch (joint coordinates at φ = 0).
+
+    The sketch (:class:`~assur.model.Sketch`, read with the chain table) gives a point for
+    every joint and a direction for every slider pair; ``input: {rotation: ccw}`` (or ``cw``;
+    for an actuator ``stroke: [min, max]`` in mm); tracing points; the margin δ (one number,
+    or a mapping group label → δ). Every length, attachment point, guide direction relative
+    to its carrier and assembly variant follows from the sketch.
+
+    Parameters
+    ----------
+    analysis : StructuralAnalysis
+        Of a chain that has a sketch.
+
+    Returns
+    -------
+    KinematicModel
+        Parameters in table units; ``bounds`` empty.
+
+    Raises
+    ------
+    TableError
+        For a problem that shows only once the groups are known (a crank of zero length,
+        parallel guides of an RPP group, a margin for an unknown group).
+    StructureError
+        For a chain that is not a class II mechanism with one input.
+    """
+    topo = _Topology(analysis)
+    sketch = topo.chain.geometry
+    assert sketch is not None
+    build = _Builder(topo, sketch)
+    actuator = topo.composite_group is not None
+    if not actuator:
+        _sketch_crank(topo, build)
+    for seq, group in enumerate(topo.groups, start=2):
+        _sketch_group(topo, build, group, seq)
+    tracing = tuple(TracePoint(trace.name, build.polar(trace.link, trace.point, trace.name))
+                    for trace in sketch.tracing if trace.link in build.frames)
+    margins = _margins(build, sketch.margin)
+    build.reader.raise_if_any()
+    for label, delta in margins.items():
+        build.params[f"{label}.delta"] = float(delta)
+    if not actuator:
+        return build.model(direction=sketch.rotation, drive="crank", tracing=tracing)
+    span = sketch.stroke
+    if span is None:
+        first = build.groups[0]
+        length = build.params[first.column("l_i" if first.driven == "i" else "l_j")]
+        span = (length, length)
+    return build.model(direction=1, drive="actuator", input_range=span, tracing=tracing)
+
+
+def _margins(build: _Builder, value: float | Mapping[str, float] | None) -> dict[str, float]:
+    labels = [g.label for g in build.groups if not g.group_kind.is_input]
+    if value is None:
+        return {}
+    if not isinstance(value, Mapping):
+        return {label: float(value) for label in labels}
+    Node(build.reader, "geometry 'margin'", dict(value), labels)  # unknown groups, with hints
+    return {label: value[label] for label in labels if label in value}
+
+
+def _sketch_crank(topo: _Topology, build: _Builder) -> None:
+    group = topo.input_group()
+    crank, driven, label = group.i, group.pairs["H_i"], group.label
+    pivot = build.point(topo.pairs[driven])
+    pins = [p for p in topo.chain.pairs if crank in p.links and p.id != driven]
+    if not pins:
+        return  # a crank that carries nothing: no group is hinged to it
+    pin = build.point(pins[0])
+    if pin == pivot:
+        build.problem(f"geometry {joint_key(pins[0])!r}", "sketch.crank_length")
+        return
+    angle = cmath.phase(pin - pivot)
+    build.put(label, "x_O1", pivot.real)
+    build.put(label, "y_O1", pivot.imag)
+    build.add(group, (pivot, angle), None)
+    build.put(label, "l_1", abs(pin - pivot))
+    build.put(label, "phi_1_0", math.degrees(angle))
+
+
+def _sketch_group(topo: _Topology, build: _Builder, group: AssurGroup, seq: int) -> None:
+    if group.i_minus_1 not in build.frames or group.j_minus_1 not in build.frames:
+        return  # an earlier group could not be built; its problem is already recorded
+    kind = topo.kind(group)
+    label = topo.label(group)
+    assert kind.sketch is not None and group.i is not None
+    made = kind.sketch(build, group, topo.dyad_pairs(group), label)
+    if made is None:
+        return
+    model = GroupModel(label, group.kind or 0, seq, group.i, group.j, made.sigma, made.hinge_i,
+                       made.hinge_j, made.guide_i, made.guide_j, pairs=topo.pair_roles(group),
+                       driven=made.driven,
+                       composite=tuple(group.composite or ()) if made.driven else ())
+    build.add(model, made.frame_i, made.frame_j)
+
+
+# ---------------------------------------------------------------- identification form
+
+
+def model_from_params(analysis: StructuralAnalysis) -> KinematicModel:
+    """Build the model from the ``params:`` of the identification-table rows.
+
+    Every row lists the columns of its kind (``KIND_COLUMNS``): a number, ``'A'`` for a
+    value supplied by an earlier group, or ``[initial, lower, upper]`` (tables 2.1–2.6; the
+    bounds are kept in :attr:`KinematicModel.bounds`). Coordinates of a hinge on a moving
+    link are always supplied: the hinge is the attachment point N/M (the crank pin for
+    L0) of its link's group. A guide base point on a moving carrier is given in the
+    carrier's local frame; ``'A'`` puts it at the carrier's origin hinge. The assembly
+    variant is the row's ``variant`` (L3: 0 means +1). Extra keys: ``delta`` (margin),
+    ``s`` (on L0: +1 counter-clockwise, −1 clockwise), ``l_<name>``/``beta_<name>``
+    tracing points with ``tracing: [name, ...]`` on the row of the carrying link.
+
+    Parameters
+    ----------
+    analysis : StructuralAnalysis
+        Of a chain read from an identification table whose rows carry ``params:``.
+
+    Returns
+    -------
+    KinematicModel
+        With the ``[initial, lower, upper]`` ranges of the rows in ``bounds``.
+
+    Raises
+    ------
+    TableError
+        Listing every problem of the rows' parameters.
+    StructureError
+        For a chain that is not a class II mechanism with one crank input.
+    """
+    topo = _Topology(analysis)
+    chain = topo.chain
+    build = _Builder(topo)
+    reader = build.reader
+    rows = chain.group_params
+    variants: dict[tuple[LinkId | None, ...], int | None] = {
+        row.key: row.variant for row in chain.identification or ()}
+    if topo.composite_group is not None:
+        raise StructureError(f"{chain.source}: an actuator input needs the chain form with a "
+                             f"'geometry:' sketch")
+    group0 = topo.input_group()
+    params0 = _params(build, rows, group0, group0.label, kind_of(0))
+    direction = params0.direction if params0 is not None else 1
+    build.add(group0)
+    tracing: list[TracePoint] = []
+    for seq, group in enumerate(topo.groups, start=2):
+        label = topo.label(group)
+        params = _params(build, rows, group, label, topo.kind(group))
+        model = _param_group(topo, build, group, label, seq, variants.get((group.i, group.j)))
+        build.add(model)
+        for name, link in params.tracing if params is not None else ():
+            tracing.append(TracePoint(name, Anchor(link, label, f"l_{name}", f"beta_{name}",
+                                                   True)))
+    reader.raise_if_any()
+    return build.model(direction=direction, drive="crank", tracing=tuple(tracing))
+
+
+def _params(build: _Builder, rows: Mapping[tuple[LinkId, ...], GroupParams],
+            group: AssurGroup | GroupModel, label: str, kind: GroupKind
+            ) -> GroupParams | None:
+    """The row's parameters of one group, checked against the group's kind and entered in
+    the model (None when the row has none)."""
+    where = f"structure_identification ({label}) 'params'"
+    key: tuple[LinkId, ...] = (group.i,) if kind.is_input else (group.i, group.j)  # type: ignore
+    params = rows.get(key)
+    if params is None:
+        build.problem(where, "model.no_params", group=label, columns=", ".join(kind.columns))
+        return None
+    build.reader.issues.extend(params.problems)
+    allowed = set(kind.columns) | {"delta", "tracing"} | ({"s"} if kind.is_input else set())
+    extra = [column for column in params.keys if column not in allowed
+             and column.startswith(("l_", "beta_"))]
+    for column in params.keys:
+        if column not in allowed and column not in extra:
+            hint = difflib.get_close_matches(column, sorted(allowed), n=1, cutoff=0.6)
+            if hint:
+                build.problem(where, "model.unknown_column_hint", column=repr(column),
+                              hint=hint[0])
+            else:
+                build.problem(where, "model.unknown_column", column=repr(column),
+                              kind=kind.code, columns=", ".join(kind.columns))
+    rules = _coordinate_rules(build.topo.frame, group, kind)
+    for column in (*kind.columns, "delta", *sorted(extra)):
+        at = f"{where} {column!r}"
+        rule = rules.get(column)
+        if column in params.supplied:
+            if rule is None:
+                build.problem(at, "model.supplied_here")
+            elif rule[0].startswith("frame"):
+                build.problem(at, f"model.{rule[0]}_needs_number")
+        elif column not in params.values:
+            if column != "delta" and column not in params.keys:  # else: a bad value, reported
+                build.problem(at, "model.missing_column")
+        elif rule is not None and rule[0] == "moving_hinge":
+            value = params.values[column]
+            build.problem(at, "model.moving_hinge_supplied", link=repr(rule[1]),
+                          found=describe(int(value) if value.is_integer() else value))
+        else:
+            build.params[f"{label}.{column}"] = params.values[column]
+            if column in params.bounds:
+                build.bounds[f"{label}.{column}"] = params.bounds[column]
+    for name, link in params.tracing:
+        if link not in (group.i, group.j) or link is None or any(
+                f"{prefix}{name}" not in params.values for prefix in ("l_", "beta_")):
+            build.problem(f"{where} 'tracing'", "model.tracing_point", name=repr(name),
+                          i=group.i, j=group.j, l=f"l_{name}", beta=f"beta_{name}")
+    return params
+
+
+def _coordinate_rules(frame: LinkId, group: AssurGroup | GroupModel, kind: GroupKind
+                      ) -> dict[str, tuple[str, LinkId | None]]:
+    """Coordinate column → (rule, link): a point on the frame needs its coordinates
+    (``"frame_hinge"``, ``"frame_guide"``); a hinge on a moving link is supplied by that
+    link's group (``"moving_hinge"``: ``'A'``); a guide base on a moving carrier may be
+    either (``"moving_guide"``)."""
+    ends: dict[str, LinkId | None] = {}
+    if isinstance(group, AssurGroup):
+        ends = {"i": group.i_minus_1, "j": group.j_minus_1}
+    out: dict[str, tuple[str, LinkId | None]] = {}
+    for part, columns in (("hinge", kind.hinges), ("guide", kind.guides)):
+        for side, cols in columns.items():
+            rule = f"frame_{part}" if ends.get(side) == frame else f"moving_{part}"
+            out.update({cols[0]: (rule, ends.get(side)), cols[1]: (rule, ends.get(side))})
+    return out
+
+
+def _param_anchor(topo: _Topology, build: _Builder, link: LinkId | None, label: str,
+                  cols: HingeColumns) -> Anchor:
+    """An external hinge: absolute columns on the frame, supplied N/M on a moving link."""
+    assert link is not None
+    if link == topo.frame:
+        return Anchor(link, label, cols[0], cols[1], False)
+    owner = build.owner.get(link)
+    if owner is None:  # pragma: no cover - the layering order guarantees the owner exists
+        raise StructureError(f"link {link!r} is used before its group is solved")
+    if owner.group_kind.is_input:
+        return Anchor(link, owner.label, "l_1", None, True)
+    letter = "N" if build.links[link][1] == "i" else "M"
+    return Anchor(link, owner.label, f"l_{letter}", f"beta_{letter}", True)
+
+
+def _param_guide(build: _Builder, pair: Pair, carrier: LinkId | None, label: str,
+                 cols: GuideColumns) -> Guide:
+    x, y, beta, offset = cols
+    assert carrier is not None
+    for col in (x, y):
+        # 'A' on a moving carrier: the base point is the carrier's origin hinge
+        build.params.setdefault(f"{label}.{col}", 0.0)
+    return Guide(pair.id, carrier, Anchor(carrier, label, x, y, False), beta, offset)
+
+
+def _param_group(topo: _Topology, build: _Builder, group: AssurGroup, label: str, seq: int,
+                 variant: int | None) -> GroupModel:
+    """The group's hinges and guides, as its kind declares their columns."""
+    kind = topo.kind(group)
+    pi, pj, _ = topo.dyad_pairs(group)
+    prev = {"i": group.i_minus_1, "j": group.j_minus_1}
+    sigma = 1 if not kind.sided or variant in (None, 0) else _sign(variant)
+    hinges = {side: _param_anchor(topo, build, prev[side], label, cols)
+              for side, cols in kind.hinges.items()}
+    guides = {side: _param_guide(build, pi if side == "i" else pj, prev[side], label, cols)
+              for side, cols in kind.guides.items()}
+    assert group.i is not None
+    return GroupModel(label, group.kind or 0, seq, group.i, group.j, sigma, hinges.get("i"),
+                      hinges.get("j"), guides.get("i"), guides.get("j"),
+                      pairs=topo.pair_roles(group))
+

@@ -174,10 +174,8 @@ class GroupParams:
     Attributes
     ----------
     values : mapping
-        Column → value in table units (mm, degrees); the initial value of a range. A column
-        written ``'A'`` (supplied by an earlier group) is absent.
-    bounds : mapping
-        Column → (lower, upper) where the row gave ``[initial, lower, upper]``.
+        Column → value in table units (mm, degrees). A column written ``'A'`` (supplied by
+        an earlier group) is absent.
     supplied : frozenset of str
         Columns written ``'A'`` (supplied by an earlier group).
     direction : int
@@ -192,7 +190,6 @@ class GroupParams:
     """
 
     values: Mapping[str, float]
-    bounds: Mapping[str, tuple[float, float]] = field(default_factory=dict)
     supplied: frozenset[str] = frozenset()
     direction: int = 1
     tracing: tuple[tuple[str, LinkId], ...] = ()

@@ -92,7 +92,8 @@ def folder(tmp_path_factory) -> Path:
     shutil.copy(ROOT / "input_tables" / "problems" / "class1_fourbar_rocker.yaml",
                 root / "i_problem.yaml")  # a synthesis problem: its mechanism as first given
     (root / "group2").mkdir()
-    shutil.copy(ROOT / "input_tables" / "course_11_link_table.yaml", root / "group2" / "h_course.yaml")
+    shutil.copy(ROOT / "input_tables" / "course_11_link_table.yaml",
+                root / "group2" / "h_course.yaml")
     return root
 
 

@@ -1,8 +1,9 @@
 """The ``params:`` of an identification row (tables 2.1–2.6) → a typed :class:`GroupParams`.
 
 A row's ``params:`` lists the parameter columns of its group's kind (:mod:`assur.kinds`): a
-number, ``'A'`` for a coordinate supplied by an earlier group, or ``[initial, lower, upper]``
-(a range for synthesis; the model takes the initial value). Extra keys: ``delta`` (the
+number, or ``'A'`` for a coordinate supplied by an earlier group (the ranges
+``[initial, lower, upper]`` of a synthesis live in the problem table, read by
+:mod:`synthesis`). Extra keys: ``delta`` (the
 margin δ), ``s`` (on L0: +1 counter-clockwise, −1 clockwise), ``l_<name>``/``beta_<name>``
 columns of tracing points and ``tracing: [{name: Ж, link: L}, ...]``.
 
@@ -10,13 +11,13 @@ The section is read once, with its row, and every value is checked here.
 
 Examples
 --------
->>> params = read_params("rows.yaml", "L0(1)", {"x_O1": 0, "y_O1": 0, "l_1": [40, 30, 50],
+>>> params = read_params("rows.yaml", "L0(1)", {"x_O1": 0, "y_O1": 0, "l_1": 40,
 ...                                       "phi_1_0": 90, "s": -1})
->>> params.values["l_1"], params.bounds, params.direction
-(40.0, {'l_1': (30.0, 50.0)}, -1)
+>>> params.values["l_1"], params.direction
+(40.0, -1)
 >>> read_params("rows.yaml", "L0(1)", {"l_1": "long"}).problems[0].text()
-"structure_identification (L0(1)) 'params' 'l_1': expected a number, 'A' (supplied by an \
-earlier group) or [initial, lower, upper]; found 'long' (a text)"
+"structure_identification (L0(1)) 'params' 'l_1': expected a number or 'A' (supplied by an \
+earlier group); found 'long' (a text)"
 """
 
 from __future__ import annotations
@@ -62,7 +63,6 @@ def read_params(source: str, label: str, data: Any) -> GroupParams:
     where = f"structure_identification ({label}) 'params'"
     node = Node(reader, where, dict(data), None)
     values: dict[str, float] = {}
-    bounds: dict[str, tuple[float, float]] = {}
     supplied = set()
     for column, raw in node.mapping.items():
         if column in ("s", "tracing"):
@@ -71,11 +71,7 @@ def read_params(source: str, label: str, data: Any) -> GroupParams:
         if raw == SUPPLIED:
             supplied.add(str(column))
         elif isinstance(raw, list) and len(raw) == 3 and all(_is_number(v) for v in raw):
-            value, lo, hi = (float(v) for v in raw)
-            if lo <= value <= hi:
-                values[str(column)], bounds[str(column)] = value, (lo, hi)
-            else:
-                reader.problem(at, "model.range", found=str(raw))
+            reader.problem(at, "model.range_in_problem", found=str(raw))
         elif _is_number(raw):
             values[str(column)] = float(raw)
         else:
@@ -90,7 +86,7 @@ def read_params(source: str, label: str, data: Any) -> GroupParams:
             reader.problem(f"{where} 'tracing'", "model.tracing_row", found=describe(entry))
         else:
             tracing.append((str(entry.get("name")), normalise_id(entry.get("link"))))
-    return GroupParams(values, bounds, frozenset(supplied), s if s in (1, -1) else 1,
+    return GroupParams(values, frozenset(supplied), s if s in (1, -1) else 1,
                        tuple(tracing), tuple(map(str, node.mapping)), tuple(reader.issues))
 
 

@@ -194,7 +194,6 @@ class _Builder:
         self.frames: dict[LinkId, tuple[complex, float]] = {topo.frame: (0j, 0.0)}
         self.attach_count: dict[LinkId, int] = {}
         self.owner: dict[LinkId, GroupModel] = {}
-        self.bounds: dict[str, tuple[float, float]] = {}
 
     def point(self, pair: Pair) -> complex:
         """The sketched point of a pair."""
@@ -295,7 +294,7 @@ class _Builder:
                               input_range=input_range, tracing=tracing, links=self.links,
                               pair_links={p.id: (p.type.value, p.links, p.guide)
                                           for p in chain.pairs},
-                              bounds=self.bounds, source=chain.source)
+                              source=chain.source)
 
     def _ordered(self) -> dict[str, Any]:
         """Parameters in layering and column order; every dyad gets its margin δ (default 0)."""
@@ -433,8 +432,7 @@ def model_from_params(analysis: StructuralAnalysis) -> KinematicModel:
     """Build the model from the ``params:`` of the identification-table rows.
 
     Every row lists the columns of its kind (``KIND_COLUMNS``): a number, ``'A'`` for a
-    value supplied by an earlier group, or ``[initial, lower, upper]`` (tables 2.1–2.6; the
-    bounds are kept in :attr:`KinematicModel.bounds`). Coordinates of a hinge on a moving
+    value supplied by an earlier group (tables 2.1–2.6). Coordinates of a hinge on a moving
     link are always supplied: the hinge is the attachment point N/M (the crank pin for
     L0) of its link's group. A guide base point on a moving carrier is given in the
     carrier's local frame; ``'A'`` puts it at the carrier's origin hinge. The assembly
@@ -450,7 +448,7 @@ def model_from_params(analysis: StructuralAnalysis) -> KinematicModel:
     Returns
     -------
     KinematicModel
-        With the ``[initial, lower, upper]`` ranges of the rows in ``bounds``.
+        The model of the rows' parameters.
 
     Raises
     ------
@@ -528,8 +526,6 @@ def _params(build: _Builder, rows: Mapping[tuple[LinkId, ...], GroupParams],
                           found=describe(int(value) if value.is_integer() else value))
         else:
             build.params[f"{label}.{column}"] = params.values[column]
-            if column in params.bounds:
-                build.bounds[f"{label}.{column}"] = params.bounds[column]
     for name, link in params.tracing:
         if link not in (group.i, group.j) or link is None or any(
                 f"{prefix}{name}" not in params.values for prefix in ("l_", "beta_")):

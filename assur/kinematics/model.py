@@ -175,8 +175,6 @@ class KinematicModel:
         Moving link → (group label, ``'i'`` or ``'j'``): which group solves its pose.
     pair_links : mapping
         Pair id → (type ``'R'``/``'P'``, the two links, guide carrier or None).
-    bounds : mapping
-        Parameter name → (lower, upper) where a table gave them.
     source : str
         The table the model was built from.
     """
@@ -192,7 +190,6 @@ class KinematicModel:
     links: Mapping[LinkId, tuple[str, str]] = field(default_factory=dict)
     pair_links: Mapping[PairId, tuple[str, tuple[LinkId, LinkId], LinkId | None]] = field(
         default_factory=dict)
-    bounds: Mapping[str, tuple[float, float]] = field(default_factory=dict)
     source: str = "<data>"
 
     def parameter_names(self) -> tuple[str, ...]:

@@ -166,7 +166,7 @@ def test_identification_table_rebuilds_the_course_chain() -> None:
 
 
 def test_row_params_are_read_with_their_rows() -> None:
-    crank = {"x_O1": 0, "y_O1": 0, "l_1": [40, 30, 50], "phi_1_0": 90, "s": -1}
+    crank = {"x_O1": 0, "y_O1": 0, "l_1": 40, "phi_1_0": 90, "s": -1}
     dyad = {"x_Hi": "A", "y_Hi": "A", "x_Hj": 100, "y_Hj": 0, "l_i": 120, "l_j": 90,
             "l_N": 0, "beta_N": 0, "l_M": 0, "beta_M": 0, "delta": 0.1, "l_K": 30,
             "beta_K": 45, "tracing": [{"name": "K", "link": 2}]}
@@ -178,10 +178,10 @@ def test_row_params_are_read_with_their_rows() -> None:
     assert set(chain.group_params) == {(1,), (2, 3)}
     first, second = chain.group_params[(1,)], chain.group_params[(2, 3)]
     assert first.values == {"x_O1": 0.0, "y_O1": 0.0, "l_1": 40.0, "phi_1_0": 90.0}
-    assert first.bounds == {"l_1": (30.0, 50.0)} and first.direction == -1
+    assert first.direction == -1
     assert "x_Hi" not in second.values and second.values["x_Hj"] == 100.0
     assert second.values["delta"] == 0.1 and second.values["beta_K"] == 45.0
-    assert second.tracing == (("K", 2),) and second.bounds == {}
+    assert second.tracing == (("K", 2),)
     assert chain.identification[1].params is second
     assert chain.general == {"s": 1} and chain.geometry is None
 
@@ -195,10 +195,11 @@ def test_row_params_values_are_checked_when_the_table_is_read() -> None:
     found = chain_from_dict(data, source="rows.yaml").group_params[(2, 3)]
     where = "structure_identification (L1(2,3)) 'params'"
     assert [issue.text() for issue in found.problems] == [
-        f"{where} 'l_i': expected [initial, lower, upper] with lower ≤ initial ≤ upper; "
+        f"{where} 'l_i': a range [initial, lower, upper] belongs in the parameters table of "
+        "a synthesis problem (assur synthesize); a mechanism table takes one number; "
         "found [1, 2, 3]",
-        f"{where} 'l_j': expected a number, 'A' (supplied by an earlier group) or "
-        "[initial, lower, upper]; found 'x' (a text)",
+        f"{where} 'l_j': expected a number or 'A' (supplied by an earlier group); "
+        "found 'x' (a text)",
         f"{where} 's': s must be +1 or −1; found 2",
         f"{where} 'tracing': expected rows {{name: Ж, link: L}} with columns l_<name>, "
         "beta_<name>; found 'K' (a text)"]

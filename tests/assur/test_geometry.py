@@ -76,13 +76,22 @@ def test_identification_rows_give_the_same_parameters_as_the_sketch() -> None:
     assert [g.sigma for g in table.groups] == [1, 1, 1, 1, -1, 1]
 
 
-def test_bounds_and_direction_from_identification_rows() -> None:
+def test_a_synthesis_range_in_a_mechanism_table_is_sent_to_the_problem_table() -> None:
+    data = copy.deepcopy(TABLE_DATA)
+    data["structure_identification"][0]["params"]["l_1"] = [40, 30, 50]
+    with pytest.raises(assur.TableError) as caught:
+        _model(data)
+    (issue,) = caught.value.issues
+    assert "'l_1'" in issue.location
+    assert "synthesis problem" in issue.text("en") and "[40, 30, 50]" in issue.text("en")
+    assert "задачи синтеза" in issue.text("ru")
+
+
+def test_direction_from_identification_rows() -> None:
     data = copy.deepcopy(TABLE_DATA)
     rows = data["structure_identification"]
-    rows[0]["params"]["l_1"] = [40, 30, 50]
     rows[0]["params"]["s"] = -1
     model = _model(data)
-    assert model.bounds == {"L0(1).l_1": (30.0, 50.0)}
     assert model.direction == -1
     motion = assur.analyse(model, np.radians([0.0, 90.0]))
     pin = motion.joints["0-1"] + 40 * np.exp(1j * np.radians([30.0, -60.0]))
@@ -104,7 +113,7 @@ def test_every_problem_of_the_rows_is_reported_at_once() -> None:
     assert "'l_1': this column is missing" in text
     assert "'x_Hj': the hinge lies on the frame: expected its coordinate (mm); found 'A'" in text
     assert "unknown column 'lengt_i'" in text
-    assert "lower ≤ initial ≤ upper" in text
+    assert "belongs in the parameters table of a synthesis problem" in text
     assert "'x_Hi': the hinge lies on moving link 2" in text
 
 

@@ -19,6 +19,7 @@ from collections.abc import Sequence
 from types import ModuleType
 
 from assur import AssurError
+from assur.text import render
 
 __all__ = ["main"]
 
@@ -55,7 +56,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(exc.text(getattr(args, "lang", "en")), file=sys.stderr)
         return 2
     except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
+        print(render("cli.interrupted", getattr(args, "lang", "en")), file=sys.stderr)
         return 130
 
 

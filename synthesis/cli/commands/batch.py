@@ -6,6 +6,8 @@ import argparse
 import json
 import sys
 
+from assur.text import languages, render
+
 NAME = "batch"
 HELP = "check every table in a folder (structure, identification table, existence over the cycle)"
 ORDER = 60
@@ -21,17 +23,19 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         help="worker processes (default: all local cores)")
     parser.add_argument("--reports", metavar="DIR",
                         help="also write a coursework report (HTML) for every readable table")
-    parser.add_argument("--lang", choices=("en", "ru"), default="en",
+    parser.add_argument("--lang", choices=languages(), default="en",
                         help="language of the problems and reports")
     parser.add_argument("--quiet", action="store_true", help="no progress on stderr")
 
 
 def run(args: argparse.Namespace) -> int:
     """Check the folder; exit 0 whatever the tables contain (the rows say it)."""
-    from synthesis.app.batch import run_batch, summary, write_csv
+    from synthesis.app.batch import run_batch
+    from synthesis.app.batch_output import summary, write_csv
 
     if args.jobs is not None and args.jobs < 1:
-        print(f"--jobs must be a positive whole number; got {args.jobs}", file=sys.stderr)
+        print(render("cli.option_positive", args.lang, option="--jobs", found=args.jobs),
+              file=sys.stderr)
         return 2
     progress = None if args.quiet or args.json else _progress
     rows = run_batch(args.folder, jobs=args.jobs, lang=args.lang, progress=progress,

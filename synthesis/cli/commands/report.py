@@ -6,9 +6,13 @@ import argparse
 import json
 import sys
 
+from assur.text import languages, render
+
 NAME = "report"
 HELP = "write the coursework report (one HTML page: structure, schemes, existence, kinematics)"
 ORDER = 50
+#: The fewest crank positions a report's diagrams take.
+MIN_POINTS = 8
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -17,7 +21,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         help="chain table, identification table or synthesis problem")
     parser.add_argument("--out", metavar="REPORT.html", default=None,
                         help="the page to write (default: the table's name with .html)")
-    parser.add_argument("--lang", choices=("en", "ru"), default="en",
+    parser.add_argument("--lang", choices=languages(), default="en",
                         help="language of the report (default: en)")
     parser.add_argument("--points", type=int, default=360, metavar="N",
                         help="crank positions of the kinematic analysis (default: 360)")
@@ -33,8 +37,9 @@ def run(args: argparse.Namespace) -> int:
     """Build and write the report; print where it went (or the key values as JSON)."""
     from synthesis.app.coursework import write_report
 
-    if args.points < 8:
-        print(f"--points must be at least 8; got {args.points}", file=sys.stderr)
+    if args.points < MIN_POINTS:
+        print(render("cli.option_at_least", args.lang, option="--points", low=MIN_POINTS,
+                     found=args.points), file=sys.stderr)
         return 2
     report = write_report(args.table, args.out, lang=args.lang, points=args.points,
                           budget=args.budget)

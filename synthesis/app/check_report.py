@@ -1,0 +1,46 @@
+"""The structural check of a table as text or as a JSON record (``assur check``)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from assur import structure_report
+from synthesis.app.assess import Assessment
+
+__all__ = ["check_record", "check_text"]
+
+
+def check_text(assessment: Assessment, lang: str = "en") -> str:
+    """The text report: counts, groups, formula, class, findings, the identification table
+    and the verdict on the table given in the file.
+
+    Examples
+    --------
+    >>> from synthesis.app.assess import assess
+    >>> text = check_text(assess("input_tables/course_11_link.yaml", points=None))
+    >>> "I(0,1) → II₁(2,3)" in text
+    True
+    """
+    return structure_report(assessment.analysis, lang=lang, table=assessment.table,
+                            mismatches=assessment.mismatches,
+                            checked_rows=assessment.rows_given)
+
+
+def check_record(assessment: Assessment) -> dict[str, Any]:
+    """The structural analysis, the identification table and the check of the student's
+    table as one JSON-ready mapping.
+
+    Examples
+    --------
+    >>> from synthesis.app.assess import assess
+    >>> record = check_record(assess("input_tables/course_11_link_table.yaml", points=None))
+    >>> record["W"], record["identification_check"]
+    (1, [])
+    """
+    mismatches = assessment.mismatches
+    payload = assessment.analysis.to_dict()
+    payload["identification_table"] = (None if assessment.table is None
+                                       else [row.to_dict() for row in assessment.table])
+    payload["identification_check"] = (None if mismatches is None
+                                       else [m.to_dict() for m in mismatches])
+    return payload

@@ -36,7 +36,7 @@ def analysis_csv(result: TableAnalysis) -> str:
     >>> text = analysis_csv(analyse_table("input_tables/course_11_link.yaml", points=4))
     >>> lines = text.splitlines()
     >>> len(lines), lines[0].split(",")[:3], lines[2].split(",")[0]
-    (5, ['phi_deg', 'joint_0-1_x', 'joint_0-1_x_d1'], '90.0')
+    (5, ['phi_deg', 'joint_0-1_x', 'joint_0-1_y'], '90.0')
     """
     model, motion, omega = result.model, result.motion, result.omega
     q = motion.q

@@ -43,7 +43,7 @@ def analysis_text(result: TableAnalysis, lang: str = "en") -> str:
     >>> from synthesis.app.analysis import analyse_table
     >>> result = analyse_table("input_tables/course_11_link.yaml", points=36)
     >>> analysis_text(result).splitlines()[0]
-    'Kinematic analysis: course 11-link mechanism (input_tables/course_11_link.yaml)'
+    'Kinematic analysis: DGTU example, fig. 1.25 (input_tables/course_11_link.yaml)'
     """
     model, motion, report = result.model, result.motion, result.existence
     lines = [render("analyze.title", lang, name=model.name, source=model.source)]

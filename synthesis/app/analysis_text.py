@@ -10,7 +10,14 @@ import math
 
 import numpy as np
 
-from assur import CONDITIONS, REASONS, joint_rotations, pressure_angles, unwrap, values
+from assur import (
+    CONDITIONS,
+    joint_rotations,
+    pressure_angles,
+    reason_text,
+    unwrap,
+    values,
+)
 from assur.text import render
 from synthesis.app.analysis import TableAnalysis, moving_links
 
@@ -67,10 +74,10 @@ def analysis_text(result: TableAnalysis, lang: str = "en") -> str:
                      + render("analyze.margin", lang, m=group.min_margin, d=group.delta))
         lines.append(f"  {'':<20} {CONDITIONS[group.kind]}")
         for item in group.intervals:
-            why = REASONS[item.reason][0 if lang == "en" else 1]
             lines.append("    " + render("analyze.interval", lang,
                                          a=position_text(result, item.start),
-                                         b=position_text(result, item.end), why=why,
+                                         b=position_text(result, item.end),
+                                         why=reason_text(item.reason, lang),
                                          v=item.shortfall, unit=units[item.unit],
                                          w=position_text(result, item.worst_at)))
         skipped = int((~group.evaluated).sum())

@@ -25,7 +25,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-from assur import REASONS, AssurError, ExistenceReport, KinematicModel, TableError
+from assur import AssurError, ExistenceReport, KinematicModel, TableError, reason_text
 from assur.text import check_lang, render
 from synthesis.app.assess import Assessment, assess
 
@@ -104,8 +104,8 @@ def _row(name: str, found: Assessment, lang: str, seconds: float) -> BatchRow:
     """The row of a table that could be read."""
     analysis = found.analysis
     problems = [d.text(lang) for d in analysis.issues if d.severity == "error"]
-    problems += list(analysis.applicability_ru if lang == "ru" else analysis.applicability)
-    problems += [m.message_ru if lang == "ru" else m.message for m in found.mismatches or ()]
+    problems += found.failed_conditions(lang)
+    problems += [text for _mismatch, text in found.mismatch_texts(lang)]
     problems += [v.message.text(lang) for v in found.variants]
     if found.existence is not None and found.model is not None:
         existence = "whole cycle" if found.existence.all_exist else "fails"
@@ -129,7 +129,7 @@ def _failures(report: ExistenceReport, model: KinematicModel, lang: str) -> list
             where = (f"{math.degrees(interval.start):.1f}°…{math.degrees(interval.end):.1f}°"
                      if crank else f"{interval.start:.2f}…{interval.end:.2f} mm")
             found.append(render("batch.group_fails", lang, group=group.label, where=where,
-                                reason=REASONS[interval.reason][1 if lang == "ru" else 0]))
+                                reason=reason_text(interval.reason, lang)))
     return found
 
 

@@ -18,7 +18,6 @@ from typing import Any
 
 from assur import (
     CONDITIONS,
-    REASONS,
     AssurError,
     Chain,
     ExistenceReport,
@@ -29,6 +28,7 @@ from assur import (
     atomic_write_text,
     chain_from_dict,
     group_description,
+    reason_text,
     roman,
     scheme_bytes,
 )
@@ -122,7 +122,7 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
     report.facts.update(W=analysis.W, formula=analysis.formula,
                         mechanism_class=analysis.mechanism_class, applicable=analysis.applicable)
     report.sections += [_data_section(chain, lang), _counts_section(analysis, lang),
-                        _groups_section(analysis, lang), _formula_section(analysis, lang)]
+                        _groups_section(analysis, lang), _formula_section(found, lang)]
     report.sections.append(_identification_section(found, lang, report))
     report.sections.append(_schemes_section(chain, analysis, lang))
     report.sections += _kinematic_sections(found, lang, points, report)
@@ -193,14 +193,15 @@ def _groups_section(analysis: StructuralAnalysis, lang: str) -> Section:
     return Section("groups", _cap(render("term.groups", lang)), body)
 
 
-def _formula_section(analysis: StructuralAnalysis, lang: str) -> Section:
+def _formula_section(found: Assessment, lang: str) -> Section:
+    analysis = found.analysis
     body = (f'<p class="formula" id="formula">{esc(analysis.formula)}</p>'
             f"<p>{esc(_cap(render('term.mechanism_class', lang)))}: "
             f'<b id="mechanism-class">{roman(analysis.mechanism_class)}</b></p>')
     if analysis.applicable:
         body += f'<p class="ok" id="applicable">{esc(render("term.applicable", lang))}</p>'
     else:
-        failed = analysis.applicability_ru if lang == "ru" else analysis.applicability
+        failed = found.failed_conditions(lang)
         body += (f'<p class="bad" id="applicable">{esc(render("term.not_applicable", lang))}:</p>'
                  f'<ul class="findings">{"".join(f"<li>{esc(x)}</li>" for x in failed)}</ul>')
     if analysis.issues:
@@ -229,8 +230,7 @@ def _identification_section(found: Assessment, lang: str, report: CourseworkRepo
         body += (f'<p class="note" id="student-table">{esc(verdict_key)}: '
                  f'{esc(render("term.none_given", lang))}</p>')
         return Section("identification", title, body)
-    problems = [f"{m.label} {m.field}: {m.message_ru if lang == 'ru' else m.message}"
-                for m in found.mismatches]
+    problems = [f"{m.label} {m.field}: {text}" for m, text in found.mismatch_texts(lang)]
     problems += [v.message.text(lang) for v in found.variants]
     report.facts["mismatches"] = [m.to_dict() for m in found.mismatches] + [
         {"row": v.row, "field": "variant", "message": v.message.text(lang)}
@@ -295,7 +295,7 @@ def _existence_section(existence: ExistenceReport, model: KinematicModel, lang: 
     for group in existence.groups:
         where = "; ".join(
             (f"{math.degrees(i.start):.2f}°…{math.degrees(i.end):.2f}°" if crank
-             else f"{i.start:.3f}…{i.end:.3f}") + f" ({REASONS[i.reason][lang == 'ru']})"
+             else f"{i.start:.3f}…{i.end:.3f}") + f" ({reason_text(i.reason, lang)})"
             for i in group.intervals) or "–"
         condition = CONDITIONS.get(group.kind, "").split("  (")[0]  # the inequality alone
         rows.append((group.name, condition, group.delta, group.min_margin,

@@ -36,8 +36,7 @@ def build_parser() -> argparse.ArgumentParser:
     """The argument parser with every discovered subcommand."""
     parser = argparse.ArgumentParser(
         prog="assur",
-        description="Structural analysis, kinematics and synthesis of planar lever mechanisms "
-                    "(Assur groups, DGTU method).")
+        description=render("cli.description"))
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
     commands.required = True
     for module in _command_modules():

@@ -21,30 +21,23 @@ from synthesis.app.analysis_json import analysis_record
 from synthesis.app.analysis_text import analysis_text
 
 NAME = "analyze"
-HELP = "kinematic analysis over the crank cycle: positions, analogs, existence of groups"
+HELP = render("cli.analyze.help")
 ORDER = 20
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
     """Options of ``assur analyze``."""
-    parser.add_argument("table", help="chain table with a geometry: sketch, or an "
-                                      "identification table with params:")
-    parser.add_argument("--points", type=int, default=360,
-                        help="number of analysed positions (default 360)")
-    parser.add_argument("--json", action="store_true",
-                        help="print every position as JSON instead of the summary")
-    parser.add_argument("--csv", metavar="FILE", help="write one row per position")
-    parser.add_argument("--plot", metavar="FILE.png",
-                        help="draw the mechanism at --at with the traced paths")
-    parser.add_argument("--at", type=float, default=0.0,
-                        help="crank angle φ (degrees; actuator: length in mm) drawn by --plot "
-                             "(default: the first position)")
-    parser.add_argument("--animate", metavar="FILE.gif", help="animate a whole cycle")
-    parser.add_argument("--frames", type=int, default=48, help="frames of --animate (48)")
-    parser.add_argument("--omega", type=float, default=None,
-                        help="input speed (rad/s of the crank, mm/s of an actuator): add "
-                             "velocities and accelerations to --json and --csv")
-    parser.add_argument("--lang", choices=languages(), default="en", help="report language")
+    parser.add_argument("table", help=render("cli.analyze.table"))
+    parser.add_argument("--points", type=int, default=360, help=render("cli.analyze.points"))
+    parser.add_argument("--json", action="store_true", help=render("cli.analyze.json"))
+    parser.add_argument("--csv", metavar="FILE", help=render("cli.analyze.csv"))
+    parser.add_argument("--plot", metavar="FILE.png", help=render("cli.analyze.plot"))
+    parser.add_argument("--at", type=float, default=0.0, help=render("cli.analyze.at"))
+    parser.add_argument("--animate", metavar="FILE.gif", help=render("cli.analyze.animate"))
+    parser.add_argument("--frames", type=int, default=48, help=render("cli.analyze.frames"))
+    parser.add_argument("--omega", type=float, default=None, help=render("cli.analyze.omega"))
+    parser.add_argument("--lang", choices=languages(), default="en",
+                        help=render("cli.analyze.lang"))
 
 
 def run(args: argparse.Namespace) -> int:

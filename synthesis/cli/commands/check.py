@@ -13,24 +13,22 @@ import argparse
 import json
 
 from assur import save_schemes
-from assur.text import languages
+from assur.text import languages, render
 from synthesis.app.assess import assess
 from synthesis.app.check_report import check_record, check_text
 
 NAME = "check"
-HELP = "structural analysis of a chain table: mobility, Assur groups, formula, DGTU table"
+HELP = render("cli.check.help")
 ORDER = 10
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
     """Arguments of ``assur check``."""
-    parser.add_argument("table", help="chain table or identification table (YAML)")
-    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.add_argument("table", help=render("cli.check.table"))
+    parser.add_argument("--json", action="store_true", help=render("cli.check.json"))
     parser.add_argument("--lang", choices=languages(), default="en",
-                        help="language of the text report (default: en)")
-    parser.add_argument("--plot", metavar="FILE", default=None,
-                        help="draw the structural and formalised structural schemes "
-                             "(FILE.svg or FILE.png)")
+                        help=render("cli.check.lang"))
+    parser.add_argument("--plot", metavar="FILE", default=None, help=render("cli.check.plot"))
 
 
 def run(args: argparse.Namespace) -> int:

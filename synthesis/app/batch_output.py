@@ -20,6 +20,15 @@ _COLUMNS = ("file", "verdict", "problem", "problems", "formula", "n", "p5", "W",
 def rows_to_csv(rows: Iterable[BatchRow]) -> str:
     """The rows as CSV text (a header line, then one line per file).
 
+    Parameters
+    ----------
+    rows : iterable of BatchRow
+
+    Returns
+    -------
+    str
+        The columns of :class:`~synthesis.app.batch.BatchRow`; the seconds to 1 ms.
+
     Examples
     --------
     >>> from synthesis.app.batch import check_table
@@ -39,6 +48,17 @@ def rows_to_csv(rows: Iterable[BatchRow]) -> str:
 
 def summary(rows: Sequence[BatchRow], lang: str = "en") -> str:
     """A plain-text table of the rows for the terminal, with totals.
+
+    Parameters
+    ----------
+    rows : sequence of BatchRow
+    lang : str
+        A catalogue language, for the verdicts.
+
+    Returns
+    -------
+    str
+        One line per file (name, verdict, first problem), a blank line and the totals.
 
     Examples
     --------

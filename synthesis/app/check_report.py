@@ -14,6 +14,17 @@ def check_text(assessment: Assessment, lang: str = "en") -> str:
     """The text report: counts, groups, formula, class, findings, the identification table
     and the verdict on the table given in the file.
 
+    Parameters
+    ----------
+    assessment : Assessment
+        From :func:`synthesis.app.assess.assess`.
+    lang : str
+        A catalogue language.
+
+    Returns
+    -------
+    str
+
     Examples
     --------
     >>> from synthesis.app.assess import assess
@@ -29,6 +40,18 @@ def check_text(assessment: Assessment, lang: str = "en") -> str:
 def check_record(assessment: Assessment) -> dict[str, Any]:
     """The structural analysis, the identification table and the check of the student's
     table as one JSON-ready mapping.
+
+    Parameters
+    ----------
+    assessment : Assessment
+        From :func:`synthesis.app.assess.assess`.
+
+    Returns
+    -------
+    dict
+        The analysis (:meth:`StructuralAnalysis.to_dict`) with ``identification_table``
+        (None when the chain is not made of DGTU groups) and ``identification_check`` (the
+        mismatches of the student's table; None when the file gives none).
 
     Examples
     --------

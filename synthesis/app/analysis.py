@@ -100,8 +100,11 @@ def analyse_table(path: str | os.PathLike[str], *, points: int = 360,
 
     Examples
     --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
     >>> from synthesis.app.analysis import analyse_table
-    >>> result = analyse_table("input_tables/course_11_link.yaml", points=36)
+    >>> result = analyse_table(tables / "course_11_link.yaml", points=36)
     >>> result.motion.q.shape, result.existence.all_exist
     ((36,), True)
     """

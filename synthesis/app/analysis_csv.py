@@ -32,8 +32,11 @@ def analysis_csv(result: TableAnalysis) -> str:
 
     Examples
     --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
     >>> from synthesis.app.analysis import analyse_table
-    >>> text = analysis_csv(analyse_table("input_tables/course_11_link.yaml", points=4))
+    >>> text = analysis_csv(analyse_table(tables / "course_11_link.yaml", points=4))
     >>> lines = text.splitlines()
     >>> len(lines), lines[0].split(",")[:3], lines[2].split(",")[0]
     (5, ['phi_deg', 'joint_0-1_x', 'joint_0-1_y'], '90.0')

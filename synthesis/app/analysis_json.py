@@ -83,8 +83,11 @@ def analysis_record(result: TableAnalysis) -> Record:
 
     Examples
     --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
     >>> from synthesis.app.analysis import analyse_table
-    >>> record = analysis_record(analyse_table("input_tables/course_11_link.yaml", points=8))
+    >>> record = analysis_record(analyse_table(tables / "course_11_link.yaml", points=8))
     >>> record["input"]["values"][:3], record["all_exist"]
     ([0.0, 45.0, 90.0], True)
     """

@@ -197,8 +197,11 @@ def assess(table: str | os.PathLike[str] | Chain, *, points: int | None = 360) -
 
     Examples
     --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
     >>> from synthesis.app.assess import assess
-    >>> found = assess("input_tables/course_11_link_table.yaml", points=36)
+    >>> found = assess(tables / "course_11_link_table.yaml", points=36)
     >>> found.analysis.formula.split(" → ")[:2], found.identification
     (['I(0,1)', 'II₁(2,3)'], 'matches')
     >>> found.existence.all_exist

@@ -152,7 +152,10 @@ def check_table(path: str | os.PathLike[str], *, lang: str = "en",
 
     Examples
     --------
-    >>> row = check_table("input_tables/course_11_link_table.yaml")
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
+    >>> row = check_table(tables / "course_11_link_table.yaml")
     >>> row.verdict, row.W, row.identification, row.existence
     ('ok', 1, 'matches', 'whole cycle')
     """

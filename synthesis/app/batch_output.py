@@ -31,10 +31,13 @@ def rows_to_csv(rows: Iterable[BatchRow]) -> str:
 
     Examples
     --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
     >>> from synthesis.app.batch import check_table
-    >>> text = rows_to_csv([check_table("input_tables/course_11_link_table.yaml")])
+    >>> text = rows_to_csv([check_table(tables / "course_11_link_table.yaml", root=tables)])
     >>> text.splitlines()[1].split(",")[:2]
-    ['input_tables/course_11_link_table.yaml', 'ok']
+    ['course_11_link_table.yaml', 'ok']
     """
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
@@ -62,9 +65,12 @@ def summary(rows: Sequence[BatchRow], lang: str = "en") -> str:
 
     Examples
     --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
     >>> from synthesis.app.batch import check_table
-    >>> print(summary([check_table("input_tables/course_11_link_table.yaml")], "ru"))
-    input_tables/course_11_link_table.yaml  верно
+    >>> print(summary([check_table(tables / "course_11_link_table.yaml", root=tables)], "ru"))
+    course_11_link_table.yaml  верно
     <BLANKLINE>
     верно: 1, есть ошибки: 0, файл не читается: 0; файлов: 1
     """

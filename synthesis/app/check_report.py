@@ -27,8 +27,11 @@ def check_text(assessment: Assessment, lang: str = "en") -> str:
 
     Examples
     --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
     >>> from synthesis.app.assess import assess
-    >>> text = check_text(assess("input_tables/course_11_link.yaml", points=None))
+    >>> text = check_text(assess(tables / "course_11_link.yaml", points=None))
     >>> "I(0,1) → II₁(2,3)" in text
     True
     """
@@ -55,8 +58,11 @@ def check_record(assessment: Assessment) -> dict[str, Any]:
 
     Examples
     --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
     >>> from synthesis.app.assess import assess
-    >>> record = check_record(assess("input_tables/course_11_link_table.yaml", points=None))
+    >>> record = check_record(assess(tables / "course_11_link_table.yaml", points=None))
     >>> record["W"], record["identification_check"]
     (1, [])
     """

@@ -334,20 +334,17 @@ def _synthesis(path: Path, lang: str, budget: int | None, report: CourseworkRepo
     (the verdict goes to the report's summary)."""
     from matplotlib.figure import Figure
 
-    from synthesis.evaluate import Evaluator
     from synthesis.plots import plot_convergence, plot_mechanism, plot_output
     from synthesis.problem import load_problem
-    from synthesis.report import summary, text_report
-    from synthesis.search import search, settings_for
+    from synthesis.report import text_report
+    from synthesis.search import settings_for
+    from synthesis.synthesize import synthesize
 
     problem = load_problem(path)
     own = problem.search.get("budget")
     budget = budget if budget is not None else min(int(own) if own else BUDGET, BUDGET)
-    settings = settings_for(problem, budget_log2=budget, progress=False)
-    evaluator = Evaluator(problem)
-    result = search(evaluator, problem.lower, problem.upper, problem.initial, settings)
-    analysis = evaluator.analyse(result.x[None, :])
-    data = summary(problem, result, analysis)
+    outcome = synthesize(problem, settings_for(problem, budget_log2=budget), progress=False)
+    result, analysis, data = outcome.result, outcome.analysis, dict(outcome.summary)
     feasible = bool(data.get("feasible"))
     verdict = render("term.feasible", lang) if feasible else render("term.infeasible", lang)
     q = "–" if data.get("Q") is None else f"{data['Q']:.4g}"

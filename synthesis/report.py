@@ -26,11 +26,10 @@ from assur import atomic_write_text
 from assur.text import render
 from synthesis.criteria import criterion_rms
 from synthesis.evaluate import Analysis
-from synthesis.i18n import LANGUAGES
 from synthesis.problem import Problem
 from synthesis.search import SearchResult
 
-__all__ = ["LANGUAGES", "summary", "text_report", "write_result", "write_trials"]
+__all__ = ["summary", "text_report", "write_result", "write_trials"]
 
 def _w(key: str, lang: str, **data: Any) -> str:
     """A sentence of the report from the catalogue (codes ``synth.report.<key>``)."""

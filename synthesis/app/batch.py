@@ -16,38 +16,20 @@ its error, never a stop. The files are checked in parallel on all local cores
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 import os
 import time
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-from assur import (
-    AssurError,
-    Chain,
-    analyse_structure,
-    check_identification,
-    atomic_write_text,
-    chain_from_dict,
-    load_chain,
-)
-from synthesis.i18n import check_lang, term
+from assur import AssurError, ExistenceReport, KinematicModel, TableError, reason_text
+from assur.text import check_lang, render
+from synthesis.app.assess import Assessment, assess
 
-__all__ = [
-    "TABLE_SUFFIXES",
-    "BatchRow",
-    "check_table",
-    "find_tables",
-    "rows_to_csv",
-    "run_batch",
-    "summary",
-    "write_csv",
-]
+__all__ = ["TABLE_SUFFIXES", "BatchRow", "check_table", "find_tables", "run_batch"]
 
 #: File name endings of the tables a batch takes.
 TABLE_SUFFIXES = (".yaml", ".yml")
@@ -113,45 +95,42 @@ def find_tables(folder: str | os.PathLike[str]) -> list[Path]:
     """
     root = Path(folder)
     if not root.is_dir():
-        raise AssurError(f"{root}: not a folder; expected the folder of the students' tables")
+        raise AssurError(render("batch.not_a_folder", "en", folder=root))
     return sorted(p for p in root.rglob("*") if p.is_file() and p.suffix.lower()
                   in TABLE_SUFFIXES and not p.name.startswith("."))
 
 
-def _kinematic_checks(analysis: Any, lang: str) -> tuple[str, list[str], list[str]]:
-    """The table's assembly variants against the dimensions, and the existence over the
-    cycle: the existence status word, the variant problems and the existence problems."""
-    from assur import REASONS, build_model, check_existence
-    from synthesis.app.coursework.variants import variant_findings
+def _row(name: str, found: Assessment, lang: str, seconds: float) -> BatchRow:
+    """The row of a table that could be read."""
+    analysis = found.analysis
+    problems = [d.text(lang) for d in analysis.issues if d.severity == "error"]
+    problems += found.failed_conditions(lang)
+    problems += [text for _mismatch, text in found.mismatch_texts(lang)]
+    problems += [v.message.text(lang) for v in found.variants]
+    if found.existence is not None and found.model is not None:
+        existence = "whole cycle" if found.existence.all_exist else "fails"
+        problems += _failures(found.existence, found.model, lang)
+    elif isinstance(found.why_no_model, AssurError):
+        existence = "not checked"
+        problems.append(found.why_no_model.text(lang).replace("\n", " "))
+    else:
+        existence = "no dimensions"
+    return BatchRow(name, "problems" if problems else "ok", problems[0] if problems else "",
+                    len(problems), analysis.formula, analysis.n, analysis.p5, analysis.W,
+                    found.identification, existence, seconds)
 
-    model = build_model(analysis)
-    variants = [text for _row, text in variant_findings(
-        model, analysis.chain.identification or (), lang)]
-    found = []
-    report = check_existence(model, points=EXISTENCE_POINTS)
+
+def _failures(report: ExistenceReport, model: KinematicModel, lang: str) -> list[str]:
+    """Every interval where a group does not assemble, as a sentence."""
     crank = model.drive == "crank"
+    found = []
     for group in report.groups:
         for interval in group.intervals:
             where = (f"{math.degrees(interval.start):.1f}°…{math.degrees(interval.end):.1f}°"
                      if crank else f"{interval.start:.2f}…{interval.end:.2f} mm")
-            reason = REASONS[interval.reason][1 if lang == "ru" else 0]
-            if lang == "ru":
-                found.append(f"группа {group.label} не собирается при φ = {where}: {reason}")
-            else:
-                found.append(f"group {group.label} does not assemble for φ = {where}: {reason}")
-    return ("whole cycle" if report.all_exist else "fails"), variants, found
-
-
-def _load(path: Path) -> Chain:
-    """The chain of a table; for a synthesis problem, its mechanism at the initial design."""
-    from synthesis.app.coursework import is_problem
-
-    if is_problem(path):
-        from synthesis.problem import load_problem
-
-        problem = load_problem(path)
-        return chain_from_dict(problem.mechanism_table(problem.initial), source=str(path))
-    return load_chain(path)
+            found.append(render("batch.group_fails", lang, group=group.label, where=where,
+                                reason=reason_text(interval.reason, lang)))
+    return found
 
 
 def check_table(path: str | os.PathLike[str], *, lang: str = "en",
@@ -162,52 +141,35 @@ def check_table(path: str | os.PathLike[str], *, lang: str = "en",
     ----------
     path : path-like
         The table file.
-    lang : {"en", "ru"}
-        Language of the problem sentence.
+    lang : str
+        A catalogue language, for the problem sentence.
     root : path-like, optional
         The folder the row's file name is relative to.
 
     Returns
     -------
     BatchRow
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
+    >>> row = check_table(tables / "course_11_link_table.yaml")
+    >>> row.verdict, row.W, row.identification, row.existence
+    ('ok', 1, 'matches', 'whole cycle')
     """
     start = time.perf_counter()
     path = Path(path)
     name = str(path.relative_to(root)) if root is not None else str(path)
     try:
-        chain = _load(path)
+        found = assess(path, points=EXISTENCE_POINTS)
     except AssurError as exc:
-        issues = getattr(exc, "issues", None)
-        first = str(issues[0]) if issues else str(exc)
+        issues = exc.issues if isinstance(exc, TableError) else None
+        first = issues[0].text(lang) if issues else exc.text(lang)
         return BatchRow(name, "error", first, len(issues) if issues else 1, "", None, None,
                         None, "not checked", "not checked", time.perf_counter() - start)
-    analysis = analyse_structure(chain)
-    found = [d.text(lang) for d in analysis.issues if d.severity == "error"]
-    applicability = analysis.applicability_ru if lang == "ru" else analysis.applicability
-    found += list(applicability)
-    identification = "not given"
-    if chain.identification is not None:
-        try:
-            mismatches = check_identification(analysis, chain.identification)
-        except AssurError as exc:
-            identification = "not checked"
-            found.append(str(exc))
-        else:
-            identification = "differs" if mismatches else "matches"
-            found += [m.message_ru if lang == "ru" else m.message for m in mismatches]
-    existence = "no dimensions"
-    if analysis.decomposed and analysis.applicable and (chain.geometry or chain.group_params):
-        try:
-            existence, variants, failures = _kinematic_checks(analysis, lang)
-            if variants:
-                identification = "differs"
-            found += variants + failures
-        except AssurError as exc:
-            existence = "not checked"
-            found.append(str(exc).replace("\n", " "))
-    return BatchRow(name, "problems" if found else "ok", found[0] if found else "", len(found),
-                    analysis.formula, analysis.n, analysis.p5, analysis.W, identification,
-                    existence, time.perf_counter() - start)
+    return _row(name, found, lang, time.perf_counter() - start)
 
 
 def _check_one(job: tuple[str, str, str, str | None]) -> BatchRow:
@@ -236,7 +198,8 @@ def run_batch(folder: str | os.PathLike[str], *, jobs: int | None = None, lang: 
     folder : path-like
     jobs : int, optional
         Worker processes; default all local cores. ``1`` checks in this process.
-    lang : {"en", "ru"}
+    lang : str
+        A catalogue language.
     progress : callable, optional
         Called as ``progress(done, total)`` while the rows come in.
     reports : path-like, optional
@@ -267,38 +230,3 @@ def run_batch(folder: str | os.PathLike[str], *, jobs: int | None = None, lang: 
             if progress and (k % 25 == 0 or k == len(work)):
                 progress(k, len(work))
     return rows
-
-
-_COLUMNS = ("file", "verdict", "problem", "problems", "formula", "n", "p5", "W",
-            "identification", "existence", "seconds")
-
-
-def rows_to_csv(rows: Iterable[BatchRow]) -> str:
-    """The rows as CSV text (a header line, then one line per file)."""
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(_COLUMNS)
-    for row in rows:
-        record = row.to_dict()
-        record["seconds"] = f"{row.seconds:.3f}"
-        writer.writerow(["" if record[c] is None else record[c] for c in _COLUMNS])
-    return buffer.getvalue()
-
-
-def summary(rows: Sequence[BatchRow], lang: str = "en") -> str:
-    """A plain-text table of the rows for the terminal, with totals."""
-    width = max((len(r.file) for r in rows), default=4)
-    words = {v: term(v, lang) for v in VERDICTS}
-    column = max(len(w) for w in words.values())
-    lines = [f"{row.file:<{width}}  {words[row.verdict]:<{column}}  {row.problem}".rstrip()
-             for row in rows]
-    counts = {v: sum(r.verdict == v for r in rows) for v in VERDICTS}
-    lines.append("")
-    lines.append(", ".join(f"{words[v]}: {counts[v]}" for v in VERDICTS)
-                 + f"; {term('files', lang)}: {len(rows)}")
-    return "\n".join(lines)
-
-
-def write_csv(rows: Sequence[BatchRow], path: str | os.PathLike[str]) -> None:
-    """Write the rows as CSV, atomically."""
-    atomic_write_text(path, rows_to_csv(rows))

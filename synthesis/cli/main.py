@@ -19,6 +19,7 @@ from collections.abc import Sequence
 from types import ModuleType
 
 from assur import AssurError
+from assur.text import render
 
 __all__ = ["main"]
 
@@ -35,8 +36,7 @@ def build_parser() -> argparse.ArgumentParser:
     """The argument parser with every discovered subcommand."""
     parser = argparse.ArgumentParser(
         prog="assur",
-        description="Structural analysis, kinematics and synthesis of planar lever mechanisms "
-                    "(Assur groups, DGTU method).")
+        description=render("cli.description"))
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
     commands.required = True
     for module in _command_modules():
@@ -55,7 +55,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(exc.text(getattr(args, "lang", "en")), file=sys.stderr)
         return 2
     except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
+        print(render("cli.interrupted", getattr(args, "lang", "en")), file=sys.stderr)
         return 130
 
 

@@ -11,7 +11,10 @@ import html
 import io
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = ["Section", "esc", "figure", "figure_html", "page", "table"]
 
@@ -89,7 +92,7 @@ def figure_html(data: bytes, fmt: str, caption: str, *, ident: str) -> str:
             f"</figure>")
 
 
-def figure(fig: Any, caption: str, *, ident: str, fmt: str = "svg") -> str:
+def figure(fig: Figure, caption: str, *, ident: str, fmt: str = "svg") -> str:
     """Render a matplotlib figure and embed it (see :func:`figure_html`)."""
     buffer = io.BytesIO()
     options: dict[str, Any] = {"metadata": {"Date": None}} if fmt == "svg" else {"dpi": 110}

@@ -6,32 +6,34 @@ import argparse
 import json
 import sys
 
+from assur.text import languages, render
+
 NAME = "batch"
-HELP = "check every table in a folder (structure, identification table, existence over the cycle)"
+HELP = render("cli.batch.help")
 ORDER = 60
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
     """Arguments of ``assur batch``."""
-    parser.add_argument("folder", metavar="DIR", help="folder of tables (*.yaml, searched "
-                                                      "recursively)")
-    parser.add_argument("--csv", metavar="FILE", help="also write the rows as CSV")
-    parser.add_argument("--json", action="store_true", help="print the rows as JSON")
+    parser.add_argument("folder", metavar="DIR", help=render("cli.batch.folder"))
+    parser.add_argument("--csv", metavar="FILE", help=render("cli.batch.csv"))
+    parser.add_argument("--json", action="store_true", help=render("cli.batch.json"))
     parser.add_argument("--jobs", type=int, default=None, metavar="N",
-                        help="worker processes (default: all local cores)")
-    parser.add_argument("--reports", metavar="DIR",
-                        help="also write a coursework report (HTML) for every readable table")
-    parser.add_argument("--lang", choices=("en", "ru"), default="en",
-                        help="language of the problems and reports")
-    parser.add_argument("--quiet", action="store_true", help="no progress on stderr")
+                        help=render("cli.batch.jobs"))
+    parser.add_argument("--reports", metavar="DIR", help=render("cli.batch.reports"))
+    parser.add_argument("--lang", choices=languages(), default="en",
+                        help=render("cli.batch.lang"))
+    parser.add_argument("--quiet", action="store_true", help=render("cli.batch.quiet"))
 
 
 def run(args: argparse.Namespace) -> int:
     """Check the folder; exit 0 whatever the tables contain (the rows say it)."""
-    from synthesis.app.batch import run_batch, summary, write_csv
+    from synthesis.app.batch import run_batch
+    from synthesis.app.batch_output import summary, write_csv
 
     if args.jobs is not None and args.jobs < 1:
-        print(f"--jobs must be a positive whole number; got {args.jobs}", file=sys.stderr)
+        print(render("cli.option_positive", args.lang, option="--jobs", found=args.jobs),
+              file=sys.stderr)
         return 2
     progress = None if args.quiet or args.json else _progress
     rows = run_batch(args.folder, jobs=args.jobs, lang=args.lang, progress=progress,

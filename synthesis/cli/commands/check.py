@@ -12,71 +12,32 @@ from __future__ import annotations
 import argparse
 import json
 
-from assur import (
-    AssurError,
-    StructuralAnalysis,
-    StructureError,
-    analyse_structure,
-    build_model,
-    check_identification,
-    identification_table,
-    load_chain,
-    structure_report,
-)
+from assur import save_schemes
+from assur.text import languages, render
+from synthesis.app.assess import assess
+from synthesis.app.check_report import check_record, check_text
 
 NAME = "check"
-HELP = "structural analysis of a chain table: mobility, Assur groups, formula, DGTU table"
+HELP = render("cli.check.help")
 ORDER = 10
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
     """Arguments of ``assur check``."""
-    parser.add_argument("table", help="chain table or identification table (YAML)")
-    parser.add_argument("--json", action="store_true", help="print one JSON object")
-    parser.add_argument("--lang", choices=("en", "ru"), default="en",
-                        help="language of the text report (default: en)")
-    parser.add_argument("--plot", metavar="FILE", default=None,
-                        help="draw the structural and formalised structural schemes "
-                             "(FILE.svg or FILE.png)")
+    parser.add_argument("table", help=render("cli.check.table"))
+    parser.add_argument("--json", action="store_true", help=render("cli.check.json"))
+    parser.add_argument("--lang", choices=languages(), default="en",
+                        help=render("cli.check.lang"))
+    parser.add_argument("--plot", metavar="FILE", default=None, help=render("cli.check.plot"))
 
 
 def run(args: argparse.Namespace) -> int:
     """Analyse the table and print the report."""
-    chain = load_chain(args.table)
-    analysis = analyse_structure(chain)
+    assessment = assess(args.table, points=None)
     if args.plot:
-        from assur import save_schemes
-
-        save_schemes(chain, analysis, args.plot, lang=args.lang)
-    try:
-        table = identification_table(analysis, _variants(analysis))
-    except StructureError:
-        table = None
-    mismatches = (check_identification(analysis, chain.identification)
-                  if chain.identification is not None else None)
+        save_schemes(assessment.chain, assessment.analysis, args.plot, lang=args.lang)
     if args.json:
-        payload = analysis.to_dict()
-        payload["identification_table"] = [row.to_dict() for row in table] if table else None
-        payload["identification_check"] = (
-            None if mismatches is None else [m.to_dict() for m in mismatches])
-        print(json.dumps(payload, ensure_ascii=False, indent=2))
+        print(json.dumps(check_record(assessment), ensure_ascii=False, indent=2))
     else:
-        print(structure_report(analysis, lang=args.lang, table=table, mismatches=mismatches,
-                               checked_rows=len(chain.identification or ())))
+        print(check_text(assessment, args.lang))
     return 0
-
-
-def _variants(analysis: StructuralAnalysis) -> dict[tuple[object, object], int] | None:
-    """Assembly sign of every dyad from the table's dimensions, if it gives valid ones.
-
-    Problems of the dimensions are not this command's business (``assur analyze`` reports
-    them); without usable dimensions the identification table shows the default variants.
-    """
-    chain = analysis.chain
-    if not (chain.geometry or chain.group_params):
-        return None
-    try:
-        model = build_model(analysis)
-    except AssurError:
-        return None
-    return {(group.i, group.j): group.sigma for group in model.groups if group.j is not None}

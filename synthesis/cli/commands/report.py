@@ -6,35 +6,36 @@ import argparse
 import json
 import sys
 
+from assur.text import languages, render
+
 NAME = "report"
-HELP = "write the coursework report (one HTML page: structure, schemes, existence, kinematics)"
+HELP = render("cli.report.help")
 ORDER = 50
+#: The fewest crank positions a report's diagrams take.
+MIN_POINTS = 8
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
     """Arguments of ``assur report``."""
-    parser.add_argument("table", metavar="TABLE.yaml",
-                        help="chain table, identification table or synthesis problem")
+    parser.add_argument("table", metavar="TABLE.yaml", help=render("cli.report.table"))
     parser.add_argument("--out", metavar="REPORT.html", default=None,
-                        help="the page to write (default: the table's name with .html)")
-    parser.add_argument("--lang", choices=("en", "ru"), default="en",
-                        help="language of the report (default: en)")
+                        help=render("cli.report.out"))
+    parser.add_argument("--lang", choices=languages(), default="en",
+                        help=render("cli.report.lang"))
     parser.add_argument("--points", type=int, default=360, metavar="N",
-                        help="crank positions of the kinematic analysis (default: 360)")
-    parser.add_argument("--json", action="store_true",
-                        help="print the key values of the report as JSON (the page is written "
-                             "as well)")
+                        help=render("cli.report.points"))
+    parser.add_argument("--json", action="store_true", help=render("cli.report.json"))
     parser.add_argument("--budget", type=int, default=None, metavar="M",
-                        help="synthesis problems: search 2**M trials (default: the problem's, "
-                             "at most 2**10)")
+                        help=render("cli.report.budget"))
 
 
 def run(args: argparse.Namespace) -> int:
     """Build and write the report; print where it went (or the key values as JSON)."""
     from synthesis.app.coursework import write_report
 
-    if args.points < 8:
-        print(f"--points must be at least 8; got {args.points}", file=sys.stderr)
+    if args.points < MIN_POINTS:
+        print(render("cli.option_at_least", args.lang, option="--points", low=MIN_POINTS,
+                     found=args.points), file=sys.stderr)
         return 2
     report = write_report(args.table, args.out, lang=args.lang, points=args.points,
                           budget=args.budget)

@@ -1,0 +1,155 @@
+"""Every position of a kinematic analysis as a JSON-ready record (``assur analyze --json``).
+
+Every list is aligned with ``input.values``. Points are in mm; ``d1``/``d2`` are the
+velocity and acceleration analogs (derivatives w.r.t. the input coordinate: per radian of
+crank rotation, or per mm of actuator length); link angles are in degrees, their analogs in
+rad/rad. Missing values (no assembly) are null.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from assur import (
+    CONDITIONS,
+    Jet,
+    acceleration,
+    joint_rotations,
+    pressure_angles,
+    unwrap,
+    values,
+    velocity,
+)
+from synthesis.app.analysis import TableAnalysis, as_jet, moving_links
+
+__all__ = ["analysis_record", "number"]
+
+#: A JSON value of the record.
+Record = dict[str, Any]
+
+
+def number(value: float) -> float | None:
+    """A float for JSON: None where it is not finite."""
+    return float(value) if math.isfinite(value) else None
+
+
+def _floats(data: npt.ArrayLike) -> list[float | None]:
+    return [number(v) for v in np.asarray(data, dtype=float).ravel()]
+
+
+def _xy(z: npt.ArrayLike) -> Record:
+    z = np.asarray(z)
+    return {"x": _floats(z.real), "y": _floats(z.imag)}
+
+
+def _derivatives(jet: Jet, omega: float | None, out: Record,
+                 form: Callable[[npt.ArrayLike], Any]) -> Record:
+    """``out`` with the analogs of ``jet`` and, given ``omega``, its velocity and
+    acceleration, each written by ``form`` (points or numbers)."""
+    out["d1"] = form(jet.d1)
+    out["d2"] = form(jet.d2)
+    if omega is not None:
+        out["velocity"] = form(velocity(jet, omega))
+        out["acceleration"] = form(acceleration(jet, omega))
+    return out
+
+
+def _point(jet: Jet, omega: float | None) -> Record:
+    return _derivatives(jet, omega, _xy(jet.v), _xy)
+
+
+def _scalar(jet: Jet, omega: float | None) -> Record:
+    return _derivatives(jet, omega, {"value": _floats(jet.v)}, _floats)
+
+
+def analysis_record(result: TableAnalysis) -> Record:
+    """Every position of an analysis as a JSON-ready mapping.
+
+    Parameters
+    ----------
+    result : TableAnalysis
+
+    Returns
+    -------
+    dict
+        ``mechanism``, ``source``, ``drive``, ``direction``, ``input``, ``parameters``,
+        ``groups`` (with their existence), ``links``, ``joints``, ``sliders``, ``tracing``,
+        ``all_exist``, ``pressure_angles``, ``joint_rotations``; ``omega`` when given.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
+    >>> from synthesis.app.analysis import analyse_table
+    >>> record = analysis_record(analyse_table(tables / "course_11_link.yaml", points=8))
+    >>> record["input"]["values"][:3], record["all_exist"]
+    ([0.0, 45.0, 90.0], True)
+    """
+    model, motion, report, omega = result.model, result.motion, result.existence, result.omega
+    crank = result.crank
+    out: Record = {
+        "mechanism": model.name, "source": model.source, "drive": model.drive,
+        "direction": model.direction,
+        "input": {"name": "phi" if crank else "actuator_length",
+                  "unit": "deg" if crank else "mm",
+                  "values": _floats(np.degrees(motion.q) if crank else motion.q)},
+        "parameters": {name: float(np.asarray(v)) for name, v in model.params.items()},
+        "groups": [], "links": {}, "joints": {}, "sliders": {}, "tracing": {},
+        "all_exist": report.all_exist,
+    }
+    if omega is not None:
+        out["omega"] = omega
+    dyad_reports = {g.label: g for g in report.groups}
+    for group in model.groups:
+        sol = motion.solutions[group.label]
+        item: Record = {"label": group.label, "name": group.name, "kind": group.kind,
+                        "i": group.i, "j": group.j, "sigma": group.sigma,
+                        "pairs": dict(group.pairs)}
+        if group.label in dyad_reports:
+            ex = dyad_reports[group.label]
+            item["existence"] = {
+                "verdict": ex.verdict, "delta": ex.delta, "min_margin": number(ex.min_margin),
+                "condition": CONDITIONS[group.kind],
+                "intervals": [i.to_dict(crank) for i in ex.intervals],
+                "evaluated": [bool(v) for v in ex.evaluated],
+                "exists": [bool(v) for v in np.asarray(sol.exists).ravel()],
+                "first_failing": [bool(v) for v in ex.fails],
+                "margin": _floats(sol.margin),
+                "reason": [int(v) for v in np.asarray(sol.reason).ravel()]}
+        out["groups"].append(item)
+    for link in moving_links(model):
+        origin, angle = motion.frames[link]
+        entry = _scalar(as_jet(angle), omega)
+        entry["value"] = _floats(np.degrees(unwrap(values(angle))))
+        out["links"][str(link)] = {"angle_deg": entry, "origin": _xy(values(origin)),
+                                   "group": model.links[link][0]}
+    for pid, z in motion.joints.items():
+        entry = _point(as_jet(z), omega)
+        entry["links"] = list(model.pair_links[pid][1])
+        out["joints"][str(pid)] = entry
+    for pid, slider in motion.sliders.items():
+        out["sliders"][str(pid)] = {
+            "carrier": slider.carrier, "slider": slider.slider,
+            "s": _scalar(as_jet(slider.s), omega), "point": _xy(values(slider.point)),
+            "base": _xy(values(slider.base)),
+            "angle_deg": _floats(np.degrees(values(slider.angle))),
+            "offset": float(np.asarray(slider.offset))}
+    for name, point in motion.tracing.items():
+        entry = _point(as_jet(point), omega)
+        entry["link"] = next(t.anchor.link for t in model.tracing if t.name == name)
+        out["tracing"][name] = entry
+    out["pressure_angles"] = [
+        {"group": p.label, "pair": p.pair, "binary_links": list(p.binary),
+         "alpha_deg": _floats(np.degrees(p.alpha)), "max_deg": number(math.degrees(p.maximum))}
+        for p in pressure_angles(motion)]
+    out["joint_rotations"] = [
+        {"pair": r.pair, "links": list(r.links), "group": r.group, "full_turn": r.full_turn,
+         "swing_deg": number(math.degrees(r.swing)), "theta_deg": _floats(np.degrees(r.theta))}
+        for r in joint_rotations(motion)]
+    return out

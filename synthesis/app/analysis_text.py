@@ -1,0 +1,133 @@
+"""The text report of a kinematic analysis (``assur analyze``), in any catalogue language.
+
+The existence verdict of every group (with the intervals where it cannot be assembled), the
+ranges of the outputs, the largest pressure angles and the swing of every revolute joint.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from assur import (
+    CONDITIONS,
+    joint_rotations,
+    pressure_angles,
+    reason_text,
+    unwrap,
+    values,
+)
+from assur.text import render
+from synthesis.app.analysis import TableAnalysis, moving_links
+
+__all__ = ["analysis_text", "position_text"]
+
+
+def position_text(result: TableAnalysis, value: float) -> str:
+    """An input position as the report writes it: ``φ = 12.50°`` or ``l = 40.000 mm``."""
+    if result.crank:
+        return f"φ = {math.degrees(value):.2f}°"
+    return f"l = {value:.3f} mm"
+
+
+def analysis_text(result: TableAnalysis, lang: str = "en") -> str:
+    """The text report of one analysis.
+
+    Parameters
+    ----------
+    result : TableAnalysis
+    lang : str
+        A catalogue language.
+
+    Returns
+    -------
+    str
+        Several lines, without a final newline.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
+    >>> from synthesis.app.analysis import analyse_table
+    >>> result = analyse_table(tables / "course_11_link.yaml", points=36)
+    >>> analysis_text(result).splitlines()[0].split(" (")[0]
+    'Kinematic analysis: DGTU example, fig. 1.25'
+    """
+    model, motion, report = result.model, result.motion, result.existence
+    lines = [render("analyze.title", lang, name=model.name, source=model.source)]
+    n = motion.q.size
+    if result.crank:
+        turning = (render("analyze.ccw", lang) if model.direction > 0
+                   else render("analyze.cw", lang))
+        lines.append(render("analyze.crank", lang, link=model.groups[0].i, n=n, dir=turning))
+    else:
+        lines.append(render("analyze.actuator", lang, lo=model.input_range[0],
+                            hi=model.input_range[1], n=n))
+    lines += ["", render("analyze.existence", lang)]
+    units = {"mm": render("analyze.unit_mm", lang), "deg": "°"}
+    verdicts = {"assembles": render("analyze.assembles", lang),
+                "reached": render("analyze.reached", lang),
+                "fails": render("analyze.fails", lang),
+                "not evaluated": render("analyze.not_evaluated", lang)}
+    for group in report.groups:
+        reached = group.verdict == "assembles" and not group.evaluated.all()
+        lines.append(f"  {group.name:<20} {verdicts['reached' if reached else group.verdict]}; "
+                     + render("analyze.margin", lang, m=group.min_margin, d=group.delta))
+        lines.append(f"  {'':<20} {CONDITIONS[group.kind]}")
+        for item in group.intervals:
+            lines.append("    " + render("analyze.interval", lang,
+                                         a=position_text(result, item.start),
+                                         b=position_text(result, item.end),
+                                         why=reason_text(item.reason, lang),
+                                         v=item.shortfall, unit=units[item.unit],
+                                         w=position_text(result, item.worst_at)))
+        skipped = int((~group.evaluated).sum())
+        if skipped and group.evaluated.any():
+            lines.append("    " + render("analyze.skipped", lang, n=skipped))
+    broken = int((report.first >= 0).sum())
+    lines.append(render("analyze.verdict_ok", lang) if broken == 0 else
+                 render("analyze.verdict_bad", lang, n=broken, total=n))
+    lines += ["", render("analyze.outputs", lang)]
+    for link in moving_links(model):
+        angle = np.degrees(unwrap(values(motion.link_angle(link))))
+        lines.append(f"  {render('analyze.link', lang, link=link):<34} {_range(angle, '°')}")
+    for pid, slider in motion.sliders.items():
+        label = render("analyze.slider", lang, slider=slider.slider, carrier=slider.carrier,
+                       pair=pid)
+        lines.append(f"  {label:<34} {_range(values(slider.s), ' mm')}")
+    for name, point in motion.tracing.items():
+        z = values(point)
+        lines.append(f"  {render('analyze.trace', lang, name=name):<34} "
+                     f"x {_range(z.real, ' mm')}, y {_range(z.imag, ' mm')}")
+    lines += ["", *_pressure_lines(result, lang)]
+    lines += ["", render("analyze.rotations", lang)]
+    for turn in joint_rotations(motion):
+        swing = (render("analyze.full", lang) if turn.full_turn
+                 else f"{math.degrees(turn.swing):8.2f}°")
+        lines.append(f"  {turn.pair!s:<8} {turn.links[0]}–{turn.links[1]:<4} "
+                     f"{turn.group:<12} {swing}")
+    return "\n".join(lines)
+
+
+def _pressure_lines(result: TableAnalysis, lang: str) -> list[str]:
+    """The largest pressure angle of every L1/L2 group with a two-hinge rod."""
+    angles = pressure_angles(result.motion)
+    if not angles:
+        return [render("analyze.no_pressure", lang)]
+    lines = [render("analyze.pressure", lang)]
+    for item in angles:
+        at = int(np.nanargmax(item.alpha)) if np.isfinite(item.alpha).any() else 0
+        lines.append("  " + render("analyze.alpha", lang, label=item.label, pair=item.pair,
+                                   a=math.degrees(item.maximum),
+                                   at=position_text(result, float(result.motion.q[at]))))
+    return lines
+
+
+def _range(data: np.ndarray, unit: str) -> str:
+    data = np.asarray(data, dtype=float)
+    if not np.isfinite(data).any():
+        return "—"
+    lo, hi = float(np.nanmin(data)), float(np.nanmax(data))
+    return f"{lo:9.3f} … {hi:9.3f}{unit} (Δ {hi - lo:.3f})"

@@ -1,0 +1,253 @@
+"""Check a student's table the way the course checks a coursework: one function, one result.
+
+:func:`assess` reads a chain table, an identification table or a synthesis problem (the
+problem's mechanism at its initial design), or takes a chain already read, and runs the
+course's checks once:
+
+1. the structure (counts, W, decomposition into Assur groups, applicability of the method);
+2. the DGTU identification table the program fills, with the assembly variants of the
+   dimensions when the table gives any;
+3. the identification table given in the file, field by field against the chain, and its
+   assembly variants against the dimensions;
+4. the kinematic model (or why there is none) and the existence of every group over the
+   cycle.
+
+The :class:`Assessment` holds numbers, codes and catalogue messages, never sentences in one
+language: ``assur check``, ``assur report`` and ``assur batch`` render it in theirs.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from assur import (
+    AssurError,
+    Chain,
+    ExistenceReport,
+    GroupModel,
+    IdentificationRow,
+    KinematicModel,
+    Mismatch,
+    StructuralAnalysis,
+    StructureError,
+    analyse_structure,
+    build_model,
+    chain_from_dict,
+    check_existence,
+    check_identification,
+    identification_table,
+    load_chain,
+)
+from assur.text import Message
+
+__all__ = ["Assessment", "VariantFinding", "assess", "is_problem", "load_table_chain"]
+
+#: The table name used in the labels of the student's rows.
+TABLE = "structure_identification"
+#: Tables that only a synthesis problem has.
+_SYNTHESIS_KEYS = ("parameters", "control_points", "allowable")
+
+
+@dataclass(frozen=True)
+class VariantFinding:
+    """A row of the student's table whose assembly variant is not the one of the dimensions.
+
+    The structure alone cannot tell the assembly variant σ of an RRR or RRP dyad
+    (``method.md`` §3.4 rule 7 only limits it to ±1); the dimensions can.
+
+    Attributes
+    ----------
+    row : int
+        Index of the row in the student's table.
+    kind : object
+        The row's ``L`` as given.
+    group : GroupModel
+        The dyad of the kinematic model with the row's links; its ``sigma`` is the variant
+        in which the dimensions assemble it.
+    given : int
+        The variant written in the table.
+    """
+
+    row: int
+    kind: object
+    group: GroupModel
+    given: int
+
+    @property
+    def message(self) -> Message:
+        """The finding as a catalogue message (code ``check.variant_differs``)."""
+        return Message("check.variant_differs", {
+            "table": TABLE, "row": self.row, "L": self.kind, "i": self.group.i,
+            "j": self.group.j, "sigma": self.group.sigma, "given": self.given})
+
+
+@dataclass(frozen=True)
+class Assessment:
+    """Everything the course checks on one table.
+
+    Attributes
+    ----------
+    chain : Chain
+        The chain checked (for a synthesis problem: its mechanism at the design assessed).
+    analysis : StructuralAnalysis
+    table : tuple of IdentificationRow or None
+        The identification table filled by the program in layering order, with the assembly
+        variants of the dimensions when there is a kinematic model; None when the chain is
+        not made of input groups and dyads of kinds 1–5 (:attr:`table_error` says why).
+    table_error : StructureError or None
+    mismatches : tuple of Mismatch or None
+        The student's identification table against the chain; None when the file gives no
+        table.
+    variants : tuple of VariantFinding
+        The student's rows whose assembly variant the dimensions contradict.
+    model : KinematicModel or None
+        The kinematic model of the dimensions.
+    why_no_model : Message or AssurError or None
+        Why there is no model: the table gives no dimensions (``term.no_geometry``), the
+        course method does not apply (``term.not_applicable``), or the dimensions are wrong
+        (the error, which lists every problem). None when there is a model.
+    existence : ExistenceReport or None
+        Existence of every group over the cycle; None without a model or when not asked for.
+    """
+
+    chain: Chain
+    analysis: StructuralAnalysis
+    table: tuple[IdentificationRow, ...] | None
+    table_error: StructureError | None
+    mismatches: tuple[Mismatch, ...] | None
+    variants: tuple[VariantFinding, ...]
+    model: KinematicModel | None
+    why_no_model: Message | AssurError | None
+    existence: ExistenceReport | None
+
+    @property
+    def identification(self) -> str:
+        """The verdict on the student's table: ``matches``, ``differs`` or ``not given``."""
+        if self.mismatches is None:
+            return "not given"
+        return "differs" if self.mismatches or self.variants else "matches"
+
+    def failed_conditions(self, lang: str = "en") -> tuple[str, ...]:
+        """The conditions of the course method that the chain fails, in ``lang``."""
+        analysis = self.analysis
+        return analysis.applicability_ru if lang == "ru" else analysis.applicability
+
+    def mismatch_texts(self, lang: str = "en") -> list[tuple[Mismatch, str]]:
+        """Every mismatch of the student's table with its sentence in ``lang``."""
+        return [(m, m.message_ru if lang == "ru" else m.message) for m in self.mismatches or ()]
+
+    @property
+    def rows_given(self) -> int:
+        """Number of rows of the student's table."""
+        return len(self.chain.identification or ())
+
+
+def is_problem(path: str | os.PathLike[str]) -> bool:
+    """Whether a table file is a synthesis problem (it has the problem's own tables)."""
+    import yaml  # type: ignore[import-untyped]
+
+    try:
+        data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, yaml.YAMLError):
+        return False
+    return isinstance(data, dict) and any(key in data for key in _SYNTHESIS_KEYS)
+
+
+def load_table_chain(path: str | os.PathLike[str]) -> Chain:
+    """The chain of a table file; for a synthesis problem, its mechanism at the initial design.
+
+    Raises
+    ------
+    AssurError
+        When the file cannot be read as a table (every problem listed).
+    """
+    if is_problem(path):
+        from synthesis.problem import load_problem
+
+        problem = load_problem(path)
+        return chain_from_dict(problem.mechanism_table(problem.initial), source=str(path))
+    return load_chain(path)
+
+
+def assess(table: str | os.PathLike[str] | Chain, *, points: int | None = 360) -> Assessment:
+    """Check a student's table: structure, identification table, variants, existence.
+
+    Parameters
+    ----------
+    table : path-like or Chain
+        A chain table, an identification table or a synthesis problem (checked at its
+        initial design), or a chain already read.
+    points : int or None
+        Crank positions of the existence check over the cycle (the interval ends are
+        refined anyway); None leaves the existence out.
+
+    Returns
+    -------
+    Assessment
+
+    Raises
+    ------
+    AssurError
+        When the file cannot be read as a table (every problem listed). Problems of the
+        mechanism itself are findings of the result, never exceptions.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
+    >>> from synthesis.app.assess import assess
+    >>> found = assess(tables / "course_11_link_table.yaml", points=36)
+    >>> found.analysis.formula.split(" → ")[:2], found.identification
+    (['I(0,1)', 'II₁(2,3)'], 'matches')
+    >>> found.existence.all_exist
+    True
+    """
+    chain = table if isinstance(table, Chain) else load_table_chain(Path(table))
+    analysis = analyse_structure(chain)
+    model, why_not = _model(analysis)
+    sigma = {} if model is None else {(g.i, g.j): g.sigma for g in model.groups
+                                      if g.j is not None}
+    try:
+        rows: tuple[IdentificationRow, ...] | None = tuple(
+            identification_table(analysis, sigma or None))
+        table_error = None
+    except StructureError as exc:
+        rows, table_error = None, exc
+    given = chain.identification
+    mismatches = None if given is None else tuple(check_identification(analysis, given))
+    variants = () if given is None or model is None else tuple(_variants(model, given))
+    existence = (check_existence(model, points=points)
+                 if model is not None and points is not None else None)
+    return Assessment(chain, analysis, rows, table_error, mismatches, variants, model,
+                      why_not, existence)
+
+
+def _model(analysis: StructuralAnalysis) -> tuple[KinematicModel | None,
+                                                  Message | AssurError | None]:
+    """The kinematic model of the table's dimensions, or None and why there is none."""
+    chain = analysis.chain
+    if not (chain.geometry or chain.group_params):
+        return None, Message("term.no_geometry")
+    if not (analysis.decomposed and analysis.applicable):
+        return None, Message("term.not_applicable")
+    try:
+        return build_model(analysis), None
+    except AssurError as exc:
+        return None, exc
+
+
+def _variants(model: KinematicModel, rows: Iterable[Mapping[str, Any]]) -> list[VariantFinding]:
+    """The L1/L2 rows whose ``variant`` differs from the σ of the model."""
+    dyads = [g for g in model.groups if g.kind in (1, 2)]
+    found = []
+    for index, row in enumerate(rows):
+        given = row.get("variant")
+        found += [VariantFinding(index, row.get("L"), g, given) for g in dyads
+                  if (g.i, g.j) == (row.get("i"), row.get("j"))
+                  and given in (1, -1) and given != g.sigma]
+    return found

@@ -423,6 +423,8 @@ def _rrr_readable(h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.
     :func:`assur.kinematics._fast.rrr` computes the same, in the same order, for plain arrays.
     """
     r = h_j - h_i
+    if type(r) in _NUMBERS:  # numpy arithmetic: a zero distance divides to inf, not an error
+        r = np.complex128(r)
     rx, ry = J.real(r), J.imag(r)
     d2 = rx * rx + ry * ry
     d = J.sqrt(d2)

@@ -13,10 +13,11 @@ from __future__ import annotations
 import cmath
 import math
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
-__all__ = ["BLOCK", "NUMBERS", "REALS", "crank_applies", "crank_pin", "finite", "positive", "rrr"]
+__all__ = ["BLOCK", "NUMBERS", "REALS", "crank_pin", "finite", "positive", "rrr"]
 
 #: Positions per block of the RRR kernel in large calls.
 BLOCK = 8192
@@ -41,21 +42,19 @@ def finite(x: np.ndarray) -> bool:
     return cmath.isfinite(x.dot(x) if x.ndim == 1 else np.add.reduce(x, axis=None))
 
 
-def crank_applies(o: object, length: object, angle: object) -> bool:
-    """Whether :func:`crank_pin` serves these arguments: finite numbers, a float angle array."""
-    return (type(angle) is np.ndarray and angle.ndim > 0 and angle.dtype == float
-            and type(o) in NUMBERS and cmath.isfinite(o)  # type: ignore[arg-type]
-            and (type(length) in REALS and math.isfinite(length)  # type: ignore[arg-type]
-                 or type(length) is np.ndarray and length.dtype == float and finite(length))
-            and finite(angle))
+def crank_pin(o: Any, length: Any, angle: Any) -> np.ndarray | None:
+    """Crank pin ``O + l·u(φ₁)`` of the crank solver's arguments, or None if not served here.
 
-
-def crank_pin(o: complex, length: float | np.ndarray, angle: np.ndarray) -> np.ndarray:
-    """Crank pin ``O + l·u(φ₁)`` for finite arguments (see :func:`crank_applies`).
-
-    The unit vectors are scaled as interleaved (x, y) pairs: in place for one length, by the
-    per-design lengths (shape ``(D, 1)``) into a new array for many designs.
+    Served: a finite pivot number, a finite length (a number, or per-design lengths of shape
+    ``(D, 1)``) and a finite float array of angles. The unit vectors are scaled as
+    interleaved (x, y) pairs: in place for one length, into a new array for many designs.
     """
+    if not (type(angle) is np.ndarray and angle.ndim > 0 and angle.dtype == float
+            and type(o) in NUMBERS and cmath.isfinite(o)
+            and (type(length) in REALS and math.isfinite(length)
+                 or type(length) is np.ndarray and length.dtype == float and finite(length))
+            and finite(angle)):
+        return None
     unit = np.empty(angle.shape, dtype=complex)
     np.cos(angle, out=unit.real)
     np.sin(angle, out=unit.imag)
@@ -77,11 +76,9 @@ def _blocks(shape: tuple[int, ...]) -> list[slice]:
     return [slice(k, k + step) for k in range(0, shape[0], step)]
 
 
-def rrr(
-    h_i: complex | np.ndarray, h_j: complex | np.ndarray, l_i: float | np.ndarray,
-    l_j: float | np.ndarray, s: float | np.ndarray, shape: tuple[int, ...], limits: Limits,
-) -> tuple:
-    """``dyads._rrr_readable`` for plain arrays, over blocks of ``BLOCK`` positions.
+def rrr(h_i: Any, h_j: Any, l_i: Any, l_j: Any, s: Any, shape: tuple[int, ...],
+        limits: Limits) -> tuple:
+    """``dyads._rrr_readable`` for plain numbers and arrays, over blocks of ``BLOCK`` positions.
 
     Returns C, φ_i, φ_j, the margin, the hinge distance d and the smallest margin. ``limits``
     settles toggles and coincident hinges where some position may not assemble. Blocking
@@ -95,9 +92,10 @@ def rrr(
     outputs = (np.empty(shape, complex), *(np.empty(shape) for _ in range(4)))
     lowest = np.inf
     for rows in _blocks(shape):
-        part = [x if getattr(x, "ndim", 0) == 0 else x[rows] for x in args]
+        h_i, h_j, l_i, l_j, s = (x if getattr(x, "ndim", 0) == 0 else x[rows] for x in args)
         block = tuple(out[rows] for out in outputs)
-        lowest = np.minimum(lowest, _rrr_block(*part, block[0].shape, limits, block)[-1])
+        lowest = np.minimum(lowest, _rrr_block(h_i, h_j, l_i, l_j, s, block[0].shape, limits,
+                                               block)[-1])
     return (*outputs, lowest)  # the minimum keeps a NaN
 
 
@@ -110,15 +108,14 @@ def _zero_dim(*values: object) -> tuple:
     return tuple(np.array(x, np.float64) if type(x) in REALS else x for x in values)
 
 
-def positive(x: float | np.ndarray) -> bool:
+def positive(x: Any) -> bool:
     """Whether the number or every element of the array ``x`` is positive."""
     return bool((x if type(x) in REALS else np.minimum.reduce(x, axis=None)) > 0.0)
 
 
 @np.errstate(all="ignore")
 def _rrr_block(
-    h_i: complex | np.ndarray, h_j: complex | np.ndarray, l_i: float | np.ndarray,
-    l_j: float | np.ndarray, s: float | np.ndarray, shape: tuple[int, ...], limits: Limits,
+    h_i: Any, h_j: Any, l_i: Any, l_j: Any, s: Any, shape: tuple[int, ...], limits: Limits,
     out: tuple[np.ndarray, ...] | None = None,
 ) -> tuple:
     """``dyads._rrr_readable`` for plain arrays of ``shape``, in real arithmetic.

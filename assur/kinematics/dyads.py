@@ -25,7 +25,7 @@ import cmath
 from collections.abc import Callable, Iterator, Mapping
 from enum import IntEnum
 from functools import lru_cache
-from typing import NamedTuple
+from typing import Any, NamedTuple, cast
 
 import numpy as np
 
@@ -48,6 +48,9 @@ __all__ = [
 ]
 
 Value = Jet | np.ndarray | complex | float
+
+#: The geometric outputs of a solver: C, origin_i, angle_i, origin_j, angle_j, s_i, s_j.
+Geometry = tuple[Value, Value, Value, Value | None, Value | None, Value | None, Value | None]
 
 #: Relative tolerance of the existence decisions: a limit passed by no more than this times the
 #: group's size is read as the toggle position itself (margin 0); guides parallel within it
@@ -159,7 +162,7 @@ def _branch(sigma: float | np.ndarray) -> float | np.ndarray:
     return np.where(sigma < 0, -1.0, 1.0)
 
 
-def _layout(*args: object) -> tuple[tuple[int, ...], bool]:
+def _layout(*args: Any) -> tuple[tuple[int, ...], bool]:
     """Broadcast shape of the values of ``args`` and whether any of them is a jet."""
     shape: tuple[int, ...] = ()
     jets = False
@@ -196,18 +199,19 @@ def _assembled(shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarr
             _constant(np.int8(Reason.ASSEMBLES), shape))
 
 
-def _spread(x: Value, shape: tuple[int, ...]) -> Value:
+def _spread(x: Any, shape: tuple[int, ...]) -> Value:
     """``x`` with its value broadcast to ``shape``: ``x`` itself, or a read-only view."""
     if type(x) is Jet:
         return x if x.v.shape == shape else Jet(np.broadcast_to(x.v, shape), x.d1, x.d2)
     if getattr(x, "shape", ()) == shape:
         return x
     if getattr(x, "ndim", 0) == 0:
-        return _constant(x[()] if type(x) is np.ndarray else x, shape)
+        number: Any = x[()] if type(x) is np.ndarray else x
+        return _constant(number, shape)
     return np.broadcast_to(x, shape)
 
 
-def _lowest(margin: np.ndarray) -> float:
+def _lowest(margin: Any) -> float:
     """The smallest margin (NaN if any is NaN; +inf for no position), in one reduction."""
     return np.minimum.reduce(margin, axis=None) if np.size(margin) else np.inf
 
@@ -220,9 +224,8 @@ def _settled(lowest: float, *lengths: Value) -> bool:
     return lowest >= 0.0 and all(_fast.positive(J.value(x)) for x in lengths)
 
 
-def _settle(
-    margin: np.ndarray, deficit: np.ndarray, size: np.ndarray, degenerate: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray]:
+def _settle(margin: Any, deficit: Any, size: Any, degenerate: Any,
+            ) -> tuple[np.ndarray, np.ndarray]:
     """The margin with toggles read as 0 and degenerate groups as NaN, and the toggle mask.
 
     ``deficit`` is the length by which the nearest limit of the group is passed (negative
@@ -234,9 +237,7 @@ def _settle(
     return np.where(degenerate, np.nan, np.where(toggle, 0.0, margin)), toggle
 
 
-def _blank(
-    geometry: tuple[Value | None, ...], bad: np.ndarray, owned: tuple[Value, ...],
-) -> tuple[Value | None, ...]:
+def _blank(geometry: Geometry, bad: np.ndarray, owned: tuple[Value, ...]) -> Geometry:
     """The outputs ``geometry`` with NaN where ``bad`` (an output repeated is blanked once).
 
     Arrays in ``owned`` (made by the solver for this call) are blanked in place; the others
@@ -247,12 +248,12 @@ def _blank(
     for x in geometry:
         if x is not None and id(x) not in done:
             nan = complex(np.nan, np.nan) if np.iscomplexobj(J.value(x)) else np.nan
-            if id(x) in fresh:
+            if id(x) in fresh and isinstance(x, np.ndarray):
                 np.copyto(x, nan, where=bad)
                 done[id(x)] = x
             else:
                 done[id(x)] = J.where(bad, nan, x)
-    return tuple(None if x is None else done[id(x)] for x in geometry)
+    return cast(Geometry, tuple(None if x is None else done[id(x)] for x in geometry))
 
 
 def _undefined(inputs: tuple[Value, ...]) -> np.ndarray | bool:
@@ -264,7 +265,7 @@ def _undefined(inputs: tuple[Value, ...]) -> np.ndarray | bool:
     for x in inputs:
         v = J.value(x)
         kind = type(v)
-        if kind in _NUMBERS and cmath.isfinite(v) or kind is np.ndarray and _fast.finite(v):
+        if kind in _NUMBERS and cmath.isfinite(v) or isinstance(v, np.ndarray) and _fast.finite(v):
             continue
         undefined = undefined | ~np.isfinite(v)
     return undefined
@@ -275,8 +276,8 @@ def _finish(
     inputs: tuple[Value, ...],
     margin: np.ndarray,
     delta: float | np.ndarray,
-    failure: Callable[[], np.ndarray],
-    geometry: tuple[Value | None, ...],
+    failure: Callable[[], np.ndarray | int],
+    geometry: Geometry,
     jets: bool,
     above: float | None = None,
     lowest: float | None = None,
@@ -294,7 +295,8 @@ def _finish(
     """
     margin = margin if margin.shape == shape else np.broadcast_to(margin, shape)
     if jets:  # constant outputs become jets too
-        geometry = tuple(x if x is None or type(x) is Jet else Jet(x) for x in geometry)
+        geometry = cast(Geometry, tuple(x if x is None or isinstance(x, Jet) else Jet(x)
+                                        for x in geometry))
     if lowest is None:
         lowest = _lowest(margin)
     if lowest >= (delta if type(delta) in _NUMBERS else np.max(delta)) and (
@@ -331,19 +333,18 @@ def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
     DyadSolution
         ``c`` = crank pin, ``origin_i`` = O₁, ``angle_i`` = φ₁; margin 1 (always assembles).
     """
-    if _fast.crank_applies(o, length, angle):
-        pin = _fast.crank_pin(o, length, angle)
+    pin = _fast.crank_pin(o, length, angle)
+    if pin is not None:
         shape = pin.shape
-        return DyadSolution(pin, _constant(o, shape), _spread(angle, shape), None, None, None,
+        return DyadSolution(pin, _spread(o, shape), _spread(angle, shape), None, None, None,
                             None, *_assembled(shape))
     shape, jets = _layout(o, length, angle)
     with np.errstate(all="ignore"):
-        pin = length * J.expi(angle)
-        pin = np.add(pin, o, out=pin) if type(pin) is np.ndarray else pin + o
-        margin = np.where(np.isfinite(J.value(pin)), 1.0, np.nan)
+        point = length * J.expi(angle) + o
+        margin = np.where(np.isfinite(J.value(point)), 1.0, np.nan)
     return _finish(
         shape, (o, length, angle), margin, 0.0, lambda: Reason.UNDEFINED_INPUT,
-        (pin, _spread(o, shape), _spread(angle, shape), None, None, None, None), jets,
+        (point, _spread(o, shape), _spread(angle, shape), None, None, None, None), jets,
     )
 
 
@@ -423,7 +424,7 @@ def _rrr_readable(h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.
     :func:`assur.kinematics._fast.rrr` computes the same, in the same order, for plain arrays.
     """
     r = h_j - h_i
-    if type(r) in _NUMBERS:  # numpy arithmetic: a zero distance divides to inf, not an error
+    if not isinstance(r, (Jet, np.ndarray)):  # numpy arithmetic: 1/0 is inf, not an error
         r = np.complex128(r)
     rx, ry = J.real(r), J.imag(r)
     d2 = rx * rx + ry * ry
@@ -446,9 +447,8 @@ def _rrr_readable(h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.
     return h_i + arm_i, J.arg(arm_i), J.arg(arm_i - r), margin, J.value(d), lowest
 
 
-def _rrr_limits(
-    l_i: np.ndarray, l_j: np.ndarray, d: np.ndarray, margin: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _rrr_limits(l_i: Any, l_j: Any, d: Any, margin: Any,
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """RRR existence where some position may not assemble (see :func:`solve_rrr`).
 
     Returns the margin with toggles read as 0 and coincident hinges as NaN, the toggle mask
@@ -525,7 +525,8 @@ def _rrp_geometry(
     w = J.conj(u) * reach - 1j * e  # (p + j·h): H_j in the frame of the path of C
     p, h = J.real(w), J.imag(w)
     habs = J.abs(h)
-    rod, offset = J.value(l_j), J.value(habs)
+    rod: Any = J.value(l_j)
+    offset = J.value(habs)
     margin = 1.0 - offset / rod
     leg2 = (l_j - habs) * (l_j + habs)
     lowest = _lowest(margin)

@@ -273,6 +273,21 @@ def test_extreme_proportions_decided_on_the_lengths() -> None:
         assert not sol.exists and sol.reason == Reason.STRETCHED
 
 
+def test_closure_of_thin_triangles() -> None:
+    # links of 1e6 mm on hinges 1e-3 … 2e-3 mm apart: l_i² − l_j² is a difference of nearly
+    # equal squares, to be taken as (l_i − l_j)(l_i + l_j)
+    rng = np.random.default_rng(6)
+    l_i = np.full(1000, 1e6)
+    l_j = l_i + rng.uniform(-1e-3, 1e-3, l_i.size)
+    h_i = 0.3 + 0.2j
+    h_j = h_i + 1e-3 * rng.uniform(1.0, 2.0, l_i.size) * direction(rng, l_i.size)
+    sol = solve_rrr(h_i, h_j, l_i, l_j, 1.0)
+    size = l_i + l_j + np.abs(h_j - h_i)
+    assert sol.exists.all()
+    for residual in (np.abs(sol.c - h_i) - l_i, np.abs(sol.c - h_j) - l_j):
+        assert np.all(np.abs(residual) <= CLOSURE * size)
+
+
 @pytest.mark.parametrize("long_j", [False, True])
 def test_toggles_inside_the_band_close_at_any_proportions(long_j: bool) -> None:
     # folded over H_j (or H_i): l_i − l_j = 1e-3 mm with links of 1e6 mm; the hinge distance

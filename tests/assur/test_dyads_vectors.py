@@ -5,14 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from assur.kinematics.dyads import (
-    solve_input,
-    solve_prp,
-    solve_rpp,
-    solve_rpr,
-    solve_rrp,
-    solve_rrr,
-)
+from assur.kinematics.dyads import solve_input, solve_prp, solve_rpp
+from assur.kinematics.dyads import solve_rpr, solve_rrp, solve_rrr
 
 DEG = np.pi / 180.0
 TOL = 5e-5  # the table quotes 4 decimals

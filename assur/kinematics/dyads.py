@@ -434,7 +434,8 @@ def _rrr_readable(h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.
     above = (d + l_dif) * (l_sum + d)  # 2·l_i·d·(1 + c)
     margin = np.minimum(J.value(below), J.value(above)) / J.value(d) / (2.0 * J.value(l_i))
     heron = below * above  # Δ
-    along = (d2 + l_dif * l_sum) * (0.5 / d2)  # x
+    half_inv_d2 = 0.5 / d2  # 1/(2d²)
+    along = (d2 + l_dif * l_sum) * half_inv_d2  # x
     lowest = _lowest(margin)
     if not _settled(lowest, l_i, l_j):
         margin, toggle, along_at_toggle = _rrr_limits(
@@ -442,7 +443,7 @@ def _rrr_readable(h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.
         heron = J.where(toggle, 0.0, heron)
         along = J.where(toggle, along_at_toggle, along)
         lowest = _lowest(margin)
-    across = J.sqrt(heron) * (0.5 / d2) * s  # σ·y
+    across = J.sqrt(heron) * half_inv_d2 * s  # σ·y
     arm_i = r * (along + 1j * across)  # C − H_i
     return h_i + arm_i, J.arg(arm_i), J.arg(arm_i - r), margin, J.value(d), lowest
 

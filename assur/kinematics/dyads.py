@@ -10,19 +10,26 @@ carrying exact first and second derivatives (velocity and acceleration analogs).
 A position where the group cannot be assembled is data, not an error: the solver returns NaN
 for the geometric outputs there, ``exists = False``, the normalised ``margin`` (negative or
 below the assigned tolerance δ) and a ``reason`` code (see :data:`REASONS`).
+
+Whether a group assembles is an exact condition on its inputs (the triangle inequality for
+L1, the rod reaching the path for L2, the offset within the hinge distance for L3, guides not
+parallel for L4 and L5; each solver's Notes state it), decided up to a tolerance
+``ROUNDOFF`` relative to the group's own size, so that the decision holds for any proportions
+of the group's dimensions. Plain-array calls of the crank and the RRR dyad take the speed
+paths of :mod:`assur.kinematics._fast`, which compute the same numbers.
 """
 
 from __future__ import annotations
 
 import cmath
-import math
 from collections.abc import Callable, Iterator, Mapping
-from dataclasses import dataclass
 from enum import IntEnum
 from functools import lru_cache
+from typing import Any, NamedTuple, cast
 
 import numpy as np
 
+from assur.kinematics import _fast
 from assur.kinematics import jets as J
 from assur.kinematics.jets import Jet
 from assur.text import render
@@ -42,15 +49,15 @@ __all__ = [
 
 Value = Jet | np.ndarray | complex | float
 
-#: A negative margin no larger than this is roundoff at a toggle position and is read as 0.
+#: The geometric outputs of a solver: C, origin_i, angle_i, origin_j, angle_j, s_i, s_j.
+Geometry = tuple[Value, Value, Value, Value | None, Value | None, Value | None, Value | None]
+
+#: Relative tolerance of the existence decisions: a limit passed by no more than this times the
+#: group's size is read as the toggle position itself (margin 0); guides parallel within it
+#: (|sin| <= ROUNDOFF) do not assemble.
 ROUNDOFF = 64.0 * np.finfo(float).eps
 
-#: Positions per block in the plain-array kernels of large calls.
-BLOCK = 8192
-
-#: Number types (shape (), never a jet).
-_NUMBERS = frozenset({int, float, complex, np.float64, np.complex128})
-_REALS = frozenset({int, float, np.float64})
+_NUMBERS, _REALS = _fast.NUMBERS, _fast.REALS
 
 
 class Reason(IntEnum):
@@ -97,8 +104,7 @@ class _Reasons(Mapping[int, tuple[str, str]]):
 REASONS: Mapping[int, tuple[str, str]] = _Reasons()
 
 
-@dataclass(frozen=True)
-class DyadSolution:
+class DyadSolution(NamedTuple):
     """Positions of one group over all requested positions.
 
     Attributes
@@ -117,10 +123,13 @@ class DyadSolution:
         L5 ``s_i = S``, ``s_j = T``; None where the kind has no such coordinate.
     margin : ndarray, real
         Normalised existence margin (``method.md`` §5.4): L1 ``1 − |c|``, L2 ``1 − |h|/l_j``,
-        L3 ``1 − |h|/ρ``, L4 ``|sin(θ_j − θ_i)|``, L5 ``|sin γ|``, L0 1.
+        L3 ``1 − |h|/ρ``, L4 ``|sin(θ_j − θ_i)|``, L5 ``|sin γ|``, L0 1. It is 0 at a
+        position read as a toggle (see :func:`solve_rrr`) and NaN where it is undefined: an
+        input is NaN, or two hinges of the group coincide (a link of zero length, or
+        coincident outer hinges).
     exists : ndarray, bool
-        ``margin >= delta``; False where the margin is NaN (an input is undefined) and, for L4
-        and L5, where the guides are parallel within roundoff (``margin <= ROUNDOFF``).
+        ``margin >= delta``; False where the margin is NaN and, for L4 and L5, where the
+        guides are parallel within roundoff (``margin <= ROUNDOFF``).
     reason : ndarray, int8
         0 where the group exists, else a :class:`Reason` code (the condition that fails, or
         the nearest one when the margin is only below δ).
@@ -131,6 +140,7 @@ class DyadSolution:
     (a fixed origin, an all-true mask) are read-only views rather than copies.
     Geometric outputs are NaN wherever ``exists`` is False. To see the geometry inside the
     tolerance band, solve with ``delta=0`` and compare ``margin`` with δ yourself.
+    A solution is an immutable named tuple: its fields are read by name.
     """
 
     c: Value
@@ -152,7 +162,7 @@ def _branch(sigma: float | np.ndarray) -> float | np.ndarray:
     return np.where(sigma < 0, -1.0, 1.0)
 
 
-def _layout(*args: object) -> tuple[tuple[int, ...], bool]:
+def _layout(*args: Any) -> tuple[tuple[int, ...], bool]:
     """Broadcast shape of the values of ``args`` and whether any of them is a jet."""
     shape: tuple[int, ...] = ()
     jets = False
@@ -182,26 +192,6 @@ def _constant(x: object, shape: tuple[int, ...]) -> np.ndarray:
     return np.ndarray(shape, base.dtype, base, 0, (0,) * len(shape))
 
 
-def _finite(x: np.ndarray) -> bool:
-    """Whether every element of the array ``x`` is finite.
-
-    Also False when a square overflows (elements beyond about 1e154): then the caller takes
-    its general path, which gives the same result.
-
-    One dot product (a single library call) for a vector, else one sum.
-    """
-    return cmath.isfinite(x.dot(x) if x.ndim == 1 else np.add.reduce(x, axis=None))
-
-
-def _zero_dim(*values: Value) -> tuple[Value, ...]:
-    """Real Python numbers as 0-d float64 arrays, other values unchanged.
-
-    With a float64 array, numpy applies a 0-d array sooner than a Python number, with the
-    same result.
-    """
-    return tuple(np.array(x, np.float64) if type(x) in _REALS else x for x in values)
-
-
 @lru_cache(maxsize=64)
 def _assembled(shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Margin 1, ``exists`` True and reason 0 over ``shape``: read-only views, cached."""
@@ -209,58 +199,45 @@ def _assembled(shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarr
             _constant(np.int8(Reason.ASSEMBLES), shape))
 
 
-_new = object.__new__
-
-
-def _solution(
-    c: Value, origin_i: Value, angle_i: Value, origin_j: Value | None, angle_j: Value | None,
-    s_i: Value | None, s_j: Value | None, margin: np.ndarray, exists: np.ndarray,
-    reason: np.ndarray,
-) -> DyadSolution:
-    """A :class:`DyadSolution` with its fields stored directly.
-
-    The generated frozen ``__init__`` sets them one by one through ``object.__setattr__``.
-    """
-    solution = _new(DyadSolution)
-    fields = solution.__dict__
-    fields["c"], fields["origin_i"], fields["angle_i"] = c, origin_i, angle_i
-    fields["origin_j"], fields["angle_j"], fields["s_i"], fields["s_j"] = (
-        origin_j, angle_j, s_i, s_j)
-    fields["margin"], fields["exists"], fields["reason"] = margin, exists, reason
-    return solution
-
-
-def _spread(x: Value, shape: tuple[int, ...]) -> Value:
+def _spread(x: Any, shape: tuple[int, ...]) -> Value:
     """``x`` with its value broadcast to ``shape``: ``x`` itself, or a read-only view."""
     if type(x) is Jet:
         return x if x.v.shape == shape else Jet(np.broadcast_to(x.v, shape), x.d1, x.d2)
     if getattr(x, "shape", ()) == shape:
         return x
     if getattr(x, "ndim", 0) == 0:
-        return _constant(x[()] if type(x) is np.ndarray else x, shape)
+        number: Any = x[()] if type(x) is np.ndarray else x
+        return _constant(number, shape)
     return np.broadcast_to(x, shape)
 
 
-def _clip_roundoff(margin: np.ndarray, radicand: Value) -> tuple[np.ndarray, Value, float]:
-    """Margin and radicand with deficits within roundoff set to 0, and the smallest margin.
+def _lowest(margin: Any) -> float:
+    """The smallest margin (NaN if any is NaN; +inf for no position), in one reduction."""
+    return np.minimum.reduce(margin, axis=None) if np.size(margin) else np.inf
 
-    A deficit within roundoff is read as the toggle position itself. In the usual case of no
-    negative margin one reduction finds that out (and the smallest margin).
+
+def _settled(lowest: float, *lengths: Value) -> bool:
+    """Whether one reduction already shows every position assembling (no limit to settle).
+
+    True when no margin is negative or NaN and every length in ``lengths`` is positive.
     """
-    lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
-    if lowest >= 0.0:
-        return margin, radicand, lowest
-    tiny = (margin < 0.0) & (margin > -ROUNDOFF)
-    if tiny.any():
-        margin = np.where(tiny, 0.0, margin)
-        radicand = J.where(tiny, 0.0, radicand)
-        lowest = np.minimum.reduce(margin, axis=None)
-    return margin, radicand, lowest
+    return lowest >= 0.0 and all(_fast.positive(J.value(x)) for x in lengths)
 
 
-def _blank(
-    geometry: tuple[Value | None, ...], bad: np.ndarray, owned: tuple[Value, ...],
-) -> tuple[Value | None, ...]:
+def _settle(margin: Any, deficit: Any, size: Any, degenerate: Any,
+            ) -> tuple[np.ndarray, np.ndarray]:
+    """The margin with toggles read as 0 and degenerate groups as NaN, and the toggle mask.
+
+    ``deficit`` is the length by which the nearest limit of the group is passed (negative
+    when it is); the group assembles where ``deficit >= −ROUNDOFF·size``, ``size`` being the
+    group's own size. A negative margin inside that band is a toggle position: margin 0.
+    ``degenerate`` marks positions where two hinges of the group coincide: margin NaN.
+    """
+    toggle = (margin < 0.0) & (deficit >= -ROUNDOFF * size) & ~degenerate
+    return np.where(degenerate, np.nan, np.where(toggle, 0.0, margin)), toggle
+
+
+def _blank(geometry: Geometry, bad: np.ndarray, owned: tuple[Value, ...]) -> Geometry:
     """The outputs ``geometry`` with NaN where ``bad`` (an output repeated is blanked once).
 
     Arrays in ``owned`` (made by the solver for this call) are blanked in place; the others
@@ -271,12 +248,12 @@ def _blank(
     for x in geometry:
         if x is not None and id(x) not in done:
             nan = complex(np.nan, np.nan) if np.iscomplexobj(J.value(x)) else np.nan
-            if id(x) in fresh:
+            if id(x) in fresh and isinstance(x, np.ndarray):
                 np.copyto(x, nan, where=bad)
                 done[id(x)] = x
             else:
                 done[id(x)] = J.where(bad, nan, x)
-    return tuple(None if x is None else done[id(x)] for x in geometry)
+    return cast(Geometry, tuple(None if x is None else done[id(x)] for x in geometry))
 
 
 def _undefined(inputs: tuple[Value, ...]) -> np.ndarray | bool:
@@ -288,7 +265,7 @@ def _undefined(inputs: tuple[Value, ...]) -> np.ndarray | bool:
     for x in inputs:
         v = J.value(x)
         kind = type(v)
-        if kind in _NUMBERS and cmath.isfinite(v) or kind is np.ndarray and _finite(v):
+        if kind in _NUMBERS and cmath.isfinite(v) or isinstance(v, np.ndarray) and _fast.finite(v):
             continue
         undefined = undefined | ~np.isfinite(v)
     return undefined
@@ -299,8 +276,8 @@ def _finish(
     inputs: tuple[Value, ...],
     margin: np.ndarray,
     delta: float | np.ndarray,
-    failure: Callable[[], np.ndarray],
-    geometry: tuple[Value | None, ...],
+    failure: Callable[[], np.ndarray | int],
+    geometry: Geometry,
     jets: bool,
     above: float | None = None,
     lowest: float | None = None,
@@ -318,9 +295,10 @@ def _finish(
     """
     margin = margin if margin.shape == shape else np.broadcast_to(margin, shape)
     if jets:  # constant outputs become jets too
-        geometry = tuple(x if x is None or type(x) is Jet else Jet(x) for x in geometry)
+        geometry = cast(Geometry, tuple(x if x is None or isinstance(x, Jet) else Jet(x)
+                                        for x in geometry))
     if lowest is None:
-        lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
+        lowest = _lowest(margin)
     if lowest >= (delta if type(delta) in _NUMBERS else np.max(delta)) and (
             above is None or lowest > above):
         _, exists, reason = _assembled(shape)  # one reduction found every position assembled
@@ -335,7 +313,7 @@ def _finish(
         if undefined is not False:
             np.copyto(reason, Reason.UNDEFINED_INPUT, where=bad & undefined)
         geometry = _blank(geometry, bad, owned)
-    return _solution(*geometry, margin, exists, reason)
+    return DyadSolution(*geometry, margin, exists, reason)
 
 
 def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
@@ -355,30 +333,18 @@ def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
     DyadSolution
         ``c`` = crank pin, ``origin_i`` = O₁, ``angle_i`` = φ₁; margin 1 (always assembles).
     """
-    if type(angle) is np.ndarray and angle.ndim and type(o) in _NUMBERS and cmath.isfinite(o) \
-            and (type(length) in _REALS and math.isfinite(length)
-                 or type(length) is np.ndarray and length.dtype == float and _finite(length)) \
-            and _finite(angle):
-        pin = J.expi(angle)  # finite inputs: the fast path needs no error state
-        if type(length) is np.ndarray:  # scale the (x, y) pairs by the lengths (many designs)
-            xy = np.multiply(length[..., None], pin.view(np.float64).reshape(*pin.shape, 2))
-            pin = xy.view(np.complex128)[..., 0]
-        else:  # scale the interleaved (x, y) pairs in place
-            xy = pin.view(np.float64)
-            xy *= length
-        if o != 0:
-            pin += o
+    pin = _fast.crank_pin(o, length, angle)
+    if pin is not None:
         shape = pin.shape
-        return _solution(pin, _constant(o, shape), _spread(angle, shape), None, None, None,
-                         None, *_assembled(shape))
+        return DyadSolution(pin, _spread(o, shape), _spread(angle, shape), None, None, None,
+                            None, *_assembled(shape))
     shape, jets = _layout(o, length, angle)
     with np.errstate(all="ignore"):
-        pin = length * J.expi(angle)
-        pin = np.add(pin, o, out=pin) if type(pin) is np.ndarray else pin + o
-        margin = np.where(np.isfinite(J.value(pin)), 1.0, np.nan)
+        point = length * J.expi(angle) + o
+        margin = np.where(np.isfinite(J.value(point)), 1.0, np.nan)
     return _finish(
         shape, (o, length, angle), margin, 0.0, lambda: Reason.UNDEFINED_INPUT,
-        (pin, _spread(o, shape), _spread(angle, shape), None, None, None, None), jets,
+        (point, _spread(o, shape), _spread(angle, shape), None, None, None, None), jets,
     )
 
 
@@ -406,23 +372,41 @@ def solve_rrr(
 
     Notes
     -----
-    With ``d = |H_j − H_i|`` the cosine of the angle at H_i is
-    ``c = (l_i² + d² − l_j²)/(2·l_i·d)``. It is evaluated through the factored forms
-    ``1 − c = (d + l_j − l_i)(l_i + l_j − d)/(2·l_i·d)`` and
+    With ``d = |H_j − H_i|`` the group assembles where the three deficits
+
+    ``l_i + l_j − d`` (stretched), ``d − (l_i − l_j)`` and ``d + (l_i − l_j)`` (folded)
+
+    are all ``>= −ROUNDOFF·(l_i + l_j + d)``: the triangle inequality
+    ``|l_i − l_j| <= d <= l_i + l_j``, decided up to a tolerance relative to the perimeter of
+    the triangle H_i C H_j, whatever the proportions of the three sides. A deficit inside that
+    band is read as the toggle position itself: margin 0, C on the line H_i H_j at
+    ``l_i`` from H_i. Two coincident hinges (``d = 0``, or a link of zero length) leave a
+    direction undefined: the group does not assemble there, with margin NaN and the reason
+    ``COINCIDENT_HINGES``, whichever side the zero is on. Negative lengths never pass the
+    triangle inequality.
+
+    The cosine of the angle at H_i is ``c = (l_i² + d² − l_j²)/(2·l_i·d)``. It is evaluated
+    through the factored forms ``1 − c = (l_i + l_j − d)(d − l_i + l_j)/(2·l_i·d)`` and
     ``1 + c = (d + l_i − l_j)(l_i + l_j + d)/(2·l_i·d)``, which keep full relative accuracy
-    near both toggle positions; ``sin = σ·sqrt((1 − c)(1 + c))`` then fixes the branch.
+    near both toggle positions; C − H_i = r·(x + jσy) with r = H_j − H_i,
+    ``x = (d² + (l_i − l_j)(l_i + l_j))/(2d²)`` and ``y = sqrt(Δ)/(2d²)``, Δ the product of
+    the four factors (Heron: 16 times the squared area of the triangle), so the branch is σ.
+    Each factor is a difference of inputs, so its round-off is a few ε times the perimeter.
     """
     s = _branch(sigma)
     shape, jets = _layout(h_i, h_j, l_i, l_j, s)
     if jets or not shape:
-        c, angle_i, angle_j, margin, d, lowest = _rrr_generic(h_i, h_j, l_i, l_j, s)
+        c, angle_i, angle_j, margin, d, lowest = _rrr_readable(h_i, h_j, l_i, l_j, s)
     else:
-        c, angle_i, angle_j, margin, d, lowest = _rrr_arrays(h_i, h_j, l_i, l_j, s, shape)
+        c, angle_i, angle_j, margin, d, lowest = _fast.rrr(h_i, h_j, l_i, l_j, s, shape,
+                                                           _rrr_limits)
 
     def failure() -> np.ndarray:
-        longest = np.maximum(J.value(l_i), J.value(l_j))
-        return np.where(d == 0.0, Reason.COINCIDENT_HINGES,
-                        np.where(d > longest, Reason.STRETCHED, Reason.FOLDED))
+        long_i, long_j = J.value(l_i), J.value(l_j)
+        coincident = (d == 0.0) | (long_i == 0.0) | (long_j == 0.0)
+        return np.where(coincident, Reason.COINCIDENT_HINGES,
+                        np.where(d > np.maximum(long_i, long_j), Reason.STRETCHED,
+                                 Reason.FOLDED))
 
     return _finish(
         shape, (h_i, h_j, l_i, l_j, s), margin, delta, failure,
@@ -432,117 +416,52 @@ def solve_rrr(
 
 
 @np.errstate(all="ignore")
-def _rrr_generic(h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.ndarray) -> tuple:
-    """RRR dyad for any arguments (jets too).
+def _rrr_readable(h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.ndarray,
+                  ) -> tuple:
+    """RRR dyad for any arguments (jets too): the formulas of :func:`solve_rrr`.
 
     Returns C, φ_i, φ_j, the margin, the hinge distance d (value) and the smallest margin.
+    :func:`assur.kinematics._fast.rrr` computes the same, in the same order, for plain arrays.
     """
     r = h_j - h_i
-    d = J.abs(r)
-    two_ld = 2.0 * l_i * d
-    one_minus_c = (d + l_j - l_i) * (l_i + l_j - d) / two_ld
-    one_plus_c = (d + l_i - l_j) * (l_i + l_j + d) / two_ld
-    margin = np.minimum(J.value(one_minus_c), J.value(one_plus_c))
-    margin, sin2, lowest = _clip_roundoff(margin, one_minus_c * one_plus_c)
-    k = l_i / d
-    # C − H_i = r · (l_i/d) · (cos + j·σ·sin), cos = ((1 + c) − (1 − c))/2
-    arm_i = r * (k * 0.5 * (one_plus_c - one_minus_c) + 1j * (k * s * J.sqrt(sin2)))
+    if not isinstance(r, (Jet, np.ndarray)):  # numpy arithmetic: 1/0 is inf, not an error
+        r = np.complex128(r)
+    rx, ry = J.real(r), J.imag(r)
+    d2 = rx * rx + ry * ry
+    d = J.sqrt(d2)
+    l_sum, l_dif = l_i + l_j, l_i - l_j
+    below = (l_sum - d) * (d - l_dif)  # 2·l_i·d·(1 − c)
+    above = (d + l_dif) * (l_sum + d)  # 2·l_i·d·(1 + c)
+    margin = np.minimum(J.value(below), J.value(above)) / J.value(d) / (2.0 * J.value(l_i))
+    heron = below * above  # Δ
+    half_inv_d2 = 0.5 / d2  # 1/(2d²)
+    along = (d2 + l_dif * l_sum) * half_inv_d2  # x
+    lowest = _lowest(margin)
+    if not _settled(lowest, l_i, l_j):
+        margin, toggle, along_at_toggle = _rrr_limits(
+            J.value(l_i), J.value(l_j), J.value(d), margin)
+        heron = J.where(toggle, 0.0, heron)
+        along = J.where(toggle, along_at_toggle, along)
+        lowest = _lowest(margin)
+    across = J.sqrt(heron) * half_inv_d2 * s  # σ·y
+    arm_i = r * (along + 1j * across)  # C − H_i
     return h_i + arm_i, J.arg(arm_i), J.arg(arm_i - r), margin, J.value(d), lowest
 
 
-def _blocks(shape: tuple[int, ...]) -> list[slice]:
-    """Slices of the first axis cutting ``shape`` into blocks of about ``BLOCK`` positions."""
-    row = math.prod(shape[1:])
-    step = max(1, BLOCK // max(row, 1))
-    return [slice(k, k + step) for k in range(0, shape[0], step)]
+def _rrr_limits(l_i: Any, l_j: Any, d: Any, margin: Any,
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """RRR existence where some position may not assemble (see :func:`solve_rrr`).
 
-
-def _rrr_arrays(
-    h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.ndarray,
-    shape: tuple[int, ...],
-) -> tuple:
-    """:func:`_rrr_kernel` over blocks of ``BLOCK`` positions (one block if small).
-
-    Blocking keeps the temporaries in cache and off the allocator for large calls (many
-    designs × many angles); results are written into the full-size outputs.
+    Returns the margin with toggles read as 0 and coincident hinges as NaN, the toggle mask
+    and ``x`` there: C on the line H_i H_j at ``l_i`` from H_i, beyond H_i from H_j when the
+    dyad folds over H_i (``l_j > l_i + d``).
     """
-    if math.prod(shape) <= 2 * BLOCK:
-        return _rrr_kernel(h_i, h_j, l_i, l_j, s, shape)
-    args = [x if getattr(x, "ndim", 0) == 0 else np.broadcast_to(x, shape)
-            for x in (h_i, h_j, l_i, l_j, s)]
-    outputs = (np.empty(shape, complex), *(np.empty(shape) for _ in range(4)))
-    lowest = np.inf
-    for rows in _blocks(shape):
-        part = [x if getattr(x, "ndim", 0) == 0 else x[rows] for x in args]
-        block = tuple(out[rows] for out in outputs)
-        lowest = np.minimum(lowest, _rrr_kernel(*part, block[0].shape, block)[-1])  # NaN stays
-    return (*outputs, lowest)
-
-
-@np.errstate(all="ignore")
-def _rrr_kernel(
-    h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.ndarray,
-    shape: tuple[int, ...], out: tuple[np.ndarray, ...] | None = None,
-) -> tuple:
-    """:func:`_rrr_generic` for plain arrays, in real arithmetic with few temporaries.
-
-    ``out`` optionally gives the arrays for C, φ_i, φ_j, the margin and d.
-
-    Also returns the smallest margin (found anyway to detect roundoff at a toggle).
-
-    With ``r = H_j − H_i``, ``d = |r|``: ``C − H_i = r·(x + jσy)``, where
-    ``x = (d² + l_i² − l_j²)/(2d²)`` and ``y = sqrt(Δ)/(2d²)`` with the discriminant in
-    factored form ``Δ = g₁·g₂``, ``g₁ = (l_i + l_j − d)(d + l_j − l_i) = 2·l_i·d·(1 − c)``,
-    ``g₂ = (d − l_j + l_i)(l_i + l_j + d) = 2·l_i·d·(1 + c)`` (Heron: 16 times the squared
-    area of the triangle H_i C H_j). The small factor at each toggle is a difference of
-    inputs, so Δ and the margin ``min(g₁, g₂)/(2·l_i·d)`` keep full relative accuracy there.
-    """
-    rx = np.subtract(h_j.real, h_i.real)  # r = H_j − H_i, as contiguous x and y
-    ry = np.subtract(h_j.imag, h_i.imag)
-    if rx.shape != shape:
-        rx, ry = (np.array(np.broadcast_to(t, shape)) for t in (rx, ry))
-    half, k, l_sum, l_dif, two_l = 0.5, l_i * l_i - l_j * l_j, l_i + l_j, l_j - l_i, 2.0 * l_i
-    if rx.dtype == np.float64:
-        half, k, l_sum, l_dif, two_l = _zero_dim(half, k, l_sum, l_dif, two_l)
-    d2 = rx * rx
-    d2 += ry * ry
-    q = np.divide(half, d2)
-    x = d2 + k
-    x *= q
-    c, angle_i, angle_j, margin, d = out if out is not None else (None,) * 5
-    d = np.sqrt(d2, out=d)
-    disc = l_sum - d
-    disc *= d + l_dif  # 2·l_i·d·(1 − c), c = cos of the angle at H_i
-    wx = d - l_dif
-    wx *= l_sum + d  # 2·l_i·d·(1 + c)
-    margin = np.minimum(disc, wx, out=margin)
-    margin /= d
-    margin /= two_l
-    disc *= wx
-    lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
-    if not lowest >= 0.0:
-        tiny = (margin < 0.0) & (margin > -ROUNDOFF)
-        margin[tiny] = 0.0
-        disc[tiny] = 0.0
-        lowest = np.minimum.reduce(margin, axis=None)
-    y = np.sqrt(disc, out=disc)  # NaN only where the dyad does not exist
-    y *= q
-    if type(s) is not float:
-        y *= s
-    elif s < 0.0:
-        np.negative(y, out=y)
-    np.multiply(rx, x, out=wx)
-    wx -= np.multiply(ry, y, out=q)
-    wy = np.multiply(rx, y, out=y)
-    wy += np.multiply(ry, x, out=x)  # (wx, wy) = C − H_i
-    angle_i = np.arctan2(wy, wx, out=angle_i)
-    c = np.empty(shape, dtype=complex) if c is None else c
-    np.add(h_i.real, wx, out=c.real)
-    np.add(h_i.imag, wy, out=c.imag)
-    wx -= rx
-    wy -= ry  # C − H_j
-    angle_j = np.arctan2(wy, wx, out=angle_j)
-    return c, angle_i, angle_j, margin, d, lowest
+    l_sum, l_dif = l_i + l_j, l_i - l_j
+    deficit = np.minimum(l_sum - d, np.minimum(d - l_dif, d + l_dif))
+    degenerate = (l_i <= 0.0) | (l_j <= 0.0) | (d == 0.0)
+    margin, toggle = _settle(margin, deficit, l_sum + d, degenerate)
+    along = np.where(d + l_dif < 0.0, -l_i, l_i) / d
+    return margin, toggle, along
 
 
 def solve_rrp(
@@ -572,12 +491,26 @@ def solve_rrp(
     -------
     DyadSolution
         ``c`` = C; link i frame at C along θ, link j frame at H_j towards C; ``s_i`` = S.
+
+    Notes
+    -----
+    With ``w = conj(u(θ))·(H_j − A) − j·e = p + j·h`` (H_j in the frame of the path of C),
+    the group assembles where ``l_j − |h| >= −ROUNDOFF·(l_j + |H_j − A| + |e|)``: the rod
+    reaches the path, decided up to a tolerance relative to the lengths that h is computed
+    from (the round-off of h is a few ε times ``|H_j − A| + |e|``). A deficit inside that band
+    is read as the tangency itself: margin 0, C at the foot of the perpendicular. A rod of
+    zero length (C on H_j) does not assemble: margin NaN, reason ``COINCIDENT_HINGES``.
+    ``S = p + σ·sqrt((l_j − |h|)(l_j + |h|))``.
     """
     s = _branch(sigma)
     shape, jets = _layout(h_j, a, theta, e, l_j, s)
     c, angle_j, slide, margin, lowest = _rrp_geometry(h_j, a, theta, e, l_j, s)
+
+    def failure() -> np.ndarray:
+        return np.where(J.value(l_j) == 0.0, Reason.COINCIDENT_HINGES, Reason.ROD_TOO_SHORT)
+
     return _finish(
-        shape, (h_j, a, theta, e, l_j, s), margin, delta, lambda: Reason.ROD_TOO_SHORT,
+        shape, (h_j, a, theta, e, l_j, s), margin, delta, failure,
         (c, c, _spread(theta, shape), _spread(h_j, shape), angle_j, slide, None), jets,
         lowest=lowest, owned=(c, angle_j, slide),
     )
@@ -589,11 +522,20 @@ def _rrp_geometry(
 ) -> tuple:
     """RRP dyad: C, φ_j, S, the margin and the smallest margin."""
     u = J.expi(theta)
-    w = J.conj(u) * (h_j - a) - 1j * e  # (p + j·h): H_j in the frame of the path of C
+    reach = h_j - a
+    w = J.conj(u) * reach - 1j * e  # (p + j·h): H_j in the frame of the path of C
     p, h = J.real(w), J.imag(w)
     habs = J.abs(h)
-    margin = 1.0 - J.value(habs) / J.value(l_j)
-    margin, leg2, lowest = _clip_roundoff(margin, (l_j - habs) * (l_j + habs))
+    rod: Any = J.value(l_j)
+    offset = J.value(habs)
+    margin = 1.0 - offset / rod
+    leg2 = (l_j - habs) * (l_j + habs)
+    lowest = _lowest(margin)
+    if not _settled(lowest, l_j):
+        size = rod + np.abs(J.value(reach)) + np.abs(J.value(e))
+        margin, toggle = _settle(margin, rod - offset, size, rod <= 0.0)
+        leg2 = J.where(toggle, 0.0, leg2)
+        lowest = _lowest(margin)
     slide = p + s * J.sqrt(leg2)
     c = a + (slide + 1j * e) * u
     return c, J.arg(c - h_j), slide, margin, lowest
@@ -624,6 +566,9 @@ def solve_rpr(
 
     Notes
     -----
+    The group assembles where ``ρ − |h| >= −ROUNDOFF·(ρ + |h|)`` and ``ρ > 0``; a deficit
+    inside that band is read as the toggle (T = 0, margin 0). Coincident hinges (ρ = 0) do not
+    assemble: margin NaN, reason ``COINCIDENT_HINGES``. ``T = σ·sqrt((ρ − |h|)(ρ + |h|))``.
     From ``H_j − H_i = (T + j·h)·u(φ_i)``: ``φ_i = arg((H_j − H_i)·(T − j·h))``, one polar
     angle with no branch ambiguity.
     """
@@ -647,12 +592,18 @@ def _rpr_geometry(h_i: Value, h_j: Value, h: Value, s: float | np.ndarray) -> tu
     r = h_j - h_i
     rho = J.abs(r)
     habs = J.abs(h)
-    margin = 1.0 - J.value(habs) / J.value(rho)
-    margin, leg2, lowest = _clip_roundoff(margin, (rho - habs) * (rho + habs))
+    distance, offset = J.value(rho), J.value(habs)
+    margin = 1.0 - offset / distance
+    leg2 = (rho - habs) * (rho + habs)
+    lowest = _lowest(margin)
+    if not lowest >= 0.0:
+        margin, toggle = _settle(margin, distance - offset, distance + offset, distance == 0.0)
+        leg2 = J.where(toggle, 0.0, leg2)
+        lowest = _lowest(margin)
     t = s * J.sqrt(leg2)
     turned = r * (t - 1j * h)  # = ρ²·u(φ_i)
     c = h_i + t * turned / (rho * rho)
-    return c, J.arg(turned), t, margin, J.value(rho), lowest
+    return c, J.arg(turned), t, margin, distance, lowest
 
 
 def solve_prp(

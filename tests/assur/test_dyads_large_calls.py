@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from assur.kinematics.dyads import BLOCK, Reason, solve_input, solve_rrr
+from assur.kinematics._fast import BLOCK
+from assur.kinematics.dyads import Reason, solve_input, solve_rrr
 
 ANGLES = np.linspace(0.0, 2.0 * np.pi, 360, endpoint=False)
 CRANKS = np.linspace(15.0, 45.0, 60)[:, None]  # 60 designs: 21,600 positions, several blocks

@@ -319,7 +319,9 @@ def _appendages(chain: Chain, inputs: set[LinkId]) -> list[list[LinkId]]:
     tree = nx.dfs_tree(graph, chain.frame)
     order = {node: k for k, node in enumerate(nx.dfs_preorder_nodes(graph, chain.frame))}
     candidates = []
-    for a, b in nx.bridges(graph, root=chain.frame):
+    for a, b in _bridges(graph):
+        if a not in order:  # a part not connected to the frame
+            continue
         child = b if order[b] > order[a] else a
         side = {child} | nx.descendants(tree, child)
         if not side & inputs:
@@ -329,6 +331,13 @@ def _appendages(chain: Chain, inputs: set[LinkId]) -> list[list[LinkId]]:
         if not any(side <= bigger for bigger in sides):
             sides.append(side)
     return [sorted(side, key=order.__getitem__) for side in sides]
+
+
+def _bridges(graph: nx.MultiGraph) -> list[tuple[LinkId, LinkId]]:
+    """The bridges of a multigraph: the single-edge biconnected components of its simple
+    graph whose two links share no parallel pair (one pass, no copy of the multigraph)."""
+    return [edge[0] for edge in nx.biconnected_component_edges(nx.Graph(graph))
+            if len(edge) == 1 and graph.number_of_edges(*edge[0]) == 1]
 
 
 def _with_suggestions(chain: Chain, found: list[Diagnostic]) -> list[Diagnostic]:

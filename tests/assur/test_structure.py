@@ -152,3 +152,19 @@ def test_russian_report_has_no_english_sentences() -> None:
     assert "звенья 4, 5 не вошли в группы" in russian
     for english in ("links", "group", "condition", "expected", "found"):
         assert english not in russian
+
+
+def test_two_pairs_between_the_same_links_make_no_bridge() -> None:
+    """A link hung from the rocker by one hinge is an open appendage (W_IDLE_LINK); held by two
+    pairs to the same link it closes a loop, so it is no appendage (structure.md: parallel
+    pairs are distinct edges)."""
+    def idle(extra: list[dict[str, object]]) -> list[list[object]]:
+        pairs = [{"id": k, "type": "R", "links": links} for k, links in
+                 (("A", [0, 1]), ("B", [1, 2]), ("C", [2, 3]), ("D", [3, 0]))]
+        chain = chain_from_dict({"mechanism": {"pairs": pairs + extra, "inputs": [1]}})
+        return [list(d.links) for d in analyse_structure(chain).issues
+                if d.code == "W_IDLE_LINK"]
+
+    hinge = {"id": "E", "type": "R", "links": [3, 4]}
+    assert idle([hinge]) == [[4]]
+    assert idle([hinge, {"id": "F", "type": "P", "links": [3, 4], "guide": 3}]) == []

@@ -1,91 +1,27 @@
 """Structural analysis and Assur-group kinematics of planar lever mechanisms.
 
-The public API is re-exported here; :mod:`synthesis` uses nothing else.
+The names below are what a user calls: read a table, analyse its structure, check a
+student's identification table, build the kinematic model, analyse it over the cycle, judge
+existence and transmission, solve a group directly, draw. Everything else lives in the
+submodules (`assur.io`, `assur.structure`, `assur.kinematics`, `assur.forces`, `assur.plot`,
+`assur.text`), which :mod:`synthesis` imports directly.
+
+Examples
+--------
+>>> from pathlib import Path
+>>> import assur
+>>> table = Path(assur.__file__).parent.parent / "input_tables" / "four_bar.yaml"
+>>> result = assur.analyse_structure(assur.load_chain(table))
+>>> result.W
+1
 """
 
-from assur.errors import AssemblyError, AssurError, AssurWarning, Issue, StructureError, TableError
-from assur.io.files import atomic_write_bytes, atomic_write_text
-from assur.io.reader import (
-    MISSING,
-    Node,
-    TableReader,
-    describe,
-    normalise_id,
-)
-from assur.text import Message
-
-__all__ = [
-    "AssemblyError",
-    "AssurError",
-    "AssurWarning",
-    "Issue",
-    "MISSING",
-    "Message",
-    "Node",
-    "StructureError",
-    "TableError",
-    "TableReader",
-    "atomic_write_bytes",
-    "atomic_write_text",
-    "describe",
-    "normalise_id",
-]
-
-# --- structure: chains, decomposition, diagnostics, identification tables (structure owner) ---
-from assur.io.chain_table import chain_from_dict, load_chain  # noqa: E402
-from assur.io.sketch import with_sketch  # noqa: E402
-from assur.kinds import KINDS, GroupKind, kind_of  # noqa: E402
-from assur.model import GroupParams, Sketch  # noqa: E402
-from assur.structure.classification import AssurGroup  # noqa: E402
-from assur.structure.diagnostics import Diagnostic  # noqa: E402
-from assur.structure.identification import (  # noqa: E402
-    IdentificationRow,
-    Mismatch,
-    check_identification,
-    identification_table,
-)
-from assur.model import Chain, Drive, Input, Link, LinkId, Pair, PairId, PairType  # noqa: E402
-from assur.structure.analysis import StructuralAnalysis, analyse_structure  # noqa: E402
-from assur.structure.identification import COLUMNS as IDENTIFICATION_COLUMNS  # noqa: E402
-from assur.structure.report import group_description, structure_report  # noqa: E402
-
-__all__ += [
-    "AssurGroup",
-    "Chain",
-    "Diagnostic",
-    "Drive",
-    "IdentificationRow",
-    "Input",
-    "Link",
-    "LinkId",
-    "Mismatch",
-    "Pair",
-    "PairId",
-    "PairType",
-    "StructuralAnalysis",
-    "analyse_structure",
-    "chain_from_dict",
-    "with_sketch",
-    "Sketch",
-    "GroupParams",
-    "GroupKind",
-    "KINDS",
-    "kind_of",
-    "check_identification",
-    "identification_table",
-    "load_chain",
-    "structure_report",
-    "group_description",
-    "IDENTIFICATION_COLUMNS",
-]
-
-# --- kinematics: group solvers, mechanism analysis, existence (kinematics owner) ---
-from assur.kinematics import jets  # noqa: E402
-from assur.kinematics.dyads import (  # noqa: E402
-    REASONS,
-    DyadSolution,
-    Reason,
-    reason_text,
+from assur.errors import AssemblyError, AssurError, StructureError, TableError
+from assur.io.chain_table import chain_from_dict, load_chain
+from assur.kinds import KINDS, GroupKind, kind_of
+from assur.kinematics.analysis import Motion, analyse, input_grid
+from assur.kinematics.build import build_model, load_model
+from assur.kinematics.dyads import (
     solve_input,
     solve_prp,
     solve_rpp,
@@ -93,115 +29,62 @@ from assur.kinematics.dyads import (  # noqa: E402
     solve_rrp,
     solve_rrr,
 )
-from assur.kinematics.jets import Jet  # noqa: E402
+from assur.kinematics.existence import ExistenceReport, check_existence
+from assur.kinematics.jets import Jet
+from assur.kinematics.model import KinematicModel
+from assur.kinematics.transmission import joint_rotations, pressure_angles
+from assur.model import Chain, Sketch
+from assur.plot.mechanism import draw_mechanism
+from assur.plot.schemes import draw_structural_scheme, save_schemes
+from assur.structure.analysis import StructuralAnalysis, analyse_structure
+from assur.structure.classification import AssurGroup
+from assur.structure.diagnostics import Diagnostic
+from assur.structure.identification import check_identification, identification_table
+from assur.structure.report import structure_report
 
-__all__ += [
-    "REASONS",
-    "DyadSolution",
+__all__ = [
+    # errors
+    "AssemblyError",
+    "AssurError",
+    "StructureError",
+    "TableError",
+    # tables and the chain
+    "Chain",
+    "Sketch",
+    "chain_from_dict",
+    "load_chain",
+    # group kinds
+    "KINDS",
+    "GroupKind",
+    "kind_of",
+    # structure
+    "AssurGroup",
+    "Diagnostic",
+    "StructuralAnalysis",
+    "analyse_structure",
+    "check_identification",
+    "identification_table",
+    "structure_report",
+    # kinematics
+    "ExistenceReport",
     "Jet",
-    "Reason",
-    "jets",
-    "reason_text",
+    "KinematicModel",
+    "Motion",
+    "analyse",
+    "build_model",
+    "check_existence",
+    "input_grid",
+    "joint_rotations",
+    "load_model",
+    "pressure_angles",
     "solve_input",
     "solve_prp",
     "solve_rpp",
     "solve_rpr",
     "solve_rrp",
     "solve_rrr",
-]
-from assur.kinematics.existence import (  # noqa: E402
-    CONDITIONS,
-    ExistenceReport,
-    FailureInterval,
-    GroupExistence,
-    check_existence,
-    first_failure,
-)
-from assur.kinematics.build import (  # noqa: E402
-    build_model,
-    load_model,
-    model_from_params,
-    model_from_sketch,
-)
-from assur.kinematics.model import KIND_COLUMNS, GroupModel, KinematicModel  # noqa: E402
-from assur.kinematics.analysis import (  # noqa: E402
-    Motion,
-    SliderState,
-    acceleration,
-    analyse,
-    input_grid,
-    unwrap,
-    values,
-    velocity,
-)
-from assur.kinematics.transmission import (  # noqa: E402
-    JointRotation,
-    PressureAngle,
-    binary_links,
-    joint_rotations,
-    pressure_angles,
-)
-
-__all__ += [
-    "CONDITIONS",
-    "ExistenceReport",
-    "FailureInterval",
-    "GroupExistence",
-    "GroupModel",
-    "JointRotation",
-    "KIND_COLUMNS",
-    "KinematicModel",
-    "Motion",
-    "PressureAngle",
-    "SliderState",
-    "acceleration",
-    "analyse",
-    "binary_links",
-    "build_model",
-    "check_existence",
-    "first_failure",
-    "input_grid",
-    "joint_rotations",
-    "load_model",
-    "model_from_params",
-    "model_from_sketch",
-    "pressure_angles",
-    "unwrap",
-    "values",
-    "velocity",
-]
-from assur.plot.mechanism import (  # noqa: E402
-    draw_mechanism,
-    figure_for,
-    save_animation_gif,
-    save_mechanism_png,
-)
-
-__all__ += ["draw_mechanism", "figure_for", "save_animation_gif", "save_mechanism_png"]
-
-# --- schemes: structural scheme pictures (coursework owner) ---
-from assur.plot.schemes import (  # noqa: E402
-    PictureFormatError,
-    SchemeLayout,
-    draw_formalised_scheme,
-    draw_structural_scheme,
-    group_graph,
-    roman,
-    save_schemes,
-    scheme_bytes,
-    scheme_figure,
-    scheme_layout,
-)
-
-__all__ += [
-    "PictureFormatError",
-    "SchemeLayout",
-    "draw_formalised_scheme",
+    # pictures
+    "draw_mechanism",
     "draw_structural_scheme",
-    "group_graph",
-    "roman",
     "save_schemes",
-    "scheme_bytes",
-    "scheme_figure",
-    "scheme_layout",
 ]

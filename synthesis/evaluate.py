@@ -34,7 +34,9 @@ import numpy as np
 import numpy.typing as npt
 
 import assur
-from assur import Issue, KinematicModel, Motion, TableError
+import assur.kinematics.analysis
+from assur import KinematicModel, Motion, TableError
+from assur.errors import Issue
 from assur.text import Message
 from synthesis import criteria as C
 from synthesis.problem import Problem, output_slider
@@ -224,7 +226,7 @@ class Evaluator:
                                 else np.full((d, n), np.nan))
                 else:
                     raw = _full(motion.link_angle(self.output_link), d, self.positions.size)
-                    grid = assur.unwrap(raw[:, :n])
+                    grid = assur.kinematics.analysis.unwrap(raw[:, :n])
                     out_grid = grid - grid[:, :1]
                     nearest = np.rint(self.control_phi / (2 * np.pi) * n).astype(int) % n
                     wrap = np.angle(np.exp(1j * (raw[:, n:] - raw[:, nearest])))
@@ -238,7 +240,7 @@ class Evaluator:
                     res = dev
             elif cls == 2:
                 assert self._slider_pair is not None
-                s = _full(assur.values(motion.sliders[self._slider_pair].s), d,
+                s = _full(assur.kinematics.analysis.values(motion.sliders[self._slider_pair].s), d,
                           self.positions.size)
                 out_grid = s[:, :n] - s[:, :1]
                 out = s[:, n:] - s[:, :1]
@@ -246,7 +248,7 @@ class Evaluator:
                 dev = C.value_deviations(out, control.value, control.weight)
                 res = dev
             else:
-                path = _full(assur.values(self._point(motion, model)), d, self.positions.size)
+                path = _full(assur.kinematics.analysis.values(self._point(motion, model)), d, self.positions.size)
                 out_grid = path[:, :n]
                 if cls == 4:
                     out = path[:, n:]
@@ -348,7 +350,7 @@ class Evaluator:
             for role, pid in group.pairs.items():
                 if role.startswith("P") or pid not in motion.joints:
                     continue
-                z = _full(assur.values(motion.joints[pid]), d, size)[:, :n]
+                z = _full(assur.kinematics.analysis.values(motion.joints[pid]), d, size)[:, :n]
                 columns.append(np.max(_outside(z, box), axis=1))
             out[label] = np.stack(columns, axis=1)
         return out

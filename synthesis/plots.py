@@ -15,7 +15,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from assur import LinkId, atomic_write_bytes, values
+from assur.io.files import atomic_write_bytes
+from assur.kinematics.analysis import values
+from assur.model import LinkId
 from assur.text import render
 from synthesis.evaluate import Analysis
 from synthesis.problem import Problem

@@ -61,7 +61,9 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from assur import KinematicModel, LinkId, PairId, normalise_id
+from assur import KinematicModel
+from assur.io.reader import normalise_id
+from assur.model import LinkId, PairId
 from synthesis.criteria import Objective
 from synthesis.search import SearchSettings
 

@@ -33,8 +33,12 @@ from typing import Any
 import numpy as np
 
 import assur
-from assur import MISSING, AssurError, KinematicModel, Message, Node, TableError, TableReader
-from assur import normalise_id
+import assur.kinematics.model
+import assur.model
+from assur import AssurError, KinematicModel, TableError
+from assur.io.reader import MISSING, Node, TableReader
+from assur.text import Message
+from assur.io.reader import normalise_id
 from synthesis.problem import (
     DEFAULT_PRESSURE_ANGLE,
     OUTPUT_QUANTITIES,
@@ -329,7 +333,7 @@ def _parameters(model: KinematicModel, bounds: Bounds) -> tuple[Parameter, ...]:
     for group in model.groups:
         key: GroupKey = (group.i,) if group.j is None else (group.i, group.j)
         columns = [column for (links, column) in bounds if links == key]
-        fixed = (*assur.KIND_COLUMNS[group.kind], "delta")
+        fixed = (*assur.kinematics.model.KIND_COLUMNS[group.kind], "delta")
         ordered = [c for c in fixed if c in columns] + sorted(c for c in columns
                                                               if c not in fixed)
         for column in ordered:
@@ -483,7 +487,7 @@ def _check_rotations(reader: TableReader, model: KinematicModel,
                                joint=role, group=label, joints=", ".join(joints) or "—")
 
 
-def _check_output(reader: TableReader, model: KinematicModel, link: assur.LinkId,
+def _check_output(reader: TableReader, model: KinematicModel, link: assur.model.LinkId,
                   task_class: Any) -> None:
     """The output link moves; in task class 2 it slides in a prismatic pair."""
     if link not in model.links:

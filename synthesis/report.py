@@ -22,7 +22,7 @@ import numpy as np
 import numpy.typing as npt
 import yaml  # type: ignore[import-untyped]
 
-from assur import atomic_write_text
+from assur.io.files import atomic_write_text
 from assur.text import render
 from synthesis.criteria import criterion_rms
 from synthesis.evaluate import Analysis

@@ -22,6 +22,7 @@ import pytest
 from matplotlib.axes import Axes
 
 import assur
+import assur.plot.mechanism
 from synthesis.app.coursework.diagrams import existence_figure, kinematic_figures, mechanism_figure
 from synthesis.cli import main
 from synthesis.criteria import Criteria
@@ -83,15 +84,15 @@ def test_figures_of_their_own_are_not_pyplot_figures(own_axes: Axes,
     existence = assur.check_existence(motion.model, points=24)
     drawn: list[object] = []
     _unchanged(lambda: drawn.extend([
-        assur.figure_for(motion)[0], existence_figure(existence, motion.model),
+        assur.plot.mechanism.figure_for(motion)[0], existence_figure(existence, motion.model),
         mechanism_figure(motion), *(fig for _, fig in kinematic_figures(motion))]))
     assert len(drawn) >= 4
 
 
 def test_saving_pictures(own_axes: Axes, motion: assur.Motion, tmp_path: Path) -> None:
     def save() -> None:
-        assur.save_mechanism_png(motion, tmp_path / "mechanism.png", index=2, dpi=40)
-        assur.save_animation_gif(motion, tmp_path / "cycle.gif", frames=3, dpi=30)
+        assur.plot.mechanism.save_mechanism_png(motion, tmp_path / "mechanism.png", index=2, dpi=40)
+        assur.plot.mechanism.save_animation_gif(motion, tmp_path / "cycle.gif", frames=3, dpi=30)
         problem = ROOT / "input_tables" / "problems" / "class1_fourbar_rocker.yaml"
         code = main(["synthesize", str(problem), "--budget", "4", "--quiet",
                      "--plot", str(tmp_path / "synthesis")])

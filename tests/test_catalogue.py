@@ -15,7 +15,9 @@ from pathlib import Path
 import pytest
 from babel.messages.pofile import read_po, write_po
 
-from assur import Issue, Message, TableError, text
+from assur import TableError, text
+from assur.errors import Issue
+from assur.text import Message
 
 ROOT = Path(__file__).resolve().parents[1]
 #: A flag on an entry whose text is the same in every language (a symbol, a unit).

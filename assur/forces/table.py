@@ -6,7 +6,8 @@ problems of the other sections.
 
 Examples
 --------
->>> from assur import TableReader, chain_from_dict
+>>> from assur import chain_from_dict
+>>> from assur.io.reader import TableReader
 >>> chain = chain_from_dict({"mechanism": {"pairs": [
 ...     {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
 ...     {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}],
@@ -60,7 +61,8 @@ def read_forces(root: Node, chain: Chain) -> ForceData | None:
 
     Examples
     --------
-    >>> from assur import TableReader, load_chain
+    >>> from assur import load_chain
+    >>> from assur.io.reader import TableReader
     >>> from pathlib import Path; import assur
     >>> TABLES = Path(assur.__file__).parents[1] / "input_tables"
     >>> chain = load_chain(TABLES / "four_bar.yaml")

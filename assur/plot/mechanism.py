@@ -75,7 +75,7 @@ def figure_for(motion: Motion, size: float = 7.0) -> tuple[Figure, Axes]:
     >>> import assur
     >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
     >>> motion = assur.analyse(model, points=36)
-    >>> fig, ax = assur.figure_for(motion)
+    >>> fig, ax = assur.plot.mechanism.figure_for(motion)
     >>> ax.get_aspect(), float(fig.get_figwidth())
     (1.0, 7.0)
     """
@@ -280,7 +280,7 @@ def save_mechanism_png(motion: Motion, path: str | os.PathLike[str], index: int 
     >>> import tempfile, pathlib
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     path = pathlib.Path(folder, "four_bar.png")
-    ...     assur.save_mechanism_png(motion, path, index=3)
+    ...     assur.plot.mechanism.save_mechanism_png(motion, path, index=3)
     ...     path.read_bytes()[1:4]
     b'PNG'
     """
@@ -325,7 +325,7 @@ def save_animation_gif(motion: Motion, path: str | os.PathLike[str], *, frames: 
     >>> from PIL import Image
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     path = pathlib.Path(folder, "four_bar.gif")
-    ...     assur.save_animation_gif(motion, path, frames=4, dpi=40)
+    ...     assur.plot.mechanism.save_animation_gif(motion, path, frames=4, dpi=40)
     ...     with Image.open(path) as gif:
     ...         gif.n_frames
     4

@@ -18,16 +18,16 @@ import numpy as np
 
 from assur import (
     ExistenceReport,
-    Issue,
     Jet,
     KinematicModel,
-    LinkId,
     Motion,
     TableError,
     analyse,
     check_existence,
     load_model,
 )
+from assur.errors import Issue
+from assur.model import LinkId
 from assur.text import Message
 
 __all__ = ["TableAnalysis", "analyse_table", "as_jet", "moving_links"]

@@ -8,7 +8,8 @@ import math
 
 import numpy as np
 
-from assur import Jet, acceleration, unwrap, values, velocity
+from assur import Jet
+from assur.kinematics.analysis import acceleration, unwrap, values, velocity
 from synthesis.app.analysis import TableAnalysis, as_jet, moving_links
 
 __all__ = ["analysis_csv"]

@@ -15,16 +15,9 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from assur import (
-    CONDITIONS,
-    Jet,
-    acceleration,
-    joint_rotations,
-    pressure_angles,
-    unwrap,
-    values,
-    velocity,
-)
+from assur import Jet, joint_rotations, pressure_angles
+from assur.kinematics.analysis import acceleration, unwrap, values, velocity
+from assur.kinematics.existence import CONDITIONS
 from synthesis.app.analysis import TableAnalysis, as_jet, moving_links
 
 __all__ = ["analysis_record", "number"]

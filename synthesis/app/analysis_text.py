@@ -10,14 +10,10 @@ import math
 
 import numpy as np
 
-from assur import (
-    CONDITIONS,
-    joint_rotations,
-    pressure_angles,
-    reason_text,
-    unwrap,
-    values,
-)
+from assur import joint_rotations, pressure_angles
+from assur.kinematics.analysis import unwrap, values
+from assur.kinematics.dyads import reason_text
+from assur.kinematics.existence import CONDITIONS
 from assur.text import render
 from synthesis.app.analysis import TableAnalysis, moving_links
 

@@ -28,10 +28,7 @@ from assur import (
     AssurError,
     Chain,
     ExistenceReport,
-    GroupModel,
-    IdentificationRow,
     KinematicModel,
-    Mismatch,
     StructuralAnalysis,
     StructureError,
     analyse_structure,
@@ -42,6 +39,8 @@ from assur import (
     identification_table,
     load_chain,
 )
+from assur.kinematics.model import GroupModel
+from assur.structure.identification import IdentificationRow, Mismatch
 from assur.text import Message
 
 __all__ = ["Assessment", "VariantFinding", "assess", "is_problem", "load_table_chain"]

@@ -25,7 +25,8 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-from assur import AssurError, ExistenceReport, KinematicModel, TableError, reason_text
+from assur import AssurError, ExistenceReport, KinematicModel, TableError
+from assur.kinematics.dyads import reason_text
 from assur.text import check_lang, render
 from synthesis.app.assess import Assessment, assess
 

@@ -7,7 +7,7 @@ import io
 import os
 from collections.abc import Iterable, Sequence
 
-from assur import atomic_write_text
+from assur.io.files import atomic_write_text
 from assur.text import render
 from synthesis.app.batch import VERDICTS, BatchRow
 

@@ -7,7 +7,7 @@ import os
 from pathlib import Path
 from typing import Any
 
-from assur import atomic_write_bytes
+from assur.io.files import atomic_write_bytes
 
 __all__ = ["write_figure"]
 

@@ -8,7 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from assur import PairType, chain_from_dict, load_chain
+from assur import chain_from_dict, load_chain
+from assur.model import PairType
 from assur.errors import TableError
 
 BROKEN = sorted((Path(__file__).parent / "broken").glob("*.yaml"))

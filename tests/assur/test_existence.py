@@ -17,6 +17,7 @@ import pytest
 import yaml
 
 import assur
+import assur.kinematics.dyads
 
 ROOT = Path(__file__).resolve().parents[2]
 FAILS = ROOT / "input_tables" / "course_11_link_fails.yaml"
@@ -85,7 +86,7 @@ def _check(report: assur.ExistenceReport, reference: list[tuple[float, float]]) 
         assert abs((a - ra + 180) % 360 - 180) <= 1.01 * step
         assert abs((b - rb + 180) % 360 - 180) <= 1.01 * step
     interval = groups["L3(6,7)"].intervals[0]
-    assert assur.REASONS[interval.reason][0] == "guide offset larger than hinge distance"
+    assert assur.kinematics.dyads.REASONS[interval.reason][0] == "guide offset larger than hinge distance"
 
 
 def test_failing_interval_matches_the_brute_force_scan(model: assur.KinematicModel) -> None:
@@ -164,7 +165,7 @@ def test_non_grashof_crank_fails_where_the_triangle_inequality_breaks() -> None:
     step = 360 / SCAN
     assert abs(math.degrees(got.start) - expected[0][0]) <= 1.01 * step
     assert abs(math.degrees(got.end) - expected[0][1]) <= 1.01 * step
-    assert assur.REASONS[got.reason][0].startswith("hinges too far apart")
+    assert assur.kinematics.dyads.REASONS[got.reason][0].startswith("hinges too far apart")
     # shortfall in mm at the worst position (φ = 180°): d − (l_i + l_j)
     assert math.isclose(got.shortfall, 100 + crank - li - lj, rel_tol=1e-6)
 
@@ -175,5 +176,5 @@ def test_group_that_never_assembles_fails_over_the_whole_turn() -> None:
     (group,) = report.groups
     (interval,) = group.intervals
     assert (interval.start, interval.end) == (0.0, 2 * math.pi)
-    assert assur.REASONS[interval.reason][0].startswith("hinges too close")
+    assert assur.kinematics.dyads.REASONS[interval.reason][0].startswith("hinges too close")
     assert group.fails.all() and not report.all_exist

@@ -13,6 +13,7 @@ import yaml
 from force_tables import TABLES, load
 
 import assur
+import assur.kinematics.analysis
 from assur.forces import ForceData, ForceReason, Load, Mass, Tabulated, kinetostatics
 
 
@@ -62,7 +63,7 @@ def test_reactions_grow_like_the_inverse_determinant_next_to_the_toggle() -> Non
     q = math.pi / 2 + np.array([-1e-2, -1e-3, -1e-4, -1e-5, 1e-5, 1e-4, 1e-3, 1e-2])
     motion = assur.analyse(model, q, analogs=True)
     result = kinetostatics(motion, LOADS, 0.0)
-    b, c, d = (assur.values(motion.joints[p]) for p in "BCD")
+    b, c, d = (assur.kinematics.analysis.values(motion.joints[p]) for p in "BCD")
     determinant = np.abs(((b - c).conjugate() * (d - c)).imag) / (abs(b - c) * abs(d - c))
     bounded = np.hypot(result.reactions["C"].x, result.reactions["C"].y) * determinant
     assert np.all(np.isfinite(bounded)) and bounded.max() < 3 * bounded.min()

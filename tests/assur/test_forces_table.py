@@ -7,6 +7,7 @@ import pytest
 from force_tables import TABLES, load
 
 import assur
+import assur.io.reader
 from assur.forces import ForceData, Load, Mass, Tabulated, read_forces
 
 COURSE = assur.load_chain(TABLES / "course_11_link.yaml")
@@ -14,7 +15,7 @@ BOOM = assur.load_chain(TABLES / "hydraulic_boom.yaml")
 
 
 def _read(sections: dict, chain: assur.Chain = COURSE) -> tuple[ForceData | None, list]:
-    reader = assur.TableReader.from_data(sections, "t.yaml")
+    reader = assur.io.reader.TableReader.from_data(sections, "t.yaml")
     return read_forces(reader.root(), chain), reader.issues
 
 

@@ -14,6 +14,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import assur
+import assur.kinematics.analysis
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "input_tables" / "course_11_link.yaml"
@@ -62,7 +63,7 @@ def _check_closure(motion: assur.Motion, rel: float = 1e-9) -> None:
     for pid, (kind, links, _) in model.pair_links.items():
         if kind == "R":
             for link in links:
-                on_link.setdefault(link, []).append(np.asarray(assur.values(motion.joints[pid])))
+                on_link.setdefault(link, []).append(np.asarray(assur.kinematics.analysis.values(motion.joints[pid])))
     for link, points in on_link.items():
         for a in range(len(points)):
             for b in range(a + 1, len(points)):
@@ -70,10 +71,10 @@ def _check_closure(motion: assur.Motion, rel: float = 1e-9) -> None:
                 spread = np.nanmax(d, axis=-1) - np.nanmin(d, axis=-1)
                 assert np.nanmax(spread) <= rel * scale, link
     for pid, slider in motion.sliders.items():
-        u = np.exp(1j * np.asarray(assur.values(slider.angle)))
-        rel_pos = np.conj(u) * (np.asarray(assur.values(slider.point))
-                                - np.asarray(assur.values(slider.base)))
-        assert np.nanmax(np.abs(rel_pos.real - assur.values(slider.s))) <= rel * scale, pid
+        u = np.exp(1j * np.asarray(assur.kinematics.analysis.values(slider.angle)))
+        rel_pos = np.conj(u) * (np.asarray(assur.kinematics.analysis.values(slider.point))
+                                - np.asarray(assur.kinematics.analysis.values(slider.base)))
+        assert np.nanmax(np.abs(rel_pos.real - assur.kinematics.analysis.values(slider.s))) <= rel * scale, pid
         assert np.nanmax(np.abs(rel_pos.imag - np.asarray(slider.offset))) <= rel * scale, pid
 
 
@@ -211,10 +212,10 @@ def test_velocity_and_acceleration_for_a_crank_speed() -> None:
 
     later, now, earlier = at(dt), at(0.0), at(-dt)
     for pid in ("2-3", "4-5", "8-9"):
-        v = assur.velocity(jet.joints[pid], omega)
+        v = assur.kinematics.analysis.velocity(jet.joints[pid], omega)
         numeric_v = (later.joints[pid] - earlier.joints[pid]) / (2 * dt)
         assert np.abs(v - numeric_v).max() <= 1e-5 * np.abs(v).max(), pid
-        a = assur.acceleration(jet.joints[pid], omega, epsilon)
+        a = assur.kinematics.analysis.acceleration(jet.joints[pid], omega, epsilon)
         numeric_a = (later.joints[pid] - 2 * now.joints[pid] + earlier.joints[pid]) / dt ** 2
         assert np.abs(a - numeric_a).max() <= 1e-4 * np.abs(a).max(), pid
 

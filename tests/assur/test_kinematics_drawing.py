@@ -9,6 +9,7 @@ import numpy as np
 from matplotlib.patches import Circle
 
 import assur
+import assur.plot.mechanism
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -17,7 +18,7 @@ def test_hinges_are_drawn_at_the_joints_of_the_position() -> None:
     model = assur.load_model(ROOT / "input_tables" / "course_11_link.yaml")
     motion = assur.analyse(model, np.radians(np.arange(0, 360, 30.0)))
     index = 4
-    _, ax = assur.figure_for(motion)
+    _, ax = assur.plot.mechanism.figure_for(motion)
     assur.draw_mechanism(motion, index, ax)
     centres = sorted((round(p.center[0], 9), round(p.center[1], 9))
                      for p in ax.patches if isinstance(p, Circle))
@@ -31,7 +32,7 @@ def test_hinges_are_drawn_at_the_joints_of_the_position() -> None:
 def test_a_broken_position_is_marked_in_the_title() -> None:
     model = assur.load_model(ROOT / "input_tables" / "course_11_link_fails.yaml")
     motion = assur.analyse(model, np.radians([0.0, 45.0]))
-    _, ax = assur.figure_for(motion)
+    _, ax = assur.plot.mechanism.figure_for(motion)
     assur.draw_mechanism(motion, 1, ax, lang="ru")
     assert "не собирается" in ax.get_title()
     # the groups after the broken kulisa group are not drawn: fewer hinges than joints

@@ -7,7 +7,10 @@ import stat
 
 import pytest
 
-from assur import Message, TableError, TableReader, atomic_write_text
+from assur import TableError
+from assur.io.files import atomic_write_text
+from assur.io.reader import TableReader
+from assur.text import Message
 from synthesis.cli import main
 
 BAD = """mechanism:

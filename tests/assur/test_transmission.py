@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import assur
+import assur.kinematics.transmission
 
 ROOT = Path(__file__).resolve().parents[2]
 PHI = np.linspace(0.0, 2 * np.pi, 720, endpoint=False)
@@ -70,7 +71,7 @@ def test_slider_crank_pressure_angle_is_arcsin_of_the_offset() -> None:
 def test_course_example_has_no_two_hinge_rod_in_l1_or_l2() -> None:
     """Link 2 carries N, link 3 the guide of 4, rod 8 carries M (method.md §2.7)."""
     model = assur.load_model(ROOT / "input_tables" / "course_11_link.yaml")
-    assert not ({2, 3, 8} & assur.binary_links(model))
+    assert not ({2, 3, 8} & assur.kinematics.transmission.binary_links(model))
     assert assur.pressure_angles(assur.analyse(model, PHI[::10])) == []
 
 

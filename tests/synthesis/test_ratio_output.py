@@ -19,6 +19,7 @@ import yaml
 from closed_form import fourbar
 
 import assur
+import assur.kinematics.analysis
 from assur import TableError
 from synthesis.cli import main
 from synthesis.evaluate import Evaluator
@@ -94,14 +95,14 @@ def test_ratio_against_central_difference_of_the_public_analysis() -> None:
     phi = np.radians(phi_deg)
     stencil = (phi[:, None] + h * np.array([-2.0, -1.0, 1.0, 2.0])).ravel()
     motion = assur.analyse(evaluator.model(x), stencil)
-    psi = assur.unwrap(assur.values(motion.link_angle(3)).reshape(len(x), phi.size, 4))
+    psi = assur.kinematics.analysis.unwrap(assur.kinematics.analysis.values(motion.link_angle(3)).reshape(len(x), phi.size, 4))
     central = (psi[..., 0] - 8 * psi[..., 1] + 8 * psi[..., 2] - psi[..., 3]) / (12 * h)
     assert np.max(np.abs(central)) > 0.1            # the ratios are not trivially small
     assert analysis.output_control == pytest.approx(central, abs=1e-9)
     # the curve over the grid (reports) is the same ratio, at the grid angles
     grid = evaluator.grid[::10]
     stencil = (grid[:, None] + h * np.array([-2.0, -1.0, 1.0, 2.0])).ravel()
-    psi = assur.unwrap(assur.values(assur.analyse(evaluator.model(x), stencil).link_angle(3))
+    psi = assur.kinematics.analysis.unwrap(assur.kinematics.analysis.values(assur.analyse(evaluator.model(x), stencil).link_angle(3))
                        .reshape(len(x), grid.size, 4))
     central = (psi[..., 0] - 8 * psi[..., 1] + 8 * psi[..., 2] - psi[..., 3]) / (12 * h)
     assert analysis.output_grid[:, ::10] == pytest.approx(central, abs=1e-9)

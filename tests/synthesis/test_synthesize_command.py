@@ -13,6 +13,7 @@ import pytest
 import yaml
 
 import assur
+import assur.kinematics.analysis
 from synthesis.cli import main
 from synthesis.cli.commands import synthesize
 from synthesis.evaluate import Evaluator
@@ -45,14 +46,14 @@ def _reanalyse(problem: dict[str, Any], result: Path) -> float:
         # n = dψ/dφ by a fourth-order central difference of the positions (no analogs)
         h = 1e-3
         stencil = phi[:, None] + h * np.array([-2.0, -1.0, 1.0, 2.0])
-        angle = assur.unwrap(assur.values(assur.analyse(model, stencil.ravel()).link_angle(
+        angle = assur.kinematics.analysis.unwrap(assur.kinematics.analysis.values(assur.analyse(model, stencil.ravel()).link_angle(
             output["link"])).reshape(stencil.shape))
         n = (angle[:, 0] - 8 * angle[:, 1] + 8 * angle[:, 2] - angle[:, 3]) / (12 * h)
         lo = np.array([row["n_lo"] for row in control])
         hi = np.array([row["n_hi"] for row in control])
         return float(np.max(weights * np.maximum(0.0, np.maximum(lo - n, n - hi))))
     if task == 1:
-        angle = assur.values(motion.link_angle(output["link"]))
+        angle = assur.kinematics.analysis.values(motion.link_angle(output["link"]))
         psi = np.degrees(np.angle(np.exp(1j * (angle[1:] - angle[0]))))
         if "psi" in control[0]:
             dev = psi - np.array([row["psi"] for row in control])
@@ -64,7 +65,7 @@ def _reanalyse(problem: dict[str, Any], result: Path) -> float:
     if task == 2:
         pair = next(pid for pid, state in motion.sliders.items()
                     if state.slider == output["link"] and state.carrier == model.frame)
-        s = assur.values(motion.sliders[pair].s)
+        s = assur.kinematics.analysis.values(motion.sliders[pair].s)
         return float(np.max(weights * np.abs(s[1:] - s[0] - [row["S"] for row in control])))
     targets = np.array([row["x"] + 1j * row["y"] for row in control])
     point = _tracing_point(model, motion, output["link"])
@@ -84,7 +85,7 @@ def _reanalyse(problem: dict[str, Any], result: Path) -> float:
 def _tracing_point(model: Any, motion: Any, link: Any) -> np.ndarray:
     """Attachment point N of the output link: origin + l_N·exp(i(angle + beta_N))."""
     label, _ = model.links[link]
-    origin, angle = (assur.values(v) for v in motion.frames[link])
+    origin, angle = (assur.kinematics.analysis.values(v) for v in motion.frames[link])
     return origin + model.value(f"{label}.l_N") * np.exp(
         1j * (angle + model.value(f"{label}.beta_N")))
 

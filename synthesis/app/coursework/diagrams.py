@@ -129,7 +129,8 @@ def kinematic_figures(motion: Motion, *, lang: str = "en") -> list[tuple[str, Fi
     >>> [caption for caption, _ in kinematic_figures(motion, lang="ru")]
     ['Углы поворота звеньев ψ: аналог скорости, аналог ускорения', 'Углы давления']
     """
-    from assur import pressure_angles, unwrap
+    from assur import pressure_angles
+    from assur.kinematics.analysis import unwrap
 
     model = motion.model
     x, xlabel = _axis(model, motion.q, lang)

@@ -17,21 +17,20 @@ from pathlib import Path
 from typing import Any
 
 from assur import (
-    CONDITIONS,
     AssurError,
     Chain,
     ExistenceReport,
     KinematicModel,
-    PairType,
     StructuralAnalysis,
     analyse,
-    atomic_write_text,
     chain_from_dict,
-    group_description,
-    reason_text,
-    roman,
-    scheme_bytes,
 )
+from assur.io.files import atomic_write_text
+from assur.kinematics.dyads import reason_text
+from assur.kinematics.existence import CONDITIONS
+from assur.model import PairType
+from assur.plot.schemes import roman, scheme_bytes
+from assur.structure.report import group_description
 from assur.text import check_lang, render
 from synthesis.app.assess import Assessment, assess, is_problem
 from synthesis.app.coursework.page import Section, esc, figure, figure_html, page, table

@@ -8,7 +8,8 @@ import math
 import sys
 from typing import Any
 
-from assur import Message, TableReader
+from assur.io.reader import TableReader
+from assur.text import Message
 from synthesis.cases.command import add_output_args, add_table_arg, emit
 from synthesis.cases.fourbar_velocity_ratio.conditions import NoSolution, Request
 from synthesis.cases.fourbar_velocity_ratio.report import (

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from assur import reason_text
+from assur.kinematics.dyads import reason_text
 from assur.text import Message, languages, render
 from synthesis.cases.fourbar_velocity_ratio.check import CheckResult
 from synthesis.cases.fourbar_velocity_ratio.conditions import Design, Request, condition_residuals

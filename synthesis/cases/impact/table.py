@@ -10,7 +10,8 @@ import math
 import os
 from typing import Any
 
-from assur import Message, TableReader, describe
+from assur.io.reader import TableReader, describe
+from assur.text import Message
 from synthesis.cases.impact.data import ImpactData
 
 __all__ = ["impact_data_from_dict", "impact_table_dict", "read_impact_table"]

@@ -5,7 +5,9 @@ from __future__ import annotations
 import argparse
 import sys
 
-from assur import Issue, Message, TableError
+from assur import TableError
+from assur.errors import Issue
+from assur.text import Message
 from synthesis.cases.command import add_output_args, add_table_arg, emit
 from synthesis.cases.tracker.report import summary, to_dict
 from synthesis.cases.tracker.study import run_study

@@ -36,10 +36,9 @@ from assur import (
     build_model,
     input_grid,
     load_chain,
-    unwrap,
-    values,
-    with_sketch,
 )
+from assur.io.sketch import with_sketch
+from assur.kinematics.analysis import unwrap, values
 
 __all__ = ["CHAIN_TABLE", "TrackerMotion", "chain", "mechanism_model", "simulate", "sketch"]
 

@@ -12,7 +12,8 @@ import math
 import os
 from typing import Any
 
-from assur import Message, TableReader
+from assur.io.reader import TableReader
+from assur.text import Message
 from synthesis.cases.tracker.design import PATENT_TASK, DesignTask
 
 __all__ = ["FIELDS", "OPTIONS", "load_task", "task_from_data"]

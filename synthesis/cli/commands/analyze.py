@@ -13,7 +13,8 @@ import argparse
 import json
 import sys
 
-from assur import atomic_write_text, save_animation_gif, save_mechanism_png
+from assur.io.files import atomic_write_text
+from assur.plot.mechanism import save_animation_gif, save_mechanism_png
 from assur.text import languages, render
 from synthesis.app.analysis import analyse_table
 from synthesis.app.analysis_csv import analysis_csv

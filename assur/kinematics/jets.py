@@ -18,6 +18,8 @@ Chain rule used throughout, for ``y = f(x)``::
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 __all__ = [
@@ -26,6 +28,7 @@ __all__ = [
     "arccos",
     "arctan2",
     "arg",
+    "as_jet",
     "conj",
     "cross",
     "dot",
@@ -85,7 +88,7 @@ class Jet:
         """Broadcast shape of the value and both derivatives."""
         return np.broadcast_shapes(self.v.shape, self.d1.shape, self.d2.shape)
 
-    def __getitem__(self, index: object) -> Jet:
+    def __getitem__(self, index: Any) -> Jet:
         v, d1, d2 = np.broadcast_arrays(self.v, self.d1, self.d2)
         return Jet(v[index], d1[index], d2[index])
 
@@ -137,6 +140,11 @@ def _chain(x: Jet, f: np.ndarray, df: np.ndarray, ddf: np.ndarray) -> Jet:
     return Jet(f, df * x.d1, ddf * x.d1 * x.d1 + df * x.d2)
 
 
+def as_jet(x: Jet | ArrayLike) -> Jet:
+    """``x`` as a jet: a plain value has zero derivatives."""
+    return x if isinstance(x, Jet) else Jet(x, 0.0, 0.0)
+
+
 def value(x: Jet | ArrayLike) -> np.ndarray | complex | float:
     """The plain value of ``x`` (the ``v`` part of a jet, or ``x`` itself)."""
     return x.v if isinstance(x, Jet) else x
@@ -146,14 +154,14 @@ def real(x: Jet | ArrayLike) -> Jet | np.ndarray:
     """Real part."""
     if isinstance(x, Jet):
         return Jet(np.real(x.v), np.real(x.d1), np.real(x.d2))
-    return np.real(x)
+    return np.asarray(np.real(x))
 
 
 def imag(x: Jet | ArrayLike) -> Jet | np.ndarray:
     """Imaginary part."""
     if isinstance(x, Jet):
         return Jet(np.imag(x.v), np.imag(x.d1), np.imag(x.d2))
-    return np.imag(x)
+    return np.asarray(np.imag(x))
 
 
 def conj(x: Jet | ArrayLike) -> Jet | np.ndarray:
@@ -199,9 +207,17 @@ def arg(z: Jet | ArrayLike) -> Jet | np.ndarray:
     For a jet, with ``w = z'/z``: ``arg' = Im w`` and ``arg'' = Im(z''/z − w²)``.
     """
     if not isinstance(z, Jet):
-        return np.arctan2(z.imag, z.real) if isinstance(z, np.ndarray) else np.angle(z)
+        return np.arctan2(z.imag, z.real) if isinstance(z, np.ndarray) else np.asarray(np.angle(z))
     w = z.d1 / z.v
     return Jet(np.angle(z.v), np.imag(w), np.imag(z.d2 / z.v - w * w))
+
+
+def _unit(t: np.ndarray) -> np.ndarray:
+    """``exp(1j*t)`` of a real array, one cosine and one sine (a 0-d array for a scalar)."""
+    u = np.empty(t.shape, dtype=complex)
+    np.cos(t, out=u.real)
+    np.sin(t, out=u.imag)
+    return u if u.ndim else u[()]
 
 
 def expi(theta: Jet | ArrayLike) -> Jet | np.ndarray:
@@ -209,13 +225,10 @@ def expi(theta: Jet | ArrayLike) -> Jet | np.ndarray:
     if not isinstance(theta, Jet):
         t = theta if type(theta) is np.ndarray and theta.dtype == float else np.asarray(
             theta, dtype=float)
-        u = np.empty(t.shape, dtype=complex)
-        np.cos(t, out=u.real)
-        np.sin(t, out=u.imag)
-        return u if u.ndim else u[()]
-    u = expi(theta.v)
-    ju = 1j * u
-    return Jet(u, ju * theta.d1, (ju * theta.d2) - u * theta.d1 * theta.d1)
+        return _unit(t)
+    unit = _unit(np.asarray(theta.v, dtype=float))
+    ju = 1j * unit
+    return Jet(unit, ju * theta.d1, (ju * theta.d2) - unit * theta.d1 * theta.d1)
 
 
 def abs(x: Jet | ArrayLike) -> Jet | np.ndarray:

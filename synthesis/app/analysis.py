@@ -30,7 +30,7 @@ from assur.errors import Issue
 from assur.model import LinkId
 from assur.text import Message
 
-__all__ = ["TableAnalysis", "analyse_table", "as_jet", "moving_links"]
+__all__ = ["TableAnalysis", "analyse_table", "moving_links"]
 
 #: The fewest positions an analysis takes.
 MIN_POINTS = 2

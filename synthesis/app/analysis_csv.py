@@ -10,7 +10,8 @@ import numpy as np
 
 from assur import Jet
 from assur.kinematics.analysis import acceleration, unwrap, values, velocity
-from synthesis.app.analysis import TableAnalysis, as_jet, moving_links
+from assur.kinematics.jets import as_jet
+from synthesis.app.analysis import TableAnalysis, moving_links
 
 __all__ = ["analysis_csv"]
 

@@ -18,7 +18,8 @@ import numpy.typing as npt
 from assur import Jet, joint_rotations, pressure_angles
 from assur.kinematics.analysis import acceleration, unwrap, values, velocity
 from assur.kinematics.existence import CONDITIONS
-from synthesis.app.analysis import TableAnalysis, as_jet, moving_links
+from assur.kinematics.jets import as_jet
+from synthesis.app.analysis import TableAnalysis, moving_links
 
 __all__ = ["analysis_record", "number"]
 

@@ -19,10 +19,9 @@ language: ``assur check``, ``assur report`` and ``assur batch`` render it in the
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 from assur import (
     AssurError,
@@ -240,13 +239,13 @@ def _model(analysis: StructuralAnalysis) -> tuple[KinematicModel | None,
         return None, exc
 
 
-def _variants(model: KinematicModel, rows: Iterable[Mapping[str, Any]]) -> list[VariantFinding]:
+def _variants(model: KinematicModel,
+              rows: Iterable[IdentificationRow]) -> list[VariantFinding]:
     """The L1/L2 rows whose ``variant`` differs from the σ of the model."""
     dyads = [g for g in model.groups if g.kind in (1, 2)]
     found = []
     for index, row in enumerate(rows):
-        given = row.get("variant")
-        found += [VariantFinding(index, row.get("L"), g, given) for g in dyads
-                  if (g.i, g.j) == (row.get("i"), row.get("j"))
-                  and given in (1, -1) and given != g.sigma]
+        given = row.variant
+        found += [VariantFinding(index, row.L, g, given) for g in dyads
+                  if (g.i, g.j) == (row.i, row.j) and given in (1, -1) and given != g.sigma]
     return found

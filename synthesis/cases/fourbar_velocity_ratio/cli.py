@@ -90,7 +90,7 @@ def read_request(data: dict[str, Any], source: str) -> tuple[Request, str]:
     def angle(key: str) -> float | None:
         return None if values[key] is None else math.radians(values[key])
 
-    request = Request(n_star=float(values["n_star"]), psi1=float(angle("psi1_deg")),
+    request = Request(n_star=float(values["n_star"]), psi1=math.radians(values["psi1_deg"]),
                       e=values["e"], delta=values["delta"], psi2=angle("psi2_deg"))
     return request, method
 

@@ -29,6 +29,7 @@ from scipy.optimize import brentq
 from assur import AssurError
 from assur.text import Message
 from synthesis.cases.fourbar_velocity_ratio.kinematics import (
+    as_real,
     grashof_margin,
     ratio_and_derivative,
     rocker_angle,
@@ -174,28 +175,30 @@ class Design:
 
 
 def stationarity_function(e: ArrayLike, r: ArrayLike, n: ArrayLike, theta: ArrayLike,
-                          phi: ArrayLike) -> NDArray[np.float64]:
+                          phi: ArrayLike) -> NDArray[np.floating]:
     """F1 of (18): (9) cleared of fractions; zero where (7) equals n and (8) holds.
 
     ``F1 = e·r·(1 − n)²·sin(θ − φ) + e·cos θ + r·n²·sin φ``.
     """
+    e, r, n, theta, phi = (as_real(v) for v in (e, r, n, theta, phi))
     return (e * r * (1.0 - n) ** 2 * np.sin(np.subtract(theta, phi)) + e * np.cos(theta)
             + r * np.square(n) * np.sin(phi))
 
 
 def ratio_function(e: ArrayLike, r: ArrayLike, n: ArrayLike, theta: ArrayLike,
-                   phi: ArrayLike) -> NDArray[np.float64]:
+                   phi: ArrayLike) -> NDArray[np.floating]:
     """F2 of (19) and F3 of (20): (7) = n cleared of fractions.
 
     ``F = e·r·(1 − n)·cos(θ − φ) − e·sin θ + r·n·cos φ``, which equals
     ``r·[e·cos(θ − φ) − cos φ]·(n(θ) − n)``.
     """
+    e, r, n, theta, phi = (as_real(v) for v in (e, r, n, theta, phi))
     return (e * r * (1.0 - n) * np.cos(np.subtract(theta, phi)) - e * np.sin(theta)
             + r * n * np.cos(phi))
 
 
 def paper_functions(e: ArrayLike, n_star: float, delta: float, psi1: float, c: ArrayLike,
-                    r: ArrayLike, theta2: ArrayLike) -> tuple[NDArray[np.float64], ...]:
+                    r: ArrayLike, theta2: ArrayLike) -> tuple[NDArray[np.floating], ...]:
     """The paper's F1, F2, F3 (18)–(20) with φ2, φ1 from (10), (16) and θ1 from (14)."""
     phi2, _ = rocker_angle(e, c, r, theta2)
     theta1 = np.subtract(theta2, psi1)
@@ -272,8 +275,8 @@ def form_residuals(request: Request, x: ArrayLike) -> NDArray[np.float64]:
     if not np.issubdtype(x.dtype, np.floating):
         x = x.astype(float)
     c, r, theta2 = x[0], x[1], x[2]
-    e = x[3] if request.form == "crank" else request.e
-    delta = x[3] if request.form == "delta" else request.delta
+    e = x[3] if request.e is None else request.e
+    delta = x[3] if request.delta is None else request.delta
     angles = [theta2, theta2 - request.psi1]
     if request.form != "paper":
         angles.append(theta2 + request.psi2)
@@ -288,8 +291,8 @@ def design_from_unknowns(request: Request, x: ArrayLike) -> Design:
     """The design for the unknowns of :func:`form_residuals`; ψ″ of the paper's form is found
     from (13) as the first angle after θ2 where the ratio is back at the end value."""
     c, r, theta2, *rest = (float(v) for v in np.asarray(x, dtype=float))
-    e = rest[0] if request.form == "crank" else request.e
-    delta = rest[0] if request.form == "delta" else request.delta
+    e = rest[0] if request.e is None else request.e
+    delta = rest[0] if request.delta is None else request.delta
     psi2 = request.psi2
     if psi2 is None:
         theta3 = zone_end(e, c, r, theta2, request.n_star * (1.0 - delta), request.sign)

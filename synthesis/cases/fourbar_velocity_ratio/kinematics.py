@@ -26,7 +26,7 @@ __all__ = [
 ]
 
 
-def _real(value: ArrayLike) -> NDArray[np.floating]:
+def as_real(value: ArrayLike) -> NDArray[np.floating]:
     """An array of reals that keeps an extended precision (``np.longdouble``) if given."""
     array = np.asarray(value)
     return array if np.issubdtype(array.dtype, np.floating) else array.astype(float)
@@ -51,7 +51,7 @@ def rocker_angle(e: ArrayLike, c: ArrayLike, r: ArrayLike,
     exists : ndarray of bool
         Whether the chain closes (``b² + d² ≥ a²``).
     """
-    e, c, r, theta = (_real(v) for v in (e, c, r, theta))
+    e, c, r, theta = (as_real(v) for v in (e, c, r, theta))
     cos, sin = np.cos(theta), np.sin(theta)
     a = 1.0 + e * e + r * r - c * c - 2.0 * e * cos
     b = 2.0 * r * (1.0 - e * cos)
@@ -69,7 +69,7 @@ def velocity_ratio(e: ArrayLike, r: ArrayLike, theta: ArrayLike,
 
     ``n = (e/r)·[r·cos(θ − φ) − sin θ] / [e·cos(θ − φ) − cos φ]``.
     """
-    e, r, theta, phi = (_real(v) for v in (e, r, theta, phi))
+    e, r, theta, phi = (as_real(v) for v in (e, r, theta, phi))
     return e / r * (r * np.cos(theta - phi) - np.sin(theta)) / (e * np.cos(theta - phi)
                                                                   - np.cos(phi))
 
@@ -82,7 +82,7 @@ def ratio_derivative(e: ArrayLike, r: ArrayLike, theta: ArrayLike, phi: ArrayLik
     ``N′ = −r(1−n)·sin(θ−φ) − cos θ`` and ``D′ = −e(1−n)·sin(θ−φ) + n·sin φ``, so
     ``dn/dθ = (e/r)·(N′D − N D′)/D²``.
     """
-    e, r, theta, phi, n = (_real(v) for v in (e, r, theta, phi, n))
+    e, r, theta, phi, n = (as_real(v) for v in (e, r, theta, phi, n))
     s = np.sin(theta - phi)
     k = np.cos(theta - phi)
     num = r * k - np.sin(theta)
@@ -108,13 +108,13 @@ def grashof_margin(e: ArrayLike, c: ArrayLike, r: ArrayLike) -> NDArray[np.float
     ``1 + c − e − r`` are positive (they make e the shortest link and s + l < p + q); the
     margin is the smallest of them (zero on a change-point linkage).
     """
-    e, c, r = (_real(v) for v in (e, c, r))
+    e, c, r = (as_real(v) for v in (e, c, r))
     return np.minimum(np.minimum(c + r - 1.0 - e, 1.0 + r - e - c), 1.0 + c - e - r)
 
 
 def coupler_bounds(e: ArrayLike, r: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The open interval of coupler lengths c that make (e, c, r) a Grashof crank-rocker."""
-    e, r = _real(e), _real(r)
+    e, r = as_real(e), as_real(r)
     return np.maximum(1.0 + e - r, r + e - 1.0), 1.0 - e + r
 
 
@@ -125,7 +125,7 @@ def transmission_angle(e: ArrayLike, r: ArrayLike, theta: ArrayLike,
     The angle between the coupler line (crank end to rocker end) and the rocker, folded into
     [0, π/2] so that 0 is a dead position and π/2 the best transmission.
     """
-    e, r, theta, phi = (_real(v) for v in (e, r, theta, phi))
+    e, r, theta, phi = (as_real(v) for v in (e, r, theta, phi))
     crank_end = e * np.exp(1j * theta)
     rocker = r * 1j * np.exp(1j * phi)
     coupler = 1.0 + rocker - crank_end

@@ -131,7 +131,8 @@ def _sample(request: Request, e: NDArray[np.float64], c: NDArray[np.float64],
     height = value[rows, peak]
     mismatch = [(height - target) / target]
     offset = np.arange(samples)
-    if request.form == "delta":
+    if request.delta is None:  # the 'delta' form: ψ″ given, δ found
+        assert request.psi2 is not None
         shifts = np.array([-request.psi1, request.psi2]) / step
         ends = []
         for shift in shifts:
@@ -144,7 +145,7 @@ def _sample(request: Request, e: NDArray[np.float64], c: NDArray[np.float64],
     else:
         excess = value - target * (1.0 - request.delta)
         mismatch.append(_crossing(excess, peak, offset, -1) * step - request.psi1)
-        if request.form == "crank":
+        if request.psi2 is not None:  # the 'crank' form: ψ″ given, e found
             mismatch.append(_crossing(excess, peak, offset, 1) * step - request.psi2)
         extra = e
     return np.stack(mismatch), theta[peak], extra, height

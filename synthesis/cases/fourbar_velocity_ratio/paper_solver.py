@@ -122,7 +122,10 @@ class _Scheme:
     def __init__(self, request: Request, tol: float, epsilon: float, theta_start: float | None,
                  theta_step: float, c_steps: int, r_step: float, r_steps: int,
                  max_iter: int) -> None:
+        if request.e is None or request.delta is None:
+            raise ValueError("the paper's method needs e and δ given (the 'paper' form)")
         self.request = request
+        self.e, self.delta = request.e, request.delta
         self.tol, self.epsilon, self.max_iter = tol, epsilon, max_iter
         self.theta_step, self.c_steps = theta_step, c_steps
         self.r_step, self.r_steps = r_step, r_steps
@@ -136,8 +139,9 @@ class _Scheme:
         self.evaluations += 1
         q = self.request
         with np.errstate(invalid="ignore"):
-            return tuple(float(v) for v in paper_functions(q.e, q.n_star, q.delta, q.psi1, c, r,
-                                                           theta2))
+            f1, f2, f3 = (float(v) for v in paper_functions(self.e, q.n_star, self.delta,
+                                                            q.psi1, c, r, theta2))
+        return f1, f2, f3
 
     def inner(self, c: float, r: float) -> float:
         """Steps c–g: θ2 with F1 = 0 for the given c and r."""
@@ -162,7 +166,7 @@ class _Scheme:
 
     def middle(self, r: float) -> tuple[float, float]:
         """Steps b–j: c (and θ2) with F1 = F2 = 0 for the given r."""
-        lo, hi = (float(v) for v in coupler_bounds(self.request.e, r))
+        lo, hi = (float(v) for v in coupler_bounds(self.e, r))
         if not lo < hi:
             raise _NoRoot(Message("case.fourbar.empty_coupler_interval"))
 
@@ -189,7 +193,7 @@ class _Scheme:
                 return math.nan
             return self.functions(c, r, theta)[2]
 
-        start = self.request.e / abs(self.request.n_star)
+        start = self.e / abs(self.request.n_star)
         a, fa, b, fb = _scan(f3, [start * (1.0 + k * self.r_step) for k in range(self.r_steps)])
         r, count = _false_position(f3, a, fa, b, fb, self.tol, self.max_iter)
         self.iterations["r"] += count

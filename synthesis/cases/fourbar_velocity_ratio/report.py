@@ -93,7 +93,8 @@ def summary(study: Study, lang: str = "en") -> str:
         p = study.paper
         lines.append(_t("paper", lang))
         if p.design is None:
-            lines.append("  " + p.reason.text(lang))
+            if p.reason is not None:
+                lines.append("  " + p.reason.text(lang))
         else:
             iterations = "/".join(str(p.iterations[k]) for k in ("theta2", "c", "r"))
             lines.append("  " + _t("paper_root", lang, s=p.seconds, n=p.evaluations,

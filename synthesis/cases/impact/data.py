@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import astuple, dataclass, replace
+from typing import Any
 
 __all__ = [
     "PAPER",
@@ -90,7 +91,7 @@ class ImpactData:
         mine, theirs = (_flatten(astuple(data)) for data in (self, other))
         return all(math.isclose(x, y, rel_tol=rel) for x, y in zip(mine, theirs))
 
-    def with_changes(self, **changes: object) -> ImpactData:
+    def with_changes(self, **changes: Any) -> ImpactData:
         """A copy with some fields replaced (the command line's overrides)."""
         return replace(self, **changes)
 

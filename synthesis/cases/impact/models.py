@@ -200,9 +200,9 @@ def _batched_solve(rows: list[list[NDArray[np.float64]]], rhs: list[NDArray[np.f
     The solution's last axis holds the unknowns in the order of the columns.
     """
     matrix = np.stack([np.stack(row, axis=-1) for row in rows], axis=-2)
-    rhs = np.stack(rhs, axis=-1)
-    out = np.full(rhs.shape, np.nan)
-    out[exists] = np.linalg.solve(matrix[exists], rhs[exists][..., None])[..., 0]
+    right = np.stack(rhs, axis=-1)
+    out = np.full(right.shape, np.nan)
+    out[exists] = np.linalg.solve(matrix[exists], right[exists][..., None])[..., 0]
     return out
 
 

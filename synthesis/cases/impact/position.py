@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from assur import Jet, solve_rrr
+from assur.kinematics.jets import as_jet
 from synthesis.cases.impact.data import ImpactData
 
 __all__ = ["REASONS", "ImpactPosition", "impact_position"]
@@ -113,20 +114,22 @@ def impact_position(data: ImpactData, theta2: ArrayLike | None = None,
     theta2 = np.asarray(data.theta2 if theta2 is None else theta2, dtype=float)
     omega4 = np.asarray(data.omega4 if omega4 is None else omega4, dtype=float)
     theta2, omega4 = np.broadcast_arrays(theta2, omega4)
-    crank = data.r2 * np.exp(1j * theta2)
+    crank = np.asarray(data.r2 * np.exp(1j * theta2), dtype=np.complex128)
     o4 = np.full(theta2.shape, complex(data.r1, 0.0))
     group = solve_rrr(Jet(crank, 1j * crank, -crank), o4, data.r3, data.r4, data.sigma)
-    assembles = np.asarray(group.exists, dtype=bool) & np.isfinite(group.angle_i.v)
+    assert group.angle_j is not None  # an RRR group turns both its links
+    angle_i, angle_j = as_jet(group.angle_i), as_jet(group.angle_j)
+    assembles = np.asarray(group.exists, dtype=bool) & np.isfinite(angle_i.v)
     omega2 = np.full(theta2.shape, float(data.omega2))
-    theta3 = np.where(assembles, group.angle_i.v, np.nan)
-    theta4_rigid = np.where(assembles, group.angle_j.v, np.nan)
-    omega3 = np.where(assembles, group.angle_i.d1 * omega2, np.nan)
-    omega4_rigid = np.where(assembles, group.angle_j.d1 * omega2, np.nan)
+    theta3 = np.where(assembles, angle_i.v, np.nan)
+    theta4_rigid = np.where(assembles, angle_j.v, np.nan)
+    omega3 = np.where(assembles, angle_i.d1 * omega2, np.nan)
+    omega4_rigid = np.where(assembles, angle_j.d1 * omega2, np.nan)
     lag = np.sign(np.where(assembles, omega4_rigid - omega4, 0.0))
     chord = 2.0 * np.arcsin(data.clearance / (2.0 * data.r4))
     theta4 = np.where(lag != 0, theta4_rigid - lag * chord, np.nan)
     pin = np.where(assembles, crank + data.r3 * np.exp(1j * theta3), np.nan)
-    bearing = o4 + data.r4 * np.exp(1j * theta4)
+    bearing = np.asarray(o4 + data.r4 * np.exp(1j * theta4), dtype=np.complex128)
     psi = np.angle(pin - bearing)
     reason = np.where(~assembles, 1, np.where(lag == 0, 2, 0))
     return ImpactPosition(

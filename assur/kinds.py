@@ -128,6 +128,12 @@ class GroupKind:
         The per-kind computations: solve the group over the positions (``_solve_*``),
         derive its parameters from a sketch (``_sketch_*``), the violated condition in mm or
         degrees (``_shortfall_*``), the pressure angle at C (``_pressure_*``).
+
+    Examples
+    --------
+    >>> from assur import KINDS
+    >>> KINDS[3].pairs, KINDS[3].group_class
+    ('RPR', 2)
     """
 
     number: int | None
@@ -477,11 +483,23 @@ _BY_PATTERN = {kind.pattern: kind for kind in KINDS.values() if kind.pattern is 
 def kind_of(number: int) -> GroupKind:
     """The kind with DGTU number L (0–5).
 
+    Parameters
+    ----------
+    number : int
+        The DGTU number L of the kind (0 for the input group).
+
+    Returns
+    -------
+    GroupKind
+        Its registry entry.
+
     Raises
     ------
     KeyError
         For a number that is no kind.
 
+    Examples
+    --------
     >>> kind_of(4).pairs
     'PRP'
     """

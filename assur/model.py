@@ -90,6 +90,15 @@ class Sketch:
     tracing : tuple of SketchTrace
     margin : float, mapping or None
         δ for every group, or group label → δ.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> sketch = assur.load_chain(tables / "four_bar.yaml").geometry
+    >>> sketch.points["C"]
+    (110+80j)
     """
 
     points: Mapping[PairId, complex]
@@ -288,6 +297,15 @@ class Chain:
     claims : dict
         Counts stated in an identification table (``n_moving_links``, ``p5``, ``p4``, ``W``,
         ``N_Q``), to be checked.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> chain = assur.load_chain(tables / "four_bar.yaml")
+    >>> chain.inputs[0].link, sorted(chain.geometry.points)
+    (1, ['A', 'B', 'C', 'D'])
     """
 
     name: str

@@ -80,13 +80,51 @@ def load_chain(path: str | os.PathLike[str]) -> Chain:
     ------
     TableError
         Listing every problem of the file (file, table, row, field, expected, found).
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> chain = assur.load_chain(tables / "four_bar.yaml")
+    >>> len(chain.links), len(chain.pairs)
+    (4, 4)
     """
     reader = TableReader.from_path(path)
     return _read(reader)
 
 
 def chain_from_dict(data: Any, source: str = "<data>") -> Chain:
-    """Build a chain from already parsed table data (see :func:`load_chain`)."""
+    """Build a chain from already parsed table data (see :func:`load_chain`).
+
+    Parameters
+    ----------
+    data : mapping
+        The table as YAML would give it (``mechanism:`` with ``pairs:`` and ``inputs:``, or an
+        identification table).
+    source : str, optional
+        The file name used in messages.
+
+    Returns
+    -------
+    Chain
+        The typed chain with its sketch and identification rows, if any.
+
+    Raises
+    ------
+    TableError
+        For every problem of the table at once.
+
+    Examples
+    --------
+    >>> from assur import chain_from_dict
+    >>> chain = chain_from_dict({"mechanism": {"pairs": [
+    ...     {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
+    ...     {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}],
+    ...     "inputs": [1]}})
+    >>> len(chain.links), len(chain.pairs)
+    (4, 4)
+    """
     return _read(TableReader.from_data(data, source))
 
 

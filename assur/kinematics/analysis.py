@@ -80,6 +80,17 @@ class Motion:
         Tracing point name → its point.
     analogs : bool
         Whether values are jets (with derivatives w.r.t. q).
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> model = assur.build_model(analysis)
+    >>> motion = assur.analyse(model, points=8)
+    >>> motion.q.shape, sorted(motion.joints)
+    ((8,), ['A', 'B', 'C', 'D'])
     """
 
     model: KinematicModel
@@ -109,6 +120,28 @@ def input_grid(model: KinematicModel, points: int) -> np.ndarray:
 
     A full-turn crank gets ``points`` angles over [0, 2π) (the end equals the start); an
     actuator gets ``points`` lengths over its closed stroke.
+
+    Parameters
+    ----------
+    model : KinematicModel
+        The mechanism (its input is a crank or an actuator).
+    points : int
+        Number of positions.
+
+    Returns
+    -------
+    numpy.ndarray
+        Crank rotations φ in radians from the reference position, or actuator lengths in mm.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> model = assur.build_model(analysis)
+    >>> print(assur.input_grid(model, 4).round(4))
+    [0.     1.5708 3.1416 4.7124]
     """
     lo, hi = model.input_range
     if model.drive == "crank" and math.isclose(hi - lo, 2 * math.pi):
@@ -136,6 +169,20 @@ def analyse(model: KinematicModel, q: np.ndarray | None = None, *, points: int =
     Motion
         NaN where a group (or an earlier one) does not assemble; see ``solutions[...]
         .exists``, ``.margin`` and ``.reason``, and :mod:`assur.kinematics.existence`.
+
+    Examples
+    --------
+    At φ = 0 the mechanism is in its sketched position, so joint C is where the sketch puts it:
+
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> model = assur.build_model(analysis)
+    >>> motion = assur.analyse(model, points=4)
+    >>> c = motion.joints["C"][0]
+    >>> print(f"{c.real:.3f} {c.imag:.3f}")
+    110.000 80.000
     """
     q = input_grid(model, points) if q is None else np.asarray(q, dtype=float)
     coordinate: Value = Jet(q, 1.0, 0.0) if analogs else q

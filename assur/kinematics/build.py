@@ -58,12 +58,31 @@ __all__ = ["build_model", "load_model", "model_from_params", "model_from_sketch"
 def load_model(path: str | os.PathLike[str]) -> KinematicModel:
     """Read a chain table or an identification table and build its kinematic model.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A chain table with a ``geometry:`` sketch, or an identification table with ``params:``.
+
+    Returns
+    -------
+    KinematicModel
+        The groups in layering order with their DGTU parameters.
+
     Raises
     ------
     TableError
         For a table problem (all problems at once).
     StructureError
         When the chain is not a class II mechanism with one input.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> model = assur.load_model(tables / "four_bar.yaml")
+    >>> [group.label for group in model.groups]
+    ['L0(1)', 'L1(2,3)']
     """
     from assur.io.chain_table import load_chain
     from assur.structure.analysis import analyse_structure
@@ -89,6 +108,16 @@ def build_model(analysis: StructuralAnalysis) -> KinematicModel:
         When the table gives no dimensions, or for a problem of them.
     StructureError
         When the chain is not a class II mechanism with one input.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> model = assur.build_model(analysis)
+    >>> [group.label for group in model.groups]
+    ['L0(1)', 'L1(2,3)']
     """
     chain = analysis.chain
     if chain.geometry is not None:

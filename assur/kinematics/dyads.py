@@ -332,6 +332,16 @@ def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
     -------
     DyadSolution
         ``c`` = crank pin, ``origin_i`` = O₁, ``angle_i`` = φ₁; margin 1 (always assembles).
+
+    Examples
+    --------
+    A 2 mm crank at 90° from the x axis puts its pin on the y axis:
+
+    >>> import numpy as np
+    >>> from assur import solve_input
+    >>> pin = solve_input(0j, 2.0, np.pi / 2).c
+    >>> print(f"{pin.real:.3f} {pin.imag:.3f}")
+    0.000 2.000
     """
     pin = _fast.crank_pin(o, length, angle)
     if pin is not None:
@@ -392,6 +402,18 @@ def solve_rrr(
     ``x = (d² + (l_i − l_j)(l_i + l_j))/(2d²)`` and ``y = sqrt(Δ)/(2d²)``, Δ the product of
     the four factors (Heron: 16 times the squared area of the triangle), so the branch is σ.
     Each factor is a difference of inputs, so its round-off is a few ε times the perimeter.
+
+    Examples
+    --------
+    Hinges 5 mm apart and links of 3 and 4 mm: the right triangle 3–4–5, C above the line for
+    σ = +1; with the hinges 8 mm apart the links cannot reach (3 + 4 < 8):
+
+    >>> from assur import solve_rrr
+    >>> group = solve_rrr(0j, 5 + 0j, 3.0, 4.0, sigma=1)
+    >>> print(f"{group.c.real:.3f} {group.c.imag:.3f}", bool(group.exists))
+    1.800 2.400 True
+    >>> bool(solve_rrr(0j, 8 + 0j, 3.0, 4.0, sigma=1).exists)
+    False
     """
     s = _branch(sigma)
     shape, jets = _layout(h_i, h_j, l_i, l_j, s)
@@ -501,6 +523,15 @@ def solve_rrp(
     is read as the tangency itself: margin 0, C at the foot of the perpendicular. A rod of
     zero length (C on H_j) does not assemble: margin NaN, reason ``COINCIDENT_HINGES``.
     ``S = p + σ·sqrt((l_j − |h|)(l_j + |h|))``.
+
+    Examples
+    --------
+    A 5 mm rod hinged 3 mm above a guide along the x axis meets it 4 mm ahead (3–4–5):
+
+    >>> from assur import solve_rrp
+    >>> c = solve_rrp(3j, 0j, 0.0, 0.0, 5.0, sigma=1).c
+    >>> print(f"{c.real:.3f} {c.imag:.3f}")
+    4.000 0.000
     """
     s = _branch(sigma)
     shape, jets = _layout(h_j, a, theta, e, l_j, s)
@@ -571,6 +602,15 @@ def solve_rpr(
     assemble: margin NaN, reason ``COINCIDENT_HINGES``. ``T = σ·sqrt((ρ − |h|)(ρ + |h|))``.
     From ``H_j − H_i = (T + j·h)·u(φ_i)``: ``φ_i = arg((H_j − H_i)·(T − j·h))``, one polar
     angle with no branch ambiguity.
+
+    Examples
+    --------
+    With no offset the kulisa axis passes through the block hinge, 5 mm from H_i:
+
+    >>> from assur import solve_rpr
+    >>> group = solve_rpr(0j, 3 + 4j, 0.0, sigma=1)
+    >>> print(f"{group.s_i:.3f} {group.c.real:.3f} {group.c.imag:.3f}")
+    5.000 3.000 4.000
     """
     s = _branch(sigma)
     shape, jets = _layout(h_i, h_j, h, s)
@@ -630,6 +670,16 @@ def solve_prp(
     -----
     ``sin(θ_j − θ_i)`` is taken from the angle difference, not from the cross product of the
     two unit vectors, so nearly parallel guides keep full relative accuracy in the divisor.
+
+    Examples
+    --------
+    A guide along the x axis and a vertical one through (2, 0) cross at (2, 0):
+
+    >>> import numpy as np
+    >>> from assur import solve_prp
+    >>> c = solve_prp(0j, 0.0, 0.0, 2 + 0j, np.pi / 2, 0.0).c
+    >>> print(f"{c.real:.3f} {c.imag:.3f}")
+    2.000 0.000
     """
     shape, jets = _layout(a, theta_i, e_i, b, theta_j, e_j)
     c, slide_i, slide_j, margin = _prp_geometry(a, theta_i, e_i, b, theta_j, e_j)
@@ -677,6 +727,17 @@ def solve_rpp(
     DyadSolution
         ``c`` = C (``H_j + T·u(θ_T)``); link i frame at C along θ_S, link j frame at H_j along
         θ_T; ``s_i`` = S, ``s_j`` = T.
+
+    Examples
+    --------
+    Link j hinged at (2, 3) carries a guide at γ = 90° to a slider guide along the x axis: the
+    guides cross at (2, 0), 3 mm below the hinge (T = −3):
+
+    >>> import numpy as np
+    >>> from assur import solve_rpp
+    >>> group = solve_rpp(2 + 3j, np.pi / 2, 0j, 0.0, 0.0)
+    >>> print(f"{group.c.real:.3f} {group.c.imag:.3f} {group.s_j:.3f}")
+    2.000 0.000 -3.000
     """
     shape, jets = _layout(h_j, gamma, a, theta_s, e)
     c, theta_t, slide, t, margin = _rpp_geometry(h_j, gamma, a, theta_s, e)

@@ -138,6 +138,17 @@ class ExistenceReport:
     first : ndarray of int
         Index into ``groups`` of the first failing group at each position; −1 where all
         assemble.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> model = assur.build_model(analysis)
+    >>> report = assur.check_existence(model, points=36)
+    >>> [group.label for group in report.groups], bool(report.groups[0].fails.any())
+    (['L1(2,3)'], False)
     """
 
     q: np.ndarray
@@ -184,6 +195,20 @@ def check_existence(model: KinematicModel, q: np.ndarray | None = None, *, point
     Returns
     -------
     ExistenceReport
+
+    Examples
+    --------
+    The sketched four-bar is a crank-rocker (Grashof: 40.3 + 100.6 ≤ 100 + 80.6), so its RRR
+    group assembles over the whole turn:
+
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> model = assur.build_model(analysis)
+    >>> report = assur.check_existence(model, points=36)
+    >>> [group.intervals for group in report.groups]
+    [[]]
     """
     if motion is None:
         motion = analyse(model, q, points=points)

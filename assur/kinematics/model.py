@@ -177,6 +177,16 @@ class KinematicModel:
         Pair id → (type ``'R'``/``'P'``, the two links, guide carrier or None).
     source : str
         The table the model was built from.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> model = assur.build_model(analysis)
+    >>> model.input_range
+    (0.0, 6.283185307179586)
     """
 
     name: str

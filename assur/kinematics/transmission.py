@@ -96,7 +96,33 @@ def binary_links(model: KinematicModel) -> set[LinkId]:
 
 
 def pressure_angles(motion: Motion) -> list[PressureAngle]:
-    """Pressure angle at C of every L1 and L2 group with a two-hinge rod."""
+    """Pressure angle at C of every L1 and L2 group with a two-hinge rod.
+
+    Parameters
+    ----------
+    motion : Motion
+        An analysis over the cycle.
+
+    Returns
+    -------
+    list of PressureAngle
+        One entry per group output pair where the angle is defined, radians per position.
+
+    Examples
+    --------
+    At the sketch the four-bar's coupler BC points at 26.57° and the rocker DC at 82.87°, so
+    the transmission angle is 56.31° and the pressure angle at C is 90° − 56.31° = 33.69°:
+
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> model = assur.build_model(analysis)
+    >>> import numpy as np
+    >>> angle = assur.pressure_angles(assur.analyse(model, points=4))[0]
+    >>> angle.pair, round(float(np.degrees(angle.alpha[0])), 2)
+    ('C', 33.69)
+    """
     model = motion.model
     binary = binary_links(model)
     out = []
@@ -116,7 +142,32 @@ def pressure_angles(motion: Motion) -> list[PressureAngle]:
 
 
 def joint_rotations(motion: Motion) -> list[JointRotation]:
-    """Relative rotation θ_ab(q) of every revolute joint, with its swing."""
+    """Relative rotation θ_ab(q) of every revolute joint, with its swing.
+
+    Parameters
+    ----------
+    motion : Motion
+        An analysis over the cycle.
+
+    Returns
+    -------
+    list of JointRotation
+        Per pair the relative rotation of its two links over the positions, and whether it
+        turns fully.
+
+    Examples
+    --------
+    The crank's pair A turns fully:
+
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> model = assur.build_model(analysis)
+    >>> rotation = assur.joint_rotations(assur.analyse(model, points=36))[0]
+    >>> rotation.pair, rotation.full_turn
+    ('A', True)
+    """
     model = motion.model
     owner: dict[PairId, str] = {}
     for group in model.groups:

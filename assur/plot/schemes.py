@@ -506,6 +506,17 @@ def draw_structural_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
     Returns
     -------
     matplotlib Axes
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> from matplotlib.figure import Figure
+    >>> ax = Figure().subplots()
+    >>> assur.draw_structural_scheme(analysis.chain, analysis, ax=ax) is ax
+    True
     """
     ax = ax if ax is not None else _new_axes((7.5, 6.0))
     layout = layout or scheme_layout(chain, analysis)
@@ -712,10 +723,40 @@ def save_schemes(chain: Chain, analysis: StructuralAnalysis, path: str | os.Path
                  lang: str = "en", which: str = "both") -> Path:
     """Write the schemes to an SVG or PNG file (by its suffix), atomically.
 
+    Parameters
+    ----------
+    chain : Chain
+        The chain drawn.
+    analysis : StructuralAnalysis
+        Its structural analysis (groups and layering).
+    path : str or os.PathLike
+        Output file; its suffix chooses the format (``.svg`` or ``.png``).
+    lang : str
+        Language of the labels.
+    which : {'both', 'structural', 'formalised'}
+        Which schemes to draw.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
     Raises
     ------
     PictureFormatError
         If the suffix is neither ``.svg`` nor ``.png``.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = assur.save_schemes(analysis.chain, analysis, Path(folder) / "schemes.svg")
+    ...     path.read_bytes().lstrip().startswith(b"<?xml")
+    True
     """
     path = Path(path)
     fmt = path.suffix.lower().lstrip(".")

@@ -70,6 +70,15 @@ class StructuralAnalysis:
         Links that no group could take.
     rank : RankResult or None
         The rank test at the table's pose, when a complete pose was given.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> analysis.n, analysis.p5, analysis.p4, analysis.W
+    (3, 4, 0, 1)
     """
 
     chain: Chain
@@ -143,6 +152,17 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
     Returns
     -------
     StructuralAnalysis
+
+    Examples
+    --------
+    Three moving links and four lower pairs: W = 3·3 − 2·4 = 1, the input group and one RRR dyad:
+
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> analysis.W, analysis.formula
+    (1, 'I(0,1) → II₁(2,3)')
     """
     graph = body_graph(chain)
     peeling = peel(graph)

@@ -72,6 +72,16 @@ class AssurGroup:
         Members of a frozen actuator composite link in the group.
     issues : tuple of Diagnostic
         Findings about this group (truss, prismatic loop, unsupported …).
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> group = analysis.groups[0]
+    >>> group.name, group.group_class, group.order, group.links
+    ('RRR', 2, 2, (2, 3))
     """
 
     links: tuple[LinkId, ...]

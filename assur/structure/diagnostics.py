@@ -30,6 +30,19 @@ class Diagnostic:
         One sentence in English and in Russian.
     data : dict
         The numbers behind the sentence (``d``, ``q``, ``k``, ``p`` …).
+
+    Examples
+    --------
+    Two moving links and three lower pairs give W = 3·2 − 2·3 = 0, not the one input
+    declared (a truss, not a mechanism):
+
+    >>> from assur import analyse_structure, chain_from_dict
+    >>> chain = chain_from_dict({"mechanism": {"pairs": [
+    ...     {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
+    ...     {"id": "C", "type": "R", "links": [2, 0]}],
+    ...     "inputs": [1]}})
+    >>> [issue.code for issue in analyse_structure(chain).issues][:1]
+    ['E_MOBILITY_MISMATCH']
     """
 
     code: str

@@ -140,6 +140,20 @@ def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
         The result of checking a user's table (None when no table was given).
     checked_rows : int
         Number of rows of the user's table.
+
+    Returns
+    -------
+    str
+        The report, lines joined by newlines.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> print(assur.structure_report(analysis).splitlines()[2].strip())
+    mobility W = 3n − 2p5 − p4 = 3·3 − 2·4 − 0 = 1
     """
     a = analysis
     chain = a.chain

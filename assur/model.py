@@ -93,9 +93,8 @@ class Sketch:
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> import pathlib, assur
+    >>> tables = pathlib.Path(assur.__file__).parents[1] / "input_tables"
     >>> sketch = assur.load_chain(tables / "four_bar.yaml").geometry
     >>> sketch.points["C"]
     (110+80j)
@@ -300,9 +299,8 @@ class Chain:
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> import pathlib, assur
+    >>> tables = pathlib.Path(assur.__file__).parents[1] / "input_tables"
     >>> chain = assur.load_chain(tables / "four_bar.yaml")
     >>> chain.inputs[0].link, sorted(chain.geometry.points)
     (1, ['A', 'B', 'C', 'D'])

@@ -83,9 +83,8 @@ def load_chain(path: str | os.PathLike[str]) -> Chain:
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> import pathlib, assur
+    >>> tables = pathlib.Path(assur.__file__).parents[1] / "input_tables"
     >>> chain = assur.load_chain(tables / "four_bar.yaml")
     >>> len(chain.links), len(chain.pairs)
     (4, 4)

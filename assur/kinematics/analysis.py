@@ -83,11 +83,9 @@ class Motion:
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
-    >>> model = assur.build_model(analysis)
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> model = assur.load_model(table)
     >>> motion = assur.analyse(model, points=8)
     >>> motion.q.shape, sorted(motion.joints)
     ((8,), ['A', 'B', 'C', 'D'])
@@ -135,11 +133,9 @@ def input_grid(model: KinematicModel, points: int) -> np.ndarray:
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
-    >>> model = assur.build_model(analysis)
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> model = assur.load_model(table)
     >>> print(assur.input_grid(model, 4).round(4))
     [0.     1.5708 3.1416 4.7124]
     """
@@ -174,11 +170,9 @@ def analyse(model: KinematicModel, q: np.ndarray | None = None, *, points: int =
     --------
     At φ = 0 the mechanism is in its sketched position, so joint C is where the sketch puts it:
 
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
-    >>> model = assur.build_model(analysis)
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> model = assur.load_model(table)
     >>> motion = assur.analyse(model, points=4)
     >>> c = motion.joints["C"][0]
     >>> print(f"{c.real:.3f} {c.imag:.3f}")

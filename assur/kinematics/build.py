@@ -77,9 +77,8 @@ def load_model(path: str | os.PathLike[str]) -> KinematicModel:
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
+    >>> import pathlib, assur
+    >>> tables = pathlib.Path(assur.__file__).parents[1] / "input_tables"
     >>> model = assur.load_model(tables / "four_bar.yaml")
     >>> [group.label for group in model.groups]
     ['L0(1)', 'L1(2,3)']
@@ -111,10 +110,9 @@ def build_model(analysis: StructuralAnalysis) -> KinematicModel:
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> analysis = assur.analyse_structure(assur.load_chain(table))
     >>> model = assur.build_model(analysis)
     >>> [group.label for group in model.groups]
     ['L0(1)', 'L1(2,3)']

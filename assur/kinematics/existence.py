@@ -141,11 +141,9 @@ class ExistenceReport:
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
-    >>> model = assur.build_model(analysis)
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> model = assur.load_model(table)
     >>> report = assur.check_existence(model, points=36)
     >>> [group.label for group in report.groups], bool(report.groups[0].fails.any())
     (['L1(2,3)'], False)
@@ -201,11 +199,9 @@ def check_existence(model: KinematicModel, q: np.ndarray | None = None, *, point
     The sketched four-bar is a crank-rocker (Grashof: 40.3 + 100.6 ≤ 100 + 80.6), so its RRR
     group assembles over the whole turn:
 
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
-    >>> model = assur.build_model(analysis)
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> model = assur.load_model(table)
     >>> report = assur.check_existence(model, points=36)
     >>> [group.intervals for group in report.groups]
     [[]]

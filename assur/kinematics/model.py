@@ -180,11 +180,9 @@ class KinematicModel:
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
-    >>> model = assur.build_model(analysis)
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> model = assur.load_model(table)
     >>> model.input_range
     (0.0, 6.283185307179586)
     """

@@ -113,11 +113,9 @@ def pressure_angles(motion: Motion) -> list[PressureAngle]:
     At the sketch the four-bar's coupler BC points at 26.57° and the rocker DC at 82.87°, so
     the transmission angle is 56.31° and the pressure angle at C is 90° − 56.31° = 33.69°:
 
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
-    >>> model = assur.build_model(analysis)
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> model = assur.load_model(table)
     >>> import numpy as np
     >>> angle = assur.pressure_angles(assur.analyse(model, points=4))[0]
     >>> angle.pair, round(float(np.degrees(angle.alpha[0])), 2)
@@ -159,11 +157,9 @@ def joint_rotations(motion: Motion) -> list[JointRotation]:
     --------
     The crank's pair A turns fully:
 
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
-    >>> model = assur.build_model(analysis)
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> model = assur.load_model(table)
     >>> rotation = assur.joint_rotations(assur.analyse(model, points=36))[0]
     >>> rotation.pair, rotation.full_turn
     ('A', True)

@@ -509,10 +509,9 @@ def draw_structural_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> analysis = assur.analyse_structure(assur.load_chain(table))
     >>> from matplotlib.figure import Figure
     >>> ax = Figure().subplots()
     >>> assur.draw_structural_scheme(analysis.chain, analysis, ax=ax) is ax
@@ -748,13 +747,12 @@ def save_schemes(chain: Chain, analysis: StructuralAnalysis, path: str | os.Path
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> analysis = assur.analyse_structure(assur.load_chain(table))
     >>> import tempfile
     >>> with tempfile.TemporaryDirectory() as folder:
-    ...     path = assur.save_schemes(analysis.chain, analysis, Path(folder) / "schemes.svg")
+    ...     path = assur.save_schemes(analysis.chain, analysis, pathlib.Path(folder) / "schemes.svg")
     ...     path.read_bytes().lstrip().startswith(b"<?xml")
     True
     """

@@ -73,10 +73,9 @@ class StructuralAnalysis:
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> analysis = assur.analyse_structure(assur.load_chain(table))
     >>> analysis.n, analysis.p5, analysis.p4, analysis.W
     (3, 4, 0, 1)
     """
@@ -157,10 +156,9 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
     --------
     Three moving links and four lower pairs: W = 3·3 − 2·4 = 1, the input group and one RRR dyad:
 
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> analysis = assur.analyse_structure(assur.load_chain(table))
     >>> analysis.W, analysis.formula
     (1, 'I(0,1) → II₁(2,3)')
     """

@@ -75,10 +75,9 @@ class AssurGroup:
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> analysis = assur.analyse_structure(assur.load_chain(table))
     >>> group = analysis.groups[0]
     >>> group.name, group.group_class, group.order, group.links
     ('RRR', 2, 2, (2, 3))

@@ -100,10 +100,9 @@ def identification_table(analysis: StructuralAnalysis,
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> analysis = assur.analyse_structure(assur.load_chain(table))
     >>> [(row.L, row.i, row.j) for row in assur.identification_table(analysis)]
     [(0, 1, None), (1, 2, 3)]
     """
@@ -174,10 +173,9 @@ def check_identification(analysis: StructuralAnalysis,
     --------
     The table the program builds agrees with itself; a row with the wrong kind does not:
 
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> analysis = assur.analyse_structure(assur.load_chain(table))
     >>> import dataclasses
     >>> rows = assur.identification_table(analysis)
     >>> assur.check_identification(analysis, rows)

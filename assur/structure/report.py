@@ -148,10 +148,9 @@ def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> tables = Path(assur.__file__).parent.parent / "input_tables"
-    >>> analysis = assur.analyse_structure(assur.load_chain(tables / "four_bar.yaml"))
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
+    >>> analysis = assur.analyse_structure(assur.load_chain(table))
     >>> print(assur.structure_report(analysis).splitlines()[2].strip())
     mobility W = 3n − 2p5 − p4 = 3·3 − 2·4 − 0 = 1
     """

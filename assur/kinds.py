@@ -37,6 +37,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from assur.forces import groups as statics
 from assur.kinematics import dyads
 from assur.kinematics import jets as J
 from assur.kinematics.dyads import Value
@@ -44,6 +45,7 @@ from assur.model import joint_key
 from assur.text import render
 
 if TYPE_CHECKING:  # pragma: no cover
+    from assur.forces.groups import Loads, Solved
     from assur.kinematics.analysis import _State
     from assur.kinematics.build import _Builder
     from assur.kinematics.dyads import DyadSolution
@@ -124,10 +126,12 @@ class GroupKind:
         the frame, else the later/earlier link), ``"revolute"`` (the link whose external
         pair is revolute), ``"not_carrier"`` (the link that does not carry the internal
         guide).
-    solve, sketch, shortfall, pressure : callable or None
+    solve, sketch, shortfall, pressure, equilibrium : callable or None
         The per-kind computations: solve the group over the positions (``_solve_*``),
         derive its parameters from a sketch (``_sketch_*``), the violated condition in mm or
-        degrees (``_shortfall_*``), the pressure angle at C (``_pressure_*``).
+        degrees (``_shortfall_*``), the pressure angle at C (``_pressure_*``), the
+        kinetostatics of a dyad: its reactions from the known loads of its links
+        (``assur.forces.groups.equilibrium_*``, ``docs/forces.md``).
 
     Examples
     --------
@@ -157,6 +161,7 @@ class GroupKind:
     shortfall: Callable[[GroupModel, _Shortfall], tuple[float, str]] | None = None
     pressure: Callable[[GroupModel, set[LinkId], np.ndarray, np.ndarray],
                        tuple[tuple[LinkId, ...], np.ndarray]] | None = None
+    equilibrium: Callable[[GroupModel, Loads], Solved] | None = None
 
     @property
     def key(self) -> str:
@@ -444,31 +449,35 @@ KINDS: Mapping[int, GroupKind] = {
                  variants=(1, -1), default_variant=1, out_code="8;2",
                  condition="|l_i − l_j| ≤ |H_iH_j| ≤ l_i + l_j,  |cos ∠H_i| ≤ 1 − δ",
                  row_pairs=(_R, _R, _R), j_rule="frame_last", solve=_solve_rrr,
-                 sketch=_sketch_rrr, shortfall=_shortfall_rrr, pressure=_pressure_rrr),
+                 sketch=_sketch_rrr, shortfall=_shortfall_rrr, pressure=_pressure_rrr,
+                 equilibrium=statics.equilibrium_rrr),
     2: GroupKind(2, "L2", "RRP", 2, ("R", "PR"), (("P_i", "i"), ("C", "c"), ("H_j", "j")),
                  (*_HJ, "l_j", "x_Ak", "y_Ak", "beta_g", "e", *_TAIL), {"j": _HJ},
                  {"i": ("x_Ak", "y_Ak", "beta_g", "e")}, variants=(1, -1), default_variant=1,
                  out_code="7;3", condition="|h| ≤ (1 − δ)·l_j",
                  row_pairs=(_P_PREV, _R, _R), j_rule="revolute", solve=_solve_rrp,
-                 sketch=_sketch_rrp, shortfall=_shortfall_rrp, pressure=_pressure_rrp),
+                 sketch=_sketch_rrp, shortfall=_shortfall_rrp, pressure=_pressure_rrp,
+                 equilibrium=statics.equilibrium_rrp),
     3: GroupKind(3, "L3", "RPR", 2, ("P", "RR"), (("H_i", "i"), ("P_c", "c"), ("H_j", "j")),
                  (*_HI, *_HJ, "d", *_TAIL), {"i": _HI, "j": _HJ}, variants=(0, 1, -1),
                  default_variant=0, out_code="5", condition="|d| ≤ (1 − δ)·|H_iH_j|",
                  row_pairs=(_R, ("P", "i"), _R), j_rule="not_carrier", solve=_solve_rpr,
-                 sketch=_sketch_rpr, shortfall=_shortfall_rpr),
+                 sketch=_sketch_rpr, shortfall=_shortfall_rpr,
+                 equilibrium=statics.equilibrium_rpr),
     4: GroupKind(4, "L4", "PRP", 2, ("R", "PP"), (("P_i", "i"), ("C", "c"), ("P_j", "j")),
                  ("x_Ak", "y_Ak", "beta_i", "e_i", "x_Bk", "y_Bk", "beta_j", "e_j", *_TAIL),
                  guides={"i": ("x_Ak", "y_Ak", "beta_i", "e_i"),
                          "j": ("x_Bk", "y_Bk", "beta_j", "e_j")},
                  out_code="4", condition="|sin(θ_j − θ_i)| ≥ δ",
                  row_pairs=(_P_PREV, _R, _P_PREV), j_rule="frame_first", solve=_solve_prp,
-                 sketch=_sketch_prp, shortfall=_shortfall_guides),
+                 sketch=_sketch_prp, shortfall=_shortfall_guides,
+                 equilibrium=statics.equilibrium_prp),
     5: GroupKind(5, "L5", "RPP", 2, ("P", "PR"), (("P_i", "i"), ("P_c", "c"), ("H_j", "j")),
                  (*_HJ, "gamma", "x_Ak", "y_Ak", "beta_S", "e", *_TAIL), {"j": _HJ},
                  {"i": ("x_Ak", "y_Ak", "beta_S", "e")}, out_code="5",
                  condition="|sin γ| ≥ δ", row_pairs=(_P_PREV, ("P", "j"), _R),
                  j_rule="revolute", solve=_solve_rpp, sketch=_sketch_rpp,
-                 shortfall=_shortfall_guides),
+                 shortfall=_shortfall_guides, equilibrium=statics.equilibrium_rpp),
 }
 
 #: Kinds that structure recognises but kinematics does not solve yet.

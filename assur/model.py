@@ -13,9 +13,12 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import asdict, dataclass, field
 from enum import Enum
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from assur.errors import Issue
+
+if TYPE_CHECKING:  # pragma: no cover
+    from assur.forces.model import ForceData
 
 __all__ = [
     "Chain",
@@ -296,6 +299,9 @@ class Chain:
     claims : dict
         Counts stated in an identification table (``n_moving_links``, ``p5``, ``p4``, ``W``,
         ``N_Q``), to be checked.
+    forces : ForceData or None
+        The table's ``masses:``, ``loads:`` and ``gravity:`` sections (``docs/forces.md``);
+        None when it has neither masses nor loads.
 
     Examples
     --------
@@ -318,6 +324,7 @@ class Chain:
     names: Mapping[LinkId, str] = field(default_factory=dict)
     identification: tuple[IdentificationRow, ...] | None = None
     claims: Mapping[str, int] = field(default_factory=dict)
+    forces: ForceData | None = None
     _index: dict[str, dict[Any, Any]] = field(default_factory=dict, init=False, repr=False,
                                               compare=False)
 

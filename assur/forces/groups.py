@@ -1,7 +1,7 @@
 """The closed-form equilibrium of each kind of dyad (``docs/forces.md`` §3).
 
-One function per kind, registered in :data:`EQUATIONS` under the kind's label (``"L1"`` …
-``"L5"``). Each takes the group and a :class:`Loads` view of the known loads of its links
+One function per kind, given to that kind's entry of the registry
+(``assur.kinds.KINDS[L].equilibrium``). Each takes the group and a :class:`Loads` view of the known loads of its links
 (everything later groups exert on them included) and returns a :class:`Solved`: the
 reactions of its pairs as :class:`Transfer` records (force of one link on another, its point,
 and for a prismatic pair the normal force and the couple) and the group's normalised
@@ -13,7 +13,7 @@ array over the positions (and designs); nothing loops over them.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import IntEnum
 from typing import TYPE_CHECKING, Protocol
@@ -25,7 +25,8 @@ from assur.model import LinkId, PairId
 if TYPE_CHECKING:  # pragma: no cover
     from assur.kinematics.model import GroupModel
 
-__all__ = ["EQUATIONS", "ForceReason", "Loads", "Solved", "Transfer", "cross", "dot",
+__all__ = ["ForceReason", "Loads", "Solved", "Transfer", "cross", "dot", "equilibrium_prp",
+           "equilibrium_rpp", "equilibrium_rpr", "equilibrium_rrp", "equilibrium_rrr",
            "outer_link"]
 
 
@@ -130,7 +131,7 @@ def _dyad(group: GroupModel) -> tuple[Mapping[str, PairId], LinkId, LinkId]:
     return group.pairs, group.i, group.j
 
 
-def _rrr(group: GroupModel, loads: Loads) -> Solved:
+def equilibrium_rrr(group: GroupModel, loads: Loads) -> Solved:
     """L1 RRR: R_pi at H_i, R_qj at H_j, R_ji at C."""
     roles, i, j = _dyad(group)
     h_i, h_j, c = (loads.joint(roles[r]) for r in ("H_i", "H_j", "C"))
@@ -148,7 +149,7 @@ def _rrr(group: GroupModel, loads: Loads) -> Solved:
     ), np.abs(d) / (np.abs(a) * np.abs(b)), ForceReason.TOGGLE)
 
 
-def _rrp(group: GroupModel, loads: Loads) -> Solved:
+def equilibrium_rrp(group: GroupModel, loads: Loads) -> Solved:
     """L2 RRP: slider i on the guide of p (N·n and M_pi at C), rod j."""
     roles, i, j = _dyad(group)
     c, h_j = loads.joint(roles["C"]), loads.joint(roles["H_j"])
@@ -167,7 +168,7 @@ def _rrp(group: GroupModel, loads: Loads) -> Solved:
     ), np.abs(bn) / np.abs(b), ForceReason.TOGGLE)
 
 
-def _rpr(group: GroupModel, loads: Loads) -> Solved:
+def equilibrium_rpr(group: GroupModel, loads: Loads) -> Solved:
     """L3 RPR: kulisa i (H_i to p), block j (H_j to q), internal N·n and M_ij at K = H_j."""
     roles, i, j = _dyad(group)
     h_i, k = loads.joint(roles["H_i"]), loads.joint(roles["H_j"])
@@ -184,7 +185,7 @@ def _rpr(group: GroupModel, loads: Loads) -> Solved:
     ), np.abs(t) / np.abs(k - h_i), ForceReason.INDETERMINATE)
 
 
-def _prp(group: GroupModel, loads: Loads) -> Solved:
+def equilibrium_prp(group: GroupModel, loads: Loads) -> Solved:
     """L4 PRP: i on the guide of p, j on the guide of q, hinge C."""
     roles, i, j = _dyad(group)
     c = loads.joint(roles["C"])
@@ -203,7 +204,7 @@ def _prp(group: GroupModel, loads: Loads) -> Solved:
     ), np.abs(den), ForceReason.PARALLEL_GUIDES)
 
 
-def _rpp(group: GroupModel, loads: Loads) -> Solved:
+def equilibrium_rpp(group: GroupModel, loads: Loads) -> Solved:
     """L5 RPP: j hinged at H_j carries the guide u_T of i; i also slides on the guide u_S of
     p; both prismatic pairs act at K = C."""
     roles, i, j = _dyad(group)
@@ -220,13 +221,3 @@ def _rpp(group: GroupModel, loads: Loads) -> Solved:
                  -loads.moment(i, c) - couple),
         Transfer(roles["H_j"], outer_link(group, "j"), j, inner * n_t - loads.force(j), h_j),
     ), np.abs(den), ForceReason.PARALLEL_GUIDES)
-
-
-#: The equilibrium of each dyad kind, keyed by the kind's label.
-EQUATIONS: dict[str, Callable[[GroupModel, Loads], Solved]] = {
-    "L1": _rrr,
-    "L2": _rrp,
-    "L3": _rpr,
-    "L4": _prp,
-    "L5": _rpp,
-}

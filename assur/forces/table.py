@@ -28,13 +28,13 @@ import os
 from typing import TYPE_CHECKING, Any
 
 from assur.forces.model import ForceData, Load, Mass, Tabulated
-from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
+from assur.io.reader import MISSING, Node, describe, normalise_id
 from assur.model import Chain, LinkId, PairType
 
 if TYPE_CHECKING:  # pragma: no cover
     from assur.kinematics.model import KinematicModel
 
-__all__ = ["SECTIONS", "load_with_forces", "read_forces"]
+__all__ = ["SECTIONS", "load_with_forces", "read_forces", "read_sections"]
 
 #: The top-level keys this reader owns.
 SECTIONS = ("masses", "loads", "gravity")
@@ -71,10 +71,34 @@ def read_forces(root: Node, chain: Chain) -> ForceData | None:
     >>> read_forces(reader.root(), chain).gravity
     -9.81j
     """
+    return read_sections(root, chain.moving_links, _actuated(chain))
+
+
+def read_sections(root: Node, moving: tuple[LinkId, ...], actuated: bool
+                  ) -> ForceData | None:
+    """The force-analysis sections given the moving links and the kind of input.
+
+    The chain reader calls this while it reads the rest of the table, so that the problems
+    of these sections are listed with those of the others.
+
+    Parameters
+    ----------
+    root : Node
+        The top of the table.
+    moving : tuple of link ids
+        The links that may carry masses and loads.
+    actuated : bool
+        Whether the input is a linear actuator (tables over ``length``, else ``phi``).
+
+    Returns
+    -------
+    ForceData or None
+        None when the table has neither ``masses:`` nor ``loads:``, or a problem was
+        recorded.
+    """
     reader = root.reader
     before = len(reader.issues)
-    moving = chain.moving_links
-    key = "length" if _actuated(chain) else "phi"
+    key = "length" if actuated else "phi"
     masses = _masses(root, moving)
     loads = _loads(root, moving, key)
     gravity = _gravity(root)
@@ -85,15 +109,14 @@ def read_forces(root: Node, chain: Chain) -> ForceData | None:
 
 def load_with_forces(path: str | os.PathLike[str]
                      ) -> tuple[KinematicModel, ForceData | None]:
-    """The kinematic model of a chain table and its force sections.
-
-    The mechanism is built from the table without the force sections, which are read with
-    :func:`read_forces` from the whole table.
+    """The kinematic model of a chain table and its force sections (``Chain.forces``).
 
     Raises
     ------
     TableError
-        For a problem of the chain, or every problem of the force sections at once.
+        For every problem of the table at once.
+    StructureError
+        When the chain is not a class II mechanism with one input.
 
     Examples
     --------
@@ -103,17 +126,12 @@ def load_with_forces(path: str | os.PathLike[str]
     >>> model.groups[1].label, data.gravity
     ('L1(2,3)', -9.81j)
     """
-    from assur.io.chain_table import chain_from_dict
+    from assur.io.chain_table import load_chain
     from assur.kinematics.build import build_model
     from assur.structure.analysis import analyse_structure
 
-    reader = TableReader.from_path(path)
-    rest = {k: v for k, v in reader.data.items() if k not in SECTIONS} if isinstance(
-        reader.data, dict) else reader.data
-    chain = chain_from_dict(rest, reader.source)
-    forces = read_forces(reader.root(), chain)
-    reader.raise_if_any()
-    return build_model(analyse_structure(chain)), forces
+    chain = load_chain(path)
+    return build_model(analyse_structure(chain)), chain.forces
 
 
 def _actuated(chain: Chain) -> bool:

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from assur.errors import TableError
 from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
@@ -42,6 +42,9 @@ from assur.model import (
 )
 from assur.text import Message
 
+if TYPE_CHECKING:  # pragma: no cover
+    from assur.forces.model import ForceData
+
 __all__ = [
     "IDENTIFICATION_FIELDS",
     "chain_from_dict",
@@ -51,7 +54,8 @@ __all__ = [
 ]
 
 _TOP_CHAIN = ("schema_version", "mechanism", "general", "geometry", "structure_identification",
-              "n_moving_links", "p5", "p4", "W", "N_Q", "layering_order")
+              "n_moving_links", "p5", "p4", "W", "N_Q", "layering_order", "masses", "loads",
+              "gravity")
 _TOP_TABLE = ("schema_version", "mechanism", "name", "frame", "general", "geometry",
               "structure_identification", "n_moving_links", "p5", "p4", "W", "N_Q",
               "layering_order")
@@ -181,6 +185,7 @@ def _read_chain_form(reader: TableReader) -> Chain:
     general = top.get("general", kind="mapping", required=False, default=None)
     rows = _read_rows(top, required=False)
     claims = _read_claims(top)
+    forces = _read_forces(top, links, frame, inputs, joints)
     if reader.issues:
         return _empty(reader.source)
     input_links = [d.link for d in inputs if d.link is not None]
@@ -188,7 +193,17 @@ def _read_chain_form(reader: TableReader) -> Chain:
     return Chain(name=name or _stem(reader.source), frame=frame, links=tuple(links),
                  pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,
                  source=reader.source, group_params=_group_params(rows), names=names,
-                 identification=tuple(rows) if rows else None, claims=claims)
+                 identification=tuple(rows) if rows else None, claims=claims, forces=forces)
+
+
+def _read_forces(top: Node, links: list[LinkId], frame: LinkId, inputs: list[Drive],
+                 joints: Joints) -> ForceData | None:
+    """The ``masses:``, ``loads:`` and ``gravity:`` sections (``docs/forces.md`` §1)."""
+    from assur.forces.table import read_sections
+
+    actuated = any(drive.link is None and joints.get(drive.pair, ("",))[0] == "P"
+                   for drive in inputs)
+    return read_sections(top, tuple(link for link in links if link != frame), actuated)
 
 
 def _read_links(mech: Node, names: dict[LinkId, str]) -> list[LinkId] | None:

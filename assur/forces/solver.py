@@ -4,7 +4,7 @@
 analogs, the masses and loads (:class:`~assur.forces.model.ForceData`) and the input speed ω,
 and solves the groups from the last attached back to the input link (``docs/forces.md``):
 d'Alembert inertia forces and torques from the exact second analogs, the closed form of each
-dyad kind (:data:`~assur.forces.groups.EQUATIONS`), then the driving torque on the crank.
+dyad kind (its entry's ``equilibrium`` in :data:`assur.kinds.KINDS`), then the driving torque on the crank.
 Beside it, the driving torque from the power balance (Zhukovsky's lever) and the
 Newton–Euler residual of every link computed from the reported reactions.
 
@@ -22,11 +22,12 @@ from typing import Any
 import numpy as np
 
 from assur.forces.checks import LinkResidual, Power, lever_torque, link_residuals
-from assur.forces.groups import EQUATIONS, ForceReason, Transfer, cross, dot
+from assur.forces.groups import ForceReason, Transfer, cross, dot
 from assur.forces.model import ForceData, Tabulated
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import Motion, analyse, values
 from assur.kinematics.model import GroupModel
+from assur.kinds import KINDS
 from assur.kinematics.jets import Jet
 from assur.model import LinkId, PairId
 from assur.text import Message
@@ -456,10 +457,11 @@ def _groups(bodies: _Bodies, motion: Motion
     blocked = np.zeros(shape, bool)
     actuator = None
     for group in reversed(model.groups):
-        if group.kind == 0:
+        equilibrium = KINDS[group.kind].equilibrium
+        if equilibrium is None:      # the input group: solved last, by the drive
             continue
         members = _merge(bodies, group) if group.driven is not None else None
-        solved = EQUATIONS[f"L{group.kind}"](group, bodies)
+        solved = equilibrium(group, bodies)
         here = (solved.determinant <= SINGULAR) | (motion.solutions[group.label].margin
                                                    <= SINGULAR)
         new = here & ~blocked

@@ -152,19 +152,8 @@ class ForceAnalysis:
     @cached_property
     def residuals(self) -> dict[LinkId, LinkResidual]:
         """Moving link → its Newton–Euler residual (:class:`~assur.forces.checks.LinkResidual`)
-        from the reported reactions and driving torque (computed when first asked for).
-
-        Examples
-        --------
-        >>> import numpy as np, assur
-        >>> from assur.forces import ForceData, Load
-        >>> from pathlib import Path; import assur
-        >>> TABLES = Path(assur.__file__).parents[1] / "input_tables"
-        >>> model = assur.load_model(TABLES / "four_bar.yaml")
-        >>> motion = assur.analyse(model, np.radians([0.0, 90.0]), analogs=True)
-        >>> result = kinetostatics(motion, ForceData(loads=(Load(3, torque=-15.0),)))
-        >>> bool(max(r.moment.max() for r in result.residuals.values()) < 1e-12)
-        True
+        from the reported reactions and driving torque (computed when first asked for; see
+        the example of :func:`kinetostatics`).
         """
         with np.errstate(all="ignore"):
             return link_residuals(
@@ -177,13 +166,12 @@ class ForceAnalysis:
 
         Examples
         --------
-        >>> import numpy as np, assur
-        >>> from assur.forces import ForceData, Load
-        >>> from pathlib import Path; import assur
-        >>> TABLES = Path(assur.__file__).parents[1] / "input_tables"
-        >>> model = assur.load_model(TABLES / "four_bar.yaml")
-        >>> motion = assur.analyse(model, np.array([0.0]), analogs=True)
-        >>> result = kinetostatics(motion, ForceData(loads=(Load(3, torque=-15.0),)), 10.0)
+        >>> from pathlib import Path
+        >>> from assur.forces.table import load_with_forces
+        >>> from assur.kinematics.analysis import analyse
+        >>> table = Path(__file__).parents[2] / "input_tables" / "four_bar_gravity.yaml"
+        >>> model, data = load_with_forces(table)
+        >>> result = kinetostatics(analyse(model, points=4, analogs=True), data, 10.0)
         >>> result.message(0) is None
         True
         """
@@ -225,14 +213,16 @@ def kinetostatics(motion: Motion, data: ForceData, omega: float = 0.0) -> ForceA
     --------
     A four-bar with only a torque on the rocker, statically:
 
+    >>> from pathlib import Path
     >>> import numpy as np, assur
     >>> from assur.forces import ForceData, Load
-    >>> from pathlib import Path; import assur
     >>> TABLES = Path(assur.__file__).parents[1] / "input_tables"
     >>> model = assur.load_model(TABLES / "four_bar.yaml")
     >>> motion = assur.analyse(model, np.radians([0.0, 90.0]), analogs=True)
     >>> result = kinetostatics(motion, ForceData(loads=(Load(3, torque=-15.0),)))
     >>> bool(np.all(np.abs(result.power_balance) < 1e-12))
+    True
+    >>> bool(max(r.moment.max() for r in result.residuals.values()) < 1e-12)
     True
     """
     if not motion.analogs:

@@ -24,11 +24,11 @@ import numpy as np
 from assur.forces.checks import LinkResidual, Power, lever_torque, link_residuals
 from assur.forces.groups import ForceReason, Transfer, cross, dot
 from assur.forces.model import ForceData, Tabulated
+from assur.kinds import KINDS
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import Motion, analyse, values
-from assur.kinematics.model import GroupModel
-from assur.kinds import KINDS
 from assur.kinematics.jets import Jet
+from assur.kinematics.model import GroupModel
 from assur.model import LinkId, PairId
 from assur.text import Message
 
@@ -239,15 +239,16 @@ def kinetostatics(motion: Motion, data: ForceData, omega: float = 0.0) -> ForceA
         bodies = _Bodies(motion, frames, shape)
         power = _known_loads(bodies, motion, frames, data, omega)
         known = {link: (bodies.forces[link], bodies.moments[link]) for link in bodies.forces}
-        reactions, reason, singular, ill, actuator = _groups(bodies, motion)
+        solved, reason, singular, ill, actuator = _groups(bodies, motion)
         if actuator is None:
-            driving, drive = _crank(bodies, motion, reactions)
+            driving, drive = _crank(bodies, motion, solved)
             rate = float(model.direction)
         else:
             driving, drive = actuator
             rate = MM
         driving = np.where(reason > ForceReason.NOT_ASSEMBLED, np.nan, driving)
         lever, scale = lever_torque(power, rate)
+    reactions = {pair: solved[pair] for pair in model.pair_links if pair in solved}
     reason = np.where(~np.asarray(motion.exists) & (reason == 0), ForceReason.NOT_ASSEMBLED,
                       reason).astype(np.int8)
     return ForceAnalysis(omega=float(omega), gravity=complex(data.gravity),
@@ -428,7 +429,7 @@ def _jet(x: Any) -> Jet:
     return x
 
 
-def _value(value: complex | float | Tabulated, q: np.ndarray, periodic: bool) -> Any:
+def _value(value: complex | Tabulated, q: np.ndarray, periodic: bool) -> Any:
     return value.at(q, periodic=periodic) if isinstance(value, Tabulated) else value
 
 

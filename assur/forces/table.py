@@ -23,6 +23,7 @@ True
 
 from __future__ import annotations
 
+import itertools
 import math
 import os
 from typing import TYPE_CHECKING, Any
@@ -271,7 +272,7 @@ def _nodes_ok(node: Node, where: str, key: str, nodes: list[float],
     if len(nodes) < 2:
         reader.problem(where, "force.table.too_short", n=len(nodes))
         return False
-    if any(b <= a for a, b in zip(nodes, nodes[1:])):
+    if any(b <= a for a, b in itertools.pairwise(nodes)):
         reader.problem(where, "force.table.not_increasing", found=_list(nodes))
         return False
     if key != "phi":

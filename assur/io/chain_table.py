@@ -201,8 +201,9 @@ def _read_forces(top: Node, links: list[LinkId], frame: LinkId, inputs: list[Dri
     """The ``masses:``, ``loads:`` and ``gravity:`` sections (``docs/forces.md`` §1)."""
     from assur.forces.table import read_sections
 
-    actuated = any(drive.link is None and joints.get(drive.pair, ("",))[0] == "P"
-                   for drive in inputs)
+    driven = [joints.get(drive.pair) for drive in inputs
+              if drive.link is None and drive.pair is not None]
+    actuated = any(pair is not None and pair[0] == "P" for pair in driven)
     return read_sections(top, tuple(link for link in links if link != frame), actuated)
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -16,7 +17,8 @@ from synthesis.app.analysis import TableAnalysis, moving_links
 __all__ = ["analysis_csv"]
 
 
-def analysis_csv(result: TableAnalysis) -> str:
+def analysis_csv(result: TableAnalysis,
+                 extra: Sequence[tuple[str, np.ndarray]] = ()) -> str:
     """One row per position: input, joints, link angles, sliders, tracing points, existence.
 
     Points give ``_x``/``_y`` columns; every quantity its value and its analogs (``_d1``,
@@ -26,6 +28,8 @@ def analysis_csv(result: TableAnalysis) -> str:
     Parameters
     ----------
     result : TableAnalysis
+    extra : sequence of (name, values)
+        More columns aligned with the positions (the force analysis), written last.
 
     Returns
     -------
@@ -71,6 +75,7 @@ def analysis_csv(result: TableAnalysis) -> str:
     for group in result.existence.groups:
         columns.append((f"exists_{group.label}",
                         np.asarray(motion.solutions[group.label].exists, dtype=int)))
+    columns += extra
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow([name for name, _ in columns])

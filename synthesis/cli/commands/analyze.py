@@ -5,6 +5,7 @@ solves the groups in layering order at ``--points`` positions and prints a summa
 existence verdict of every group (with the intervals where it cannot be assembled), the
 ranges of the outputs, the largest pressure angle and the swing of every revolute joint.
 ``--json`` prints every position instead; ``--csv``, ``--plot`` and ``--animate`` write files.
+``--forces --omega W`` adds the force analysis (``docs/forces.md``) to each of them.
 """
 
 from __future__ import annotations
@@ -18,6 +19,9 @@ from assur.plot.mechanism import save_animation_gif, save_mechanism_png
 from assur.text import languages, render
 from synthesis.app.analysis import analyse_table
 from synthesis.app.analysis_csv import analysis_csv
+from synthesis.app.analysis_forces import table_forces
+from synthesis.app.analysis_forces_plot import save_forces_png
+from synthesis.app.analysis_forces_render import forces_columns, forces_record, forces_text
 from synthesis.app.analysis_json import analysis_record
 from synthesis.app.analysis_text import analysis_text
 
@@ -37,6 +41,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--animate", metavar="FILE.gif", help=render("cli.analyze.animate"))
     parser.add_argument("--frames", type=int, default=48, help=render("cli.analyze.frames"))
     parser.add_argument("--omega", type=float, default=None, help=render("cli.analyze.omega"))
+    parser.add_argument("--forces", action="store_true", help=render("force.cli.forces"))
     parser.add_argument("--lang", choices=languages(), default="en",
                         help=render("cli.analyze.lang"))
 
@@ -44,18 +49,29 @@ def add_args(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Analyse the table and report."""
     result = analyse_table(args.table, points=args.points, omega=args.omega)
+    forces = table_forces(args.table, result) if args.forces else None
     if args.json:
-        json.dump(analysis_record(result), sys.stdout, ensure_ascii=False)
+        record = analysis_record(result)
+        if forces is not None:
+            record["forces"] = forces_record(forces)
+        json.dump(record, sys.stdout, ensure_ascii=False)
         sys.stdout.write("\n")
     else:
         print(analysis_text(result, args.lang))
+        if forces is not None:
+            print("\n" + forces_text(result, forces, args.lang))
     notes = sys.stderr if args.json else sys.stdout
     if args.csv:
-        atomic_write_text(args.csv, analysis_csv(result))
+        extra = forces_columns(forces) if forces is not None else []
+        atomic_write_text(args.csv, analysis_csv(result, extra))
         print(render("analyze.written", args.lang, path=args.csv), file=notes)
     if args.plot:
-        save_mechanism_png(result.motion, args.plot, index=result.index_at(args.at),
-                           lang=args.lang)
+        if forces is not None:
+            save_forces_png(result, forces, args.plot, index=result.index_at(args.at),
+                            lang=args.lang)
+        else:
+            save_mechanism_png(result.motion, args.plot, index=result.index_at(args.at),
+                               lang=args.lang)
         print(render("analyze.written", args.lang, path=args.plot), file=notes)
     if args.animate:
         save_animation_gif(result.motion, args.animate, frames=args.frames, lang=args.lang)

@@ -1,0 +1,187 @@
+"""Force analysis of a table over the input cycle (``assur analyze --forces --omega W``).
+
+:func:`table_forces` runs the kinetostatics (``docs/forces.md``) on an analysed table with the
+table's ``masses:``, ``loads:`` and ``gravity:`` sections; :func:`summarise` condenses the
+result for the text report and the coursework report: the extreme driving torque and where,
+the largest reaction in every pair, and the two checks (power balance and Newton–Euler).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from assur.errors import Issue, TableError
+from assur.forces.groups import ForceReason
+from assur.forces.solver import ForceAnalysis, kinetostatics
+from assur.io.chain_table import load_chain
+from assur.model import LinkId, PairId
+from assur.text import Message
+from synthesis.app.analysis import TableAnalysis
+
+__all__ = ["Extreme", "ForceSummary", "PairPeak", "summarise", "table_forces"]
+
+
+def table_forces(path: str | os.PathLike[str], result: TableAnalysis) -> ForceAnalysis:
+    """The force analysis of an analysed table at the analysis' positions.
+
+    Parameters
+    ----------
+    path : path-like
+        The chain table that ``result`` analyses, with ``masses:`` or ``loads:``.
+    result : TableAnalysis
+        Its kinematics (with analogs) and the input speed ``omega`` (rad/s of a crank, mm/s
+        of an actuator; 0 gives the static analysis).
+
+    Returns
+    -------
+    ForceAnalysis
+
+    Raises
+    ------
+    TableError
+        When the table has neither ``masses:`` nor ``loads:``, or no input speed was given
+        (both problems at once).
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> from synthesis.app.analysis import analyse_table
+    >>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "four_bar_gravity.yaml"
+    >>> forces = table_forces(table, analyse_table(table, points=12, omega=10.0))
+    >>> forces.drive, forces.driving.shape
+    ('driving_torque', (12,))
+    """
+    data = load_chain(path).forces
+    issues = []
+    if data is None:
+        issues.append(Issue("--forces", Message("force.cli.no_sections", {})))
+    if result.omega is None:
+        issues.append(Issue("--omega", Message("force.cli.no_omega", {})))
+    if data is None or result.omega is None:
+        raise TableError(str(path), issues)
+    return kinetostatics(result.motion, data, result.omega)
+
+
+@dataclass(frozen=True, slots=True)
+class Extreme:
+    """A largest (or smallest) value over the positions and the input coordinate there
+    (radians of crank rotation, or mm of actuator length); NaN when nothing was solved."""
+
+    value: float
+    at: float
+
+
+@dataclass(frozen=True, slots=True)
+class PairPeak:
+    """The largest reaction in one pair: |R| (N), and for a prismatic pair the largest
+    |moment| about its slider point (N·m)."""
+
+    pair: PairId
+    links: tuple[LinkId, LinkId]
+    force: Extreme
+    moment: Extreme | None
+
+
+@dataclass(frozen=True, slots=True)
+class ForceSummary:
+    """What the reports say of a force analysis.
+
+    Attributes
+    ----------
+    low, high : Extreme
+        The smallest and largest driving torque (N·m) or force (N).
+    mean : float
+        The mean of the drive over the solved positions.
+    pairs : tuple of PairPeak
+    balance : float
+        The largest |power balance| (driving torque − the lever's), N·m or N.
+    balance_relative : float
+        The largest |power balance| relative to the sum of the magnitudes of the powers.
+    residual_force, residual_moment : float
+        The largest relative Newton–Euler residual of any link.
+    unsolved : dict
+        Reason → the first position where it holds (positions not solved).
+    solved, total : int
+        Positions solved, and all positions.
+    """
+
+    low: Extreme
+    high: Extreme
+    mean: float
+    pairs: tuple[PairPeak, ...]
+    balance: float
+    balance_relative: float
+    residual_force: float
+    residual_moment: float
+    unsolved: dict[ForceReason, tuple[float, str | None]]
+    solved: int
+    total: int
+
+
+def summarise(forces: ForceAnalysis, q: np.ndarray) -> ForceSummary:
+    """Condense a force analysis of one design (positions ``q``) for the reports.
+
+    Parameters
+    ----------
+    forces : ForceAnalysis
+        Of one design: arrays shaped ``(N,)``.
+    q : ndarray
+        The input coordinate at the positions.
+
+    Returns
+    -------
+    ForceSummary
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> from synthesis.app.analysis import analyse_table
+    >>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "four_bar_gravity.yaml"
+    >>> result = analyse_table(table, points=36, omega=10.0)
+    >>> summary = summarise(table_forces(table, result), result.motion.q)
+    >>> summary.solved, summary.balance_relative < 1e-12
+    (36, True)
+    """
+    driving = np.asarray(forces.driving, dtype=float)
+    with np.errstate(all="ignore"):
+        relative = np.abs(forces.power_balance) / forces.power_scale
+        residuals = list(forces.residuals.values())
+    pairs = tuple(PairPeak(r.pair, r.links, _largest(np.hypot(r.x, r.y), q),
+                           None if r.moment is None else _largest(np.abs(r.moment), q))
+                  for r in forces.reactions.values())
+    unsolved: dict[ForceReason, tuple[float, str | None]] = {}
+    for index in np.flatnonzero(forces.reason):
+        reason = ForceReason(int(forces.reason[index]))
+        unsolved.setdefault(reason, (float(q[index]), forces.singular[index]))
+    return ForceSummary(
+        low=_extreme(driving, q, np.nanargmin), high=_extreme(driving, q, np.nanargmax),
+        mean=float(np.nanmean(driving)) if np.isfinite(driving).any() else float("nan"),
+        pairs=pairs, balance=_peak(np.abs(forces.power_balance)),
+        balance_relative=_peak(np.where(forces.power_scale > 0, relative, 0.0)),
+        residual_force=_peak(np.concatenate([r.force.ravel() for r in residuals])),
+        residual_moment=_peak(np.concatenate([r.moment.ravel() for r in residuals])),
+        unsolved=unsolved, solved=int(np.count_nonzero(forces.reason == 0)),
+        total=int(forces.reason.size))
+
+
+def _extreme(data: np.ndarray, q: np.ndarray, pick: Callable[[np.ndarray], Any]) -> Extreme:
+    if not np.isfinite(data).any():
+        return Extreme(float("nan"), float("nan"))
+    index = int(pick(data))
+    return Extreme(float(data[index]), float(q[index]))
+
+
+def _largest(data: np.ndarray, q: np.ndarray) -> Extreme:
+    return _extreme(np.asarray(data, dtype=float), q, np.nanargmax)
+
+
+def _peak(data: np.ndarray) -> float:
+    data = np.asarray(data, dtype=float)
+    return float(np.nanmax(data)) if np.isfinite(data).any() else float("nan")

@@ -1,0 +1,183 @@
+"""A force analysis as JSON, CSV columns and text (``assur analyze --forces``).
+
+The JSON ``forces`` object (``docs/forces.md`` §4): lists aligned with ``input.values``, null
+where a position is not solved, with the reason beside it. Forces are in N (global axes, the
+force of a pair's first listed link on its second), torques in N·m (counter-clockwise
+positive).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from assur.forces.groups import ForceReason
+from assur.forces.solver import ForceAnalysis
+from assur.text import render
+from synthesis.app.analysis import TableAnalysis
+from synthesis.app.analysis_forces import Extreme, ForceSummary, summarise
+from synthesis.app.analysis_json import number
+from synthesis.app.analysis_text import position_text
+
+__all__ = ["forces_columns", "forces_record", "forces_text"]
+
+
+def _floats(data: np.ndarray) -> list[float | None]:
+    return [number(v) for v in np.asarray(data, dtype=float).ravel()]
+
+
+def forces_record(forces: ForceAnalysis) -> dict[str, Any]:
+    """The ``forces`` object of ``assur analyze --json``.
+
+    Parameters
+    ----------
+    forces : ForceAnalysis
+
+    Returns
+    -------
+    dict
+        ``omega``, ``gravity`` ([gx, gy] m/s²), the drive (``driving_torque`` N·m, or
+        ``driving_force`` N for an actuator) and the same from the lever
+        (``driving_torque_lever``), ``power_balance`` (their difference), ``reactions``
+        (pair → ``links``, ``x``, ``y``; prismatic pairs also ``normal`` and ``moment``),
+        ``residual`` (the largest relative Newton–Euler residual of the links per position:
+        ``force``, ``moment``), ``reason`` (null where solved, else ``not_assembled``,
+        ``toggle``, ``parallel_guides`` or ``indeterminate``) and ``singular`` (the group).
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> from synthesis.app.analysis import analyse_table
+    >>> from synthesis.app.analysis_forces import table_forces
+    >>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "slider_crank_press.yaml"
+    >>> record = forces_record(table_forces(table, analyse_table(table, points=4, omega=10.0)))
+    >>> sorted(record["reactions"]["3-0"]), record["reactions"]["3-0"]["links"]
+    (['links', 'moment', 'normal', 'x', 'y'], [3, 0])
+    """
+    drive = forces.drive
+    reactions: dict[str, Any] = {}
+    for pair, reaction in forces.reactions.items():
+        entry: dict[str, Any] = {"links": list(reaction.links), "x": _floats(reaction.x),
+                                 "y": _floats(reaction.y)}
+        if reaction.normal is not None and reaction.moment is not None:
+            entry["normal"] = _floats(reaction.normal)
+            entry["moment"] = _floats(reaction.moment)
+        reactions[str(pair)] = entry
+    with np.errstate(all="ignore"):
+        residuals = list(forces.residuals.values())
+        worst_force = np.max([r.force for r in residuals], axis=0)
+        worst_moment = np.max([r.moment for r in residuals], axis=0)
+    return {
+        "omega": forces.omega,
+        "gravity": [forces.gravity.real, forces.gravity.imag],
+        drive: _floats(forces.driving),
+        f"{drive}_lever": _floats(forces.driving_lever),
+        "power_balance": _floats(forces.power_balance),
+        "reactions": reactions,
+        "residual": {"force": _floats(worst_force), "moment": _floats(worst_moment)},
+        "reason": [None if r == 0 else ForceReason(int(r)).name.lower()
+                   for r in forces.reason.ravel()],
+        "singular": list(forces.singular.ravel()),
+    }
+
+
+def forces_columns(forces: ForceAnalysis) -> list[tuple[str, np.ndarray]]:
+    """The CSV columns of a force analysis: the drive, its lever value, the power balance,
+    then ``R_<pair>_x``, ``R_<pair>_y`` (and ``_normal``, ``_moment``) of every pair.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> from synthesis.app.analysis import analyse_table
+    >>> from synthesis.app.analysis_forces import table_forces
+    >>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "four_bar_gravity.yaml"
+    >>> columns = forces_columns(table_forces(table, analyse_table(table, points=4, omega=1.0)))
+    >>> [name for name, _ in columns][:5]
+    ['driving_torque', 'driving_torque_lever', 'power_balance', 'R_A_x', 'R_A_y']
+    """
+    drive = forces.drive
+    columns = [(drive, forces.driving), (f"{drive}_lever", forces.driving_lever),
+               ("power_balance", forces.power_balance)]
+    for pair, r in forces.reactions.items():
+        columns += [(f"R_{pair}_x", r.x), (f"R_{pair}_y", r.y)]
+        if r.normal is not None and r.moment is not None:
+            columns += [(f"R_{pair}_normal", r.normal), (f"R_{pair}_moment", r.moment)]
+    return columns
+
+
+def forces_text(result: TableAnalysis, forces: ForceAnalysis, lang: str = "en") -> str:
+    """The force section of the text report.
+
+    Parameters
+    ----------
+    result : TableAnalysis
+        The kinematics the forces were computed at.
+    forces : ForceAnalysis
+    lang : str
+        A catalogue language.
+
+    Returns
+    -------
+    str
+        Several lines, without a final newline.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import synthesis
+    >>> from synthesis.app.analysis import analyse_table
+    >>> from synthesis.app.analysis_forces import table_forces
+    >>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "four_bar_gravity.yaml"
+    >>> result = analyse_table(table, points=36, omega=10.0)
+    >>> forces_text(result, table_forces(table, result), "ru").splitlines()[0]
+    'Силовой расчёт (кинетостатика): ω = 10 рад/с, g = (0, −9.81) м/с²'
+    """
+    summary = summarise(forces, result.motion.q)
+    return "\n".join(summary_lines(result, forces, summary, lang))
+
+
+def summary_lines(result: TableAnalysis, forces: ForceAnalysis, summary: ForceSummary,
+                  lang: str) -> list[str]:
+    """The lines of the force section (shared by the text and the coursework reports)."""
+
+    def at(extreme: Extreme) -> str:
+        return position_text(result, extreme.at) if math.isfinite(extreme.at) else "—"
+
+    crank = result.crank
+    gravity = forces.gravity
+    lines = [render("force.report.title", lang, omega=f"{forces.omega:g}",
+                    unit=render("force.report.rad_s" if crank else "force.report.mm_s", lang),
+                    g=(render("force.report.gravity", lang, gx=_signed(gravity.real),
+                              gy=_signed(gravity.imag)) if gravity
+                       else render("force.report.no_gravity", lang)))]
+    lines.append("  " + render("force.report.torque" if crank else "force.report.force", lang,
+                               lo=summary.low.value, lo_at=at(summary.low),
+                               hi=summary.high.value, hi_at=at(summary.high),
+                               mean=summary.mean))
+    lines.append("  " + render("force.report.reactions", lang))
+    for peak in summary.pairs:
+        text = render("force.report.pair", lang, pair=peak.pair, a=peak.links[0],
+                      b=peak.links[1], r=peak.force.value, at=at(peak.force))
+        if peak.moment is not None:
+            text += render("force.report.pair_moment", lang, m=peak.moment.value,
+                           at=at(peak.moment))
+        lines.append("    " + text)
+    lines.append("  " + render("force.report.lever", lang, d=summary.balance,
+                               rel=summary.balance_relative))
+    lines.append("  " + render("force.report.residual", lang, f=summary.residual_force,
+                               m=summary.residual_moment))
+    for reason, (q, group) in summary.unsolved.items():
+        why = render(f"force.reason.{reason.name.lower()}", lang, group=group or "")
+        lines.append("  " + render("force.report.unsolved", lang,
+                                   n=int(np.count_nonzero(forces.reason == reason)),
+                                   total=summary.total, at=position_text(result, q), why=why))
+    return lines
+
+
+def _signed(value: float) -> str:
+    """A number with a typographic minus: ``−9.81``."""
+    return f"{value:g}".replace("-", "−")

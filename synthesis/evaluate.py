@@ -39,6 +39,7 @@ from assur import KinematicModel, Motion, TableError
 from assur.errors import Issue
 from assur.text import Message
 from synthesis import criteria as C
+from synthesis.force_conditions import force_penalties
 from synthesis.problem import Problem, output_slider
 
 __all__ = ["Analysis", "Evaluator"]
@@ -273,7 +274,9 @@ class Evaluator:
             x_min, x_max, y_min, y_max = self.problem.workspace[label]
             scales += [math.hypot(x_max - x_min, y_max - y_min)] * excess.shape[1]
         p2_work = C.workspace_penalty(_stack(workspace, d), np.array(scales))
-        p2 = np.where(feasible, C.desirable_penalty(bounds, p2_alpha, p2_rot, p2_work), np.nan)
+        p2_force = force_penalties(self.problem.forces, self.model, x, feasible, self.grid)
+        p2 = np.where(feasible, C.desirable_penalty(bounds, p2_alpha, p2_rot, p2_work)
+                      + p2_force, np.nan)
         dev = np.where(feasible[:, None], dev, np.nan)
         res = np.where(feasible[:, None], res, np.nan)
         return Analysis(motion, self.grid, out_grid, out, np.asarray(phi_c),

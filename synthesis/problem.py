@@ -56,7 +56,7 @@ import math
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -66,6 +66,9 @@ from assur.io.reader import normalise_id
 from assur.model import LinkId, PairId
 from synthesis.criteria import Objective
 from synthesis.search import SearchSettings
+
+if TYPE_CHECKING:  # pragma: no cover
+    from synthesis.force_conditions import ForceConditions
 
 __all__ = [
     "ControlPoints",
@@ -201,6 +204,9 @@ class Problem:
     search : mapping
         The values the ``search`` table gives (its own keys: ``budget``, ``seed``, …),
         each already checked by the rule of its setting.
+    forces : ForceConditions or None
+        The ``forces:`` table: masses, loads and limits on the driving torque and the
+        reactions (:mod:`synthesis.force_conditions`).
     """
 
     source: str
@@ -223,6 +229,7 @@ class Problem:
     workspace: Mapping[str, tuple[float, float, float, float]] = field(default_factory=dict)
     group_models: tuple[Any, ...] = ()
     search: Mapping[str, Any] = field(default_factory=dict)
+    forces: ForceConditions | None = None
 
     @property
     def output_unit(self) -> str:

@@ -51,13 +51,14 @@ from synthesis.problem import (
     output_slider,
     row_key,
 )
+from synthesis.force_conditions import read_force_conditions
 from synthesis.search import setting_problem
 
 __all__ = ["read_problem", "read_problem_data"]
 
 _TOP = ("schema_version", "name", "general", "mechanism", "structure_identification",
         "frame", "group_models", "output", "parameters", "allowable", "control_points",
-        "search")
+        "search", "forces")
 _GENERAL = ("control_points", "direction", "groups", "task_class", "grid", "accuracy",
             "objective", "p2_weight", "output")
 #: Control-point columns of the target value and of the zone limits, per class-1 output.
@@ -148,6 +149,7 @@ def _read(reader: TableReader, base: Path) -> Problem:
         _check_rotations(reader, model, {labels[k]: v for k, v in rotations.items()})
         if output.link is not MISSING:
             _check_output(reader, model, output.link, general.task_class)
+    forces = read_force_conditions(top, model)
     reader.raise_if_any()
     if foreign is not None:
         raise foreign
@@ -163,7 +165,7 @@ def _read(reader: TableReader, base: Path) -> Problem:
         pressure_angles={labels[k]: v for k, v in pressure.items()},
         rotations={labels[k]: v for k, v in rotations.items()},
         workspace={labels[k]: v for k, v in boxes.items()},
-        group_models=models, search=search)
+        group_models=models, search=search, forces=forces)
 
 
 def _read_general(top: Node) -> _General:

@@ -127,6 +127,10 @@ class ForceData:
     loads : tuple of Load
     gravity : complex
         gx + i·gy, m/s² (0 for none).
+    local : bool
+        The points (centres of mass, points of forces) are given in each link's own frame
+        of the kinematics (origin and axis of ``Motion.frames``, mm) rather than as sketch
+        points: so they follow a design whose dimensions change (synthesis).
 
     Examples
     --------
@@ -138,6 +142,7 @@ class ForceData:
     masses: Mapping[LinkId, Mass] = field(default_factory=dict)
     loads: tuple[Load, ...] = ()
     gravity: complex = 0j
+    local: bool = False
 
     def weight(self, link: LinkId) -> complex:
         """The weight m·g of a link, N (0 without a mass)."""

@@ -358,18 +358,21 @@ def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet
     """Weights, inertia forces and torques, and the external loads of every link; their power
     per unit input speed (the power balance)."""
     model = motion.model
-    sketch = _frames(analyse(model, _sketched(model), analogs=True))
+    sketch = None if data.local else _frames(analyse(model, _sketched(model), analogs=True))
     rotors: dict[LinkId, np.ndarray] = {}
     w2 = omega * omega
 
     def carried(link: LinkId, x: complex) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """A point fixed on the link, sketched at x (mm): its arm from the link's origin, its
-        velocity and acceleration analogs, in m."""
+        """A point fixed on the link, sketched at x (or at x in the link's frame), mm: its
+        arm from the link's origin, its velocity and acceleration analogs, in m."""
         origin, angle = frames[link]
-        origin0, angle0 = sketch[link]
         if link not in rotors:
             rotors[link] = _expi(angle.v)
-        local = (x - origin0.v) * np.exp(-1j * angle0.v) * MM
+        if sketch is None:
+            local = x * MM
+        else:
+            origin0, angle0 = sketch[link]
+            local = (x - origin0.v) * np.exp(-1j * angle0.v) * MM
         arm = local * rotors[link]
         return (arm, origin.d1 * MM + arm * (1j * angle.d1),
                 origin.d2 * MM + arm * (1j * angle.d2 - angle.d1 * angle.d1))

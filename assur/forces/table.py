@@ -184,7 +184,7 @@ def _masses(root: Node, moving: tuple[LinkId, ...]) -> dict[LinkId, Mass]:
     if section is None:
         return out
     for raw, row in section.mapping.items():
-        where = f"masses.{raw}"
+        where = f"{section.location}.{raw}"
         link = _link(section, moving, where, raw)
         if not isinstance(row, dict):
             section.reader.problem(where, "force.mass.expected", found=describe(row))

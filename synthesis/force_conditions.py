@@ -98,7 +98,7 @@ def read_force_conditions(top: Node, model: KinematicModel | None) -> ForceCondi
     >>> from synthesis.problem_table import read_problem
     >>> problem = read_problem("input_tables/problems/class1_fourbar_torque_limit.yaml")
     >>> problem.forces.driving_torque, problem.forces.omega
-    (6.0, 10.0)
+    (8.0, 10.0)
     """
     node = top.child("forces", allowed=_KEYS, required=False)
     if node is None or model is None:

@@ -129,3 +129,22 @@ def test_every_problem_reads_as_a_sentence(lang: str) -> None:
         assert "force." not in text and "(found=" not in text, text
     assert "did you mean 'mass'" in issues[1].text("en")
     assert issues[3].text("en") == "masses.3 'mass': must be zero or positive; found -0.5"
+
+
+def test_the_chain_reader_carries_the_sections_and_lists_their_problems_with_the_rest() -> None:
+    import yaml
+
+    table = yaml.safe_load((TABLES / "four_bar_gravity.yaml").read_text())
+    chain = assur.chain_from_dict(table, "four_bar_gravity.yaml")
+    assert chain.forces is not None and chain.forces.gravity == -9.81j
+    assert assur.chain_from_dict({k: v for k, v in table.items()
+                                  if k not in ("masses", "loads", "gravity")}).forces is None
+    table["mechanism"]["pairs"][0]["type"] = "Q"              # a problem of the chain
+    table["masses"][2]["inertia"] = -1                         # one of the masses
+    table["gravty"] = table.pop("gravity")                     # a misspelt section
+    with pytest.raises(assur.TableError) as caught:
+        assur.chain_from_dict(table, "t.yaml")
+    text = caught.value.text("en")
+    assert "unknown key 'gravty'; did you mean 'gravity'?" in text
+    assert "masses.2 'inertia': must be zero or positive; found -1" in text
+    assert "mechanism.pairs[0] (id 'A') 'type'" in text

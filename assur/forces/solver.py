@@ -368,9 +368,8 @@ def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet
         origin, angle = frames[link]
         if link not in rotors:
             rotors[link] = _expi(angle.v)
-        if sketch is None:
-            local = x * MM
-        else:
+        local: complex | np.ndarray = x * MM
+        if sketch is not None:
             origin0, angle0 = sketch[link]
             local = (x - origin0.v) * np.exp(-1j * angle0.v) * MM
         arm = local * rotors[link]

@@ -20,9 +20,10 @@ from assur.text import render
 from synthesis.app.analysis import TableAnalysis
 
 if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["forces_figure", "save_forces_png"]
+__all__ = ["draw_force_curves", "forces_figure", "save_forces_png"]
 
 #: Height of each of the two curve panels, inches.
 PANEL = 2.6
@@ -68,6 +69,26 @@ def forces_figure(result: TableAnalysis, forces: ForceAnalysis, index: int = 0,
     ax.set_position((0.1, (2 * PANEL + 0.6) / total, 0.85, (height - 0.5) / total))
     torque = fig.add_axes((0.1, (PANEL + 0.6) / total, 0.85, (PANEL - 0.7) / total))
     pairs = fig.add_axes((0.1, 0.45 / total, 0.85, (PANEL - 0.7) / total))
+    draw_force_curves(torque, pairs, result, forces, lang)
+    return fig
+
+
+def draw_force_curves(torque: Axes, pairs: Axes, result: TableAnalysis,
+                      forces: ForceAnalysis, lang: str = "en") -> None:
+    """The drive over the cycle (by groups and by the lever) on ``torque``, the magnitude of
+    every reaction on ``pairs``.
+
+    Parameters
+    ----------
+    torque, pairs : matplotlib.axes.Axes
+        Where to draw.
+    result : TableAnalysis
+        The kinematics (its positions and kind of input).
+    forces : ForceAnalysis
+        Of one design.
+    lang : str
+        Language of the titles and labels.
+    """
     q = result.motion.q
     x = np.degrees(q) if result.crank else q
     drive = "force.plot.driving_torque" if result.crank else "force.plot.driving_force"
@@ -81,11 +102,11 @@ def forces_figure(result: TableAnalysis, forces: ForceAnalysis, index: int = 0,
     for pair, reaction in forces.reactions.items():
         pairs.plot(x, np.hypot(reaction.x, reaction.y), lw=1.0, label=str(pair))
     pairs.set_ylabel(render("force.plot.reactions", lang))
-    pairs.set_xlabel(render("plot.crank_angle_deg" if result.crank else "plot.actuator_length_mm", lang))
+    pairs.set_xlabel(render("plot.crank_angle_deg" if result.crank
+                            else "plot.actuator_length_mm", lang))
     pairs.legend(fontsize=7, ncol=min(6, max(1, len(forces.reactions))))
     for axes in (torque, pairs):
         axes.grid(True, lw=0.3, alpha=0.5)
-    return fig
 
 
 def save_forces_png(result: TableAnalysis, forces: ForceAnalysis,

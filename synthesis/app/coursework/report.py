@@ -33,6 +33,7 @@ from assur.plot.schemes import roman, scheme_bytes
 from assur.structure.report import group_description
 from assur.text import check_lang, render
 from synthesis.app.assess import Assessment, assess, is_problem
+from synthesis.app.coursework.forces_section import forces_sections
 from synthesis.app.coursework.page import Section, esc, figure, figure_html, page, table
 
 __all__ = ["CourseworkReport", "build_report", "render_html", "write_report"]
@@ -125,6 +126,7 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
     report.sections.append(_identification_section(found, lang, report))
     report.sections.append(_schemes_section(chain, analysis, lang))
     report.sections += _kinematic_sections(found, lang, points, report)
+    report.sections += forces_sections(found, lang, points)
     report.sections += synthesis_sections
     return report
 

@@ -341,12 +341,14 @@ class _Bodies:
         self.load(link, force, point - self.origins[link], couple)
 
     def load(self, link: LinkId, force: np.ndarray, arm: np.ndarray,
-             couple: np.ndarray | None = None) -> None:
-        """A force at the point ``origin + arm`` of the link, and a couple."""
+             couple: np.ndarray | None = None) -> np.ndarray:
+        """A force at the point ``origin + arm`` of the link, and a couple; returns the
+        force's moment about the origin."""
         moment = cross(arm, force)
         self.forces[link] = self.forces[link] + force
         self.moments[link] = self.moments[link] + (moment if couple is None else
                                                    moment + couple)
+        return moment
 
     def turn(self, link: LinkId, couple: np.ndarray) -> None:
         """A couple on the link."""
@@ -362,39 +364,41 @@ def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet
     rotors: dict[LinkId, np.ndarray] = {}
     w2 = omega * omega
 
-    def carried(link: LinkId, x: complex) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def carried(link: LinkId, x: complex) -> np.ndarray:
         """A point fixed on the link, sketched at x (or at x in the link's frame), mm: its
-        arm from the link's origin, its velocity and acceleration analogs, in m."""
-        origin, angle = frames[link]
+        arm from the link's origin, m."""
         if link not in rotors:
-            rotors[link] = _expi(angle.v)
+            rotors[link] = _expi(frames[link][1].v)
         local: complex | np.ndarray = x * MM
         if sketch is not None:
             origin0, angle0 = sketch[link]
             local = (x - origin0.v) * np.exp(-1j * angle0.v) * MM
-        arm = local * rotors[link]
-        return (arm, origin.d1 * MM + arm * (1j * angle.d1),
-                origin.d2 * MM + arm * (1j * angle.d2 - angle.d1 * angle.d1))
+        return np.asarray(local * rotors[link])
+
+    def power(link: LinkId, force: np.ndarray, moment: np.ndarray) -> np.ndarray:
+        """The power of a force per unit input speed, f·P′ with P′ = O′ + i·θ′·arm:
+        f·O′ + θ′·(its moment about the origin)."""
+        origin, angle = frames[link]
+        return np.asarray(dot(force, origin.d1 * MM) + angle.d1 * moment)
 
     periodic = model.drive == "crank"
     terms: list[Any] = []
     for link, mass in data.masses.items():
-        angle = frames[link][1]
+        origin, angle = frames[link]
         spin = -mass.inertia * w2 * angle.d2
         if mass.mass > 0 and mass.centre is not None:
-            arm, velocity, acceleration = carried(link, mass.centre)
+            arm = carried(link, mass.centre)
+            acceleration = origin.d2 * MM + arm * (1j * angle.d2 - angle.d1 * angle.d1)
             force = data.weight(link) - mass.mass * w2 * acceleration
-            bodies.load(link, force, arm, spin)
-            terms.append(dot(force, velocity))
+            terms.append(power(link, force, bodies.load(link, force, arm, spin)))
         else:
             bodies.turn(link, spin)
         terms.append(spin * angle.d1)
     for load in data.loads:
         if load.force is not None and load.point is not None:
-            arm, velocity, _ = carried(load.link, load.point)
-            force = _value(load.force, motion.q, periodic)
-            bodies.load(load.link, force, arm)
-            terms.append(dot(force, velocity))
+            force = np.asarray(_value(load.force, motion.q, periodic))
+            moment = bodies.load(load.link, force, carried(load.link, load.point))
+            terms.append(power(load.link, force, moment))
         if load.torque is not None:
             torque = _value(load.torque, motion.q, periodic)
             bodies.turn(load.link, torque)

@@ -4,6 +4,20 @@
 table's ``masses:``, ``loads:`` and ``gravity:`` sections; :func:`summarise` condenses the
 result for the text report and the coursework report: the extreme driving torque and where,
 the largest reaction in every pair, and the two checks (power balance and Newton–Euler).
+
+Examples
+--------
+>>> from pathlib import Path
+>>> import synthesis
+>>> from synthesis.app.analysis import analyse_table
+>>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "four_bar_gravity.yaml"
+>>> result = analyse_table(table, points=36, omega=10.0)
+>>> forces = table_forces(table, result)
+>>> forces.drive, forces.driving.shape
+('driving_torque', (36,))
+>>> summary = summarise(forces, result.motion.q)
+>>> summary.solved, summary.balance_relative < 1e-12
+(36, True)
 """
 
 from __future__ import annotations
@@ -46,16 +60,6 @@ def table_forces(path: str | os.PathLike[str], result: TableAnalysis) -> ForceAn
     TableError
         When the table has neither ``masses:`` nor ``loads:``, or no input speed was given
         (both problems at once).
-
-    Examples
-    --------
-    >>> from pathlib import Path
-    >>> import synthesis
-    >>> from synthesis.app.analysis import analyse_table
-    >>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "four_bar_gravity.yaml"
-    >>> forces = table_forces(table, analyse_table(table, points=12, omega=10.0))
-    >>> forces.drive, forces.driving.shape
-    ('driving_torque', (12,))
     """
     data = load_chain(path).forces
     issues = []
@@ -137,17 +141,6 @@ def summarise(forces: ForceAnalysis, q: np.ndarray) -> ForceSummary:
     Returns
     -------
     ForceSummary
-
-    Examples
-    --------
-    >>> from pathlib import Path
-    >>> import synthesis
-    >>> from synthesis.app.analysis import analyse_table
-    >>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "four_bar_gravity.yaml"
-    >>> result = analyse_table(table, points=36, omega=10.0)
-    >>> summary = summarise(table_forces(table, result), result.motion.q)
-    >>> summary.solved, summary.balance_relative < 1e-12
-    (36, True)
     """
     driving = np.asarray(forces.driving, dtype=float)
     with np.errstate(all="ignore"):

@@ -3,6 +3,17 @@
 The mechanism at one position on top; below it the driving torque over the cycle by groups
 and by Zhukovsky's lever (the two curves coincide when the analysis is right), and the
 magnitude of the reaction in every pair.
+
+Examples
+--------
+>>> import synthesis
+>>> from pathlib import Path
+>>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "four_bar_gravity.yaml"
+>>> from synthesis.app.analysis import analyse_table
+>>> from synthesis.app.analysis_forces import table_forces
+>>> result = analyse_table(table, points=36, omega=10.0)
+>>> len(forces_figure(result, table_forces(table, result)).axes)
+3
 """
 
 from __future__ import annotations
@@ -48,18 +59,6 @@ def forces_figure(result: TableAnalysis, forces: ForceAnalysis, index: int = 0,
     -------
     matplotlib.figure.Figure
         Not attached to pyplot.
-
-    Examples
-    --------
-    >>> from pathlib import Path
-    >>> import synthesis
-    >>> from synthesis.app.analysis import analyse_table
-    >>> from synthesis.app.analysis_forces import table_forces
-    >>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "four_bar_gravity.yaml"
-    >>> result = analyse_table(table, points=36, omega=10.0)
-    >>> figure = forces_figure(result, table_forces(table, result))
-    >>> len(figure.axes)
-    3
     """
     fig, ax = figure_for(result.motion)
     draw_mechanism(result.motion, index, ax, lang=lang)

@@ -4,6 +4,23 @@ The JSON ``forces`` object (``docs/forces.md`` §4): lists aligned with ``input.
 where a position is not solved, with the reason beside it. Forces are in N (global axes, the
 force of a pair's first listed link on its second), torques in N·m (counter-clockwise
 positive).
+
+Examples
+--------
+>>> from pathlib import Path
+>>> import synthesis
+>>> from synthesis.app.analysis import analyse_table
+>>> from synthesis.app.analysis_forces import table_forces
+>>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "slider_crank_press.yaml"
+>>> result = analyse_table(table, points=36, omega=10.0)
+>>> forces = table_forces(table, result)
+>>> record = forces_record(forces)
+>>> sorted(record["reactions"]["3-0"]), record["reactions"]["3-0"]["links"]
+(['links', 'moment', 'normal', 'x', 'y'], [3, 0])
+>>> [name for name, _ in forces_columns(forces)][:5]
+['driving_torque', 'driving_torque_lever', 'power_balance', 'R_0-1_x', 'R_0-1_y']
+>>> forces_text(result, forces, "ru").splitlines()[0]
+'Силовой расчёт (кинетостатика): ω = 10 рад/с, g = (0, −9.81) м/с²'
 """
 
 from __future__ import annotations
@@ -45,17 +62,6 @@ def forces_record(forces: ForceAnalysis) -> dict[str, Any]:
         ``residual`` (the largest relative Newton–Euler residual of the links per position:
         ``force``, ``moment``), ``reason`` (null where solved, else ``not_assembled``,
         ``toggle``, ``parallel_guides`` or ``indeterminate``) and ``singular`` (the group).
-
-    Examples
-    --------
-    >>> from pathlib import Path
-    >>> import synthesis
-    >>> from synthesis.app.analysis import analyse_table
-    >>> from synthesis.app.analysis_forces import table_forces
-    >>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "slider_crank_press.yaml"
-    >>> record = forces_record(table_forces(table, analyse_table(table, points=4, omega=10.0)))
-    >>> sorted(record["reactions"]["3-0"]), record["reactions"]["3-0"]["links"]
-    (['links', 'moment', 'normal', 'x', 'y'], [3, 0])
     """
     drive = forces.drive
     reactions: dict[str, Any] = {}
@@ -87,17 +93,6 @@ def forces_record(forces: ForceAnalysis) -> dict[str, Any]:
 def forces_columns(forces: ForceAnalysis) -> list[tuple[str, np.ndarray]]:
     """The CSV columns of a force analysis: the drive, its lever value, the power balance,
     then ``R_<pair>_x``, ``R_<pair>_y`` (and ``_normal``, ``_moment``) of every pair.
-
-    Examples
-    --------
-    >>> from pathlib import Path
-    >>> import synthesis
-    >>> from synthesis.app.analysis import analyse_table
-    >>> from synthesis.app.analysis_forces import table_forces
-    >>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "four_bar_gravity.yaml"
-    >>> columns = forces_columns(table_forces(table, analyse_table(table, points=4, omega=1.0)))
-    >>> [name for name, _ in columns][:5]
-    ['driving_torque', 'driving_torque_lever', 'power_balance', 'R_A_x', 'R_A_y']
     """
     drive = forces.drive
     columns = [(drive, forces.driving), (f"{drive}_lever", forces.driving_lever),
@@ -110,31 +105,9 @@ def forces_columns(forces: ForceAnalysis) -> list[tuple[str, np.ndarray]]:
 
 
 def forces_text(result: TableAnalysis, forces: ForceAnalysis, lang: str = "en") -> str:
-    """The force section of the text report.
-
-    Parameters
-    ----------
-    result : TableAnalysis
-        The kinematics the forces were computed at.
-    forces : ForceAnalysis
-    lang : str
-        A catalogue language.
-
-    Returns
-    -------
-    str
-        Several lines, without a final newline.
-
-    Examples
-    --------
-    >>> from pathlib import Path
-    >>> import synthesis
-    >>> from synthesis.app.analysis import analyse_table
-    >>> from synthesis.app.analysis_forces import table_forces
-    >>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "four_bar_gravity.yaml"
-    >>> result = analyse_table(table, points=36, omega=10.0)
-    >>> forces_text(result, table_forces(table, result), "ru").splitlines()[0]
-    'Силовой расчёт (кинетостатика): ω = 10 рад/с, g = (0, −9.81) м/с²'
+    """The force section of the text report (``lang``: a catalogue language): the lines of
+    :func:`summary_lines` joined, without a final newline; ``result`` is the kinematics the
+    forces were computed at.
     """
     summary = summarise(forces, result.motion.q)
     return "\n".join(summary_lines(result, forces, summary, lang))

@@ -45,9 +45,9 @@ def forces_sections(found: Assessment, lang: str, points: int) -> list[Section]:
 
     Examples
     --------
-    >>> from pathlib import Path
-    >>> import synthesis
     >>> from synthesis.app.assess import assess
+    >>> import synthesis
+    >>> from pathlib import Path
     >>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "four_bar_gravity.yaml"
     >>> [section.ident for section in forces_sections(assess(table, points=36), "en", 36)]
     ['forces']

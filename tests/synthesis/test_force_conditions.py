@@ -18,6 +18,7 @@ import yaml
 import assur
 from assur.forces import ForceData, Mass, kinetostatics
 from assur.forces.table import load_with_forces
+from assur.kinematics.analysis import values
 from synthesis.evaluate import Evaluator
 from synthesis.force_conditions import force_penalties
 from synthesis.problem import load_problem, problem_from_dict
@@ -78,7 +79,7 @@ def test_points_in_the_link_frames_give_what_sketch_points_give() -> None:
     frames = assur.analyse(model, np.zeros(1), analogs=True).frames
     local = {}
     for link, mass in data.masses.items():
-        origin, angle = (np.asarray(assur.values(v)).item() for v in frames[link])
+        origin, angle = (np.asarray(values(v)).item() for v in frames[link])
         local[link] = Mass(mass.mass, (mass.centre - origin) * np.exp(-1j * angle),
                            mass.inertia)
     motion = assur.analyse(model, points=24, analogs=True)

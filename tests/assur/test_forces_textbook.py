@@ -1,12 +1,23 @@
 """A slider-crank engine's force analysis by hand at three crank angles.
 
-No printed textbook figures were at hand, so the hand calculation is done here from first
-principles, in the classical order of a course's kinetostatics (Artobolevsky, *Theory of
-Mechanisms and Machines*, the chapter on the force analysis of mechanisms; the same sequence
-as the slider-crank examples of engine dynamics): the closed-form kinematics of the offset
-slider-crank differentiated by hand, then the slider's x-equation, the rod's moments about
-the crank pin, the slider's y-equation, the rod's force polygon and the crank's moments. It
-uses scalar components only and shares nothing with the program but the data.
+The method is the kinetostatics of Assur groups as taught in the course's textbook,
+I. I. Artobolevsky, *Теория механизмов и машин* (4th ed., Moscow: Nauka, 1988), the chapters
+on the force analysis of mechanisms: d'Alembert's inertia forces, then the groups from the
+last one back to the crank. No copy of a textbook's worked slider-crank figures could be
+checked, so the hand calculation is our own, written out step by step in ``_hand`` below
+with scalar components only and sharing nothing with the program but the data: the
+closed-form kinematics of the offset slider-crank differentiated by hand (rod angle β from
+l·sin β = e − r·sin φ), then the slider's x-equation, the rod's moments about the crank pin,
+the slider's y-equation, the rod's force polygon and the crank's moments.
+
+Its results (ω = 150 rad/s, gas force −2000 N, N and N·m; "x–y" the force of the first link
+of the pair on the second):
+
+| φ | M_d | 0-1 x | 0-1 y | 1-2 x | 1-2 y | 2-3 x | 2-3 y | 3-0 y |
+|---|---|---|---|---|---|---|---|---|
+| 45° | −9.0214 | −1032.87 | −1241.58 | −651.03 | −867.59 | 802.52 | 72.29 | 60.52 |
+| 150° | −98.5949 | 5285.44 | −1150.17 | 4817.79 | −888.01 | 3163.76 | −227.73 | −239.50 |
+| 260° | 172.8671 | 3386.40 | 2617.45 | 3292.63 | 2077.81 | 2746.97 | 733.60 | 721.83 |
 """
 
 from __future__ import annotations

@@ -158,3 +158,17 @@ def test_the_normal_force_acts_where_its_moment_about_k_is_the_couple() -> None:
         np.testing.assert_allclose(moment, reaction.moment, rtol=1e-9, atol=1e-12)
         np.testing.assert_allclose((arm.conjugate() * force).real, 0.0, atol=1e-9)
     assert result.reactions["0-1"].acting_point is None
+
+
+def test_each_dyad_kind_carries_its_own_equilibrium_in_the_registry() -> None:
+    from assur.kinds import KINDS
+
+    solvers = {kind.code: kind.equilibrium for kind in KINDS.values()}
+    assert solvers.pop("L0") is None            # the input group is solved by the drive
+    assert all(callable(f) for f in solvers.values())
+    assert len(set(solvers.values())) == len(solvers) == 5
+    # every group of the 11-link example (one of each dyad kind) is solved by its entry
+    model, data = load("course_11_link_forces.yaml")
+    result = kinetostatics(assur.analyse(model, np.radians([30.0]), analogs=True), data, 10.0)
+    assert {g.kind for g in model.groups} == {0, 1, 2, 3, 4, 5}
+    assert np.isfinite(result.driving).all() and result.reason.tolist() == [0]

@@ -459,13 +459,15 @@ def _groups(bodies: _Bodies, motion: Motion
             continue
         members = _merge(bodies, group) if group.driven is not None else None
         solved = equilibrium(group, bodies)
-        here = (solved.determinant <= SINGULAR) | (motion.solutions[group.label].margin
-                                                   <= SINGULAR)
+        solution = motion.solutions[group.label]
+        apart = ~np.broadcast_to(np.asarray(solution.exists, dtype=bool), shape)
+        here = ~apart & ((solved.determinant <= SINGULAR) | (solution.margin <= SINGULAR))
+        reason[apart & ~blocked] = ForceReason.NOT_ASSEMBLED
         new = here & ~blocked
         if new.any():
             reason[new] = solved.singular
             singular[new] = group.label
-        blocked |= here
+        blocked |= here | apart
         ill |= solved.determinant < NEAR
         own = (group.i, group.j, *group.composite)
         for transfer in solved.transfers:

@@ -172,3 +172,14 @@ def test_each_dyad_kind_carries_its_own_equilibrium_in_the_registry() -> None:
     result = kinetostatics(assur.analyse(model, np.radians([30.0]), analogs=True), data, 10.0)
     assert {g.kind for g in model.groups} == {0, 1, 2, 3, 4, 5}
     assert np.isfinite(result.driving).all() and result.reason.tolist() == [0]
+
+
+def test_where_a_group_does_not_assemble_the_reason_says_so() -> None:
+    model = assur.load_model(TABLES / "course_11_link_fails.yaml")
+    motion = assur.analyse(model, points=72, analogs=True)
+    result = kinetostatics(motion, ForceData(loads=(Load(3, torque=-5.0),)), 5.0)
+    apart = ~np.asarray(motion.exists)
+    assert 0 < apart.sum() < 72
+    assert (result.reason[apart] == ForceReason.NOT_ASSEMBLED).all()
+    assert np.isnan(result.driving[apart]).all()
+    assert (result.reason[~apart] == 0).all() and np.isfinite(result.driving[~apart]).all()

@@ -104,3 +104,23 @@ def test_every_problem_of_the_forces_table_is_reported_at_once() -> None:
                  "forces.limits 'driving_torque'", "forces.limits.reactions 'X'",
                  "forces.limits.reactions '2-3'"):
         assert part in text, part
+
+
+def test_a_reaction_limit_is_the_excess_of_the_two_force_coupler() -> None:
+    # With only a torque T on the rocker, the coupler 2–3 carries a force along B–C alone,
+    # |R| = |T| / (distance from the rocker pivot D to the line B–C), from the joints alone.
+    problem = load_problem(PROBLEM)
+    conditions = dataclasses.replace(problem.forces, driving_torque=None,
+                                     reactions={"2-3": 150.0})
+    evaluator = Evaluator(problem)
+    x = np.array([[36.0, 110.0, 105.0], [44.0, 130.0, 90.0]])
+    feasible = evaluator(x).p1 == 0
+    assert feasible.all()
+    got = force_penalties(conditions, evaluator.model, x, feasible, evaluator.grid)
+    joints = assur.analyse(evaluator.model(x), evaluator.grid).joints
+    b, c, d = (np.asarray(values(joints[p])) for p in ("1-2", "2-3", "3-0"))
+    along = (c - b) / np.abs(c - b)
+    arm = np.abs((np.conj(along) * (d - c)).imag) * 1e-3        # m
+    largest = np.max(TORQUE / arm, axis=-1)
+    np.testing.assert_allclose(got, np.maximum(0.0, largest - 150.0) / 150.0, rtol=1e-9)
+    assert (got > 0).any()

@@ -91,8 +91,8 @@ def test_figures_of_their_own_are_not_pyplot_figures(own_axes: Axes,
 
 def test_saving_pictures(own_axes: Axes, motion: assur.Motion, tmp_path: Path) -> None:
     def save() -> None:
-        assur.plot.mechanism.save_mechanism_png(motion, tmp_path / "mechanism.png", index=2, dpi=40)
-        assur.plot.mechanism.save_animation_gif(motion, tmp_path / "cycle.gif", frames=3, dpi=30)
+        assur.plot.mechanism.save_mechanism_picture(motion, tmp_path / "mechanism.png", index=2, dpi=40)
+        assur.plot.mechanism.save_animation(motion, tmp_path / "cycle.gif", frames=3, dpi=30)
         problem = ROOT / "input_tables" / "problems" / "class1_fourbar_rocker.yaml"
         code = main(["synthesize", str(problem), "--budget", "4", "--quiet",
                      "--plot", str(tmp_path / "synthesis")])

@@ -144,8 +144,9 @@ def test_four_bar_without_geometry_has_one_dyad():
 
 def test_bad_picture_name(tmp_path, course):
     chain, analysis = course
-    with pytest.raises(ValueError, match=r"\.svg or \.png"):
-        save_schemes(chain, analysis, tmp_path / "schemes.jpg")
+    with pytest.raises(ValueError, match=r"\.bmp; write one of: \.png, \.svg, \.pdf, \.jpg"):
+        save_schemes(chain, analysis, tmp_path / "schemes.bmp")
+    assert not (tmp_path / "schemes.bmp").exists()
     with pytest.raises(ValueError, match="which must be"):
         scheme_bytes(chain, analysis, "svg", which="kinematic")
 
@@ -165,8 +166,10 @@ def test_check_command_draws_the_schemes(tmp_path, tables_dir_module, capsys):
     gids = _gids(out.read_bytes())
     assert sum(g.startswith("pair-") for g in gids) == 16  # p5 = 16 (method.md §1.2)
     assert "Формула строения" in capsys.readouterr().out
-    assert main(["check", str(table), "--plot", str(tmp_path / "schemes.jpg")]) == 2
-    assert ".svg or .png" in capsys.readouterr().err
+    assert main(["check", str(table), "--plot", str(tmp_path / "schemes.gif"), "--lang", "ru"]) == 2
+    captured = capsys.readouterr()
+    assert "рисунок нельзя записать в формате .gif" in captured.err
+    assert captured.out == ""  # refused before the table was read or analysed
 
 
 def test_triad_is_outlined_with_class_and_order():

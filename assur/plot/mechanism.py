@@ -4,9 +4,16 @@
 (binary links as bars, links with three or more joints as shaded plates), hinges as small
 circles, frame pivots with a hatched support, sliders as blocks on their guide lines, guides
 over the whole stroke, link and joint labels, and the paths of the tracing points and of the
-moving joints over the cycle. :func:`save_mechanism_png` and :func:`save_animation_gif` write
-files atomically. Only matplotlib's object API is used: figures are
-:class:`matplotlib.figure.Figure` objects that pyplot never sees, so drawing here neither
+moving joints over the cycle. Where the mechanism does not assemble, what does assemble is
+drawn and the group that fails is marked: its outer hinges circled in red and joined by a
+dashed line, with the group, the reason and the interval of the cycle where it fails.
+Joints that coincide share one label (``B=C``); paths that coincide are named in a note.
+The title gives the crank angle φ from the sketch position (as the tables count it) and the
+crank's direction from the x axis.
+
+:func:`save_mechanism_picture` writes PNG, SVG, PDF or JPEG and :func:`save_animation` a GIF
+or an MP4, by the file's ending, atomically. Only matplotlib's object API is used: figures
+are :class:`matplotlib.figure.Figure` objects that pyplot never sees, so drawing here neither
 switches the process's backend nor shows a window.
 """
 
@@ -15,13 +22,17 @@ from __future__ import annotations
 import io
 import math
 import os
-from typing import TYPE_CHECKING, Any
+import textwrap
+from collections.abc import Iterator, Mapping
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
 from assur.io.files import atomic_write_bytes
 from assur.kinematics.analysis import Motion, values
+from assur.kinematics.dyads import Reason, reason_text
 from assur.model import LinkId
+from assur.plot.formats import animation_format, figure_bytes, picture_format
 from assur.text import render
 
 if TYPE_CHECKING:
@@ -29,14 +40,17 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
     from matplotlib.patches import Circle
 
-__all__ = ["draw_mechanism", "figure_for", "save_animation_gif", "save_mechanism_png"]
+__all__ = ["coinciding", "draw_mechanism", "failing_group", "figure_for", "save_animation",
+           "save_mechanism_picture", "working_space"]
 
 
 def _at(x: Any, index: int) -> Any:
     return np.asarray(values(x)).reshape(-1)[index]
 
 
-def _bounds(motion: Motion) -> tuple[float, float, float, float]:
+def working_space(motion: Motion) -> tuple[float, float, float, float]:
+    """Limits ``(x0, x1, y0, y1)`` of every joint, slider base and tracing point over the
+    cycle, with a margin of 8 % (mm)."""
     points = [np.asarray(values(z)).ravel() for z in motion.joints.values()]
     points += [np.asarray(values(z)).ravel() for z in motion.tracing.values()]
     points += [np.asarray(values(s.base)).ravel() for s in motion.sliders.values()]
@@ -81,7 +95,7 @@ def figure_for(motion: Motion, size: float = 7.0) -> tuple[Figure, Axes]:
     """
     from matplotlib.figure import Figure
 
-    x0, x1, y0, y1 = _bounds(motion)
+    x0, x1, y0, y1 = working_space(motion)
     aspect = (y1 - y0) / max(x1 - x0, 1e-12)
     fig = Figure(figsize=(size, max(3.0, min(size * aspect, 2 * size)) + 0.4))
     ax = fig.add_subplot()
@@ -91,8 +105,299 @@ def figure_for(motion: Motion, size: float = 7.0) -> tuple[Figure, Axes]:
     return fig, ax
 
 
+class Failure(NamedTuple):
+    """The group that does not assemble at a drawn position.
+
+    Attributes
+    ----------
+    label : str
+        The group's label, e.g. ``"L3(6,7)"``.
+    reason : int
+        A :class:`~assur.kinematics.dyads.Reason` code.
+    hinges : tuple of complex
+        The group's outer hinges that exist at the position (where it is attached).
+    runs : tuple of (int, int)
+        First and last index of every run of positions where this group fails.
+    """
+
+    label: str
+    reason: int
+    hinges: tuple[complex, ...]
+    runs: tuple[tuple[int, int], ...]
+
+
+def _along(x: Any, shape: tuple[int, ...]) -> np.ndarray:
+    return np.broadcast_to(np.asarray(x), shape)
+
+
+def failing_group(motion: Motion, index: int) -> Failure | None:
+    """The first group, in layering order, that does not assemble at a position.
+
+    Later groups are not evaluated where an earlier one fails (their reason is
+    ``UNDEFINED_INPUT``), so the group found is the one to blame.
+
+    Parameters
+    ----------
+    motion : Motion
+        One design.
+    index : int
+        The position.
+
+    Returns
+    -------
+    Failure or None
+        None where the whole mechanism assembles.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import numpy as np, assur
+    >>> table = Path(assur.__file__).parents[1] / "input_tables" / "course_11_link_fails.yaml"
+    >>> motion = assur.analyse(assur.load_model(table), np.radians(np.arange(0, 360, 10.0)))
+    >>> failure = failing_group(motion, 4)
+    >>> failure.label, [(10 * a, 10 * b) for a, b in failure.runs]
+    ('L3(6,7)', [(30, 70)])
+    """
+    shape = motion.q.shape
+    for label, solution in motion.solutions.items():
+        reasons = _along(solution.reason, shape)
+        if int(reasons[index]) in (Reason.ASSEMBLES, Reason.UNDEFINED_INPUT):
+            continue
+        fails = (reasons != Reason.ASSEMBLES) & (reasons != Reason.UNDEFINED_INPUT)
+        edges = np.diff(np.r_[0, fails.astype(np.int8), 0])
+        runs = tuple(zip(np.flatnonzero(edges == 1).tolist(),
+                         (np.flatnonzero(edges == -1) - 1).tolist()))
+        group = motion.model.group(label)
+        hinges = tuple(complex(_at(motion.joints[pid], index))
+                       for role, pid in group.pairs.items()
+                       if role in ("H_i", "H_j") and pid in motion.joints)
+        return Failure(label, int(reasons[index]), tuple(z for z in hinges if np.isfinite(z)),
+                       runs)
+    return None
+
+
+def _failure_text(motion: Motion, failure: Failure, lang: str) -> str:
+    n = motion.q.size
+    if failure.runs == ((0, n - 1),):
+        where = render("plot.fails_whole_cycle", lang)
+    else:
+        crank = motion.model.drive == "crank"
+        q = np.degrees(motion.q) if crank else motion.q
+        unit = "°" if crank else " mm"
+        ranges = "; ".join(f"{q[a]:.1f}{unit}" if a == b else f"{q[a]:.1f}…{q[b]:.1f}{unit}"
+                           for a, b in failure.runs)
+        where = render("plot.fails_at" if crank else "plot.fails_at_length", lang,
+                       ranges=ranges)
+    return render("plot.group_fails", lang, group=failure.label, where=where,
+                  reason=reason_text(failure.reason, lang))
+
+
+def coinciding(curves: Mapping[str, np.ndarray], tolerance: float) -> dict[str, str]:
+    """Which curves coincide with an earlier one over their whole length.
+
+    Parameters
+    ----------
+    curves : mapping
+        Name → values (real or complex) at the same positions; NaN where undefined.
+    tolerance : float
+        Largest difference still counted as the same value.
+
+    Returns
+    -------
+    dict
+        Name of a later curve → name of the first curve it coincides with (a curve with no
+        finite value coincides with nothing).
+
+    Examples
+    --------
+    >>> coinciding({"a": np.array([1.0, 2.0]), "b": np.array([1.0, 2.0 + 1e-12]),
+    ...             "c": np.array([1.0, 3.0])}, 1e-9)
+    {'b': 'a'}
+    """
+    same: dict[str, str] = {}
+    seen: list[tuple[str, np.ndarray]] = []
+    for name, curve in curves.items():
+        z = np.asarray(curve).ravel()
+        finite = np.isfinite(z)
+        if not finite.any():
+            continue
+        for first, other in seen:
+            if (other.shape == z.shape and np.array_equal(finite, np.isfinite(other))
+                    and np.max(np.abs(z[finite] - other[finite])) <= tolerance):
+                same[name] = first
+                break
+        else:
+            seen.append((name, z))
+    return same
+
+
+def _clusters(points: list[tuple[str, complex]], radius: float) -> list[tuple[str, complex]]:
+    """Labels of points that lie within ``radius`` of each other merged into one: ``B=C``."""
+    merged: list[tuple[list[str], complex]] = []
+    for name, z in points:
+        for names, at in merged:
+            if abs(z - at) <= radius:
+                names.append(name)
+                break
+        else:
+            merged.append(([name], z))
+    return [("=".join(names), at) for names, at in merged]
+
+
+def _title(motion: Motion, index: int, failure: Failure | None, lang: str, wrap: int) -> str:
+    model = motion.model
+    q = float(motion.q[index])
+    if model.drive == "crank":
+        crank = motion.solutions[model.groups[0].label]
+        arm = _at(crank.c, index) - _at(crank.origin_i, index)
+        absolute = math.degrees(float(np.angle(arm))) % 360.0
+        position = render("plot.crank_angle", lang, angle=math.degrees(q), absolute=absolute)
+    else:
+        position = render("plot.actuator_length", lang, length=q)
+    lines = [model.name, position]
+    if failure is not None:
+        lines.append(_failure_text(motion, failure, lang))
+    return "\n".join(textwrap.fill(line, wrap) for line in lines)
+
+
+def _draw_paths(ax: Axes, motion: Motion, scale: float, lang: str) -> None:
+    """Paths of the tracing points and of the moving joints; coinciding ones named once."""
+    curves: dict[str, np.ndarray] = {name: np.asarray(values(point)).ravel()
+                                     for name, point in motion.tracing.items()}
+    for pid, point in motion.joints.items():
+        z = np.asarray(values(point)).ravel()
+        finite = z[np.isfinite(z)]
+        if finite.size and np.max(np.abs(finite - finite[0])) > 1e-9 * scale:
+            curves[str(pid)] = z
+    same = coinciding(curves, 1e-6 * scale)
+    for name, z in curves.items():
+        if name in same:
+            continue
+        tracing = name in motion.tracing
+        ax.plot(z.real, z.imag, "-" if tracing else ":", color="tab:red" if tracing else "0.6",
+                lw=1.2 if tracing else 0.7, zorder=1)
+    if same:
+        groups: dict[str, list[str]] = {}
+        for name, first in same.items():
+            groups.setdefault(first, [first]).append(name)
+        note = render("plot.same_path", lang,
+                      names="; ".join(" = ".join(names) for names in groups.values()))
+        ax.text(0.01, 0.01, note, transform=ax.transAxes, fontsize=7, color="0.3",
+                va="bottom", ha="left", zorder=7)
+
+
+def _draw_guides(ax: Axes, motion: Motion, index: int, r: float) -> None:
+    """Guides over the stroke of their sliders (a frame guide hatched)."""
+    frame = motion.model.frame
+    for slider in motion.sliders.values():
+        s_all = np.asarray(values(slider.s)).ravel()
+        base, angle = _at(slider.base, index), _at(slider.angle, index)
+        if not (np.isfinite(s_all).any() and np.isfinite(base) and np.isfinite(angle)):
+            continue
+        lo, hi = float(np.nanmin(s_all)), float(np.nanmax(s_all))
+        if slider.carrier != frame:  # a guide on a moving link starts at its base point
+            lo, hi = min(lo, 0.0), max(hi, 0.0)
+        margin = 0.15 * max(hi - lo, 4 * r)
+        u = np.exp(1j * angle)
+        line_base = base + 1j * float(np.asarray(slider.offset).ravel()[0]) * u
+        ends = line_base + np.array([lo - margin, hi + margin]) * u
+        ax.plot(ends.real, ends.imag, "-", color="0.35",
+                lw=2.2 if slider.carrier == frame else 1.4, zorder=2)
+        if slider.carrier == frame:
+            tick = -1j * u * 0.6 * r * (1 + 0.5j)
+            for t in np.linspace(0, 1, 8):
+                p = ends[0] + t * (ends[1] - ends[0])
+                ax.plot([p.real, (p + tick).real], [p.imag, (p + tick).imag], "-",
+                        color="0.5", lw=0.6, zorder=2)
+
+
+_COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:brown", "tab:olive",
+            "tab:cyan", "tab:pink")
+
+
+def _draw_links(ax: Axes, motion: Motion, index: int, r: float, labels: bool) -> None:
+    """Links as bars between their joints, plates for three or more, numbered."""
+    model = motion.model
+    points_of: dict[LinkId, list[complex]] = {}
+    for pid, (kind, links, _) in model.pair_links.items():
+        if kind == "R" and pid in motion.joints:
+            z = _at(motion.joints[pid], index)
+            for link in links:
+                points_of.setdefault(link, []).append(z)
+    for slider in motion.sliders.values():
+        points_of.setdefault(slider.slider, []).append(_at(slider.point, index))
+    for traced in model.tracing:
+        points_of.setdefault(traced.anchor.link, []).append(_at(motion.tracing[traced.name], index))
+    placed: list[complex] = []
+    for n, (link, pts) in enumerate(sorted(points_of.items(), key=lambda kv: str(kv[0]))):
+        zs = np.array([p for p in pts if np.isfinite(p)])
+        if link == model.frame or not zs.size:
+            continue
+        colour = _COLOURS[n % len(_COLOURS)]
+        if zs.size >= 3:
+            poly = zs[np.argsort(np.angle(zs - zs.mean()))]
+            ax.fill(poly.real, poly.imag, color=colour, alpha=0.25, zorder=3)
+            ax.plot(np.r_[poly.real, poly.real[0]], np.r_[poly.imag, poly.imag[0]], "-",
+                    color=colour, lw=2.5, zorder=3)
+        elif zs.size == 2:
+            ax.plot(zs.real, zs.imag, "-", color=colour, lw=3, zorder=3, solid_capstyle="round")
+        if labels:
+            at = zs.mean() + 1.8 * r * (1 + 1j)
+            while any(abs(at - other) < 2.0 * r for other in placed):
+                at += 2.2j * r  # another link's number is there: move up
+            placed.append(at)
+            ax.text(at.real, at.imag, str(link), color=colour, fontsize=9, weight="bold",
+                    zorder=6)
+
+
+def _draw_joints(ax: Axes, motion: Motion, index: int, r: float, labels: bool) -> None:
+    """Slider blocks, hinges (frame pivots on a support), tracing points; labels of
+    coinciding joints merged."""
+    model = motion.model
+    for slider in motion.sliders.values():
+        z, angle = _at(slider.point, index), _at(slider.angle, index)
+        if np.isfinite(z) and np.isfinite(angle):
+            block = z + np.array([-2 - 1j, 2 - 1j, 2 + 1j, -2 + 1j, -2 - 1j]) * 1.1 * r \
+                * np.exp(1j * angle)
+            ax.fill(block.real, block.imag, color="white", ec="black", lw=1.2, zorder=4)
+    named: list[tuple[str, complex]] = []
+    for pid, (kind, links, _) in model.pair_links.items():
+        z = _at(motion.joints[pid], index) if kind == "R" and pid in motion.joints else np.nan
+        if not np.isfinite(z):
+            continue
+        if model.frame in links:
+            tri = z + r * np.array([0, -1.6 - 1.6j, 1.6 - 1.6j, 0]) * 1.2
+            ax.fill(tri.real, tri.imag, color="0.8", ec="black", lw=0.8, zorder=4)
+        ax.add_patch(_circle(z, r))
+        named.append((str(pid), z))
+    for name, point in motion.tracing.items():
+        z = _at(point, index)
+        if np.isfinite(z):
+            ax.plot([z.real], [z.imag], "o", color="tab:red", ms=5, zorder=6)
+            named.append((name, z))
+    if labels:
+        for text, z in _clusters(named, 1.5 * r):
+            ax.text(z.real + 1.2 * r, z.imag - 2.2 * r, text, fontsize=7, color="0.2",
+                    zorder=6)
+
+
+def _mark_failure(ax: Axes, failure: Failure, r: float, lang: str) -> None:
+    """Red rings on the hinges of the group that does not assemble, joined by a dashed line."""
+    if not failure.hinges:
+        return
+    z = np.array(failure.hinges)
+    ax.plot(z.real, z.imag, "--", color="tab:red", lw=1.2, zorder=7)
+    ax.plot(z.real, z.imag, "o", mfc="none", mec="tab:red", mew=2.0, ms=13, zorder=7,
+            gid=f"fails-{failure.label}")
+    ax.annotate(render("plot.group_fails_mark", lang, group=failure.label),
+                (z[0].real, z[0].imag), xytext=(10, -18), textcoords="offset points",
+                color="tab:red", fontsize=8, weight="bold", zorder=8,
+                bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.85})
+
+
 def draw_mechanism(motion: Motion, index: int = 0, ax: Axes | None = None, *,
-                   paths: bool = True, labels: bool = True, lang: str = "en") -> Axes:
+                   paths: bool = True, labels: bool = True, lang: str = "en",
+                   wrap: int = 90) -> Axes:
     """Draw the mechanism at one analysed position.
 
     Parameters
@@ -110,12 +415,15 @@ def draw_mechanism(motion: Motion, index: int = 0, ax: Axes | None = None, *,
         Write link numbers and joint names.
     lang : str
         Language of the title and axis labels (a catalogue of :mod:`assur.text`).
+    wrap : int
+        Longest line of the title, characters (longer lines are wrapped).
 
     Returns
     -------
     matplotlib.axes.Axes
-        The axes drawn on; its title gives the input position and says when the mechanism
-        does not assemble there.
+        The axes drawn on. Its title gives the crank angle φ from the sketch position and the
+        crank's direction from the x axis (or the actuator length), and, where the mechanism
+        does not assemble, the group that fails, the interval and the reason.
 
     Examples
     --------
@@ -124,119 +432,24 @@ def draw_mechanism(motion: Motion, index: int = 0, ax: Axes | None = None, *,
     >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
     >>> motion = assur.analyse(model, points=36)
     >>> ax = assur.draw_mechanism(motion, 9)
-    >>> ax.get_title()
-    'four-bar (crank-rocker): crank angle φ = 90.0°'
+    >>> print(ax.get_title())
+    four-bar (crank-rocker)
+    crank angle φ = 90.0° from the sketched position (crank at 150.3° from the x axis)
     """
     if ax is None:
         _, ax = figure_for(motion)
-    model = motion.model
-    frame = model.frame
-    span = _bounds(motion)
+    span = working_space(motion)
     scale = max(span[1] - span[0], span[3] - span[2])
     r = 0.012 * scale
     if paths:
-        for name, point in motion.tracing.items():
-            z = np.asarray(values(point)).ravel()
-            ax.plot(z.real, z.imag, "-", color="tab:red", lw=1.2, zorder=1)
-        for pid, point in motion.joints.items():
-            z = np.asarray(values(point)).ravel()
-            if np.nanmax(np.abs(z - z[np.isfinite(z)][0]), initial=0.0) > 1e-9 * scale:
-                ax.plot(z.real, z.imag, ":", color="0.6", lw=0.7, zorder=1)
-    # guides over the stroke of their sliders
-    for pid, slider in motion.sliders.items():
-        s_all = np.asarray(values(slider.s)).ravel()
-        if not np.isfinite(s_all).any():
-            continue
-        lo, hi = float(np.nanmin(s_all)), float(np.nanmax(s_all))
-        if slider.carrier != frame:  # a guide on a moving link starts at its base point
-            lo, hi = min(lo, 0.0), max(hi, 0.0)
-        margin = 0.15 * max(hi - lo, 4 * r)
-        base = _at(slider.base, index)
-        angle = _at(slider.angle, index)
-        if not (np.isfinite(base) and np.isfinite(angle)):
-            continue
-        u = np.exp(1j * angle)
-        line_base = base + 1j * float(np.asarray(slider.offset).ravel()[0]) * u
-        ends = line_base + np.array([lo - margin, hi + margin]) * u
-        ax.plot(ends.real, ends.imag, "-", color="0.35",
-                lw=2.2 if slider.carrier == frame else 1.4, zorder=2)
-        if slider.carrier == frame:
-            normal = -1j * u * 0.6 * r
-            ticks = np.linspace(0, 1, 8)
-            for t in ticks:
-                p = ends[0] + t * (ends[1] - ends[0])
-                ax.plot([p.real, (p + normal + 0.5 * normal * 1j).real],
-                        [p.imag, (p + normal + 0.5 * normal * 1j).imag], "-", color="0.5",
-                        lw=0.6, zorder=2)
-    # links: bars between their joints, plates for three or more
-    points_of: dict[LinkId, list[complex]] = {}
-    for pid, (kind, links, _) in model.pair_links.items():
-        if kind == "R" and pid in motion.joints:
-            z = _at(motion.joints[pid], index)
-            for link in links:
-                points_of.setdefault(link, []).append(z)
-    for pid, slider in motion.sliders.items():
-        points_of.setdefault(slider.slider, []).append(_at(slider.point, index))
-    for traced in model.tracing:
-        z = _at(motion.tracing[traced.name], index)
-        points_of.setdefault(traced.anchor.link, []).append(z)
-    colours = ["tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:brown", "tab:olive",
-               "tab:cyan", "tab:pink"]
-    for n, (link, pts) in enumerate(sorted(points_of.items(), key=lambda kv: str(kv[0]))):
-        if link == frame:
-            continue
-        pts = [p for p in pts if np.isfinite(p)]
-        if not pts:
-            continue
-        colour = colours[n % len(colours)]
-        zs = np.array(pts)
-        if len(pts) >= 3:
-            centre = zs.mean()
-            order = np.argsort(np.angle(zs - centre))
-            poly = zs[order]
-            ax.fill(poly.real, poly.imag, color=colour, alpha=0.25, zorder=3)
-            ax.plot(np.r_[poly.real, poly.real[0]], np.r_[poly.imag, poly.imag[0]], "-",
-                    color=colour, lw=2.5, zorder=3)
-        elif len(pts) == 2:
-            ax.plot(zs.real, zs.imag, "-", color=colour, lw=3, zorder=3, solid_capstyle="round")
-        if labels:
-            c = zs.mean() + 1.8 * r * (1 + 1j)
-            ax.text(c.real, c.imag, str(link), color=colour, fontsize=9, weight="bold",
-                    zorder=6)
-    # slider blocks
-    for pid, slider in motion.sliders.items():
-        z, angle = _at(slider.point, index), _at(slider.angle, index)
-        if not (np.isfinite(z) and np.isfinite(angle)):
-            continue
-        corners = np.array([-2 - 1j, 2 - 1j, 2 + 1j, -2 + 1j, -2 - 1j]) * 1.1 * r
-        block = z + corners * np.exp(1j * angle)
-        ax.fill(block.real, block.imag, color="white", ec="black", lw=1.2, zorder=4)
-    # hinges
-    for pid, (kind, links, _) in model.pair_links.items():
-        if kind != "R" or pid not in motion.joints:
-            continue
-        z = _at(motion.joints[pid], index)
-        if not np.isfinite(z):
-            continue
-        if frame in links:
-            tri = z + r * np.array([0, -1.6 - 1.6j, 1.6 - 1.6j, 0]) * 1.2
-            ax.fill(tri.real, tri.imag, color="0.8", ec="black", lw=0.8, zorder=4)
-        ax.add_patch(_circle(z, r))
-        if labels:
-            ax.text(z.real + 1.2 * r, z.imag - 2.2 * r, str(pid), fontsize=7, color="0.2",
-                    zorder=6)
-    for name, point in motion.tracing.items():
-        z = _at(point, index)
-        if np.isfinite(z):
-            ax.plot([z.real], [z.imag], "o", color="tab:red", ms=5, zorder=6)
-            if labels:
-                ax.text(z.real + r, z.imag + r, name, color="tab:red", fontsize=9, zorder=6)
-    q = float(motion.q[index])
-    title = (render("plot.crank_angle", lang, angle=math.degrees(q)) if model.drive == "crank"
-             else render("plot.actuator_length", lang, length=q))
-    if not bool(np.asarray(motion.exists).ravel()[index]):
-        title += " — " + render("plot.does_not_assemble", lang)
-    ax.set_title(f"{model.name}: {title}", fontsize=10)
+        _draw_paths(ax, motion, scale, lang)
+    _draw_guides(ax, motion, index, r)
+    _draw_links(ax, motion, index, r, labels)
+    _draw_joints(ax, motion, index, r, labels)
+    failure = failing_group(motion, index)
+    if failure is not None:
+        _mark_failure(ax, failure, r, lang)
+    ax.set_title(_title(motion, index, failure, lang, wrap), fontsize=10)
     ax.set_xlabel(render("plot.x_mm", lang))
     ax.set_ylabel(render("plot.y_mm", lang))
     ax.grid(True, lw=0.3, alpha=0.5)
@@ -249,9 +462,10 @@ def _circle(z: complex, r: float) -> Circle:
     return Circle((z.real, z.imag), r, facecolor="white", edgecolor="black", lw=1.2, zorder=5)
 
 
-def save_mechanism_png(motion: Motion, path: str | os.PathLike[str], index: int = 0, *,
-                       lang: str = "en", dpi: int = 120) -> None:
-    """Draw the mechanism at one position with its paths and write a PNG atomically.
+def save_mechanism_picture(motion: Motion, path: str | os.PathLike[str], index: int = 0, *,
+                           lang: str = "en", dpi: int = 120) -> None:
+    """Draw the mechanism at one position with its paths and write the picture atomically,
+    in the format of the file's ending (PNG, SVG, PDF or JPEG).
 
     Parameters
     ----------
@@ -264,10 +478,12 @@ def save_mechanism_png(motion: Motion, path: str | os.PathLike[str], index: int 
     lang : str
         Language of the title and axis labels.
     dpi : int
-        Dots per inch.
+        Dots per inch (PNG, JPEG).
 
     Raises
     ------
+    PictureFormatError
+        For another ending (nothing is drawn).
     OSError
         When the file cannot be written.
 
@@ -279,28 +495,47 @@ def save_mechanism_png(motion: Motion, path: str | os.PathLike[str], index: int 
     >>> motion = assur.analyse(model, points=36)
     >>> import tempfile, pathlib
     >>> with tempfile.TemporaryDirectory() as folder:
-    ...     path = pathlib.Path(folder, "four_bar.png")
-    ...     assur.plot.mechanism.save_mechanism_png(motion, path, index=3)
-    ...     path.read_bytes()[1:4]
-    b'PNG'
+    ...     path = pathlib.Path(folder, "four_bar.pdf")
+    ...     save_mechanism_picture(motion, path, index=3)
+    ...     path.read_bytes()[:5]
+    b'%PDF-'
     """
+    fmt = picture_format(path)
     fig, ax = figure_for(motion)
     draw_mechanism(motion, index, ax, lang=lang)
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format="png", dpi=dpi, bbox_inches="tight")
-    atomic_write_bytes(path, buffer.getvalue())
+    atomic_write_bytes(path, figure_bytes(fig, fmt, dpi=dpi))
 
 
-def save_animation_gif(motion: Motion, path: str | os.PathLike[str], *, frames: int = 72,
-                       duration_ms: int = 60, lang: str = "en", dpi: int = 80) -> None:
-    """Animate a whole cycle and write a looping GIF atomically.
+def _frames(motion: Motion, frames: int, lang: str, dpi: int) -> Iterator[Figure]:
+    """The figure redrawn at evenly chosen positions of the cycle (one figure, reused)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    n = motion.q.size
+    picks = np.unique(np.linspace(0, n - 1, min(frames, n)).round().astype(int))
+    fig, ax = figure_for(motion, size=6.0)
+    FigureCanvasAgg(fig)
+    fig.set_dpi(dpi)
+    limits = ax.get_xlim(), ax.get_ylim()
+    for index in picks:
+        ax.clear()
+        ax.set_xlim(*limits[0])
+        ax.set_ylim(*limits[1])
+        ax.set_aspect("equal")
+        draw_mechanism(motion, int(index), ax, lang=lang)
+        yield fig
+
+
+def save_animation(motion: Motion, path: str | os.PathLike[str], *, frames: int = 72,
+                   duration_ms: int = 60, lang: str = "en", dpi: int = 80) -> None:
+    """Animate a whole cycle and write a looping GIF, or an MP4, atomically.
 
     Parameters
     ----------
     motion : Motion
         The analysed mechanism.
     path : str or path-like
-        The file to write (replaced atomically when it exists).
+        The file to write (replaced atomically when it exists); ``.gif``, or ``.mp4`` where
+        matplotlib finds an ffmpeg writer (:func:`assur.plot.formats.animation_formats`).
     frames : int
         How many evenly chosen positions are shown (all of them when there are fewer).
     duration_ms : int
@@ -312,6 +547,8 @@ def save_animation_gif(motion: Motion, path: str | os.PathLike[str], *, frames: 
 
     Raises
     ------
+    PictureFormatError
+        For another ending, or ``.mp4`` without ffmpeg (nothing is drawn).
     OSError
         When the file cannot be written.
 
@@ -325,32 +562,44 @@ def save_animation_gif(motion: Motion, path: str | os.PathLike[str], *, frames: 
     >>> from PIL import Image
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     path = pathlib.Path(folder, "four_bar.gif")
-    ...     assur.plot.mechanism.save_animation_gif(motion, path, frames=4, dpi=40)
+    ...     save_animation(motion, path, frames=4, dpi=40)
     ...     with Image.open(path) as gif:
     ...         gif.n_frames
     4
     """
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    fmt = animation_format(path)
+    if fmt == "mp4":
+        _write_mp4(motion, path, frames, duration_ms, lang, dpi)
+        return
     from PIL import Image
 
-    n = motion.q.size
-    picks = np.unique(np.linspace(0, n - 1, min(frames, n)).round().astype(int))
-    fig, ax = figure_for(motion, size=6.0)
-    canvas = FigureCanvasAgg(fig)
-    limits = ax.get_xlim(), ax.get_ylim()
     images = []
-    for index in picks:
-        ax.clear()
-        ax.set_xlim(*limits[0])
-        ax.set_ylim(*limits[1])
-        ax.set_aspect("equal")
-        draw_mechanism(motion, int(index), ax, lang=lang)
-        fig.set_dpi(dpi)
-        canvas.draw()
-        rgba = np.asarray(canvas.buffer_rgba())
-        frame_rgb = Image.fromarray(rgba[..., :3].copy())
-        images.append(frame_rgb.convert("P", palette=Image.Palette.ADAPTIVE))
+    for fig in _frames(motion, frames, lang, dpi):
+        fig.canvas.draw()
+        rgba = np.asarray(fig.canvas.buffer_rgba())  # type: ignore[attr-defined]
+        images.append(Image.fromarray(rgba[..., :3].copy()).convert(
+            "P", palette=Image.Palette.ADAPTIVE))
     buffer = io.BytesIO()
     images[0].save(buffer, format="GIF", save_all=True, append_images=images[1:],
                    duration=duration_ms, loop=0)
     atomic_write_bytes(path, buffer.getvalue())
+
+
+def _write_mp4(motion: Motion, path: str | os.PathLike[str], frames: int, duration_ms: int,
+               lang: str, dpi: int) -> None:
+    """The animation through matplotlib's ffmpeg writer, into a scratch file first."""
+    import tempfile
+    from pathlib import Path
+
+    from matplotlib.animation import FFMpegWriter
+
+    writer = FFMpegWriter(fps=max(1.0, 1000.0 / duration_ms))
+    with tempfile.TemporaryDirectory() as folder:
+        scratch = Path(folder, "animation.mp4")
+        drawn = _frames(motion, frames, lang, dpi)
+        first = next(drawn)
+        with writer.saving(first, str(scratch), dpi):
+            writer.grab_frame()
+            for _fig in drawn:
+                writer.grab_frame()
+        atomic_write_bytes(path, scratch.read_bytes())

@@ -33,9 +33,9 @@ import numpy as np
 
 from assur.kinds import KINDS
 from assur.structure.classification import roman as roman_numeral
-from assur.errors import AssurError
 from assur.model import Chain, LinkId, Pair, PairId, PairType, id_key, joint_key
 from assur.io.files import atomic_write_bytes
+from assur.plot.formats import PICTURE_FORMATS, PictureFormatError, figure_bytes, picture_format
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
@@ -67,10 +67,6 @@ _TEXT = {
            "frame": "стойка 0", "class": "класс", "order": "порядок", "kind": "вид",
            "input": "начальный механизм", "level": "уровень"},
 }
-
-
-class PictureFormatError(AssurError, ValueError):
-    """A picture was asked for in a format other than SVG or PNG."""
 
 
 def roman(value: Any) -> str:
@@ -701,26 +697,26 @@ def scheme_figure(chain: Chain, analysis: StructuralAnalysis, *, lang: str = "en
 
 def scheme_bytes(chain: Chain, analysis: StructuralAnalysis, fmt: str = "svg", *, lang: str = "en",
                  which: str = "both", dpi: int = 110) -> bytes:
-    """The scheme picture as SVG or PNG bytes (see :func:`scheme_figure`).
+    """The scheme picture as the bytes of a file in ``fmt`` (see :func:`scheme_figure`).
 
-    SVG keeps its texts as text (searchable, selectable) and is reproducible: the same chain
-    gives the same bytes.
+    ``fmt`` is a format of :data:`assur.plot.formats.PICTURE_FORMATS` (``"svg"``,
+    ``"png"``, ``"pdf"``, ``"jpeg"``). SVG keeps its texts as text (searchable, selectable)
+    and is reproducible: the same chain gives the same bytes.
+
+    Raises
+    ------
+    PictureFormatError
+        For another format.
     """
-    if fmt not in ("svg", "png"):
-        raise PictureFormatError(f"picture format must be 'svg' or 'png'; got {fmt!r}")
-    import matplotlib
-
-    with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "assur"}):
-        fig = scheme_figure(chain, analysis, lang=lang, which=which)
-        buffer = io.BytesIO()
-        fig.savefig(buffer, format=fmt, dpi=dpi,
-                    metadata={"Date": None} if fmt == "svg" else None)
-    return buffer.getvalue()
+    if fmt not in PICTURE_FORMATS.values():
+        picture_format(f"scheme.{fmt}")  # raises, naming the formats supported
+    fig = scheme_figure(chain, analysis, lang=lang, which=which)
+    return figure_bytes(fig, fmt, dpi=dpi, tight=False)
 
 
 def save_schemes(chain: Chain, analysis: StructuralAnalysis, path: str | os.PathLike[str], *,
                  lang: str = "en", which: str = "both") -> Path:
-    """Write the schemes to an SVG or PNG file (by its suffix), atomically.
+    """Write the schemes to a picture file in the format of its ending, atomically.
 
     Parameters
     ----------
@@ -729,7 +725,7 @@ def save_schemes(chain: Chain, analysis: StructuralAnalysis, path: str | os.Path
     analysis : StructuralAnalysis
         Its structural analysis (groups and layering).
     path : str or os.PathLike
-        Output file; its suffix chooses the format (``.svg`` or ``.png``).
+        Output file; its ending chooses the format (``.png``, ``.svg``, ``.pdf``, ``.jpg``).
     lang : str
         Language of the labels.
     which : {'both', 'structural', 'formalised'}
@@ -743,7 +739,8 @@ def save_schemes(chain: Chain, analysis: StructuralAnalysis, path: str | os.Path
     Raises
     ------
     PictureFormatError
-        If the suffix is neither ``.svg`` nor ``.png``.
+        If the ending is not one of :data:`assur.plot.formats.PICTURE_FORMATS` (nothing is
+        drawn).
 
     Examples
     --------
@@ -752,13 +749,11 @@ def save_schemes(chain: Chain, analysis: StructuralAnalysis, path: str | os.Path
     >>> analysis = assur.analyse_structure(assur.load_chain(table))
     >>> import tempfile
     >>> with tempfile.TemporaryDirectory() as folder:
-    ...     path = assur.save_schemes(analysis.chain, analysis, pathlib.Path(folder) / "schemes.svg")
-    ...     path.read_bytes().lstrip().startswith(b"<?xml")
-    True
+    ...     path = assur.save_schemes(analysis.chain, analysis, pathlib.Path(folder) / "schemes.pdf")
+    ...     path.read_bytes()[:5]
+    b'%PDF-'
     """
     path = Path(path)
-    fmt = path.suffix.lower().lstrip(".")
-    if fmt not in ("svg", "png"):
-        raise PictureFormatError(f"{path}: the picture file must end in .svg or .png")
+    fmt = picture_format(path)
     atomic_write_bytes(path, scheme_bytes(chain, analysis, fmt, lang=lang, which=which))
     return path

@@ -18,7 +18,6 @@ Examples
 
 from __future__ import annotations
 
-import io
 import os
 from typing import TYPE_CHECKING
 
@@ -26,6 +25,7 @@ import numpy as np
 
 from assur.forces.solver import ForceAnalysis
 from assur.io.files import atomic_write_bytes
+from assur.plot.formats import figure_bytes, picture_format
 from assur.plot.mechanism import draw_mechanism, figure_for
 from assur.text import render
 from synthesis.app.analysis import TableAnalysis
@@ -111,14 +111,15 @@ def draw_force_curves(torque: Axes, pairs: Axes, result: TableAnalysis,
 def save_forces_png(result: TableAnalysis, forces: ForceAnalysis,
                     path: str | os.PathLike[str], index: int = 0, *, lang: str = "en",
                     dpi: int = 110) -> None:
-    """Write :func:`forces_figure` as a PNG, atomically.
+    """Write :func:`forces_figure` atomically, in the format of the file's ending (PNG, SVG,
+    PDF or JPEG).
 
     Raises
     ------
+    PictureFormatError
+        For another ending.
     OSError
         When the file cannot be written.
     """
-    buffer = io.BytesIO()
-    forces_figure(result, forces, index, lang).savefig(buffer, format="png", dpi=dpi,
-                                                        bbox_inches="tight")
-    atomic_write_bytes(path, buffer.getvalue())
+    fmt = picture_format(path)
+    atomic_write_bytes(path, figure_bytes(forces_figure(result, forces, index, lang), fmt, dpi=dpi))

@@ -104,6 +104,25 @@ def _analog_axes(fig: Figure, xlabel: str, ylabels: tuple[str, str, str]) -> lis
     return list(axes)
 
 
+def _draw_analogs(axes: list[Axes], x: np.ndarray,
+                  curves: dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]], lang: str) -> None:
+    """Value and analogs of each curve; a curve that coincides with an earlier one is dashed
+    and its legend entry says so, instead of vanishing under it."""
+    from assur.plot.mechanism import coinciding
+
+    first = {name: parts[0] for name, parts in curves.items()}
+    span = max((float(np.nanmax(np.abs(v))) for v in first.values() if np.isfinite(v).any()),
+               default=1.0)
+    same = coinciding(first, 1e-6 * max(span, 1.0))
+    for name, parts in curves.items():
+        style = {"lw": 1.3, "ls": "--" if name in same else "-"}
+        label = (render("plot.same_curve", lang, label=name, other=same[name]) if name in same
+                 else name)
+        axes[0].plot(x, first[name], label=label, **style)
+        axes[1].plot(x, np.broadcast_to(parts[1], x.shape), **style)
+        axes[2].plot(x, np.broadcast_to(parts[2], x.shape), **style)
+
+
 def kinematic_figures(motion: Motion, *, lang: str = "en") -> list[tuple[str, Figure]]:
     """Kinematic diagrams of one design over the cycle.
 
@@ -148,11 +167,10 @@ def kinematic_figures(motion: Motion, *, lang: str = "en") -> list[tuple[str, Fi
     if rotating:
         fig = _new_figure((8.0, 7.0))
         axes = _analog_axes(fig, xlabel, ("ψ, °", "dψ/dφ", "d²ψ/dφ²"))
-        for link, psi, first, second in rotating:
-            axes[0].plot(x, np.degrees(psi), lw=1.3, label=render("plot.link", lang, link=link))
-            axes[1].plot(x, first, lw=1.3)
-            axes[2].plot(x, second, lw=1.3)
-        axes[0].legend(fontsize=7.5, ncol=4)
+        labels = {render("plot.link", lang, link=link): (np.degrees(psi), first, second)
+                  for link, psi, first, second in rotating}
+        _draw_analogs(axes, x, labels, lang)
+        axes[0].legend(fontsize=7.5, ncol=3)
         title = render("plot.link_angles", lang)
         axes[0].set_title(title, fontsize=11)
         figures.append((f"{title}: {analogs}", fig))
@@ -165,12 +183,10 @@ def kinematic_figures(motion: Motion, *, lang: str = "en") -> list[tuple[str, Fi
         fig = _new_figure((8.0, 7.0))
         axes = _analog_axes(fig, xlabel, (render("plot.s_mm", lang), render("plot.ds_mm", lang),
                                           render("plot.d2s_mm", lang)))
-        for pid, slider, value, first, second in sliders:
-            label = render("plot.slider_of_pair", lang, pair=pid, link=slider)
-            axes[0].plot(x, value, lw=1.3, label=label)
-            axes[1].plot(x, first, lw=1.3)
-            axes[2].plot(x, second, lw=1.3)
-        axes[0].legend(fontsize=7.5, ncol=3)
+        labels = {render("plot.slider_of_pair", lang, pair=pid, link=slider): (v, d1, d2)
+                  for pid, slider, v, d1, d2 in sliders}
+        _draw_analogs(axes, x, labels, lang)
+        axes[0].legend(fontsize=7.5, ncol=2)
         title = render("plot.slider_displacements", lang)
         axes[0].set_title(title, fontsize=11)
         figures.append((f"{title}: {analogs}", fig))
@@ -220,18 +236,21 @@ def mechanism_figure(motion: Motion, *, lang: str = "en", positions: int = 4) ->
     >>> import assur
     >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
     >>> fig = mechanism_figure(assur.analyse(model, points=36), positions=2)
-    >>> [ax.get_title().split(": ")[1] for ax in fig.axes]
-    ['crank angle φ = 0.0°', 'crank angle φ = 180.0°']
+    >>> [ax.get_title().splitlines()[1] for ax in fig.axes]
+    ['crank angle φ = 0.0° from the sketched', 'crank angle φ = 180.0° from the sketched']
     """
-    from assur import draw_mechanism
+    from assur.plot.mechanism import draw_mechanism, working_space
 
     n = motion.q.size
     picks = [int(round(k * n / positions)) % n for k in range(positions)]
     rows = math.ceil(positions / 2)
-    fig = _new_figure((8.0, 4.0 * rows))
+    x0, x1, y0, y1 = working_space(motion)
+    height = min(max(3.9 * (y1 - y0) / max(x1 - x0, 1e-12), 1.8), 5.5) + 1.4  # plot + title
+    fig = _new_figure((8.0, height * rows))
     axes = fig.subplots(rows, 2, squeeze=False).ravel()
     for ax, index in zip(axes, picks):
-        draw_mechanism(motion, index, ax, lang=lang)
+        draw_mechanism(motion, index, ax, lang=lang, wrap=46)
+        ax.title.set_fontsize(8.5)
         ax.set_aspect("equal")
         ax.autoscale_view()
     for ax in axes[len(picks):]:

@@ -51,11 +51,20 @@ figure img { max-width: 100%; height: auto; border: 1px solid var(--line); }
 figcaption { color: var(--muted); font-size: .88rem; margin-top: .3rem; }
 pre { background: var(--band); padding: .7rem; overflow-x: auto; font-size: .8rem;
       white-space: pre-wrap; }
+@page { size: A4; margin: 14mm 13mm 16mm; }
 @media print {
-  body { max-width: none; padding: 0; font-size: 11pt; }
-  h2 { break-after: avoid; }
-  figure, table, .summary { break-inside: avoid; }
+  body { max-width: none; padding: 0; font-size: 10pt; line-height: 1.3; }
+  h2 { break-after: avoid; page-break-after: avoid; margin-top: 1.1rem; }
+  h3 { break-after: avoid; page-break-after: avoid; }
+  figure, table, .summary, .formula, li { break-inside: avoid; page-break-inside: avoid; }
+  figure { margin: .4rem 0 .6rem; }
+  figure img { max-height: 11.5cm; width: auto; max-width: 100%; border: none; }
+  figure.small img { max-height: 8.5cm; }
   section { break-inside: auto; }
+  table { font-size: 8.5pt; }
+  pre { white-space: pre-wrap; font-size: 7.5pt; }
+  .play-controls { display: none; }
+  .play svg { max-height: 10cm; }
 }
 """
 

@@ -15,7 +15,8 @@ import json
 import sys
 
 from assur.io.files import atomic_write_text
-from assur.plot.mechanism import save_animation_gif, save_mechanism_png
+from assur.plot.formats import animation_format, picture_format
+from assur.plot.mechanism import save_animation, save_mechanism_picture
 from assur.text import languages, render
 from synthesis.app.analysis import analyse_table
 from synthesis.app.analysis_csv import analysis_csv
@@ -36,9 +37,9 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--points", type=int, default=360, help=render("cli.analyze.points"))
     parser.add_argument("--json", action="store_true", help=render("cli.analyze.json"))
     parser.add_argument("--csv", metavar="FILE", help=render("cli.analyze.csv"))
-    parser.add_argument("--plot", metavar="FILE.png", help=render("cli.analyze.plot"))
+    parser.add_argument("--plot", metavar="FILE.png|svg|pdf|jpg", help=render("cli.analyze.plot"))
     parser.add_argument("--at", type=float, default=0.0, help=render("cli.analyze.at"))
-    parser.add_argument("--animate", metavar="FILE.gif", help=render("cli.analyze.animate"))
+    parser.add_argument("--animate", metavar="FILE.gif|mp4", help=render("cli.analyze.animate"))
     parser.add_argument("--frames", type=int, default=48, help=render("cli.analyze.frames"))
     parser.add_argument("--omega", type=float, default=None, help=render("cli.analyze.omega"))
     parser.add_argument("--forces", action="store_true", help=render("force.cli.forces"))
@@ -48,6 +49,10 @@ def add_args(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Analyse the table and report."""
+    if args.plot:  # a format that cannot be written is refused before any work
+        picture_format(args.plot)
+    if args.animate:
+        animation_format(args.animate)
     result = analyse_table(args.table, points=args.points, omega=args.omega)
     forces = table_forces(args.table, result) if args.forces else None
     if args.json:
@@ -70,10 +75,10 @@ def run(args: argparse.Namespace) -> int:
             save_forces_png(result, forces, args.plot, index=result.index_at(args.at),
                             lang=args.lang)
         else:
-            save_mechanism_png(result.motion, args.plot, index=result.index_at(args.at),
-                               lang=args.lang)
+            save_mechanism_picture(result.motion, args.plot, index=result.index_at(args.at),
+                                   lang=args.lang)
         print(render("analyze.written", args.lang, path=args.plot), file=notes)
     if args.animate:
-        save_animation_gif(result.motion, args.animate, frames=args.frames, lang=args.lang)
+        save_animation(result.motion, args.animate, frames=args.frames, lang=args.lang)
         print(render("analyze.written", args.lang, path=args.animate), file=notes)
     return 0

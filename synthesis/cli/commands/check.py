@@ -14,6 +14,7 @@ import json
 
 from assur import save_schemes
 from assur.text import languages, render
+from assur.plot.formats import picture_format
 from synthesis.app.assess import assess
 from synthesis.app.check_report import check_record, check_text
 
@@ -33,6 +34,8 @@ def add_args(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Analyse the table and print the report."""
+    if args.plot:  # a format that cannot be written is refused before any work
+        picture_format(args.plot)
     assessment = assess(args.table, points=None)
     if args.plot:
         save_schemes(assessment.chain, assessment.analysis, args.plot, lang=args.lang)

@@ -40,8 +40,8 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
     from matplotlib.patches import Circle
 
-__all__ = ["coinciding", "draw_mechanism", "failing_group", "figure_for", "save_animation",
-           "save_mechanism_picture", "working_space"]
+__all__ = ["Failure", "coinciding", "draw_mechanism", "failing_group", "failure_text", "figure_for",
+           "save_animation", "save_mechanism_picture", "working_space"]
 
 
 def _at(x: Any, index: int) -> Any:
@@ -176,7 +176,8 @@ def failing_group(motion: Motion, index: int) -> Failure | None:
     return None
 
 
-def _failure_text(motion: Motion, failure: Failure, lang: str) -> str:
+def failure_text(motion: Motion, failure: Failure, lang: str) -> str:
+    """Which group does not assemble, over which part of the cycle, and why."""
     n = motion.q.size
     if failure.runs == ((0, n - 1),):
         where = render("plot.fails_whole_cycle", lang)
@@ -256,7 +257,7 @@ def _title(motion: Motion, index: int, failure: Failure | None, lang: str, wrap:
         position = render("plot.actuator_length", lang, length=q)
     lines = [model.name, position]
     if failure is not None:
-        lines.append(_failure_text(motion, failure, lang))
+        lines.append(failure_text(motion, failure, lang))
     return "\n".join(textwrap.fill(line, wrap) for line in lines)
 
 

@@ -51,6 +51,12 @@ figure img { max-width: 100%; height: auto; border: 1px solid var(--line); }
 figcaption { color: var(--muted); font-size: .88rem; margin-top: .3rem; }
 pre { background: var(--band); padding: .7rem; overflow-x: auto; font-size: .8rem;
       white-space: pre-wrap; }
+.play { border: 1px solid var(--line); border-radius: 6px; padding: .5rem .8rem; }
+.play svg { width: 100%; height: auto; max-height: 34rem; display: block; }
+.play-controls { display: flex; gap: .8rem; align-items: center; }
+.play-controls input { flex: 1; }
+body.play-only header, body.play-only section:not(#play) { display: none; }
+.play-controls output { min-width: 7rem; font-variant-numeric: tabular-nums; }
 @page { size: A4; margin: 14mm 13mm 16mm; }
 @media print {
   body { max-width: none; padding: 0; font-size: 10pt; line-height: 1.3; }

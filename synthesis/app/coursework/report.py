@@ -21,6 +21,7 @@ from assur import (
     Chain,
     ExistenceReport,
     KinematicModel,
+    Motion,
     StructuralAnalysis,
     analyse,
     chain_from_dict,
@@ -279,8 +280,11 @@ def _kinematic_sections(found: Assessment, lang: str, points: int,
         body = (f'<pre class="bad">{esc(why.text(lang))}</pre>' if isinstance(why, AssurError)
                 else f'<p class="note">{esc(why.text(lang) if why else "")}</p>')
         return [Section("existence", _cap(render("term.existence", lang)), body)]
+    from synthesis.app.coursework.play import play_section
+
+    motion = analyse(found.model, points=points, analogs=True)
     return [_existence_section(found.existence, found.model, lang, report),
-            _motion_section(found.model, lang, points)]
+            _motion_section(motion, lang), play_section(motion, lang)]
 
 
 def _verdict(assembles: bool, lang: str) -> str:
@@ -315,10 +319,9 @@ def _existence_section(existence: ExistenceReport, model: KinematicModel, lang: 
     return Section("existence", _cap(render("term.existence", lang)), body)
 
 
-def _motion_section(model: KinematicModel, lang: str, points: int) -> Section:
+def _motion_section(motion: Motion, lang: str) -> Section:
     from synthesis.app.coursework.diagrams import kinematic_figures, mechanism_figure
 
-    motion = analyse(model, points=points, analogs=True)
     body = figure(mechanism_figure(motion, lang=lang), _cap(render("term.mechanism", lang)),
                   ident="mechanism", fmt="png")
     for k, (caption, fig) in enumerate(kinematic_figures(motion, lang=lang)):

@@ -340,7 +340,7 @@ def _synthesis(path: Path, lang: str, budget: int | None, report: CourseworkRepo
 
     from synthesis.plots import plot_convergence, plot_mechanism, plot_output
     from synthesis.problem import load_problem
-    from synthesis.report import text_report
+    from synthesis.app.coursework.synthesis_tables import synthesis_tables
     from synthesis.search import settings_for
     from synthesis.synthesize import synthesize
 
@@ -353,7 +353,7 @@ def _synthesis(path: Path, lang: str, budget: int | None, report: CourseworkRepo
     verdict = render("term.feasible", lang) if feasible else render("term.infeasible", lang)
     q = "–" if data.get("Q") is None else f"{data['Q']:.4g}"
     body = (f'<p class="{"ok" if feasible else "bad"}" id="synthesis-verdict">{esc(verdict)}, '
-            f"Q = {q}</p><pre>{esc(text_report(data, lang))}</pre>")
+            f"Q = {q}</p>{synthesis_tables(data, lang)}")
     drawings = (lambda ax: plot_output(problem, analysis, axes=ax, lang=lang),
                 lambda ax: plot_mechanism(problem, analysis, axes=ax, lang=lang),
                 lambda ax: plot_convergence(result, axes=ax, lang=lang))

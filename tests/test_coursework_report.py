@@ -43,6 +43,7 @@ class _Page(HTMLParser):
     def __init__(self) -> None:
         super().__init__()
         self.images: list[dict[str, str]] = []
+        self.scripts: list[dict[str, str]] = []
         self.ids: set[str] = set()
         self.tables: dict[str, list[list[str]]] = {}
         self.tags: set[str] = set()
@@ -57,6 +58,8 @@ class _Page(HTMLParser):
             self.ids.add(attrs["id"])
         if tag == "img":
             self.images.append(attrs)
+        if tag == "script":
+            self.scripts.append(attrs)
         if tag == "table":
             self._table = attrs.get("id", "")
             self.tables[self._table] = []
@@ -118,8 +121,10 @@ def test_page_is_self_contained(course_html):
             assert ET.fromstring(raw).tag.endswith("svg")
         else:
             assert raw.startswith(b"\x89PNG")
-    assert not {"script", "link", "iframe"} & page.tags
+    assert not {"link", "iframe"} & page.tags
+    assert page.scripts and all(not attrs.get("src") for attrs in page.scripts)  # inline only
     assert "http" not in course_html.replace("http://www.w3.org", "")  # no network reference
+    assert len(course_html.encode("utf-8")) < 900_000
     assert "@media print" in course_html
 
 
@@ -197,6 +202,22 @@ def test_synthesis_problem_report(tmp_path):
     assert "I(0,1) → II₁(2,3)" in "".join(page.text)
     assert "synthesis" in report.summary
     assert report.facts["feasible"] in (True, False) and report.facts["Q"] >= 0
+    # the result is tables, not a text dump; checked against the problem file itself
+    assert "<pre>" not in html.partition('id="synthesis"')[2]
+    spec = yaml.safe_load(problem.read_text("utf-8"))
+    ranges = {f"{group}.{name}": value for group, row in
+              (("L0(1)", spec["parameters"][0]), ("L1(2,3)", spec["parameters"][1]))
+              for name, value in row.items() if isinstance(value, list) and name != "links"}
+    design = {r[0]: [float(c) for c in r[1:]] for r in page.tables["synthesis-design"] if r}
+    assert set(design) == set(ranges)
+    for name, (initial, lower, upper, found) in design.items():
+        assert [initial, lower, upper] == ranges[name]
+        assert lower <= found <= upper
+    rows = [r for r in page.tables["synthesis-deviations"] if r]
+    assert [(int(r[0]), float(r[1]), float(r[2])) for r in rows] == [
+        (p["K"], p["phi"], pytest.approx(p["psi"], abs=1e-4)) for p in spec["control_points"]]
+    q = float(page.tables["synthesis-criteria"][1][1].split()[0])  # Q = max |Δ_K|
+    assert q == pytest.approx(max(abs(float(r[4])) for r in rows), rel=1e-5)
 
 
 def _chromium() -> str | None:
@@ -265,3 +286,91 @@ def test_variant_against_the_sketch_in_the_report(tmp_path):
     assert [r[8] for r in page.tables["identification"] if r] == ["–", "-1"]
     assert "по размерам группа собирается в варианте -1, в таблице указано 1" in "".join(
         page.text)
+
+
+FAILS = ROOT / "input_tables" / "course_11_link_fails.yaml"
+
+
+@pytest.fixture(scope="module")
+def fails_pages(tmp_path_factory) -> dict[str, Path]:
+    """The report of the design whose kulisa group breaks for φ ≈ 21.6°…72.6°, in Russian
+    (72 positions: a frame every 5°); the page switches its language by its ``lang``
+    attribute alone, so an English copy is made by changing that."""
+    folder = tmp_path_factory.mktemp("play")
+    ru = write_report(FAILS, folder / "report_ru.html", lang="ru", points=72).out
+    en = folder / "report_en.html"
+    en.write_text(ru.read_text("utf-8").replace('data-lang="ru"', 'data-lang="en"'), "utf-8")
+    return {"en": en, "ru": ru}
+
+
+def _sketch(path: Path) -> dict[str, complex]:
+    """The sketch's points, read with plain YAML."""
+    points = yaml.safe_load(path.read_text("utf-8"))["geometry"]
+    return {pid: complex(*p["point"]) for pid, p in points.items()
+            if isinstance(p, dict) and "point" in p}
+
+
+def test_the_playable_mechanism_is_embedded(fails_pages):
+    html = fails_pages["ru"].read_text("utf-8")
+    assert "Механизм в движении" in html
+    data = json.loads(html.partition('id="play-data">')[2].partition("</script>")[0])
+    assert len(data["q"]) == 72 and data["q"][:3] == [0.0, 5.0, 10.0]
+    sketch = _sketch(FAILS)
+    for pid in ("0-1", "1-2", "2-3", "3-0"):  # φ = 0 is the sketched position
+        assert complex(*data["points"][pid][0]) == pytest.approx(sketch[pid], abs=2e-3)
+    # the group that breaks (documented 21.59°…72.58°) is named exactly where it breaks
+    broken = [q for q, fail in zip(data["q"], data["fails"]) if fail]
+    assert broken == [q for q in data["q"] if 21.59 < q < 72.58]
+    assert {fail["group"] for fail in data["fails"] if fail} == {"L3(6,7)"}
+    assert all(data["points"]["8-9"][k] is None for k, q in enumerate(data["q"])
+               if 21.59 < q < 72.58)  # later groups are not drawn there
+    assert len(fails_pages["en"].read_bytes()) < 800_000  # a few hundred KB
+
+
+def _dom_joints(dom: str) -> dict[str, complex]:
+    """Joint positions as drawn: the translate() of each joint's group in the SVG."""
+    found = {}
+    for match in re.finditer(r'<g class="joint"[^>]*? transform="translate\(([^,]+),([^)]+)\)"'
+                             r'[^>]*>(?:(?!</g>).)*?id="joint-([^"]+)"', dom, re.S):
+        found[match[3]] = complex(float(match[1]), -float(match[2]))  # the SVG's y points down
+    return found
+
+
+@pytest.mark.browser
+@pytest.mark.skipif(_chromium() is None, reason="headless Chromium is not installed "
+                                                "(Debian package 'chromium'); .ci/run installs it")
+def test_moving_the_slider_moves_the_drawing(tmp_path, fails_pages):
+    from assur.kinematics.analysis import analyse
+    from assur.kinematics.build import load_model
+
+    model = load_model(FAILS)
+    drawn = {}
+    for phi in (45.0, 180.0):  # the address sets the slider and sends its 'input' event
+        dom = _browser(tmp_path, fails_pages["en"].as_uri() + f"#phi={phi:g}", "--dump-dom")
+        assert dom.returncode == 0, dom.stderr
+        assert f'<output>φ = {phi:.1f}°</output>' in dom.stdout
+        joints = drawn[phi] = _dom_joints(dom.stdout)
+        motion = analyse(model, np.radians([phi]))
+        expected = {pid: complex(z[0]) for pid, z in motion.joints.items()
+                    if np.isfinite(z[0])}
+        assert set(joints) == set(expected)
+        for pid, z in expected.items():
+            assert joints[pid] == pytest.approx(z, abs=2e-3), pid
+        rings = re.findall(r'<circle cx="([^"]+)" cy="([^"]+)"[^>]*class="fail-ring"',
+                           dom.stdout)
+        if phi == 45.0:  # the kulisa group is ringed at its hinges 2-6 and 7-0
+            ringed = sorted((float(x), -float(y)) for x, y in rings)
+            hinges = sorted((z.real, z.imag) for z in (expected["2-6"], expected["7-0"]))
+            assert np.allclose(ringed, hinges, atol=2e-3)
+            assert "group L3(6,7) does not assemble for φ = 25.0…70.0°" in dom.stdout
+        else:
+            assert rings == []
+    # the drawing moved, and the links stayed rigid (lengths from the sketch)
+    sketch = _sketch(FAILS)
+    assert abs(drawn[45.0]["1-2"] - drawn[180.0]["1-2"]) > 10
+    for a, b in (("0-1", "1-2"), ("1-2", "2-3"), ("2-3", "3-0")):
+        for joints in drawn.values():
+            assert abs(joints[a] - joints[b]) == pytest.approx(abs(sketch[a] - sketch[b]),
+                                                                abs=5e-3)
+    dom = _browser(tmp_path, fails_pages["ru"].as_uri() + "#phi=45", "--dump-dom")
+    assert "группа L3(6,7) не собирается при φ = 25.0…70.0°" in dom.stdout

@@ -49,7 +49,8 @@ def play_data(motion: Motion, frames: int = FRAMES) -> dict[str, Any]:
     motion : Motion
         One design over the cycle.
     frames : int
-        How many evenly spaced positions are kept (all when the analysis has fewer).
+        At most this many positions are kept: every k-th of the analysis, the fewest k
+        that fits (360 positions → every third, 3° apart).
 
     Returns
     -------
@@ -65,7 +66,7 @@ def play_data(motion: Motion, frames: int = FRAMES) -> dict[str, Any]:
     """
     model = motion.model
     shape = motion.q.shape
-    picks = np.unique(np.linspace(0, shape[0] - 1, min(frames, shape[0])).round().astype(int))
+    picks = np.arange(0, shape[0], -(-shape[0] // frames))  # every k-th, evenly spaced
     crank = model.drive == "crank"
     points: dict[str, list[list[float] | None]] = {}
     pivots, links_of = [], {}

@@ -18,8 +18,8 @@ import pytest
 import yaml
 from PIL import Image
 
-from synthesis.cli import main
 from synthesis.app.coursework import build_report, render_html, write_report
+from synthesis.cli import main
 
 ROOT = Path(__file__).resolve().parent.parent
 COURSE = ROOT / "input_tables" / "course_11_link.yaml"
@@ -331,7 +331,7 @@ def _dom_joints(dom: str) -> dict[str, complex]:
     """Joint positions as drawn: the translate() of each joint's group in the SVG."""
     found = {}
     for match in re.finditer(r'<g class="joint"[^>]*? transform="translate\(([^,]+),([^)]+)\)"'
-                             r'[^>]*>(?:(?!</g>).)*?id="joint-([^"]+)"', dom, re.S):
+                             r'[^>]*>(?:(?!</g>).)*?id="joint-([^"]+)"', dom, re.DOTALL):
         found[match[3]] = complex(float(match[1]), -float(match[2]))  # the SVG's y points down
     return found
 

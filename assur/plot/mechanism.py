@@ -594,7 +594,7 @@ def _write_mp4(motion: Motion, path: str | os.PathLike[str], frames: int, durati
 
     from matplotlib.animation import FFMpegWriter
 
-    writer = FFMpegWriter(fps=max(1.0, 1000.0 / duration_ms))
+    writer = FFMpegWriter(fps=max(1, round(1000 / duration_ms)))
     with tempfile.TemporaryDirectory() as folder:
         scratch = Path(folder, "animation.mp4")
         drawn = _frames(motion, frames, lang, dpi)

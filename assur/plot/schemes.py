@@ -21,7 +21,6 @@ file can be checked element by element.
 
 from __future__ import annotations
 
-import io
 import math
 import os
 from collections.abc import Iterable, Sequence
@@ -31,11 +30,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from assur.kinds import KINDS
-from assur.structure.classification import roman as roman_numeral
-from assur.model import Chain, LinkId, Pair, PairId, PairType, id_key, joint_key
 from assur.io.files import atomic_write_bytes
+from assur.kinds import KINDS
+from assur.model import Chain, LinkId, Pair, PairId, PairType, id_key, joint_key
 from assur.plot.formats import PICTURE_FORMATS, PictureFormatError, figure_bytes, picture_format
+from assur.structure.classification import roman as roman_numeral
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
@@ -52,9 +51,9 @@ __all__ = [
     "group_graph",
     "roman",
     "save_schemes",
+    "scheme_bytes",
     "scheme_figure",
     "scheme_layout",
-    "scheme_bytes",
 ]
 
 _GROUP_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b",

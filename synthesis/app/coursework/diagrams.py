@@ -115,12 +115,12 @@ def _draw_analogs(axes: list[Axes], x: np.ndarray,
                default=1.0)
     same = coinciding(first, 1e-6 * max(span, 1.0))
     for name, parts in curves.items():
-        style = {"lw": 1.3, "ls": "--" if name in same else "-"}
+        ls = "--" if name in same else "-"
         label = (render("plot.same_curve", lang, label=name, other=same[name]) if name in same
                  else name)
-        axes[0].plot(x, first[name], label=label, **style)
-        axes[1].plot(x, np.broadcast_to(parts[1], x.shape), **style)
-        axes[2].plot(x, np.broadcast_to(parts[2], x.shape), **style)
+        axes[0].plot(x, first[name], label=label, lw=1.3, ls=ls)
+        axes[1].plot(x, np.broadcast_to(parts[1], x.shape), lw=1.3, ls=ls)
+        axes[2].plot(x, np.broadcast_to(parts[2], x.shape), lw=1.3, ls=ls)
 
 
 def kinematic_figures(motion: Motion, *, lang: str = "en") -> list[tuple[str, Figure]]:
@@ -242,7 +242,7 @@ def mechanism_figure(motion: Motion, *, lang: str = "en", positions: int = 4) ->
     from assur.plot.mechanism import draw_mechanism, working_space
 
     n = motion.q.size
-    picks = [int(round(k * n / positions)) % n for k in range(positions)]
+    picks = [round(k * n / positions) % n for k in range(positions)]
     rows = math.ceil(positions / 2)
     x0, x1, y0, y1 = working_space(motion)
     height = min(max(3.9 * (y1 - y0) / max(x1 - x0, 1e-12), 1.8), 5.5) + 1.4  # plot + title

@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from assur.kinematics.analysis import Motion, values
+from assur.model import LinkId
 from assur.plot.mechanism import failing_group, failure_text, working_space
 from assur.text import render
 from synthesis.app.coursework.page import Section, esc
@@ -69,13 +70,14 @@ def play_data(motion: Motion, frames: int = FRAMES) -> dict[str, Any]:
     picks = np.arange(0, shape[0], -(-shape[0] // frames))  # every k-th, evenly spaced
     crank = model.drive == "crank"
     points: dict[str, list[list[float] | None]] = {}
-    pivots, links_of = [], {}
-    for pid, (kind, links, _) in model.pair_links.items():
+    pivots: list[str] = []
+    links_of: dict[LinkId, list[str]] = {}
+    for pid, (kind, joined, _) in model.pair_links.items():
         if kind == "R" and pid in motion.joints:
             points[str(pid)] = _xy(_picked(motion.joints[pid], picks, shape))
-            if model.frame in links:
+            if model.frame in joined:
                 pivots.append(str(pid))
-            for link in links:
+            for link in joined:
                 links_of.setdefault(link, []).append(str(pid))
     blocks, guides, slides = [], [], []
     for pid, slider in motion.sliders.items():

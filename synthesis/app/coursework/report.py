@@ -338,9 +338,9 @@ def _synthesis(path: Path, lang: str, budget: int | None, report: CourseworkRepo
     (the verdict goes to the report's summary)."""
     from matplotlib.figure import Figure
 
+    from synthesis.app.coursework.synthesis_tables import synthesis_tables
     from synthesis.plots import plot_convergence, plot_mechanism, plot_output
     from synthesis.problem import load_problem
-    from synthesis.app.coursework.synthesis_tables import synthesis_tables
     from synthesis.search import settings_for
     from synthesis.synthesize import synthesize
 

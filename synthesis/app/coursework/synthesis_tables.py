@@ -55,6 +55,7 @@ def _deviations(data: Mapping[str, Any], lang: str) -> str:
     if not rows:
         return ""
     unit = "" if data["unit"] == "1" else f", {_w(data['unit'], lang)}"
+    cells: list[tuple[Any, ...]]
     if data["task_class"] in (1, 2):
         header = ("K", "φ, °", _w("target", lang), _w("reproduced", lang), f"Δ{unit}")
         cells = [(r["K"], r["phi"],
@@ -71,6 +72,7 @@ def _deviations(data: Mapping[str, Any], lang: str) -> str:
 
 def _limits(data: Mapping[str, Any], lang: str) -> str:
     body = ""
+    rows: list[tuple[Any, ...]]
     if data["pressure_angles"]:
         rows = [(label, f"{info['max_deg']:.3f}°", f"{info['allowed_deg']:.3f}°")
                 for label, info in data["pressure_angles"].items()]

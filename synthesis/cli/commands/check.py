@@ -13,8 +13,8 @@ import argparse
 import json
 
 from assur import save_schemes
-from assur.text import languages, render
 from assur.plot.formats import picture_format
+from assur.text import languages, render
 from synthesis.app.assess import assess
 from synthesis.app.check_report import check_record, check_text
 

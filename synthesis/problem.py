@@ -71,10 +71,10 @@ if TYPE_CHECKING:  # pragma: no cover
     from synthesis.force_conditions import ForceConditions
 
 __all__ = [
-    "ControlPoints",
     "DEFAULT_PRESSURE_ANGLE",
-    "GroupKey",
     "OUTPUT_QUANTITIES",
+    "ControlPoints",
+    "GroupKey",
     "Output",
     "Parameter",
     "Problem",
@@ -94,7 +94,8 @@ OUTPUT_QUANTITIES = ("angle", "ratio")
 #: Keys of the ``search`` table → fields of :class:`~synthesis.search.SearchSettings`.
 SEARCH_FIELDS = {"budget": "budget_log2", "seed": "seed", "refine": "refine",
                  "shrink_passes": "shrink_passes", "stall": "stall",
-                 "time_limit": "time_limit", "refine_evaluations": "refine_evaluations"}
+                 "time_limit": "time_limit", "refine_evaluations": "refine_evaluations",
+                 "restarts": "restarts"}
 FloatArray = npt.NDArray[np.float64]
 
 

@@ -17,10 +17,15 @@ Steps (``method.md`` §6):
 4. optional local refinement from the best few distinct trials with
    :func:`scipy.optimize.least_squares` (bounded trust-region, Jacobian by one batched
    forward-difference call) on the residuals of the best design; a refined design is kept
-   only if it is better by the ranking rule.
+   only if it is better by the ranking rule;
+5. optional restarts: steps 2–4 again (a round) with a fresh LPτ sequence over the whole
+   box, the shrinking and the refinement centred on the new round's own best, while no
+   favourable design is found.  Every round's best and every refinement's end is kept
+   (:attr:`SearchResult.optima`): how many distinct local optima the search met.
 
 Stop rules: (a) a favourable mechanism (P1 = P2 = 0 and Q ≤ [Q]); (b) no improvement of
-the best in the last ``stall`` trials; (c) the trial budget or the time limit is used up.
+the round's best in its last ``stall`` trials ends the round (the search when it is the
+last); (c) the trial budget or the time limit is used up.
 Ctrl-C stops the search cleanly; the best design found so far is returned.
 """
 
@@ -45,8 +50,8 @@ from synthesis.criteria import Criteria, Objective, merit
 if TYPE_CHECKING:
     from synthesis.problem import Problem
 
-__all__ = ["STOP_REASONS", "Improvement", "SearchResult", "SearchSettings", "SettingError",
-           "search", "setting_problem", "settings_for"]
+__all__ = ["STOP_REASONS", "Improvement", "Optimum", "SearchResult", "SearchSettings",
+           "SettingError", "distinct_optima", "search", "setting_problem", "settings_for"]
 
 FloatArray = npt.NDArray[np.float64]
 Evaluator = Callable[[FloatArray], Criteria]
@@ -61,6 +66,8 @@ STOP_REASONS = {reason: f"search.stop.{reason}"
 MAX_BUDGET = 24
 #: Largest number of shrinking passes.
 MAX_SHRINK_PASSES = 10
+#: Largest number of restarts.
+MAX_RESTARTS = 64
 
 
 def _whole(value: Any) -> bool:
@@ -92,6 +99,7 @@ _RULES: dict[str, tuple[str, Callable[[Any], bool]]] = {
     "shrink": ("search.shrink", lambda v: _real(v) and 0 < v < 1),
     "refine": ("search.refine", lambda v: isinstance(v, (bool, np.bool_))),
     "refine_starts": ("search.refine_starts", lambda v: _whole(v) and v >= 1),
+    "restarts": ("search.restarts", lambda v: _whole(v) and 0 <= v <= MAX_RESTARTS),
     "refine_evaluations": ("search.refine_evaluations", lambda v: _whole(v) and v >= 1),
     "progress": ("search.progress", lambda v: isinstance(v, (bool, np.bool_))),
 }
@@ -155,7 +163,8 @@ class SearchSettings:
         Designs evaluated per call of the evaluator (a power of two, which keeps every
         partial draw of the sequence balanced).
     stall : int or None
-        Stop after this many trials without improvement (None: never).
+        End a round (the first pass or a restart) after this many trials without
+        improvement of its best (None: never); the search stops when the last round ends.
     time_limit : float or None
         Wall-time limit in seconds for the whole search (positive; None: none).
     q_required : float or None
@@ -174,6 +183,10 @@ class SearchSettings:
         Number of distinct best trials the refinement starts from (≥ 1).
     refine_evaluations : int
         Limit of residual evaluations per refinement start (≥ 1).
+    restarts : int
+        Rounds after the first one (0 to 64), each made only while no favourable design is
+        found: a passive pass of a fresh LPτ sequence over the whole box, its own shrinking
+        passes and refinement.  The best design over all rounds is the result.
     progress : bool
         Print progress lines on standard error.
 
@@ -206,6 +219,7 @@ evaluation); got 0
     refine: bool = False
     refine_starts: int = 3
     refine_evaluations: int = 200
+    restarts: int = 0
     progress: bool = False
 
     def __post_init__(self) -> None:
@@ -248,6 +262,59 @@ class Improvement:
 
 
 @dataclass(frozen=True)
+class Optimum:
+    """The best design of one round (the first pass or a restart) or of one refinement start.
+
+    Attributes
+    ----------
+    round : int
+        0 for the first pass, r for the r-th restart.
+    stage : str
+        'round' (the best of the whole round) or 'refine' (the end of one refinement start).
+    x : ndarray, shape (q,)
+        The design.
+    p1, p2, q, merit : float
+        Its criteria and scalar objective.
+    """
+
+    round: int
+    stage: str
+    x: FloatArray
+    p1: float
+    p2: float
+    q: float
+    merit: float
+
+
+def distinct_optima(optima: tuple[Optimum, ...], lower: FloatArray, upper: FloatArray,
+                    *, tolerance: float = 1e-3) -> list[Optimum]:
+    """The optima that differ from each other, best first.
+
+    Two optima are the same when every varied parameter differs by at most ``tolerance``
+    of its range (lower to upper); of such a cluster the better one is kept.
+
+    Parameters
+    ----------
+    optima : tuple of Optimum
+        :attr:`SearchResult.optima`.
+    lower, upper : ndarray, shape (q,)
+        The search box.
+    tolerance : float
+        Relative distance below which two designs count as one.
+
+    Returns
+    -------
+    list of Optimum
+    """
+    span = np.where(upper > lower, upper - lower, 1.0)
+    kept: list[Optimum] = []
+    for item in sorted(optima, key=lambda o: o.merit):
+        if all(np.max(np.abs(item.x - other.x) / span) > tolerance for other in kept):
+            kept.append(item)
+    return kept
+
+
+@dataclass(frozen=True)
 class SearchResult:
     """What the search found (immutable: its arrays are read-only).
 
@@ -274,6 +341,9 @@ class SearchResult:
     seed : int or None
         The seed of the LPτ scrambling; None when the search drew from a Generator given
         as ``rng``.
+    optima : tuple of Optimum
+        The best design of every round and the end of every refinement start: the local
+        optima the search met, the evidence a report gives when [Q] was not reached.
     """
 
     x: FloatArray
@@ -286,6 +356,7 @@ class SearchResult:
     elapsed: float
     settings: SearchSettings
     seed: int | None
+    optima: tuple[Optimum, ...] = ()
 
     def __post_init__(self) -> None:
         for array in (self.x, self.trials, *self.criteria.arrays(),
@@ -315,6 +386,10 @@ class _Stop(Exception):
         self.reason = reason
 
 
+class _Stall(Exception):
+    """Raised inside a round when its best has not improved for ``stall`` trials."""
+
+
 class _Search:
     """State of one search run (the public entry point is :func:`search`)."""
 
@@ -338,6 +413,15 @@ class _Search:
         self.best_criteria: Criteria | None = None
         self.last_improvement = 0
         self.last_print = -np.inf
+        # the current round (the first pass or a restart) and refinement start
+        self.round = 0
+        self.round_start = 0
+        self.round_merit = np.inf
+        self.round_x: FloatArray | None = None
+        self.round_criteria: Criteria | None = None
+        self.local_merit = np.inf
+        self.local: tuple[FloatArray, Criteria] | None = None
+        self.optima: list[Optimum] = []
 
     # ------------------------------------------------------------------ bookkeeping
     def elapsed(self) -> float:
@@ -356,11 +440,18 @@ class _Search:
         self.stage.extend([stage] * len(x))
         m = self.rank(criteria)
         k = int(np.argmin(m))
+        if m[k] < self.local_merit:
+            self.local_merit = float(m[k])
+            self.local = (np.array(x[k], dtype=float), criteria.take([k]))
+        if m[k] < self.round_merit:
+            self.round_merit = float(m[k])
+            self.round_x = np.array(x[k], dtype=float)
+            self.round_criteria = criteria.take([k])
+            self.last_improvement = self.count + k
         if m[k] < self.best_merit:
             self.best_merit = float(m[k])
             self.best_x = np.array(x[k], dtype=float)
             self.best_criteria = criteria.take([k])
-            self.last_improvement = self.count + k
             self.history.append(Improvement(
                 self.count + k, self.elapsed(), float(criteria.p1[k]), float(criteria.p2[k]),
                 float(criteria.q[k]), self.best_merit, stage))
@@ -372,7 +463,7 @@ class _Search:
         if s.time_limit is not None and self.elapsed() >= s.time_limit:
             raise _Stop("time")
         if check_stall and s.stall is not None and self.count - self.last_improvement > s.stall:
-            raise _Stop("stall")
+            raise _Stall()
         return criteria
 
     def favourable(self) -> bool:
@@ -394,15 +485,20 @@ class _Search:
 
     # ----------------------------------------------------------------------- passes
     def stream(self, number: int) -> np.random.Generator:
-        """The generator that scrambles pass ``number`` (0 = the first passive pass).
+        """The generator that scrambles pass ``number`` of the current round (0 = its
+        passive pass over the whole box).
 
-        With a seed s, pass k draws from ``default_rng(s + k)``; with a Generator, pass 0
-        draws from it and pass k from its k-th spawned child.
+        With a seed s, pass k of the first round draws from ``default_rng(s + k)`` and pass
+        k of restart r from ``default_rng([s, r, k])``; with a Generator, the first pass
+        draws from it and every later pass from its next spawned child.
         """
         if self.generator is None:
             assert self.seed is not None
-            return np.random.default_rng(self.seed + number)
-        return self.generator if number == 0 else self.generator.spawn(1)[0]
+            if self.round == 0:
+                return np.random.default_rng(self.seed + number)
+            return np.random.default_rng([self.seed, self.round, number])
+        first = self.round == 0 and number == 0
+        return self.generator if first else self.generator.spawn(1)[0]
 
     def passive(self, lower: FloatArray, upper: FloatArray, n_total: int, number: int,
                 stage: str) -> None:
@@ -426,17 +522,18 @@ class _Search:
         half = (self.upper - self.lower) / 2.0
         for k in range(s.shrink_passes):
             half = half * s.shrink
-            centre = self.best_x
+            centre = self.round_x
             assert centre is not None  # trial 0 is always recorded first
             lower = np.maximum(centre - half, self.lower)
             upper = np.minimum(centre + half, self.upper)
             self.passive(lower, upper, 2 ** max(s.budget_log2 - 2, 4), 1 + k, "shrink")
 
     def refine(self) -> None:
-        """Bounded least-squares refinement from the best few distinct trials."""
+        """Bounded least-squares refinement from the best few distinct trials of the round,
+        then the minimax polish of the round's best."""
         s = self.settings
-        trials = np.concatenate(self.blocks)
-        crit = _concat(self.block_criteria)
+        trials = np.concatenate(self.blocks[self.round_start:])
+        crit = _concat(self.block_criteria[self.round_start:])
         order = np.argsort(self.rank(crit), kind="stable")
         starts: list[FloatArray] = []
         for k in order:
@@ -448,10 +545,12 @@ class _Search:
             if len(starts) >= s.refine_starts:
                 break
         for x0 in starts:
+            self.local_merit, self.local = np.inf, None
             self.refine_from(x0)
-        if self.best_x is not None and self.best_criteria is not None \
-                and self.best_criteria.p1[0] == 0:
-            self.minimax_from(self.best_x)
+            self.keep_optimum("refine", self.local)
+        if self.round_x is not None and self.round_criteria is not None \
+                and self.round_criteria.p1[0] == 0:
+            self.minimax_from(self.round_x)
 
     def refine_from(self, x0: FloatArray) -> None:
         span = self.upper - self.lower
@@ -548,16 +647,47 @@ class _Search:
                           options={"maxiter": 60, "ftol": 1e-15})
 
     # -------------------------------------------------------------------------- run
-    def run(self, initial: FloatArray) -> SearchResult:
+    def keep_optimum(self, stage: str, found: tuple[FloatArray, Criteria] | None) -> None:
+        """Note a local optimum (the end of a refinement start or the best of a round)."""
+        if found is None:
+            return
+        x, c = found
+        self.optima.append(Optimum(self.round, stage, x, float(c.p1[0]), float(c.p2[0]),
+                                   float(c.q[0]), float(self.rank(c)[0])))
+
+    def run_round(self) -> str:
+        """One round: the passive pass over the whole box, the shrinking passes around the
+        round's best, the refinement; returns 'budget' or 'stall' (how the round ended)."""
         s = self.settings
-        stop = "budget"
         try:
-            self.record(initial[None, :], "initial")
             self.passive(self.lower, self.upper, 2 ** s.budget_log2, 0, "lptau")
             if s.shrink_passes:
                 self.shrink_passes()
             if s.refine:
                 self.refine()
+        except _Stall:
+            return "stall"
+        finally:
+            if self.round_x is not None and self.round_criteria is not None:
+                self.keep_optimum("round", (self.round_x, self.round_criteria))
+        return "budget"
+
+    def next_round(self) -> None:
+        """Forget the round's best: a restart searches the whole box afresh."""
+        self.round += 1
+        self.round_start = len(self.blocks)
+        self.round_merit, self.round_x, self.round_criteria = np.inf, None, None
+        self.last_improvement = self.count
+
+    def run(self, initial: FloatArray) -> SearchResult:
+        s = self.settings
+        stop = "budget"
+        try:
+            self.record(initial[None, :], "initial")
+            for number in range(s.restarts + 1):
+                if number:
+                    self.next_round()
+                stop = self.run_round()
         except _Stop as signal:
             stop = signal.reason
         except KeyboardInterrupt:
@@ -568,7 +698,7 @@ class _Search:
             x=self.best_x, criteria=self.best_criteria, trials=np.concatenate(self.blocks),
             trial_criteria=_concat(self.block_criteria), stage=tuple(self.stage),
             history=tuple(self.history), stop=stop, elapsed=self.elapsed(), settings=s,
-            seed=self.seed)
+            seed=self.seed, optima=tuple(self.optima))
 
 
 def _concat(parts: list[Criteria]) -> Criteria:

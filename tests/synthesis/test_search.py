@@ -129,3 +129,54 @@ def test_refinement_reaches_the_minimax_not_the_least_squares_design() -> None:
     r = search(residual, [-5.0], [5.0], [4.0], SearchSettings(budget_log2=4, refine=True))
     assert r.criteria.q[0] == pytest.approx(1.5, abs=1e-6)
     assert r.x[0] == pytest.approx(1.5, abs=1e-6)
+
+
+def two_wells(x: np.ndarray) -> Criteria:
+    """Q = min(2·|x − 0.1|, |x − 0.8| + 0.05) in one dimension: a local optimum Q = 0.05
+    at x = 0.8 with the wider basin, the global one Q = 0 at x = 0.1."""
+    q = np.minimum(2 * np.abs(x[:, 0] - 0.1), np.abs(x[:, 0] - 0.8) + 0.05)
+    zero = np.zeros(len(x))
+    return Criteria(zero, zero, q, q[:, None], q[:, None])
+
+
+def test_restarts_are_fresh_rounds_after_the_first() -> None:
+    one = search(two_wells, [0.0], [1.0], [0.5], SearchSettings(budget_log2=5, seed=3))
+    three = search(two_wells, [0.0], [1.0], [0.5],
+                   SearchSettings(budget_log2=5, seed=3, restarts=2))
+    # the first round is the run without restarts, trial for trial
+    np.testing.assert_array_equal(three.trials[:one.trials.shape[0]], one.trials)
+    assert three.trials.shape[0] == 1 + 3 * 2 ** 5
+    rounds = [o for o in three.optima if o.stage == "round"]
+    assert [o.round for o in rounds] == [0, 1, 2]
+    # each round's best is the best of its own trials, and the result the best of all
+    for r, o in enumerate(rounds):
+        part = slice(1 + r * 2 ** 5, 1 + (r + 1) * 2 ** 5)
+        q = three.trial_criteria.q[part]
+        assert o.q == (min(np.min(q), three.trial_criteria.q[0]) if r == 0 else np.min(q))
+        assert not np.array_equal(three.trials[part], three.trials[1:1 + 2 ** 5]) or r == 0
+    assert three.criteria.q[0] == min(o.q for o in rounds)
+
+
+def test_a_restart_refines_around_its_own_best() -> None:
+    r = search(two_wells, [0.0], [1.0], [0.5],
+               SearchSettings(budget_log2=2, seed=0, refine=True, refine_starts=1,
+                              restarts=6, batch=4))
+    ends = [o for o in r.optima if o.stage == "refine"]
+    # refinements end in one of the two wells; both were met over the rounds
+    found = {round(float(o.x[0]), 6) for o in ends}
+    assert found <= {0.1, 0.8} and len(found) == 2
+    # each refinement ends in the well of its own round's best LPτ trial
+    stage = np.array(r.stage)
+    for o in ends:
+        rows = np.flatnonzero(stage == "lptau")[4 * o.round:4 * o.round + 4]
+        best = r.trials[rows[np.argmin(r.trial_criteria.q[rows])], 0]
+        assert (best < 0.35) == (o.x[0] < 0.35)
+    assert r.criteria.q[0] < 1e-9
+    assert r.stop == "favourable" or r.stop == "budget"
+
+
+def test_a_favourable_design_ends_the_restarts() -> None:
+    r = search(quadratic, LOWER, UPPER, START,
+               SearchSettings(budget_log2=6, refine=True, q_required=1e-6, restarts=5))
+    assert r.stop == "favourable"
+    assert {o.round for o in r.optima} == {0}

@@ -30,6 +30,9 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         help="refine the best trials locally (scipy.optimize.least_squares)")
     parser.add_argument("--shrink", type=int, metavar="PASSES", default=None,
                         help="passive passes in boxes shrunk around the best design")
+    parser.add_argument("--restarts", type=int, metavar="R", default=None,
+                        help="search again R times with fresh LPτ sequences while [Q] is "
+                             "not reached")
     parser.add_argument("--time-limit", type=float, metavar="SEC", default=None,
                         help="stop the search after this many seconds")
     parser.add_argument("--out", metavar="RESULT", default=None,
@@ -54,6 +57,7 @@ def run(args: argparse.Namespace) -> int:
     problem = load_problem(args.problem)
     settings = settings_for(problem, budget_log2=args.budget, seed=args.seed,
                             refine=args.refine, shrink_passes=args.shrink,
+                            restarts=args.restarts,
                             time_limit=args.time_limit)
     outcome = synthesize(problem, settings, progress=not args.quiet)
     result, data = outcome.result, dict(outcome.summary)

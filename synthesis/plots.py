@@ -92,7 +92,7 @@ def plot_output(problem: Problem, analysis: Analysis, *, axes: Axes | None = Non
                       else render("plot.velocity_ratio", lang) if problem.output.ratio
                       else render("plot.output_angle_deg", lang))
         twin = ax.twinx()
-        twin.bar(cphi, analysis.criteria.deviations[0], width=3.0, color="tab:red", alpha=0.5)
+        twin.bar(cphi, analysis.criteria.deviations[0] * scale, width=3.0, color="tab:red", alpha=0.5)
         twin.set_ylabel(render("plot.deviation", lang))
     else:
         ax.plot(out.real, out.imag, label=render("plot.path_of_tracing_point", lang))
@@ -105,7 +105,7 @@ def plot_output(problem: Problem, analysis: Analysis, *, axes: Axes | None = Non
         ax.set_xlabel(render("plot.x_mm", lang))
         ax.set_ylabel(render("plot.y_mm", lang))
     ax.legend(loc="best")
-    ax.set_title(f"Q = {analysis.criteria.q[0]:.4g}")
+    ax.set_title(f"Q = {analysis.criteria.q[0] * problem.output_scale:.4g}")
     return ax
 
 

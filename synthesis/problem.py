@@ -6,7 +6,8 @@ complete example of each task class):
 ``general``
     ``control_points`` (N_z), ``direction`` (s: +1 counter-clockwise, −1 clockwise),
     ``groups`` (N_Q, L0 included), ``task_class`` (1–4), ``grid`` (positions of the
-    analysis grid over a full crank turn), optional ``accuracy`` ([Q], stop rule a),
+    analysis grid over a full crank turn), optional ``accuracy`` ([Q], stop rule a, in
+    the unit of the output: degrees for ψ, mm for S and Ж, none for the ratio n),
     ``objective`` (``lexicographic`` | ``weighted``), ``p2_weight`` (λ of the weighted form),
     ``output`` (class 1 only: ``angle``, the output link's angle ψ, the default; or
     ``ratio``, its velocity ratio n = dψ/dφ, the first analog).
@@ -199,6 +200,10 @@ class Problem:
         column a plain number or ``'A'`` (:meth:`mechanism_table` writes a design into it).
     model : KinematicModel
         The kinematic model of the initial design.
+    accuracy : float or None
+        [Q] in the unit of the output as the table gives it: degrees for the angle ψ
+        (class 1), mm (classes 2–4), a plain number for the ratio n.
+        :attr:`settings` hands the search [Q] in the internal unit (radians for ψ).
     pressure_angles, rotations, workspace : mapping
         Group label → allowable pressure angle (radians), joint → allowable swing
         (radians), working-space box ``(x_min, x_max, y_min, y_max)`` (mm).
@@ -234,16 +239,17 @@ class Problem:
 
     @property
     def output_unit(self) -> str:
-        """Internal unit of the controlled output: ``'rad'`` (ψ), ``'mm'`` (S, Ж) or ``'1'``
-        (the dimensionless ratio n)."""
+        """Unit of the controlled output, of Q and of [Q] wherever a user reads them
+        (tables, reports, JSON): ``'deg'`` (ψ), ``'mm'`` (S, Ж) or ``'1'`` (the
+        dimensionless ratio n).  Inside, ψ and its deviations are radians."""
         if self.task_class == 1:
-            return "1" if self.output.ratio else "rad"
+            return "1" if self.output.ratio else "deg"
         return "mm"
 
     @property
     def output_scale(self) -> float:
         """Table units per internal unit of the output (degrees per radian for ψ, else 1)."""
-        return math.degrees(1.0) if self.output_unit == "rad" else 1.0
+        return math.degrees(1.0) if self.output_unit == "deg" else 1.0
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -273,7 +279,8 @@ class Problem:
         :class:`~synthesis.search.SearchSettings` (a budget of 2**12 trials, seed 0, …).
         """
         given = {SEARCH_FIELDS[key]: value for key, value in self.search.items()}
-        return SearchSettings(**given, q_required=self.accuracy, objective=self.objective,
+        q_required = None if self.accuracy is None else self.accuracy / self.output_scale
+        return SearchSettings(**given, q_required=q_required, objective=self.objective,
                               p2_weight=self.p2_weight)
 
     def design(self, x: npt.ArrayLike) -> dict[str, float]:

@@ -43,7 +43,8 @@ def _num(value: Any) -> float | None:
 
 def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
             top: int = 20) -> dict[str, Any]:
-    """The outcome as plain data (numbers in table units; angles of ψ in degrees).
+    """The outcome as plain data, in table units: mm, degrees (ψ, its deviations, Q, Q_rms
+    and [Q] of class 1 too), the ratio n as a plain number.
 
     Parameters
     ----------
@@ -57,18 +58,18 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
     c = analysis.criteria
     control = problem.control
     out = analysis.output_control[0]
+    scale = problem.output_scale
     trials = _feasible_trials(problem, result, top)
     points = []
     for k in range(control.weight.size):
         row: dict[str, Any] = {"K": k, "E": float(control.weight[k]),
-                               "deviation": _num(c.deviations[0, k])}
+                               "deviation": _num(c.deviations[0, k] * scale)}
         if problem.task_class in (3, 4):
             row.update(x=float(control.point[k].real), y=float(control.point[k].imag),
                        x_reproduced=_num(out[k].real), y_reproduced=_num(out[k].imag))
         if problem.task_class != 3:
             row["phi"] = math.degrees(control.phi[k])
         if problem.task_class in (1, 2):
-            scale = problem.output_scale
             if control.lower is not None and control.upper is not None:  # a zone
                 row.update(lower=float(control.lower[k]) * scale,
                            upper=float(control.upper[k]) * scale)
@@ -85,16 +86,16 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
         "design": problem.design(result.x),
         "initial": problem.design(problem.initial),
         "bounds": {p.name: [p.lower, p.upper] for p in problem.parameters},
-        "Q": _num(c.q[0]),
+        "Q": _num(c.q[0] * scale),
         "unit": problem.output_unit,
         "output": problem.output.quantity,
-        "Q_rms": _num(criterion_rms(c.deviations[0], control.weight)),
+        "Q_rms": _num(criterion_rms(c.deviations[0], control.weight) * scale),
         "P1": float(c.p1[0]),
         "P2": _num(c.p2[0]),
         "accuracy": problem.accuracy,
         "feasible": bool(c.p1[0] == 0 and c.p2[0] == 0),
         "favourable": bool(c.p1[0] == 0 and c.p2[0] == 0 and problem.accuracy is not None
-                           and c.q[0] <= problem.accuracy),
+                           and c.q[0] * scale <= problem.accuracy),
         "control_points": points,
         "pressure_angles": {k: {"max_deg": math.degrees(float(v[0, 0])),
                                 "allowed_deg": math.degrees(problem.pressure_angles[k])}
@@ -115,7 +116,7 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
             "stop": result.stop, "message": result.message,
             "seconds": result.elapsed, "seed": result.seed,
             "budget_log2": result.settings.budget_log2, "refine": result.settings.refine,
-            "history": [h.as_dict() for h in result.history],
+            "history": [{**h.as_dict(), "q": h.q * scale} for h in result.history],
         },
         "feasible_table": trials,
     }
@@ -170,7 +171,8 @@ def _feasible_order(result: SearchResult) -> npt.NDArray[np.intp]:
 def _feasible_trials(problem: Problem, result: SearchResult, top: int) -> list[dict[str, Any]]:
     c = result.trial_criteria
     order = _feasible_order(result)[:top]
-    return [{"trial": int(k), "stage": result.stage[k], "Q": float(c.q[k]),
+    return [{"trial": int(k), "stage": result.stage[k],
+             "Q": float(c.q[k]) * problem.output_scale,
              **problem.design(result.trials[k])} for k in order]
 
 
@@ -190,10 +192,8 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
                      f"{value:>14.9g}")
     yes_no = lambda flag: w("yes") if flag else w("no")  # noqa: E731
     unit = "" if data["unit"] == "1" else w(data["unit"])  # the ratio n has no unit
-    in_degrees = (f" ({math.degrees(data['Q']):.6g}°)"
-                  if data["unit"] == "rad" and data["Q"] is not None else "")
     lines += ["", w("criteria"),
-              f"  {w('q'):<40} {_fmt(data['Q'])} {unit}{in_degrees}",
+              f"  {w('q'):<40} {_fmt(data['Q'])} {unit}",
               f"  {w('rms'):<40} {_fmt(data['Q_rms'])} {unit}",
               f"  {w('p1'):<40} {_fmt(data['P1'])}",
               f"  {w('p2'):<40} {_fmt(data['P2'])}"]
@@ -303,8 +303,8 @@ def write_result(path: str | os.PathLike[str], problem: Problem, result: SearchR
 def write_trials(path: str | os.PathLike[str], problem: Problem, result: SearchResult) -> int:
     """Write every feasible passive trial (P1 = P2 = 0) as CSV, best Q first; returns the count.
 
-    Columns: trial number, stage (initial, lptau, shrink), Q, then the varied parameters in
-    table units — the parameter-space table from which a designer picks a mechanism.
+    Columns: trial number, stage (initial, lptau, shrink), Q (degrees for ψ, else as the
+    output), then the varied parameters in table units — the parameter-space table from which a designer picks a mechanism.
     """
     import csv
     import io
@@ -315,7 +315,7 @@ def write_trials(path: str | os.PathLike[str], problem: Problem, result: SearchR
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(["trial", "stage", "Q", *problem.names])
     for k in order:
-        writer.writerow([int(k), result.stage[k], repr(float(c.q[k])),
+        writer.writerow([int(k), result.stage[k], repr(float(c.q[k]) * problem.output_scale),
                          *(repr(float(v)) for v in result.trials[k])])
     atomic_write_text(path, buffer.getvalue())
     return int(order.size)

@@ -27,7 +27,7 @@ from assur.text import render
 from synthesis.criteria import criterion_rms
 from synthesis.evaluate import Analysis
 from synthesis.problem import Problem
-from synthesis.search import SearchResult
+from synthesis.search import SearchResult, distinct_optima
 
 __all__ = ["summary", "text_report", "write_result", "write_trials"]
 
@@ -107,6 +107,7 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
         "workspace": {k: {"max_outside_mm": float(np.max(v[0])),
                           "box_mm": list(problem.workspace[k])}
                       for k, v in analysis.workspace.items()},
+        "advice": _advice(problem, result, float(c.q[0]) * scale),
         "margins": _margins(analysis),
         "binding": _binding(problem, result, analysis),
         "search": {
@@ -116,10 +117,40 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
             "stop": result.stop, "message": result.message,
             "seconds": result.elapsed, "seed": result.seed,
             "budget_log2": result.settings.budget_log2, "refine": result.settings.refine,
+            "restarts": result.settings.restarts,
+            "shrink_passes": result.settings.shrink_passes,
             "history": [{**h.as_dict(), "q": h.q * scale} for h in result.history],
         },
         "feasible_table": trials,
     }
+
+
+def _advice(problem: Problem, result: SearchResult, q: float) -> dict[str, Any] | None:
+    """What to try when the run did not reach [Q] (or found no feasible design), with the
+    evidence: the distinct local optima the search met and the spread of their Q.
+
+    None when the run reached [Q], was interrupted, or the problem gives no [Q] and a
+    feasible design was found.
+    """
+    feasible = result.feasible
+    reached = feasible and (problem.accuracy is None or q <= problem.accuracy)
+    if reached or result.stop == "interrupted":
+        return None
+    s = result.settings
+    optima = [o for o in distinct_optima(result.optima, problem.lower, problem.upper)
+              if o.p1 == 0 and o.p2 == 0]
+    qs = [o.q * problem.output_scale for o in optima]
+    rounds = 1 + max((o.round for o in result.optima), default=0)
+    tries = [{"what": "budget", "value": min(s.budget_log2 + 2, 24)}]
+    if not s.refine:
+        tries.append({"what": "refine"})
+    if len(optima) > 1 or s.restarts == 0:
+        tries.append({"what": "restarts", "value": max(2 * s.restarts, 3)})
+    if s.refine and s.restarts > 0 and len(optima) == 1:
+        tries.append({"what": "relax"})
+    return {"optima": len(optima), "rounds": rounds,
+            "q_min": min(qs) if qs else None, "q_max": max(qs) if qs else None,
+            "try": tries}
 
 
 def _margins(analysis: Analysis) -> dict[str, dict[str, float | None]]:
@@ -202,6 +233,7 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
         lines.append(f"  {w('favourable'):<40} {yes_no(data['favourable'])}")
     if not data["feasible"]:
         lines += ["", w("not_feasible")]
+    lines += _advice_lines(data, w, unit)
     lines += ["", w("deviations")]
     cls = data["task_class"]
     for row in data["control_points"]:
@@ -273,6 +305,24 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
             lines.append(f"  {row['trial']:>7} {stage:<8} {row['Q']:>12.5g} "
                          + " ".join(f"{row[n]:>16.8g}" for n in names))
     return "\n".join(lines) + "\n"
+
+
+def _advice_lines(data: dict[str, Any], w: Any, unit: str) -> list[str]:
+    """The advice of :func:`_advice` as sentences."""
+    advice = data.get("advice")
+    if not advice:
+        return []
+    lines = [""]
+    if data["feasible"] and data["accuracy"] is not None:
+        lines.append(w("advice_not_reached", q=_fmt(data["Q"]), acc=f"{data['accuracy']:g}",
+                       unit=unit))
+    if advice["optima"]:
+        lines.append(w("advice_optima", n=advice["optima"], rounds=advice["rounds"],
+                       lo=_fmt(advice["q_min"]), hi=_fmt(advice["q_max"]), unit=unit))
+    lines.append(w("advice_try"))
+    for item in advice["try"]:
+        lines.append("  - " + w(f"try_{item['what']}", value=item.get("value")))
+    return lines
 
 
 def _fmt(value: Any) -> str:

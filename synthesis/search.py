@@ -14,14 +14,18 @@ Steps (``method.md`` §6):
    scaled to the box ``x = x⁻ + q ⊙ (x⁺ − x⁻)``;
 3. optional shrinking passes: the same passive pass in a box shrunk around the best design
    (half-width × ``shrink``), clipped to the bounds;
-4. optional local refinement from the best few distinct trials with
-   :func:`scipy.optimize.least_squares` (bounded trust-region, Jacobian by one batched
-   forward-difference call) on the residuals of the best design; a refined design is kept
-   only if it is better by the ranking rule;
-5. optional restarts: steps 2–4 again (a round) with a fresh LPτ sequence over the whole
-   box, the shrinking and the refinement centred on the new round's own best, while no
-   favourable design is found.  Every round's best and every refinement's end is kept
-   (:attr:`SearchResult.optima`): how many distinct local optima the search met.
+4. optional restarts: steps 2–3 again (a round) with a fresh LPτ sequence over the whole
+   box, the shrinking centred on the new round's own best, while no favourable design is
+   found;
+5. optional local refinement with :func:`scipy.optimize.least_squares` (bounded
+   trust-region, Jacobian by one batched forward-difference call) from the best few
+   distinct designs — the best of each round first, so that with restarts the starts lie
+   in different basins — then the minimax polish of the best; a refined design is kept
+   only if it is better by the ranking rule.
+
+Every round's best and every refinement's end is kept (:attr:`SearchResult.optima`): how
+many distinct local optima the search met, the evidence a report gives when [Q] was not
+reached.
 
 Stop rules: (a) a favourable mechanism (P1 = P2 = 0 and Q ≤ [Q]); (b) no improvement of
 the round's best in its last ``stall`` trials ends the round (the search when it is the
@@ -185,8 +189,9 @@ class SearchSettings:
         Limit of residual evaluations per refinement start (≥ 1).
     restarts : int
         Rounds after the first one (0 to 64), each made only while no favourable design is
-        found: a passive pass of a fresh LPτ sequence over the whole box, its own shrinking
-        passes and refinement.  The best design over all rounds is the result.
+        found: a passive pass of a fresh LPτ sequence over the whole box and its own
+        shrinking passes.  The refinement follows the last round and starts from the best
+        designs of the rounds.
     progress : bool
         Print progress lines on standard error.
 
@@ -415,7 +420,6 @@ class _Search:
         self.last_print = -np.inf
         # the current round (the first pass or a restart) and refinement start
         self.round = 0
-        self.round_start = 0
         self.round_merit = np.inf
         self.round_x: FloatArray | None = None
         self.round_criteria: Criteria | None = None
@@ -529,28 +533,34 @@ class _Search:
             self.passive(lower, upper, 2 ** max(s.budget_log2 - 2, 4), 1 + k, "shrink")
 
     def refine(self) -> None:
-        """Bounded least-squares refinement from the best few distinct trials of the round,
-        then the minimax polish of the round's best."""
+        """Bounded least-squares refinement from the best few distinct designs, then the
+        minimax polish of the best.
+
+        The starts are the best designs of the rounds (best first), then the best trials,
+        skipping designs within 1e-3 of the box of a start already taken: with restarts
+        every start lies in the basin a different round found.
+        """
         s = self.settings
-        trials = np.concatenate(self.blocks[self.round_start:])
-        crit = _concat(self.block_criteria[self.round_start:])
+        trials = np.concatenate(self.blocks)
+        crit = _concat(self.block_criteria)
         order = np.argsort(self.rank(crit), kind="stable")
+        rounds = sorted((o for o in self.optima if o.stage == "round" and o.p1 == 0),
+                        key=lambda o: o.merit)
+        candidates = [o.x for o in rounds] + [trials[k] for k in order if crit.p1[k] == 0]
         starts: list[FloatArray] = []
-        for k in order:
-            if crit.p1[k] > 0:
-                break
-            if all(np.max(np.abs(trials[k] - x0) / (self.upper - self.lower)) > 1e-3
+        for x in candidates:
+            if all(np.max(np.abs(x - x0) / (self.upper - self.lower)) > 1e-3
                    for x0 in starts):
-                starts.append(trials[k])
+                starts.append(x)
             if len(starts) >= s.refine_starts:
                 break
         for x0 in starts:
             self.local_merit, self.local = np.inf, None
             self.refine_from(x0)
             self.keep_optimum("refine", self.local)
-        if self.round_x is not None and self.round_criteria is not None \
-                and self.round_criteria.p1[0] == 0:
-            self.minimax_from(self.round_x)
+        if self.best_x is not None and self.best_criteria is not None \
+                and self.best_criteria.p1[0] == 0:
+            self.minimax_from(self.best_x)
 
     def refine_from(self, x0: FloatArray) -> None:
         span = self.upper - self.lower
@@ -656,15 +666,13 @@ class _Search:
                                    float(c.q[0]), float(self.rank(c)[0])))
 
     def run_round(self) -> str:
-        """One round: the passive pass over the whole box, the shrinking passes around the
-        round's best, the refinement; returns 'budget' or 'stall' (how the round ended)."""
+        """One round: the passive pass over the whole box and the shrinking passes around
+        the round's best; returns 'budget' or 'stall' (how the round ended)."""
         s = self.settings
         try:
             self.passive(self.lower, self.upper, 2 ** s.budget_log2, 0, "lptau")
             if s.shrink_passes:
                 self.shrink_passes()
-            if s.refine:
-                self.refine()
         except _Stall:
             return "stall"
         finally:
@@ -675,7 +683,6 @@ class _Search:
     def next_round(self) -> None:
         """Forget the round's best: a restart searches the whole box afresh."""
         self.round += 1
-        self.round_start = len(self.blocks)
         self.round_merit, self.round_x, self.round_criteria = np.inf, None, None
         self.last_improvement = self.count
 
@@ -688,6 +695,8 @@ class _Search:
                 if number:
                     self.next_round()
                 stop = self.run_round()
+            if s.refine:
+                self.refine()
         except _Stop as signal:
             stop = signal.reason
         except KeyboardInterrupt:

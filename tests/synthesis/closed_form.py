@@ -56,3 +56,31 @@ def distance_to_curve(curve: np.ndarray, points: np.ndarray) -> np.ndarray:
     rel = points[:, None] - a[None, :]
     t = np.clip((np.conj(seg)[None, :] * rel).real / np.abs(seg)[None, :] ** 2, 0.0, 1.0)
     return np.min(np.abs(rel - t * seg[None, :]), axis=1)
+
+
+def dyad(a: np.ndarray, h: complex, li: float, lj: float, sigma: int = 1) -> np.ndarray:
+    """Joint C of an RRR dyad with a moving hinge a and a frame pivot h (circle intersection).
+
+    sigma = +1 puts C to the left of the line a → h.
+    """
+    w = h - a
+    d = np.abs(w)
+    cos_g = (li ** 2 + d ** 2 - lj ** 2) / (2 * li * d)
+    return a + li * np.exp(1j * (np.angle(w) + sigma * np.arccos(cos_g)))
+
+
+def sixbar_rotation(phi: np.ndarray, l1: float, li: float, lj: float, xhj: float, lm: float,
+                    beta_m: float, l4: float, l5: float, h5: complex) -> np.ndarray:
+    """ψ(φ) of link 5 of a Watt six-bar, measured from φ = 0 (counter-clockwise positive).
+
+    Crank 1 and the four-bar 1-2-3 of :func:`fourbar`; link 4 is hinged to rocker 3 at
+    M = H_j + lm·exp(i(φ_3 + beta_m)) and to link 5, which turns about the frame pivot h5;
+    both dyads in assembly +1.
+    """
+    def angle(p: np.ndarray) -> np.ndarray:
+        _, _, _, phi_j = fourbar(p, l1, li, lj, xhj)
+        m = xhj + lm * np.exp(1j * (phi_j + beta_m))
+        return np.angle(dyad(m, h5, l4, l5) - h5)
+
+    start = angle(np.zeros(1))
+    return np.angle(np.exp(1j * (angle(np.asarray(phi, dtype=float)) - start)))

@@ -66,12 +66,15 @@ from assur import KinematicModel
 from assur.io.reader import normalise_id
 from assur.model import LinkId, PairId
 from synthesis.criteria import Objective
-from synthesis.search import SearchSettings
+
+if TYPE_CHECKING:  # the search (scipy) is imported only when settings are made
+    from synthesis.search import SearchSettings
 
 if TYPE_CHECKING:  # pragma: no cover
     from synthesis.force_conditions import ForceConditions
 
 __all__ = [
+    "allowed_pressure_angles",
     "DEFAULT_PRESSURE_ANGLE",
     "OUTPUT_QUANTITIES",
     "ControlPoints",
@@ -278,6 +281,8 @@ class Problem:
         Settings the table does not give keep the defaults of
         :class:`~synthesis.search.SearchSettings` (a budget of 2**12 trials, seed 0, …).
         """
+        from synthesis.search import SearchSettings
+
         given = {SEARCH_FIELDS[key]: value for key, value in self.search.items()}
         q_required = None if self.accuracy is None else self.accuracy / self.output_scale
         return SearchSettings(**given, q_required=q_required, objective=self.objective,
@@ -297,6 +302,42 @@ class Problem:
         for p, value in zip(self.parameters, np.asarray(x, dtype=float)):
             rows[p.links]["params"][p.column] = _clean(float(value))
         return table
+
+
+def allowed_pressure_angles(general: Mapping[str, Any] | None, model: KinematicModel
+                            ) -> dict[str, float]:
+    """Allowable pressure angles a mechanism table states, group label → degrees.
+
+    A synthesis result file keeps the problem's conditions in its ``general`` section
+    (``general: {allowable: [{links: [2, 3], pressure_angle: 60, ...}]}``, the rows of the
+    problem's ``allowable`` table); ``assur analyze`` judges the pressure angles against
+    them.  Groups not listed, and rows whose value is not a number in (0, 90], keep the
+    program default :data:`DEFAULT_PRESSURE_ANGLE`.
+
+    Parameters
+    ----------
+    general : mapping or None
+        The table's ``general`` section.
+    model : KinematicModel
+        The mechanism (its groups give the labels).
+
+    Returns
+    -------
+    dict
+        Every group of the model → its allowable pressure angle, degrees.
+    """
+    allowed = {group.label: DEFAULT_PRESSURE_ANGLE for group in model.groups}
+    rows = (general or {}).get("allowable") or []
+    by_links = {tuple(normalise_id(v) for v in (g.i, g.j) if v is not None): g.label
+                for g in model.groups}
+    for row in rows if isinstance(rows, list) else []:
+        if not isinstance(row, Mapping):
+            continue
+        key = tuple(normalise_id(v) for v in row.get("links") or ())
+        angle = row.get("pressure_angle")
+        if key in by_links and isinstance(angle, (int, float)) and 0 < angle <= 90:
+            allowed[by_links[key]] = float(angle)
+    return allowed
 
 
 def output_slider(model: KinematicModel, link: LinkId) -> PairId | None:

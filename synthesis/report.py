@@ -29,7 +29,7 @@ from synthesis.evaluate import Analysis
 from synthesis.problem import Problem
 from synthesis.search import SearchResult, distinct_optima
 
-__all__ = ["summary", "text_report", "write_result", "write_trials"]
+__all__ = ["allowable_rows", "summary", "text_report", "write_result", "write_trials"]
 
 def _w(key: str, lang: str, **data: Any) -> str:
     """A sentence of the report from the catalogue (codes ``synth.report.<key>``)."""
@@ -337,6 +337,9 @@ def write_result(path: str | os.PathLike[str], problem: Problem, result: SearchR
     lines at the top of a YAML file, in ``lang`` (a JSON file carries only the table).
     """
     table = problem.mechanism_table(result.x)
+    conditions = allowable_rows(problem)
+    if conditions:
+        table["general"] = {**(table.get("general") or {}), "allowable": conditions}
     if Path(path).suffix.lower() == ".json":
         atomic_write_text(path, json.dumps(table, indent=2, ensure_ascii=False) + "\n")
         return
@@ -348,6 +351,34 @@ def write_result(path: str | os.PathLike[str], problem: Problem, result: SearchR
     body = yaml.safe_dump(table, sort_keys=False, allow_unicode=True, default_flow_style=None,
                           width=100)
     atomic_write_text(path, "".join(f"# {line}\n" for line in head.splitlines()) + body)
+
+
+def allowable_rows(problem: Problem) -> list[dict[str, Any]]:
+    """The problem's allowable conditions as rows of its ``allowable`` table (degrees, mm).
+
+    The result file keeps them (``general: {allowable: [...]}``) so that ``assur analyze``
+    judges the design against the problem's own limits
+    (:func:`synthesis.problem.allowed_pressure_angles`).
+    """
+    rows: dict[str, dict[str, Any]] = {}
+
+    def row(label: str) -> dict[str, Any]:
+        links = [int(v) if v.strip().isdigit() else v.strip()
+                 for v in label[label.index("(") + 1:label.rindex(")")].split(",")]
+        return rows.setdefault(label, {"links": links})
+
+    for label, angle in problem.pressure_angles.items():
+        row(label)["pressure_angle"] = _clean_deg(angle)
+    for label, limits in problem.rotations.items():
+        row(label)["rotations"] = {joint: _clean_deg(v) for joint, v in limits.items()}
+    for label, (x0, x1, y0, y1) in problem.workspace.items():
+        row(label)["workspace"] = {"x": [x0, x1], "y": [y0, y1]}
+    return list(rows.values())
+
+
+def _clean_deg(radians: float) -> float:
+    """An angle in radians back to the degrees a table gave (12 significant digits)."""
+    return float(f"{math.degrees(radians):.12g}")
 
 
 def write_trials(path: str | os.PathLike[str], problem: Problem, result: SearchResult) -> int:

@@ -14,14 +14,15 @@ Steps (``method.md`` §6):
    scaled to the box ``x = x⁻ + q ⊙ (x⁺ − x⁻)``;
 3. optional shrinking passes: the same passive pass in a box shrunk around the best design
    (half-width × ``shrink``), clipped to the bounds;
-4. optional restarts: steps 2–3 again (a round) with a fresh LPτ sequence over the whole
-   box, the shrinking centred on the new round's own best, while no favourable design is
-   found;
-5. optional local refinement with :func:`scipy.optimize.least_squares` (bounded
+4. optional local refinement with :func:`scipy.optimize.least_squares` (bounded
    trust-region, Jacobian by one batched forward-difference call) from the best few
-   distinct designs — the best of each round first, so that with restarts the starts lie
-   in different basins — then the minimax polish of the best; a refined design is kept
-   only if it is better by the ranking rule.
+   distinct designs, then the minimax polish of the best; a refined design is kept only
+   if it is better by the ranking rule;
+5. optional restarts, while no favourable design is found: steps 2–3 again (a round) with
+   a fresh LPτ sequence over the whole box, the shrinking centred on the new round's own
+   best; after the last round step 4 again, from the best designs of the rounds (best
+   first, skipping the starts already refined), so that the starts lie in the basins
+   different rounds found.
 
 Every round's best and every refinement's end is kept (:attr:`SearchResult.optima`): how
 many distinct local optima the search met, the evidence a report gives when [Q] was not
@@ -190,8 +191,8 @@ class SearchSettings:
     restarts : int
         Rounds after the first one (0 to 64), each made only while no favourable design is
         found: a passive pass of a fresh LPτ sequence over the whole box and its own
-        shrinking passes.  The refinement follows the last round and starts from the best
-        designs of the rounds.
+        shrinking passes.  The refinement runs after the first round and again after the
+        last one, from the best designs of the rounds.
     progress : bool
         Print progress lines on standard error.
 
@@ -426,6 +427,7 @@ class _Search:
         self.local_merit = np.inf
         self.local: tuple[FloatArray, Criteria] | None = None
         self.optima: list[Optimum] = []
+        self.refined: list[FloatArray] = []   # the starts of the refinement so far
 
     # ------------------------------------------------------------------ bookkeeping
     def elapsed(self) -> float:
@@ -537,8 +539,9 @@ class _Search:
         minimax polish of the best.
 
         The starts are the best designs of the rounds (best first), then the best trials,
-        skipping designs within 1e-3 of the box of a start already taken: with restarts
-        every start lies in the basin a different round found.
+        skipping designs within 1e-3 of the box of a start already taken (now or by an
+        earlier refinement): with restarts every start lies in the basin a different round
+        found.
         """
         s = self.settings
         trials = np.concatenate(self.blocks)
@@ -550,10 +553,11 @@ class _Search:
         starts: list[FloatArray] = []
         for x in candidates:
             if all(np.max(np.abs(x - x0) / (self.upper - self.lower)) > 1e-3
-                   for x0 in starts):
+                   for x0 in starts + self.refined):
                 starts.append(x)
             if len(starts) >= s.refine_starts:
                 break
+        self.refined += starts
         for x0 in starts:
             self.local_merit, self.local = np.inf, None
             self.refine_from(x0)
@@ -695,7 +699,10 @@ class _Search:
                 if number:
                     self.next_round()
                 stop = self.run_round()
-            if s.refine:
+                if s.refine and number == 0:
+                    # a task with an exact answer usually ends here, before any restart
+                    self.refine()
+            if s.refine and s.restarts:
                 self.refine()
         except _Stop as signal:
             stop = signal.reason

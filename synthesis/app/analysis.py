@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -24,10 +25,12 @@ from assur import (
     TableError,
     analyse,
     check_existence,
-    load_model,
 )
 from assur.errors import Issue
+from assur.io.chain_table import load_chain
+from assur.kinematics.build import build_model
 from assur.model import LinkId
+from assur.structure.analysis import analyse_structure
 from assur.text import Message
 
 __all__ = ["TableAnalysis", "analyse_table", "moving_links"]
@@ -47,6 +50,10 @@ class TableAnalysis:
         Every position, with the first and second analogs.
     existence : ExistenceReport
         Existence of every group at the same positions.
+    allowed_pressure : mapping
+        Every group label → allowable pressure angle, degrees: the table's own
+        (``general: {allowable: [...]}``, as a synthesis result keeps its problem's), else
+        the program default 45°.
     omega : float or None
         Input speed (rad/s of a crank, mm/s of an actuator) for velocities and
         accelerations; None: analogs only.
@@ -55,6 +62,7 @@ class TableAnalysis:
     model: KinematicModel
     motion: Motion
     existence: ExistenceReport
+    allowed_pressure: Mapping[str, float]
     omega: float | None = None
 
     @property
@@ -111,9 +119,13 @@ def analyse_table(path: str | os.PathLike[str], *, points: int = 360,
     if points < MIN_POINTS:
         raise TableError("--points", [Issue("--points", Message(
             "cli.points_at_least", {"low": MIN_POINTS, "found": points}))])
-    model = load_model(path)
+    from synthesis.problem import allowed_pressure_angles
+
+    chain = load_chain(path)
+    model = build_model(analyse_structure(chain))
     motion = analyse(model, points=points, analogs=True)
-    return TableAnalysis(model, motion, check_existence(model, motion=motion), omega)
+    return TableAnalysis(model, motion, check_existence(model, motion=motion),
+                         allowed_pressure_angles(chain.general, model), omega)
 
 
 def moving_links(model: KinematicModel) -> list[LinkId]:

@@ -140,7 +140,8 @@ def analysis_record(result: TableAnalysis) -> Record:
         out["tracing"][name] = entry
     out["pressure_angles"] = [
         {"group": p.label, "pair": p.pair, "binary_links": list(p.binary),
-         "alpha_deg": _floats(np.degrees(p.alpha)), "max_deg": number(math.degrees(p.maximum))}
+         "alpha_deg": _floats(np.degrees(p.alpha)), "max_deg": number(math.degrees(p.maximum)),
+         "allowed_deg": result.allowed_pressure[p.label]}
         for p in pressure_angles(motion)]
     out["joint_rotations"] = [
         {"pair": r.pair, "links": list(r.links), "group": r.group, "full_turn": r.full_turn,

@@ -115,9 +115,14 @@ def _pressure_lines(result: TableAnalysis, lang: str) -> list[str]:
     lines = [render("analyze.pressure", lang)]
     for item in angles:
         at = int(np.nanargmax(item.alpha)) if np.isfinite(item.alpha).any() else 0
+        allowed = result.allowed_pressure[item.label]
+        over = math.degrees(item.maximum) > allowed
         lines.append("  " + render("analyze.alpha", lang, label=item.label, pair=item.pair,
                                    a=math.degrees(item.maximum),
-                                   at=position_text(result, float(result.motion.q[at]))))
+                                   at=position_text(result, float(result.motion.q[at])),
+                                   allowed=allowed,
+                                   verdict=render("analyze.alpha_over" if over
+                                                  else "analyze.alpha_within", lang)))
     return lines
 
 

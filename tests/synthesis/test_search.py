@@ -157,25 +157,26 @@ def test_restarts_are_fresh_rounds_after_the_first() -> None:
     assert three.criteria.q[0] == min(o.q for o in rounds)
 
 
-def test_refinement_starts_from_the_best_of_different_rounds() -> None:
+def test_refinement_after_the_first_round_and_after_the_restarts() -> None:
     r = search(two_wells, [0.0], [1.0], [0.5],
-               SearchSettings(budget_log2=2, seed=0, refine=True, refine_starts=2,
+               SearchSettings(budget_log2=2, seed=0, refine=True, refine_starts=1,
                               restarts=6, batch=4))
     stage = np.array(r.stage)
-    assert np.all(stage[1 + 7 * 4:] == "refine")   # the refinement follows every round
-    # each round's best, from its own four LPτ trials; the best of them first
-    rows = np.flatnonzero(stage == "lptau").reshape(7, 4)
+    lptau = np.flatnonzero(stage == "lptau")
+    assert lptau.size == 7 * 4
+    # round 0, its refinement, the six restarts, the last refinement
+    assert stage[5] == "refine" and np.all(stage[lptau[4]:lptau[-1] + 1] == "lptau")
+    assert np.all(stage[lptau[-1] + 1:] == "refine")
+    rows = lptau.reshape(7, 4)
     bests = [r.trials[k[np.argmin(r.trial_criteria.q[k])], 0] for k in rows]
-    bests.sort(key=lambda x: two_wells(np.array([[x]])).q[0])
-    ends = [o.x[0] for o in r.optima if o.stage == "refine"]
-    assert len(ends) == 2
-    # the first start is the best round's design, the second the next distinct round best
-    assert (ends[0] < 0.35) == (bests[0] < 0.35)
-    other = next(x for x in bests if abs(x - bests[0]) > 1e-3)
-    assert (ends[1] < 0.35) == (other < 0.35)
-    refined = r.trials[stage == "refine", 0]
-    assert bests[0] in refined and other in refined   # each start is evaluated first
-    assert r.criteria.q[0] < 1e-9
+    # the first refinement starts at round 0's best (the initial design is worse)
+    assert r.trials[5, 0] == bests[0]
+    # the last one at the best restart round's design not already refined
+    later = sorted((x for x in bests if abs(x - bests[0]) > 1e-3),
+                   key=lambda x: two_wells(np.array([[x]])).q[0])
+    assert r.trials[lptau[-1] + 1, 0] == later[0]
+    assert len([o for o in r.optima if o.stage == "refine"]) == 2
+    assert r.criteria.q[0] == min(o.q for o in r.optima)
 
 
 def test_a_favourable_design_ends_the_restarts() -> None:

@@ -218,3 +218,14 @@ def test_a_stroke_task_needs_a_sliding_output_link() -> None:
     assert _messages(bad) == [
         "output 'link': link 2 has no prismatic pair to slide in; task class 2 controls the "
         "displacement S of a slider"]
+
+
+def test_accuracy_is_read_in_the_unit_of_the_output() -> None:
+    """[Q] of a class-1 angle task is in degrees (as ψ), of the others in mm; the search
+    gets radians for ψ."""
+    folder = Path(__file__).resolve().parents[2] / "input_tables" / "problems"
+    rocker = load_problem(folder / "class1_fourbar_rocker.yaml")
+    assert rocker.accuracy == 1e-4 and rocker.output_unit == "deg"
+    assert rocker.settings.q_required == pytest.approx(1e-4 * math.pi / 180, rel=1e-15)
+    path = load_problem(folder / "class3_fourbar_path.yaml")
+    assert path.output_unit == "mm" and path.settings.q_required == path.accuracy == 1e-4

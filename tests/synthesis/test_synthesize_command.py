@@ -154,3 +154,43 @@ def test_bad_problem_exits_with_2_and_names_the_field(tmp_path: Path,
     assert "general 'control_points': expected a whole number; found 'two' (a text)" in err
     assert "general 'task_class': expected one of 1, 2, 3, 4; found 5" in err
     assert "Traceback" not in err
+
+
+def test_result_keeps_the_allowable_angles_and_analyze_judges_by_them(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """The rocker problem allows 60°; its solution reaches about 54° (above the default
+    45°), so a judgement against 45° would say 'exceeded'."""
+    path = next(p for p in PROBLEMS if p.stem == "class1_fourbar_rocker")
+    out = tmp_path / "result.yaml"
+    assert _run([str(path), "--out", str(out), "--quiet"], capsys)[0] == 0
+    table = yaml.safe_load(out.read_text(encoding="utf-8"))
+    problem = yaml.safe_load(path.read_text(encoding="utf-8"))
+    assert table["general"]["allowable"] == problem["allowable"]
+    # the largest pressure angle, from the public kinematics of the result
+    motion = assur.analyse(assur.load_model(out), points=360)
+    alpha = max(np.degrees(p.maximum) for p in assur.pressure_angles(motion))
+    assert 45 < alpha < 60
+    assert main(["analyze", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert f"max {alpha:.2f}°" in text and "[α] = 60°, within" in text
+    assert main(["analyze", str(out), "--lang", "ru"]) == 0
+    assert "[α] = 60°, не превышен" in capsys.readouterr().out
+
+
+def test_a_run_short_of_the_accuracy_says_what_to_try(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = next(p for p in PROBLEMS if p.stem == "class1_fourbar_rocker")
+    no_refine = tmp_path / "no_refine.yaml"
+    raw = yaml.safe_load(path.read_text(encoding="utf-8"))
+    raw["search"]["refine"] = False
+    no_refine.write_text(yaml.safe_dump(raw, allow_unicode=True), encoding="utf-8")
+    code, text = _run([str(no_refine), "--budget", "5", "--quiet", "--json"], capsys)
+    data = json.loads(text)
+    assert code == 0 and data["feasible"] and not data["favourable"]
+    advice = data["advice"]
+    assert [t["what"] for t in advice["try"]] == ["budget", "refine", "restarts"]
+    assert advice["try"][0]["value"] == 7
+    # one round, no refinement: one optimum, the best design itself
+    assert advice["optima"] == 1 and advice["q_min"] == advice["q_max"] == data["Q"]
+    code, text = _run([str(no_refine), "--budget", "5", "--quiet", "--lang", "ru"], capsys)
+    assert "'--refine'" in text and "Что попробовать:" in text

@@ -212,7 +212,7 @@ class SearchSettings:
 evaluation); got 0
     """
 
-    budget_log2: int = 12
+    budget_log2: int = 10
     seed: int = 0
     batch: int = 256
     stall: int | None = None
@@ -220,12 +220,12 @@ evaluation); got 0
     q_required: float | None = None
     objective: Objective = "lexicographic"
     p2_weight: float = 1.0
-    shrink_passes: int = 0
+    shrink_passes: int = 3
     shrink: float = 0.25
-    refine: bool = False
+    refine: bool = True
     refine_starts: int = 3
     refine_evaluations: int = 200
-    restarts: int = 0
+    restarts: int = 3
     progress: bool = False
 
     def __post_init__(self) -> None:
@@ -550,9 +550,11 @@ class _Search:
         rounds = sorted((o for o in self.optima if o.stage == "round" and o.p1 == 0),
                         key=lambda o: o.merit)
         candidates = [o.x for o in rounds] + [trials[k] for k in order if crit.p1[k] == 0]
+        span = self.upper - self.lower
+        span = np.where(span > 0, span, 1.0)   # a fixed parameter never tells designs apart
         starts: list[FloatArray] = []
         for x in candidates:
-            if all(np.max(np.abs(x - x0) / (self.upper - self.lower)) > 1e-3
+            if all(np.max(np.abs(x - x0) / span) > 1e-3
                    for x0 in starts + self.refined):
                 starts.append(x)
             if len(starts) >= s.refine_starts:
@@ -593,7 +595,8 @@ class _Search:
             x = np.clip(x, lo, hi)
             step = 1e-7 * np.maximum(np.abs(x), span)
             step = np.where(x + step > hi, -step, step)
-            shifted = x[None, :] + np.diag(step)
+            step = np.where(varied, step, 1.0)   # a fixed parameter stays put: column 0
+            shifted = x[None, :] + np.diag(np.where(varied, step, 0.0))
             c = self.record(shifted, "refine", check_stall=False)
             r0 = residuals(x)
             r = np.where(np.isfinite(c.residuals), c.residuals, r0[None, :])
@@ -653,7 +656,7 @@ class _Search:
         q = span.size
         objective_grad = np.zeros(q + 1)
         objective_grad[-1] = 1.0
-        optimize.minimize(lambda z: z[-1], np.append((x0 - lo) / span, q0),
+        optimize.minimize(lambda z: z[-1], np.append((x0 - lo) / np.where(span > 0, span, 1.0), q0),
                           jac=lambda z: objective_grad, method="SLSQP",
                           bounds=[(0.0, 1.0)] * q + [(0.0, None)],
                           constraints=[{"type": "ineq", "fun": constraints,

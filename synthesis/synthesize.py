@@ -92,7 +92,8 @@ def synthesize(problem: Problem, settings: SearchSettings | None = None, *,
     >>> from synthesis.problem import load_problem
     >>> from synthesis.search import settings_for
     >>> problem = load_problem("input_tables/problems/class3_fourbar_path.yaml")
-    >>> outcome = synthesize(problem, settings_for(problem, budget_log2=6, refine=False))
+    >>> outcome = synthesize(problem, settings_for(problem, budget_log2=6, refine=False,
+    ...                                            shrink_passes=0, restarts=0))
     >>> outcome.result.trials.shape[0] == 1 + 2 ** 6, outcome.summary["task_class"]
     (True, 3)
     """

@@ -22,19 +22,21 @@ def quadratic(x: np.ndarray) -> Criteria:
 
 
 LOWER, UPPER, START = np.zeros(3), np.ones(3), np.array([0.95, 0.5, 0.5])
+#: The passive pass alone (the defaults add shrinking passes, restarts and refinement).
+PASSIVE = {"refine": False, "shrink_passes": 0, "restarts": 0}
 
 
 def test_same_seed_same_result_and_other_seed_other_trials() -> None:
-    a = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=7, seed=5))
-    b = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=7, seed=5))
-    c = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=7, seed=6))
+    a = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=7, seed=5, **PASSIVE))
+    b = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=7, seed=5, **PASSIVE))
+    c = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=7, seed=6, **PASSIVE))
     np.testing.assert_array_equal(a.trials, b.trials)
     np.testing.assert_array_equal(a.x, b.x)
     assert not np.array_equal(a.trials[1:], c.trials[1:])
 
 
 def test_trial_zero_is_the_initial_design_and_the_budget_is_2_to_m() -> None:
-    r = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=6, batch=16))
+    r = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=6, batch=16, **PASSIVE))
     np.testing.assert_array_equal(r.trials[0], START)
     assert r.trials.shape[0] == 1 + 2 ** 6
     assert r.stop == "budget"
@@ -44,7 +46,7 @@ def test_trial_zero_is_the_initial_design_and_the_budget_is_2_to_m() -> None:
 
 
 def test_best_is_the_best_trial_by_the_ranking() -> None:
-    r = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=8))
+    r = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=8, **PASSIVE))
     c = r.trial_criteria
     feasible = c.p1 == 0
     assert r.criteria.q[0] == np.min(c.q[feasible])
@@ -63,7 +65,7 @@ def test_no_progress_stops_the_search() -> None:
         zero = np.zeros(len(x))
         return Criteria(zero, zero, zero + 1.0, zero[:, None], zero[:, None])
 
-    r = search(flat, LOWER, UPPER, START, SearchSettings(budget_log2=12, batch=16, stall=64))
+    r = search(flat, LOWER, UPPER, START, SearchSettings(budget_log2=12, batch=16, stall=64, **PASSIVE))
     assert r.stop == "stall"
     assert r.trials.shape[0] <= 64 + 2 * 16 + 1
 
@@ -84,18 +86,18 @@ def test_ctrl_c_keeps_the_best_so_far() -> None:
             raise KeyboardInterrupt
         return quadratic(x)
 
-    r = search(interrupted, LOWER, UPPER, START, SearchSettings(budget_log2=10, batch=32))
+    r = search(interrupted, LOWER, UPPER, START, SearchSettings(budget_log2=10, batch=32, **PASSIVE))
     assert r.stop == "interrupted"
     assert r.trials.shape[0] == sum(calls[:3])
     assert r.criteria.q[0] == np.nanmin(r.trial_criteria.q)
 
 
 def test_refinement_and_shrinking_improve_on_the_passive_best() -> None:
-    plain = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=7, seed=2))
+    plain = search(quadratic, LOWER, UPPER, START, SearchSettings(budget_log2=7, seed=2, **PASSIVE))
     shrunk = search(quadratic, LOWER, UPPER, START,
-                    SearchSettings(budget_log2=7, seed=2, shrink_passes=2))
+                    SearchSettings(budget_log2=7, seed=2, shrink_passes=2, refine=False, restarts=0))
     refined = search(quadratic, LOWER, UPPER, START,
-                     SearchSettings(budget_log2=7, seed=2, refine=True))
+                     SearchSettings(budget_log2=7, seed=2, refine=True, shrink_passes=0, restarts=0))
     assert shrunk.criteria.q[0] < plain.criteria.q[0]
     assert refined.criteria.q[0] < 1e-8
     np.testing.assert_allclose(refined.x, OPTIMUM, atol=1e-8)
@@ -110,9 +112,9 @@ def test_weighted_objective_can_accept_a_desirable_violation() -> None:
         zero = np.zeros(len(x))
         return Criteria(zero, p2, q, q[:, None], q[:, None])
 
-    lex = search(trade, LOWER, UPPER, START, SearchSettings(budget_log2=8))
+    lex = search(trade, LOWER, UPPER, START, SearchSettings(budget_log2=8, **PASSIVE))
     soft = search(trade, LOWER, UPPER, START,
-                  SearchSettings(budget_log2=8, objective="weighted", p2_weight=1.0))
+                  SearchSettings(budget_log2=8, objective="weighted", p2_weight=1.0, **PASSIVE))
     assert lex.x[0] <= 0.5
     assert soft.x[0] == pytest.approx(0.8, abs=0.02)
 
@@ -140,9 +142,9 @@ def two_wells(x: np.ndarray) -> Criteria:
 
 
 def test_restarts_are_fresh_rounds_after_the_first() -> None:
-    one = search(two_wells, [0.0], [1.0], [0.5], SearchSettings(budget_log2=5, seed=3))
+    one = search(two_wells, [0.0], [1.0], [0.5], SearchSettings(budget_log2=5, seed=3, **PASSIVE))
     three = search(two_wells, [0.0], [1.0], [0.5],
-                   SearchSettings(budget_log2=5, seed=3, restarts=2))
+                   SearchSettings(budget_log2=5, seed=3, refine=False, shrink_passes=0, restarts=2))
     # the first round is the run without restarts, trial for trial
     np.testing.assert_array_equal(three.trials[:one.trials.shape[0]], one.trials)
     assert three.trials.shape[0] == 1 + 3 * 2 ** 5
@@ -162,7 +164,7 @@ def test_refinement_after_the_first_round_and_after_the_restarts() -> None:
     # skip it (already refined) and start from the best restart round's design
     r = search(two_wells, [0.0], [1.0], [0.5],
                SearchSettings(budget_log2=2, seed=3, refine=True, refine_starts=1,
-                              restarts=6, batch=4))
+                              restarts=6, batch=4, shrink_passes=0))
     stage = np.array(r.stage)
     lptau = np.flatnonzero(stage == "lptau")
     assert lptau.size == 7 * 4

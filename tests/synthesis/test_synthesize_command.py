@@ -184,12 +184,13 @@ def test_a_run_short_of_the_accuracy_says_what_to_try(
     raw = yaml.safe_load(path.read_text(encoding="utf-8"))
     raw["search"]["refine"] = False
     no_refine.write_text(yaml.safe_dump(raw, allow_unicode=True), encoding="utf-8")
-    code, text = _run([str(no_refine), "--budget", "5", "--quiet", "--json"], capsys)
+    code, text = _run([str(no_refine), "--budget", "5", "--restarts", "0", "--shrink", "0",
+                       "--quiet", "--json"], capsys)
     data = json.loads(text)
     assert code == 0 and data["feasible"] and not data["favourable"]
     advice = data["advice"]
     assert [t["what"] for t in advice["try"]] == ["budget", "refine", "restarts"]
-    assert advice["try"][0]["value"] == 7
+    assert advice["try"][0]["value"] == 7 and advice["try"][2]["value"] == 3
     # one round, no refinement: one optimum, the best design itself
     assert advice["optima"] == 1 and advice["q_min"] == advice["q_max"] == data["Q"]
     code, text = _run([str(no_refine), "--budget", "5", "--quiet", "--lang", "ru"], capsys)

@@ -23,16 +23,19 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     """Arguments of ``assur synthesize``."""
     parser.add_argument("problem", metavar="PROBLEM.yaml", help="the synthesis problem table")
     parser.add_argument("--budget", type=int, metavar="M", default=None,
-                        help="draw up to 2**M LPτ trials (default: the problem's, else 12)")
+                        help="draw up to 2**M LPτ trials per round (default: the problem's, "
+                             "else 10)")
     parser.add_argument("--seed", type=int, default=None,
                         help="seed of the scrambled LPτ sequence (default: the problem's, else 0)")
-    parser.add_argument("--refine", action="store_true", default=None,
-                        help="refine the best trials locally (scipy.optimize.least_squares)")
+    parser.add_argument("--refine", action=argparse.BooleanOptionalAction, default=None,
+                        help="refine the best trials locally (scipy.optimize.least_squares; "
+                             "default: on)")
     parser.add_argument("--shrink", type=int, metavar="PASSES", default=None,
-                        help="passive passes in boxes shrunk around the best design")
+                        help="passive passes in boxes shrunk around the best design "
+                             "(default: 3)")
     parser.add_argument("--restarts", type=int, metavar="R", default=None,
                         help="search again R times with fresh LPτ sequences while [Q] is "
-                             "not reached")
+                             "not reached (default: 3)")
     parser.add_argument("--time-limit", type=float, metavar="SEC", default=None,
                         help="stop the search after this many seconds")
     parser.add_argument("--out", metavar="RESULT", default=None,

@@ -35,10 +35,10 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 sys.path.insert(0, str(ROOT))
 
-from synthesis.criteria import merit  # noqa: E402
-from synthesis.evaluate import Evaluator  # noqa: E402
-from synthesis.problem import load_problem  # noqa: E402
-from synthesis.search import SearchSettings, search  # noqa: E402
+from synthesis.criteria import merit
+from synthesis.evaluate import Evaluator
+from synthesis.problem import load_problem
+from synthesis.search import SearchSettings, search
 
 SEEDS = (1000,)
 

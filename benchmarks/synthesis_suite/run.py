@@ -34,9 +34,9 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 sys.path.insert(0, str(ROOT))
 
-from synthesis.evaluate import Evaluator  # noqa: E402
-from synthesis.problem import Problem, load_problem  # noqa: E402
-from synthesis.search import SearchSettings, search  # noqa: E402
+from synthesis.evaluate import Evaluator
+from synthesis.problem import Problem, load_problem
+from synthesis.search import SearchSettings, search
 
 #: Relative tolerance on Q* > 0 within which a run counts as reaching the optimum.
 RELATIVE = 5e-3
@@ -116,12 +116,14 @@ def report() -> None:
     """Write docs/synthesis_suite.md's table and docs/img/synthesis_suite.png."""
     optima = yaml.safe_load((HERE / "optima.yaml").read_text(encoding="utf-8"))["optima"]
     rows: dict[str, list[dict[str, Any]]] = defaultdict(list)
+    seen = set()
     for path in sorted((HERE / "results").glob("*.jsonl")):
         for line in path.read_text(encoding="utf-8").splitlines():
-            if line:
-                row = json.loads(line)
-                if row["problem"] in optima:
-                    rows[row["setting"]].append(row)
+            row = json.loads(line) if line else None
+            key = row and (row["setting"], row["problem"], row["seed"])
+            if row and row["problem"] in optima and key not in seen:
+                seen.add(key)
+                rows[row["setting"]].append(row)
     lines = ["| setting | runs | success | failed (problem: seeds) | median s | mean s | max s |",
              "|---|---|---|---|---|---|---|"]
     points = []
@@ -173,11 +175,12 @@ def main() -> None:
     parser.add_argument("--settings", nargs="*", default=None, choices=sorted(SETTINGS))
     parser.add_argument("--seeds", type=int, default=None)
     parser.add_argument("--jobs", type=int, default=1)
+    parser.add_argument("--problems", nargs="*", default=None, help="only these (file stems)")
     parser.add_argument("--report", action="store_true", help="only write the table and plot")
     args = parser.parse_args()
     if not args.report:
         profile = PROFILES[args.profile]
-        run(args.settings or list(SETTINGS), problems(profile["problems"]),
+        run(args.settings or list(SETTINGS), problems(args.problems or profile["problems"]),
             args.seeds or profile["seeds"], args.jobs)
     report()
 

@@ -74,7 +74,6 @@ if TYPE_CHECKING:  # pragma: no cover
     from synthesis.force_conditions import ForceConditions
 
 __all__ = [
-    "allowed_pressure_angles",
     "DEFAULT_PRESSURE_ANGLE",
     "OUTPUT_QUANTITIES",
     "ControlPoints",
@@ -82,6 +81,7 @@ __all__ = [
     "Output",
     "Parameter",
     "Problem",
+    "allowed_pressure_angles",
     "load_problem",
     "output_slider",
     "problem_from_dict",

@@ -23,7 +23,7 @@ import json
 import multiprocessing
 import sys
 import time
-from collections import defaultdict
+from collections import Counter, defaultdict
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -124,7 +124,7 @@ def report() -> None:
             if row and row["problem"] in optima and key not in seen:
                 seen.add(key)
                 rows[row["setting"]].append(row)
-    lines = ["| setting | runs | success | failed (problem: seeds) | median s | mean s | max s |",
+    lines = ["| setting | runs | success | failed (problem: runs) | median s | mean s | max s |",
              "|---|---|---|---|---|---|---|"]
     points = []
     for name in SETTINGS:
@@ -133,12 +133,14 @@ def report() -> None:
             continue
         ok = [success(r, optima[r["problem"]]) for r in runs]
         failed: dict[str, list[int]] = defaultdict(list)
+        seeds = Counter(r["problem"] for r in runs)
         for r, good in zip(runs, ok):
             if not good:
                 failed[r["problem"]].append(r["seed"])
         secs = sorted(r["seconds"] for r in runs)
         rate = 100.0 * sum(ok) / len(ok)
-        text = "; ".join(f"{p}: {sorted(s)}" for p, s in sorted(failed.items())) or "—"
+        text = ("; ".join(f"{p} ({len(s)}/{seeds[p]})" for p, s in sorted(failed.items()))
+                if len(failed) <= 6 else f"{len(failed)} problems") or "—"
         lines.append(f"| {name} | {len(runs)} | {rate:.1f} % | {text} | "
                      f"{secs[len(secs) // 2]:.2f} | {sum(secs) / len(secs):.2f} | "
                      f"{secs[-1]:.2f} |")

@@ -31,6 +31,7 @@ sys.path.insert(0, str(ROOT / "tests" / "synthesis"))
 
 from closed_form import (
     coupler_point,
+    crank_rocker,
     rocker_rotation,
     sixbar_rotation,
     slider_crank,
@@ -64,17 +65,6 @@ def box(rng: np.random.Generator, true: float, spread: float) -> list[float]:
     width = 2 * spread * abs(true)
     lower = true - rng.uniform(0.2, 0.8) * width
     return [r6(rng.uniform(lower, lower + width)), r6(lower), r6(lower + width)]
-
-
-def crank_rocker(rng: np.random.Generator) -> dict[str, float]:
-    """A random Grashof crank-rocker clear of its dead positions."""
-    while True:
-        l1 = rng.uniform(15, 40)
-        xhj, li, lj = rng.uniform(70, 130, size=3)
-        longest = max(xhj, li, lj)
-        if l1 + longest <= xhj + li + lj - longest - 10:
-            return {"l1": l1, "xhj": xhj, "li": li, "lj": lj, "ln": rng.uniform(20, 80),
-                    "beta": rng.uniform(-1.0, 1.0)}
 
 
 def problem(name: str, task_class: int, rows: list[dict[str, Any]], output: dict[str, Any],

@@ -9,6 +9,19 @@ from __future__ import annotations
 import numpy as np
 
 
+def crank_rocker(rng: np.random.Generator) -> dict[str, float]:
+    """A random Grashof crank-rocker (crank shortest, clear of the dead positions), with a
+    coupler point at distance ln and angle beta (radians)."""
+    while True:
+        l1 = rng.uniform(15, 40)
+        xhj, li, lj = rng.uniform(70, 130, size=3)
+        longest = max(xhj, li, lj)
+        # Grashof with 10 mm to spare: shortest + longest <= sum of the other two - 10
+        if l1 + longest <= xhj + li + lj - longest - 10:
+            return {"l1": l1, "xhj": xhj, "li": li, "lj": lj,
+                    "ln": rng.uniform(20, 80), "beta": rng.uniform(-1.0, 1.0)}
+
+
 def fourbar(phi: np.ndarray, l1: float, li: float, lj: float, xhj: float, *, phi0: float = 0.0,
             sigma: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Crank pin A, joint C and the coupler and rocker angles of a four-bar.

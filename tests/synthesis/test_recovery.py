@@ -13,7 +13,13 @@ from typing import Any
 
 import numpy as np
 import pytest
-from closed_form import coupler_point, distance_to_curve, rocker_rotation, slider_crank
+from closed_form import (
+    coupler_point,
+    crank_rocker,
+    distance_to_curve,
+    rocker_rotation,
+    slider_crank,
+)
 
 from synthesis.evaluate import Evaluator
 from synthesis.problem import problem_from_dict
@@ -24,18 +30,6 @@ FOURBAR_ROWS = [
     {"L": 0, "i": 1, "j": None, "i_minus_1": 0, "j_minus_1": None, "i_plus_1": 2},
     {"L": 1, "i": 2, "j": 3, "i_minus_1": 1, "j_minus_1": 0, "variant": 1},
 ]
-
-
-def _crank_rocker(rng: np.random.Generator) -> dict[str, float]:
-    """A random Grashof crank-rocker (crank shortest, clear of the dead positions)."""
-    while True:
-        l1 = rng.uniform(15, 40)
-        xhj, li, lj = rng.uniform(70, 130, size=3)
-        longest = max(xhj, li, lj)
-        # Grashof with 10 mm to spare: shortest + longest <= sum of the other two - 10
-        if l1 + longest <= xhj + li + lj - longest - 10:
-            return {"l1": l1, "xhj": xhj, "li": li, "lj": lj,
-                    "ln": rng.uniform(20, 80), "beta": rng.uniform(-1.0, 1.0)}
 
 
 def _box(rng: np.random.Generator, true: float, spread: float) -> list[float]:
@@ -81,7 +75,7 @@ def _design(problem: Any, x: np.ndarray) -> dict[str, float]:
 @pytest.mark.parametrize("seed", [11, 12])
 def test_class1_rocker_angle(seed: int) -> None:
     rng = np.random.default_rng(seed)
-    d = _crank_rocker(rng)
+    d = crank_rocker(rng)
     phi = np.radians(np.arange(12) * 30.0)
     psi = rocker_rotation(phi, d["l1"], d["li"], d["lj"], d["xhj"])
     points = [{"K": k, "phi": float(np.degrees(phi[k])), "psi": float(np.degrees(psi[k]))}
@@ -128,7 +122,7 @@ def test_class2_slider_stroke(seed: int) -> None:
 @pytest.mark.parametrize("seed", [31, 32])
 def test_class3_path_without_timing(seed: int) -> None:
     rng = np.random.default_rng(seed)
-    d = _crank_rocker(rng)
+    d = crank_rocker(rng)
     args = (d["l1"], d["li"], d["lj"], d["xhj"], d["ln"], d["beta"])
     targets = coupler_point(np.radians(np.arange(15) * 24.0), *args)
     points = [{"K": k, "x": float(p.real), "y": float(p.imag)} for k, p in enumerate(targets)]
@@ -143,7 +137,7 @@ def test_class3_path_without_timing(seed: int) -> None:
 @pytest.mark.parametrize("seed", [41, 42])
 def test_class4_path_with_timing(seed: int) -> None:
     rng = np.random.default_rng(seed)
-    d = _crank_rocker(rng)
+    d = crank_rocker(rng)
     args = (d["l1"], d["li"], d["lj"], d["xhj"], d["ln"], d["beta"])
     phi = np.radians(np.arange(15) * 24.0)
     targets = coupler_point(phi, *args)
@@ -160,7 +154,7 @@ def test_class4_path_with_timing(seed: int) -> None:
 def test_class1_zone_is_entered() -> None:
     """A zone of ±0.2° around a random rocker law: the search ends inside it (Q ≤ [Q])."""
     rng = np.random.default_rng(51)
-    d = _crank_rocker(rng)
+    d = crank_rocker(rng)
     phi = np.radians(np.arange(12) * 30.0)
     psi = np.degrees(rocker_rotation(phi, d["l1"], d["li"], d["lj"], d["xhj"]))
     points = [{"K": k, "phi": float(np.degrees(phi[k])), "psi_lo": float(psi[k] - 0.2),
@@ -175,7 +169,7 @@ def test_class1_zone_is_entered() -> None:
 def test_fourbar_closed_form_matches_the_model() -> None:
     """The closed form used above and the program agree on one design (guards the tests)."""
     rng = np.random.default_rng(61)
-    d = _crank_rocker(rng)
+    d = crank_rocker(rng)
     phi = np.radians(np.arange(15) * 24.0)
     targets = coupler_point(phi, d["l1"], d["li"], d["lj"], d["xhj"], d["ln"], d["beta"])
     points = [{"K": k, "phi": float(np.degrees(phi[k])), "x": float(p.real),

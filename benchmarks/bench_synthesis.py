@@ -43,9 +43,9 @@ from synthesis.evaluate import Evaluator
 from synthesis.problem import load_problem, problem_from_dict
 from synthesis.search import SearchSettings, search
 
-#: One passive pass and the refinement (the figures quoted in docs/synthesis.md; the
-#: defaults add shrinking passes and restarts, see docs/synthesis_suite.md).
-ONE_PASS = {"shrink_passes": 0, "restarts": 0}
+# The runs below are one passive pass and the refinement (shrink_passes=0, restarts=0: the
+# figures quoted in docs/synthesis.md); the defaults add shrinking passes and restarts
+# (docs/synthesis_suite.md).
 
 FOURBAR_ROWS = [
     {"L": 0, "i": 1, "j": None, "i_minus_1": 0, "j_minus_1": None, "i_plus_1": 2},
@@ -111,7 +111,7 @@ def part_control_points(budget: int) -> list[dict[str, float]]:
         problem = problem_from_dict(rocker_problem(k), f"rocker_{k}.yaml")
         evaluator = Evaluator(problem)
         result = search(evaluator, problem.lower, problem.upper, problem.initial,
-                        SearchSettings(budget_log2=budget, seed=0, refine=True, **ONE_PASS))
+                        SearchSettings(budget_log2=budget, seed=0, refine=True, shrink_passes=0, restarts=0))
         check = problem_from_dict(rocker_problem(dense), "dense.yaml")
         true = Evaluator(check, grid=dense)(result.x[None, :])
         rows.append({"K": k, "Q_deg": math.degrees(result.criteria.q[0]),
@@ -128,7 +128,7 @@ def part_budget(budgets: list[int]) -> list[dict[str, float]]:
     for m in budgets:
         for refine in (False, True):
             r = search(evaluator, problem.lower, problem.upper, problem.initial,
-                       SearchSettings(budget_log2=m, seed=0, refine=refine, **ONE_PASS))
+                       SearchSettings(budget_log2=m, seed=0, refine=refine, shrink_passes=0, restarts=0))
             rows.append({"m": m, "refine": refine, "Q": float(r.criteria.q[0]),
                          "seconds": r.elapsed, "trials": int(r.trials.shape[0])})
     return rows
@@ -216,7 +216,7 @@ def run_ours(targets: np.ndarray, accuracy: float, seed: int) -> dict[str, Any]:
     problem = problem_from_dict(peer_problem(targets, accuracy), "peer.yaml")
     result = search(Evaluator(problem), problem.lower, problem.upper, problem.initial,
                     SearchSettings(budget_log2=8, seed=seed, refine=True,
-                                   q_required=accuracy, **ONE_PASS))
+                                   q_required=accuracy, shrink_passes=0, restarts=0))
     seconds = time.perf_counter() - start
     x = result.x
     design = (x[0], x[1], x[2], x[3], math.radians(x[4]))

@@ -29,7 +29,7 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 sys.path.insert(0, str(ROOT / "tests" / "synthesis"))
 
-from closed_form import (
+from closed_form import (  # type: ignore[import-not-found]
     coupler_point,
     crank_rocker,
     rocker_rotation,
@@ -40,16 +40,16 @@ from closed_form import (
 GRID = 120                   # positions of the analysis grid (the shipped problems use 360)
 ACCURACY = 1e-4              # [Q] of the exact problems (degrees or mm)
 PHI = np.radians(np.arange(12) * 30.0)
-FOURBAR = [
+FOURBAR: list[dict[str, Any]] = [
     {"L": 0, "i": 1, "j": None, "i_minus_1": 0, "j_minus_1": None, "i_plus_1": 2},
     {"L": 1, "i": 2, "j": 3, "i_minus_1": 1, "j_minus_1": 0, "variant": 1},
 ]
-SIXBAR = [
+SIXBAR: list[dict[str, Any]] = [
     {"L": 0, "i": 1, "j": None, "i_minus_1": 0, "j_minus_1": None, "i_plus_1": 2},
     {"L": 1, "i": 2, "j": 3, "i_minus_1": 1, "j_minus_1": 0, "j_plus_1": 4, "variant": 1},
     {"L": 1, "i": 4, "j": 5, "i_minus_1": 3, "j_minus_1": 0, "variant": 1},
 ]
-SLIDER_CRANK = [
+SLIDER_CRANK: list[dict[str, Any]] = [
     {"L": 0, "i": 1, "j": None, "i_minus_1": 0, "j_minus_1": None, "i_plus_1": 2},
     {"L": 2, "i": 3, "j": 2, "i_minus_1": 0, "j_minus_1": 1, "variant": 1},
 ]

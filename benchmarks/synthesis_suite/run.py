@@ -52,7 +52,7 @@ SETTINGS: dict[str, dict[str, Any]] = {
     "b8-s3-r3": {"budget_log2": 8, "refine": True, "shrink_passes": 3, "restarts": 3},
     "b10-s3-r7": {"budget_log2": 10, "refine": True, "shrink_passes": 3, "restarts": 7},
 }
-PROFILES = {
+PROFILES: dict[str, dict[str, Any]] = {
     "quick": {"problems": ["e01_fourbar_angle", "e08_slider_crank", "c01_rocker_pressure_45",
                            "i01_rocker_law"], "seeds": 3},
     "full": {"problems": None, "seeds": 10},

@@ -36,9 +36,8 @@ import assur
 import assur.kinematics.model
 import assur.model
 from assur import AssurError, KinematicModel, TableError
-from assur.io.reader import MISSING, Node, TableReader
+from assur.io.reader import MISSING, Node, TableReader, is_number, normalise_id
 from assur.text import Message
-from assur.io.reader import normalise_id
 from synthesis.problem import (
     DEFAULT_PRESSURE_ANGLE,
     OUTPUT_QUANTITIES,
@@ -72,11 +71,13 @@ _POINT_COLUMNS = {
 #: Locations whose problems leave no mechanism to build.
 _STRUCTURE = ("mechanism", "structure_identification", "parameters", "frame")
 Bounds = dict[tuple[GroupKey, str], tuple[float, float, float]]
+#: Most positions of the analysis grid over a crank turn.
+MAX_GRID = 20_000
 
 
 def read_problem(path: str | os.PathLike[str]) -> Problem:
     """The reader behind :func:`synthesis.problem.load_problem` (which see)."""
-    return _read(TableReader.from_path(path), Path(path).parent)
+    return _read(TableReader.from_path(path, kind="problem"), Path(path).parent)
 
 
 def read_problem_data(data: Any, source: str = "<data>",
@@ -124,7 +125,7 @@ def _read(reader: TableReader, base: Path) -> Problem:
     name = top.get("name", kind="str", required=False, default=None)
     general = _read_general(top)
     mechanism = _read_mechanism(reader, top, base)
-    groups = {row_key(row): row for row in mechanism.rows if isinstance(row, dict)}
+    groups = {row_key(row): row for row in mechanism.rows if _has_links(row)}
     if general.n_groups is not MISSING and mechanism.rows \
             and general.n_groups != len(mechanism.rows):
         reader.problem("general 'groups'", "problem.groups_count", rows=len(mechanism.rows),
@@ -143,6 +144,7 @@ def _read(reader: TableReader, base: Path) -> Problem:
     labels: dict[GroupKey, str] = {}
     if model is not None:
         labels = {(g.i,) if g.j is None else (g.i, g.j): g.label for g in model.groups}
+        _check_varied(reader, model, bounds, labels)
         parameters = _parameters(model, bounds)
         if not parameters:
             reader.problem("parameters", "problem.nothing_varied")
@@ -179,8 +181,8 @@ def _read_general(top: Node) -> _General:
         n_groups=general.get("groups", kind="int", check=_positive),
         task_class=task_class,
         grid=general.get("grid", kind="int", required=False, default=360,
-                         check=lambda v: None if v >= 8 else
-                         Message("rule.at_least", {"low": 8})),
+                         check=lambda v: None if 8 <= v <= MAX_GRID else
+                         Message("rule.in_range", {"range": f"[8, {MAX_GRID}]"})),
         accuracy=general.get("accuracy", kind="number", required=False, default=None,
                              check=_positive),
         objective=general.choice("objective", ["lexicographic", "weighted"], required=False,
@@ -233,7 +235,7 @@ def _read_mechanism(reader: TableReader, top: Node, base: Path) -> _Mechanism:
         return here
     target = base / path
     try:
-        inner = TableReader.from_path(target)
+        inner = TableReader.from_path(target, kind="chain")
     except TableError as exc:
         # the file named by this table's 'mechanism' field cannot be read: a problem of
         # that field, told in the words of the file reader
@@ -301,10 +303,10 @@ def _merge_parameters(top: Node, mechanism: _Mechanism, groups: dict[GroupKey, A
         params = {}
         for column, (value, location) in merged.items():
             params[column] = _cell(reader, value, location, key, column, bounds)
-        if row.get("L") == 0 and direction in (1, -1):
-            if params.setdefault("s", direction) != direction:
-                reader.problem("general 'direction'", "problem.direction_mismatch",
-                               s=params["s"], found=direction)
+        if row.get("L") == 0 and direction in (1, -1) \
+                and params.setdefault("s", direction) != direction:
+            reader.problem("general 'direction'", "problem.direction_mismatch",
+                           s=params["s"], found=direction)
         rows.append({**row, "params": params})
     return rows, bounds
 
@@ -315,7 +317,7 @@ def _cell(reader: TableReader, value: Any, location: str, key: GroupKey, column:
     and its bounds recorded.  Other values go to the kinematic model unchanged."""
     if column == "tracing" or not isinstance(value, list):
         return value
-    if len(value) != 3 or not all(map(_is_number, value)):
+    if len(value) != 3 or not all(map(is_number, value)):
         reader.problem(location, "problem.cell", found=value)
         return value
     initial, lower, upper = (float(v) for v in value)
@@ -326,6 +328,22 @@ def _cell(reader: TableReader, value: Any, location: str, key: GroupKey, column:
     else:
         bounds[key, column] = (initial, lower, upper)
     return value[0]
+
+
+def _check_varied(reader: TableReader, model: KinematicModel, bounds: Bounds,
+                  labels: dict[GroupKey, str]) -> None:
+    """A varied column must change the mechanism: a column of its group's kind, ``delta``, or
+    a column of a tracing point of that group (``l_Ж``/``beta_Ж`` with ``tracing:``)."""
+    traced = {(point.anchor.owner, column) for point in model.tracing
+              for column in (point.anchor.first, point.anchor.second)}
+    for (key, column), (_, lower, upper) in bounds.items():
+        label = labels.get(key)
+        if label is None or upper <= lower:
+            continue
+        kind = model.group(label).kind
+        if column not in (*assur.KIND_COLUMNS[kind], "delta") and (label, column) not in traced:
+            reader.problem(f"parameters ({label}) {column!r}", "problem.varied_unused",
+                           column=column, group=label)
 
 
 def _parameters(model: KinematicModel, bounds: Bounds) -> tuple[Parameter, ...]:
@@ -412,6 +430,7 @@ def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> C
             value[n] = _num(row.get("S", kind="number"))
         elif task_class in (3, 4):
             point[n] = complex(_num(row.get("x", kind="number")), _num(row.get("y", kind="number")))
+    _check_repeated_angles(reader, rows, phi, value, point, lo, hi)
     if 0 < zone_rows < k:
         reader.problem("control_points", "problem.zone_mixed", lo=lo_col, hi=hi_col,
                        zone=zone_rows, rows=k)
@@ -423,6 +442,31 @@ def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> C
     zone = task_class == 1 and zone_rows == k and k > 0
     return ControlPoints(phi=phi, value=value, point=point, weight=weight,
                          lower=lo if zone else None, upper=hi if zone else None)
+
+
+def _check_repeated_angles(reader: TableReader, rows: list[Node], phi: np.ndarray,
+                           *targets: np.ndarray) -> None:
+    """Two control rows at the same crank angle (modulo 360°) must ask for the same target."""
+    first: dict[float, int] = {}
+    for n, angle in enumerate(phi):
+        if not math.isfinite(angle):
+            continue
+        turn = round(math.degrees(angle) % 360.0, 9) % 360.0
+        if turn not in first:
+            first[turn] = n
+            continue
+        m = first[turn]
+        if any(not _same(target[m], target[n]) for target in targets):
+            reader.problem(f"{rows[n].location} 'phi'", "problem.control_angle_twice",
+                           phi=_shown(math.degrees(angle)), other=rows[m].location)
+
+
+def _same(a: complex, b: complex) -> bool:
+    return (a == b) or (a != a and b != b)  # equal, or both absent (NaN)
+
+
+def _shown(value: float) -> float | int:
+    return int(value) if float(value).is_integer() else value
 
 
 def _read_allowable(top: Node, groups: dict[GroupKey, Any]
@@ -470,7 +514,7 @@ def _read_box(row: Node) -> tuple[float, float, float, float] | None:
         value = node.get(axis, kind="list")
         if value is MISSING:
             return None
-        if len(value) != 2 or not all(map(_is_number, value)) or value[0] >= value[1]:
+        if len(value) != 2 or not all(map(is_number, value)) or value[0] >= value[1]:
             row.reader.problem(f"{node.location} {axis!r}", "problem.box", found=value)
             return None
         out.extend(float(v) for v in value)
@@ -517,13 +561,17 @@ def _read_search(top: Node) -> dict[str, Any]:
     return out
 
 
-def _is_number(v: Any) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+def _has_links(row: Any) -> bool:
+    """Whether an identification row names its links by ids (so that it has a key); the
+    rows' other problems are reported by :mod:`assur`."""
+    return isinstance(row, dict) and all(
+        isinstance(row.get(key), (int, str, type(None))) and not isinstance(row.get(key), bool)
+        for key in ("i", "j"))
 
 
 def _deg(v: Any) -> float:
-    return math.radians(v) if _is_number(v) else math.nan
+    return math.radians(v) if is_number(v) else math.nan
 
 
 def _num(v: Any) -> float:
-    return float(v) if _is_number(v) else math.nan
+    return float(v) if is_number(v) else math.nan

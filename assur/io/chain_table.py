@@ -24,8 +24,8 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from assur.errors import TableError
-from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
 from assur.io.params import read_params
+from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
 from assur.io.sketch import Joints, actuator_pairs, read_sketch
 from assur.kinds import KINDS, kind_of
 from assur.model import (
@@ -93,7 +93,7 @@ def load_chain(path: str | os.PathLike[str]) -> Chain:
     >>> len(chain.links), len(chain.pairs)
     (4, 4)
     """
-    reader = TableReader.from_path(path)
+    reader = TableReader.from_path(path, kind="chain")
     return _read(reader)
 
 
@@ -241,7 +241,7 @@ def _read_links(mech: Node, names: dict[LinkId, str]) -> list[LinkId] | None:
 class _RawPair:
     """A pair as written by the user (a compound hinge may list more than two links)."""
 
-    __slots__ = ("id", "type", "links", "guide", "where")
+    __slots__ = ("guide", "id", "links", "type", "where")
 
     def __init__(self, pid: PairId, ptype: PairType, links: list[LinkId], guide: LinkId | None,
                  where: str) -> None:
@@ -448,7 +448,7 @@ def _read_rows(top: Node, *, required: bool) -> list[IdentificationRow]:
             clean[key] = row.get(key, kind="id", required=False, default=None, nullable=True)
         clean["seq"] = row.get("seq", kind="int", required=False, default=None, nullable=True)
         clean["variant"] = row.get("variant", kind="int", required=False, default=None,
-                                   nullable=True)
+                                   nullable=True, check=_variant_rule)
         code = row.get("out_code", required=False, default=None, nullable=True)
         clean["out_code"] = None if code is None else str(code)
         clean["params"] = row.get("params", kind="mapping", required=False, default=None)
@@ -557,6 +557,11 @@ def _group_params(rows: list[IdentificationRow]) -> dict[tuple[LinkId, ...], Gro
 
 
 # ------------------------------------------------------------------------------ helpers
+
+
+def _variant_rule(value: int) -> Message | None:
+    """An assembly variant is +1 or −1 (0 where the group has one assembly, ``method.md``)."""
+    return None if value in (-1, 0, 1) else Message("rule.variant")
 
 
 def _is_id(value: Any) -> bool:

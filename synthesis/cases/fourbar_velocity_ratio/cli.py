@@ -99,7 +99,7 @@ def _gather(args: argparse.Namespace) -> tuple[dict[str, Any], str]:
     data: dict[str, Any] = {}
     source = "command line"
     if args.table:
-        reader = TableReader.from_path(args.table)
+        reader = TableReader.from_path(args.table, kind="fourbar_velocity_ratio")
         top = reader.root(allowed=[TABLE])
         table = top.get(TABLE, kind="mapping")
         reader.raise_if_any()

@@ -127,7 +127,7 @@ def load_task(path: str | os.PathLike[str] | None = None,
     if path is None:
         return _read(TableReader.from_data({}, source="command line"), dict(overrides or {}),
                      required=False)
-    return _read(TableReader.from_path(path), dict(overrides or {}))
+    return _read(TableReader.from_path(path, kind="tracker"), dict(overrides or {}))
 
 
 def task_from_data(data: Any, source: str = "<data>",

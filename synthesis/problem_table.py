@@ -36,7 +36,7 @@ import assur
 import assur.kinematics.model
 import assur.model
 from assur import AssurError, KinematicModel, TableError
-from assur.io.reader import MISSING, Node, TableReader, is_number, normalise_id
+from assur.io.reader import MISSING, Node, TableReader, describe, is_number, normalise_id
 from assur.text import Message
 from synthesis.problem import (
     DEFAULT_PRESSURE_ANGLE,
@@ -126,6 +126,7 @@ def _read(reader: TableReader, base: Path) -> Problem:
     general = _read_general(top)
     mechanism = _read_mechanism(reader, top, base)
     groups = {row_key(row): row for row in mechanism.rows if _has_links(row)}
+    _check_links(reader, mechanism)
     if general.n_groups is not MISSING and mechanism.rows \
             and general.n_groups != len(mechanism.rows):
         reader.problem("general 'groups'", "problem.groups_count", rows=len(mechanism.rows),
@@ -256,6 +257,10 @@ def _group_of(row: Node, groups: dict[GroupKey, Any]) -> GroupKey | None:
     links = row.get("links", kind="list")
     if links is MISSING:
         return None
+    if not all(isinstance(v, (int, str)) and not isinstance(v, bool) for v in links):
+        row.reader.problem(f"{row.location} 'links'", "table.wrong_kind",
+                           expected=Message("value.kind.id_list"), found=describe(links))
+        return None
     key = tuple(normalise_id(v) for v in links)
     if groups and key not in groups:
         row.reader.problem(f"{row.location} 'links'", "problem.links_unknown", links=list(key),
@@ -288,7 +293,7 @@ def _merge_parameters(top: Node, mechanism: _Mechanism, groups: dict[GroupKey, A
     bounds: Bounds = {}
     rows: list[Any] = []
     for index, row in enumerate(mechanism.rows):
-        if not isinstance(row, dict):
+        if not _has_links(row):
             rows.append(row)
             continue
         key = row_key(row)
@@ -559,6 +564,17 @@ def _read_search(top: Node) -> dict[str, Any]:
         else:
             top.reader.problem(f"search {key!r}", problem.code, **problem.data)
     return out
+
+
+def _check_links(reader: TableReader, mechanism: _Mechanism) -> None:
+    """The link ids of the identification rows, which key the problem's other tables."""
+    for index, row in enumerate(mechanism.rows):
+        if isinstance(row, dict) and not _has_links(row):
+            for key in ("i", "j"):
+                if not _has_links({key: row.get(key)}):
+                    reader.problem(f"{mechanism.prefix}structure_identification[{index}] "
+                                   f"{key!r}", "table.wrong_kind",
+                                   expected=Message("value.kind.id"), found=describe(row[key]))
 
 
 def _has_links(row: Any) -> bool:

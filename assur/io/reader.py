@@ -77,6 +77,7 @@ TABLE_KINDS: dict[str, tuple[str, frozenset[str]]] = {
 _LOOK_ALIKES = dict(zip("аеорсухіјѕАВЕКМНОРСТХІЈЅ", "aeopcyxijsABEKMHOPCTXIJS"))
 _CYRILLIC = re.compile("[\u0400-\u04ff]")
 _LATIN = re.compile("[A-Za-z]")
+_RUSSIAN = re.compile("[А-яЁё]{2}")
 _DECIMAL_COMMA = re.compile(r"\s*[-+]?\d+,\d+\s*")
 
 
@@ -489,7 +490,7 @@ def _text_problem(raw: bytes) -> Message | None:
         line = raw[:exc.start].count(b"\n") + 1
         if raw.startswith((b"\xff\xfe", b"\xfe\xff")):
             return Message("table.encoding_named", {"line": line, "encoding": "UTF-16"})
-        if _CYRILLIC.search(raw.decode("cp1251", errors="replace")):
+        if _RUSSIAN.search(raw.decode("cp1251", errors="replace")):
             return Message("table.encoding_named", {"line": line, "encoding": "Windows-1251"})
         return Message("table.encoding", {"line": line, "byte": f"0x{raw[exc.start]:02X}"})
     return None

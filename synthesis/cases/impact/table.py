@@ -34,7 +34,7 @@ def _unit_interval(value: float) -> Message | None:
 
 def read_impact_table(path: str | os.PathLike[str]) -> ImpactData:
     """Read the case's YAML table; raises :class:`assur.TableError` listing every problem."""
-    reader = TableReader.from_path(path)
+    reader = TableReader.from_path(path, kind="impact")
     return _read(reader)
 
 

@@ -12,7 +12,7 @@ import math
 import os
 from typing import Any
 
-from assur.io.reader import TableReader
+from assur.io.reader import TableReader, is_number
 from assur.text import Message
 from synthesis.cases.tracker.design import PATENT_TASK, DesignTask
 
@@ -66,8 +66,7 @@ def _in_range(name: str) -> Any:
 def _ratios(value: list[Any]) -> Message | None:
     if not value:
         return Message("rule.list_not_empty")
-    if any(isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v)
-           for v in value):
+    if not all(is_number(v) for v in value):
         return Message("rule.list_numbers")
     if any(v <= 1.0 for v in value):
         return Message("rule.list_greater", {"low": 1})

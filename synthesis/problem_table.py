@@ -24,6 +24,7 @@ Examples
 
 from __future__ import annotations
 
+import cmath
 import math
 import os
 from dataclasses import dataclass
@@ -467,7 +468,7 @@ def _check_repeated_angles(reader: TableReader, rows: list[Node], phi: np.ndarra
 
 
 def _same(a: complex, b: complex) -> bool:
-    return (a == b) or (a != a and b != b)  # equal, or both absent (NaN)
+    return a == b or (cmath.isnan(a) and cmath.isnan(b))  # equal, or both absent (NaN)
 
 
 def _shown(value: float) -> float | int:

@@ -169,6 +169,8 @@ def _read_chain_form(reader: TableReader) -> Chain:
     names: dict[LinkId, str] = {}
     links = _read_links(mech, names)
     raw_pairs, mentioned = _read_pairs(mech)
+    if mech.mapping.get("pairs") == []:
+        reader.problem("mechanism 'pairs'", "chain.no_pairs")
     known = set(links) if links is not None else None
     if links is None:
         links = [] if frame is MISSING else [frame]
@@ -178,7 +180,7 @@ def _read_chain_form(reader: TableReader) -> Chain:
                        links=_list(links))
     inputs = _read_inputs(mech)
     _check_pairs(reader, raw_pairs, set(links))
-    if known is not None or mentioned:  # no link is known when no pair row could be read
+    if known is not None or mentioned or not reader.issues:  # (no pair row could be read)
         _check_inputs(reader, inputs, set(links), raw_pairs, frame)
     joints = {pair.id: (pair.type.value, tuple(pair.links)) for pair in raw_pairs}
     geometry = _geometry(reader, top, mech, joints, links, frame, inputs)

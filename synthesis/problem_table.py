@@ -152,7 +152,7 @@ def _read(reader: TableReader, base: Path) -> Problem:
             reader.problem("parameters", "problem.nothing_varied")
         _check_rotations(reader, model, {labels[k]: v for k, v in rotations.items()})
         if output.link is not MISSING:
-            _check_output(reader, model, output.link, general.task_class)
+            _check_output(reader, model, output, general.task_class)
     forces = read_force_conditions(top, model)
     reader.raise_if_any()
     if foreign is not None:
@@ -228,6 +228,8 @@ def _read_mechanism(reader: TableReader, top: Node, base: Path) -> _Mechanism:
         frame = top.get("frame", kind="id", required=False, default=0)
         if rows is MISSING:
             return here
+        if not rows:
+            reader.problem("structure_identification", "chain.no_rows")
         return _Mechanism({"frame": frame, "structure_identification": rows}, reader.source)
     path = top.get("mechanism", kind="str", required=False, default=None)
     if path is None:
@@ -246,7 +248,8 @@ def _read_mechanism(reader: TableReader, top: Node, base: Path) -> _Mechanism:
                            problem=issue.message)
         return here
     data = inner.data
-    if not isinstance(data, dict) or not isinstance(data.get("structure_identification"), list):
+    if not isinstance(data, dict) or not isinstance(data.get("structure_identification"), list) \
+            or not data["structure_identification"]:
         reader.problem("mechanism", "problem.mechanism_no_rows", file=str(target))
         return here
     keep = ("frame", "structure_identification", "name", "mechanism")
@@ -539,13 +542,24 @@ def _check_rotations(reader: TableReader, model: KinematicModel,
                                joint=role, group=label, joints=", ".join(joints) or "—")
 
 
-def _check_output(reader: TableReader, model: KinematicModel, link: assur.model.LinkId,
+def _check_output(reader: TableReader, model: KinematicModel, output: Output,
                   task_class: Any) -> None:
-    """The output link moves; in task class 2 it slides in a prismatic pair."""
+    """The output link moves; in task class 2 it slides in a prismatic pair; in classes 3
+    and 4 its point is a tracing point, or a point ``l_Ж``, ``beta_Ж`` of its group."""
+    link = output.link
     if link not in model.links:
         reader.problem("output 'link'", "problem.output_not_moving", link=link)
-    elif task_class == 2 and output_slider(model, link) is None:
+        return
+    if task_class == 2 and output_slider(model, link) is None:
         reader.problem("output 'link'", "problem.output_no_slider", link=link)
+    label = model.links[link][0]
+    named = {point.name for point in model.tracing}
+    carried = {name[len(f"{label}.l_"):] for name in model.params
+               if name.startswith(f"{label}.l_")
+               and f"{label}.beta_{name[len(f'{label}.l_'):]}" in model.params}
+    if isinstance(output.point, str) and output.point not in named | carried:
+        reader.problem("output 'point'", "problem.output_point_unknown", point=output.point,
+                       link=link, known=", ".join(sorted(named | carried)) or "—")
 
 
 def _read_search(top: Node) -> dict[str, Any]:

@@ -54,7 +54,7 @@ MAX_DEPTH = 32
 #: Magnitude of the largest number a table may hold (mm, degrees, weights, counts).
 LARGEST = 1e9
 #: Magnitude of the smallest number other than 0 a table may hold.
-SMALLEST = 1e-9
+SMALLEST = 1e-12
 
 #: The kinds of table the program reads: name → (the command that reads it, the top-level
 #: keys that only a table of that kind has).  The first kind whose keys a file has is its

@@ -199,7 +199,7 @@ def test_every_number_field_refuses_huge_values(tmp_path) -> None:
     for key, kind in (("x", "number"), ("z", "number"), ("n", "int")):
         top.get(key, kind=kind)
     assert [issue.location for issue in reader.issues] == ["'x'", "'z'", "'n'"]
-    assert all(render("rule.number_size", low=1e-9, high=1e9).split(" in size")[0]
+    assert all(render("rule.number_size", low=1e-12, high=1e9).split(" in size")[0]
                in issue.text() for issue in reader.issues)
 
 
@@ -246,12 +246,30 @@ def test_an_id_written_as_a_list_is_refused_in_a_problem(tmp_path, capsys) -> No
 
 
 def test_a_grid_too_large_to_allocate_is_refused(tmp_path, capsys) -> None:
-    table = _problem(tmp_path, "grid: 360", "grid: 1000000000000")
+    table = _problem(tmp_path, "grid: 360", "grid: 100000000")
     code, out = run(capsys, "synthesize", table, "--budget", "1", "--quiet")
     assert code == 2 and "'grid'" in out
+
+
+def test_an_unknown_output_point_is_refused(tmp_path, capsys) -> None:
+    text = (TABLES / "problems" / "class3_fourbar_path.yaml").read_text(encoding="utf-8")
+    (tmp_path / "problems").mkdir()
+    table = write(tmp_path / "problems", _edited(text, "output: {link: 2, point: N}",
+                                                 "output: {link: 2, point: Q}"))
+    code, out = run(capsys, "synthesize", table, "--budget", "1", "--quiet")
+    assert code == 2 and "output 'point'" in out and "'Q'" in out and "N" in out
 
 
 def test_the_reader_raises_one_error_for_an_unreadable_file(tmp_path) -> None:
     with pytest.raises(TableError) as caught:
         TableReader.from_path(tmp_path / "absent.yaml")
     assert caught.value.issues[0].text() == render("table.file_missing")
+
+
+@pytest.mark.parametrize("field", ["psi1_deg: 20 ", "n_star: 0.5 "])
+def test_a_required_case_value_may_not_be_null(tmp_path, capsys, field) -> None:
+    name = field.split(":")[0]
+    text = (TABLES / "case_fourbar_velocity_ratio.yaml").read_text(encoding="utf-8")
+    table = write(tmp_path, _edited(text, field, f"{name}: null "))
+    code, out = run(capsys, "case", "fourbar-velocity-ratio", "--table", table)
+    assert code == 2 and f"'{name}': expected a number; found nothing (null)" in out

@@ -74,9 +74,9 @@ def read_request(data: dict[str, Any], source: str) -> tuple[Request, str]:
              "psi2_deg": _open_interval(0.0, 180.0, "ψ″")}
     if node is not None:
         for _, dest, _ in _FIELDS:
-            values[dest] = node.get(dest, kind="number", check=rules[dest],
-                                    required=dest in ("n_star", "psi1_deg"), default=None,
-                                    nullable=True)
+            needed = dest in ("n_star", "psi1_deg")
+            values[dest] = node.get(dest, kind="number", check=rules[dest], required=needed,
+                                    default=None, nullable=not needed)
         method = node.choice("method", METHODS, required=False, default="modern")
         optional = [values[k] for k in ("e", "delta", "psi2_deg")]
         given = [k for k, v in zip(("e", "delta", "psi2_deg"), optional)

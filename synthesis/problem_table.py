@@ -350,7 +350,8 @@ def _check_varied(reader: TableReader, model: KinematicModel, bounds: Bounds,
         if label is None or upper <= lower:
             continue
         kind = model.group(label).kind
-        if column not in (*assur.KIND_COLUMNS[kind], "delta") and (label, column) not in traced:
+        columns = (*assur.kinematics.model.KIND_COLUMNS[kind], "delta")
+        if column not in columns and (label, column) not in traced:
             reader.problem(f"parameters ({label}) {column!r}", "problem.varied_unused",
                            column=column, group=label)
 

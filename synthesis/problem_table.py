@@ -37,7 +37,15 @@ import assur
 import assur.kinematics.model
 import assur.model
 from assur import AssurError, KinematicModel, TableError
-from assur.io.reader import MISSING, Node, TableReader, describe, is_number, normalise_id
+from assur.io.reader import (
+    MISSING,
+    Node,
+    TableReader,
+    describe,
+    is_number,
+    normalise_id,
+    positive,
+)
 from assur.text import Message
 from synthesis.problem import (
     DEFAULT_PRESSURE_ANGLE,
@@ -117,10 +125,6 @@ class _Mechanism:
         return rows if isinstance(rows, list) else []
 
 
-def _positive(v: Any) -> Message | None:
-    return None if v > 0 else Message("rule.positive")
-
-
 def _read(reader: TableReader, base: Path) -> Problem:
     top = reader.root(allowed=_TOP)
     name = top.get("name", kind="str", required=False, default=None)
@@ -178,19 +182,19 @@ def _read_general(top: Node) -> _General:
         return _General()
     task_class = general.choice("task_class", [1, 2, 3, 4])
     out = _General(
-        n_points=general.get("control_points", kind="int", check=_positive),
+        n_points=general.get("control_points", kind="int", check=positive),
         direction=general.choice("direction", [1, -1], required=False, default=1),
-        n_groups=general.get("groups", kind="int", check=_positive),
+        n_groups=general.get("groups", kind="int", check=positive),
         task_class=task_class,
         grid=general.get("grid", kind="int", required=False, default=360,
                          check=lambda v: None if 8 <= v <= MAX_GRID else
                          Message("rule.in_range", {"range": f"[8, {MAX_GRID}]"})),
         accuracy=general.get("accuracy", kind="number", required=False, default=None,
-                             check=_positive),
+                             check=positive),
         objective=general.choice("objective", ["lexicographic", "weighted"], required=False,
                                  default="lexicographic"),
         p2_weight=general.get("p2_weight", kind="number", required=False, default=1.0,
-                              check=_positive),
+                              check=positive),
         output=general.choice("output", OUTPUT_QUANTITIES, required=False, default="angle"))
     if general.has("output") and task_class in (2, 3, 4):
         top.reader.problem("general 'output'", "problem.output_class", task_class=task_class)
@@ -419,7 +423,7 @@ def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> C
         number = row.get("K", kind="int", required=False, default=n)
         if number is not MISSING and number != n:
             reader.problem(f"{row.location} 'K'", "problem.control_numbering", expected=n)
-        e = row.get("E", kind="number", required=False, default=1.0, check=_positive)
+        e = row.get("E", kind="number", required=False, default=1.0, check=positive)
         weight[n] = e if e is not MISSING else np.nan
         if task_class in (1, 2, 4):
             phi[n] = _deg(row.get("phi", kind="number"))
@@ -500,7 +504,7 @@ def _read_allowable(top: Node, groups: dict[GroupKey, Any]
         limits = {}
         if turns is not None:
             for joint in turns.mapping:
-                value = turns.get(joint, kind="number", check=_positive)
+                value = turns.get(joint, kind="number", check=positive)
                 if value is not MISSING:
                     limits[str(joint)] = math.radians(value)
         box = _read_box(row)

@@ -44,6 +44,7 @@ __all__ = [
     "lookalike_letters",
     "normalise_id",
     "number_problem",
+    "positive",
     "table_kind",
 ]
 
@@ -53,7 +54,7 @@ MAX_BYTES = 1_000_000
 MAX_DEPTH = 32
 #: Magnitude of the largest number a table may hold (mm, degrees, weights, counts).
 LARGEST = 1e9
-#: Magnitude of the smallest number other than 0 a table may hold.
+#: The smallest size (length, mass, tolerance) a table may hold.
 SMALLEST = 1e-12
 
 #: The kinds of table the program reads: name → (the command that reads it, the top-level
@@ -163,11 +164,11 @@ def _latin(text: str) -> str:
 
 
 def is_number(value: Any) -> bool:
-    """Whether ``value`` is a number a table may hold: finite, at most :data:`LARGEST` and,
-    unless 0, at least :data:`SMALLEST` in magnitude.
+    """Whether ``value`` is a number a table may hold: finite and at most :data:`LARGEST` in
+    magnitude (a size must also pass :func:`positive`).
 
     >>> [is_number(v) for v in (0, 2.5, -40, 1e308, 5e-324, float("nan"), True, "1")]
-    [True, True, True, False, False, False, False, False]
+    [True, True, True, False, True, False, False, False]
     """
     return number_problem(value) is None
 
@@ -179,9 +180,19 @@ def number_problem(value: Any) -> Message | None:
         return Message("value.kind.number")
     if isinstance(value, float) and not math.isfinite(value):
         return Message("value.kind.number")
-    if abs(value) > LARGEST or 0 < abs(value) < SMALLEST:
+    if abs(value) > LARGEST:
         return Message("rule.number_size", {"low": SMALLEST, "high": LARGEST})
     return None
+
+
+def positive(value: float) -> Message | None:
+    """The rule of a size (a length, a mass, a tolerance): at least :data:`SMALLEST`, so that
+    a value such as 5e-324 is not taken for a size.
+
+    >>> positive(2.5) is None, positive(5e-324).text("en")
+    (True, 'must be positive, at least 1e-12')
+    """
+    return None if value >= SMALLEST else Message("rule.positive_size", {"low": SMALLEST})
 
 
 def table_kind(data: Any) -> str | None:

@@ -12,7 +12,7 @@ import math
 import os
 from typing import Any
 
-from assur.io.reader import TableReader, is_number
+from assur.io.reader import TableReader, is_number, positive
 from assur.text import Message
 from synthesis.cases.tracker.design import PATENT_TASK, DesignTask
 
@@ -58,7 +58,7 @@ def _in_range(name: str) -> Any:
 
     def check(value: float) -> Message | None:
         inside = low <= value < high if name in ("min_transmission_deg", "min_clearance_mm") \
-            else low < value < high
+            else low < value < high and (high < math.inf or positive(value) is None)
         return None if inside else rule
     return check
 

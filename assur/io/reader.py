@@ -189,10 +189,13 @@ def positive(value: float) -> Message | None:
     """The rule of a size (a length, a mass, a tolerance): at least :data:`SMALLEST`, so that
     a value such as 5e-324 is not taken for a size.
 
-    >>> positive(2.5) is None, positive(5e-324).text("en")
-    (True, 'must be positive, at least 1e-12')
+    >>> positive(2.5) is None, positive(-1).text("en"), positive(5e-324).text("en")
+    (True, 'must be positive', 'must be positive, at least 1e-12')
     """
-    return None if value >= SMALLEST else Message("rule.positive_size", {"low": SMALLEST})
+    if value >= SMALLEST:
+        return None
+    return Message("rule.positive_size", {"low": SMALLEST}) if value > 0 else \
+        Message("rule.positive")
 
 
 def table_kind(data: Any) -> str | None:

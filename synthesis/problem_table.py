@@ -47,6 +47,7 @@ from assur.io.reader import (
     positive,
 )
 from assur.text import Message
+from synthesis.force_conditions import read_force_conditions
 from synthesis.problem import (
     DEFAULT_PRESSURE_ANGLE,
     OUTPUT_QUANTITIES,
@@ -59,7 +60,6 @@ from synthesis.problem import (
     output_slider,
     row_key,
 )
-from synthesis.force_conditions import read_force_conditions
 from synthesis.search import setting_problem
 
 __all__ = ["read_problem", "read_problem_data"]

@@ -24,6 +24,7 @@ Examples
 
 from __future__ import annotations
 
+import cmath
 import math
 import os
 from dataclasses import dataclass
@@ -36,9 +37,17 @@ import assur
 import assur.kinematics.model
 import assur.model
 from assur import AssurError, KinematicModel, TableError
-from assur.io.reader import MISSING, Node, TableReader
+from assur.io.reader import (
+    MISSING,
+    Node,
+    TableReader,
+    describe,
+    is_number,
+    normalise_id,
+    positive,
+)
 from assur.text import Message
-from assur.io.reader import normalise_id
+from synthesis.force_conditions import read_force_conditions
 from synthesis.problem import (
     DEFAULT_PRESSURE_ANGLE,
     OUTPUT_QUANTITIES,
@@ -51,7 +60,6 @@ from synthesis.problem import (
     output_slider,
     row_key,
 )
-from synthesis.force_conditions import read_force_conditions
 from synthesis.search import setting_problem
 
 __all__ = ["read_problem", "read_problem_data"]
@@ -72,11 +80,13 @@ _POINT_COLUMNS = {
 #: Locations whose problems leave no mechanism to build.
 _STRUCTURE = ("mechanism", "structure_identification", "parameters", "frame")
 Bounds = dict[tuple[GroupKey, str], tuple[float, float, float]]
+#: Most positions of the analysis grid over a crank turn.
+MAX_GRID = 20_000
 
 
 def read_problem(path: str | os.PathLike[str]) -> Problem:
     """The reader behind :func:`synthesis.problem.load_problem` (which see)."""
-    return _read(TableReader.from_path(path), Path(path).parent)
+    return _read(TableReader.from_path(path, kind="problem"), Path(path).parent)
 
 
 def read_problem_data(data: Any, source: str = "<data>",
@@ -115,16 +125,13 @@ class _Mechanism:
         return rows if isinstance(rows, list) else []
 
 
-def _positive(v: Any) -> Message | None:
-    return None if v > 0 else Message("rule.positive")
-
-
 def _read(reader: TableReader, base: Path) -> Problem:
     top = reader.root(allowed=_TOP)
     name = top.get("name", kind="str", required=False, default=None)
     general = _read_general(top)
     mechanism = _read_mechanism(reader, top, base)
-    groups = {row_key(row): row for row in mechanism.rows if isinstance(row, dict)}
+    groups = {row_key(row): row for row in mechanism.rows if _has_links(row)}
+    _check_links(reader, mechanism)
     if general.n_groups is not MISSING and mechanism.rows \
             and general.n_groups != len(mechanism.rows):
         reader.problem("general 'groups'", "problem.groups_count", rows=len(mechanism.rows),
@@ -143,12 +150,13 @@ def _read(reader: TableReader, base: Path) -> Problem:
     labels: dict[GroupKey, str] = {}
     if model is not None:
         labels = {(g.i,) if g.j is None else (g.i, g.j): g.label for g in model.groups}
+        _check_varied(reader, model, bounds, labels)
         parameters = _parameters(model, bounds)
         if not parameters:
             reader.problem("parameters", "problem.nothing_varied")
         _check_rotations(reader, model, {labels[k]: v for k, v in rotations.items()})
         if output.link is not MISSING:
-            _check_output(reader, model, output.link, general.task_class)
+            _check_output(reader, model, output, general.task_class)
     forces = read_force_conditions(top, model)
     reader.raise_if_any()
     if foreign is not None:
@@ -174,19 +182,19 @@ def _read_general(top: Node) -> _General:
         return _General()
     task_class = general.choice("task_class", [1, 2, 3, 4])
     out = _General(
-        n_points=general.get("control_points", kind="int", check=_positive),
+        n_points=general.get("control_points", kind="int", check=positive),
         direction=general.choice("direction", [1, -1], required=False, default=1),
-        n_groups=general.get("groups", kind="int", check=_positive),
+        n_groups=general.get("groups", kind="int", check=positive),
         task_class=task_class,
         grid=general.get("grid", kind="int", required=False, default=360,
-                         check=lambda v: None if v >= 8 else
-                         Message("rule.at_least", {"low": 8})),
+                         check=lambda v: None if 8 <= v <= MAX_GRID else
+                         Message("rule.in_range", {"range": f"[8, {MAX_GRID}]"})),
         accuracy=general.get("accuracy", kind="number", required=False, default=None,
-                             check=_positive),
+                             check=positive),
         objective=general.choice("objective", ["lexicographic", "weighted"], required=False,
                                  default="lexicographic"),
         p2_weight=general.get("p2_weight", kind="number", required=False, default=1.0,
-                              check=_positive),
+                              check=positive),
         output=general.choice("output", OUTPUT_QUANTITIES, required=False, default="angle"))
     if general.has("output") and task_class in (2, 3, 4):
         top.reader.problem("general 'output'", "problem.output_class", task_class=task_class)
@@ -224,6 +232,8 @@ def _read_mechanism(reader: TableReader, top: Node, base: Path) -> _Mechanism:
         frame = top.get("frame", kind="id", required=False, default=0)
         if rows is MISSING:
             return here
+        if not rows:
+            reader.problem("structure_identification", "chain.no_rows")
         return _Mechanism({"frame": frame, "structure_identification": rows}, reader.source)
     path = top.get("mechanism", kind="str", required=False, default=None)
     if path is None:
@@ -233,7 +243,7 @@ def _read_mechanism(reader: TableReader, top: Node, base: Path) -> _Mechanism:
         return here
     target = base / path
     try:
-        inner = TableReader.from_path(target)
+        inner = TableReader.from_path(target, kind="chain")
     except TableError as exc:
         # the file named by this table's 'mechanism' field cannot be read: a problem of
         # that field, told in the words of the file reader
@@ -242,7 +252,8 @@ def _read_mechanism(reader: TableReader, top: Node, base: Path) -> _Mechanism:
                            problem=issue.message)
         return here
     data = inner.data
-    if not isinstance(data, dict) or not isinstance(data.get("structure_identification"), list):
+    if not isinstance(data, dict) or not isinstance(data.get("structure_identification"), list) \
+            or not data["structure_identification"]:
         reader.problem("mechanism", "problem.mechanism_no_rows", file=str(target))
         return here
     keep = ("frame", "structure_identification", "name", "mechanism")
@@ -253,6 +264,10 @@ def _read_mechanism(reader: TableReader, top: Node, base: Path) -> _Mechanism:
 def _group_of(row: Node, groups: dict[GroupKey, Any]) -> GroupKey | None:
     links = row.get("links", kind="list")
     if links is MISSING:
+        return None
+    if not all(isinstance(v, (int, str)) and not isinstance(v, bool) for v in links):
+        row.reader.problem(f"{row.location} 'links'", "table.wrong_kind",
+                           expected=Message("value.kind.id_list"), found=describe(links))
         return None
     key = tuple(normalise_id(v) for v in links)
     if groups and key not in groups:
@@ -286,7 +301,7 @@ def _merge_parameters(top: Node, mechanism: _Mechanism, groups: dict[GroupKey, A
     bounds: Bounds = {}
     rows: list[Any] = []
     for index, row in enumerate(mechanism.rows):
-        if not isinstance(row, dict):
+        if not _has_links(row):
             rows.append(row)
             continue
         key = row_key(row)
@@ -301,10 +316,10 @@ def _merge_parameters(top: Node, mechanism: _Mechanism, groups: dict[GroupKey, A
         params = {}
         for column, (value, location) in merged.items():
             params[column] = _cell(reader, value, location, key, column, bounds)
-        if row.get("L") == 0 and direction in (1, -1):
-            if params.setdefault("s", direction) != direction:
-                reader.problem("general 'direction'", "problem.direction_mismatch",
-                               s=params["s"], found=direction)
+        if row.get("L") == 0 and direction in (1, -1) \
+                and params.setdefault("s", direction) != direction:
+            reader.problem("general 'direction'", "problem.direction_mismatch",
+                           s=params["s"], found=direction)
         rows.append({**row, "params": params})
     return rows, bounds
 
@@ -315,7 +330,7 @@ def _cell(reader: TableReader, value: Any, location: str, key: GroupKey, column:
     and its bounds recorded.  Other values go to the kinematic model unchanged."""
     if column == "tracing" or not isinstance(value, list):
         return value
-    if len(value) != 3 or not all(map(_is_number, value)):
+    if len(value) != 3 or not all(map(is_number, value)):
         reader.problem(location, "problem.cell", found=value)
         return value
     initial, lower, upper = (float(v) for v in value)
@@ -326,6 +341,23 @@ def _cell(reader: TableReader, value: Any, location: str, key: GroupKey, column:
     else:
         bounds[key, column] = (initial, lower, upper)
     return value[0]
+
+
+def _check_varied(reader: TableReader, model: KinematicModel, bounds: Bounds,
+                  labels: dict[GroupKey, str]) -> None:
+    """A varied column must change the mechanism: a column of its group's kind, ``delta``, or
+    a column of a tracing point of that group (``l_Ж``/``beta_Ж`` with ``tracing:``)."""
+    traced = {(point.anchor.owner, column) for point in model.tracing
+              for column in (point.anchor.first, point.anchor.second)}
+    for (key, column), (_, lower, upper) in bounds.items():
+        label = labels.get(key)
+        if label is None or upper <= lower:
+            continue
+        kind = model.group(label).kind
+        columns = (*assur.kinematics.model.KIND_COLUMNS[kind], "delta")
+        if column not in columns and (label, column) not in traced:
+            reader.problem(f"parameters ({label}) {column!r}", "problem.varied_unused",
+                           column=column, group=label)
 
 
 def _parameters(model: KinematicModel, bounds: Bounds) -> tuple[Parameter, ...]:
@@ -391,7 +423,7 @@ def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> C
         number = row.get("K", kind="int", required=False, default=n)
         if number is not MISSING and number != n:
             reader.problem(f"{row.location} 'K'", "problem.control_numbering", expected=n)
-        e = row.get("E", kind="number", required=False, default=1.0, check=_positive)
+        e = row.get("E", kind="number", required=False, default=1.0, check=positive)
         weight[n] = e if e is not MISSING else np.nan
         if task_class in (1, 2, 4):
             phi[n] = _deg(row.get("phi", kind="number"))
@@ -412,6 +444,7 @@ def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> C
             value[n] = _num(row.get("S", kind="number"))
         elif task_class in (3, 4):
             point[n] = complex(_num(row.get("x", kind="number")), _num(row.get("y", kind="number")))
+    _check_repeated_angles(reader, rows, phi, value, point, lo, hi)
     if 0 < zone_rows < k:
         reader.problem("control_points", "problem.zone_mixed", lo=lo_col, hi=hi_col,
                        zone=zone_rows, rows=k)
@@ -423,6 +456,31 @@ def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> C
     zone = task_class == 1 and zone_rows == k and k > 0
     return ControlPoints(phi=phi, value=value, point=point, weight=weight,
                          lower=lo if zone else None, upper=hi if zone else None)
+
+
+def _check_repeated_angles(reader: TableReader, rows: list[Node], phi: np.ndarray,
+                           *targets: np.ndarray) -> None:
+    """Two control rows at the same crank angle (modulo 360°) must ask for the same target."""
+    first: dict[float, int] = {}
+    for n, angle in enumerate(phi):
+        if not math.isfinite(angle):
+            continue
+        turn = round(math.degrees(angle) % 360.0, 9) % 360.0
+        if turn not in first:
+            first[turn] = n
+            continue
+        m = first[turn]
+        if any(not _same(target[m], target[n]) for target in targets):
+            reader.problem(f"{rows[n].location} 'phi'", "problem.control_angle_twice",
+                           phi=_shown(math.degrees(angle)), other=rows[m].location)
+
+
+def _same(a: complex, b: complex) -> bool:
+    return a == b or (cmath.isnan(a) and cmath.isnan(b))  # equal, or both absent (NaN)
+
+
+def _shown(value: float) -> float | int:
+    return int(value) if float(value).is_integer() else value
 
 
 def _read_allowable(top: Node, groups: dict[GroupKey, Any]
@@ -446,7 +504,7 @@ def _read_allowable(top: Node, groups: dict[GroupKey, Any]
         limits = {}
         if turns is not None:
             for joint in turns.mapping:
-                value = turns.get(joint, kind="number", check=_positive)
+                value = turns.get(joint, kind="number", check=positive)
                 if value is not MISSING:
                     limits[str(joint)] = math.radians(value)
         box = _read_box(row)
@@ -470,7 +528,7 @@ def _read_box(row: Node) -> tuple[float, float, float, float] | None:
         value = node.get(axis, kind="list")
         if value is MISSING:
             return None
-        if len(value) != 2 or not all(map(_is_number, value)) or value[0] >= value[1]:
+        if len(value) != 2 or not all(map(is_number, value)) or value[0] >= value[1]:
             row.reader.problem(f"{node.location} {axis!r}", "problem.box", found=value)
             return None
         out.extend(float(v) for v in value)
@@ -489,13 +547,24 @@ def _check_rotations(reader: TableReader, model: KinematicModel,
                                joint=role, group=label, joints=", ".join(joints) or "—")
 
 
-def _check_output(reader: TableReader, model: KinematicModel, link: assur.model.LinkId,
+def _check_output(reader: TableReader, model: KinematicModel, output: Output,
                   task_class: Any) -> None:
-    """The output link moves; in task class 2 it slides in a prismatic pair."""
+    """The output link moves; in task class 2 it slides in a prismatic pair; in classes 3
+    and 4 its point is a tracing point, or a point ``l_Ж``, ``beta_Ж`` of its group."""
+    link = output.link
     if link not in model.links:
         reader.problem("output 'link'", "problem.output_not_moving", link=link)
-    elif task_class == 2 and output_slider(model, link) is None:
+        return
+    if task_class == 2 and output_slider(model, link) is None:
         reader.problem("output 'link'", "problem.output_no_slider", link=link)
+    label = model.links[link][0]
+    named = {point.name for point in model.tracing}
+    carried = {name[len(f"{label}.l_"):] for name in model.params
+               if name.startswith(f"{label}.l_")
+               and f"{label}.beta_{name[len(f'{label}.l_'):]}" in model.params}
+    if isinstance(output.point, str) and output.point not in named | carried:
+        reader.problem("output 'point'", "problem.output_point_unknown", point=output.point,
+                       link=link, known=", ".join(sorted(named | carried)) or "—")
 
 
 def _read_search(top: Node) -> dict[str, Any]:
@@ -517,13 +586,28 @@ def _read_search(top: Node) -> dict[str, Any]:
     return out
 
 
-def _is_number(v: Any) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+def _check_links(reader: TableReader, mechanism: _Mechanism) -> None:
+    """The link ids of the identification rows, which key the problem's other tables."""
+    for index, row in enumerate(mechanism.rows):
+        if isinstance(row, dict) and not _has_links(row):
+            for key in ("i", "j"):
+                if not _has_links({key: row.get(key)}):
+                    reader.problem(f"{mechanism.prefix}structure_identification[{index}] "
+                                   f"{key!r}", "table.wrong_kind",
+                                   expected=Message("value.kind.id"), found=describe(row[key]))
+
+
+def _has_links(row: Any) -> bool:
+    """Whether an identification row names its links by ids (so that it has a key); the
+    rows' other problems are reported by :mod:`assur`."""
+    return isinstance(row, dict) and all(
+        isinstance(row.get(key), (int, str, type(None))) and not isinstance(row.get(key), bool)
+        for key in ("i", "j"))
 
 
 def _deg(v: Any) -> float:
-    return math.radians(v) if _is_number(v) else math.nan
+    return math.radians(v) if is_number(v) else math.nan
 
 
 def _num(v: Any) -> float:
-    return float(v) if _is_number(v) else math.nan
+    return float(v) if is_number(v) else math.nan

@@ -24,8 +24,8 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from assur.errors import TableError
-from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
 from assur.io.params import read_params
+from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
 from assur.io.sketch import Joints, actuator_pairs, read_sketch
 from assur.kinds import KINDS, kind_of
 from assur.model import (
@@ -93,7 +93,7 @@ def load_chain(path: str | os.PathLike[str]) -> Chain:
     >>> len(chain.links), len(chain.pairs)
     (4, 4)
     """
-    reader = TableReader.from_path(path)
+    reader = TableReader.from_path(path, kind="chain")
     return _read(reader)
 
 
@@ -169,6 +169,8 @@ def _read_chain_form(reader: TableReader) -> Chain:
     names: dict[LinkId, str] = {}
     links = _read_links(mech, names)
     raw_pairs, mentioned = _read_pairs(mech)
+    if mech.mapping.get("pairs") == []:
+        reader.problem("mechanism 'pairs'", "chain.no_pairs")
     known = set(links) if links is not None else None
     if links is None:
         links = [] if frame is MISSING else [frame]
@@ -178,7 +180,7 @@ def _read_chain_form(reader: TableReader) -> Chain:
                        links=_list(links))
     inputs = _read_inputs(mech)
     _check_pairs(reader, raw_pairs, set(links))
-    if known is not None or mentioned:  # no link is known when no pair row could be read
+    if known is not None or mentioned or not reader.issues:  # (no pair row could be read)
         _check_inputs(reader, inputs, set(links), raw_pairs, frame)
     joints = {pair.id: (pair.type.value, tuple(pair.links)) for pair in raw_pairs}
     geometry = _geometry(reader, top, mech, joints, links, frame, inputs)
@@ -241,7 +243,7 @@ def _read_links(mech: Node, names: dict[LinkId, str]) -> list[LinkId] | None:
 class _RawPair:
     """A pair as written by the user (a compound hinge may list more than two links)."""
 
-    __slots__ = ("id", "type", "links", "guide", "where")
+    __slots__ = ("guide", "id", "links", "type", "where")
 
     def __init__(self, pid: PairId, ptype: PairType, links: list[LinkId], guide: LinkId | None,
                  where: str) -> None:
@@ -448,7 +450,7 @@ def _read_rows(top: Node, *, required: bool) -> list[IdentificationRow]:
             clean[key] = row.get(key, kind="id", required=False, default=None, nullable=True)
         clean["seq"] = row.get("seq", kind="int", required=False, default=None, nullable=True)
         clean["variant"] = row.get("variant", kind="int", required=False, default=None,
-                                   nullable=True)
+                                   nullable=True, check=_variant_rule)
         code = row.get("out_code", required=False, default=None, nullable=True)
         clean["out_code"] = None if code is None else str(code)
         clean["params"] = row.get("params", kind="mapping", required=False, default=None)
@@ -557,6 +559,11 @@ def _group_params(rows: list[IdentificationRow]) -> dict[tuple[LinkId, ...], Gro
 
 
 # ------------------------------------------------------------------------------ helpers
+
+
+def _variant_rule(value: int) -> Message | None:
+    """An assembly variant is +1 or −1 (0 where the group has one assembly, ``method.md``)."""
+    return None if value in (-1, 0, 1) else Message("rule.variant")
 
 
 def _is_id(value: Any) -> bool:

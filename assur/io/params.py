@@ -22,10 +22,9 @@ earlier group); found 'long' (a text)"
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
-from assur.io.reader import Node, TableReader, describe, normalise_id
+from assur.io.reader import Node, TableReader, describe, is_number, normalise_id
 from assur.model import GroupParams
 from assur.text import Message
 
@@ -70,9 +69,9 @@ def read_params(source: str, label: str, data: Any) -> GroupParams:
         at = f"{where} {column!r}"
         if raw == SUPPLIED:
             supplied.add(str(column))
-        elif isinstance(raw, list) and len(raw) == 3 and all(_is_number(v) for v in raw):
+        elif isinstance(raw, list) and len(raw) == 3 and all(is_number(v) for v in raw):
             reader.problem(at, "model.range_in_problem", found=str(raw))
-        elif _is_number(raw):
+        elif is_number(raw):
             values[str(column)] = float(raw)
         else:
             reader.problem(at, "model.value", found=describe(raw))
@@ -89,6 +88,3 @@ def read_params(source: str, label: str, data: Any) -> GroupParams:
     return GroupParams(values, frozenset(supplied), s if s in (1, -1) else 1,
                        tuple(tracing), tuple(map(str, node.mapping)), tuple(reader.issues))
 
-
-def _is_number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)

@@ -19,6 +19,8 @@ from __future__ import annotations
 import difflib
 import math
 import os
+import re
+import stat
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 from typing import Any
@@ -29,12 +31,55 @@ from assur.errors import Issue, TableError
 from assur.text import Message
 
 __all__ = [
+    "LARGEST",
+    "MAX_BYTES",
+    "MAX_DEPTH",
     "MISSING",
+    "SMALLEST",
+    "TABLE_KINDS",
     "Node",
     "TableReader",
     "describe",
+    "is_number",
+    "lookalike_letters",
     "normalise_id",
+    "number_problem",
+    "positive",
+    "table_kind",
 ]
+
+#: Largest table file read (bytes); a bigger file is refused before it is parsed.
+MAX_BYTES = 1_000_000
+#: Deepest nesting of lists and mappings in a table; deeper is refused before parsing.
+MAX_DEPTH = 32
+#: Magnitude of the largest number a table may hold (mm, degrees, weights, counts).
+LARGEST = 1e9
+#: The smallest size (length, mass, tolerance) a table may hold.
+SMALLEST = 1e-12
+
+#: The kinds of table the program reads: name → (the command that reads it, the top-level
+#: keys that only a table of that kind has).  The first kind whose keys a file has is its
+#: kind; ``table.kind.<name>`` in the catalogue names it.
+TABLE_KINDS: dict[str, tuple[str, frozenset[str]]] = {
+    "problem": ("assur synthesize FILE",
+                frozenset({"control_points", "parameters", "allowable", "group_models",
+                           "search"})),
+    "tracker": ("assur case tracker --table FILE", frozenset({"design_task"})),
+    "impact": ("assur case impact --table FILE",
+               frozenset({"lengths_mm", "masses_kg", "inertias_kg_mm2", "clearance_mm",
+                          "omega4_rad_s"})),
+    "fourbar_velocity_ratio": ("assur case fourbar-velocity-ratio --table FILE",
+                               frozenset({"fourbar_velocity_ratio"})),
+    "chain": ("assur check FILE, assur analyze FILE",
+              frozenset({"mechanism", "structure_identification"})),
+}
+
+#: Cyrillic letters drawn like Latin ones → the Latin letter.
+_LOOK_ALIKES = dict(zip("аеорсухіјѕАВЕКМНОРСТХІЈЅ", "aeopcyxijsABEKMHOPCTXIJS"))
+_CYRILLIC = re.compile("[\u0400-\u04ff]")
+_LATIN = re.compile("[A-Za-z]")
+_RUSSIAN = re.compile("[А-яЁё]{2}")
+_DECIMAL_COMMA = re.compile(r"\s*[-+]?\d+,\d+\s*")
 
 
 class _Missing:
@@ -52,7 +97,7 @@ MISSING: Any = _Missing()
 #: Kind of a field → its test; ``value.kind.<kind>`` in the catalogue names the kind.
 _KINDS: dict[str, Callable[[Any], bool]] = {
     "number": lambda v: isinstance(v, (int, float)) and not isinstance(v, bool)
-    and math.isfinite(v),
+    and (not isinstance(v, float) or math.isfinite(v)),
     "int": lambda v: isinstance(v, int) and not isinstance(v, bool),
     "str": lambda v: isinstance(v, str),
     "id": lambda v: (isinstance(v, int) and not isinstance(v, bool))
@@ -67,10 +112,17 @@ _KINDS: dict[str, Callable[[Any], bool]] = {
 def describe(value: Any) -> Message:
     """Say briefly what a found value is, for error messages.
 
+    A text written with Cyrillic letters that look like Latin ones, and a number written with
+    a decimal comma, are named as such.
+
     >>> [describe(v).text("en") for v in ("abc", None, [1, 2], 2.5)]
     ["'abc' (a text)", 'nothing (null)', 'a list of 2 items', '2.5']
     >>> describe([1, 2]).text("ru")
     'список из 2 элементов'
+    >>> describe("Р").text("en")
+    "'Р' (a text typed with Cyrillic letters that look like Latin ones: Р)"
+    >>> describe("90,27").text("en")
+    "'90,27' (a number written with a decimal comma; write 90.27)"
     """
     if value is None:
         return Message("value.null")
@@ -79,12 +131,83 @@ def describe(value: Any) -> Message:
     if isinstance(value, (int, float)):
         return Message("value.number", {"value": value})
     if isinstance(value, str):
+        if _DECIMAL_COMMA.fullmatch(value):
+            return Message("value.decimal_comma", {"value": value,
+                                                   "fixed": value.strip().replace(",", ".")})
+        letters = lookalike_letters(value)
+        if letters:
+            return Message("value.text_lookalike", {"value": value, "letters": letters})
         return Message("value.text", {"value": value})
     if isinstance(value, list):
         return Message("value.list", {"n": len(value)})
     if isinstance(value, dict):
         return Message("value.mapping")
     return Message("value.other", {"type": type(value).__name__})
+
+
+def lookalike_letters(text: str) -> str:
+    """The Cyrillic letters of ``text`` that look like Latin ones, when the text is meant to
+    be Latin: it mixes them with Latin letters, or it has no other Cyrillic letter.
+
+    >>> lookalike_letters("pаirs"), lookalike_letters("Р"), lookalike_letters("шар")
+    ('а', 'Р', '')
+    """
+    found = "".join(dict.fromkeys(ch for ch in text if ch in _LOOK_ALIKES))
+    if not found:
+        return ""
+    others = [ch for ch in _CYRILLIC.findall(text) if ch not in _LOOK_ALIKES]
+    return found if _LATIN.search(text) or not others else ""
+
+
+def _latin(text: str) -> str:
+    return "".join(_LOOK_ALIKES.get(ch, ch) for ch in text)
+
+
+def is_number(value: Any) -> bool:
+    """Whether ``value`` is a number a table may hold: finite and at most :data:`LARGEST` in
+    magnitude (a size must also pass :func:`positive`).
+
+    >>> [is_number(v) for v in (0, 2.5, -40, 1e308, 5e-324, float("nan"), True, "1")]
+    [True, True, True, False, True, False, False, False]
+    """
+    return number_problem(value) is None
+
+
+def number_problem(value: Any) -> Message | None:
+    """What is wrong with ``value`` as a number of a table (None if nothing): the catalogue
+    message of the expected number, for a field read outside :meth:`Node.get`."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return Message("value.kind.number")
+    if isinstance(value, float) and not math.isfinite(value):
+        return Message("value.kind.number")
+    if abs(value) > LARGEST:
+        return Message("rule.number_size", {"low": SMALLEST, "high": LARGEST})
+    return None
+
+
+def positive(value: float) -> Message | None:
+    """The rule of a size (a length, a mass, a tolerance): at least :data:`SMALLEST`, so that
+    a value such as 5e-324 is not taken for a size.
+
+    >>> positive(2.5) is None, positive(-1).text("en"), positive(5e-324).text("en")
+    (True, 'must be positive', 'must be positive, at least 1e-12')
+    """
+    if value >= SMALLEST:
+        return None
+    return Message("rule.positive_size", {"low": SMALLEST}) if value > 0 else \
+        Message("rule.positive")
+
+
+def table_kind(data: Any) -> str | None:
+    """The kind of table ``data`` is (a name of :data:`TABLE_KINDS`), None if none fits.
+
+    >>> table_kind({"design_task": {}}), table_kind({"mechanism": {}}), table_kind([1])
+    ('tracker', 'chain', None)
+    """
+    if not isinstance(data, dict):
+        return None
+    keys = {key for key in data if isinstance(key, str)}
+    return next((name for name, (_, marks) in TABLE_KINDS.items() if keys & marks), None)
 
 
 def normalise_id(value: Any) -> Any:
@@ -115,34 +238,70 @@ class TableReader:
         self.issues: list[Issue] = []
 
     @classmethod
-    def from_path(cls, path: str | os.PathLike[str]) -> TableReader:
-        """Parse a YAML file; an unreadable file raises :class:`TableError` at once."""
+    def from_path(cls, path: str | os.PathLike[str], *, kind: str | None = None
+                  ) -> TableReader:
+        """Read and parse a YAML table file.
+
+        The file is refused before parsing when it is not a regular file, larger than
+        :data:`MAX_BYTES`, not UTF-8 text, or nested deeper than :data:`MAX_DEPTH`.
+
+        Parameters
+        ----------
+        path : path-like
+            The file.
+        kind : str, optional
+            The kind of table the caller reads (a name of :data:`TABLE_KINDS`): a file of
+            another kind is refused with the command that reads it.
+
+        Raises
+        ------
+        TableError
+            At once, with the one problem that stops the file from being read.
+        """
         path = Path(path)
         source = str(path)
         try:
-            text = path.read_text(encoding="utf-8")
-        except FileNotFoundError:
-            message = Message("table.file_missing")
-        except IsADirectoryError:
-            message = Message("table.file_is_folder")
-        except (OSError, UnicodeDecodeError) as exc:
-            message = Message("table.file_unreadable", {"error": str(exc)})
-        else:
+            message = _file_problem(path)
+            if message is None:
+                with path.open("rb") as stream:
+                    raw = stream.read(MAX_BYTES + 1)
+                message = _text_problem(raw)
+        except OSError as exc:
+            message = Message("table.file_unreadable", {"error": exc.strerror or str(exc)})
+        if message is None:
+            text = raw.decode("utf-8-sig")
             try:
-                return cls(yaml.safe_load(text), source)
+                message = _depth_problem(text)
+                if message is None:
+                    reader = cls(yaml.safe_load(text), source)
+                    if kind is not None:
+                        reader.expect(kind)
+                    return reader
             except yaml.YAMLError as exc:
-                mark = getattr(exc, "problem_mark", None)
-                problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
-                message = (Message("table.not_yaml_at", {"line": mark.line + 1,
-                                                         "column": mark.column + 1,
-                                                         "problem": problem})
-                           if mark else Message("table.not_yaml", {"problem": problem}))
+                message = _yaml_problem(exc)
         raise TableError(source, [Issue("", message)])
 
     @classmethod
     def from_data(cls, data: Any, source: str = "<data>") -> TableReader:
         """Wrap data that is already parsed (a dict from Python code or a test)."""
         return cls(data, source)
+
+    def expect(self, kind: str) -> None:
+        """Refuse, at once, a table of another kind than ``kind`` (a name of
+        :data:`TABLE_KINDS`), naming the command that reads it.
+
+        >>> TableReader.from_data({"design_task": {}}, "t.yaml").expect("chain")
+        Traceback (most recent call last):
+        ...
+        assur.errors.TableError: 1 problem in t.yaml:
+          - this is the design task of the tracker case, not a mechanism table; \
+run it with: assur case tracker --table FILE
+        """
+        found = table_kind(self.data)
+        if found is not None and found != kind:
+            raise TableError(self.source, [Issue("", Message("table.wrong_command", {
+                "found": Message(f"table.kind.{found}"), "expected": Message(f"table.kind.{kind}"),
+                "command": TABLE_KINDS[found][0]}))])
 
     def problem(self, location: str, code: str, /, **data: Any) -> None:
         """Record one problem: the catalogue code of its sentence and the values it shows.
@@ -185,10 +344,16 @@ class Node:
         self.mapping = mapping
         if allowed is not None:
             allowed = list(allowed)
-            for key in mapping:
+            for key, value in mapping.items():
                 if key not in allowed:
                     hint = difflib.get_close_matches(str(key), allowed, n=1, cutoff=0.6)
-                    if hint:
+                    letters = lookalike_letters(key) if isinstance(key, str) else ""
+                    if letters and _latin(key) in allowed:
+                        reader.problem(location, "table.unknown_key_lookalike", key=key,
+                                       letters=letters, hint=_latin(key))
+                    elif isinstance(key, int) and value is None:
+                        reader.problem(location, "table.decimal_comma_key", key=key)
+                    elif hint:
                         reader.problem(location, "table.unknown_key_hint", key=key, hint=hint[0])
                     else:
                         reader.problem(location, "table.unknown_key", key=key,
@@ -236,11 +401,16 @@ class Node:
         value = self.mapping[key]
         if value is None and nullable:
             return None
+        written = value
         if kind == "number" and isinstance(value, str):
             value = _parse_number(value)
         if not _KINDS[kind](value):
             self.reader.problem(self._where(key), "table.wrong_kind",
-                                expected=Message(f"value.kind.{kind}"), found=describe(value))
+                                expected=Message(f"value.kind.{kind}"), found=describe(written))
+            return MISSING
+        if kind in ("number", "int") and number_problem(value) is not None:
+            self.reader.problem(self._where(key), "table.rule_broken",
+                                rule=number_problem(value), found=describe(value))
             return MISSING
         if kind == "id":
             value = normalise_id(value)
@@ -259,11 +429,16 @@ class Node:
         value = self.get(key, required=required, default=default)
         if value is MISSING or (not required and value is default):
             return value
-        if value not in options:
+        if _hashable(value) and value in options:
+            return value
+        if isinstance(value, str) and _latin(value) in options and lookalike_letters(value):
+            letters = lookalike_letters(value)
+            self.reader.problem(self._where(key), "table.option_lookalike", value=value,
+                                letters=letters, hint=_latin(value))
+        else:
             self.reader.problem(self._where(key), "table.not_an_option",
                                 options=", ".join(repr(o) for o in options), found=describe(value))
-            return MISSING
-        return value
+        return MISSING
 
     def child(self, key: str, allowed: Iterable[str] | None = None, *,
               required: bool = True) -> Node | None:
@@ -296,3 +471,69 @@ def _parse_number(text: str) -> Any:
         return float(text)
     except ValueError:
         return text
+
+
+def _hashable(value: Any) -> bool:
+    return not isinstance(value, (list, dict, set))
+
+
+def _file_problem(path: Path) -> Message | None:
+    """Why ``path`` cannot be a table file (None if it can): missing, a folder, not a regular
+    file, or too large."""
+    try:
+        info = path.stat()
+    except FileNotFoundError:
+        return Message("table.file_missing")
+    if stat.S_ISDIR(info.st_mode):
+        return Message("table.file_is_folder")
+    if not stat.S_ISREG(info.st_mode):
+        return Message("table.file_special")
+    if info.st_size > MAX_BYTES:
+        return Message("table.too_large", {"limit": MAX_BYTES, "found": info.st_size})
+    return None
+
+
+def _text_problem(raw: bytes) -> Message | None:
+    """Why the bytes of a file are not a table's text (None if they are): too many, or not
+    UTF-8 (the likely encoding is named when the bytes decode as Windows-1251 Cyrillic)."""
+    if len(raw) > MAX_BYTES:
+        return Message("table.too_large", {"limit": MAX_BYTES, "found": len(raw)})
+    try:
+        raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = raw[:exc.start].count(b"\n") + 1
+        if raw.startswith((b"\xff\xfe", b"\xfe\xff")):
+            return Message("table.encoding_named", {"line": line, "encoding": "UTF-16"})
+        if _RUSSIAN.search(raw.decode("cp1251", errors="replace")):
+            return Message("table.encoding_named", {"line": line, "encoding": "Windows-1251"})
+        return Message("table.encoding", {"line": line, "byte": f"0x{raw[exc.start]:02X}"})
+    return None
+
+
+_OPENING = (yaml.BlockMappingStartToken, yaml.BlockSequenceStartToken,
+            yaml.FlowMappingStartToken, yaml.FlowSequenceStartToken)
+_CLOSING = (yaml.BlockEndToken, yaml.FlowMappingEndToken, yaml.FlowSequenceEndToken)
+
+
+def _depth_problem(text: str) -> Message | None:
+    """Nesting deeper than :data:`MAX_DEPTH`, found by the token scanner (which, unlike the
+    parser, does not recurse), before the text is parsed."""
+    depth = 0
+    for token in yaml.scan(text, Loader=yaml.SafeLoader):
+        if isinstance(token, _OPENING):
+            depth += 1
+            if depth > MAX_DEPTH:
+                return Message("table.too_deep", {"limit": MAX_DEPTH,
+                                                  "line": token.start_mark.line + 1})
+        elif isinstance(token, _CLOSING):
+            depth -= 1
+    return None
+
+
+def _yaml_problem(exc: yaml.YAMLError) -> Message:
+    mark = getattr(exc, "problem_mark", None)
+    problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
+    if mark is not None:
+        return Message("table.not_yaml_at", {"line": mark.line + 1, "column": mark.column + 1,
+                                             "problem": problem})
+    return Message("table.not_yaml", {"problem": problem})

@@ -31,7 +31,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import replace
 from typing import Any
 
-from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
+from assur.io.reader import MISSING, Node, TableReader, describe, is_number, normalise_id
 from assur.model import Chain, Direction, LinkId, PairId, Sketch, SketchTrace, joint_key
 from assur.text import Message
 
@@ -163,7 +163,7 @@ def _joint(reader: TableReader, key: PairId, value: Any, ptype: str,
             reader.problem(where, "sketch.needs_direction", joint=repr(key), a=a, b=b)
         return
     vector = _vector(direction)
-    if _is_number(direction):
+    if is_number(direction):
         angle = math.radians(direction)
         directions[key] = Direction(angle, complex(math.cos(angle), math.sin(angle)))
     elif vector is not None and vector != 0:
@@ -218,7 +218,7 @@ def _tracing(reader: TableReader, value: Any, moving: set[LinkId]) -> tuple[Sket
 def _margin(reader: TableReader, value: Any) -> float | dict[str, float] | None:
     if value is None:
         return None
-    if _is_number(value) and 0 <= value < 1:
+    if is_number(value) and 0 <= value < 1:
         return float(value)
     if not isinstance(value, dict):
         reader.problem("geometry 'margin'", "sketch.margin", found=describe(value))
@@ -233,12 +233,9 @@ def _margin(reader: TableReader, value: Any) -> float | dict[str, float] | None:
     return out
 
 
-def _is_number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
-
 
 def _vector(value: Any) -> complex | None:
-    if isinstance(value, list) and len(value) == 2 and all(_is_number(v) for v in value):
+    if isinstance(value, list) and len(value) == 2 and all(is_number(v) for v in value):
         return complex(value[0], value[1])
     return None
 

@@ -146,11 +146,11 @@ class Assessment:
 
 def is_problem(path: str | os.PathLike[str]) -> bool:
     """Whether a table file is a synthesis problem (it has the problem's own tables)."""
-    import yaml  # type: ignore[import-untyped]
+    from assur.io.reader import TableReader
 
     try:
-        data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, yaml.YAMLError):
+        data = TableReader.from_path(path).data
+    except AssurError:
         return False
     return isinstance(data, dict) and any(key in data for key in _SYNTHESIS_KEYS)
 

@@ -74,9 +74,9 @@ def read_request(data: dict[str, Any], source: str) -> tuple[Request, str]:
              "psi2_deg": _open_interval(0.0, 180.0, "ψ″")}
     if node is not None:
         for _, dest, _ in _FIELDS:
-            values[dest] = node.get(dest, kind="number", check=rules[dest],
-                                    required=dest in ("n_star", "psi1_deg"), default=None,
-                                    nullable=True)
+            needed = dest in ("n_star", "psi1_deg")
+            values[dest] = node.get(dest, kind="number", check=rules[dest], required=needed,
+                                    default=None, nullable=not needed)
         method = node.choice("method", METHODS, required=False, default="modern")
         optional = [values[k] for k in ("e", "delta", "psi2_deg")]
         given = [k for k, v in zip(("e", "delta", "psi2_deg"), optional)
@@ -99,7 +99,7 @@ def _gather(args: argparse.Namespace) -> tuple[dict[str, Any], str]:
     data: dict[str, Any] = {}
     source = "command line"
     if args.table:
-        reader = TableReader.from_path(args.table)
+        reader = TableReader.from_path(args.table, kind="fourbar_velocity_ratio")
         top = reader.root(allowed=[TABLE])
         table = top.get(TABLE, kind="mapping")
         reader.raise_if_any()

@@ -10,7 +10,7 @@ import math
 import os
 from typing import Any
 
-from assur.io.reader import TableReader, describe
+from assur.io.reader import TableReader, describe, positive
 from assur.text import Message
 from synthesis.cases.impact.data import ImpactData
 
@@ -18,10 +18,6 @@ __all__ = ["impact_data_from_dict", "impact_table_dict", "read_impact_table"]
 
 _TOP = ("schema_version", "lengths_mm", "masses_kg", "inertias_kg_mm2", "clearance_mm", "crank",
         "omega4_rad_s", "k", "mu", "sigma")
-
-
-def _positive(value: float) -> Message | None:
-    return None if value > 0 else Message("rule.positive")
 
 
 def _non_negative(value: float) -> Message | None:
@@ -34,7 +30,7 @@ def _unit_interval(value: float) -> Message | None:
 
 def read_impact_table(path: str | os.PathLike[str]) -> ImpactData:
     """Read the case's YAML table; raises :class:`assur.TableError` listing every problem."""
-    reader = TableReader.from_path(path)
+    reader = TableReader.from_path(path, kind="impact")
     return _read(reader)
 
 
@@ -51,16 +47,16 @@ def _read(reader: TableReader) -> ImpactData:
     lengths = top.child("lengths_mm", allowed=("r1", "r2", "r3", "r4"))
     if lengths is not None:
         for key in ("r1", "r2", "r3", "r4"):
-            values[key] = lengths.get(key, kind="number", check=_positive)
+            values[key] = lengths.get(key, kind="number", check=positive)
     masses = top.child("masses_kg", allowed=("m2", "m3", "m4"))
     if masses is not None:
         for key in ("m2", "m3", "m4"):
-            values[key] = masses.get(key, kind="number", check=_positive)
+            values[key] = masses.get(key, kind="number", check=positive)
     inertias = top.child("inertias_kg_mm2", allowed=("I_O2", "I3", "I4"))
     if inertias is not None:
         for key, name in (("I_O2", "inertia_o2"), ("I3", "inertia3"), ("I4", "inertia4")):
-            values[name] = inertias.get(key, kind="number", check=_positive)
-    values["clearance"] = top.get("clearance_mm", kind="number", check=_positive)
+            values[name] = inertias.get(key, kind="number", check=positive)
+    values["clearance"] = top.get("clearance_mm", kind="number", check=positive)
     crank = top.child("crank", allowed=("theta2_deg", "omega2_rad_s"))
     if crank is not None:
         values["theta2"] = crank.get("theta2_deg", kind="number")

@@ -12,7 +12,7 @@ import math
 import os
 from typing import Any
 
-from assur.io.reader import TableReader
+from assur.io.reader import TableReader, is_number, positive
 from assur.text import Message
 from synthesis.cases.tracker.design import PATENT_TASK, DesignTask
 
@@ -58,7 +58,7 @@ def _in_range(name: str) -> Any:
 
     def check(value: float) -> Message | None:
         inside = low <= value < high if name in ("min_transmission_deg", "min_clearance_mm") \
-            else low < value < high
+            else low < value < high and (high < math.inf or positive(value) is None)
         return None if inside else rule
     return check
 
@@ -66,8 +66,7 @@ def _in_range(name: str) -> Any:
 def _ratios(value: list[Any]) -> Message | None:
     if not value:
         return Message("rule.list_not_empty")
-    if any(isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v)
-           for v in value):
+    if not all(is_number(v) for v in value):
         return Message("rule.list_numbers")
     if any(v <= 1.0 for v in value):
         return Message("rule.list_greater", {"low": 1})
@@ -127,7 +126,7 @@ def load_task(path: str | os.PathLike[str] | None = None,
     if path is None:
         return _read(TableReader.from_data({}, source="command line"), dict(overrides or {}),
                      required=False)
-    return _read(TableReader.from_path(path), dict(overrides or {}))
+    return _read(TableReader.from_path(path, kind="tracker"), dict(overrides or {}))
 
 
 def task_from_data(data: Any, source: str = "<data>",

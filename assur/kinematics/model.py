@@ -153,7 +153,8 @@ class GroupModel:
         """Kind and links for reports, e.g. ``'L1 RRR (2, 3)'``, ``'L0 input group (1)'``."""
         links = ", ".join(map(str, self.members))
         kind = self.group_kind
-        return f"{kind.code} {kind.pairs or kind.title('en')} ({links})"
+        title = kind.pairs or (kind.title("en") if kind.is_input else "")
+        return f"{kind.code} {title} ({links})" if title else f"{kind.code} ({links})"
 
     def column(self, name: str) -> str:
         """Full parameter name of one of this group's columns."""

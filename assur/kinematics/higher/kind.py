@@ -25,7 +25,7 @@ import cmath
 import math
 from collections import Counter
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -50,7 +50,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from assur.model import LinkId, PairId
     from assur.structure.classification import AssurGroup
 
-__all__ = ["HigherGroupSolution", "Layout", "shortfall_higher", "sketch_class_iv",
+__all__ = ["HigherGroupSolution", "Layout", "SketchMode", "shortfall_higher", "sketch_class_iv",
            "sketch_triad", "solve_class_iv", "solve_triad"]
 
 #: Link names of a triad (base, leashes in solving order) and of a class IV group.
@@ -103,10 +103,34 @@ class HigherGroupSolution:
     """
 
     follow: HigherSolution
+    group: HigherGroup
+    joints: dict[str, PairId]
     origin_i: Any
     angle_i: Any
     origin_j: None = None
     angle_j: None = None
+
+    def modes(self, design: int = 0) -> list[SketchMode]:
+        """Every real assembly mode at the sketch of one design, the drawn one marked.
+
+        The drawn mode is the one nearest the drawn joints; its angle is 0.
+        """
+        modes = self.follow.modes
+        index = (design,) if np.ndim(modes.count) else ()
+        count = int(modes.count[index])
+        sketch = {name: complex(np.reshape(np.asarray(z), -1)[design if np.ndim(z) else 0])
+                  for name, z in self.group.sketch.items()}
+        rows = []
+        for k in range(count):
+            points = {self.joints[name]: complex(modes.joints[name][index + (k,)])
+                      for name in sketch}
+            apart = max(abs(complex(modes.joints[name][index + (k,)]) - z)
+                        for name, z in sketch.items())
+            rows.append(SketchMode(float(modes.x[index + (k, self.group.eliminated)]), points,
+                                   float(modes.margin[index + (k,)]),
+                                   int(modes.det_sign[index + (k,)]), apart))
+        nearest = min(range(count), key=lambda k: rows[k].apart, default=None)
+        return [replace(row, drawn=k == nearest) for k, row in enumerate(rows)]
 
     @property
     def exists(self) -> np.ndarray:
@@ -122,6 +146,20 @@ class HigherGroupSolution:
     def reason(self) -> np.ndarray:
         """0, 7, 8 or 9 at each position."""
         return self.follow.reason
+
+
+@dataclass(frozen=True, slots=True)
+class SketchMode:
+    """One real assembly mode at the sketch: the angle θ of the eliminated link from the
+    drawing (rad), the internal joints by pair id, the margin, the sign of det J, the
+    largest distance of a joint from its drawn point, and whether it is the drawn mode."""
+
+    angle: float
+    joints: dict[PairId, complex]
+    margin: float
+    det_sign: int
+    apart: float
+    drawn: bool = False
 
 
 # ------------------------------------------------------------------------- sketch rules
@@ -243,20 +281,23 @@ def _drawn(state: _State, group: GroupModel, pid: PairId) -> Any:
 
 
 def _follow(state: _State, group: GroupModel, q: Any, make: Callable[[Any], HigherGroup],
-            inputs: Callable[[_State], Any]) -> tuple[HigherSolution, Any]:
-    """Follow the group's drawn mode over q; also its inputs at the reference position."""
+            inputs: Callable[[_State], Any]) -> tuple[HigherSolution, Any, HigherGroup]:
+    """Follow the group's drawn mode over q; also its inputs at the reference position and
+    the group as solved."""
     known = state.earlier(group)
     k0 = values(inputs(known(np.zeros(state.flat_shape))))
     phi = np.asarray(J.value(q), dtype=float)
     delta = np.reshape(state.delta(group), -1) if np.ndim(state.delta(group)) \
         else state.delta(group)
-    follow = follow_mode(make(k0), lambda angle: inputs(known(angle)), phi,
+    solved = make(k0)
+    follow = follow_mode(solved, lambda angle: inputs(known(angle)), phi,
                          analogs=isinstance(q, Jet), delta=delta)
-    return follow, k0
+    return follow, k0, solved
 
 
-def _record(state: _State, group: GroupModel, follow: HigherSolution,
-            frames: dict[str, tuple[Any, float]]) -> HigherGroupSolution:
+def _record(state: _State, group: GroupModel, follow: HigherSolution, solved: HigherGroup,
+            joints: dict[str, PairId], frames: dict[str, tuple[Any, float]]
+            ) -> HigherGroupSolution:
     """Write the link frames into the state (origin, angle at the sketch + rotation)."""
     layout = group.layout
     assert layout is not None
@@ -264,7 +305,7 @@ def _record(state: _State, group: GroupModel, follow: HigherSolution,
         origin, angle0 = frames[name]
         state.frames[link] = (origin, follow.rotations[name] + angle0)
     first = state.frames[layout.links[0]]
-    return HigherGroupSolution(follow, first[0], first[1])
+    return HigherGroupSolution(follow, solved, joints, first[0], first[1])
 
 
 def _triad_inputs(group: GroupModel) -> Callable[[_State], TriadInputs]:
@@ -307,7 +348,7 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
                      (guide(k0, 0, layout.leashes[0]), guide(k0, 1, layout.leashes[1]),
                       guide(k0, 2, layout.leashes[2])))
 
-    follow, k0 = _follow(state, group, q, make, _triad_inputs(group))
+    follow, k0, solved = _follow(state, group, q, make, _triad_inputs(group))
     theta = follow.rotations["base"]
     frames: dict[str, tuple[Any, float]] = {
         "base": (follow.joints["P1"], _phase(base[1] - base[0]))}
@@ -338,7 +379,9 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
             state.slider(inner, carrier, slider, hinge, J.dot(hinge - line, J.expi(angle)), line,
                          angle, 0.0)
             frames[name] = (hinge, angle0)
-    return _record(state, group, follow, frames)
+    joints = {f"P{i + 1}": (ext if kind == "PR" else inner) for i, (kind, inner, ext) in
+              enumerate(zip(layout.leashes, layout.internal, layout.external, strict=True))}
+    return _record(state, group, follow, solved, joints, frames)
 
 
 def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution:
@@ -356,7 +399,7 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
     def make(k0: ClassIVInputs) -> ClassIV:
         return ClassIV(k0.h_a, pts["C"], pts["F"], k0.h_c, pts["D"], pts["E"])
 
-    follow, k0 = _follow(state, group, q, make, inputs)
+    follow, k0, solved = _follow(state, group, q, make, inputs)
     h_a, h_c = state.point(anchor_a), state.point(anchor_c)
     state.joints.update({layout.external[0]: h_a, layout.external[1]: h_c})
     state.joints.update({pid: follow.joints[name]
@@ -365,7 +408,8 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
     frames: dict[str, tuple[Any, float]] = {
         "a": (h_a, _phase(pts["C"] - k0.h_a)), "b": (j["C"], _phase(pts["D"] - pts["C"])),
         "c": (h_c, _phase(pts["D"] - k0.h_c)), "d": (j["F"], _phase(pts["E"] - pts["F"]))}
-    return _record(state, group, follow, frames)
+    return _record(state, group, follow, solved,
+                   dict(zip(CLASS_IV_JOINTS, layout.internal, strict=True)), frames)
 
 
 def _col(z: Any) -> Any:

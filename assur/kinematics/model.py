@@ -151,7 +151,8 @@ class GroupModel:
     @property
     def name(self) -> str:
         """Kind and links for reports, e.g. ``'L1 RRR (2, 3)'``, ``'L0 input group (1)'``."""
-        links = ", ".join(map(str, self.members))
+        members = list(self.members)
+        links = ", ".join(map(str, members if self.layout is None else sorted(members, key=str)))
         kind = self.group_kind
         title = kind.pairs or (kind.title("en") if kind.is_input else "")
         return f"{kind.code} {title} ({links})" if title else f"{kind.code} ({links})"

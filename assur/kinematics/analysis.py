@@ -23,12 +23,12 @@ from typing import Any
 
 import numpy as np
 
+from assur.kinds import given
 from assur.kinematics import jets as J
 from assur.kinematics.dyads import DyadSolution, Value
 from assur.kinematics.higher.kind import HigherGroupSolution
 from assur.kinematics.jets import Jet
 from assur.kinematics.model import Anchor, GroupModel, Guide, KinematicModel
-from assur.kinds import given
 from assur.model import LinkId, PairId
 
 #: What the analysis keeps of a group: a dyad's closed-form solution, or the followed mode

@@ -463,7 +463,8 @@ def _sketch_group(topo: _Topology, build: _Builder, group: AssurGroup, seq: int)
     layout = made.layout
     first = group.i if layout is None else layout.links[0]
     assert first is not None
-    model = GroupModel(label, kind.code if kind.number is None else kind.number, seq, first,
+    key: int | str = kind.code if kind.number is None else kind.number
+    model = GroupModel(label, key, seq, first,
                        group.j, made.sigma, made.hinge_i, made.hinge_j, made.guide_i,
                        made.guide_j, pairs=_roles(topo, group, layout), driven=made.driven,
                        composite=tuple(group.composite or ()) if made.driven else (),

@@ -18,13 +18,13 @@ from typing import Any
 
 import numpy as np
 
+from assur.kinds import HIGHER, KINDS, _Shortfall
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import Motion, analyse
 from assur.kinematics.dyads import reason_text
 from assur.kinematics.higher.continuation import REASON_CODES
 from assur.kinematics.higher.kind import HigherGroupSolution
 from assur.kinematics.model import GroupModel, KinematicModel
-from assur.kinds import HIGHER, KINDS, _Shortfall
 from assur.text import render
 
 __all__ = [
@@ -39,8 +39,9 @@ __all__ = [
 
 #: Existence inequality of each kind, as printed in reports (``method.md`` §2.1–2.5; the
 #: triad and the class IV group by their codes, ``docs/higher_groups.md``).
-CONDITIONS: dict[int | str, str] = {key: kind.condition for key, kind in
-                                    (*KINDS.items(), *HIGHER.items())}
+CONDITIONS: dict[int | str, str] = {
+    **{number: kind.condition for number, kind in KINDS.items()},
+    **{code: kind.condition for code, kind in HIGHER.items()}}
 
 
 def reason_sentence(code: int, lang: str = "en") -> str:

@@ -41,8 +41,9 @@ __all__ = [
 #: Parameter columns of each group kind, in the fixed order of tables 2.1–2.6.
 #: Triads and class IV groups have no fixed columns: their parameters are named after their
 #: pairs (:mod:`assur.kinematics.higher.kind`).
-KIND_COLUMNS: Mapping[int | str, tuple[str, ...]] = {key: kind.columns for key, kind in
-                                                     (*KINDS.items(), *HIGHER.items())}
+KIND_COLUMNS: Mapping[int | str, tuple[str, ...]] = {
+    **{number: kind.columns for number, kind in KINDS.items()},
+    **{code: kind.columns for code, kind in HIGHER.items()}}
 
 
 
@@ -122,7 +123,7 @@ class GroupModel:
     """
 
     label: str
-    kind: int
+    kind: int | str
     seq: int
     i: LinkId
     j: LinkId | None

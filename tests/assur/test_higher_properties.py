@@ -21,8 +21,15 @@ import pytest
 
 from assur import solve_rrr
 from assur.kinematics import jets as J
-from assur.kinematics.higher import ClassIV, ClassIVInputs, Triad, TriadInputs
-from assur.kinematics.higher import assembly_modes, follow_mode
+from assur.kinematics.higher import (
+    ClassIV,
+    ClassIVInputs,
+    Leash,
+    Triad,
+    TriadInputs,
+    assembly_modes,
+    follow_mode,
+)
 
 DEG = np.pi / 180.0
 TWO_PI = 2 * np.pi
@@ -67,7 +74,8 @@ def random_triads(seed: int, d: int, last: str = "RR") -> Designs:
     a2, a3 = p2 + _polar(rng, d, 40, 70), p3 + _polar(rng, d, 40, 70)
     u3 = np.exp(2j * np.pi * rng.uniform(size=d)) if last == "RP" else None
     a3 = p3 if last == "RP" else a3
-    group = Triad(("RR", "RR", last), (p1, p2, p3), (a1, a2, a3), (None, None, u3))
+    third: Leash = "RP" if last == "RP" else "RR"
+    group = Triad(("RR", "RR", third), (p1, p2, p3), (a1, a2, a3), (None, None, u3))
     return Designs(group, a1, (a2, a3, u3))
 
 
@@ -113,7 +121,8 @@ def test_triad_links_stay_rigid_over_the_cycle(last: str) -> None:
         errors.append(np.abs(np.abs(p[2] - _col(designs.fixed[1]))
                              - np.abs(drawn[2] - _col(designs.fixed[1]))))
     else:
-        errors.append(np.abs(J.cross(_col(designs.fixed[2]), p[2] - _col(designs.fixed[1]))))
+        errors.append(np.abs(np.asarray(J.cross(_col(designs.fixed[2]),
+                                                p[2] - _col(designs.fixed[1])))))
     for error in errors:
         assert (error[ok] <= 1e-9 * size).all()
 

@@ -43,10 +43,10 @@ from assur.kinematics.higher.groups import (
 from assur.kinematics.jets import Jet
 
 if TYPE_CHECKING:  # pragma: no cover
+    from assur.kinds import Sketched
     from assur.kinematics.analysis import _State
     from assur.kinematics.build import _Builder
     from assur.kinematics.model import Anchor, GroupModel, Guide
-    from assur.kinds import Sketched
     from assur.model import LinkId, PairId
     from assur.structure.classification import AssurGroup
 
@@ -313,7 +313,8 @@ def _triad_inputs(group: GroupModel) -> Callable[[_State], TriadInputs]:
     assert layout is not None
 
     def inputs(known: _State) -> TriadInputs:
-        a, u = [], []
+        a: list[Any] = []
+        u: list[Any] = []
         for anchor, guide in zip(layout.anchors, layout.guides, strict=True):
             if guide is not None:
                 base, angle, _ = known.guide(guide)

@@ -24,8 +24,8 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")  # one core: no threaded BLAS anyw
 
 import numpy as np
 
-from assur import solve_input, solve_rrr
 from assur.kinematics import jets as J
+from assur.kinematics.dyads import solve_input, solve_rrr
 from assur.kinematics.higher import Triad, TriadInputs, follow_mode
 
 PIN = -17 - 0.5j

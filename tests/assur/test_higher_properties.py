@@ -19,8 +19,8 @@ from typing import Any
 import numpy as np
 import pytest
 
-from assur import solve_rrr
 from assur.kinematics import jets as J
+from assur.kinematics.dyads import solve_rrr
 from assur.kinematics.higher import (
     ClassIV,
     ClassIVInputs,

@@ -11,8 +11,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from assur import solve_rrr
 from assur.kinematics import jets as J
+from assur.kinematics.dyads import solve_rrr
 from assur.kinematics.higher import (
     ClassIV,
     ClassIVInputs,
@@ -44,8 +44,9 @@ def fourbar(o, a, b, c):
 
 # --- V1: eight-bar, four-bar driving an RRR triad ---------------------------------------------
 
-V1 = dict(O=0j, A=-23 + 9.5j, B=87 + 97.5j, C=101.5 - 6.5j, D=112.8 + 67.2j, E=169.5 + 57j,
-          F=174 + 92.5j, G=189.5 + 151j, H=127.5 + 52j, I=-4.9 + 124.9j)
+V1 = {"O": 0j, "A": -23 + 9.5j, "B": 87 + 97.5j, "C": 101.5 - 6.5j, "D": 112.8 + 67.2j,
+      "E": 169.5 + 57j, "F": 174 + 92.5j, "G": 189.5 + 151j, "H": 127.5 + 52j,
+      "I": -4.9 + 124.9j}
 V1_TRIAD = Triad(("RR", "RR", "RR"), (V1["E"], V1["F"], V1["H"]), (V1["D"], V1["G"], V1["I"]))
 
 
@@ -75,8 +76,8 @@ V1_CYCLE = {
 
 # --- V2: crank driving a class IV group -------------------------------------------------------
 
-V2 = dict(O=0j, B=-12.5 - 20j, C=57 + 66j, D=115 + 67j, E=87 + 118j, F=25.5 + 98.5j,
-          G=140.5 + 22j)
+V2 = {"O": 0j, "B": -12.5 - 20j, "C": 57 + 66j, "D": 115 + 67j, "E": 87 + 118j, "F": 25.5 + 98.5j,
+      "G": 140.5 + 22j}
 V2_GROUP = ClassIV(V2["B"], V2["C"], V2["F"], V2["G"], V2["D"], V2["E"])
 
 
@@ -111,7 +112,7 @@ V2_CYCLE = {
 
 # --- V3: crank driving a triad with one slider ------------------------------------------------
 
-V3 = dict(O=0j, B=-17 - 0.5j, C=77.5 + 30.5j, D=112 + 7.5j, E=81 + 31j, F=114 + 52j)
+V3 = {"O": 0j, "B": -17 - 0.5j, "C": 77.5 + 30.5j, "D": 112 + 7.5j, "E": 81 + 31j, "F": 114 + 52j}
 V3_TRIAD = Triad(("RR", "RR", "RP"), (V3["C"], V3["D"], V3["F"]), (V3["B"], V3["E"], V3["F"]),
                  (None, None, 1 + 0j))
 

@@ -36,7 +36,7 @@ TWO_PI = 2 * np.pi
 #: The full profile (``ASSUR_HIGHER_FULL=1``) or the quick one of the default run.
 FULL = os.environ.get("ASSUR_HIGHER_FULL") == "1"
 #: Designs per rigidity check, per mode-count seed (four seeds when full), per walk.
-RIGID, COUNTED, WALKED, DIFFERENCED = (60, 250, 20, 12) if FULL else (15, 150, 6, 6)
+RIGID, COUNTED, WALKED, DIFFERENCED = (60, 250, 20, 12) if FULL else (15, 150, 6, 8)
 #: Crank angles of the walk through all modes (0.1° apart when full, 0.2° quick).
 FINE = 3600 if FULL else 1800
 

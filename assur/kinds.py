@@ -498,9 +498,9 @@ KINDS: Mapping[int, GroupKind] = {
 #: order 2 (revolute pairs), solved by continuation of the drawn assembly mode
 #: (:mod:`assur.kinematics.higher`). No identification row names them (``docs/tables.md``).
 HIGHER: Mapping[str, GroupKind] = {
-    "III": GroupKind(None, "III", "", 3, condition="leash lines not concurrent (margin ≥ δ)",
+    "III": GroupKind(None, "III", "", 3, condition="m = |det R| / Π‖R_k‖ ≥ δ",
                      solve=solve_triad, sketch=sketch_triad, shortfall=shortfall_higher),
-    "IV": GroupKind(None, "IV", "", 4, condition="det J ≠ 0, no dead-centre position (margin ≥ δ)", solve=solve_class_iv,
+    "IV": GroupKind(None, "IV", "", 4, condition="m = |det R| / Π‖R_k‖ ≥ δ", solve=solve_class_iv,
                     sketch=sketch_class_iv, shortfall=shortfall_higher),
 }
 _BY_CLASS = {kind.group_class: kind for kind in HIGHER.values()}

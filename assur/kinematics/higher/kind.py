@@ -126,7 +126,8 @@ class HigherGroupSolution:
                       for name in sketch}
             apart = max(abs(complex(modes.joints[name][index + (k,)]) - z)
                         for name, z in sketch.items())
-            rows.append(SketchMode(float(modes.x[index + (k, self.group.eliminated)]), points,
+            angle = float(modes.x[index + (k, self.group.eliminated)])
+            rows.append(SketchMode(angle if abs(angle) > 1e-12 else 0.0, points,
                                    float(modes.margin[index + (k,)]),
                                    int(modes.det_sign[index + (k,)]), apart))
         nearest = min(range(count), key=lambda k: rows[k].apart, default=None)

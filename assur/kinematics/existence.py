@@ -47,6 +47,20 @@ CONDITIONS: dict[int | str, str] = {
 def reason_sentence(code: int, lang: str = "en") -> str:
     """Why a group does not assemble: the dyads' reasons 0–7 and the higher groups' 8, 9.
 
+    Parameters
+    ----------
+    code : int
+        The reason code of a solution.
+    lang : str
+        A catalogue language.
+
+    Returns
+    -------
+    str
+        The sentence.
+
+    Examples
+    --------
     >>> reason_sentence(8)
     'the assembly mode ends: it merges with another one (dead-centre position of the group)'
     """

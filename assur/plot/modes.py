@@ -113,6 +113,19 @@ def save_modes_png(motion: Motion, path: str | os.PathLike[str], index: int = 0,
                    lang: str = "en", dpi: int = 110) -> None:
     """Draw :func:`draw_modes` and write a PNG atomically.
 
+    Parameters
+    ----------
+    motion : Motion
+        One design analysed with the sketch position at ``index``.
+    path : str or path-like
+        The file to write (replaced atomically when it exists).
+    index : int
+        The sketch position.
+    lang : str
+        Language of the titles.
+    dpi : int
+        Dots per inch.
+
     Raises
     ------
     OSError

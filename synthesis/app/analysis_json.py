@@ -31,7 +31,18 @@ Record = dict[str, Any]
 def higher_item(sol: object) -> Record:
     """The keys a triad or class IV group adds to its group entry: no σ, and its assembly
     modes at the sketch (``mode``: how many, the sign of det J of the drawn one, every mode
-    with its angle in degrees, joints, margin and sign); nothing for a dyad."""
+    with its angle in degrees, joints, margin and sign); nothing for a dyad.
+
+    Parameters
+    ----------
+    sol : GroupSolution
+        A group's solution in the motion.
+
+    Returns
+    -------
+    dict
+        The keys to add to the group's entry.
+    """
     if not isinstance(sol, HigherGroupSolution):
         return {}
     modes = sol.modes()

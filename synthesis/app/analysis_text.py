@@ -110,7 +110,18 @@ def analysis_text(result: TableAnalysis, lang: str = "en") -> str:
 
 def modes_lines(result: TableAnalysis, lang: str) -> list[str]:
     """Every real assembly mode at the sketch of each triad and class IV group, the drawn
-    one marked, and what became of the drawn mode over the cycle."""
+    one marked, and what became of the drawn mode over the cycle.
+
+    Parameters
+    ----------
+    result : TableAnalysis
+    lang : str
+
+    Returns
+    -------
+    list of str
+        The report's lines (none for a mechanism of dyads only).
+    """
     lines: list[str] = []
     for label, sol in result.motion.solutions.items():
         if not isinstance(sol, HigherGroupSolution):

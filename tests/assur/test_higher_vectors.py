@@ -8,6 +8,8 @@ group's size (half a unit in the last printed digit is below 3e-10 of it).
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import pytest
 
@@ -137,7 +139,7 @@ V3_CYCLE = {
     330: [(80.79934052, 34.8814911), (112.3968107, 8.032843476), (119.5479747, 52)],
 }
 
-CASES = {
+CASES: dict[str, tuple[Any, ...]] = {
     "V1": (V1_TRIAD, v1_inputs, ["P1", "P2", "P3"], V1_MODES, V1_MARGINS, V1_CYCLE),
     "V2": (V2_GROUP, v2_inputs, ["C", "D", "E", "F"], V2_MODES, V2_MARGINS, V2_CYCLE),
     "V3": (V3_TRIAD, v3_inputs, ["P1", "P2", "P3"], V3_MODES, V3_MARGINS, V3_CYCLE),

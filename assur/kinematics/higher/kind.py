@@ -113,7 +113,16 @@ class HigherGroupSolution:
     def modes(self, design: int = 0) -> list[SketchMode]:
         """Every real assembly mode at the sketch of one design, the drawn one marked.
 
-        The drawn mode is the one nearest the drawn joints; its angle is 0.
+        Parameters
+        ----------
+        design : int
+            Which design (0 for a single one).
+
+        Returns
+        -------
+        list of SketchMode
+            Sorted by the angle of the eliminated link; the drawn mode is the one nearest the
+            drawn joints (its angle is 0 in a table's own design).
         """
         modes = self.follow.modes
         index = (design,) if np.ndim(modes.count) else ()
@@ -182,7 +191,24 @@ def _sketched(layout: Layout, frames: dict[LinkId, tuple[complex, float]]) -> Sk
 
 
 def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | None:
-    """The sketch rule of a triad: drawn internal points, external anchors, block guides."""
+    """The sketch rule of a triad: drawn internal points, external anchors, block guides.
+
+    Parameters
+    ----------
+    build : _Builder
+        The model being built from the sketch (parameters, frames, problems).
+    group : AssurGroup
+        The triad as structure found it.
+    label : str
+        Its label, the prefix of its parameters (``"III(4,5,6,7)"``).
+
+    Returns
+    -------
+    Sketched or None
+        Its :class:`Layout` and the frames of its links; None after recording a problem (a
+        leash with two sliders or none with two hinges, a block's guide on the block, an
+        actuator in the group).
+    """
     pairs = build.topo.pairs
     if group.composite:
         _problem(build, label, "actuator")
@@ -235,7 +261,23 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
 
 
 def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched | None:
-    """The sketch rule of the class IV group: drawn C, D, E, F and the anchors of H_a, H_c."""
+    """The sketch rule of the class IV group: drawn C, D, E, F and the anchors of H_a, H_c.
+
+    Parameters
+    ----------
+    build : _Builder
+        The model being built from the sketch.
+    group : AssurGroup
+        The group as structure found it.
+    label : str
+        Its label (``"IV(2,3,4,5)"``).
+
+    Returns
+    -------
+    Sketched or None
+        Its :class:`Layout` and link frames; None after recording a problem (a prismatic
+        pair or an actuator in the group).
+    """
     pairs = build.topo.pairs
     kinds = {pairs[pid].type.value for pid in (*group.internal, *(e[0] for e in group.external))}
     if group.composite:
@@ -331,7 +373,23 @@ def _triad_inputs(group: GroupModel) -> Callable[[_State], TriadInputs]:
 
 
 def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution:
-    """Follow a triad's drawn mode over the positions q (the registry's solver)."""
+    """Follow a triad's drawn mode over the positions q (the registry's solver).
+
+    Parameters
+    ----------
+    state : _State
+        The analysis so far: the earlier groups solved at q; the triad's joints, sliders and
+        link frames are written into it.
+    group : GroupModel
+        The triad's model (its :class:`Layout`).
+    q : ndarray or Jet
+        Crank rotations from the sketch (radians); a jet for the analogs.
+
+    Returns
+    -------
+    HigherGroupSolution
+        ``exists``, ``margin``, ``reason`` over q, the followed mode and the modes at the sketch.
+    """
     layout = group.layout
     assert layout is not None
     base = [_drawn(state, group, pid) for pid in layout.internal]
@@ -387,7 +445,22 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
 
 
 def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution:
-    """Follow a class IV group's drawn mode over the positions q (the registry's solver)."""
+    """Follow a class IV group's drawn mode over the positions q (the registry's solver).
+
+    Parameters
+    ----------
+    state : _State
+        The analysis so far; the group's joints and link frames are written into it.
+    group : GroupModel
+        The group's model (its :class:`Layout`).
+    q : ndarray or Jet
+        Crank rotations from the sketch (radians); a jet for the analogs.
+
+    Returns
+    -------
+    HigherGroupSolution
+        As :func:`solve_triad`.
+    """
     layout = group.layout
     assert layout is not None
     anchor_a, anchor_c = layout.anchors
@@ -432,5 +505,19 @@ def shortfall_higher(group: GroupModel, at: Any) -> tuple[float, str]:
 
     In a gap (margin < 0) the margin is −|Im θ| of the nearest complex root: that angle in
     degrees; inside the tolerance band (0 ≤ margin < δ) the shortfall is 0.
+
+    Parameters
+    ----------
+    group : GroupModel
+        The group (unused: the rule is the same for both kinds).
+    at : _Shortfall
+        What the existence check reads at the worst position.
+
+    Returns
+    -------
+    shortfall : float
+        Degrees.
+    unit : str
+        ``"deg"``.
     """
     return float(math.degrees(max(-at.margin, 0.0))), "deg"

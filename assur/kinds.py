@@ -9,8 +9,8 @@ shortfall, pressure angle). Structure, identification, kinematics, existence, tr
 schemes and reports look a kind up here; none of them tests ``kind == …``.
 
 The registry :data:`KINDS` maps the DGTU number L (0 for the input group, 1–5 for the dyads)
-to its record; :data:`STRUCTURAL` adds the kinds that structure knows but kinematics does not
-solve yet (the class III triad and the class IV group of order 2).
+to its record; :data:`HIGHER` adds, by code, the class III triad and the class IV group of
+order 2 (their rules live in :mod:`assur.kinematics.higher.kind`).
 
 Adding a kind is one :class:`GroupKind` entry. Adding a per-kind computation is one field of
 :class:`GroupKind` and one function per kind, named ``_<computation>_<kind>`` below, given to
@@ -41,6 +41,15 @@ from assur.forces import groups as statics
 from assur.kinematics import dyads
 from assur.kinematics import jets as J
 from assur.kinematics.dyads import Value
+from assur.kinematics.higher.kind import (
+    HigherGroupSolution,
+    Layout,
+    shortfall_higher,
+    sketch_class_iv,
+    sketch_triad,
+    solve_class_iv,
+    solve_triad,
+)
 from assur.model import joint_key
 from assur.text import render
 
@@ -54,11 +63,12 @@ if TYPE_CHECKING:  # pragma: no cover
     from assur.structure.classification import AssurGroup
 
 __all__ = [
+    "HIGHER",
     "KINDS",
-    "STRUCTURAL",
     "GroupKind",
     "Sketched",
     "kind_of",
+    "kind_of_class",
     "kind_of_pattern",
 ]
 
@@ -76,6 +86,8 @@ class Sketched:
     """What a kind's sketch builder derives from the joints of a sketch.
 
     ``frame_i``/``frame_j`` are the link frames (origin, angle) at the reference position.
+    A triad or class IV group gives its :class:`~assur.kinematics.higher.kind.Layout` and the
+    frames of all its links in ``frames``.
     """
 
     sigma: int
@@ -86,6 +98,8 @@ class Sketched:
     guide_i: Guide | None = None
     guide_j: Guide | None = None
     driven: str | None = None
+    layout: Layout | None = None
+    frames: Mapping[LinkId, tuple[complex, float]] = field(default_factory=dict)
 
 
 @dataclass(frozen=True, slots=True)
@@ -155,9 +169,8 @@ class GroupKind:
     condition: str = "—"
     row_pairs: tuple[RowPair, RowPair, RowPair] | None = None
     j_rule: str = ""
-    solve: Callable[[_State, GroupModel, Value], DyadSolution] | None = None
-    sketch: Callable[[_Builder, AssurGroup, tuple[Pair, Pair, Pair], str],
-                     Sketched | None] | None = None
+    solve: Callable[[_State, GroupModel, Value], DyadSolution | HigherGroupSolution] | None = None
+    sketch: Callable[[_Builder, AssurGroup, str], Sketched | None] | None = None
     shortfall: Callable[[GroupModel, _Shortfall], tuple[float, str]] | None = None
     pressure: Callable[[GroupModel, set[LinkId], np.ndarray, np.ndarray],
                        tuple[tuple[LinkId, ...], np.ndarray]] | None = None
@@ -311,8 +324,8 @@ def _hinges(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pair],
             build.attachment(prev_j, hj, label, _HJ))
 
 
-def _sketch_rrr(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pair],
-                label: str) -> Sketched | None:
+def _sketch_rrr(build: _Builder, group: AssurGroup, label: str) -> Sketched | None:
+    pairs = build.topo.dyad_pairs(group)
     c = build.point(pairs[2])
     hi, hj, anchor_i, anchor_j = _hinges(build, group, pairs, label)
     build.put(label, "l_i", abs(c - hi))
@@ -323,8 +336,8 @@ def _sketch_rrr(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pai
                     driven=build.driven_side(group) if group.composite else None)
 
 
-def _sketch_rrp(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pair],
-                label: str) -> Sketched | None:
+def _sketch_rrp(build: _Builder, group: AssurGroup, label: str) -> Sketched | None:
+    pairs = build.topo.dyad_pairs(group)
     pi, pj, pc = pairs
     prev_i, prev_j = _ends(group)
     c, hj, base, theta = build.point(pc), build.point(pj), build.point(pi), build.direction(pi)
@@ -336,8 +349,8 @@ def _sketch_rrp(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pai
                     guide_i=guide)
 
 
-def _sketch_rpr(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pair],
-                label: str) -> Sketched | None:
+def _sketch_rpr(build: _Builder, group: AssurGroup, label: str) -> Sketched | None:
+    pairs = build.topo.dyad_pairs(group)
     theta = build.direction(pairs[2])
     hi, hj, anchor_i, anchor_j = _hinges(build, group, pairs, label)
     axis = cmath.exp(1j * theta)
@@ -346,8 +359,8 @@ def _sketch_rpr(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pai
     return Sketched(sigma, (hi, theta), (hj, theta), hinge_i=anchor_i, hinge_j=anchor_j)
 
 
-def _sketch_prp(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pair],
-                label: str) -> Sketched | None:
+def _sketch_prp(build: _Builder, group: AssurGroup, label: str) -> Sketched | None:
+    pairs = build.topo.dyad_pairs(group)
     pi, pj, pc = pairs
     prev_i, prev_j = _ends(group)
     c = build.point(pc)
@@ -357,8 +370,8 @@ def _sketch_prp(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pai
     return Sketched(1, (c, ti), (c, tj), guide_i=gi, guide_j=gj)
 
 
-def _sketch_rpp(build: _Builder, group: AssurGroup, pairs: tuple[Pair, Pair, Pair],
-                label: str) -> Sketched | None:
+def _sketch_rpp(build: _Builder, group: AssurGroup, label: str) -> Sketched | None:
+    pairs = build.topo.dyad_pairs(group)
     pi, pj, pc = pairs
     prev_i, prev_j = _ends(group)
     hj, a, ts, tt = build.point(pj), build.point(pi), build.direction(pi), build.direction(pc)
@@ -480,22 +493,28 @@ KINDS: Mapping[int, GroupKind] = {
                  shortfall=_shortfall_guides, equilibrium=statics.equilibrium_rpp),
 }
 
-#: Kinds that structure recognises but kinematics does not solve yet.
-STRUCTURAL: Mapping[str, GroupKind] = {
-    "III": GroupKind(None, "III", "", 3),
-    "IV": GroupKind(None, "IV", "", 4),
+#: The kinds outside the DGTU table, by code: the triad (class III, order 3, with bars,
+#: blocks hinged to the base or leashes sliding on the base) and the class IV group of
+#: order 2 (revolute pairs), solved by continuation of the drawn assembly mode
+#: (:mod:`assur.kinematics.higher`). No identification row names them (``docs/tables.md``).
+HIGHER: Mapping[str, GroupKind] = {
+    "III": GroupKind(None, "III", "", 3, condition="m = |det R| / Π‖R_k‖ ≥ δ",
+                     solve=solve_triad, sketch=sketch_triad, shortfall=shortfall_higher),
+    "IV": GroupKind(None, "IV", "", 4, condition="m = |det R| / Π‖R_k‖ ≥ δ", solve=solve_class_iv,
+                    sketch=sketch_class_iv, shortfall=shortfall_higher),
 }
+_BY_CLASS = {kind.group_class: kind for kind in HIGHER.values()}
 
 _BY_PATTERN = {kind.pattern: kind for kind in KINDS.values() if kind.pattern is not None}
 
 
-def kind_of(number: int) -> GroupKind:
-    """The kind with DGTU number L (0–5).
+def kind_of(number: int | str) -> GroupKind:
+    """The kind with DGTU number L (0–5), or the higher kind with code ``"III"``/``"IV"``.
 
     Parameters
     ----------
-    number : int
-        The DGTU number L of the kind (0 for the input group).
+    number : int or str
+        The DGTU number L of the kind (0 for the input group), or ``"III"``, ``"IV"``.
 
     Returns
     -------
@@ -509,13 +528,34 @@ def kind_of(number: int) -> GroupKind:
 
     Examples
     --------
-    >>> kind_of(4).pairs
-    'PRP'
+    >>> kind_of(4).pairs, kind_of("III").group_class
+    ('PRP', 3)
     """
     try:
-        return KINDS[number]
+        return HIGHER[number] if isinstance(number, str) else KINDS[number]
     except KeyError:
-        raise KeyError(f"no group kind L{number}; the kinds are L0–L5") from None
+        raise KeyError(f"no group kind {number!r}; the kinds are L0–L5, III, IV") from None
+
+
+def kind_of_class(group_class: int) -> GroupKind | None:
+    """The higher kind of a group of this class (3 triad, 4 class IV), None for others.
+
+    Parameters
+    ----------
+    group_class : int
+        Artobolevsky's class of the group.
+
+    Returns
+    -------
+    GroupKind or None
+        The registry entry of the triad or the class IV group.
+
+    Examples
+    --------
+    >>> kind_of_class(4).code, kind_of_class(5)
+    ('IV', None)
+    """
+    return _BY_CLASS.get(group_class)
 
 
 def kind_of_pattern(internal: str, external: tuple[str, str]) -> GroupKind | None:

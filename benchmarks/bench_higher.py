@@ -19,13 +19,14 @@ import argparse
 import os
 import time
 from collections.abc import Callable
+from functools import partial
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")  # one core: no threaded BLAS anywhere
 
 import numpy as np
 
-from assur import solve_input, solve_rrr
 from assur.kinematics import jets as J
+from assur.kinematics.dyads import Value, solve_input, solve_rrr
 from assur.kinematics.higher import Triad, TriadInputs, follow_mode
 
 PIN = -17 - 0.5j
@@ -42,14 +43,14 @@ def triad(designs: int, rng: np.random.Generator) -> Triad:
                  (PIN, *FRAME))
 
 
-def inputs(phi: object) -> TriadInputs:
+def inputs(phi: Value) -> TriadInputs:
     """The crank pin and the two frame hinges at the crank angles ``phi``."""
     return TriadInputs((PIN * J.expi(phi), *FRAME))
 
 
 def dyad(phi: np.ndarray, crank: float | np.ndarray) -> np.ndarray:
     """Crank + RRR dyad (O₁ = 0, O₂ = 100, coupler 80, rocker 90)."""
-    return solve_rrr(solve_input(0j, crank, phi).c, 100 + 0j, 80.0, 90.0, 1.0).c
+    return np.asarray(solve_rrr(solve_input(0j, crank, phi).c, 100 + 0j, 80.0, 90.0, 1.0).c)
 
 
 def rate(run: Callable[[], object], positions: int, rounds: int, batch: float = 0.2
@@ -85,8 +86,8 @@ def main(argv: list[str] | None = None) -> None:
               f"{100 * solution.exists.mean():.1f} % of the positions")
         cranks = 17.0 if designs == 1 else np.full((designs, 1), 17.0)
         positions = designs * args.points
-        higher = rate(lambda g=group: follow_mode(g, inputs, phi), positions, args.rounds)
-        pair = rate(lambda c=cranks: dyad(phi, c), positions, args.rounds)
+        higher = rate(partial(follow_mode, group, inputs, phi), positions, args.rounds)
+        pair = rate(partial(dyad, phi, cranks), positions, args.rounds)
         rows.append((designs, higher, pair))
     print(f"\n{'designs':>8} {'triad pos/s (median, best)':>30} {'RRR dyad pos/s':>26} "
           f"{'dyad / triad':>16}")

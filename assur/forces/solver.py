@@ -24,7 +24,6 @@ import numpy as np
 from assur.forces.checks import LinkResidual, Power, lever_torque, link_residuals
 from assur.forces.groups import ForceReason, Transfer, cross, dot
 from assur.forces.model import ForceData, Tabulated
-from assur.kinds import KINDS
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import Motion, analyse, values
 from assur.kinematics.jets import Jet
@@ -454,7 +453,7 @@ def _groups(bodies: _Bodies, motion: Motion
     blocked = np.zeros(shape, bool)
     actuator = None
     for group in reversed(model.groups):
-        equilibrium = KINDS[group.kind].equilibrium
+        equilibrium = group.group_kind.equilibrium
         if equilibrium is None:      # the input group: solved last, by the drive
             continue
         members = _merge(bodies, group) if group.driven is not None else None

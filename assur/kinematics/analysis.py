@@ -16,19 +16,27 @@ results shaped ``(D, N)``; nothing loops over positions or designs in Python.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from functools import cached_property
 from typing import Any
 
 import numpy as np
 
+from assur.kinds import given
 from assur.kinematics import jets as J
 from assur.kinematics.dyads import DyadSolution, Value
+from assur.kinematics.higher.kind import HigherGroupSolution
 from assur.kinematics.jets import Jet
 from assur.kinematics.model import Anchor, GroupModel, Guide, KinematicModel
-from assur.kinds import given
 from assur.model import LinkId, PairId
 
+#: What the analysis keeps of a group: a dyad's closed-form solution, or the followed mode
+#: of a triad or class IV group.
+GroupSolution = DyadSolution | HigherGroupSolution
+
 __all__ = [
+    "GroupSolution",
     "Motion",
     "SliderState",
     "acceleration",
@@ -69,7 +77,9 @@ class Motion:
         Input coordinate: crank rotation φ from the reference position (radians) or actuator
         length (mm).
     solutions : dict
-        Group label → :class:`~assur.kinematics.dyads.DyadSolution` (layering order).
+        Group label → :class:`~assur.kinematics.dyads.DyadSolution`, or
+        :class:`~assur.kinematics.higher.kind.HigherGroupSolution` for a triad or class IV
+        group (layering order).
     frames : dict
         Link → (origin, angle) of its local frame.
     joints : dict
@@ -93,7 +103,7 @@ class Motion:
 
     model: KinematicModel
     q: np.ndarray
-    solutions: dict[str, DyadSolution]
+    solutions: dict[str, GroupSolution]
     frames: dict[LinkId, tuple[Value, Value]]
     joints: dict[PairId, Value]
     sliders: dict[PairId, SliderState]
@@ -214,7 +224,7 @@ class _State:
     def __init__(self, model: KinematicModel) -> None:
         self.model = model
         self.p = model.value
-        self.solutions: dict[str, DyadSolution] = {}
+        self.solutions: dict[str, GroupSolution] = {}
         self.frames: dict[LinkId, tuple[Value, Value]] = {}
         self.rotors: dict[LinkId, Value] = {}
         self.joints: dict[PairId, Value] = {}
@@ -251,6 +261,34 @@ class _State:
 
     def delta(self, group: GroupModel) -> Any:
         return self.model.params.get(group.column("delta"), 0.0)
+
+    @cached_property
+    def _flat(self) -> KinematicModel:
+        """The model with design parameters of shape (D, 1) laid flat to (D,)."""
+        return replace(self.model, params={name: np.reshape(v, -1) if np.ndim(v) else v
+                                           for name, v in self.model.params.items()})
+
+    def flat_value(self, name: str) -> Any:
+        """A parameter in program units with the designs along one axis (shape () or (D,))."""
+        return self._flat.value(name)
+
+    @property
+    def flat_shape(self) -> tuple[int, ...]:
+        """() for one design, (D,) for D designs."""
+        return self._flat.design_shape
+
+    def earlier(self, group: GroupModel) -> Callable[[Value], _State]:
+        """The groups before ``group`` solved at any input positions, one per design
+        (shape (D,) or a jet of it): how a triad or class IV group reads its known links."""
+        flat = replace(self._flat, groups=self.model.groups[:self.model.groups.index(group)])
+
+        def at(q: Value) -> _State:
+            state = _State(flat)
+            for earlier in flat.groups:
+                state.solve(earlier, q)
+            return state
+
+        return at
 
     def slider(self, pair: PairId, carrier: LinkId, slider: LinkId, point: Value, s: Value,
                base: Value, angle: Value, offset: Any) -> None:

@@ -38,7 +38,8 @@ from typing import Any
 
 from assur.errors import Issue, StructureError, TableError
 from assur.io.reader import Node, TableReader, describe
-from assur.kinds import GroupKind, GuideColumns, HingeColumns, kind_of
+from assur.kinds import GroupKind, GuideColumns, HingeColumns, kind_of, kind_of_class
+from assur.kinematics.higher.kind import Layout
 from assur.kinematics.model import (
     KIND_COLUMNS,
     Anchor,
@@ -142,21 +143,23 @@ class _Topology:
             raise StructureError(f"{chain.source}: kinematic analysis needs exactly one input; "
                                  f"found {len(chain.inputs)}")
         for group in analysis.groups:
-            if group.group_class != 2:
+            if group.kind is None and kind_of_class(group.group_class) is None:
                 raise StructureError(f"{chain.source}: group {group.name} is of class "
-                                     f"{group.group_class}; only dyads (class II) are solved")
+                                     f"{group.group_class}; dyads, triads and class IV groups "
+                                     f"of order 2 are solved")
         self.pairs = {pair.id: pair for pair in chain.pairs}
         self.drive = chain.inputs[0]
         self.groups = list(analysis.groups)
         self.composite_group = next((g for g in self.groups if g.composite), None)
-        self.labels = {id(group): f"{self.kind(group).code}({_link_text(group.i)},"
-                                  f"{_link_text(group.j)})" for group in self.groups}
+        self.labels = {id(group): f"{self.kind(group).code}("
+                                  f"{','.join(_link_text(link) for link in _links(group))})"
+                       for group in self.groups}
 
     @staticmethod
     def kind(group: AssurGroup) -> GroupKind:
-        """The kind of an accepted dyad."""
-        assert group.kind is not None
-        return kind_of(group.kind)
+        """The kind of an accepted dyad, triad or class IV group."""
+        higher = kind_of_class(group.group_class) if group.kind is None else None
+        return higher if higher is not None else kind_of(group.kind or 0)
 
     def label(self, group: AssurGroup) -> str:
         """The group's label, the prefix of its parameter names (``"L1(2,3)"``)."""
@@ -196,6 +199,11 @@ class _Topology:
         ids = {"i": group.pair_i, "j": group.pair_j, "c": group.pair_c}
         return {role: ids[side] for role, side in self.kind(group).roles  # type: ignore[misc]
                 if ids[side] is not None}
+
+
+def _links(group: AssurGroup) -> tuple[Any, ...]:
+    """The links named in a group's label: i and j of a dyad, every link of a higher group."""
+    return (group.i, group.j) if group.kind is not None else group.links
 
 
 def _link_text(link: Any) -> str:
@@ -256,7 +264,7 @@ class _Builder:
         if owner.group_kind.is_input and count == 0:
             self.put(owner.label, "l_1", abs(self.local(link, point)))
             return Anchor(link, owner.label, "l_1", None, True)
-        letter = "N" if self.links[link][1] == "i" else "M"
+        letter = _LETTERS.get(self.links[link][1], self.links[link][1])
         return self.polar(link, point, letter if count == 0 else f"{letter}{count + 1}")
 
     def polar(self, link: LinkId, point: complex, suffix: str) -> Anchor:
@@ -292,15 +300,17 @@ class _Builder:
             else "j"
 
     def add(self, group: GroupModel, frame_i: tuple[complex, float] | None = None,
-            frame_j: tuple[complex, float] | None = None) -> None:
+            frame_j: tuple[complex, float] | None = None,
+            frames: Mapping[LinkId, tuple[complex, float]] | None = None) -> None:
         """Record a group: the owner and side of its links and, in the sketch form, their
-        frames at the reference position."""
+        frames at the reference position (``frames`` for every link of a higher group)."""
         self.groups.append(group)
-        for link, side, frame in ((group.i, "i", frame_i), (group.j, "j", frame_j)):
-            if link is None:
-                continue
-            if frame is not None:
-                self.frames[link] = frame
+        given = dict(frames or {})
+        given.update({link: frame for link, frame in ((group.i, frame_i), (group.j, frame_j))
+                      if link is not None and frame is not None})
+        for link, side in group.members.items():
+            if link in given:
+                self.frames[link] = given[link]
             self.links[link] = (group.label, side)
             self.owner[link] = group
         if group.driven is not None:
@@ -338,6 +348,11 @@ class _Builder:
             for name in extra:
                 out[name] = self.params[name]
         return out
+
+
+#: Suffix of the attachment columns of a point on a group's link, by the link's side
+#: (a higher group's links give their names: ``l_base``, ``l_leash2``, ``l_a`` …).
+_LETTERS = {"i": "N", "j": "M"}
 
 
 def _wrap(angle: float) -> float:
@@ -437,19 +452,42 @@ def _sketch_crank(topo: _Topology, build: _Builder) -> None:
 
 
 def _sketch_group(topo: _Topology, build: _Builder, group: AssurGroup, seq: int) -> None:
-    if group.i_minus_1 not in build.frames or group.j_minus_1 not in build.frames:
+    if any(known not in build.frames for _, _, known in group.external):
         return  # an earlier group could not be built; its problem is already recorded
     kind = topo.kind(group)
     label = topo.label(group)
-    assert kind.sketch is not None and group.i is not None
-    made = kind.sketch(build, group, topo.dyad_pairs(group), label)
+    assert kind.sketch is not None
+    made = kind.sketch(build, group, label)
     if made is None:
         return
-    model = GroupModel(label, group.kind or 0, seq, group.i, group.j, made.sigma, made.hinge_i,
-                       made.hinge_j, made.guide_i, made.guide_j, pairs=topo.pair_roles(group),
-                       driven=made.driven,
-                       composite=tuple(group.composite or ()) if made.driven else ())
-    build.add(model, made.frame_i, made.frame_j)
+    layout = made.layout
+    first = group.i if layout is None else layout.links[0]
+    assert first is not None
+    key: int | str = kind.code if kind.number is None else kind.number
+    model = GroupModel(label, key, seq, first,
+                       group.j, made.sigma, made.hinge_i, made.hinge_j, made.guide_i,
+                       made.guide_j, pairs=_roles(topo, group, layout), driven=made.driven,
+                       composite=tuple(group.composite or ()) if made.driven else (),
+                       layout=layout)
+    build.add(model, made.frame_i, None if layout else made.frame_j, made.frames)
+
+
+def _roles(topo: _Topology, group: AssurGroup, layout: Layout | None) -> dict[str, PairId]:
+    """Role → pair id: a dyad's roles of its kind; a higher group's internal joints
+    ``C1``…/``C``–``F`` and external hinges ``H1``…/``H_a``, ``H_c``, its slider pairs
+    ``P1``… (roles of sliders start with ``P``)."""
+    if layout is None:
+        return topo.pair_roles(group)
+    out: dict[str, PairId] = {}
+    names = [(f"C{k + 1}", f"H{k + 1}", f"P{k + 1}") for k in range(len(layout.internal))]
+    if not layout.leashes:
+        names = [(internal, external, "") for internal, external in
+                 zip(("C", "D", "E", "F"), ("H_a", "H_c", "", ""), strict=True)]
+    for (internal, external, slider), pid in zip(names, layout.internal, strict=True):
+        out[internal if topo.pairs[pid].type == PairType.R else slider] = pid
+    for (_, external, slider), pid in zip(names, layout.external, strict=False):
+        out[external if topo.pairs[pid].type == PairType.R else slider] = pid
+    return out
 
 
 # ---------------------------------------------------------------- identification form

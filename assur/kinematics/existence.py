@@ -18,11 +18,14 @@ from typing import Any
 
 import numpy as np
 
+from assur.kinds import HIGHER, KINDS, _Shortfall
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import Motion, analyse
-from assur.kinematics.dyads import REASONS
+from assur.kinematics.dyads import reason_text
+from assur.kinematics.higher.continuation import REASON_CODES
+from assur.kinematics.higher.kind import HigherGroupSolution
 from assur.kinematics.model import GroupModel, KinematicModel
-from assur.kinds import KINDS, _Shortfall
+from assur.text import render
 
 __all__ = [
     "CONDITIONS",
@@ -31,10 +34,37 @@ __all__ = [
     "GroupExistence",
     "check_existence",
     "first_failure",
+    "reason_sentence",
 ]
 
-#: Existence inequality of each kind, as printed in reports (``method.md`` §2.1–2.5).
-CONDITIONS: dict[int, str] = {number: kind.condition for number, kind in KINDS.items()}
+#: Existence inequality of each kind, as printed in reports (``method.md`` §2.1–2.5; the
+#: triad and the class IV group by their codes, ``docs/higher_groups.md``).
+CONDITIONS: dict[int | str, str] = {
+    **{number: kind.condition for number, kind in KINDS.items()},
+    **{code: kind.condition for code, kind in HIGHER.items()}}
+
+
+def reason_sentence(code: int, lang: str = "en") -> str:
+    """Why a group does not assemble: the dyads' reasons 0–7 and the higher groups' 8, 9.
+
+    Parameters
+    ----------
+    code : int
+        The reason code of a solution.
+    lang : str
+        A catalogue language.
+
+    Returns
+    -------
+    str
+        The sentence.
+
+    Examples
+    --------
+    >>> reason_sentence(8)
+    'the assembly mode ends: it merges with another one (dead-centre position of the group)'
+    """
+    return render(REASON_CODES[code], lang) if code in REASON_CODES else reason_text(code, lang)
 
 
 @dataclass(frozen=True)
@@ -48,7 +78,8 @@ class FailureInterval:
         between grid positions. For a full-turn crank an interval may wrap past 2π (then
         ``end < start``).
     reason : int
-        Solver reason code at the worst position (:data:`assur.kinematics.dyads.REASONS`).
+        Solver reason code at the worst position (:data:`assur.kinematics.dyads.REASONS`, and
+        8, 9 of a triad or class IV group: :func:`reason_sentence`).
     worst_margin : float
         The smallest normalised margin inside the interval (to compare with δ).
     worst_at : float
@@ -73,7 +104,7 @@ class FailureInterval:
         """JSON-ready record (crank positions in degrees when ``degrees``)."""
         conv = math.degrees if degrees else float
         return {"start": conv(self.start), "end": conv(self.end), "reason": int(self.reason),
-                "condition": REASONS[self.reason][0], "worst_margin": self.worst_margin,
+                "condition": reason_sentence(self.reason), "worst_margin": self.worst_margin,
                 "worst_at": conv(self.worst_at), "shortfall": self.shortfall,
                 "unit": self.unit}
 
@@ -85,7 +116,7 @@ class GroupExistence:
     Attributes
     ----------
     label, name : str
-    kind : int
+    kind : int or str
     delta : float
         The assigned tolerance δ.
     evaluated : ndarray of bool
@@ -99,7 +130,7 @@ class GroupExistence:
 
     label: str
     name: str
-    kind: int
+    kind: int | str
     delta: float
     evaluated: np.ndarray
     fails: np.ndarray
@@ -265,15 +296,33 @@ def _interval(model: KinematicModel, motion: Motion, group: GroupModel, index: i
     if refine and n > 1 and not whole:
         if first > 0 or periodic:
             outside = float(q[first - 1]) if first > 0 else float(q[-1]) - n * step
-            start = _bisect(model, group, index, outside, start, tol)
+            start = _boundary(model, group, index, sol, outside, start, tol)
             start = start % (2 * math.pi) if periodic else start
         if last < n - 1 or periodic:
             outside = float(q[last + 1]) if last < n - 1 else float(q[0]) + n * step
-            end = _bisect(model, group, index, outside, end, tol)
+            end = _boundary(model, group, index, sol, outside, end, tol)
             end = end % (2 * math.pi) if periodic else end
     shortfall, unit = _shortfall(model, motion, group, worst)
     return FailureInterval(start, end, reason, float(np.broadcast_to(sol.margin, q.shape)[worst]),
                            float(q[worst]), shortfall, unit)
+
+
+def _boundary(model: KinematicModel, group: GroupModel, index: int, sol: object, good: float,
+              bad: float, tol: float) -> float:
+    """The end of a failure interval between ``good`` and ``bad``: bisection for a dyad; for
+    a triad or class IV group the change point where its followed mode ended, if it lies
+    there (no re-solving: each solve follows the mode from the sketch), else ``bad``."""
+    if not isinstance(sol, HigherGroupSolution):
+        return _bisect(model, group, index, good, bad, tol)
+    lo, hi = sorted((good, bad))
+    for end in np.asarray(sol.follow.ends, dtype=float).ravel():
+        if not math.isfinite(end):
+            continue
+        turns = math.floor((hi - end) / (2 * math.pi))
+        shifted = end + 2 * math.pi * turns
+        if lo <= shifted <= hi:
+            return shifted
+    return bad
 
 
 def _bisect(model: KinematicModel, group: GroupModel, index: int, good: float, bad: float,

@@ -17,13 +17,16 @@ import difflib
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from assur.io.params import SUPPLIED
-from assur.kinds import KINDS, GroupKind, kind_of
+from assur.kinds import HIGHER, KINDS, GroupKind, kind_of
 from assur.model import LinkId, PairId
+
+if TYPE_CHECKING:  # pragma: no cover
+    from assur.kinematics.higher.kind import Layout
 
 __all__ = [
     "KIND_COLUMNS",
@@ -36,8 +39,11 @@ __all__ = [
 ]
 
 #: Parameter columns of each group kind, in the fixed order of tables 2.1–2.6.
-KIND_COLUMNS: Mapping[int, tuple[str, ...]] = {number: kind.columns
-                                               for number, kind in KINDS.items()}
+#: Triads and class IV groups have no fixed columns: their parameters are named after their
+#: pairs (:mod:`assur.kinematics.higher.kind`).
+KIND_COLUMNS: Mapping[int | str, tuple[str, ...]] = {
+    **{number: kind.columns for number, kind in KINDS.items()},
+    **{code: kind.columns for code, kind in HIGHER.items()}}
 
 
 
@@ -95,8 +101,8 @@ class GroupModel:
     ----------
     label : str
         ``"L<kind>(<i>,<j>)"``, the prefix of the group's parameter names.
-    kind : int
-        0 (input group) or 1..5 (dyad kinds L1..L5).
+    kind : int or str
+        0 (input group), 1..5 (dyad kinds L1..L5), ``"III"`` (triad) or ``"IV"`` (class IV).
     seq : int
         Ordinal in the layering order, L0 = 1 (the index k of base points A_k, B_k).
     i, j : link id
@@ -117,7 +123,7 @@ class GroupModel:
     """
 
     label: str
-    kind: int
+    kind: int | str
     seq: int
     i: LinkId
     j: LinkId | None
@@ -129,6 +135,14 @@ class GroupModel:
     pairs: Mapping[str, PairId] = field(default_factory=dict)
     driven: str | None = None
     composite: tuple[LinkId, ...] = ()
+    layout: Layout | None = None
+
+    @property
+    def members(self) -> dict[LinkId, str]:
+        """The group's links and their names (``"i"``, ``"j"``; a triad's ``"base"``, …)."""
+        if self.layout is not None:
+            return dict(zip(self.layout.links, self.layout.names, strict=True))
+        return {link: side for link, side in ((self.i, "i"), (self.j, "j")) if link is not None}
 
     @property
     def group_kind(self) -> GroupKind:
@@ -138,9 +152,11 @@ class GroupModel:
     @property
     def name(self) -> str:
         """Kind and links for reports, e.g. ``'L1 RRR (2, 3)'``, ``'L0 input group (1)'``."""
-        links = f"{self.i}" if self.j is None else f"{self.i}, {self.j}"
+        members = list(self.members)
+        links = ", ".join(map(str, members if self.layout is None else sorted(members, key=str)))
         kind = self.group_kind
-        return f"{kind.code} {kind.pairs or kind.title('en')} ({links})"
+        title = kind.pairs or (kind.title("en") if kind.is_input else "")
+        return f"{kind.code} {title} ({links})" if title else f"{kind.code} ({links})"
 
     def column(self, name: str) -> str:
         """Full parameter name of one of this group's columns."""

@@ -30,7 +30,7 @@ import numpy as np
 
 from assur.io.files import atomic_write_bytes
 from assur.kinematics.analysis import Motion, values
-from assur.kinematics.dyads import Reason, reason_text
+from assur.kinematics.dyads import DyadSolution, Reason, reason_text
 from assur.model import LinkId
 from assur.plot.formats import animation_format, figure_bytes, picture_format
 from assur.text import render
@@ -250,6 +250,7 @@ def _title(motion: Motion, index: int, failure: Failure | None, lang: str, wrap:
     q = float(motion.q[index])
     if model.drive == "crank":
         crank = motion.solutions[model.groups[0].label]
+        assert isinstance(crank, DyadSolution)  # the input group
         arm = _at(crank.c, index) - _at(crank.origin_i, index)
         absolute = math.degrees(float(np.angle(arm))) % 360.0
         position = render("plot.crank_angle", lang, angle=math.degrees(q), absolute=absolute)

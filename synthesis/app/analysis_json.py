@@ -18,13 +18,42 @@ import numpy.typing as npt
 from assur import Jet, joint_rotations, pressure_angles
 from assur.kinematics.analysis import acceleration, unwrap, values, velocity
 from assur.kinematics.existence import CONDITIONS
+from assur.kinematics.higher.kind import HigherGroupSolution
 from assur.kinematics.jets import as_jet
 from synthesis.app.analysis import TableAnalysis, moving_links
 
-__all__ = ["analysis_record", "number"]
+__all__ = ["analysis_record", "higher_item", "number"]
 
 #: A JSON value of the record.
 Record = dict[str, Any]
+
+
+def higher_item(sol: object) -> Record:
+    """The keys a triad or class IV group adds to its group entry: no σ, and its assembly
+    modes at the sketch (``mode``: how many, the sign of det J of the drawn one, every mode
+    with its angle in degrees, joints, margin and sign); nothing for a dyad.
+
+    Parameters
+    ----------
+    sol : GroupSolution
+        A group's solution in the motion.
+
+    Returns
+    -------
+    dict
+        The keys to add to the group's entry.
+    """
+    if not isinstance(sol, HigherGroupSolution):
+        return {}
+    modes = sol.modes()
+    drawn = next((m for m in modes if m.drawn), None)
+    return {"sigma": None, "mode": {
+        "count_at_sketch": len(modes), "det_sign": drawn.det_sign if drawn else None,
+        "modes": [{"angle_deg": math.degrees(m.angle), "drawn": m.drawn,
+                   "margin": number(m.margin), "det_sign": m.det_sign,
+                   "joints": {str(pid): [z.real, z.imag] for pid, z in m.joints.items()}}
+                  for m in modes],
+        "ends_deg": [number(math.degrees(v)) for v in np.ravel(sol.follow.ends)]}}
 
 
 def number(value: float) -> float | None:
@@ -116,6 +145,7 @@ def analysis_record(result: TableAnalysis) -> Record:
                 "first_failing": [bool(v) for v in ex.fails],
                 "margin": _floats(sol.margin),
                 "reason": [int(v) for v in np.asarray(sol.reason).ravel()]}
+        item.update(higher_item(sol))
         out["groups"].append(item)
     for link in moving_links(model):
         origin, angle = motion.frames[link]

@@ -12,12 +12,12 @@ import numpy as np
 
 from assur import joint_rotations, pressure_angles
 from assur.kinematics.analysis import unwrap, values
-from assur.kinematics.dyads import reason_text
-from assur.kinematics.existence import CONDITIONS
+from assur.kinematics.existence import CONDITIONS, reason_sentence
+from assur.kinematics.higher.kind import HigherGroupSolution
 from assur.text import render
 from synthesis.app.analysis import TableAnalysis, moving_links
 
-__all__ = ["analysis_text", "position_text"]
+__all__ = ["analysis_text", "modes_lines", "position_text"]
 
 
 def position_text(result: TableAnalysis, value: float) -> str:
@@ -76,7 +76,7 @@ def analysis_text(result: TableAnalysis, lang: str = "en") -> str:
             lines.append("    " + render("analyze.interval", lang,
                                          a=position_text(result, item.start),
                                          b=position_text(result, item.end),
-                                         why=reason_text(item.reason, lang),
+                                         why=reason_sentence(item.reason, lang),
                                          v=item.shortfall, unit=units[item.unit],
                                          w=position_text(result, item.worst_at)))
         skipped = int((~group.evaluated).sum())
@@ -85,6 +85,7 @@ def analysis_text(result: TableAnalysis, lang: str = "en") -> str:
     broken = int((report.first >= 0).sum())
     lines.append(render("analyze.verdict_ok", lang) if broken == 0 else
                  render("analyze.verdict_bad", lang, n=broken, total=n))
+    lines += modes_lines(result, lang)
     lines += ["", render("analyze.outputs", lang)]
     for link in moving_links(model):
         angle = np.degrees(unwrap(values(motion.link_angle(link))))
@@ -105,6 +106,36 @@ def analysis_text(result: TableAnalysis, lang: str = "en") -> str:
         lines.append(f"  {turn.pair!s:<8} {turn.links[0]}–{turn.links[1]:<4} "
                      f"{turn.group:<12} {swing}")
     return "\n".join(lines)
+
+
+def modes_lines(result: TableAnalysis, lang: str) -> list[str]:
+    """Every real assembly mode at the sketch of each triad and class IV group, the drawn
+    one marked, and what became of the drawn mode over the cycle.
+
+    Parameters
+    ----------
+    result : TableAnalysis
+    lang : str
+
+    Returns
+    -------
+    list of str
+        The report's lines (none for a mechanism of dyads only).
+    """
+    lines: list[str] = []
+    for label, sol in result.motion.solutions.items():
+        if not isinstance(sol, HigherGroupSolution):
+            continue
+        lines += ["", render("higher.report.modes", lang, group=label)]
+        lines += ["  " + note.text(lang) for note in sol.follow.notes()]
+        for k, mode in enumerate(sol.modes(), start=1):
+            joints = ", ".join(f"{pid} ({z.real:.4f}, {z.imag:.4f})"
+                               for pid, z in mode.joints.items())
+            mark = render("higher.report.drawn", lang) if mode.drawn else ""
+            lines.append("  " + render("higher.report.mode", lang, k=k, mark=mark,
+                                       angle=math.degrees(mode.angle), margin=mode.margin,
+                                       sign=mode.det_sign, joints=joints))
+    return lines
 
 
 def _pressure_lines(result: TableAnalysis, lang: str) -> list[str]:

@@ -8,11 +8,13 @@ group's size (half a unit in the last printed digit is below 3e-10 of it).
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import pytest
 
-from assur import solve_rrr
 from assur.kinematics import jets as J
+from assur.kinematics.dyads import solve_rrr
 from assur.kinematics.higher import (
     ClassIV,
     ClassIVInputs,
@@ -44,8 +46,9 @@ def fourbar(o, a, b, c):
 
 # --- V1: eight-bar, four-bar driving an RRR triad ---------------------------------------------
 
-V1 = dict(O=0j, A=-23 + 9.5j, B=87 + 97.5j, C=101.5 - 6.5j, D=112.8 + 67.2j, E=169.5 + 57j,
-          F=174 + 92.5j, G=189.5 + 151j, H=127.5 + 52j, I=-4.9 + 124.9j)
+V1 = {"O": 0j, "A": -23 + 9.5j, "B": 87 + 97.5j, "C": 101.5 - 6.5j, "D": 112.8 + 67.2j,
+      "E": 169.5 + 57j, "F": 174 + 92.5j, "G": 189.5 + 151j, "H": 127.5 + 52j,
+      "I": -4.9 + 124.9j}
 V1_TRIAD = Triad(("RR", "RR", "RR"), (V1["E"], V1["F"], V1["H"]), (V1["D"], V1["G"], V1["I"]))
 
 
@@ -75,8 +78,8 @@ V1_CYCLE = {
 
 # --- V2: crank driving a class IV group -------------------------------------------------------
 
-V2 = dict(O=0j, B=-12.5 - 20j, C=57 + 66j, D=115 + 67j, E=87 + 118j, F=25.5 + 98.5j,
-          G=140.5 + 22j)
+V2 = {"O": 0j, "B": -12.5 - 20j, "C": 57 + 66j, "D": 115 + 67j, "E": 87 + 118j, "F": 25.5 + 98.5j,
+      "G": 140.5 + 22j}
 V2_GROUP = ClassIV(V2["B"], V2["C"], V2["F"], V2["G"], V2["D"], V2["E"])
 
 
@@ -111,7 +114,7 @@ V2_CYCLE = {
 
 # --- V3: crank driving a triad with one slider ------------------------------------------------
 
-V3 = dict(O=0j, B=-17 - 0.5j, C=77.5 + 30.5j, D=112 + 7.5j, E=81 + 31j, F=114 + 52j)
+V3 = {"O": 0j, "B": -17 - 0.5j, "C": 77.5 + 30.5j, "D": 112 + 7.5j, "E": 81 + 31j, "F": 114 + 52j}
 V3_TRIAD = Triad(("RR", "RR", "RP"), (V3["C"], V3["D"], V3["F"]), (V3["B"], V3["E"], V3["F"]),
                  (None, None, 1 + 0j))
 
@@ -136,7 +139,7 @@ V3_CYCLE = {
     330: [(80.79934052, 34.8814911), (112.3968107, 8.032843476), (119.5479747, 52)],
 }
 
-CASES = {
+CASES: dict[str, tuple[Any, ...]] = {
     "V1": (V1_TRIAD, v1_inputs, ["P1", "P2", "P3"], V1_MODES, V1_MARGINS, V1_CYCLE),
     "V2": (V2_GROUP, v2_inputs, ["C", "D", "E", "F"], V2_MODES, V2_MARGINS, V2_CYCLE),
     "V3": (V3_TRIAD, v3_inputs, ["P1", "P2", "P3"], V3_MODES, V3_MARGINS, V3_CYCLE),

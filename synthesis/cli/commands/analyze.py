@@ -4,7 +4,8 @@ Reads a chain table with a ``geometry:`` sketch or an identification table with 
 solves the groups in layering order at ``--points`` positions and prints a summary: the
 existence verdict of every group (with the intervals where it cannot be assembled), the
 ranges of the outputs, the largest pressure angle and the swing of every revolute joint.
-``--json`` prints every position instead; ``--csv``, ``--plot`` and ``--animate`` write files.
+``--json`` prints every position instead; ``--csv``, ``--plot``, ``--animate`` and
+``--modes-plot`` (the assembly modes of triads and class IV groups) write files.
 ``--forces --omega W`` adds the force analysis (``docs/forces.md``) to each of them.
 """
 
@@ -17,6 +18,7 @@ import sys
 from assur.io.files import atomic_write_text
 from assur.plot.formats import animation_format, picture_format
 from assur.plot.mechanism import save_animation, save_mechanism_picture
+from assur.plot.modes import save_modes_png
 from assur.text import languages, render
 from synthesis.app.analysis import analyse_table
 from synthesis.app.analysis_csv import analysis_csv
@@ -40,6 +42,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--plot", metavar="FILE.png|svg|pdf|jpg", help=render("cli.analyze.plot"))
     parser.add_argument("--at", type=float, default=0.0, help=render("cli.analyze.at"))
     parser.add_argument("--animate", metavar="FILE.gif|mp4", help=render("cli.analyze.animate"))
+    parser.add_argument("--modes-plot", metavar="FILE.png", help=render("higher.cli.modes_plot"))
     parser.add_argument("--frames", type=int, default=48, help=render("cli.analyze.frames"))
     parser.add_argument("--omega", type=float, default=None, help=render("cli.analyze.omega"))
     parser.add_argument("--forces", action="store_true", help=render("force.cli.forces"))
@@ -81,4 +84,8 @@ def run(args: argparse.Namespace) -> int:
     if args.animate:
         save_animation(result.motion, args.animate, frames=args.frames, lang=args.lang)
         print(render("analyze.written", args.lang, path=args.animate), file=notes)
+    if args.modes_plot:
+        save_modes_png(result.motion, args.modes_plot, index=result.index_at(0.0),
+                       lang=args.lang)
+        print(render("analyze.written", args.lang, path=args.modes_plot), file=notes)
     return 0

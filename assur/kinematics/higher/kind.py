@@ -1,0 +1,523 @@
+"""The triad and the class IV group as kinds of the group registry (:mod:`assur.kinds`).
+
+A sketched triad or class IV group enters the kinematic model like a dyad: its sketch rule
+(:func:`sketch_triad`, :func:`sketch_class_iv`) records the drawn points of its internal
+joints as parameters, the anchors of its external hinges and the guides of its blocks on the
+known links, and the frames of its four links at the reference position. Its solver
+(:func:`solve_triad`, :func:`solve_class_iv`) follows the drawn assembly mode over the
+positions (:func:`~assur.kinematics.higher.continuation.follow_mode`), the external hinges
+and guides coming from the earlier groups evaluated at any crank angle, and writes the
+joints, sliders and link frames into the analysis state.
+
+Parameters of a group labelled ``III(4,5,6,7)``: ``x_<pair>``, ``y_<pair>`` — the drawn
+point of each internal pair (mm, at the reference position; for a block sliding on the
+base, the point of the base's guide line, drawn at the leash's external hinge);
+``beta_<pair>`` — the drawn direction of a guide (degrees: of the base's guide, absolute;
+of a known link's guide, in that link's frame) with ``x_<pair>``, ``y_<pair>`` its base point;
+the external hinges are attachment points of the known links, as for a dyad. Every length of
+the group follows from these drawn points, so a changed design picks its mode at the
+sketch as ``docs/higher_groups.md`` §2 describes.
+"""
+
+from __future__ import annotations
+
+import cmath
+import math
+from collections import Counter
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from assur.kinematics import jets as J
+from assur.kinematics.higher.continuation import HigherSolution, follow_mode
+from assur.kinematics.higher.groups import (
+    ClassIV,
+    ClassIVInputs,
+    HigherGroup,
+    Triad,
+    TriadInputs,
+    values,
+)
+from assur.kinematics.jets import Jet
+
+if TYPE_CHECKING:  # pragma: no cover
+    from assur.kinds import Sketched
+    from assur.kinematics.analysis import _State
+    from assur.kinematics.build import _Builder
+    from assur.kinematics.model import Anchor, GroupModel, Guide
+    from assur.model import LinkId, PairId
+    from assur.structure.classification import AssurGroup
+
+__all__ = ["HigherGroupSolution", "Layout", "SketchMode", "shortfall_higher", "sketch_class_iv",
+           "sketch_triad", "solve_class_iv", "solve_triad"]
+
+#: Link names of a triad (base, leashes in solving order) and of a class IV group.
+TRIAD_LINKS = ("base", "leash1", "leash2", "leash3")
+CLASS_IV_LINKS = ("a", "b", "c", "d")
+#: Internal joints of a class IV group, in the order of :attr:`Layout.internal`.
+CLASS_IV_JOINTS = ("C", "D", "E", "F")
+
+
+@dataclass(frozen=True, slots=True)
+class Layout:
+    """Which link and pair plays which part in a triad or a class IV group.
+
+    Attributes
+    ----------
+    links : tuple of link ids
+        Triad: the base, then the leashes in solving order (a bar first); class IV: a, b, c, d.
+    names : tuple of str
+        The names of those links (:data:`TRIAD_LINKS`, :data:`CLASS_IV_LINKS`), the keys of
+        :attr:`HigherSolution.rotations`.
+    internal : tuple of pair ids
+        Triad: the internal pair of each leash; class IV: the pairs C (a–b), D (b–c), E (c–d),
+        F (d–a).
+    external : tuple of pair ids
+        Triad: the external pair of each leash; class IV: H_a, H_c.
+    leashes : tuple of str
+        Triad: ``"RR"``, ``"RP"`` or ``"PR"`` per leash (internal pair first); empty for IV.
+    anchors : tuple
+        Per external pair: the :class:`Anchor` of its hinge on the known link, or None.
+    guides : tuple
+        Per external pair: the :class:`Guide` of a block's guide on the known link, or None.
+    """
+
+    links: tuple[LinkId, ...]
+    names: tuple[str, ...]
+    internal: tuple[PairId, ...]
+    external: tuple[PairId, ...]
+    leashes: tuple[str, ...] = ()
+    anchors: tuple[Anchor | None, ...] = ()
+    guides: tuple[Guide | None, ...] = ()
+
+
+@dataclass(frozen=True, eq=False)
+class HigherGroupSolution:
+    """A triad or class IV group over the positions, as the analysis keeps a group's result.
+
+    ``exists``, ``margin`` and ``reason`` are those of :attr:`follow` (the reasons 8 and 9 of
+    :class:`~assur.kinematics.higher.continuation.HigherReason` join the dyads' 0–7);
+    ``origin_i``, ``angle_i`` the frame of the group's first link (triad base, class IV a).
+    """
+
+    follow: HigherSolution
+    group: HigherGroup
+    joints: dict[str, PairId]
+    origin_i: Any
+    angle_i: Any
+    origin_j: None = None
+    angle_j: None = None
+
+    def modes(self, design: int = 0) -> list[SketchMode]:
+        """Every real assembly mode at the sketch of one design, the drawn one marked.
+
+        Parameters
+        ----------
+        design : int
+            Which design (0 for a single one).
+
+        Returns
+        -------
+        list of SketchMode
+            Sorted by the angle of the eliminated link; the drawn mode is the one nearest the
+            drawn joints (its angle is 0 in a table's own design).
+        """
+        modes = self.follow.modes
+        index = (design,) if np.ndim(modes.count) else ()
+        count = int(modes.count[index])
+        sketch = {name: complex(np.reshape(np.asarray(z), -1)[design if np.ndim(z) else 0])
+                  for name, z in self.group.sketch.items()}
+        rows = []
+        for k in range(count):
+            points = {self.joints[name]: complex(modes.joints[name][index + (k,)])
+                      for name in sketch}
+            apart = max(abs(complex(modes.joints[name][index + (k,)]) - z)
+                        for name, z in sketch.items())
+            angle = float(modes.x[index + (k, self.group.eliminated)])
+            rows.append(SketchMode(angle if abs(angle) > 1e-12 else 0.0, points,
+                                   float(modes.margin[index + (k,)]),
+                                   int(modes.det_sign[index + (k,)]), apart))
+        nearest = min(range(count), key=lambda k: rows[k].apart, default=None)
+        return [replace(row, drawn=k == nearest) for k, row in enumerate(rows)]
+
+    @property
+    def exists(self) -> np.ndarray:
+        """True where the drawn mode assembles (margin ≥ δ)."""
+        return self.follow.exists
+
+    @property
+    def margin(self) -> np.ndarray:
+        """The Hadamard margin of the constraint lines (negative in a gap)."""
+        return self.follow.margin
+
+    @property
+    def reason(self) -> np.ndarray:
+        """0, 7, 8 or 9 at each position."""
+        return self.follow.reason
+
+
+@dataclass(frozen=True, slots=True)
+class SketchMode:
+    """One real assembly mode at the sketch: the angle θ of the eliminated link from the
+    drawing (rad), the internal joints by pair id, the margin, the sign of det J, the
+    largest distance of a joint from its drawn point, and whether it is the drawn mode."""
+
+    angle: float
+    joints: dict[PairId, complex]
+    margin: float
+    det_sign: int
+    apart: float
+    drawn: bool = False
+
+
+# ------------------------------------------------------------------------- sketch rules
+
+
+def _problem(build: _Builder, label: str, code: str, **data: str) -> None:
+    build.problem(f"geometry ({label})", f"higher.sketch.{code}", group=label, **data)
+
+
+def _column(label: str, name: str) -> str:
+    return f"{label}.{name}"
+
+
+def _sketched(layout: Layout, frames: dict[LinkId, tuple[complex, float]]) -> Sketched:
+    from assur.kinds import Sketched
+
+    first = layout.links[0]
+    return Sketched(1, frames[first], frames[first], layout=layout, frames=frames)
+
+
+def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | None:
+    """The sketch rule of a triad: drawn internal points, external anchors, block guides.
+
+    Parameters
+    ----------
+    build : _Builder
+        The model being built from the sketch (parameters, frames, problems).
+    group : AssurGroup
+        The triad as structure found it.
+    label : str
+        Its label, the prefix of its parameters (``"III(4,5,6,7)"``).
+
+    Returns
+    -------
+    Sketched or None
+        Its :class:`Layout` and the frames of its links; None after recording a problem (a
+        leash with two sliders or none with two hinges, a block's guide on the block, an
+        actuator in the group).
+    """
+    pairs = build.topo.pairs
+    if group.composite:
+        _problem(build, label, "actuator")
+        return None
+    count = Counter(link for pid in group.internal for link in pairs[pid].links)
+    base = next(link for link, n in count.items() if n == 3)
+    rows = []
+    for ext, leash, known in group.external:
+        inner = next(p for p in group.internal if leash in pairs[p].links)
+        kind = pairs[inner].type.value + pairs[ext].type.value
+        rows.append((kind != "RR", kind, leash, inner, ext, known))
+    rows.sort(key=lambda row: row[0])
+    kinds = [row[1] for row in rows]
+    if "PP" in kinds or kinds[0] != "RR":
+        _problem(build, label, "leashes", found=", ".join("–".join(k) for k in kinds))
+        return None
+    frames: dict[LinkId, tuple[complex, float]] = {}
+    anchors: list[Anchor | None] = []
+    guides: list[Guide | None] = []
+    drawn: list[complex] = []
+    for _, kind, leash, inner, ext, known in rows:
+        if kind == "RP":
+            if pairs[ext].guide not in (None, known):
+                _problem(build, label, "block_guide", pair=str(ext))
+                return None
+            point, theta = build.point(pairs[inner]), build.direction(pairs[ext])
+            guides.append(build.guide(pairs[ext], known, point, theta, label,
+                                      (f"x_{ext}", f"y_{ext}", f"beta_{ext}", None), None))
+            anchors.append(None)
+            frames[leash] = (point, theta)
+        else:
+            hinge = build.point(pairs[ext])
+            anchors.append(build.attachment(known, hinge, label, (f"x_{ext}", f"y_{ext}")))
+            guides.append(None)
+            if kind == "RR":
+                point = build.point(pairs[inner])
+                frames[leash] = (hinge, cmath.phase(point - hinge))
+            else:
+                point, theta = hinge, build.direction(pairs[inner])
+                build.put(label, f"beta_{inner}", math.degrees(theta))
+                frames[leash] = (hinge, theta)
+        build.put(label, f"x_{inner}", point.real)
+        build.put(label, f"y_{inner}", point.imag)
+        drawn.append(point)
+    frames[base] = (drawn[0], cmath.phase(drawn[1] - drawn[0]))
+    layout = Layout((base, *(row[2] for row in rows)), TRIAD_LINKS,
+                    tuple(row[3] for row in rows), tuple(row[4] for row in rows),
+                    tuple(kinds), tuple(anchors), tuple(guides))
+    return _sketched(layout, frames)
+
+
+def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched | None:
+    """The sketch rule of the class IV group: drawn C, D, E, F and the anchors of H_a, H_c.
+
+    Parameters
+    ----------
+    build : _Builder
+        The model being built from the sketch.
+    group : AssurGroup
+        The group as structure found it.
+    label : str
+        Its label (``"IV(2,3,4,5)"``).
+
+    Returns
+    -------
+    Sketched or None
+        Its :class:`Layout` and link frames; None after recording a problem (a prismatic
+        pair or an actuator in the group).
+    """
+    pairs = build.topo.pairs
+    kinds = {pairs[pid].type.value for pid in (*group.internal, *(e[0] for e in group.external))}
+    if group.composite:
+        _problem(build, label, "actuator")
+        return None
+    if kinds != {"R"} or len(group.external) != 2:
+        _problem(build, label, "class_iv_sliders")
+        return None
+    (h_a, a, known_a), (h_c, c, known_c) = group.external
+
+    def between(x: LinkId, y: LinkId | None = None) -> list[PairId]:
+        return [p for p in group.internal if x in pairs[p].links
+                and (y is None or y in pairs[p].links)]
+
+    p_c, p_f = between(a)
+    b = next(link for link in pairs[p_c].links if link != a)
+    p_d = between(b, c)[0]
+    p_e = next(p for p in between(c) if p != p_d)
+    d = next(link for link in pairs[p_e].links if link != c)
+    pts = {name: build.point(pairs[pid]) for name, pid in
+           zip(CLASS_IV_JOINTS, (p_c, p_d, p_e, p_f), strict=True)}
+    ha, hc = build.point(pairs[h_a]), build.point(pairs[h_c])
+    anchors = (build.attachment(known_a, ha, label, (f"x_{h_a}", f"y_{h_a}")),
+               build.attachment(known_c, hc, label, (f"x_{h_c}", f"y_{h_c}")))
+    for name, pid in zip(CLASS_IV_JOINTS, (p_c, p_d, p_e, p_f), strict=True):
+        build.put(label, f"x_{pid}", pts[name].real)
+        build.put(label, f"y_{pid}", pts[name].imag)
+    frames = {a: (ha, cmath.phase(pts["C"] - ha)), b: (pts["C"], cmath.phase(pts["D"] - pts["C"])),
+              c: (hc, cmath.phase(pts["D"] - hc)), d: (pts["F"], cmath.phase(pts["E"] - pts["F"]))}
+    layout = Layout((a, b, c, d), CLASS_IV_LINKS, (p_c, p_d, p_e, p_f), (h_a, h_c),
+                    anchors=anchors, guides=(None, None))
+    return _sketched(layout, frames)
+
+
+# ------------------------------------------------------------------------------ solvers
+
+#: The known links evaluated at any crank angle: the analysis state of the earlier groups.
+Known = Callable[[Any], "_State"]
+
+
+def _drawn(state: _State, group: GroupModel, pid: PairId) -> Any:
+    p = state.flat_value
+    return p(_column(group.label, f"x_{pid}")) + 1j * p(_column(group.label, f"y_{pid}"))
+
+
+def _follow(state: _State, group: GroupModel, q: Any, make: Callable[[Any], HigherGroup],
+            inputs: Callable[[_State], Any]) -> tuple[HigherSolution, Any, HigherGroup]:
+    """Follow the group's drawn mode over q; also its inputs at the reference position and
+    the group as solved."""
+    known = state.earlier(group)
+    k0 = values(inputs(known(np.zeros(state.flat_shape))))
+    phi = np.asarray(J.value(q), dtype=float)
+    delta = np.reshape(state.delta(group), -1) if np.ndim(state.delta(group)) \
+        else state.delta(group)
+    solved = make(k0)
+    follow = follow_mode(solved, lambda angle: inputs(known(angle)), phi,
+                         analogs=isinstance(q, Jet), delta=delta)
+    return follow, k0, solved
+
+
+def _record(state: _State, group: GroupModel, follow: HigherSolution, solved: HigherGroup,
+            joints: dict[str, PairId], frames: dict[str, tuple[Any, float]]
+            ) -> HigherGroupSolution:
+    """Write the link frames into the state (origin, angle at the sketch + rotation)."""
+    layout = group.layout
+    assert layout is not None
+    for link, name in zip(layout.links, layout.names, strict=True):
+        origin, angle0 = frames[name]
+        state.frames[link] = (origin, follow.rotations[name] + angle0)
+    first = state.frames[layout.links[0]]
+    return HigherGroupSolution(follow, solved, joints, first[0], first[1])
+
+
+def _triad_inputs(group: GroupModel) -> Callable[[_State], TriadInputs]:
+    layout = group.layout
+    assert layout is not None
+
+    def inputs(known: _State) -> TriadInputs:
+        a: list[Any] = []
+        u: list[Any] = []
+        for anchor, guide in zip(layout.anchors, layout.guides, strict=True):
+            if guide is not None:
+                base, angle, _ = known.guide(guide)
+                a.append(base)
+                u.append(J.expi(angle))
+            else:
+                assert anchor is not None
+                a.append(known.point(anchor))
+                u.append(None)
+        return TriadInputs((a[0], a[1], a[2]), (u[0], u[1], u[2]))
+
+    return inputs
+
+
+def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution:
+    """Follow a triad's drawn mode over the positions q (the registry's solver).
+
+    Parameters
+    ----------
+    state : _State
+        The analysis so far: the earlier groups solved at q; the triad's joints, sliders and
+        link frames are written into it.
+    group : GroupModel
+        The triad's model (its :class:`Layout`).
+    q : ndarray or Jet
+        Crank rotations from the sketch (radians); a jet for the analogs.
+
+    Returns
+    -------
+    HigherGroupSolution
+        ``exists``, ``margin``, ``reason`` over q, the followed mode and the modes at the sketch.
+    """
+    layout = group.layout
+    assert layout is not None
+    base = [_drawn(state, group, pid) for pid in layout.internal]
+    p = state.flat_value
+
+    def guide(k0: TriadInputs, i: int, kind: str) -> Any:
+        if kind == "RP":
+            return k0.u[i]
+        if kind == "PR":
+            return J.expi(p(_column(group.label, f"beta_{layout.internal[i]}")))
+        return None
+
+    def make(k0: TriadInputs) -> Triad:
+        return Triad((layout.leashes[0], layout.leashes[1], layout.leashes[2]),  # type: ignore[arg-type]
+                     (base[0], base[1], base[2]), k0.a,
+                     (guide(k0, 0, layout.leashes[0]), guide(k0, 1, layout.leashes[1]),
+                      guide(k0, 2, layout.leashes[2])))
+
+    follow, k0, solved = _follow(state, group, q, make, _triad_inputs(group))
+    theta = follow.rotations["base"]
+    frames: dict[str, tuple[Any, float]] = {
+        "base": (follow.joints["P1"], _phase(base[1] - base[0]))}
+    for i, (kind, inner, ext) in enumerate(zip(layout.leashes, layout.internal, layout.external,
+                                               strict=True)):
+        name = TRIAD_LINKS[i + 1]
+        anchor, guide_k = layout.anchors[i], layout.guides[i]
+        if guide_k is not None:  # R–P: a block hinged to the base on a known link's guide
+            point = follow.joints[f"P{i + 1}"]
+            line, angle, offset = state.guide(guide_k)
+            state.joints[inner] = point
+            state.slider(ext, guide_k.carrier, layout.links[i + 1], point,
+                         J.dot(point - line, J.expi(angle)), line, angle, offset)
+            frames[name] = (point, _phase(k0.u[i]))
+            continue
+        assert anchor is not None
+        hinge = state.point(anchor)
+        state.joints[ext] = hinge
+        if kind == "RR":
+            state.joints[inner] = follow.joints[f"P{i + 1}"]
+            frames[name] = (hinge, _phase(base[i] - k0.a[i]))
+        else:  # P–R: a leash hinged to a known link, sliding along the base's guide
+            angle0 = p(_column(group.label, f"beta_{inner}"))
+            line = follow.joints["P1"] + _col(base[i] - base[0]) * J.expi(theta)
+            carrier = state.model.pair_links[inner][2] or layout.links[0]
+            slider = next(link for link in state.model.pair_links[inner][1] if link != carrier)
+            angle = theta + angle0
+            state.slider(inner, carrier, slider, hinge, J.dot(hinge - line, J.expi(angle)), line,
+                         angle, 0.0)
+            frames[name] = (hinge, angle0)
+    joints = {f"P{i + 1}": (ext if kind == "PR" else inner) for i, (kind, inner, ext) in
+              enumerate(zip(layout.leashes, layout.internal, layout.external, strict=True))}
+    return _record(state, group, follow, solved, joints, frames)
+
+
+def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution:
+    """Follow a class IV group's drawn mode over the positions q (the registry's solver).
+
+    Parameters
+    ----------
+    state : _State
+        The analysis so far; the group's joints and link frames are written into it.
+    group : GroupModel
+        The group's model (its :class:`Layout`).
+    q : ndarray or Jet
+        Crank rotations from the sketch (radians); a jet for the analogs.
+
+    Returns
+    -------
+    HigherGroupSolution
+        As :func:`solve_triad`.
+    """
+    layout = group.layout
+    assert layout is not None
+    anchor_a, anchor_c = layout.anchors
+    assert anchor_a is not None and anchor_c is not None
+    pts = dict(zip(CLASS_IV_JOINTS, (_drawn(state, group, pid) for pid in layout.internal),
+                   strict=True))
+
+    def inputs(known: _State) -> ClassIVInputs:
+        return ClassIVInputs(known.point(anchor_a), known.point(anchor_c))
+
+    def make(k0: ClassIVInputs) -> ClassIV:
+        return ClassIV(k0.h_a, pts["C"], pts["F"], k0.h_c, pts["D"], pts["E"])
+
+    follow, k0, solved = _follow(state, group, q, make, inputs)
+    h_a, h_c = state.point(anchor_a), state.point(anchor_c)
+    state.joints.update({layout.external[0]: h_a, layout.external[1]: h_c})
+    state.joints.update({pid: follow.joints[name]
+                         for name, pid in zip(CLASS_IV_JOINTS, layout.internal, strict=True)})
+    j = follow.joints
+    frames: dict[str, tuple[Any, float]] = {
+        "a": (h_a, _phase(pts["C"] - k0.h_a)), "b": (j["C"], _phase(pts["D"] - pts["C"])),
+        "c": (h_c, _phase(pts["D"] - k0.h_c)), "d": (j["F"], _phase(pts["E"] - pts["F"]))}
+    return _record(state, group, follow, solved,
+                   dict(zip(CLASS_IV_JOINTS, layout.internal, strict=True)), frames)
+
+
+def _col(z: Any) -> Any:
+    """A drawn value (shape () or (D,)) as a column against the positions."""
+    return np.asarray(z)[..., None] if np.ndim(z) else z
+
+
+def _phase(z: Any) -> Any:
+    """The angle of a drawn vector, as a column against the positions."""
+    return _col(np.angle(np.asarray(z)))
+
+
+# ---------------------------------------------------------------------------- shortfall
+
+
+def shortfall_higher(group: GroupModel, at: Any) -> tuple[float, str]:
+    """How far the group is from assembling at the worst position of a failure interval.
+
+    In a gap (margin < 0) the margin is −|Im θ| of the nearest complex root: that angle in
+    degrees; inside the tolerance band (0 ≤ margin < δ) the shortfall is 0.
+
+    Parameters
+    ----------
+    group : GroupModel
+        The group (unused: the rule is the same for both kinds).
+    at : _Shortfall
+        What the existence check reads at the worst position.
+
+    Returns
+    -------
+    shortfall : float
+        Degrees.
+    unit : str
+        ``"deg"``.
+    """
+    return float(math.degrees(max(-at.margin, 0.0))), "deg"

@@ -133,7 +133,7 @@ class _Topology:
         self.chain = chain
         self.frame = chain.frame
         if not analysis.decomposed:
-            found = "; ".join(d.message for d in analysis.issues
+            found = "; ".join(d.text() for d in analysis.issues
                               if d.code.startswith("E")) or "links left over: " + ", ".join(
                                   map(str, analysis.leftover))
             raise StructureError(f"{chain.source}: the chain does not split into Assur groups, "

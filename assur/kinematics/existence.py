@@ -18,11 +18,11 @@ from typing import Any
 
 import numpy as np
 
+from assur.kinds import KINDS, _Shortfall
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import Motion, analyse
-from assur.kinematics.dyads import REASONS
+from assur.kinematics.dyads import reason_text
 from assur.kinematics.model import GroupModel, KinematicModel
-from assur.kinds import KINDS, _Shortfall
 
 __all__ = [
     "CONDITIONS",
@@ -48,7 +48,7 @@ class FailureInterval:
         between grid positions. For a full-turn crank an interval may wrap past 2π (then
         ``end < start``).
     reason : int
-        Solver reason code at the worst position (:data:`assur.kinematics.dyads.REASONS`).
+        Solver reason code at the worst position (:func:`assur.kinematics.dyads.reason_text`).
     worst_margin : float
         The smallest normalised margin inside the interval (to compare with δ).
     worst_at : float
@@ -73,7 +73,7 @@ class FailureInterval:
         """JSON-ready record (crank positions in degrees when ``degrees``)."""
         conv = math.degrees if degrees else float
         return {"start": conv(self.start), "end": conv(self.end), "reason": int(self.reason),
-                "condition": REASONS[self.reason][0], "worst_margin": self.worst_margin,
+                "condition": reason_text(self.reason), "worst_margin": self.worst_margin,
                 "worst_at": conv(self.worst_at), "shortfall": self.shortfall,
                 "unit": self.unit}
 

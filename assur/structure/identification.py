@@ -198,6 +198,9 @@ def check_identification(analysis: StructuralAnalysis,
     out: list[Mismatch] = []
     used: dict[int, int] = {}
     user_seq: dict[int, tuple[int, int, str]] = {}
+    rows_of = {link: f"{table}[{index}] (L{row.get('L')})"
+               for index, row in enumerate(table_rows)
+               for link in (row.get("i"), row.get("j")) if link is not None}
 
     for index, row in enumerate(table_rows):
         label = _label(table, index, row)
@@ -244,16 +247,20 @@ def check_identification(analysis: StructuralAnalysis,
                 if group.j is not None:
                     miss("j", group.j, user_j, rule)
             # judge the neighbour columns in the orientation that explains the row better
-            theirs = _neighbours(analysis, group, user_i, user_j, row, index, label)
-            ours = _neighbours(analysis, group, i, j, row, index, label)
+            theirs = _neighbours(analysis, group, user_i, user_j, row, index, label, rows_of)
+            ours = _neighbours(analysis, group, i, j, row, index, label, rows_of)
             out.extend(theirs if len(theirs) < len(ours) else ours)
         else:
-            out.extend(_neighbours(analysis, group, i, j, row, index, label))
+            out.extend(_neighbours(analysis, group, i, j, row, index, label, rows_of))
         if row.get("variant") not in kind_of(kind).variants and "variant" in row:
             allowed = kind_of(kind).variants
-            miss("variant", list(allowed), row.get("variant"),
-                 Message("ident.why.variant", {"kind": kind}),
-                 Message("ident.any_of", {"values": ", ".join(map(_shown, allowed))}))
+            if len(allowed) == 1:
+                miss("variant", allowed[0], row.get("variant"),
+                     Message("ident.why.variant", {"kind": kind}))
+            else:
+                miss("variant", list(allowed), row.get("variant"),
+                     Message("ident.why.variant", {"kind": kind}),
+                     Message("ident.any_of", {"values": ", ".join(map(_shown, allowed))}))
         if row.get("seq") is not None:
             user_seq[key] = (row["seq"], index, label)
 
@@ -267,9 +274,10 @@ def check_identification(analysis: StructuralAnalysis,
 
 
 def _neighbours(analysis: StructuralAnalysis, group: AssurGroup, i: LinkId | None,
-                j: LinkId | None, row: Mapping[str, Any], index: int, label: str
-                ) -> list[Mismatch]:
-    """Mismatches of the columns i−1, j−1, i+1, j+1 for the roles (i, j)."""
+                j: LinkId | None, row: Mapping[str, Any], index: int, label: str,
+                rows_of: Mapping[LinkId, str]) -> list[Mismatch]:
+    """Mismatches of the columns i−1, j−1, i+1, j+1 for the roles (i, j); ``rows_of``
+    names the user's row of each link."""
     out = []
     for field, link in (("i_minus_1", i), ("j_minus_1", j)):
         expected = _known_end(group, link)
@@ -279,15 +287,30 @@ def _neighbours(analysis: StructuralAnalysis, group: AssurGroup, i: LinkId | Non
             out.append(_mismatch(index, label, field, expected, row[field], why))
     for field, link in (("i_plus_1", i), ("j_plus_1", j)):
         expected = _successor(analysis, group, link)
-        if field in row and not _same(row[field], expected):
-            guided = link is not None and any(
-                p.type is PairType.P and p.guide == link
-                and p.id not in {e[0] for e in group.external} and p.id not in group.internal
-                for p in analysis.chain.pairs_of(link))
-            code = ("ident.why.successors_guided" if guided else "ident.why.successors")
-            out.append(_mismatch(index, label, field, expected, row[field], Message(
-                code, {"link": link, "links": _text(expected)})))
+        if field in row and link is not None and not _same(row[field], expected):
+            out.append(_mismatch(index, label, field, expected, row[field],
+                                 _successor_why(analysis, link, row[field], expected, rows_of)))
     return out
+
+
+def _successor_why(analysis: StructuralAnalysis, link: LinkId, found: Any, expected: Any,
+                   rows_of: Mapping[LinkId, str]) -> Message:
+    """Why the links hinged to ``link`` are ``expected``, naming the row of every link the
+    user's column gets wrong: a link it lists that slides on ``link`` (a prismatic pair), or
+    a hinged link it leaves out. In a table given alone the kind of that row decided."""
+    def links(value: Any) -> set[LinkId]:
+        return {x for x in (value if isinstance(value, list) else [value]) if x is not None}
+
+    notes = [Message("ident.why.successors", {"link": link, "links": _text(expected)})]
+    pairs = {pair.other(link): pair for pair in analysis.chain.pairs_of(link)}
+    for other in sorted(links(found) ^ links(expected), key=id_key):
+        pair = pairs.get(other)
+        if pair is None:
+            continue
+        code = "ident.why.guided" if pair.type is PairType.P else "ident.why.hinged"
+        notes.append(Message(code, {"other": other, "link": link, "pair": pair.id,
+                                    "row": rows_of.get(other, "—")}))
+    return joined(notes, "term.clauses")
 
 
 def _known_end(group: AssurGroup, link: LinkId | None) -> LinkId | None:

@@ -220,13 +220,13 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
 def _formula(inputs: tuple[AssurGroup, ...], groups: list[AssurGroup]
              ) -> tuple[str, tuple[tuple[str, ...], ...]]:
     """Structure formula (input groups, then the groups in layering order) and its levels."""
+    labels = [group.label for group in groups]
+    heads = tuple(group.label for group in inputs)
     levels: dict[int, list[str]] = {}
-    for group in groups:
-        levels.setdefault(group.level, []).append(group.label)
-    head = ", ".join(g.label for g in inputs)
-    formula = " → ".join(([head] if head else []) + [g.label for g in groups])
-    by_level = tuple(([tuple(g.label for g in inputs)] if inputs else []) +
-                     [tuple(levels[k]) for k in sorted(levels)])
+    for group, label in zip(groups, labels, strict=True):
+        levels.setdefault(group.level, []).append(label)
+    formula = " → ".join(([", ".join(heads)] if heads else []) + labels)
+    by_level = tuple(([heads] if heads else []) + [tuple(levels[k]) for k in sorted(levels)])
     return formula, by_level
 
 
@@ -337,8 +337,12 @@ def _appendages(chain: Chain, inputs: set[LinkId]) -> list[list[LinkId]]:
     depth-first order.
     """
     graph = nx.Graph()
-    graph.add_nodes_from(chain.links)
+    graph.add_node(chain.frame)
     graph.add_edges_from(pair.links for pair in chain.pairs)
+    bridges = [edges[0] for edges in nx.biconnected_component_edges(graph)
+               if len(edges) == 1 and _single_pair(chain, *edges[0])]
+    if not bridges:
+        return []
     visit = [chain.frame]
     parent: dict[LinkId, LinkId] = {}
     for a, b in nx.dfs_edges(graph, chain.frame):
@@ -350,13 +354,7 @@ def _appendages(chain: Chain, inputs: set[LinkId]) -> list[list[LinkId]]:
     for node in reversed(visit[1:]):
         size[parent[node]] += size[node]
         has_input[parent[node]] = has_input[parent[node]] or has_input[node]
-    children = []
-    for component in nx.biconnected_component_edges(graph):
-        if len(component) != 1:
-            continue
-        a, b = component[0]
-        if a in order and sum(1 for p in chain.pairs_of(a) if b in p.links) == 1:
-            children.append(b if parent.get(b) == a else a)
+    children = [b if parent.get(b) == a else a for a, b in bridges if a in order]
     sides = []
     covered_until = -1
     for child in sorted(children, key=order.__getitem__):
@@ -366,6 +364,11 @@ def _appendages(chain: Chain, inputs: set[LinkId]) -> list[list[LinkId]]:
         covered_until = start + size[child]
         sides.append(visit[start:covered_until])
     return sides
+
+
+def _single_pair(chain: Chain, a: LinkId, b: LinkId) -> bool:
+    """Whether links ``a`` and ``b`` share one pair only."""
+    return sum(1 for pair in chain.pairs_of(a) if b in pair.links) == 1
 
 
 def _with_suggestions(chain: Chain, found: list[Diagnostic]) -> list[Diagnostic]:

@@ -160,9 +160,10 @@ class _Peeler:
             b: sum(1 for _, o in self.adj[b] if o in self.known) for b in self.unknown}
         self.groups: list[RawGroup] = []
         self.issues: list[Diagnostic] = []
+        keys = {body: id_key(body) for body in self.unknown}
         self.work: deque[tuple[PairId, LinkId, LinkId]] = deque(
             sorted((e for e in graph.edges if e[1] in self.unknown and e[2] in self.unknown),
-                   key=lambda e: sorted((id_key(e[1]), id_key(e[2])))))
+                   key=lambda e: sorted((keys[e[1]], keys[e[2]]))))
 
     # -- bookkeeping -------------------------------------------------------------------
 

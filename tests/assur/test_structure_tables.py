@@ -18,11 +18,6 @@ from synthesis.cli import main
 ROOT = Path(__file__).resolve().parents[2]
 EXPECTED = re.compile(r"^#\s*expected:\s*check (\d), analyze (\d)\b", re.IGNORECASE)
 
-#: Tables of the force analysis: their 'masses' and 'loads' sections are read by the force
-#: commands, and by 'check' and 'analyze' once those learn to skip them.
-FORCE_TABLES = {"course_11_link_forces.yaml", "four_bar_gravity.yaml", "slider_crank_press.yaml"}
-
-
 def _tables() -> list[Path]:
     return sorted(path for path in (ROOT / "input_tables").glob("*.yaml")
                   if not path.name.startswith("case_"))
@@ -46,10 +41,7 @@ def test_expected_comment_is_read() -> None:
         == {"check": 0, "analyze": 0}
 
 
-@pytest.mark.parametrize("path", [
-    pytest.param(path, id=path.name, marks=pytest.mark.xfail(
-        path.name in FORCE_TABLES, reason="force sections not read by check/analyze yet",
-        strict=False)) for path in _tables()])
+@pytest.mark.parametrize("path", _tables(), ids=lambda path: path.name)
 def test_every_table_runs(path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     want = expected_codes(path.read_text(encoding="utf-8"))
     rel = path.relative_to(ROOT).as_posix()

@@ -12,9 +12,9 @@ from dataclasses import dataclass
 from assur.text import Message, render
 
 __all__ = [
+    "AssemblyError",
     "AssurError",
     "AssurWarning",
-    "AssemblyError",
     "Issue",
     "StructureError",
     "TableError",
@@ -38,23 +38,16 @@ class Issue:
     ----------
     location : str
         Where the problem is: table, row and field, e.g. ``pairs[3] (id 'D') 'guide'``.
-    message : Message or str
-        What was expected and what was found, as one sentence: a catalogue message
-        (:class:`assur.text.Message`), or an English text still to be moved into the catalogue.
-    message_ru : str
-        With an English text only: the same in Russian; empty where none exists.
+    message : Message
+        What was expected and what was found, as one sentence of the catalogue.
     """
 
     location: str
-    message: Message | str
-    message_ru: str = ""
+    message: Message
 
     def text(self, lang: str = "en") -> str:
         """Location and message in ``lang``."""
-        if isinstance(self.message, Message):
-            message = self.message.text(lang)
-        else:
-            message = self.message_ru if lang == "ru" and self.message_ru else self.message
+        message = self.message.text(lang)
         return f"{self.location}: {message}" if self.location else message
 
     def __str__(self) -> str:
@@ -90,7 +83,21 @@ class TableError(AssurError, ValueError):
 
 class StructureError(AssurError, ValueError):
     """The chain cannot be analysed the way a command needs (e.g. kinematics of a chain
-    that is not decomposable into supported groups)."""
+    that is not decomposable into supported groups).
+
+    Parameters
+    ----------
+    message : Message or str
+        A sentence of the catalogue, or a text not yet moved into it.
+    """
+
+    def __init__(self, message: Message | str) -> None:
+        self.message = message
+        super().__init__(str(message))
+
+    def text(self, lang: str = "en") -> str:
+        """The message in ``lang``."""
+        return self.message.text(lang) if isinstance(self.message, Message) else str(self)
 
 
 class AssemblyError(AssurError, ArithmeticError):

@@ -26,13 +26,14 @@ from __future__ import annotations
 
 import gettext
 import io
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
 from typing import Any
 
-__all__ = ["Message", "catalogue", "check_lang", "languages", "render"]
+__all__ = ["Message", "catalogue", "check_lang", "in_every_language", "joined", "language_key",
+           "languages", "render"]
 
 LOCALE = Path(__file__).with_name("locale")
 DEFAULT = "en"
@@ -127,3 +128,33 @@ class Message:
 
     def __str__(self) -> str:
         return self.text(DEFAULT)
+
+
+def joined(parts: Sequence[Message], code: str = "term.list") -> Message:
+    """Several messages as one: ``first, second, third`` (``code`` joins two parts).
+
+    >>> joined([Message("count.problems", {"n": n}) for n in (1, 2, 5)]).text("ru")
+    '1 ошибка, 2 ошибки, 5 ошибок'
+    """
+    if not parts:
+        raise ValueError("joined() needs at least one message")
+    whole = parts[0]
+    for part in parts[1:]:
+        whole = Message(code, {"first": whole, "rest": part})
+    return whole
+
+
+def in_every_language(key: str, message: Message) -> dict[str, str]:
+    """A message rendered in every language, keyed ``key`` (English), ``key_ru``, …
+
+    The form of the JSON answers, which carry each sentence in every language.
+
+    >>> in_every_language("count", Message("count.problems", {"n": 2}))
+    {'count': '2 problems', 'count_ru': '2 ошибки'}
+    """
+    return {language_key(key, lang): message.text(lang) for lang in languages()}
+
+
+def language_key(key: str, lang: str) -> str:
+    """The JSON key of a text in ``lang``: ``key`` in English, ``key_<lang>`` otherwise."""
+    return key if lang == DEFAULT else f"{key}_{lang}"

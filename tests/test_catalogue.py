@@ -10,6 +10,7 @@ import ast
 import re
 import shutil
 import string
+from collections.abc import Mapping
 from pathlib import Path
 
 import pytest
@@ -101,17 +102,63 @@ def _prose(template: str) -> str:
     return plain
 
 
-def test_russian_sentences_are_russian() -> None:
+#: Slips of Russian grammar met in the catalogue before: (pattern, what is right).
+RUSSIAN_SLIPS = (
+    (r"\bне корректн", "некорректный: written as one word"),
+    (r"\bожидалось (?:список|словарь|строка|пара|точка)\b",
+     "ожидался список / ожидался словарь / ожидалась строка …: the verb agrees with the noun"),
+    (r"\w\((?:и|ы|а|ов|ей|ая|ые)\)",
+     "a word with an optional ending in brackets: rephrase (\"пар: {k}\") instead"),
+    (r"\{\w+\} кинематические пары\b", "the number decides the case"),
+)
+
+
+def _russian_problems(entries: Mapping[str, tuple[tuple[str, ...], set[str]]],
+                      english: Mapping[str, tuple[tuple[str, ...], set[str]]]) -> list[str]:
+    """Entries of a Russian catalogue left in English or with a known slip of grammar.
+
+    An entry is English when its text equals the English one, when its words (fields,
+    quoted literals and identifiers left out) hold a Latin word other than YAML's literals
+    and acronyms, or when it has Latin letters and no Cyrillic ones; a text of fields and
+    signs only (``"{group} — {kind}"``) is no sentence and passes.
+    """
     problems = []
-    for code, (strings, flags) in _entries("ru").items():
+    for code, (strings, flags) in entries.items():
         if SAME in flags:
             continue
+        if code in english and set(strings) & set(english[code][0]):
+            problems.append(f"{code}: the same text as English")
         for s in strings:
             prose = _prose(s)
             latin = {w for w in re.findall(r"[A-Za-z]{3,}", prose) if not w.isupper()}
-            if not re.search("[а-яё]", prose, re.IGNORECASE) or latin - LATIN_ALLOWED:
-                problems.append(f"{code}: {s!r}")
-    assert not problems, "English left in ru.po:\n" + "\n".join(problems)
+            cyrillic = re.search("[а-яё]", prose, re.IGNORECASE)
+            if latin - LATIN_ALLOWED or (not cyrillic and re.search("[A-Za-z]", prose)):
+                problems.append(f"{code}: English words in {s!r}")
+            problems += [f"{code}: {why} in {s!r}" for pattern, why in RUSSIAN_SLIPS
+                         if re.search(pattern, s, re.IGNORECASE)]
+    return problems
+
+
+def test_russian_sentences_are_russian() -> None:
+    problems = _russian_problems(_entries("ru"), _entries("en"))
+    assert not problems, "English or slips left in ru.po:\n" + "\n".join(problems)
+
+
+def test_the_russian_check_finds_english_and_slips() -> None:
+    english = {"a": (("expected a list",), set()), "b": (("{x} — {y}",), set()),
+               "c": (("found {n} pairs",), set()), "d": (("value",), set()),
+               "e": (("unit",), {SAME})}
+    russian = {"a": (("ожидалось список",), set()), "b": (("{x} — {y}",), set()),
+               "c": (("найдено {n} кинематические пары, не корректно",), set()),
+               "d": (("value: число",), set()), "e": (("mm",), {SAME})}
+    assert _russian_problems(russian, english) == [
+        ("a: ожидался список / ожидался словарь / ожидалась строка …: the verb agrees with "
+         "the noun in 'ожидалось список'"),
+        "b: the same text as English",
+        ("c: некорректный: written as one word in 'найдено {n} кинематические пары, "
+         "не корректно'"),
+        "c: the number decides the case in 'найдено {n} кинематические пары, не корректно'",
+        "d: English words in 'value: число'"]
 
 
 #: Places where a sentence is still written in the code rather than in the catalogue.
@@ -137,7 +184,7 @@ def _places_left(paths: list[Path]) -> list[str]:
                       and node.body and isinstance(node.body[0], ast.Expr)}
         for node in ast.walk(tree):
             if (isinstance(node, ast.Constant) and isinstance(node.value, str)
-                    and id(node) not in docstrings and re.search("[а-яё]", node.value, re.I)):
+                    and id(node) not in docstrings and re.search("[а-яё]", node.value, re.IGNORECASE)):
                 places.add((name, node.lineno))
         for number, line in enumerate(source.splitlines(), 1):
             if LEFT_IN_CODE.search(line.split("#")[0]):
@@ -157,16 +204,19 @@ def test_the_scan_finds_a_sentence_left_in_the_code(tmp_path) -> None:
     assert _places_left([module]) == ["module.py:2", "module.py:5", "module.py:7"]
 
 
-@pytest.mark.xfail(strict=False, reason="modules still being moved into the catalogue")
+#: Files of other parts of the program that still hold sentences, with the places left.
+#: Each entry goes once its module renders from the catalogue; nothing else may be added.
+LEFT_ELSEWHERE = {"assur/plot/schemes.py": 3}
+
+
 def test_no_sentence_is_left_in_the_code() -> None:
     paths = sorted((ROOT / "assur").rglob("*.py")) + sorted((ROOT / "synthesis").rglob("*.py"))
-    left = _places_left(paths)
     files: dict[str, int] = {}
-    for place in left:
+    for place in _places_left(paths):
         files[place.split(":")[0]] = files.get(place.split(":")[0], 0) + 1
-    summary = "\n".join(f"{count:4d}  {name}" for name, count in
-                        sorted(files.items(), key=lambda item: -item[1]))
-    assert not left, f"{len(left)} places in {len(files)} files:\n{summary}"
+    worse = {name: count for name, count in files.items()
+             if count > LEFT_ELSEWHERE.get(name, 0)}
+    assert not worse, f"sentences left in the code (file: places): {worse}"
 
 
 @pytest.fixture

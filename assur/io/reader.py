@@ -313,11 +313,6 @@ run it with: assur case tracker --table FILE
         """
         self.issues.append(Issue(location, Message(code, data)))
 
-    def add(self, location: str, message: str, message_ru: str = "") -> None:
-        """Record one problem as English (and Russian) text; to be replaced by
-        :meth:`problem` wherever a sentence has moved into the catalogue."""
-        self.issues.append(Issue(location, message, message_ru))
-
     def root(self, allowed: Iterable[str] | None = None, *, name: str = "") -> Node:
         """The top of the document, which must be a mapping."""
         if not isinstance(self.data, dict):

@@ -51,7 +51,7 @@ from assur.kinematics.model import (
 from assur.model import GroupParams, LinkId, Pair, PairId, PairType, Sketch, joint_key
 from assur.structure.analysis import StructuralAnalysis
 from assur.structure.classification import AssurGroup
-from assur.text import Message
+from assur.text import Message, joined
 
 __all__ = ["build_model", "load_model", "model_from_params", "model_from_sketch"]
 
@@ -134,19 +134,18 @@ class _Topology:
         self.chain = chain
         self.frame = chain.frame
         if not analysis.decomposed:
-            found = "; ".join(d.message for d in analysis.issues
-                              if d.code.startswith("E")) or "links left over: " + ", ".join(
-                                  map(str, analysis.leftover))
-            raise StructureError(f"{chain.source}: the chain does not split into Assur groups, "
-                                 f"so it has no kinematic model ({found}); see 'assur check'")
+            errors = [d.message for d in analysis.issues if d.code.startswith("E")]
+            found = (joined(errors, "term.clauses") if errors else Message(
+                "structure.in_no_group", {"links": ", ".join(map(str, analysis.leftover))}))
+            raise StructureError(Message("structure.no_model",
+                                         {"source": chain.source, "found": found}))
         if len(chain.inputs) != 1:
-            raise StructureError(f"{chain.source}: kinematic analysis needs exactly one input; "
-                                 f"found {len(chain.inputs)}")
+            raise StructureError(Message("structure.one_input",
+                                         {"source": chain.source, "n": len(chain.inputs)}))
         for group in analysis.groups:
             if group.kind is None and kind_of_class(group.group_class) is None:
-                raise StructureError(f"{chain.source}: group {group.name} is of class "
-                                     f"{group.group_class}; dyads, triads and class IV groups "
-                                     f"of order 2 are solved")
+                raise StructureError(Message("structure.unsolved_class", {
+                    "source": chain.source, "group": group.name, "cls": group.group_class}))
         self.pairs = {pair.id: pair for pair in chain.pairs}
         self.drive = chain.inputs[0]
         self.groups = list(analysis.groups)
@@ -175,8 +174,8 @@ class _Topology:
             if drive.pair is not None:
                 pairs = [self.pairs[drive.pair]] if drive.pair in self.pairs else pairs
             if len(pairs) != 1 or pairs[0].type != PairType.R:
-                raise StructureError(f"{self.chain.source}: the input link {link!r} must be a "
-                                     f"crank hinged to the frame")
+                raise StructureError(Message("structure.input_not_crank",
+                                             {"source": self.chain.source, "link": link}))
             return link, pairs[0].id
         raise AssertionError("not a crank drive")  # pragma: no cover
 
@@ -530,8 +529,7 @@ def model_from_params(analysis: StructuralAnalysis) -> KinematicModel:
     variants: dict[tuple[LinkId | None, ...], int | None] = {
         row.key: row.variant for row in chain.identification or ()}
     if topo.composite_group is not None:
-        raise StructureError(f"{chain.source}: an actuator input needs the chain form with a "
-                             f"'geometry:' sketch")
+        raise StructureError(Message("structure.actuator_sketch", {"source": chain.source}))
     group0 = topo.input_group()
     params0 = _params(build, rows, group0, group0.label, kind_of(0))
     direction = params0.direction if params0 is not None else 1
@@ -624,7 +622,7 @@ def _param_anchor(topo: _Topology, build: _Builder, link: LinkId | None, label: 
         return Anchor(link, label, cols[0], cols[1], False)
     owner = build.owner.get(link)
     if owner is None:  # pragma: no cover - the layering order guarantees the owner exists
-        raise StructureError(f"link {link!r} is used before its group is solved")
+        raise StructureError(Message("structure.used_early", {"link": link}))
     if owner.group_kind.is_input:
         return Anchor(link, owner.label, "l_1", None, True)
     letter = "N" if build.links[link][1] == "i" else "M"

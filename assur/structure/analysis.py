@@ -26,11 +26,12 @@ from typing import Any
 import networkx as nx  # type: ignore[import-untyped]
 
 from assur.io.chain_table import recentre_hinge
-from assur.structure.classification import AssurGroup, classify, input_group, roman
-from assur.structure.peeling import BodyGraph, Peeling, body_graph, peel
-from assur.structure.diagnostics import Diagnostic, diagnostic
 from assur.model import Chain, Drive, LinkId, PairId, PairType, id_key
+from assur.structure.classification import AssurGroup, classify, input_group, roman
+from assur.structure.diagnostics import Diagnostic, diagnostic
+from assur.structure.peeling import BodyGraph, Peeling, body_graph, peel
 from assur.structure.rank_test import RankResult, pose_from_geometry, rank_test
+from assur.text import Message, joined, language_key, languages
 
 __all__ = ["AssurGroup", "Diagnostic", "StructuralAnalysis", "analyse_structure"]
 
@@ -62,8 +63,8 @@ class StructuralAnalysis:
         Highest group class (1 when there are no Assur groups).
     applicable : bool
         Whether the DGTU program handles the mechanism (all conditions of §1.1 hold).
-    applicability, applicability_ru : tuple of str
-        Each failed DGTU condition as a sentence.
+    applicability : tuple of Message
+        Each failed DGTU condition as a sentence (:meth:`conditions` renders them).
     issues : tuple of Diagnostic
         All diagnostics.
     leftover : tuple
@@ -93,8 +94,7 @@ class StructuralAnalysis:
     formula_levels: tuple[tuple[str, ...], ...]
     mechanism_class: int
     applicable: bool
-    applicability: tuple[str, ...]
-    applicability_ru: tuple[str, ...]
+    applicability: tuple[Message, ...]
     issues: tuple[Diagnostic, ...]
     leftover: tuple[LinkId, ...]
     rank: RankResult | None = None
@@ -103,6 +103,10 @@ class StructuralAnalysis:
     def decomposed(self) -> bool:
         """Whether every link was placed in a group with no error."""
         return not self.leftover and not any(d.code.startswith("E") for d in self.issues)
+
+    def conditions(self, lang: str = "en") -> tuple[str, ...]:
+        """Each failed DGTU condition as a sentence in ``lang``."""
+        return tuple(condition.text(lang) for condition in self.applicability)
 
     def group_of(self, link: LinkId) -> AssurGroup | None:
         """The (input or Assur) group that holds ``link``."""
@@ -129,8 +133,9 @@ class StructuralAnalysis:
             "formula": self.formula, "formula_levels": [list(x) for x in self.formula_levels],
             "mechanism_class": self.mechanism_class, "mechanism_class_roman":
                 roman(self.mechanism_class),
-            "applicable": self.applicable, "applicability": list(self.applicability),
-            "applicability_ru": list(self.applicability_ru),
+            "applicable": self.applicable,
+            **{language_key("applicability", lang): list(self.conditions(lang))
+               for lang in languages()},
             "issues": [d.to_dict() for d in self.issues],
             "leftover": list(self.leftover),
             "rank_test": self.rank.to_dict() if self.rank else None,
@@ -206,35 +211,33 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
         chain=chain, n=n, p5=p5, p4=p4, W=w, W_star=w_star, m=m, input_groups=inputs,
         groups=tuple(groups), formula=formula, formula_levels=formula_levels,
         mechanism_class=max((g.group_class for g in groups), default=1), applicable=False,
-        applicability=(), applicability_ru=(), issues=tuple(issues),
+        applicability=(), issues=tuple(issues),
         leftover=tuple(sorted(peeling.leftover + peeling.disconnected, key=id_key)), rank=rank)
     failed = _applicability(analysis, graph)
-    return replace(analysis, applicable=not failed, applicability=tuple(f[0] for f in failed),
-                   applicability_ru=tuple(f[1] for f in failed))
+    return replace(analysis, applicable=not failed, applicability=tuple(failed))
 
 
 def _formula(inputs: tuple[AssurGroup, ...], groups: list[AssurGroup]
              ) -> tuple[str, tuple[tuple[str, ...], ...]]:
     """Structure formula (input groups, then the groups in layering order) and its levels."""
+    labels = [group.label for group in groups]
+    heads = tuple(group.label for group in inputs)
     levels: dict[int, list[str]] = {}
-    for group in groups:
-        levels.setdefault(group.level, []).append(group.label)
-    head = ", ".join(g.label for g in inputs)
-    formula = " → ".join(([head] if head else []) + [g.label for g in groups])
-    by_level = tuple(([tuple(g.label for g in inputs)] if inputs else []) +
-                     [tuple(levels[k]) for k in sorted(levels)])
+    for group, label in zip(groups, labels, strict=True):
+        levels.setdefault(group.level, []).append(label)
+    formula = " → ".join(([", ".join(heads)] if heads else []) + labels)
+    by_level = tuple(([heads] if heads else []) + [tuple(levels[k]) for k in sorted(levels)])
     return formula, by_level
 
 
 def _mismatch(n: int, p5: int, p4: int, w: int, w_star: int, m: int,
               rank: RankResult | None) -> Diagnostic:
-    star = f" (W* = {w_star})" if w_star != w else ""
-    star_ru = star
+    notes = {}
+    if w_star != w:
+        notes["star"] = Message("diag.note.w_star", {"w_star": w_star})
     if rank is not None and rank.W_geom != w:
-        star += f"; with the given dimensions W_geom = {rank.W_geom}"
-        star_ru += f"; при заданных размерах W_geom = {rank.W_geom}"
-    return diagnostic("E_MOBILITY_MISMATCH", pairs=(), n=n, p5=p5, p4=p4, W=w, m=m, star=star,
-                      star_ru=star_ru)
+        notes["geom"] = Message("diag.note.w_geom", {"w_geom": rank.W_geom})
+    return diagnostic("E_MOBILITY_MISMATCH", pairs=(), notes=notes, n=n, p5=p5, p4=p4, W=w, m=m)
 
 
 # ------------------------------------------------------------------------- compound hinges
@@ -290,8 +293,8 @@ def _prismatic_loops(chain: Chain) -> list[Diagnostic]:
     r_P = |E_P| − |V_P| + c(P-subgraph) (``structure.md`` §3.3), counted per component.
     """
     prismatic = [pair for pair in chain.pairs if pair.type is PairType.P]
-    graph = nx.MultiGraph()
-    graph.add_edges_from((*pair.links, pair.id) for pair in prismatic)
+    graph = nx.Graph()
+    graph.add_edges_from(pair.links for pair in prismatic)
     component = {link: k for k, links in enumerate(nx.connected_components(graph))
                  for link in links}
     parts: dict[int, tuple[set[LinkId], list[PairId]]] = {}
@@ -327,35 +330,45 @@ def _idle(chain: Chain) -> list[Diagnostic]:
 def _appendages(chain: Chain, inputs: set[LinkId]) -> list[list[LinkId]]:
     """Maximal sides beyond a bridge (seen from the frame) that hold no input.
 
-    Parallel pairs are distinct edges, so two pairs between the same links are no bridge.
-    A bridge is an edge of the depth-first tree from the frame; its far side is the subtree
-    of its deeper end. Sides come in depth-first order, each in depth-first order.
+    The bridges are the single-edge biconnected components of the chain's graph whose two
+    links share one pair only (two pairs between the same links are no bridge). A bridge is
+    an edge of the depth-first tree from the frame; its far side is the subtree of its deeper
+    end, a contiguous run of the preorder. Sides come in depth-first order, each in
+    depth-first order.
     """
-    graph = nx.MultiGraph()
-    graph.add_nodes_from(chain.links)
-    graph.add_edges_from((*pair.links, pair.id) for pair in chain.pairs)
-    tree = nx.dfs_tree(graph, chain.frame)
-    order = {node: k for k, node in enumerate(nx.dfs_preorder_nodes(graph, chain.frame))}
-    candidates = []
-    for a, b in _bridges(graph):
-        if a not in order:  # a part not connected to the frame
+    graph = nx.Graph()
+    graph.add_node(chain.frame)
+    graph.add_edges_from(pair.links for pair in chain.pairs)
+    bridges = [edges[0] for edges in nx.biconnected_component_edges(graph)
+               if len(edges) == 1 and _single_pair(chain, *edges[0])]
+    if not bridges:
+        return []
+    visit = [chain.frame]
+    parent: dict[LinkId, LinkId] = {}
+    for a, b in nx.dfs_edges(graph, chain.frame):
+        parent[b] = a
+        visit.append(b)
+    order = {node: k for k, node in enumerate(visit)}
+    size = dict.fromkeys(visit, 1)
+    has_input = {node: node in inputs for node in visit}
+    for node in reversed(visit[1:]):
+        size[parent[node]] += size[node]
+        has_input[parent[node]] = has_input[parent[node]] or has_input[node]
+    children = [b if parent.get(b) == a else a for a, b in bridges if a in order]
+    sides = []
+    covered_until = -1
+    for child in sorted(children, key=order.__getitem__):
+        start = order[child]
+        if start < covered_until or has_input[child]:
             continue
-        child = b if order[b] > order[a] else a
-        side = {child} | nx.descendants(tree, child)
-        if not side & inputs:
-            candidates.append((order[child], side))
-    sides: list[set[LinkId]] = []
-    for _, side in sorted(candidates, key=lambda item: item[0]):
-        if not any(side <= bigger for bigger in sides):
-            sides.append(side)
-    return [sorted(side, key=order.__getitem__) for side in sides]
+        covered_until = start + size[child]
+        sides.append(visit[start:covered_until])
+    return sides
 
 
-def _bridges(graph: nx.MultiGraph) -> list[tuple[LinkId, LinkId]]:
-    """The bridges of a multigraph: the single-edge biconnected components of its simple
-    graph whose two links share no parallel pair (one pass, no copy of the multigraph)."""
-    return [edge[0] for edge in nx.biconnected_component_edges(nx.Graph(graph))
-            if len(edge) == 1 and graph.number_of_edges(*edge[0]) == 1]
+def _single_pair(chain: Chain, a: LinkId, b: LinkId) -> bool:
+    """Whether links ``a`` and ``b`` share one pair only."""
+    return sum(1 for pair in chain.pairs_of(a) if b in pair.links) == 1
 
 
 def _with_suggestions(chain: Chain, found: list[Diagnostic]) -> list[Diagnostic]:
@@ -374,11 +387,10 @@ def _with_suggestions(chain: Chain, found: list[Diagnostic]) -> list[Diagnostic]
             if not result.leftover and not result.issues and not result.disconnected:
                 good.append((link, on_frame[0].id))
         if good:
-            names = ", ".join(f"link {x} (pair {p})" for x, p in good)
-            names_ru = ", ".join(f"звено {x} (пара {p})" for x, p in good)
-            item = diagnostic(item.code, item.links, item.pairs, **item.data,
-                              hint=f"; an input at {names} completes the decomposition",
-                              hint_ru=f"; входное {names_ru} даёт полное разложение на группы")
+            places = joined([Message("diag.note.input_at", {"link": x, "pair": p})
+                             for x, p in good])
+            item = replace(item, notes={"hint": Message("diag.note.inputs_complete",
+                                                        {"places": places})})
         out.append(item)
     return out
 
@@ -403,12 +415,9 @@ def _rank_issues(chain: Chain, rank: RankResult, peeling: Peeling) -> list[Diagn
                 for link in d.links}
     out = []
     for link in rank.passive:
-        hint = hint_ru = ""
-        if link in unplaced:
-            hint = "; this is the link the decomposition could not place"
-            hint_ru = "; именно это звено не удалось включить в группы"
+        notes = {"hint": Message("diag.note.unplaced")} if link in unplaced else {}
         out.append(diagnostic("W_PASSIVE_LINK", [link], [p.id for p in chain.pairs_of(link)],
-                              hint=hint, hint_ru=hint_ru))
+                              notes))
     for links in rank.singular:
         out.append(diagnostic("W_SINGULAR_POSE", links, ()))
     return out
@@ -420,11 +429,12 @@ _BLOCKING = {"E_OVERCONSTRAINED", "E_UNDERCONSTRAINED", "W_PASSIVE_LINK", "E_PRI
              "E_RIGID_TRUSS", "E_DUPLICATE_PAIR", "W_GROUP_ON_ONE_LINK"}
 
 
-def _applicability(a: StructuralAnalysis, graph: BodyGraph) -> list[tuple[str, str]]:
-    """Failed DGTU conditions of ``method.md`` §1.1, as (English, Russian) sentences."""
-    failed: list[tuple[str, str]] = []
+def _applicability(a: StructuralAnalysis, graph: BodyGraph) -> list[Message]:
+    """Failed DGTU conditions of ``method.md`` §1.1, each as a sentence."""
+    failed: list[Message] = []
     codes = {d.code for d in a.issues}
     chain = a.chain
+
     def driven_link(drive: Drive) -> LinkId | None:
         if drive.pair is not None:
             pair = chain.pair(drive.pair)
@@ -438,47 +448,32 @@ def _applicability(a: StructuralAnalysis, graph: BodyGraph) -> list[tuple[str, s
     bad_inputs = [d for d in chain.inputs if not driven_by_hinge(d)]
     if bad_inputs:
         names = ", ".join(str(d.link if d.link is not None else d.pair) for d in bad_inputs)
-        failed.append((f"condition 3: every input must be a crank turning on the frame in a "
-                       f"revolute pair; input(s) {names} are not",
-                       f"условие 3: входное звено должно быть кривошипом, вращающимся "
-                       f"относительно стойки; входы {names} этому не отвечают"))
+        failed.append(Message("structure.condition.crank", {"names": names}))
     if "W_IDLE_LINK" in codes or "E_DISCONNECTED" in codes:
-        failed.append(("condition 4: the kinematic chain must be closed and connected to the "
-                       "frame; it has idle or disconnected links",
-                       "условие 4: кинематическая цепь должна быть замкнутой и связанной со "
-                       "стойкой; есть незамкнутые или несвязанные звенья"))
+        failed.append(Message("structure.condition.closed"))
     if a.W != 1 or a.W_star != 1 or a.m != 1:
-        failed.append((f"condition 5: the mechanism must have W = 1 and one input; here "
-                       f"W = {a.W}, W* = {a.W_star}, inputs = {a.m}",
-                       f"условие 5: степень подвижности должна быть W = 1 при одном входном "
-                       f"звене; здесь W = {a.W}, W* = {a.W_star}, входов {a.m}"))
+        failed.append(Message("structure.condition.mobility",
+                              {"W": a.W, "W_star": a.W_star, "m": a.m}))
     blocking = sorted(codes & _BLOCKING)
     if blocking:
-        failed.append((f"condition 6: no redundant constraints, passive links or idle "
-                       f"freedoms are allowed; found {', '.join(blocking)}",
-                       f"условие 6: не допускаются избыточные связи, пассивные звенья и "
-                       f"лишние степени свободы; найдено {', '.join(blocking)}"))
+        failed.append(Message("structure.condition.redundant", {"codes": ", ".join(blocking)}))
     heavy = [link for link in chain.moving_links if len(chain.pairs_of(link)) > 3]
     if heavy:
-        names = ", ".join(map(str, heavy))
-        failed.append((f"condition 7: each moving link may form at most three pairs; "
-                       f"link(s) {names} form more",
-                       f"условие 7: каждое подвижное звено может входить не более чем в три "
-                       f"кинематические пары; звенья {names} входят в большее число"))
+        failed.append(Message("structure.condition.degree",
+                              {"names": ", ".join(map(str, heavy))}))
     others = [g.label for g in a.groups if not g.is_dyad]
     if a.leftover or others or any(d.code in {"E_UNSUPPORTED_GROUP", "E_INTERNAL"} for d in
                                    a.issues):
-        what, what_ru = [], []
-        if others:
-            what.append(f"groups {', '.join(others)} are not dyads")
-            what_ru.append(f"группы {', '.join(others)} не являются двухповодковыми")
-        if a.leftover:
-            what.append(f"links {', '.join(map(str, a.leftover))} are in no group")
-            what_ru.append(f"звенья {', '.join(map(str, a.leftover))} не вошли в группы")
-        text = "; ".join(what) or "the decomposition is incomplete"
-        text_ru = "; ".join(what_ru) or "разложение на группы не завершено"
-        failed.append((f"condition 8: the mechanism must be built by layering dyads of kinds "
-                       f"1–5 on the input group (class II); {text}",
-                       f"условие 8: механизм должен образовываться наслоением двухповодковых "
-                       f"групп 1–5 видов на начальный механизм (II класс); {text_ru}"))
+        failed.append(Message("structure.condition.dyads", {"what": _incomplete(a, others)}))
     return failed
+
+
+def _incomplete(a: StructuralAnalysis, others: list[str]) -> Message:
+    """What keeps a mechanism from being layered of dyads."""
+    what = []
+    if others:
+        what.append(Message("structure.not_dyads", {"groups": ", ".join(others)}))
+    if a.leftover:
+        what.append(Message("structure.in_no_group",
+                            {"links": ", ".join(map(str, a.leftover))}))
+    return joined(what, "term.clauses") if what else Message("structure.incomplete")

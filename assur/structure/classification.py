@@ -150,10 +150,10 @@ def classify(raw: RawGroup, graph: BodyGraph) -> AssurGroup:
     bodies = raw.bodies
     ext_real = tuple(_real_external(graph, pid, body) for pid, body, _ in raw.external)
     composite = next((graph.members[b] for b in bodies if len(graph.members[b]) > 1), None)
-    common: dict[str, Any] = dict(
-        links=tuple(graph.links(bodies)), order=len(raw.external), level=raw.level,
-        external=ext_real, internal=tuple(raw.internal), composite=composite,
-        parts=tuple(graph.members[b] for b in bodies))
+    common: dict[str, Any] = {
+        "links": tuple(graph.links(bodies)), "order": len(raw.external), "level": raw.level,
+        "external": ext_real, "internal": tuple(raw.internal), "composite": composite,
+        "parts": tuple(graph.members[b] for b in bodies)}
     issues: list[Diagnostic] = []
     truss = _truss(raw, graph)
     if truss is not None:

@@ -9,7 +9,7 @@ table filled by hand with the analysis and reports every mismatch by row and fie
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 from typing import Any
 
 from assur.errors import StructureError
@@ -17,6 +17,7 @@ from assur.kinds import KINDS, kind_of
 from assur.model import COLUMNS, IdentificationRow, LinkId, PairType, id_key
 from assur.structure.analysis import StructuralAnalysis
 from assur.structure.classification import AssurGroup
+from assur.text import Message, in_every_language, joined
 
 __all__ = ["COLUMNS", "OUT_CODES", "IdentificationRow", "Mismatch", "check_identification",
            "identification_table"]
@@ -39,8 +40,8 @@ class Mismatch:
         The column (``"i_plus_1"``) or count (``"W"``); ``"row"`` for a missing row.
     expected, found : object
         The analysis' value and the table's value.
-    message, message_ru : str
-        One sentence each.
+    message : Message
+        The sentence.
     """
 
     row: int | None
@@ -48,12 +49,17 @@ class Mismatch:
     field: str
     expected: Any
     found: Any
-    message: str
-    message_ru: str
+    message: Message
+
+    def text(self, lang: str = "en") -> str:
+        """The sentence in ``lang``."""
+        return self.message.text(lang)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready form."""
-        return asdict(self)
+        """JSON-ready form: the sentence in every language (``message`` in English, ``message_<lang>`` in the others)."""
+        return {"row": self.row, "label": self.label, "field": self.field,
+                "expected": self.expected, "found": self.found,
+                **in_every_language("message", self.message)}
 
 
 def _require_dgtu(analysis: StructuralAnalysis) -> None:
@@ -63,11 +69,12 @@ def _require_dgtu(analysis: StructuralAnalysis) -> None:
     if unplaced or others:
         parts = []
         if others:
-            parts.append(f"groups {', '.join(others)} are not dyads of kinds 1–5")
+            parts.append(Message("structure.not_dyads", {"groups": ", ".join(others)}))
         if unplaced:
-            parts.append(f"links {', '.join(map(str, unplaced))} are in no group")
-        raise StructureError(f"{analysis.chain.name}: the identification table lists the input "
-                             f"group and dyads only; {'; '.join(parts)}")
+            parts.append(Message("structure.in_no_group",
+                                 {"links": ", ".join(map(str, unplaced))}))
+        raise StructureError(Message("ident.dyads_only", {
+            "name": analysis.chain.name, "why": joined(parts, "term.clauses")}))
 
 
 def identification_table(analysis: StructuralAnalysis,
@@ -191,32 +198,32 @@ def check_identification(analysis: StructuralAnalysis,
     out: list[Mismatch] = []
     used: dict[int, int] = {}
     user_seq: dict[int, tuple[int, int, str]] = {}
+    rows_of = {link: f"{table}[{index}] (L{row.get('L')})"
+               for index, row in enumerate(table_rows)
+               for link in (row.get("i"), row.get("j")) if link is not None}
 
     for index, row in enumerate(table_rows):
         label = _label(table, index, row)
 
-        def miss(field: str, expected: Any, found: Any, why: str = "", why_ru: str = "",
-                 index: int = index, label: str = label) -> None:
-            out.append(_mismatch(index, label, field, expected, found, why, why_ru))
+        def miss(field: str, expected: Any, found: Any, why: Message | None = None,
+                 shown: Message | None = None, index: int = index, label: str = label) -> None:
+            out.append(_mismatch(index, label, field, expected, found, why, shown))
 
         user_i, user_j = row.get("i"), row.get("j")
         group = analysis.group_of(user_i) if user_i is not None else None
         if group is None and user_j is not None:
             group = analysis.group_of(user_j)
         if group is None:
-            miss("i", "a link of the mechanism", user_i, "this link is in no group",
-                 "это звено не входит ни в одну группу")
+            miss("i", None, user_i, Message("ident.why.no_group"), Message("ident.a_link"))
             continue
         key = id(group)
         if key in used:
-            miss("row", None, group.label, f"group {group.label} is already described in row "
-                 f"{used[key]}", f"группа {group.label} уже описана в строке {used[key]}")
+            miss("row", None, group.label, Message("ident.why.described",
+                                                   {"group": group.label, "row": used[key]}))
             continue
         used[key] = index
         if group.group_class > 1 and not group.is_dyad:
-            miss("L", None, row.get("L"), f"{group.label} is not a dyad of kinds 1–5 and has no "
-                 f"row in this table", f"{group.label} — не двухповодковая группа 1–5 видов, "
-                 f"в этой таблице её описать нельзя")
+            miss("L", None, row.get("L"), Message("ident.why.not_dyad", {"group": group.label}))
             continue
         expected_links = set(group.links)
         found_links = {x for x in (user_i, user_j) if x is not None}
@@ -224,74 +231,86 @@ def check_identification(analysis: StructuralAnalysis,
             partner = sorted(expected_links - {user_i}, key=id_key)
             field = "j" if user_i in expected_links else "i"
             miss(field, partner[0] if len(partner) == 1 else (partner or None),
-                 row.get(field), f"the group of this row is {group.label}",
-                 f"группа этой строки — {group.label}")
+                 row.get(field), Message("ident.why.row_group", {"group": group.label}))
             continue
         kind = group.kind or 0
         if row.get("L") != kind:
             title = kind_of(kind)
-            article = "the" if title.is_input else "a"
-            miss("L", kind, row.get("L"), f"{group.label} is {article} {title.title('en')}",
-                 f"{group.label} — {title.title('ru')}")
+            miss("L", kind, row.get("L"), Message(
+                "ident.why.is_input" if title.is_input else "ident.why.is_kind",
+                {"group": group.label, "kind": Message(f"{title.key}.name")}))
         i, j = group.i, group.j
         if (user_i, user_j) != (i, j):
             if not (group.j is not None and _flexible(group, frame)):
-                rule, rule_ru = kind_of(kind).role_rule("en"), kind_of(kind).role_rule("ru")
-                miss("i", group.i, user_i, rule, rule_ru)
+                rule = Message(f"{kind_of(kind).key}.roles")
+                miss("i", group.i, user_i, rule)
                 if group.j is not None:
-                    miss("j", group.j, user_j, rule, rule_ru)
+                    miss("j", group.j, user_j, rule)
             # judge the neighbour columns in the orientation that explains the row better
-            theirs = _neighbours(analysis, group, user_i, user_j, row, index, label)
-            ours = _neighbours(analysis, group, i, j, row, index, label)
+            theirs = _neighbours(analysis, group, user_i, user_j, row, index, label, rows_of)
+            ours = _neighbours(analysis, group, i, j, row, index, label, rows_of)
             out.extend(theirs if len(theirs) < len(ours) else ours)
         else:
-            out.extend(_neighbours(analysis, group, i, j, row, index, label))
+            out.extend(_neighbours(analysis, group, i, j, row, index, label, rows_of))
         if row.get("variant") not in kind_of(kind).variants and "variant" in row:
             allowed = kind_of(kind).variants
-            miss("variant", " or ".join("null" if v is None else str(v) for v in allowed),
-                 row.get("variant"), f"allowed for kind {kind}", f"допустимо для {kind} вида")
+            if len(allowed) == 1:
+                miss("variant", allowed[0], row.get("variant"),
+                     Message("ident.why.variant", {"kind": kind}))
+            else:
+                miss("variant", list(allowed), row.get("variant"),
+                     Message("ident.why.variant", {"kind": kind}),
+                     Message("ident.any_of", {"values": ", ".join(map(_shown, allowed))}))
         if row.get("seq") is not None:
             user_seq[key] = (row["seq"], index, label)
 
     for group in groups:
         if id(group) not in used and (group.group_class == 1 or group.is_dyad):
             out.append(Mismatch(None, table, "row", group.label, None,
-                                f"{table}: no row for group {group.label}",
-                                f"{table}: нет строки для группы {group.label}"))
+                                Message("ident.no_row", {"table": table, "group": group.label})))
     out += _check_seq(analysis, groups, seq_of, user_seq)
     out += _check_claims(analysis, table)
     return out
 
 
 def _neighbours(analysis: StructuralAnalysis, group: AssurGroup, i: LinkId | None,
-                j: LinkId | None, row: Mapping[str, Any], index: int, label: str
-                ) -> list[Mismatch]:
-    """Mismatches of the columns i−1, j−1, i+1, j+1 for the roles (i, j)."""
+                j: LinkId | None, row: Mapping[str, Any], index: int, label: str,
+                rows_of: Mapping[LinkId, str]) -> list[Mismatch]:
+    """Mismatches of the columns i−1, j−1, i+1, j+1 for the roles (i, j); ``rows_of``
+    names the user's row of each link."""
     out = []
     for field, link in (("i_minus_1", i), ("j_minus_1", j)):
         expected = _known_end(group, link)
         if field in row and row[field] != expected:
-            out.append(_mismatch(
-                index, label, field, expected, row[field],
-                f"the external pair of link {link} joins it to link {expected}"
-                if expected is not None else "",
-                f"внешняя пара звена {link} соединяет его со звеном {expected}"
-                if expected is not None else ""))
+            why = (Message("ident.why.external", {"link": link, "known": expected})
+                   if expected is not None else None)
+            out.append(_mismatch(index, label, field, expected, row[field], why))
     for field, link in (("i_plus_1", i), ("j_plus_1", j)):
         expected = _successor(analysis, group, link)
-        if field in row and not _same(row[field], expected):
-            guided = link is not None and any(
-                p.type is PairType.P and p.guide == link
-                and p.id not in {e[0] for e in group.external} and p.id not in group.internal
-                for p in analysis.chain.pairs_of(link))
-            note = " (a link guided by it is not listed)" if guided else ""
-            note_ru = " (звено, скользящее по нему, не указывается)" if guided else ""
-            out.append(_mismatch(
-                index, label, field, expected, row[field],
-                f"links of later groups hinged to link {link}: {_text(expected)}{note}",
-                f"звенья следующих групп, шарнирно присоединённые к звену {link}: "
-                f"{_text(expected)}{note_ru}"))
+        if field in row and link is not None and not _same(row[field], expected):
+            out.append(_mismatch(index, label, field, expected, row[field],
+                                 _successor_why(analysis, link, row[field], expected, rows_of)))
     return out
+
+
+def _successor_why(analysis: StructuralAnalysis, link: LinkId, found: Any, expected: Any,
+                   rows_of: Mapping[LinkId, str]) -> Message:
+    """Why the links hinged to ``link`` are ``expected``, naming the row of every link the
+    user's column gets wrong: a link it lists that slides on ``link`` (a prismatic pair), or
+    a hinged link it leaves out. In a table given alone the kind of that row decided."""
+    def links(value: Any) -> set[LinkId]:
+        return {x for x in (value if isinstance(value, list) else [value]) if x is not None}
+
+    notes = [Message("ident.why.successors", {"link": link, "links": _text(expected)})]
+    pairs = {pair.other(link): pair for pair in analysis.chain.pairs_of(link)}
+    for other in sorted(links(found) ^ links(expected), key=id_key):
+        pair = pairs.get(other)
+        if pair is None:
+            continue
+        code = "ident.why.guided" if pair.type is PairType.P else "ident.why.hinged"
+        notes.append(Message(code, {"other": other, "link": link, "pair": pair.id,
+                                    "row": rows_of.get(other, "—")}))
+    return joined(notes, "term.clauses")
 
 
 def _known_end(group: AssurGroup, link: LinkId | None) -> LinkId | None:
@@ -311,7 +330,7 @@ def _same(found: Any, expected: Any) -> bool:
 
 def _text(value: Any) -> str:
     if value is None:
-        return "none"
+        return "—"
     return ", ".join(map(str, value)) if isinstance(value, list) else str(value)
 
 
@@ -321,13 +340,13 @@ def _label(table: str, index: int, row: Mapping[str, Any]) -> str:
 
 
 def _mismatch(index: int | None, label: str, field: str, expected: Any, found: Any,
-              why: str = "", why_ru: str = "") -> Mismatch:
-    exp, fnd = _shown(expected), _shown(found)
-    tail = f" ({why})" if why else ""
-    tail_ru = f" ({why_ru})" if why_ru else ""
-    return Mismatch(index, label, field, expected, found,
-                    f"{label} {field!r}: expected {exp}, found {fnd}{tail}",
-                    f"{label} {field!r}: ожидалось {exp}, указано {fnd}{tail_ru}")
+              why: Message | None = None, shown: Message | None = None) -> Mismatch:
+    """A mismatch of one field; ``shown`` describes the expected value when it is no value."""
+    data = {"label": label, "field": field, "found": _shown(found),
+            "expected": shown if shown is not None else _shown(expected)}
+    message = (Message("ident.mismatch_because", {**data, "why": why}) if why is not None
+               else Message("ident.mismatch", data))
+    return Mismatch(index, label, field, expected, found, message)
 
 
 def _shown(value: Any) -> str:
@@ -350,12 +369,9 @@ def _check_seq(analysis: StructuralAnalysis, groups: tuple[AssurGroup, ...],
                 and user_seq[id(g)][0] >= seq]
         clash = values.count(seq) > 1 or not 1 <= seq <= len(groups)
         if late or (clash and seq != seq_of[id(group)]):
-            why = (f"the group attaches to {', '.join(g.label for g in late)}, which must come "
-                   f"earlier" if late else f"seq must be a unique number 1..{len(groups)}")
-            why_ru = (f"группа присоединяется к {', '.join(g.label for g in late)}, которые "
-                      f"должны идти раньше" if late else
-                      f"seq — неповторяющийся номер 1..{len(groups)}")
-            out.append(_mismatch(index, label, "seq", seq_of[id(group)], seq, why, why_ru))
+            why = (Message("ident.why.seq_late", {"groups": ", ".join(g.label for g in late)})
+                   if late else Message("ident.why.seq_unique", {"n": len(groups)}))
+            out.append(_mismatch(index, label, "seq", seq_of[id(group)], seq, why))
     return out
 
 
@@ -365,6 +381,7 @@ def _check_claims(analysis: StructuralAnalysis, table: str) -> list[Mismatch]:
     out = []
     for key, found in analysis.chain.claims.items():
         if actual[key] != found:
-            out.append(_mismatch(None, "table header", key, actual[key], found))
+            out.append(Mismatch(None, table, key, actual[key], found, Message(
+                "ident.claim", {"field": key, "expected": actual[key], "found": found})))
     return out
 

@@ -21,8 +21,9 @@ from dataclasses import dataclass, field
 
 import networkx as nx  # type: ignore[import-untyped]
 
-from assur.structure.diagnostics import Diagnostic, diagnostic
 from assur.model import Chain, LinkId, PairId, id_key
+from assur.structure.diagnostics import Diagnostic, diagnostic
+from assur.text import Message
 
 __all__ = ["S_MAX", "BodyGraph", "Peeling", "RawGroup", "body_graph", "peel"]
 
@@ -75,8 +76,7 @@ def body_graph(chain: Chain) -> BodyGraph:
 
     The links joined by frozen actuator pairs become one body, named by its smallest link.
     """
-    welded = nx.Graph()
-    welded.add_nodes_from(chain.links)
+    welded = nx.Graph()  # the frozen actuator pairs only: links of no actuator stay alone
     frozen: list[PairId] = []
     input_links: list[LinkId] = []
     driven: dict[LinkId, PairId] = {}
@@ -101,8 +101,9 @@ def body_graph(chain: Chain) -> BodyGraph:
         elif link != chain.frame:
             issues.append(diagnostic("E_INPUT_NOT_ON_FRAME", [link], [p.id for p in on_frame],
                                      k=len(on_frame)))
-    body_of = {link: min(body, key=id_key) for body in nx.connected_components(welded)
-               for link in body}
+    body_of = {link: link for link in chain.links}
+    body_of.update({link: min(body, key=id_key) for body in nx.connected_components(welded)
+                    for link in body})
     members: dict[LinkId, list[LinkId]] = {}
     for link in chain.links:
         members.setdefault(body_of[link], []).append(link)
@@ -159,9 +160,10 @@ class _Peeler:
             b: sum(1 for _, o in self.adj[b] if o in self.known) for b in self.unknown}
         self.groups: list[RawGroup] = []
         self.issues: list[Diagnostic] = []
+        keys = {body: id_key(body) for body in self.unknown}
         self.work: deque[tuple[PairId, LinkId, LinkId]] = deque(
             sorted((e for e in graph.edges if e[1] in self.unknown and e[2] in self.unknown),
-                   key=lambda e: sorted((id_key(e[1]), id_key(e[2])))))
+                   key=lambda e: sorted((keys[e[1]], keys[e[2]]))))
 
     # -- bookkeeping -------------------------------------------------------------------
 
@@ -226,7 +228,7 @@ class _Peeler:
     def _dyads(self) -> bool:
         found = False
         while self.work:
-            pid, u, v = self.work.popleft()
+            _, u, v = self.work.popleft()
             if (u in self.unknown and v in self.unknown and self.kpairs[u] == 1
                     and self.kpairs[v] == 1 and self.mult[frozenset((u, v))] == 1):
                 self._accept({u, v})
@@ -251,15 +253,13 @@ class _Peeler:
     def _overconstrained(self, subset: set[LinkId], external: list, internal: list, d: int,
                          p: int) -> Diagnostic:
         inputs = sorted({k for _, _, k in external if k in self.g.input_bodies}, key=id_key)
-        why = why_ru = ""
+        notes = {}
         if len(inputs) >= 2:
-            names = " and ".join(str(x) for x in inputs)
-            why = f"; inputs {names} over-specify the motion"
-            why_ru = f"; входные звенья {' и '.join(str(x) for x in inputs)} задают движение " \
-                     f"с избытком"
+            notes["why"] = Message("diag.note.inputs_overspecify", {
+                "first": ", ".join(map(str, inputs[:-1])), "last": inputs[-1]})
         pairs = [pid for pid, _, _ in external] + internal
-        return diagnostic("E_OVERCONSTRAINED", self.g.links(subset), pairs, k=len(subset), p=p,
-                          d=d, q=-d, why=why, why_ru=why_ru)
+        return diagnostic("E_OVERCONSTRAINED", self.g.links(subset), pairs, notes, k=len(subset),
+                          p=p, d=d, q=-d)
 
     def _components(self) -> list[set[LinkId]]:
         sub = nx.Graph()

@@ -131,12 +131,11 @@ class Assessment:
 
     def failed_conditions(self, lang: str = "en") -> tuple[str, ...]:
         """The conditions of the course method that the chain fails, in ``lang``."""
-        analysis = self.analysis
-        return analysis.applicability_ru if lang == "ru" else analysis.applicability
+        return self.analysis.conditions(lang)
 
     def mismatch_texts(self, lang: str = "en") -> list[tuple[Mismatch, str]]:
         """Every mismatch of the student's table with its sentence in ``lang``."""
-        return [(m, m.message_ru if lang == "ru" else m.message) for m in self.mismatches or ()]
+        return [(m, m.text(lang)) for m in self.mismatches or ()]
 
     @property
     def rows_given(self) -> int:

@@ -86,9 +86,9 @@ def test_wrong_kind_and_wrong_successor(course: object, rows: list[dict]) -> Non
     index = rows.index(row)
     result = check_identification(course, rows)
     assert _found(result) == [(index, "L", 2, 5), (index, "j_plus_1", 10, None)]
-    assert "structure_identification[2]" in result[0].message
-    assert "'j_plus_1': expected 10, found null" in result[1].message
-    assert "ожидалось 10" in result[1].message_ru
+    assert "structure_identification[2]" in result[0].text("en")
+    assert "'j_plus_1': expected 10, found null" in result[1].text("en")
+    assert "ожидалось 10" in result[1].text("ru")
 
 
 def test_guided_link_is_not_a_successor(course: object, rows: list[dict]) -> None:
@@ -97,7 +97,7 @@ def test_guided_link_is_not_a_successor(course: object, rows: list[dict]) -> Non
     row["j_plus_1"] = 4
     result = check_identification(course, rows)
     assert _found(result) == [(rows.index(row), "j_plus_1", None, 4)]
-    assert "guided by it" in result[0].message
+    assert "guided by it" in result[0].text("en")
 
 
 def test_missing_row(course: object, rows: list[dict]) -> None:
@@ -130,8 +130,8 @@ def test_variant_must_suit_the_kind(course: object, rows: list[dict]) -> None:
     _row(rows, 4)["variant"] = 1
     _row(rows, 1)["variant"] = 0
     assert _found(check_identification(course, rows)) == [
-        (rows.index(_row(rows, 1)), "variant", "1 or -1", 0),
-        (rows.index(_row(rows, 4)), "variant", "null", 1)]
+        (rows.index(_row(rows, 1)), "variant", [1, -1], 0),
+        (rows.index(_row(rows, 4)), "variant", None, 1)]
 
 
 def test_header_counts_are_checked() -> None:

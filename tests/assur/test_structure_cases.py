@@ -52,7 +52,7 @@ def test_chain_case(path: Path) -> None:
             _check_group(group, want)
     if "applicability" in expected:
         failed = [int(re.match(r"condition (\d+)", text).group(1))
-                  for text in analysis.applicability]
+                  for text in analysis.conditions("en")]
         assert failed == expected["applicability"]
     if "rank_test" in expected:
         assert analysis.rank is not None
@@ -68,5 +68,5 @@ def test_chain_case(path: Path) -> None:
         for key, value in item.get("data", {}).items():
             assert match.data[key] == value, (item["code"], key)
         if "text" in item:
-            assert item["text"] in match.message
-        assert match.message and match.message_ru
+            assert item["text"] in match.text("en")
+        assert match.text("en") and match.text("ru") != match.text("en")

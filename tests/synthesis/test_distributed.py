@@ -14,7 +14,6 @@ import shutil
 import subprocess
 import sys
 import textwrap
-import time
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import replace
 from importlib.util import find_spec
@@ -112,18 +111,15 @@ def _same(a: SearchResult, b: SearchResult) -> None:
 
 
 def _tasks_left(executor) -> int:
-    """Tasks the scheduler still holds, once the cancellations have arrived."""
+    """Tasks of the runs the scheduler still holds."""
     client = executor.client
+    # a barrier: the messages sent before this task's have reached the scheduler
+    client.submit(int, 0, pure=False).result()
 
     def count(dask_scheduler) -> int:
-        return sum(key.startswith("assur-") for key in map(str, dask_scheduler.tasks))
+        return sum(str(key).startswith("assur-") for key in dask_scheduler.tasks)
 
-    for _ in range(50):
-        left = int(client.run_on_scheduler(count))
-        if not left:
-            break
-        time.sleep(0.1)
-    return left
+    return int(client.run_on_scheduler(count))
 
 
 @pytest.fixture(scope="module")
@@ -209,6 +205,22 @@ def test_ctrl_c_keeps_the_best_so_far_and_cancels(problem, serial, executor):
     ranks = merit(serial.trial_criteria.take(np.arange(done)))
     np.testing.assert_array_equal(there.x, serial.trials[int(np.argmin(ranks))], strict=True)
     assert _tasks_left(executor) == 0
+
+
+@pytest.mark.distributed
+@_needs_dask
+def test_ctrl_c_while_drawing_cancels_the_tasks(executor):
+    def blocks() -> Iterator[float]:
+        yield from (1.0, -2.0, 3.0)
+        raise KeyboardInterrupt  # pressed while the next block is drawn
+
+    try:
+        list(executor.map(abs, blocks()))
+    except KeyboardInterrupt as pressed:
+        # its traceback keeps the executor's frame, and so its futures, alive
+        assert pressed.__traceback__ is not None and _tasks_left(executor) == 0
+    else:
+        pytest.fail("the interrupt was lost")
 
 
 @pytest.mark.distributed

@@ -31,7 +31,7 @@ from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import AbstractContextManager, contextmanager, nullcontext
 from typing import TYPE_CHECKING, TypeVar
 
-from assur import AssurError
+from assur.errors import AssurError
 from assur.text import Message
 
 if TYPE_CHECKING:

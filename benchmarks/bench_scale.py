@@ -12,27 +12,32 @@ the range over the rounds.
    default) with 2^budget designs, in this process, on a ``LocalCluster`` of 1 and of 2
    worker processes (started before the timing; their start is timed apart). Each cluster
    run is checked to give the single-process trials and best design bit for bit.
-2. The terms of the cost model (``docs/scale.md``), per LPτ block of ``batch`` designs:
+2. The terms of the cost model (``docs/scale.md``), per LPτ block of ``batch`` designs, in
+   CPU time (``getrusage``: on a shared machine the wall time measures the queue for the
+   cores as much as the work):
 
    * ``t_block``: evaluation of one block (the task's work), in this process and inside a
      worker of the 1-worker cluster (one BLAS thread there, as Dask sets it);
    * ``t_driver``: what the driver does per block whatever the cluster: draw the Sobol'
      points, record the block (rank, best, stop rules), concatenate at the end; measured by
      a search whose evaluator returns a block's criteria computed beforehand;
-   * ``t_task``: Dask's cost per task (client, scheduler, worker, both transfers), measured
-     on the 2-worker cluster by tasks that carry a real block in and a real block's criteria
-     out but compute nothing, all submitted at once (their throughput; an upper bound here,
-     where client, scheduler and workers share two cores);
-   * ``t_round``: the round trip of one such task alone (latency; hidden by the window of
-     tasks submitted ahead while 2·t_block > t_round);
+   * ``t_sched``: the client's and the scheduler's CPU per task (they share this process
+     in a ``LocalCluster``), and ``t_wtask``: the workers' CPU per task, measured on the
+     2-worker cluster by tasks that carry a real block in and a real block's criteria out
+     but compute nothing, all submitted at once;
+   * ``t_round``: the wall-time round trip of one such task alone (latency; hidden by the
+     window of tasks submitted ahead);
    * bytes in and out per block (pickled block, pickled criteria) and of the evaluator,
      sent once per worker.
+3. The prediction of the model for 2^24 designs at 1 to 1024 workers.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import pickle
+import resource
 import statistics
 import sys
 import time
@@ -57,6 +62,8 @@ PROBLEM = ROOT / "input_tables" / "problems" / "class2_course_11_link.yaml"
 #: Workers of the model's predictions, and the budget (log2) it predicts for.
 PREDICT_WORKERS = (1, 2, 16, 64, 256, 1024)
 PREDICT_BUDGET = 24
+#: The driver's network link assumed by the model: 1 Gbit/s, in bytes per second.
+LINK = 1e9 / 8
 
 
 class _Canned:
@@ -88,13 +95,6 @@ def _same(a: SearchResult, b: SearchResult) -> bool:
                     for u, v in zip(a.trial_criteria.arrays(), b.trial_criteria.arrays())))
 
 
-def _evaluation_time(evaluate: Callable[..., Criteria], x: np.ndarray) -> float:
-    """Seconds of one evaluation (a task, timed where it runs)."""
-    start = time.perf_counter()
-    evaluate(x)
-    return time.perf_counter() - start
-
-
 def _spread(values: list[float]) -> str:
     return f"{statistics.median(values):8.3f} [{min(values):.3f}–{max(values):.3f}]"
 
@@ -112,7 +112,8 @@ def main() -> None:
     evaluator = Evaluator(problem)
     blocks = 2 ** args.budget // settings.batch
     print(f"problem {Path(args.problem).name}: q = {problem.lower.size} varied parameters, "
-          f"2^{args.budget} designs = {blocks} blocks of {settings.batch}")
+          f"2^{args.budget} designs = {blocks} blocks of {settings.batch}; "
+          f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
 
     with ExitStack() as stack:
         starts = {}
@@ -142,56 +143,92 @@ def main() -> None:
             print(f"{name:16s} {_spread(values):>26s} {statistics.median(ratios):9.2f}")
 
         # ---------------------------------------------------------------- 2. model terms
-        rng = np.random.default_rng(0)
-        x = problem.lower + rng.random((settings.batch, problem.lower.size)) * (
-            problem.upper - problem.lower)
-        criteria = evaluator(x)
-        canned = _Canned(criteria)
-        t_block: list[float] = []
-        t_worker: list[float] = []
-        t_driver: list[float] = []
-        t_task: list[float] = []
-        t_round: list[float] = []
-        n_tasks = 256
-        client = executors[2].client
-        for _ in range(args.rounds):
-            t_block.append(statistics.median(_evaluation_time(evaluator, x) for _k in range(8)))
-            t_worker.append(statistics.median(executors[1].client.gather([
-                executors[1].client.submit(_evaluation_time, evaluator, x, pure=False)
-                for _k in range(8)])))
-            seconds, _result = _timed(lambda: _search(problem, settings, canned))
-            t_driver.append(seconds / blocks)
-            for window, n, found in ((n_tasks, n_tasks, t_task), (1, 16, t_round)):
-                start = time.perf_counter()
-                for _criteria in DaskExecutor(client, ahead=window).map(canned,
-                                                                       (x for _k in range(n))):
-                    pass
-                found.append((time.perf_counter() - start) / n)
-        sizes = {"block in": len(pickle.dumps(x)), "criteria out": len(pickle.dumps(criteria)),
-                 "evaluator (once per worker)": len(pickle.dumps(evaluator))}
-        print(f"\n2. cost terms per block of {settings.batch} designs (median [min–max], ms)")
-        for name, values in (("t_block (evaluation)", t_block),
-                             ("t_block on a worker", t_worker),
-                             ("t_driver (draw + record)", t_driver),
-                             ("t_task (Dask, per task)", t_task),
-                             ("t_round (one task alone)", t_round)):
-            print(f"{name:28s} {_spread([1e3 * v for v in values])}")
-        for name, size in sizes.items():
-            print(f"{name:28s} {size / 1024:8.1f} KiB")
+        _model(problem, settings, evaluator, executors, args.rounds)
+        print(f"\nload average at the end: {os.getloadavg()[0]:.1f}")
 
-        # ---------------------------------------------------------------- 3. prediction
-        tb, td, tt = (statistics.median(v) for v in (t_block, t_driver, t_task))
-        n = 2 ** PREDICT_BUDGET // settings.batch
-        print(f"\n3. predicted passive search of 2^{PREDICT_BUDGET} designs ({n} blocks): "
-              "T(W) = N·max(t_block/W, t_driver, t_task/c) for c blocks per task")
-        print(f"{'W':>6s} {'T (c = 1), s':>14s} {'T (c = 16), s':>14s} {'limit (c = 1)':>16s}")
-        for workers in PREDICT_WORKERS:
-            terms = {"workers": tb / workers, "driver": td, "scheduler": tt}
-            chunked = max(tb / workers, td, tt / 16)
-            print(f"{workers:6d} {n * max(terms.values()):14.0f} {n * chunked:14.0f} "
-                  f"{max(terms, key=lambda k: terms[k]):>16s}")
-        print(f"stops scaling at W ≈ t_block / max(t_driver, t_task) = {tb / max(td, tt):.0f} "
-              f"(c = 1), t_block / max(t_driver, t_task/16) = {tb / max(td, tt / 16):.0f} (c = 16)")
+
+def _cpu() -> float:
+    """CPU seconds of this process, every thread (user + system)."""
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
+def _cpu_of_evaluations(evaluate: Callable[..., Criteria], x: np.ndarray, times: int) -> float:
+    """CPU seconds of one evaluation, averaged over ``times`` (a task, measured where it runs)."""
+    start = _cpu()
+    for _k in range(times):
+        evaluate(x)
+    return (_cpu() - start) / times
+
+
+def _workers_cpu(executor: DaskExecutor) -> float:
+    return sum(executor.client.run(_cpu).values())
+
+
+def _model(problem: Problem, settings: SearchSettings, evaluator: Evaluator,
+           executors: dict[int, DaskExecutor], rounds: int) -> None:
+    """Measure the terms of the cost model and predict the time of a 2^24-design run."""
+    rng = np.random.default_rng(0)
+    x = problem.lower + rng.random((settings.batch, problem.lower.size)) * (
+        problem.upper - problem.lower)
+    criteria = evaluator(x)
+    canned = _Canned(criteria)
+    blocks = 2 ** settings.budget_log2 // settings.batch
+    terms: dict[str, list[float]] = {name: [] for name in (
+        "t_block: evaluation, here", "t_block: evaluation, on a worker",
+        "t_driver: draw + record", "t_sched: client + scheduler per task",
+        "t_wtask: worker per task (no work)", "t_round: one task alone (wall)")}
+    rows = list(terms.values())
+    n_tasks = 256
+    executor = executors[2]
+    for _ in range(rounds):
+        rows[0].append(_cpu_of_evaluations(evaluator, x, 8))
+        rows[1].append(executors[1].client.submit(_cpu_of_evaluations, evaluator, x, 8,
+                                                  pure=False).result())
+        start = _cpu()
+        _search(problem, settings, canned)
+        rows[2].append((_cpu() - start) / blocks)
+        here, there = _cpu(), _workers_cpu(executor)
+        for _criteria in DaskExecutor(executor.client, ahead=n_tasks).map(
+                canned, (x for _k in range(n_tasks))):
+            pass
+        rows[3].append((_cpu() - here) / n_tasks)
+        rows[4].append((_workers_cpu(executor) - there) / n_tasks)
+        start = time.perf_counter()
+        for _criteria in DaskExecutor(executor.client, ahead=1).map(canned,
+                                                                     (x for _k in range(16))):
+            pass
+        rows[5].append((time.perf_counter() - start) / 16)
+    print(f"\n2. cost terms per block of {settings.batch} designs, CPU ms unless marked "
+          "(median [min–max])")
+    for name, values in terms.items():
+        print(f"{name:38s} {_spread([1e3 * v for v in values])}")
+    sizes = {"block in": len(pickle.dumps(x)), "criteria out": len(pickle.dumps(criteria)),
+             "evaluator (once per worker)": len(pickle.dumps(evaluator))}
+    for name, size in sizes.items():
+        print(f"{name:38s} {size / 1024:8.1f} KiB")
+
+    # ---------------------------------------------------------------- 3. prediction
+    block, driver, sched, wtask = (statistics.median(v) for v in rows[1:5])
+    wire = (sizes["block in"] + sizes["criteria out"]) / LINK
+    n = 2 ** PREDICT_BUDGET // settings.batch
+    print(f"\n3. predicted passive search of 2^{PREDICT_BUDGET} designs ({n} blocks of "
+          f"{settings.batch}), each part on its own cores, c blocks per task:\n"
+          "   T(W) = N·max((t_block + t_wtask)/W, t_driver, t_sched/c, bytes/link), "
+          f"link {LINK / 2 ** 20:.0f} MiB/s")
+    print(f"{'W':>6s} {'T (c = 1), s':>14s} {'limit':>10s} {'T (c = 16), s':>14s} {'limit':>10s}")
+    for workers in PREDICT_WORKERS:
+        line = f"{workers:6d}"
+        for chunk in (1, 16):
+            parts = {"workers": (block + wtask / chunk) / workers, "driver": driver,
+                     "scheduler": sched / chunk, "network": wire}
+            limit = max(parts, key=lambda k: parts[k])
+            line += f" {n * parts[limit]:14.0f} {limit:>10s}"
+        print(line)
+    for chunk in (1, 16):
+        serial = max(driver, sched / chunk, wire)
+        print(f"c = {chunk:2d}: stops scaling at W ≈ (t_block + t_wtask/c) / max(t_driver, "
+              f"t_sched/c, bytes/link) = {(block + wtask / chunk) / serial:.0f}")
 
 
 if __name__ == "__main__":

@@ -46,6 +46,8 @@ R = TypeVar("R")
 LOCAL = "local:"
 #: Address schemes of an existing cluster.
 SCHEMES = ("tcp://", "tls://")
+#: Dask's setting of the workers' memory trimming (unset for a local cluster).
+TRIM = "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_"
 
 
 class DistributedError(AssurError):
@@ -175,16 +177,21 @@ def connect(spec: str, *, retries: int = 2, chunk: int = 1) -> Iterator[DaskExec
     """
     target = parse_scheduler(spec)
     try:
+        import dask
         from distributed import Client, LocalCluster
     except ImportError:
         raise DistributedError(Message("dist.missing", {
             "spec": spec, "install": "pip install 'assur[distributed]'",
             "clone": "pip install -e '.[distributed]'"})) from None
     if isinstance(target, int):
-        # no dashboard; the scheduler's other web routes on a free port
-        cluster = LocalCluster(n_workers=target, threads_per_worker=1, processes=True,
-                               dashboard_address=None, silence_logs=logging.ERROR,
-                               scheduler_kwargs={"dashboard_address": ":0"})
+        # no dashboard; the scheduler's other web routes on a free port. Dask's eager
+        # return of freed memory to the system (MALLOC_TRIM_THRESHOLD_) makes every large
+        # temporary array of an evaluation a fresh mapping: twice the page faults, about
+        # 1.3 times the CPU time of a block (docs/scale.md); the workers here go without it.
+        with dask.config.set({TRIM: None}):
+            cluster = LocalCluster(n_workers=target, threads_per_worker=1, processes=True,
+                                   dashboard_address=None, silence_logs=logging.ERROR,
+                                   scheduler_kwargs={"dashboard_address": ":0"})
         client = Client(cluster)
     else:
         cluster = None

@@ -24,7 +24,8 @@ the range over the rounds.
    * ``t_sched``: the client's and the scheduler's CPU per task (they share this process
      in a ``LocalCluster``), and ``t_wtask``: the workers' CPU per task, measured on the
      2-worker cluster by tasks that carry a real block in and a real block's criteria out
-     but compute nothing, all submitted at once;
+     but compute nothing, all submitted at once; the CPU the idle cluster spends in the same
+     wall time (heartbeats, Dask's sampling profiler), measured over 2 s, is taken off;
    * ``t_round``: the wall-time round trip of one such task alone (latency; hidden by the
      window of tasks submitted ahead);
    * bytes in and out per block (pickled block, pickled criteria) and of the evaluator,
@@ -165,6 +166,20 @@ def _workers_cpu(executor: DaskExecutor) -> float:
     return sum(executor.client.run(_cpu).values())
 
 
+def _cpu_while(run: Callable[[], object], executor: DaskExecutor) -> tuple[float, float, float]:
+    """Wall seconds of ``run()``, and the CPU seconds it took here and on the workers."""
+    here, there, start = _cpu(), _workers_cpu(executor), time.perf_counter()
+    run()
+    return time.perf_counter() - start, _cpu() - here, _workers_cpu(executor) - there
+
+
+def _drain(executor: DaskExecutor, fn: Callable[..., Criteria], x: np.ndarray, count: int,
+           ahead: int) -> None:
+    for _criteria in DaskExecutor(executor.client, ahead=ahead).map(
+            fn, (x for _k in range(count))):
+        pass
+
+
 def _model(problem: Problem, settings: SearchSettings, evaluator: Evaluator,
            executors: dict[int, DaskExecutor], rounds: int) -> None:
     """Measure the terms of the cost model and predict the time of a 2^24-design run."""
@@ -188,16 +203,14 @@ def _model(problem: Problem, settings: SearchSettings, evaluator: Evaluator,
         start = _cpu()
         _search(problem, settings, canned)
         rows[2].append((_cpu() - start) / blocks)
-        here, there = _cpu(), _workers_cpu(executor)
-        for _criteria in DaskExecutor(executor.client, ahead=n_tasks).map(
-                canned, (x for _k in range(n_tasks))):
-            pass
-        rows[3].append((_cpu() - here) / n_tasks)
-        rows[4].append((_workers_cpu(executor) - there) / n_tasks)
+        # the cluster's CPU while idle (heartbeats, profiling) is taken off the tasks' CPU
+        idle, idle_here, idle_there = _cpu_while(lambda: time.sleep(2.0), executor)
+        wall, here, there = _cpu_while(
+            lambda: _drain(executor, canned, x, n_tasks, n_tasks), executor)
+        rows[3].append((here - idle_here / idle * wall) / n_tasks)
+        rows[4].append((there - idle_there / idle * wall) / n_tasks)
         start = time.perf_counter()
-        for _criteria in DaskExecutor(executor.client, ahead=1).map(canned,
-                                                                     (x for _k in range(16))):
-            pass
+        _drain(executor, canned, x, 16, 1)
         rows[5].append((time.perf_counter() - start) / 16)
     print(f"\n2. cost terms per block of {settings.batch} designs, CPU ms unless marked "
           "(median [min–max])")

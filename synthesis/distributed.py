@@ -46,6 +46,9 @@ R = TypeVar("R")
 LOCAL = "local:"
 #: Address schemes of an existing cluster.
 SCHEMES = ("tcp://", "tls://")
+#: Worker threads per item of a task by default: with one LPτ block per task, Dask's client
+#: and scheduler keep pace with about 15 workers (``docs/scale.md``); 8 leaves a margin.
+THREADS_PER_ITEM = 8
 #: Dask's setting of the workers' memory trimming (unset for a local cluster).
 TRIM = "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_"
 
@@ -103,18 +106,20 @@ class DaskExecutor:
     retries : int
         Times a task that raised is run again before the error reaches the caller (a task
         lost with its worker is rescheduled by Dask without counting).
-    chunk : int
+    chunk : int, optional
         Items per task (consecutive items; ≥ 1). Larger chunks cut the scheduler's work per
-        item (see ``docs/scale.md``).
+        item (see ``docs/scale.md``). Default: one item per task up to 8 worker threads,
+        then one more per 8 threads (:data:`THREADS_PER_ITEM`), so that the client and the
+        scheduler keep pace with the workers.
     ahead : int, optional
         Tasks submitted ahead of the consumer; default two per worker thread.
     """
 
-    def __init__(self, client: Client, *, retries: int = 2, chunk: int = 1,
+    def __init__(self, client: Client, *, retries: int = 2, chunk: int | None = None,
                  ahead: int | None = None) -> None:
         self.client = client
         self.retries = retries
-        self.chunk = max(1, chunk)
+        self.chunk = chunk
         self.ahead = ahead
 
     def map(self, fn: Callable[[T], R], items: Iterable[T], /) -> Iterator[R]:
@@ -125,11 +130,13 @@ class DaskExecutor:
         as Ctrl-C) cancels the tasks not yet consumed.
         """
         client = self.client
-        ahead = self.ahead or 2 * max(1, sum(client.nthreads().values()))
+        threads = max(1, sum(client.nthreads().values()))
+        ahead = self.ahead or 2 * threads
+        chunk = self.chunk or -(-threads // THREADS_PER_ITEM)
         function = client.scatter(fn, broadcast=True, hash=False)
         run = uuid.uuid4().hex
         keys = (f"assur-{run}-{k}" for k in itertools.count())
-        chunks = _chunks(items, self.chunk)
+        chunks = _chunks(items, max(1, chunk))
         pending: deque[Future] = deque()
 
         def submit() -> bool:
@@ -159,14 +166,15 @@ def _chunks(items: Iterable[T], size: int) -> Iterator[list[T]]:
 
 
 @contextmanager
-def connect(spec: str, *, retries: int = 2, chunk: int = 1) -> Iterator[DaskExecutor]:
+def connect(spec: str, *, retries: int = 2, chunk: int | None = None
+            ) -> Iterator[DaskExecutor]:
     """A :class:`DaskExecutor` on the scheduler ``spec`` for the duration of a ``with``.
 
     Parameters
     ----------
     spec : str
         ``local:N`` or ``tcp://HOST:PORT`` (:func:`parse_scheduler`).
-    retries, chunk : int
+    retries, chunk : int, optional
         As in :class:`DaskExecutor`.
 
     Raises

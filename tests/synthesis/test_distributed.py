@@ -169,6 +169,15 @@ def test_a_lost_worker_does_not_change_the_result(problem, serial, executor, tmp
 
 @pytest.mark.distributed
 @_needs_dask
+def test_several_blocks_per_task_give_the_same_run(problem, serial, executor):
+    from synthesis.distributed import DaskExecutor
+
+    chunked = DaskExecutor(executor.client, chunk=3)  # 16 blocks: 5 tasks of 3 and one of 1
+    _same(serial, _search(problem, _settings(problem), Evaluator(problem), chunked))
+
+
+@pytest.mark.distributed
+@_needs_dask
 def test_a_stop_rule_cancels_the_pending_tasks(problem, serial, executor):
     stall = 3 * BLOCK
     settings = _settings(problem, stall=stall)

@@ -68,6 +68,16 @@ class DistributedError(AssurError):
 def parse_scheduler(spec: str) -> int | str:
     """The number of local workers of ``local:N``, or the address of an existing cluster.
 
+    Parameters
+    ----------
+    spec : str
+        As given to ``--scheduler``.
+
+    Returns
+    -------
+    int or str
+        N of ``local:N``; else the address ``tcp://HOST:PORT`` (or ``tls://…``) itself.
+
     Raises
     ------
     DistributedError
@@ -177,6 +187,12 @@ def connect(spec: str, *, retries: int = 2, chunk: int | None = None
     retries, chunk : int, optional
         As in :class:`DaskExecutor`.
 
+    Yields
+    ------
+    DaskExecutor
+        On the cluster; a local cluster is closed, and the client of an existing one
+        disconnected, at the end of the ``with``.
+
     Raises
     ------
     DistributedError
@@ -217,5 +233,16 @@ def connect(spec: str, *, retries: int = 2, chunk: int | None = None
 
 
 def executor_for(spec: str | None) -> AbstractContextManager[DaskExecutor | None]:
-    """:func:`connect` to ``spec``, or no executor (this process) when ``spec`` is None."""
+    """:func:`connect` to ``spec``, or no executor (this process) when ``spec`` is None.
+
+    Parameters
+    ----------
+    spec : str or None
+        The ``--scheduler`` option.
+
+    Returns
+    -------
+    context manager
+        Gives a :class:`DaskExecutor`, or None; Dask is imported only in the first case.
+    """
     return nullcontext() if spec is None else connect(spec)

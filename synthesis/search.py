@@ -36,12 +36,13 @@ Ctrl-C stops the search cleanly; the best design found so far is returned.
 
 from __future__ import annotations
 
+import itertools
 import math
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
@@ -55,13 +56,28 @@ from synthesis.criteria import Criteria, Objective, merit
 if TYPE_CHECKING:
     from synthesis.problem import Problem
 
-__all__ = ["STOP_REASONS", "Improvement", "Optimum", "SearchResult", "SearchSettings",
+__all__ = ["STOP_REASONS", "Executor", "Improvement", "Optimum", "SearchResult", "SearchSettings",
            "SettingError", "distinct_optima", "search", "setting_problem", "settings_for"]
 
 FloatArray = npt.NDArray[np.float64]
 Evaluator = Callable[[FloatArray], Criteria]
 #: A source of randomness in the sense of SPEC 7: a seed, a Generator, or None (the settings' seed).
 RNG = int | np.random.Generator | None
+
+
+
+class Executor(Protocol):
+    """Where the blocks of a passive pass are evaluated (default: in this process, in turn).
+
+    ``map(evaluate, blocks)`` yields ``evaluate(block)`` for every block, in the order of
+    ``blocks``, drawing the blocks lazily; the search stops iterating when a stop rule fires.
+    :class:`synthesis.distributed.DaskExecutor` evaluates them on a Dask cluster.
+    """
+
+    def map(self, evaluate: Evaluator, blocks: Iterable[FloatArray], /) -> Iterator[Criteria]:
+        """``evaluate(block)`` for each block, in order."""
+        ...
+
 
 #: Stop reason → catalogue code of its sentence.
 STOP_REASONS = {reason: f"search.stop.{reason}"
@@ -400,8 +416,10 @@ class _Search:
     """State of one search run (the public entry point is :func:`search`)."""
 
     def __init__(self, evaluate: Evaluator, lower: FloatArray, upper: FloatArray,
-                 settings: SearchSettings, rng: RNG) -> None:
+                 settings: SearchSettings, rng: RNG, executor: Executor | None = None) -> None:
         self.evaluate = evaluate
+        self.map: Callable[[Evaluator, Iterable[FloatArray]], Iterator[Criteria]] = (
+            map if executor is None else executor.map)
         self.lower = lower
         self.upper = upper
         self.settings = settings
@@ -438,9 +456,12 @@ class _Search:
         q_ref = s.q_required if s.q_required else 1.0
         return merit(criteria, objective=s.objective, q_ref=q_ref, p2_weight=s.p2_weight)
 
-    def record(self, x: FloatArray, stage: str, *, check_stall: bool = True) -> Criteria:
-        """Evaluate a batch, keep it, update the best, apply the stop rules."""
-        criteria = self.evaluate(x)
+    def record(self, x: FloatArray, stage: str, *, check_stall: bool = True,
+               criteria: Criteria | None = None) -> Criteria:
+        """Evaluate a batch (unless its criteria are given), keep it, update the best, apply
+        the stop rules."""
+        if criteria is None:
+            criteria = self.evaluate(x)
         self.blocks.append(np.array(x, dtype=float))
         self.block_criteria.append(criteria)
         self.stage.extend([stage] * len(x))
@@ -514,14 +535,21 @@ class _Search:
             return
         engine = qmc.Sobol(d=q, scramble=True, rng=self.stream(number))
         batch = max(1, min(self.settings.batch, n_total))
-        drawn = 0
-        while drawn < n_total:
-            # draw so that the running total stays a power of two
-            n = batch if drawn == 0 else min(drawn, n_total - drawn)
-            unit = engine.random(n)
-            for part in range(0, n, batch):
-                self.record(lower + unit[part:part + batch] * (upper - lower), stage)
-            drawn += n
+
+        def blocks() -> Iterator[FloatArray]:
+            drawn = 0
+            while drawn < n_total:
+                # draw so that the running total stays a power of two
+                n = batch if drawn == 0 else min(drawn, n_total - drawn)
+                unit = engine.random(n)
+                for part in range(0, n, batch):
+                    yield lower + unit[part:part + batch] * (upper - lower)
+                drawn += n
+
+        # the executor may evaluate blocks ahead; they are recorded in the order drawn
+        mine, theirs = itertools.tee(blocks())
+        for x, criteria in zip(mine, self.map(self.evaluate, theirs)):
+            self.record(x, stage, criteria=criteria)
 
     def shrink_passes(self) -> None:
         s = self.settings
@@ -775,7 +803,8 @@ def _check_rng(rng: Any) -> RNG:
 
 def search(evaluate: Evaluator, lower: npt.ArrayLike, upper: npt.ArrayLike,
            initial: npt.ArrayLike, settings: SearchSettings | None = None, *,
-           rng: int | np.random.Generator | None = None) -> SearchResult:
+           rng: int | np.random.Generator | None = None,
+           executor: Executor | None = None) -> SearchResult:
     """Search the box [lower, upper] for the best design.
 
     Parameters
@@ -792,6 +821,10 @@ def search(evaluate: Evaluator, lower: npt.ArrayLike, upper: npt.ArrayLike,
         ``settings.seed``; a whole number ≥ 0 is used as the seed instead; a Generator is
         drawn from directly (the shrinking passes from children it spawns), and the result
         then records no seed.
+    executor : Executor, optional
+        Evaluates the blocks of the passive passes (default: here, one after another);
+        blocks are drawn and recorded in the same order whatever the executor, so the
+        result does not depend on it.
 
     Returns
     -------
@@ -822,4 +855,5 @@ def search(evaluate: Evaluator, lower: npt.ArrayLike, upper: npt.ArrayLike,
     (True, None)
     """
     lo, hi, x0 = _bounds(lower, upper, initial)
-    return _Search(evaluate, lo, hi, settings or SearchSettings(), _check_rng(rng)).run(x0)
+    return _Search(evaluate, lo, hi, settings or SearchSettings(), _check_rng(rng),
+                   executor).run(x0)

@@ -18,7 +18,7 @@ import numpy as np
 from synthesis.evaluate import Analysis, Evaluator
 from synthesis.problem import Problem
 from synthesis.report import summary
-from synthesis.search import SearchResult, SearchSettings, search
+from synthesis.search import Executor, SearchResult, SearchSettings, search
 
 __all__ = ["SynthesisOutcome", "synthesize"]
 
@@ -58,7 +58,8 @@ class SynthesisOutcome:
 
 def synthesize(problem: Problem, settings: SearchSettings | None = None, *,
                progress: bool | None = None,
-               rng: int | np.random.Generator | None = None) -> SynthesisOutcome:
+               rng: int | np.random.Generator | None = None,
+               executor: Executor | None = None) -> SynthesisOutcome:
     """Search for the best design of a problem and summarise it.
 
     Parameters
@@ -73,6 +74,10 @@ def synthesize(problem: Problem, settings: SearchSettings | None = None, *,
     rng : int, numpy.random.Generator or None, optional
         Source of the LPτ scrambling (:func:`synthesis.search.search`); None uses the
         settings' seed.
+    executor : Executor, optional
+        Where the LPτ blocks are evaluated (default: in this process;
+        :func:`synthesis.distributed.connect` gives one on a Dask cluster). The result does
+        not depend on it.
 
     Returns
     -------
@@ -101,7 +106,8 @@ def synthesize(problem: Problem, settings: SearchSettings | None = None, *,
     if progress is not None:
         settings = replace(settings, progress=progress)
     evaluator = Evaluator(problem)
-    result = search(evaluator, problem.lower, problem.upper, problem.initial, settings, rng=rng)
+    result = search(evaluator, problem.lower, problem.upper, problem.initial, settings, rng=rng,
+                    executor=executor)
     analysis = evaluator.analyse(result.x[None, :])
     return SynthesisOutcome(problem, result, analysis,
                             MappingProxyType(summary(problem, result, analysis)))

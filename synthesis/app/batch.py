@@ -23,12 +23,15 @@ from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from assur import AssurError, ExistenceReport, KinematicModel, TableError
 from assur.kinematics.existence import reason_sentence
 from assur.text import check_lang, render
 from synthesis.app.assess import Assessment, assess
+
+if TYPE_CHECKING:
+    from synthesis.distributed import DaskExecutor
 
 __all__ = ["TABLE_SUFFIXES", "BatchRow", "check_table", "find_tables", "run_batch"]
 
@@ -191,7 +194,8 @@ def _check_one(job: tuple[str, str, str, str | None]) -> BatchRow:
 
 def run_batch(folder: str | os.PathLike[str], *, jobs: int | None = None, lang: str = "en",
               progress: Callable[[int, int], None] | None = None,
-              reports: str | os.PathLike[str] | None = None) -> list[BatchRow]:
+              reports: str | os.PathLike[str] | None = None,
+              executor: DaskExecutor | None = None) -> list[BatchRow]:
     """Check every table in a folder, in parallel.
 
     Parameters
@@ -205,6 +209,9 @@ def run_batch(folder: str | os.PathLike[str], *, jobs: int | None = None, lang: 
         Called as ``progress(done, total)`` while the rows come in.
     reports : path-like, optional
         A folder for one coursework report (HTML) per readable table, named after it.
+    executor : DaskExecutor, optional
+        Check the files as tasks on a Dask cluster (:func:`synthesis.distributed.connect`)
+        instead of local processes; ``jobs`` is then ignored.
 
     Returns
     -------
@@ -218,9 +225,10 @@ def run_batch(folder: str | os.PathLike[str], *, jobs: int | None = None, lang: 
     work = [(str(p), lang, root, target) for p in paths]
     jobs = jobs or os.cpu_count() or 1
     rows: list[BatchRow] = []
-    if jobs == 1 or len(work) <= 1:
-        for k, job in enumerate(work, 1):
-            rows.append(_check_one(job))
+    if executor is not None or jobs == 1 or len(work) <= 1:
+        for k, row in enumerate(map(_check_one, work) if executor is None
+                                else executor.map(_check_one, work), 1):
+            rows.append(row)
             if progress:
                 progress(k, len(work))
         return rows

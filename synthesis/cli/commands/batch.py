@@ -24,20 +24,23 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--lang", choices=languages(), default="en",
                         help=render("cli.batch.lang"))
     parser.add_argument("--quiet", action="store_true", help=render("cli.batch.quiet"))
+    parser.add_argument("--scheduler", metavar="SPEC", default=None, help=render("dist.option"))
 
 
 def run(args: argparse.Namespace) -> int:
     """Check the folder; exit 0 whatever the tables contain (the rows say it)."""
     from synthesis.app.batch import run_batch
     from synthesis.app.batch_output import summary, write_csv
+    from synthesis.distributed import executor_for
 
     if args.jobs is not None and args.jobs < 1:
         print(render("cli.option_positive", args.lang, option="--jobs", found=args.jobs),
               file=sys.stderr)
         return 2
     progress = None if args.quiet or args.json else _progress
-    rows = run_batch(args.folder, jobs=args.jobs, lang=args.lang, progress=progress,
-                     reports=args.reports)
+    with executor_for(args.scheduler) as executor:
+        rows = run_batch(args.folder, jobs=args.jobs, lang=args.lang, progress=progress,
+                         reports=args.reports, executor=executor)
     if args.csv:
         write_csv(rows, args.csv)
     if args.json:

@@ -12,6 +12,7 @@ import math
 import sys
 from typing import Any
 
+from assur.text import render
 from synthesis.report import text_report, write_result, write_trials
 
 NAME = "synthesize"
@@ -49,10 +50,12 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--lang", choices=("en", "ru"), default="en",
                         help="language of the report")
     parser.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
+    parser.add_argument("--scheduler", metavar="SPEC", default=None, help=render("dist.option"))
 
 
 def run(args: argparse.Namespace) -> int:
     """Read the problem, synthesise it (:func:`synthesis.synthesize.synthesize`), report."""
+    from synthesis.distributed import executor_for
     from synthesis.problem import load_problem
     from synthesis.search import settings_for
     from synthesis.synthesize import synthesize
@@ -62,7 +65,8 @@ def run(args: argparse.Namespace) -> int:
                             refine=args.refine, shrink_passes=args.shrink,
                             restarts=args.restarts,
                             time_limit=args.time_limit)
-    outcome = synthesize(problem, settings, progress=not args.quiet)
+    with executor_for(args.scheduler) as executor:
+        outcome = synthesize(problem, settings, progress=not args.quiet, executor=executor)
     result, data = outcome.result, dict(outcome.summary)
     if args.out:
         write_result(args.out, problem, result, data, lang=args.lang)

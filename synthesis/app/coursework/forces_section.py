@@ -57,9 +57,12 @@ def forces_sections(found: Assessment, lang: str, points: int) -> list[Section]:
         return []
     from matplotlib.figure import Figure
 
+    from synthesis.problem import allowed_pressure_angles
+
     omega = _omega(found.chain.general)
     motion = analyse(found.model, points=points, analogs=True)
-    result = TableAnalysis(found.model, motion, found.existence, omega)
+    result = TableAnalysis(found.model, motion, found.existence,
+                           allowed_pressure_angles(found.chain.general, found.model), omega)
     forces = kinetostatics(motion, data, omega)
     summary = summarise(forces, motion.q)
     lines = summary_lines(result, forces, summary, lang)

@@ -41,6 +41,7 @@ import math
 import sys
 import time
 from collections.abc import Callable, Iterable, Iterator
+from contextvars import ContextVar
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any, Protocol
 
@@ -56,14 +57,22 @@ from synthesis.criteria import Criteria, Objective, merit
 if TYPE_CHECKING:
     from synthesis.problem import Problem
 
-__all__ = ["STOP_REASONS", "Executor", "Improvement", "Optimum", "SearchResult", "SearchSettings",
-           "SettingError", "distinct_optima", "search", "setting_problem", "settings_for"]
+__all__ = ["LISTENER", "STOP_REASONS", "Executor", "Improvement", "Optimum", "SearchResult",
+           "SearchSettings", "SettingError", "distinct_optima", "search", "setting_problem",
+           "settings_for"]
 
 FloatArray = npt.NDArray[np.float64]
 Evaluator = Callable[[FloatArray], Criteria]
 #: A source of randomness in the sense of SPEC 7: a seed, a Generator, or None (the settings' seed).
 RNG = int | np.random.Generator | None
 
+#: Who follows a search while it runs: ``listener(trials, planned, best, seconds)`` after every
+#: evaluated batch, where ``planned`` counts the trials of the passive passes and ``best`` is
+#: the best design's criteria (None before the first).  Set by a front end for the length of
+#: a run (the command line's progress bar, :mod:`synthesis.app.progress`); when it is unset,
+#: ``SearchSettings.progress`` prints plain lines instead.
+LISTENER: ContextVar[Callable[[int, int, Criteria | None, float], None] | None] = ContextVar(
+    "search_listener", default=None)
 
 
 class Executor(Protocol):
@@ -499,7 +508,16 @@ class _Search:
         return (c is not None and q_req is not None and c.p1[0] == 0 and c.p2[0] == 0
                 and bool(c.q[0] <= q_req))
 
+    def planned(self) -> int:
+        """The trials of the initial design and of the passive passes."""
+        s = self.settings
+        return 1 + 2 ** s.budget_log2 + s.shrink_passes * 2 ** max(s.budget_log2 - 2, 4)
+
     def report(self, final: bool = False) -> None:
+        listener = LISTENER.get()
+        if listener is not None:
+            listener(self.count, self.planned(), self.best_criteria, self.elapsed())
+            return
         if not self.settings.progress:
             return
         now = self.elapsed()

@@ -2,7 +2,9 @@
 
 Every table is written here with its expected verdict, worked out by hand: the counts, the
 Chebyshev formula, and for the four-bar that does not assemble the crank angles where the
-coupler and the rocker cannot reach each other (law of cosines).
+coupler and the rocker cannot reach each other (law of cosines).  Every other entry of the
+folder (a text file, a hidden file, links that lead nowhere or in a loop, a FIFO, a folder
+named like a table) gets a row that says why it is skipped.
 """
 
 from __future__ import annotations
@@ -10,6 +12,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import os
 import shutil
 from dataclasses import replace
 from pathlib import Path
@@ -89,6 +92,12 @@ def folder(tmp_path_factory) -> Path:
     put("f_does_not_assemble.yaml", four_bar(40, 50, 30, 100))
     put("g_empty.yaml", "")
     put("notes.txt", "not a table")
+    put(".hidden.yaml", "mechanism: {}")
+    put("x.yaml/inside.yaml", four_bar(30, 90, 80, 100, GOOD_ROWS))  # a folder named x.yaml
+    (root / "loop.yaml").symlink_to("loop.yaml")
+    (root / "dangling.yaml").symlink_to("nowhere.yaml")
+    (root / "link_to_group.yaml").symlink_to("group2")
+    os.mkfifo(root / "pipe.yaml")  # opening it would block: it must never be opened
     shutil.copy(ROOT / "input_tables" / "problems" / "class1_fourbar_rocker.yaml",
                 root / "i_problem.yaml")  # a synthesis problem: its mechanism as first given
     (root / "group2").mkdir()
@@ -97,29 +106,38 @@ def folder(tmp_path_factory) -> Path:
     return root
 
 
+SKIPPED = ("not checked", "not checked")
 EXPECTED = {  # file: (verdict, words of the first problem, identification, existence)
-    "a_good.yaml": ("ok", "", "matches", "whole cycle"),
-    "b_wrong_kind.yaml": ("problems", "kind 1", "differs", "whole cycle"),
-    "c_broken_yaml.yaml": ("error", "not valid YAML", "not checked", "not checked"),
-    "d_typo.yaml": ("error", "did you mean 'pairs'", "not checked", "not checked"),
-    "e_five_bar.yaml": ("problems", "= 2, but", "not given", "no dimensions"),
-    "f_does_not_assemble.yaml": ("problems", "does not assemble", "not given", "fails"),
-    "g_empty.yaml": ("error", "found nothing", "not checked", "not checked"),
-    "group2/h_course.yaml": ("ok", "", "matches", "whole cycle"),
-    "i_problem.yaml": ("ok", "", "matches", "whole cycle"),
+    ".hidden.yaml": ("skipped", "hidden file", *SKIPPED),
+    "a_good.yaml": ("correct", "", "matches", "whole cycle"),
+    "b_wrong_kind.yaml": ("wrong", "kind 1", "differs", "whole cycle"),
+    "c_broken_yaml.yaml": ("unreadable", "not valid YAML", *SKIPPED),
+    "d_typo.yaml": ("unreadable", "did you mean 'pairs'", *SKIPPED),
+    "dangling.yaml": ("skipped", "link to nothing", *SKIPPED),
+    "e_five_bar.yaml": ("wrong", "= 2, but", "not given", "no dimensions"),
+    "f_does_not_assemble.yaml": ("wrong", "does not assemble", "not given", "fails"),
+    "g_empty.yaml": ("unreadable", "found nothing", *SKIPPED),
+    "group2/h_course.yaml": ("correct", "", "matches", "whole cycle"),
+    "i_problem.yaml": ("correct", "", "matches", "whole cycle"),
+    "link_to_group.yaml": ("skipped", "link to a folder", *SKIPPED),
+    "loop.yaml": ("skipped", "loop", *SKIPPED),
+    "notes.txt": ("skipped", "not a table", *SKIPPED),
+    "pipe.yaml": ("skipped", "special file (fifo)", *SKIPPED),
+    "x.yaml": ("skipped", "folder named like a table", *SKIPPED),
+    "x.yaml/inside.yaml": ("correct", "", "matches", "whole cycle"),
 }
 
 
-def test_one_row_per_table_with_the_right_verdict(folder):
+def test_one_row_per_entry_with_the_right_verdict(folder):
     rows = run_batch(folder, jobs=2)
-    assert [r.file for r in rows] == sorted(EXPECTED)  # notes.txt is not a table
+    assert [r.file for r in rows] == sorted(EXPECTED)  # every entry, in sorted order
     for row in rows:
         verdict, words, identification, existence = EXPECTED[row.file]
         assert row.verdict == verdict, row
         assert words in row.problem, row
         assert row.identification == identification, row
         assert row.existence == existence, row
-        assert (row.problem == "") == (verdict == "ok")
+        assert (row.problem == "") == (verdict == "correct")
     by_file = {r.file: r for r in rows}
     good = by_file["a_good.yaml"]
     assert (good.n, good.p5, good.W) == (3, 4, 3 * 3 - 2 * 4)
@@ -145,24 +163,53 @@ def test_parallel_and_serial_runs_agree(folder):
     assert strip(run_batch(folder, jobs=2)) == strip(run_batch(folder, jobs=1))
 
 
-def test_command_line_writes_csv_and_json(folder, tmp_path, capsys):
+def test_command_line_writes_csv_and_json_with_the_words_of_the_text(folder, tmp_path, capsys):
     out = tmp_path / "class.csv"
     assert main(["batch", str(folder), "--csv", str(out), "--json", "--jobs", "2"]) == 0
-    rows = json.loads(capsys.readouterr().out)
+    captured = capsys.readouterr()
+    rows = json.loads(captured.out)
     assert {r["file"]: r["verdict"] for r in rows} == {k: v[0] for k, v in EXPECTED.items()}
-    with out.open(encoding="utf-8") as stream:
-        records = list(csv.DictReader(stream))
+    assert captured.err.strip().splitlines() == [f"written: {out}"]
+    raw = out.read_bytes()
+    assert raw.startswith(b"\xef\xbb\xbf")  # the UTF-8 byte-order mark, for spreadsheets
+    records = list(csv.DictReader(raw.decode("utf-8-sig").splitlines()))
     assert {r["file"]: r["verdict"] for r in records} == {k: v[0] for k, v in EXPECTED.items()}
+    assert main(["batch", str(folder), "--jobs", "1", "--quiet"]) == 0
+    text = capsys.readouterr().out.splitlines()
+    for name, (verdict, *_rest) in EXPECTED.items():  # the text shows the same words
+        line = next(x for x in text if x.startswith(name + " "))
+        assert line[len(name):].strip().startswith(verdict), line
+    assert "wrong (1)" in next(x for x in text if x.startswith("b_wrong_kind.yaml "))
+
+
+def test_csv_without_the_byte_order_mark(folder, tmp_path, capsys):
+    out = tmp_path / "class.csv"
+    assert main(["batch", str(folder / "group2"), "--csv", str(out), "--no-bom"]) == 0
+    assert out.read_bytes().startswith(b"file,verdict,")
 
 
 def test_summary_in_russian(folder, capsys):
     assert main(["batch", str(folder), "--lang", "ru", "--jobs", "2", "--quiet"]) == 0
     lines = capsys.readouterr().out.splitlines()
-    verdicts = {"ok": "верно", "problems": "есть ошибки", "error": "файл не читается"}
+    verdicts = {"correct": "верно", "wrong": "неверно", "unreadable": "не читается",
+                "skipped": "пропущено"}
     for name, (verdict, *_rest) in EXPECTED.items():
         line = next(x for x in lines if x.startswith(name + " "))
         assert line[len(name):].strip().startswith(verdicts[verdict]), line
-    assert lines[-1] == "верно: 3, есть ошибки: 3, файл не читается: 3; файлов: 9"
+    counts = {v: sum(e[0] == v for e in EXPECTED.values()) for v in verdicts}
+    assert lines[-1] == (f"верно: {counts['correct']}, вне программы: 0, неверно: "
+                         f"{counts['wrong']}, не читается: {counts['unreadable']}, пропущено: "
+                         f"{counts['skipped']}; всего: {len(EXPECTED)}")
+
+
+def test_correct_mechanisms_outside_the_course_program(tmp_path):
+    """The hydraulic boom (an actuator input) and the five-bar with two inputs are correct
+    mechanisms; the course's method covers neither (its conditions 3 and 5)."""
+    for name in ("hydraulic_boom.yaml", "five_bar_two_inputs.yaml"):
+        shutil.copy(ROOT / "input_tables" / name, tmp_path / name)
+    rows = run_batch(tmp_path, jobs=1)
+    assert [(r.verdict, r.problems) for r in rows] == [("outside program", 1)] * 2
+    assert "condition 5" in rows[0].problem and "condition 3" in rows[1].problem
 
 
 def test_reports_for_readable_tables(tmp_path):
@@ -176,7 +223,7 @@ def test_reports_for_readable_tables(tmp_path):
     (class_dir / "broken.yaml").write_text("mechanism: [\n", "utf-8")
     reports = tmp_path / "reports"
     rows = run_batch(class_dir, jobs=2, reports=reports)
-    assert [r.verdict for r in rows] == ["error", "ok", "problems"]
+    assert [r.verdict for r in rows] == ["unreadable", "correct", "wrong"]
     written = sorted(str(p.relative_to(reports)) for p in reports.rglob("*.html"))
     assert written == ["good.html", "sub/five_bar.html"]
     assert "I(0,1) → II₁(2,3)" in (reports / "good.html").read_text("utf-8")
@@ -191,8 +238,28 @@ def test_assembly_variant_against_the_sketch(tmp_path):
     right = tmp_path / "right.yaml"  # C drawn right of B → D: variant −1, the table says +1
     right.write_text(yaml.safe_dump(four_bar(30, 90, 80, 100, GOOD_ROWS, left=False)), "utf-8")
     row = check_table(right)
-    assert (row.verdict, row.identification) == ("problems", "differs")
+    assert (row.verdict, row.identification) == ("wrong", "differs")
     assert "'variant'" in row.problem and "variant -1, the table says 1" in row.problem
     fixed = [dict(GOOD_ROWS[0]), dict(GOOD_ROWS[1], variant=-1)]
     right.write_text(yaml.safe_dump(four_bar(30, 90, 80, 100, fixed, left=False)), "utf-8")
     assert check_table(right).identification == "matches"
+
+
+def test_a_report_that_fails_keeps_the_verdict(tmp_path, monkeypatch, capsys):
+    """The pictures of a report may fail (a design that never assembles); the row keeps the
+    verdict of the table and says the report was not written."""
+    class_dir = tmp_path / "class"
+    class_dir.mkdir()
+    (class_dir / "never.yaml").write_text(yaml.safe_dump(four_bar(40, 50, 30, 100)), "utf-8")
+
+    def pictures_fail(*_args, **_kwargs):
+        raise IndexError("index 0 is out of bounds for axis 0 with size 0")
+
+    monkeypatch.setattr("synthesis.app.coursework.build_report", pictures_fail)
+    reports = tmp_path / "reports"
+    assert main(["batch", str(class_dir), "--jobs", "1", "--reports", str(reports)]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[0].startswith("never.yaml") and "wrong (1)" in out[0]
+    assert "report not written" in out[1] and "IndexError" in out[1]
+    row = check_table(class_dir / "never.yaml")
+    assert row.verdict == "wrong" and not list(reports.rglob("*.html"))

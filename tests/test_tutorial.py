@@ -4,8 +4,9 @@ The commands are taken from the ```console blocks of ``docs/tutorial.md`` and
 ``docs/tutorial.ru.md`` (lines starting with ``$ ``; a trailing ``# exit N`` states the
 expected exit code, 0 otherwise). The ```sh blocks hold only the installation steps, which
 cannot run inside a test; the test makes sure nothing else hides there. Each tutorial runs
-in its own process, the two in parallel, in a scratch folder that sees the repository's
-input tables, so no file of the repository is written.
+in its own process, the two in parallel, in a scratch folder laid out like the repository
+(its input tables are links to the repository's); every file the commands write must land
+in ``work/``, and the repository must be left as it was.
 """
 
 from __future__ import annotations
@@ -48,7 +49,7 @@ json.dump(results, sys.stdout)
 
 def blocks(text: str, language: str) -> list[str]:
     """The contents of the fenced blocks of one language."""
-    return re.findall(rf"^```{language}\n(.*?)^```", text, flags=re.M | re.S)
+    return re.findall(rf"^```{language}\n(.*?)^```", text, flags=re.MULTILINE | re.DOTALL)
 
 
 def commands(text: str) -> list[tuple[list[str], int]]:
@@ -72,12 +73,22 @@ def _workspace(root: Path) -> Path:
     (root / "input_tables").symlink_to(ROOT / "input_tables")
     (root / "docs").mkdir()
     (root / "docs" / "tutorial_class").symlink_to(ROOT / "docs" / "tutorial_class")
-    (root / "docs" / "img").mkdir()
     return root
+
+
+def _files(root: Path) -> set[str]:
+    """Every file under ``root`` (links to folders not followed), relative to it."""
+    return {p.relative_to(root).as_posix() for p in root.rglob("*") if not p.is_dir()}
+
+
+def _repository_state() -> tuple[set[str], ...]:
+    """The files of the repository's folders that the tutorial reads or could write."""
+    return tuple(_files(ROOT / folder) for folder in ("docs", "input_tables"))
 
 
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory) -> dict[str, tuple[Path, list[dict]]]:
+    before = _repository_state()
     base = tmp_path_factory.mktemp("tutorials")
     env = {**os.environ, "MPLBACKEND": "Agg"}
     started = {}
@@ -94,7 +105,19 @@ def runs(tmp_path_factory) -> dict[str, tuple[Path, list[dict]]]:
         out, err = process.communicate(payload, timeout=600)
         assert process.returncode == 0, err
         results[name] = (work, json.loads(out))
+    assert _repository_state() == before, "a tutorial command wrote into the repository"
     return results
+
+
+@pytest.mark.parametrize("name", TUTORIALS)
+def test_every_file_written_goes_into_the_working_folder(name, runs):
+    work, results = runs[name]
+    written = _files(work) - {"input_tables", "docs/tutorial_class"}
+    assert written and all(path.startswith("work/") for path in written), sorted(written)
+    announced = {line.split(": ", 1)[1] for result in results
+                 for line in result["stderr"].splitlines()
+                 if line.startswith(("written: ", "записан: "))}
+    assert announced == written  # one ``written: PATH`` line for every file, no other
 
 
 @pytest.mark.parametrize("name", TUTORIALS)
@@ -125,16 +148,17 @@ def test_pictures_exist_and_are_drawn_by_the_commands(name, runs):
     assert len(pictures) >= 6
     for picture in pictures:
         assert (ROOT / "docs" / picture).is_file(), picture
+        drawn = work / "work" / picture.removeprefix("img/")
         if not picture.endswith("course_report.png"):  # a browser screenshot of the report
-            assert (work / "docs" / picture).is_file(), f"no command draws {picture}"
+            assert drawn.is_file(), f"no command draws {picture}"
 
 
 def test_russian_tutorial_prints_russian(runs):
     """Every command of the Russian tutorial answers in Russian (``--lang ru``)."""
     work, results = runs["tutorial.ru.md"]
-    cyrillic = re.compile("[а-яё]", re.I)
-    expected = dict((tuple(argv), code) for argv, code in commands(
-        (ROOT / "docs" / "tutorial.ru.md").read_text(encoding="utf-8")))
+    cyrillic = re.compile("[а-яё]", re.IGNORECASE)
+    expected = {tuple(argv): code for argv, code in commands(
+        (ROOT / "docs" / "tutorial.ru.md").read_text(encoding="utf-8"))}
     for result in results:
         argv = result["argv"]
         if "--help" in argv or expected[tuple(argv)] != 0:

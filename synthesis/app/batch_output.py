@@ -1,20 +1,40 @@
-"""The rows of a batch check as a terminal table or as CSV (``assur batch``)."""
+"""The rows of a batch check as a terminal table or as CSV (``assur batch``).
+
+The CSV is UTF-8 and starts, unless asked not to, with the byte-order mark, by which
+spreadsheet programs (Excel on Windows in particular) recognise UTF-8 and show Cyrillic
+names and the Greek letters of the formulas correctly; Python's ``csv`` module, LibreOffice
+and pandas read it either way (``encoding="utf-8-sig"``).
+"""
 
 from __future__ import annotations
 
 import csv
 import io
-import os
 from collections.abc import Iterable, Sequence
 
-from assur.io.files import atomic_write_text
 from assur.text import render
 from synthesis.app.batch import VERDICTS, BatchRow
 
-__all__ = ["rows_to_csv", "summary", "write_csv"]
+__all__ = ["BOM", "csv_text", "rows_to_csv", "summary", "verdict_words"]
 
 _COLUMNS = ("file", "verdict", "problem", "problems", "formula", "n", "p5", "W",
-            "identification", "existence", "seconds")
+            "identification", "existence", "seconds", "report", "report_error")
+#: The byte-order mark that tells a spreadsheet program the CSV is UTF-8.
+BOM = "\ufeff"
+
+
+def verdict_words(row: BatchRow, lang: str = "en") -> str:
+    """The verdict as the terminal shows it; a wrong table with its count of problems.
+
+    Examples
+    --------
+    >>> from synthesis.app.batch import BatchRow
+    >>> row = BatchRow("a.yaml", "wrong", "W = 0", 3, "", 3, 4, 0, "", "", 0.0)
+    >>> verdict_words(row), verdict_words(row, "ru")
+    ('wrong (3)', 'неверно (3)')
+    """
+    words = render("batch.verdict." + row.verdict.replace(" ", "_"), lang)
+    return f"{words} ({row.problems})" if row.verdict == "wrong" else words
 
 
 def rows_to_csv(rows: Iterable[BatchRow]) -> str:
@@ -37,7 +57,7 @@ def rows_to_csv(rows: Iterable[BatchRow]) -> str:
     >>> from synthesis.app.batch import check_table
     >>> text = rows_to_csv([check_table(tables / "course_11_link_table.yaml", root=tables)])
     >>> text.splitlines()[1].split(",")[:2]
-    ['course_11_link_table.yaml', 'ok']
+    ['course_11_link_table.yaml', 'correct']
     """
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
@@ -72,21 +92,26 @@ def summary(rows: Sequence[BatchRow], lang: str = "en") -> str:
     >>> print(summary([check_table(tables / "course_11_link_table.yaml", root=tables)], "ru"))
     course_11_link_table.yaml  верно
     <BLANKLINE>
-    верно: 1, есть ошибки: 0, файл не читается: 0; файлов: 1
+    верно: 1, вне программы: 0, неверно: 0, не читается: 0, пропущено: 0; всего: 1
     """
     width = max((len(r.file) for r in rows), default=4)
-    words = {"ok": render("term.ok", lang), "problems": render("term.problems", lang),
-             "error": render("term.error", lang)}
-    column = max(len(w) for w in words.values())
-    lines = [f"{row.file:<{width}}  {words[row.verdict]:<{column}}  {row.problem}".rstrip()
-             for row in rows]
+    words = [verdict_words(row, lang) for row in rows]
+    column = max((len(w) for w in words), default=0)
+    lines = []
+    for row, word in zip(rows, words):
+        lines.append(f"{row.file:<{width}}  {word:<{column}}  {row.problem}".rstrip())
+        if row.report_error:
+            lines.append(f"{'':<{width}}  " + render("batch.report_not_written", lang,
+                                                     reason=row.report_error))
     counts = {v: sum(r.verdict == v for r in rows) for v in VERDICTS}
     lines.append("")
-    lines.append(", ".join(f"{words[v]}: {counts[v]}" for v in VERDICTS)
-                 + f"; {render('term.files', lang)}: {len(rows)}")
+    lines.append(render("batch.totals", lang, counts=", ".join(
+        f"{render('batch.verdict.' + v.replace(' ', '_'), lang)}: {counts[v]}"
+        for v in VERDICTS), total=len(rows)))
     return "\n".join(lines)
 
 
-def write_csv(rows: Sequence[BatchRow], path: str | os.PathLike[str]) -> None:
-    """Write the rows as CSV, atomically."""
-    atomic_write_text(path, rows_to_csv(rows))
+def csv_text(rows: Sequence[BatchRow], *, bom: bool = True) -> str:
+    """The CSV file's text: :func:`rows_to_csv`, after the byte-order mark unless ``bom`` is
+    False."""
+    return (BOM if bom else "") + rows_to_csv(rows)

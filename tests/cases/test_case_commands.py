@@ -11,7 +11,7 @@ import pytest
 import synthesis.cases as cases
 from assur.text import languages
 from synthesis.cases.command import Case
-from synthesis.cli.main import build_parser
+from synthesis.cli.parser import build_parser
 
 MODULES = [importlib.import_module(f"synthesis.cases.{info.name}.cli")
            for info in pkgutil.iter_modules(cases.__path__) if info.ispkg]
@@ -31,4 +31,5 @@ def test_each_case_is_a_case_with_the_shared_options(module: Case) -> None:
     language = next(a for a in parser._actions if a.dest == "lang")
     assert tuple(language.choices) == languages()
     # the command line reaches the case by its name
-    assert build_parser().parse_args(["case", module.NAME]).case_handler is module.run
+    words = ["case", module.NAME]
+    assert build_parser(words).parse_args(words).case_handler is module.run

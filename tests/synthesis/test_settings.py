@@ -95,7 +95,8 @@ def test_command_line_and_table_give_the_same_error(
         value: object, rule: str, lang: str) -> None:
     good = _table_with(tmp_path, {"budget": 6})
     assert main(["synthesize", str(good), option, str(value), "--lang", lang, "--quiet"]) == 2
-    from_option = capsys.readouterr().err.strip()
+    named, _, from_option = capsys.readouterr().err.strip().partition(": ")
+    assert named == option  # the command line names the option, then states the rule
     bad = _table_with(tmp_path, {key: value})
     assert main(["synthesize", str(bad), "--lang", lang, "--quiet"]) == 2
     from_table = capsys.readouterr().err

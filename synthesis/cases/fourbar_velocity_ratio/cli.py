@@ -5,11 +5,11 @@ from __future__ import annotations
 
 import argparse
 import math
-import sys
 from typing import Any
 
 from assur.io.reader import TableReader
 from assur.text import Message
+from synthesis.app.outputs import outputs_of
 from synthesis.cases.command import add_output_args, add_table_arg, emit
 from synthesis.cases.fourbar_velocity_ratio.conditions import NoSolution, Request
 from synthesis.cases.fourbar_velocity_ratio.report import (
@@ -128,5 +128,5 @@ def run(args: argparse.Namespace) -> int:
     if args.plot and study.best is not None:
         from synthesis.cases.fourbar_velocity_ratio.plot import save_plot
 
-        print(f"wrote {save_plot(study.best, args.plot, args.lang)}", file=sys.stderr)
+        outputs_of(args).announce(save_plot(study.best, args.plot, args.lang))
     return 0 if study.passed else 1

@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from synthesis.app.outputs import outputs_of
 from synthesis.cases.command import add_output_args, add_table_arg, emit
 from synthesis.cases.impact.data import PAPER
 from synthesis.cases.impact.report import report_json, report_text
@@ -63,4 +64,5 @@ def run(args: argparse.Namespace) -> int:
         from synthesis.cases.impact.plot import save_plot
 
         save_plot(study, args.plot, args.lang)
+        outputs_of(args).announce(args.plot)
     return 0

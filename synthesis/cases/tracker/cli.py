@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import argparse
-import sys
 
 from assur import TableError
 from assur.errors import Issue
 from assur.text import Message
+from synthesis.app.outputs import outputs_of
 from synthesis.cases.command import add_output_args, add_table_arg, emit
 from synthesis.cases.tracker.report import summary, to_dict
 from synthesis.cases.tracker.study import run_study
@@ -60,5 +60,5 @@ def run(args: argparse.Namespace) -> int:
         from synthesis.cases.tracker.plot import save_plots
 
         for path in save_plots(study, args.plot, args.lang):
-            print(f"wrote {path}", file=sys.stderr)
+            outputs_of(args).announce(path)
     return 0

@@ -15,7 +15,6 @@ import argparse
 import json
 import sys
 
-from assur.io.files import atomic_write_text
 from assur.plot.formats import animation_format, picture_format
 from assur.plot.mechanism import save_animation, save_mechanism_picture
 from assur.plot.modes import save_modes_png
@@ -27,10 +26,10 @@ from synthesis.app.analysis_forces_plot import save_forces_png
 from synthesis.app.analysis_forces_render import forces_columns, forces_record, forces_text
 from synthesis.app.analysis_json import analysis_record
 from synthesis.app.analysis_text import analysis_text
+from synthesis.app.outputs import outputs_of
 
-NAME = "analyze"
-HELP = render("cli.analyze.help")
-ORDER = 20
+#: The output options, checked before the run.
+OUTPUTS = {"csv": "file", "plot": "file", "animate": "file", "modes_plot": "file"}
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -68,24 +67,19 @@ def run(args: argparse.Namespace) -> int:
         print(analysis_text(result, args.lang))
         if forces is not None:
             print("\n" + forces_text(result, forces, args.lang))
-    notes = sys.stderr if args.json else sys.stdout
+    outputs = outputs_of(args)
     if args.csv:
         extra = forces_columns(forces) if forces is not None else []
-        atomic_write_text(args.csv, analysis_csv(result, extra))
-        print(render("analyze.written", args.lang, path=args.csv), file=notes)
+        outputs.write_text(args.csv, analysis_csv(result, extra))
     if args.plot:
-        if forces is not None:
-            save_forces_png(result, forces, args.plot, index=result.index_at(args.at),
-                            lang=args.lang)
-        else:
-            save_mechanism_picture(result.motion, args.plot, index=result.index_at(args.at),
-                                   lang=args.lang)
-        print(render("analyze.written", args.lang, path=args.plot), file=notes)
+        index = result.index_at(args.at)
+        outputs.write(args.plot, lambda path: save_mechanism_picture(
+            result.motion, path, index=index, lang=args.lang) if forces is None
+            else save_forces_png(result, forces, path, index=index, lang=args.lang))
     if args.animate:
-        save_animation(result.motion, args.animate, frames=args.frames, lang=args.lang)
-        print(render("analyze.written", args.lang, path=args.animate), file=notes)
+        outputs.write(args.animate, lambda path: save_animation(
+            result.motion, path, frames=args.frames, lang=args.lang))
     if args.modes_plot:
-        save_modes_png(result.motion, args.modes_plot, index=result.index_at(0.0),
-                       lang=args.lang)
-        print(render("analyze.written", args.lang, path=args.modes_plot), file=notes)
+        outputs.write(args.modes_plot, lambda path: save_modes_png(
+            result.motion, path, index=result.index_at(0.0), lang=args.lang))
     return 0

@@ -13,11 +13,9 @@ import importlib.util
 import pkgutil
 from typing import cast
 
+from assur.text import render
+from synthesis.app.progress import following_search
 from synthesis.cases.command import Case
-
-NAME = "case"
-HELP = "run a built-in case (each reproduces its published source)"
-ORDER = 40
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -33,9 +31,11 @@ def add_args(parser: argparse.ArgumentParser) -> None:
         module = cast(Case, importlib.import_module(name))
         sub = cases.add_parser(module.NAME, help=module.HELP, description=module.HELP)
         module.add_args(sub)
+        sub.add_argument("--quiet", action="store_true", help=render("cli.quiet"))
         sub.set_defaults(case_handler=module.run)
 
 
 def run(args: argparse.Namespace) -> int:
-    """Dispatch to the chosen case."""
-    return int(args.case_handler(args))
+    """Dispatch to the chosen case (a search inside it draws a progress bar)."""
+    with following_search(quiet=args.quiet, lang=getattr(args, "lang", "en")):
+        return int(args.case_handler(args))

@@ -12,15 +12,14 @@ from __future__ import annotations
 import argparse
 import json
 
-from assur import save_schemes
 from assur.plot.formats import picture_format
 from assur.text import languages, render
 from synthesis.app.assess import assess
 from synthesis.app.check_report import check_record, check_text
+from synthesis.app.outputs import outputs_of
 
-NAME = "check"
-HELP = render("cli.check.help")
-ORDER = 10
+#: The output options, checked before the run.
+OUTPUTS = {"plot": "file"}
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -38,7 +37,10 @@ def run(args: argparse.Namespace) -> int:
         picture_format(args.plot)
     assessment = assess(args.table, points=None)
     if args.plot:
-        save_schemes(assessment.chain, assessment.analysis, args.plot, lang=args.lang)
+        from assur.plot.schemes import save_schemes
+
+        outputs_of(args).write(args.plot, lambda path: save_schemes(
+            assessment.chain, assessment.analysis, path, lang=args.lang))
     if args.json:
         print(json.dumps(check_record(assessment), ensure_ascii=False, indent=2))
     else:

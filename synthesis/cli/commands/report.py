@@ -4,13 +4,15 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
+from pathlib import Path
 
 from assur.text import languages, render
+from synthesis.app.outputs import outputs_of
+from synthesis.app.progress import following_search
+from synthesis.cli.options import check_at_least, check_search_options
 
-NAME = "report"
-HELP = render("cli.report.help")
-ORDER = 50
+#: The output options, checked before the run.
+OUTPUTS = {"out": "file"}
 #: The fewest crank positions a report's diagrams take.
 MIN_POINTS = 8
 
@@ -27,21 +29,24 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help=render("cli.report.json"))
     parser.add_argument("--budget", type=int, default=None, metavar="M",
                         help=render("cli.report.budget"))
+    parser.add_argument("--quiet", action="store_true", help=render("cli.quiet"))
 
 
 def run(args: argparse.Namespace) -> int:
     """Build and write the report; print where it went (or the key values as JSON)."""
-    from synthesis.app.coursework import write_report
+    from synthesis.app.coursework import build_report, render_html
 
-    if args.points < MIN_POINTS:
-        print(render("cli.option_at_least", args.lang, option="--points", low=MIN_POINTS,
-                     found=args.points), file=sys.stderr)
-        return 2
-    report = write_report(args.table, args.out, lang=args.lang, points=args.points,
-                          budget=args.budget)
+    check_at_least(points=(args.points, MIN_POINTS))
+    check_search_options(args, {"budget": "budget_log2"})
+    with following_search(quiet=args.quiet, lang=args.lang):
+        report = build_report(args.table, lang=args.lang, points=args.points,
+                              budget=args.budget)
+    out = Path(args.out) if args.out else Path(args.table).with_suffix(".html")
+    outputs = outputs_of(args)
+    outputs.write_text(out, render_html(report))
+    report.out = outputs.written[-1] if outputs.written else None
     if args.json:
-        print(json.dumps({"out": str(report.out), "title": report.title, **report.facts},
+        print(json.dumps({"out": None if report.out is None else str(report.out),
+                          "title": report.title, **report.facts},
                          ensure_ascii=False, indent=1, default=str))
-    else:
-        print(report.out)
     return 0

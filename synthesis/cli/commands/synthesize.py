@@ -12,12 +12,17 @@ import math
 import sys
 from typing import Any
 
-from assur.text import render
+from assur.text import languages, render
+from synthesis.app.outputs import outputs_of
+from synthesis.app.progress import following_search
+from synthesis.cli.options import check_search_options
 from synthesis.report import text_report, write_result, write_trials
 
-NAME = "synthesize"
-HELP = "synthesise a mechanism: passive LPτ search for the Peisakh criteria Q, P1, P2"
-ORDER = 30
+#: The options that override a search setting → its field of ``SearchSettings``.
+_SETTINGS = {"budget": "budget_log2", "seed": "seed", "refine": "refine",
+             "shrink": "shrink_passes", "restarts": "restarts", "time_limit": "time_limit"}
+#: The output options, checked before the search starts.
+OUTPUTS = {"out": "file", "trials": "file", "plot": "folder"}
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -47,9 +52,9 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print the summary as JSON")
     parser.add_argument("--plot", metavar="DIR", default=None,
                         help="save output.png, mechanism.png and convergence.png into DIR")
-    parser.add_argument("--lang", choices=("en", "ru"), default="en",
+    parser.add_argument("--lang", choices=languages(), default="en",
                         help="language of the report")
-    parser.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
+    parser.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
     parser.add_argument("--scheduler", metavar="SPEC", default=None, help=render("dist.option"))
 
 
@@ -60,25 +65,29 @@ def run(args: argparse.Namespace) -> int:
     from synthesis.search import settings_for
     from synthesis.synthesize import synthesize
 
+    check_search_options(args, _SETTINGS)
     problem = load_problem(args.problem)
-    settings = settings_for(problem, budget_log2=args.budget, seed=args.seed,
-                            refine=args.refine, shrink_passes=args.shrink,
-                            restarts=args.restarts,
-                            time_limit=args.time_limit)
-    with executor_for(args.scheduler) as executor:
-        outcome = synthesize(problem, settings, progress=not args.quiet, executor=executor)
+    settings = settings_for(problem, **{name: getattr(args, dest)
+                                        for dest, name in _SETTINGS.items()})
+    with executor_for(args.scheduler) as executor, \
+            following_search(quiet=args.quiet, lang=args.lang):
+        outcome = synthesize(problem, settings, executor=executor)
     result, data = outcome.result, dict(outcome.summary)
+    outputs = outputs_of(args)
     if args.out:
-        write_result(args.out, problem, result, data, lang=args.lang)
+        outputs.write(args.out, lambda path: write_result(path, problem, result, data,
+                                                           lang=args.lang))
         data["result_file"] = args.out
     if args.trials:
         data["trials_file"] = args.trials
-        data["trials_written"] = write_trials(args.trials, problem, result)
+        data["trials_written"] = outputs.write(
+            args.trials, lambda path: write_trials(path, problem, result))
     if args.plot:
         from synthesis.plots import save_plots
 
-        data["plots"] = [str(p) for p in save_plots(args.plot, problem, result,
-                                                    outcome.analysis, lang=args.lang)]
+        plots = outputs.write(args.plot, lambda path: save_plots(
+            path, problem, result, outcome.analysis, lang=args.lang))
+        data["plots"] = [str(p) for p in plots or ()]
     if args.json:
         print(json.dumps(_plain(data), indent=2, ensure_ascii=False))
     else:

@@ -166,12 +166,18 @@ LEFT_IN_CODE = re.compile(r"""message_ru|\blang\s*[!=]=\s*["'](?:ru|en)["']|"""
                           r"""\bREASONS\[[^\]]*\]\s*\[|\breader\.add\(""")
 
 
+#: The end of a line whose Cyrillic literal is a set of letters (look-alikes, a pattern), not
+#: words a user reads.
+LETTERS_NOT_TEXT = "# letters, not text"
+
+
 def _places_left(paths: list[Path]) -> list[str]:
     """``path:line`` of every sentence in a language outside the catalogue.
 
     A place is a Russian string literal other than a docstring, a ``message_ru`` field, a
     comparison of ``lang`` with a language, an (English, Russian) pair taken from
-    ``REASONS``, or a table problem recorded as English text (``reader.add``).
+    ``REASONS``, or a table problem recorded as English text (``reader.add``); a literal on a
+    line marked :data:`LETTERS_NOT_TEXT` is letters, not a sentence.
     """
     places = set()
     for path in paths:
@@ -182,9 +188,11 @@ def _places_left(paths: list[Path]) -> list[str]:
                       if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef,
                                            ast.AsyncFunctionDef))
                       and node.body and isinstance(node.body[0], ast.Expr)}
+        lines = source.splitlines()
         for node in ast.walk(tree):
             if (isinstance(node, ast.Constant) and isinstance(node.value, str)
-                    and id(node) not in docstrings and re.search("[а-яё]", node.value, re.IGNORECASE)):
+                    and id(node) not in docstrings and re.search("[а-яё]", node.value, re.IGNORECASE)
+                    and not lines[node.lineno - 1].endswith(LETTERS_NOT_TEXT)):
                 places.add((name, node.lineno))
         for number, line in enumerate(source.splitlines(), 1):
             if LEFT_IN_CODE.search(line.split("#")[0]):

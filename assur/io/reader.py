@@ -75,10 +75,12 @@ TABLE_KINDS: dict[str, tuple[str, frozenset[str]]] = {
 }
 
 #: Cyrillic letters drawn like Latin ones → the Latin letter.
-_LOOK_ALIKES = dict(zip("аеорсухіјѕАВЕКМНОРСТХІЈЅ", "aeopcyxijsABEKMHOPCTXIJS"))
+_LOOK_ALIKES = dict(zip(
+    "аеорсухіјѕАВЕКМНОРСТХІЈЅ",  # letters, not text
+    "aeopcyxijsABEKMHOPCTXIJS"))
 _CYRILLIC = re.compile("[\u0400-\u04ff]")
 _LATIN = re.compile("[A-Za-z]")
-_RUSSIAN = re.compile("[А-яЁё]{2}")
+_RUSSIAN = re.compile("[А-яЁё]{2}")  # letters, not text
 _DECIMAL_COMMA = re.compile(r"\s*[-+]?\d+,\d+\s*")
 
 

@@ -61,6 +61,17 @@ def test_bad_table_lists_every_problem(tmp_path):
         assert field in text
 
 
+@pytest.mark.parametrize("n_star", ["5e-324", "5e-301", "-2e-4", "1e5"])
+def test_a_peak_ratio_out_of_scale_is_refused(tmp_path, n_star):
+    # a ratio of 5e-324 once left the grid without a single finite peak (a traceback)
+    table = tmp_path / "tiny.yaml"
+    table.write_text(f"fourbar_velocity_ratio:\n  e: 0.3\n  n_star: {n_star}\n  delta: 0.05\n"
+                     "  psi1_deg: 20\n", encoding="utf-8")
+    with pytest.raises(TableError) as info:
+        run(["--table", str(table)])
+    assert "'n_star'" in str(info.value) and "|n*|" in str(info.value)
+
+
 def test_over_determined_request_is_refused():
     with pytest.raises(TableError, match="over-determines"):
         run(["--e", "0.3", "--n-star", "0.5", "--delta", "0.05", "--psi1", "20", "--psi2", "20"])

@@ -68,7 +68,8 @@ def read_request(data: dict[str, Any], source: str) -> tuple[Request, str]:
     node = root.child(TABLE, allowed=[dest for _, dest, _ in _FIELDS] + ["method"])
     values: dict[str, Any] = {}
     rules = {"e": _open_interval(0.0, math.inf, "e"),
-             "n_star": lambda v: None if v != 0 else Message("rule.not_zero", {"name": "n*"}),
+             "n_star": lambda v: None if 1e-3 <= abs(v) <= 1e3 else Message(
+                 "rule.abs_between", {"name": "n*", "low": 1e-3, "high": 1e3}),
              "delta": _open_interval(0.0, 1.0, "δ"),
              "psi1_deg": _open_interval(0.0, 180.0, "ψ′"),
              "psi2_deg": _open_interval(0.0, 180.0, "ψ″")}

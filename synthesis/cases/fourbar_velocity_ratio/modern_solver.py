@@ -233,8 +233,8 @@ def _curve_seeds(request: Request, scan: _Scan
 def _ranges(request: Request, scan: _Scan) -> dict[str, float]:
     """Peaks and zone widths seen on the grid, for the no-solution message."""
     height = scan.height[np.isfinite(scan.height)]
-    ranges = {"peak_min": float(request.sign * np.min(height)),
-              "peak_max": float(request.sign * np.max(height))}
+    ranges = {"peak_min": float(request.sign * np.min(height)) if height.size else math.nan,
+              "peak_max": float(request.sign * np.max(height)) if height.size else math.nan}
     if request.form == "paper":
         peak_gap, width_gap = scan.fields[0, 0], scan.fields[1, 0]
         cross = (np.sign(peak_gap[:, :-1]) != np.sign(peak_gap[:, 1:])) & np.isfinite(

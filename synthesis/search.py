@@ -509,9 +509,11 @@ class _Search:
                 and bool(c.q[0] <= q_req))
 
     def planned(self) -> int:
-        """The trials of the initial design and of the passive passes."""
+        """The trials of the initial design and of the passive passes of every round (the
+        first and the restarts; a favourable design may end them sooner)."""
         s = self.settings
-        return 1 + 2 ** s.budget_log2 + s.shrink_passes * 2 ** max(s.budget_log2 - 2, 4)
+        per_round = 2 ** s.budget_log2 + s.shrink_passes * 2 ** max(s.budget_log2 - 2, 4)
+        return 1 + (1 + s.restarts) * per_round
 
     def report(self, final: bool = False) -> None:
         listener = LISTENER.get()

@@ -45,12 +45,25 @@ def test_search_bar_shows_total_best_and_time_left(monkeypatch):
     screen = Terminal()
     with progress.following_search(quiet=False, stream=screen) as bar:
         outcome = synthesize(problem, settings_for(problem, budget_log2=6, refine=False,
-                                                   shrink_passes=0))
+                                                   shrink_passes=0, restarts=0))
     drawn = screen.getvalue()
     assert bar.done == outcome.result.trials.shape[0] == 1 + 2 ** 6
     assert set(totals) == {1 + 2 ** 6}  # from the start: trial 0 and the 2**6 LPτ trials
     assert f"/{1 + 2 ** 6} [" in drawn
     assert "best P1=" in drawn and "<" in drawn  # the best so far; elapsed<left
+
+
+def test_the_total_counts_every_round(monkeypatch):
+    # two rounds of 2**4 LPτ trials and 2 shrinking passes of 2**4 each (the passes draw at
+    # least 16), counted by hand from the settings
+    totals = []
+    monkeypatch.setattr(progress.Bar, "move_to",
+                        lambda self, done, total=None, note=None: totals.append(total))
+    problem = load_problem(PROBLEM)
+    with progress.following_search(quiet=True, stream=Terminal()):
+        synthesize(problem, settings_for(problem, budget_log2=4, refine=False, shrink_passes=2,
+                                         restarts=1))
+    assert set(totals) == {1 + 2 * (2 ** 4 + 2 * 16)}
 
 
 def test_quiet_terminal_and_pipe_get_no_progress(monkeypatch, capsys):
@@ -59,7 +72,8 @@ def test_quiet_terminal_and_pipe_get_no_progress(monkeypatch, capsys):
     screen = Terminal()
     with progress.following_search(quiet=True, stream=screen) as bar:
         problem = load_problem(PROBLEM)
-        synthesize(problem, settings_for(problem, budget_log2=4, refine=False))
+        synthesize(problem, settings_for(problem, budget_log2=4, refine=False,
+                                              shrink_passes=0, restarts=0))
     assert screen.getvalue() == "" and bar.done == 1 + 2 ** 4  # counted, not drawn
     assert main(["synthesize", str(PROBLEM), "--budget", "4"]) in (0, 1)
     err = capsys.readouterr().err  # standard error is not a terminal here

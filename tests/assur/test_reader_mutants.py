@@ -42,7 +42,7 @@ def test_a_row_given_twice_is_one_mismatch_naming_the_first() -> None:
     twice = [*rows[:3], rows[1], *rows[3:]]
     found = check_identification(analysis, twice)
     assert [(m.row, m.field) for m in found] == [(3, "row")]
-    assert "row 1" in found[0].message and "строке 1" in found[0].message_ru
+    assert "row 1" in found[0].text("en") and "строке 1" in found[0].text("ru")
     # a missing row is told apart from a repeated one
     missing = check_identification(analysis, [rows[0], *rows[2:]])
     assert [(m.row, m.field) for m in missing] == [(None, "row")]

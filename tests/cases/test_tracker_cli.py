@@ -96,3 +96,16 @@ def test_command_line_exits_2_on_bad_input_without_traceback(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "design_task 'k5': every value must be greater than 1" in err
     assert "Traceback" not in err
+
+
+@pytest.mark.parametrize("stroke", ["2.1e-298", "0.5"])
+def test_a_stroke_too_small_to_build_is_the_users_error(tmp_path, capsys, stroke):
+    # a stroke of 2.1e-298° once reached the program's own mechanism table, whose error named
+    # synthesis/cases/tracker/mechanism.yaml instead of the user's file
+    from synthesis.cli import main
+
+    path = tmp_path / "task.yaml"
+    path.write_text(f"design_task:\n  stroke_deg: {stroke}\n", encoding="utf-8")
+    assert main(["case", "tracker", "--table", str(path), "--budget", "0"]) == 2
+    err = capsys.readouterr().err
+    assert str(path) in err and "stroke_deg" in err and "mechanism.yaml" not in err

@@ -37,7 +37,7 @@ OPTIONS: dict[str, str] = {
 """The command-line option that overrides each field."""
 
 _RANGES: dict[str, tuple[float, float, Message]] = {
-    "stroke_deg": (0.0, 360.0, Message("rule.strictly_between", {"low": 0, "high": 360})),
+    "stroke_deg": (1.0, 360.0, Message("rule.strictly_between", {"low": 1, "high": 360})),
     "min_transmission_deg": (0.0, 90.0, Message("rule.in_range", {"range": "[0, 90)"})),
     "l1_mm": (0.0, math.inf, Message("rule.positive")),
     "actuator_stroke_mm": (0.0, math.inf, Message("rule.positive")),

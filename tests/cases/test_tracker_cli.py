@@ -74,7 +74,7 @@ def test_bad_table_lists_every_problem_by_file_and_field(tmp_path):
         _run(["--table", str(path), "--l1", "-5"])
     text = str(err.value)
     assert text.startswith(f"4 problems in {path}")
-    assert "design_task 'stroke_deg': must lie strictly between 0 and 360; found 400" in text
+    assert "design_task 'stroke_deg': must lie strictly between 1 and 360; found 400" in text
     assert "design_task 'k2': every value must be greater than 1" in text
     assert "unknown key 'l1mm'; did you mean 'l1_mm'?" in text
     assert "option '--l1': must be positive; found -5.0" in text

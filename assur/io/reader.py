@@ -280,7 +280,7 @@ class TableReader:
                         reader.expect(kind)
                     return reader
             except yaml.YAMLError as exc:
-                message = _yaml_problem(exc)
+                message = _python_problem(text) or _yaml_problem(exc)
         raise TableError(source, [Issue("", message)])
 
     @classmethod
@@ -517,11 +517,11 @@ _CLOSING = (yaml.BlockEndToken, yaml.FlowMappingEndToken, yaml.FlowSequenceEndTo
 _LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
 
-def _depth_problem(text: str) -> Message | None:
+def _depth_problem(text: str, loader: Any = _LOADER) -> Message | None:
     """Nesting deeper than :data:`MAX_DEPTH`, found by the token scanner (which, unlike the
     parser, does not recurse), before the text is parsed."""
     depth = 0
-    for token in yaml.scan(text, Loader=_LOADER):
+    for token in yaml.scan(text, Loader=loader):
         if isinstance(token, _OPENING):
             depth += 1
             if depth > MAX_DEPTH:
@@ -529,6 +529,20 @@ def _depth_problem(text: str) -> Message | None:
                                                   "line": token.start_mark.line + 1})
         elif isinstance(token, _CLOSING):
             depth -= 1
+    return None
+
+
+def _python_problem(text: str) -> Message | None:
+    """The problem of a text that libyaml refused, in the words of PyYAML's own parser (the
+    same position, a plainer sentence); its depth is checked first, so it never recurses deep.
+    """
+    try:
+        depth = _depth_problem(text, yaml.SafeLoader)
+        if depth is not None:
+            return depth
+        yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        return _yaml_problem(exc)
     return None
 
 

@@ -9,6 +9,8 @@ angle) and from the files' own signatures (magic bytes), not from the drawing co
 from __future__ import annotations
 
 import math
+import shutil
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -134,6 +136,26 @@ def test_animation_formats(tmp_path: Path) -> None:
         mp4 = tmp_path / "cycle.mp4"
         save_animation(motion, mp4, frames=3, dpi=25)
         assert mp4.read_bytes()[4:8] == b"ftyp"
+
+
+@pytest.mark.skipif(shutil.which("ffprobe") is None or shutil.which("ffmpeg") is None,
+                    reason="ffmpeg is not installed here")
+def test_an_mp4_holds_one_frame_per_position_and_the_mechanism_moves(tmp_path: Path) -> None:
+    """ffmpeg's own tools read the file back: ffprobe counts the frames, and two decoded frames
+    differ (the crank has turned between them)."""
+    motion = analyse(load_model(ROOT / "input_tables" / "four_bar.yaml"), points=12)
+    mp4 = tmp_path / "cycle.mp4"
+    save_animation(motion, mp4, frames=6, dpi=25)
+    probe = subprocess.run(
+        ["ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
+         "stream=nb_read_frames,codec_type", "-of", "csv=p=0", str(mp4)],
+        capture_output=True, text=True, check=True).stdout.strip()
+    assert probe == "video,6"
+    decoded = subprocess.run(
+        ["ffmpeg", "-v", "error", "-i", str(mp4), "-f", "rawvideo", "-pix_fmt", "gray", "-"],
+        capture_output=True, check=True).stdout
+    frames = np.frombuffer(decoded, np.uint8).reshape(6, -1)
+    assert np.abs(frames[0].astype(int) - frames[3].astype(int)).max() > 64
 
 
 def test_the_title_says_from_where_phi_is_counted() -> None:

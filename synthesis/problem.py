@@ -14,7 +14,10 @@ complete example of each task class):
 ``mechanism`` or ``structure_identification``
     The structure identification: a path (relative to the problem file) of an
     identification table, or its rows inline.  The rows' ``params:`` give the values of the
-    parameters that the problem does not list.
+    parameters that the problem does not list.  Or the chain form: a path of a chain table
+    with a ``geometry:`` sketch, or its ``mechanism:`` and ``geometry:`` sections inline; the
+    groups are then named by the links of their labels and the columns are those the sketch
+    defines (:mod:`synthesis.problem_chain`; the only form for triads and class IV groups).
 ``group_models``
     Optional records of table 1.5, kept for the report.
 ``output``
@@ -88,7 +91,8 @@ __all__ = [
     "row_key",
 ]
 
-#: The links of a group as the tables name it: ``(i,)`` for L0, ``(i, j)`` for a dyad.
+#: The links of a group as the tables name it: ``(i,)`` for L0, ``(i, j)`` for a dyad, the
+#: links of the label for a triad or class IV group (``(2, 3, 4, 5)``).
 GroupKey = tuple[LinkId, ...]
 
 #: The program default of the allowable pressure angle [α], degrees (``method.md`` §2.7).
@@ -200,7 +204,8 @@ class Problem:
     ----------
     mechanism : mapping
         The identification table of the initial design as handed to :mod:`assur`: every
-        column a plain number or ``'A'`` (:meth:`mechanism_table` writes a design into it).
+        column a plain number or ``'A'`` (:meth:`mechanism_table` writes a design into it);
+        or, in the chain form, its ``mechanism`` and ``geometry`` sections as given.
     model : KinematicModel
         The kinematic model of the initial design.
     accuracy : float or None
@@ -293,10 +298,16 @@ class Problem:
         return {p.name: float(v) for p, v in zip(self.parameters, np.asarray(x, dtype=float))}
 
     def mechanism_table(self, x: npt.ArrayLike) -> dict[str, Any]:
-        """The identification table of design x, every varied column a plain number.
+        """The mechanism table of design x: what the result file stores.
 
-        This is what the result file stores; ``assur analyze`` reads it back.
+        The identification form gets every varied column as a plain number; the chain form
+        gets the design's pose at the reference position as its sketch
+        (:func:`synthesis.problem_chain.design_table`).  ``assur analyze`` reads it back.
         """
+        from synthesis.problem_chain import design_table, is_chain_form
+
+        if is_chain_form(self.mechanism):
+            return design_table(self, x)
         table = copy.deepcopy(dict(self.mechanism))
         rows = {row_key(row): row for row in table.get("structure_identification", [])}
         for p, value in zip(self.parameters, np.asarray(x, dtype=float)):

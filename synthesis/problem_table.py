@@ -60,13 +60,14 @@ from synthesis.problem import (
     output_slider,
     row_key,
 )
+from synthesis.problem_chain import group_key, is_chain_form
 from synthesis.search import setting_problem
 
 __all__ = ["read_problem", "read_problem_data"]
 
 _TOP = ("schema_version", "name", "general", "mechanism", "structure_identification",
-        "frame", "group_models", "output", "parameters", "allowable", "control_points",
-        "search", "forces")
+        "frame", "geometry", "group_models", "output", "parameters", "allowable",
+        "control_points", "search", "forces")
 _GENERAL = ("control_points", "direction", "groups", "task_class", "grid", "accuracy",
             "objective", "p2_weight", "output")
 #: Control-point columns of the target value and of the zone limits, per class-1 output.
@@ -78,7 +79,7 @@ _POINT_COLUMNS = {
     4: ("K", "phi", "x", "y", "E"),
 }
 #: Locations whose problems leave no mechanism to build.
-_STRUCTURE = ("mechanism", "structure_identification", "parameters", "frame")
+_STRUCTURE = ("mechanism", "structure_identification", "parameters", "frame", "geometry")
 Bounds = dict[tuple[GroupKey, str], tuple[float, float, float]]
 #: Most positions of the analysis grid over a crank turn.
 MAX_GRID = 20_000
@@ -112,8 +113,8 @@ class _General:
 
 @dataclass(frozen=True)
 class _Mechanism:
-    """The identification table as given: its data, the file it is in, and the prefix of
-    the locations of its cells in this file's messages."""
+    """The identification table (or the chain table) as given: its data, the file it is in,
+    and the prefix of the locations of its cells in this file's messages."""
 
     data: dict[str, Any]
     source: str
@@ -124,33 +125,45 @@ class _Mechanism:
         rows = self.data.get("structure_identification")
         return rows if isinstance(rows, list) else []
 
+    @property
+    def chain(self) -> bool:
+        """Whether the mechanism is given in the chain form (with its sketch)."""
+        return is_chain_form(self.data)
+
+
+@dataclass(frozen=True)
+class _Form:
+    """What the mechanism's form gives the rest of the reader: the groups by their links,
+    the model of the initial design (or the error of another file), the bounds of the varied
+    columns, and the mechanism table the problem keeps."""
+
+    groups: dict[GroupKey, Any]
+    model: KinematicModel | None
+    foreign: AssurError | None
+    bounds: Bounds
+    table: dict[str, Any]
+
 
 def _read(reader: TableReader, base: Path) -> Problem:
     top = reader.root(allowed=_TOP)
     name = top.get("name", kind="str", required=False, default=None)
     general = _read_general(top)
     mechanism = _read_mechanism(reader, top, base)
-    groups = {row_key(row): row for row in mechanism.rows if _has_links(row)}
-    _check_links(reader, mechanism)
-    if general.n_groups is not MISSING and mechanism.rows \
-            and general.n_groups != len(mechanism.rows):
-        reader.problem("general 'groups'", "problem.groups_count", rows=len(mechanism.rows),
-                       found=general.n_groups)
-    rows, bounds = _merge_parameters(top, mechanism, groups, general.direction)
+    form = (_chain_form(top, mechanism, general) if mechanism.chain
+            else _identification_form(top, mechanism, general))
+    groups, model, bounds = form.groups, form.model, form.bounds
     quantity = general.output if general.output in OUTPUT_QUANTITIES else "angle"
     output = _read_output(top, general.task_class, groups, quantity)
     control = _read_control(top, general.task_class, general.n_points, general.output)
     pressure, rotations, boxes = _read_allowable(top, groups)
     models = tuple(top.get("group_models", kind="list", required=False, default=[]) or [])
     search = _read_search(top)
-    structure_ok = bool(mechanism.rows) and not any(
-        issue.location.startswith(_STRUCTURE) for issue in reader.issues)
-    model, foreign = (_build_model(reader, mechanism, rows) if structure_ok else (None, None))
     parameters: tuple[Parameter, ...] = ()
     labels: dict[GroupKey, str] = {}
     if model is not None:
-        labels = {(g.i,) if g.j is None else (g.i, g.j): g.label for g in model.groups}
-        _check_varied(reader, model, bounds, labels)
+        labels = {group_key(g): g.label for g in model.groups}
+        if not mechanism.chain:
+            _check_varied(reader, model, bounds, labels)
         parameters = _parameters(model, bounds)
         if not parameters:
             reader.problem("parameters", "problem.nothing_varied")
@@ -159,16 +172,15 @@ def _read(reader: TableReader, base: Path) -> Problem:
             _check_output(reader, model, output, general.task_class)
     forces = read_force_conditions(top, model)
     reader.raise_if_any()
-    if foreign is not None:
-        raise foreign
+    if form.foreign is not None:
+        raise form.foreign
     assert model is not None
     return Problem(
         source=reader.source, name=name or Path(reader.source).stem,
         task_class=general.task_class, n_points=general.n_points,
-        direction=general.direction, n_groups=general.n_groups, grid=general.grid,
+        direction=model.direction if mechanism.chain else general.direction, n_groups=general.n_groups, grid=general.grid,
         accuracy=general.accuracy, objective=general.objective,
-        p2_weight=float(general.p2_weight),
-        mechanism={**mechanism.data, "structure_identification": rows}, model=model,
+        p2_weight=float(general.p2_weight), mechanism=form.table, model=model,
         parameters=parameters, control=control, output=output,
         pressure_angles={labels[k]: v for k, v in pressure.items()},
         rotations={labels[k]: v for k, v in rotations.items()},
@@ -201,16 +213,86 @@ def _read_general(top: Node) -> _General:
     return out
 
 
-def _build_model(reader: TableReader, mechanism: _Mechanism, rows: list[Any]
+def _identification_form(top: Node, mechanism: _Mechanism, general: _General) -> _Form:
+    """The identification form: groups keyed by the rows, parameters merged into them."""
+    reader = top.reader
+    groups = {row_key(row): row for row in mechanism.rows if _has_links(row)}
+    _check_links(reader, mechanism)
+    if general.n_groups is not MISSING and mechanism.rows \
+            and general.n_groups != len(mechanism.rows):
+        reader.problem("general 'groups'", "problem.groups_count", rows=len(mechanism.rows),
+                       found=general.n_groups)
+    rows, bounds = _merge_parameters(top, mechanism, groups, general.direction)
+    table = {**mechanism.data, "structure_identification": rows}
+    structure_ok = bool(mechanism.rows) and not any(
+        issue.location.startswith(_STRUCTURE) for issue in reader.issues)
+    model, foreign = _build_model(reader, table, mechanism.source) if structure_ok \
+        else (None, None)
+    return _Form(groups, model, foreign, bounds, table)
+
+
+def _chain_form(top: Node, mechanism: _Mechanism, general: _General) -> _Form:
+    """The chain form: the model from the sketch, its groups keyed by the links of their
+    labels, each parameter cell naming a column the sketch defines (``x_F``, ``l_1``, …).
+
+    Every cell given (a number, or ``[initial, lower, upper]`` whose initial value is used)
+    replaces the sketch's value in the model of the initial design.
+    """
+    reader = top.reader
+    model, foreign = _build_model(reader, mechanism.data, mechanism.source)
+    if model is None:
+        return _Form({}, None, foreign, {}, mechanism.data)
+    groups: dict[GroupKey, Any] = {group_key(g): g.label for g in model.groups}
+    if general.n_groups is not MISSING and general.n_groups != len(groups):
+        reader.problem("general 'groups'", "higher.problem.groups_count", rows=len(groups),
+                       found=general.n_groups)
+    stated = (top.mapping.get("general") or {}).get("direction") \
+        if isinstance(top.mapping.get("general"), dict) else None
+    if stated in (1, -1) and stated != model.direction:
+        reader.problem("general 'direction'", "higher.problem.direction_mismatch",
+                       rotation=model.direction, found=stated)
+    bounds: Bounds = {}
+    values: dict[str, float] = {}
+    done: set[GroupKey] = set()
+    for row in top.rows("parameters", None, required=False):
+        key = _group_of(row, groups)
+        if key is None or key not in groups:
+            continue
+        if key in done:
+            reader.problem(f"{row.location} 'links'", "problem.links_repeated", links=list(key))
+        done.add(key)
+        for column, value in row.mapping.items():
+            name = f"{groups[key]}.{column}"
+            location = f"{row.location} {column!r}"
+            if column == "links":
+                continue
+            if name not in model.params:
+                reader.problem(location, "higher.problem.column_unknown", column=column,
+                               group=groups[key], known=", ".join(_columns(model, groups[key])))
+            elif not is_number(value) and not isinstance(value, list):
+                reader.problem(location, "higher.problem.cell", found=describe(value))
+            else:
+                initial = _cell(reader, value, location, key, column, bounds)
+                if is_number(initial):
+                    values[name] = float(initial)
+    return _Form(groups, model.with_params(values) if values else model, foreign, bounds,
+                 mechanism.data)
+
+
+def _columns(model: KinematicModel, label: str) -> list[str]:
+    """The columns of a group in the model built from the sketch."""
+    return [name[len(label) + 1:] for name in model.params if name.startswith(f"{label}.")]
+
+
+def _build_model(reader: TableReader, data: dict[str, Any], source: str
                  ) -> tuple[KinematicModel | None, AssurError | None]:
     """The kinematic model of the initial design (built, not analysed).
 
     Problems that :mod:`assur` finds in rows of this file join its list unchanged; an error
     of another file, or of the structure, is returned to be raised as it is.
     """
-    data = {**mechanism.data, "structure_identification": rows}
     try:
-        chain = assur.chain_from_dict(data, source=mechanism.source)
+        chain = assur.chain_from_dict(data, source=source)
         return assur.build_model(assur.analyse_structure(chain)), None
     except TableError as exc:
         if exc.source != reader.source:
@@ -222,8 +304,19 @@ def _build_model(reader: TableReader, mechanism: _Mechanism, rows: list[Any]
 
 
 def _read_mechanism(reader: TableReader, top: Node, base: Path) -> _Mechanism:
-    """The identification table: from a file named by ``mechanism`` or given inline."""
+    """The identification table, or the chain table with its sketch: from a file named by
+    ``mechanism``, or given inline (rows of ``structure_identification``; the sections
+    ``mechanism`` and ``geometry`` of a chain table)."""
     here = _Mechanism({}, reader.source)
+    inline = isinstance(top.mapping.get("mechanism"), dict)
+    if top.has("geometry") and not inline:
+        reader.problem("geometry", "higher.problem.geometry_alone")
+    if inline:
+        if not top.has("geometry"):
+            reader.problem("geometry", "higher.problem.no_geometry", file=reader.source)
+            return here
+        return _Mechanism({"mechanism": top.mapping["mechanism"],
+                           "geometry": top.mapping["geometry"]}, reader.source)
     if top.has("mechanism") and top.has("structure_identification"):
         reader.problem("mechanism", "problem.mechanism_both")
         return here
@@ -252,6 +345,9 @@ def _read_mechanism(reader: TableReader, top: Node, base: Path) -> _Mechanism:
                            problem=issue.message)
         return here
     data = inner.data
+    if isinstance(data, dict) and is_chain_form(data) and "geometry" in data:
+        return _Mechanism({"mechanism": data["mechanism"], "geometry": data["geometry"]},
+                          str(target), f"mechanism ({target}) ")
     if not isinstance(data, dict) or not isinstance(data.get("structure_identification"), list) \
             or not data["structure_identification"]:
         reader.problem("mechanism", "problem.mechanism_no_rows", file=str(target))
@@ -362,14 +458,15 @@ def _check_varied(reader: TableReader, model: KinematicModel, bounds: Bounds,
 
 def _parameters(model: KinematicModel, bounds: Bounds) -> tuple[Parameter, ...]:
     """The varied parameters (lower < upper): groups in layering order, then the columns of
-    the kind in table order, ``delta``, and the tracing-point columns by name."""
+    the kind in table order, ``delta``, and the tracing-point columns by name (a triad's or
+    class IV group's columns, named after its pairs, in the order the table gives them)."""
     out = []
     for group in model.groups:
-        key: GroupKey = (group.i,) if group.j is None else (group.i, group.j)
+        key = group_key(group)
         columns = [column for (links, column) in bounds if links == key]
         fixed = (*assur.kinematics.model.KIND_COLUMNS[group.kind], "delta")
-        ordered = [c for c in fixed if c in columns] + sorted(c for c in columns
-                                                              if c not in fixed)
+        rest = [c for c in columns if c not in fixed]
+        ordered = [c for c in fixed if c in columns] + (rest if group.layout else sorted(rest))
         for column in ordered:
             initial, lower, upper = bounds[key, column]
             if upper > lower:

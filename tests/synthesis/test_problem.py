@@ -66,7 +66,7 @@ def test_every_problem_is_reported_at_once() -> None:
     assert "general 'groups': the structure identification has 2 groups" in text
     assert "control_points[1] 'K': control points must be numbered 0, 1, 2" in text
     assert "parameters[1] 'l_j': the lower bound must not exceed the upper bound" in text
-    assert "parameters[2] 'links': no group of the structure identification has links [4, 5]" \
+    assert "parameters[2] 'links': no group of the mechanism has links [4, 5]" \
         in text
     assert len(messages) >= 6
 

@@ -100,8 +100,9 @@ def design_table(problem: Problem, x: npt.ArrayLike) -> dict[str, Any]:
             angle = _value(slider.angle)
             if cmath.isfinite(angle):
                 entry["direction"] = _clean(math.degrees(angle.real))
-        point = point if cmath.isfinite(point) else (drawn if drawn is not None else None)
-        if point is not None:
+        if not cmath.isfinite(point) and drawn is not None:
+            point = drawn
+        if cmath.isfinite(point):
             entry["point"] = [_clean(point.real), _clean(point.imag)]
     for name, entry in (geometry.get("tracing") or {}).items():
         point = _value(motion.tracing.get(name))

@@ -313,7 +313,7 @@ def _read_mechanism(reader: TableReader, top: Node, base: Path) -> _Mechanism:
         reader.problem("geometry", "higher.problem.geometry_alone")
     if inline:
         if not top.has("geometry"):
-            reader.problem("geometry", "higher.problem.no_geometry", file=reader.source)
+            reader.problem("geometry", "higher.problem.no_geometry")
             return here
         return _Mechanism({"mechanism": top.mapping["mechanism"],
                            "geometry": top.mapping["geometry"]}, reader.source)

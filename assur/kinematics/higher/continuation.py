@@ -39,7 +39,7 @@ __all__ = ["HigherReason", "HigherSolution", "REASON_CODES", "follow_mode", "ana
 
 TWO_PI = 2.0 * np.pi
 #: Largest crank step of the continuation (rad).
-H_MAX = np.radians(2.0)
+H_MAX = np.radians(8.0)
 #: Below this step the mode ends (rad).
 H_MIN = 1e-10
 #: Newton iterations of the corrector and its convergence bound on the scaled step.

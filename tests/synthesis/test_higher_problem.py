@@ -181,3 +181,19 @@ def test_an_inline_chain_reads_as_the_named_file(tmp_path: Path,
     named = load_problem(PROBLEM)
     assert inline.names == named.names
     assert inline.model.params == named.model.params
+
+
+def test_a_fixed_cell_changes_the_sketch_it_names() -> None:
+    """``x_C: 80`` (a plain number) moves the drawn hinge C of the initial design: the
+    evaluator's stroke of the initial design is that of the sketch with C moved."""
+    from synthesis.evaluate import Evaluator
+    from synthesis.problem import problem_from_dict
+
+    data = yaml.safe_load(PROBLEM.read_text(encoding="utf-8"))
+    data["parameters"][0]["x_C"] = 80
+    problem = problem_from_dict(data, "fixed.yaml", base=PROBLEM.parent)
+    analysis = Evaluator(problem).analyse(problem.initial[None, :])
+    chain = yaml.safe_load((PROBLEM.parent / data["mechanism"]).read_text(encoding="utf-8"))
+    points = {**_points(chain["geometry"]), "C": 80 + 30.5j}
+    phi = np.array([row["phi"] for row in data["control_points"]])
+    assert np.abs(analysis.output_control[0] - stroke(points, phi)).max() < 1e-8

@@ -122,6 +122,12 @@ class HigherGroup(ABC):
     def sketch(self) -> dict[str, Value]:
         """The drawn positions of the joints named as in :meth:`joints`."""
 
+    @property
+    def turn_drawn(self) -> bool:
+        """Whether the drawn rotation (θ = 0 of the eliminated angle) picks the sketch's mode
+        with the joints: True where the joints leave it open."""
+        return False
+
     @abstractmethod
     def residual(self, x: Unknowns, k: Any) -> list[Value]:
         """The reduced loop equations F(x) (lengths, in the drawing's unit)."""
@@ -168,7 +174,9 @@ def _cross(a: Any, b: Any) -> np.ndarray:
 
 def _line_rows(nu: np.ndarray, at: np.ndarray, origin: np.ndarray, radius: Any) -> np.ndarray:
     """Rows [ν_k, cross(X_k − O, ν_k)/radius] of the lines through X_k along ν_k."""
-    return np.stack([nu.real, nu.imag, J.cross(at - origin, nu) / radius], axis=-1)
+    moment = np.asarray(J.cross(at - origin, nu) / radius)
+    nu = np.broadcast_to(nu, moment.shape)
+    return np.stack([nu.real, nu.imag, moment], axis=-1)
 
 
 @dataclass(frozen=True, eq=False)
@@ -195,7 +203,8 @@ class Triad(HigherGroup):
     Parameters
     ----------
     leashes : tuple of 3 of {"RR", "RP", "PR"}
-        Leash kinds, internal pair first. The first must be "RR" (put a bar first).
+        Leash kinds, internal pair first. A bar, if there is one, must come first; a triad
+        without a bar has all three equations linear in W (§2.2).
     base : tuple of 3 complex
         Drawn points of the base: the hinge P_k⁰ (R–R, R–P) or a point of the base's guide
         (P–R, usually the drawn slider point).
@@ -223,7 +232,7 @@ class Triad(HigherGroup):
     lengths = (True, True, False)
 
     def __post_init__(self) -> None:
-        if self.leashes[0] != "RR":
+        if "RR" in self.leashes and self.leashes[0] != "RR":
             raise ValueError(render("higher.error.first_leash", found="–".join(self.leashes[0])))
         for kind, u in zip(self.leashes, self.guide, strict=True):
             if kind not in ("RR", "RP", "PR"):
@@ -251,8 +260,21 @@ class Triad(HigherGroup):
         return self._lengths[k]
 
     @property
+    def turn_drawn(self) -> bool:
+        """Two or three leashes slide on the base: their joints are the known hinges."""
+        return self.leashes.count("PR") >= 2
+
+    @property
+    def barless(self) -> bool:
+        """No leash is a bar: every equation is linear in W at a fixed θ."""
+        return "RR" not in self.leashes
+
+    @property
     def degree(self) -> int:
-        """3, or 2 when leashes 2 and 3 are both R–P or both P–R (§2.2)."""
+        """3, or 2 when leashes 2 and 3 are both R–P or both P–R; without a bar 1 when the
+        three leashes are of one kind, else 2 (§2.2)."""
+        if self.barless:
+            return 1 if len(set(self.leashes)) == 1 else 2
         return 2 if self.leashes[1] == self.leashes[2] != "RR" else 3
 
     @cached_property
@@ -330,11 +352,12 @@ class Triad(HigherGroup):
         return _line_rows(nu, at, p1[..., None], 1.0), rows
 
     def _linear(self, e: np.ndarray, k: TriadInputs) -> tuple[list[Any], list[Any]]:
-        """a_k·W = p_k (k = 2, 3) at the base rotation E (§2.2)."""
+        """a_k·W = p_k at the base rotation E (§2.2): k = 2, 3 after a bar, all three
+        without one."""
         a1 = np.asarray(k.a[0])
         r1 = self._length(0)
         coef, rhs = [], []
-        for i in (1, 2):
+        for i in ((0, 1, 2) if self.barless else (1, 2)):
             kind = self.leashes[i]
             ai = np.asarray(k.a[i])
             offset = self._offset(i) * e
@@ -349,15 +372,31 @@ class Triad(HigherGroup):
         return coef, rhs
 
     def eliminant(self, e: np.ndarray, k: TriadInputs) -> np.ndarray:
-        """Φ(θ) = |p₂a₃ − p₃a₂|² − r₁² cross(a₂, a₃)²."""
-        (a2, a3), (p2, p3) = self._linear(e, k)
+        """Φ(θ) = |p₂a₃ − p₃a₂|² − r₁² cross(a₂, a₃)²; without a bar the determinant of the
+        three rows [a_k, p_k] (the three lines a_k·W = p_k meet in one W)."""
+        coef, rhs = self._linear(e, k)
+        if self.barless:
+            return np.asarray(sum(rhs[i] * J.cross(coef[(i + 1) % 3], coef[(i + 2) % 3])
+                                  for i in range(3)))
+        (a2, a3), (p2, p3) = coef, rhs
         m = p2 * a3 - p3 * a2
         return np.asarray(np.abs(m) ** 2 - (self._length(0) * J.cross(a2, a3)) ** 2)
 
     def recover(self, e: np.ndarray, k: TriadInputs) -> np.ndarray:
-        """W = −i(p₂a₃ − p₃a₂)/cross(a₂, a₃), θ = arg E."""
-        (a2, a3), (p2, p3) = self._linear(e, k)
-        w = -1j * (p2 * a3 - p3 * a2) / J.cross(a2, a3)
+        """W = −i(p_ia_j − p_ja_i)/cross(a_i, a_j) (after a bar i, j = 2, 3; without one the
+        two lines that meet at the widest angle), θ = arg E."""
+        coef, rhs = self._linear(e, k)
+        pairs = ((1, 2), (2, 0), (0, 1)) if self.barless else ((0, 1),)
+        best, w = None, None
+        for i, j in pairs:
+            det = J.cross(coef[i], coef[j])
+            here = -1j * (rhs[i] * coef[j] - rhs[j] * coef[i]) / det
+            if best is None or w is None:
+                best, w = np.abs(det), here
+            else:
+                wider = np.abs(det) > best
+                best, w = np.where(wider, np.abs(det), best), np.where(wider, here, w)
+        assert w is not None
         return np.stack(np.broadcast_arrays(w.real, w.imag, np.angle(e)), axis=-1)
 
     def joints(self, x: Unknowns, k: TriadInputs) -> dict[str, Value]:

@@ -198,7 +198,7 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
     build : _Builder
         The model being built from the sketch (parameters, frames, problems).
     group : AssurGroup
-        The triad as structure found it.
+        The triad as structure found it (a bar, if any, is solved first).
     label : str
         Its label, the prefix of its parameters (``"III(4,5,6,7)"``).
 
@@ -206,8 +206,7 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
     -------
     Sketched or None
         Its :class:`Layout` and the frames of its links; None after recording a problem (a
-        leash with two sliders or none with two hinges, a block's guide on the block, an
-        actuator in the group).
+        leash with two sliders, a block's guide on the block, an actuator in the group).
     """
     pairs = build.topo.pairs
     if group.composite:
@@ -222,7 +221,7 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
         rows.append((kind != "RR", kind, leash, inner, ext, known))
     rows.sort(key=lambda row: row[0])
     kinds = [row[1] for row in rows]
-    if "PP" in kinds or kinds[0] != "RR":
+    if "PP" in kinds:
         _problem(build, label, "leashes", found=", ".join("–".join(k) for k in kinds))
         return None
     frames: dict[LinkId, tuple[complex, float]] = {}

@@ -179,7 +179,10 @@ def assembly_modes(group: HigherGroup, k: Any) -> AssemblyModes:
         size = np.asarray(group.size)[..., None]
         valid = near & (np.abs(f).max(axis=-1) <= ACCEPT * size)
         points = wide.joints(x, kk)
-        stack = np.stack(np.broadcast_arrays(*points.values()), axis=-1)
+        # the joints and the eliminated rotation (as a point at the distance L): a triad
+        # whose leashes all slide on the base has the same joints in two modes
+        turn = size * np.exp(1j * x[..., group.eliminated])
+        stack = np.stack(np.broadcast_arrays(*points.values(), turn), axis=-1)
         apart = np.abs(stack[..., :, None, :] - stack[..., None, :, :]).max(axis=-1)
         same = (apart <= SAME * size[..., None]) & valid[..., :, None]
         earlier = np.tril(np.ones(same.shape[-2:], dtype=bool), -1).T
@@ -200,6 +203,10 @@ def assembly_modes(group: HigherGroup, k: Any) -> AssemblyModes:
 def select_mode(group: HigherGroup, k: Any, modes: AssemblyModes
                 ) -> tuple[np.ndarray, np.ndarray]:
     """The mode of the sketch: the one nearest the drawn joints, with the drawn sign of det J.
+
+    Where the joints leave the group's rotation open (a triad with two or three leashes that
+    slide on the base: their joints are the known hinges), the drawn rotation θ = 0 counts as
+    one more point, e^{iθ} at the distance L.
 
     Parameters
     ----------
@@ -231,7 +238,12 @@ def select_mode(group: HigherGroup, k: Any, modes: AssemblyModes
     with np.errstate(all="ignore"):
         sq = sum(np.abs(modes.joints[name] - np.asarray(drawn[name])[..., None]) ** 2
                  for name in drawn)
-        rms = np.sqrt(np.asarray(sq) / len(drawn))
+        terms = len(drawn)
+        if group.turn_drawn:
+            size = np.asarray(group.size)[..., None]
+            sq = sq + np.abs(size * np.expm1(1j * modes.x[..., group.eliminated])) ** 2
+            terms += 1
+        rms = np.sqrt(np.asarray(sq) / terms)
         sign = np.sign(det_rows(group.jacobian(group.drawn(), k)))
         rms = np.where(np.isnan(rms), np.inf, rms)
         ranked = np.sort(rms, axis=-1)

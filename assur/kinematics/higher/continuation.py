@@ -22,6 +22,7 @@ from assur.kinematics import jets as J
 from assur.kinematics.dyads import Reason
 from assur.kinematics.higher.groups import HigherGroup, det_rows, hadamard, values
 from assur.kinematics.higher.modes import (
+    TAU,
     AssemblyModes,
     assembly_modes,
     coefficients,
@@ -30,12 +31,11 @@ from assur.kinematics.higher.modes import (
     select_mode,
     solve,
     weights,
-    TAU,
 )
 from assur.kinematics.jets import Jet
 from assur.text import Message
 
-__all__ = ["HigherReason", "HigherSolution", "REASON_CODES", "follow_mode", "analogs"]
+__all__ = ["REASON_CODES", "HigherReason", "HigherSolution", "analogs", "follow_mode"]
 
 TWO_PI = 2.0 * np.pi
 #: Largest crank step of the continuation (rad).

@@ -15,10 +15,10 @@ implicit differentiation; the Jacobians, the lines and the eliminant take plain 
 from __future__ import annotations
 
 import dataclasses
-from functools import cached_property
 from abc import ABC, abstractmethod
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any, Literal, TypeVar
 
 import numpy as np
@@ -389,7 +389,7 @@ class Triad(HigherGroup):
         pairs = ((1, 2), (2, 0), (0, 1)) if self.barless else ((0, 1),)
         best, w = None, None
         for i, j in pairs:
-            det = J.cross(coef[i], coef[j])
+            det = _cross(coef[i], coef[j])
             here = -1j * (rhs[i] * coef[j] - rhs[j] * coef[i]) / det
             if best is None or w is None:
                 best, w = np.abs(det), here

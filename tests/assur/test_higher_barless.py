@@ -1,0 +1,204 @@
+"""Triads without a bar (every leash R–P or P–R) on seeded random crank-driven designs.
+
+Each check compares with a computation written here: the number of real modes by a dense
+sweep of the base rotation θ (the base placed by two of its leashes, which are lines for a
+fixed θ, and the sign changes of the third leash's offset counted, the method of false
+positions), the closure of every leash over full cycles, and central differences of the
+positions. ``ASSUR_HIGHER_FULL=1`` takes more designs.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from assur.kinematics import jets as J
+from assur.kinematics.higher import Triad, TriadInputs, assembly_modes, follow_mode
+
+TWO_PI = 2 * np.pi
+FULL = os.environ.get("ASSUR_HIGHER_FULL") == "1"
+COUNTED, CYCLED, DIFFERENCED = (1000, 60, 12) if FULL else (100, 4, 4)
+KINDS = ["RP-RP-RP", "PR-PR-PR", "RP-RP-PR", "RP-PR-PR"]
+
+
+@dataclass
+class Designs:
+    """A triad whose first leash hangs on a crank (pivot at the origin), the others on the
+    frame: per leash the drawn base point b_k, the external point a_k (the hinge A_k of a
+    P–R leash, the guide point Q_k of an R–P leash) and the guide direction u_k."""
+
+    kinds: tuple[str, str, str]
+    base: tuple[np.ndarray, ...]
+    external: tuple[np.ndarray, ...]
+    guide: tuple[np.ndarray, ...]
+
+    @property
+    def group(self) -> Triad:
+        return Triad(self.kinds, self.base, self.external, self.guide)  # type: ignore[arg-type]
+
+    def known(self, phi: Any) -> tuple[list[Any], list[Any]]:
+        """a_k(φ) and u_k(φ): the crank turns the first leash's point and guide."""
+        turn = J.expi(phi)
+        a = [self.external[0] * turn, self.external[1], self.external[2]]
+        u = [self.guide[0] * turn, self.guide[1], self.guide[2]]
+        return a, u
+
+    def inputs(self, phi: Any) -> TriadInputs:
+        a, u = self.known(phi)
+        return TriadInputs((a[0], a[1], a[2]),
+                           tuple(u[i] if kind == "RP" else None  # type: ignore[arg-type]
+                                 for i, kind in enumerate(self.kinds)))
+
+
+def random_designs(seed: int, d: int, kinds: str) -> Designs:
+    """Drawn assembled: an R–P leash's guide passes through its base hinge, a P–R leash's
+    hinge lies on the base's guide through its base point."""
+    rng = np.random.default_rng(seed)
+
+    def polar(low: float, high: float) -> np.ndarray:
+        return rng.uniform(low, high, d) * np.exp(TWO_PI * 1j * rng.uniform(size=d))
+
+    p1 = polar(20, 40)
+    base = (p1, p1 + polar(30, 60), p1 + polar(30, 60))
+    guide = tuple(np.exp(TWO_PI * 1j * rng.uniform(size=d)) for _ in range(3))
+    external = tuple(b if kind == "RP" else b + rng.uniform(-30, 30, d) * u
+                     for b, u, kind in zip(base, guide, kinds.split("-"), strict=True))
+    return Designs(tuple(kinds.split("-")), base, external, guide)  # type: ignore[arg-type]
+
+
+def _offsets(designs: Designs, p1: np.ndarray, e: np.ndarray, a: list[Any], u: list[Any]
+             ) -> list[np.ndarray]:
+    """The offset of each leash from its line: an R–P hinge from the known link's guide, a
+    P–R hinge A_k from the base's guide, the base placed at P₁ and turned by e."""
+    out = []
+    for k, kind in enumerate(designs.kinds):
+        point = p1 + (designs.base[k] - designs.base[0])[..., None] * e
+        if kind == "RP":
+            out.append(np.asarray(J.cross(u[k], point - a[k])))
+        else:
+            out.append(np.asarray(J.cross(designs.guide[k][..., None] * e, a[k] - point)))
+    return out
+
+
+def _swept(designs: Designs, samples: int = 8192) -> np.ndarray:
+    """The real modes at the sketch by sign changes of one leash's offset along θ.
+
+    For each θ two leashes are lines in P₁ (Re(n̄·P₁) = c) and P₁ is their crossing; the
+    offset of the third leash from its line changes sign at a mode. Of the three choices of
+    the last leash, the one whose two lines stay least parallel over θ is taken. A sign
+    change across a pole (the two lines parallel) has large values on both sides, a root
+    small ones: a change counts where both values lie under the median size.
+    """
+    theta = (np.arange(samples) + 0.5) * TWO_PI / samples  # the drawn θ = 0 between samples
+    e = np.exp(1j * theta)[None, :]
+    a, u = designs.known(0.0)
+    normals, rhs = [], []
+    for k in range(3):
+        s = (designs.base[k] - designs.base[0])[:, None] * e
+        normal = np.broadcast_to(1j * u[k][:, None] if designs.kinds[k] == "RP"
+                                 else 1j * designs.guide[k][:, None] * e, s.shape)
+        normals.append(normal)
+        rhs.append((np.conj(normal) * (a[k][:, None] - s)).real)
+    counts, widest = [], []
+    for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
+        det = (np.conj(normals[i]) * normals[j]).imag
+        # P₁ on both lines Re(n̄·(P₁ + s)) = Re(n̄·a): Re(n̄₁P₁) = c₁, Re(n̄₂P₁) = c₂
+        p1 = -1j * (rhs[i] * normals[j] - rhs[j] * normals[i]) / det
+        offsets = _offsets(designs, p1, e, [v[:, None] for v in a], [v[:, None] for v in u])
+        last = offsets[k]
+        after = np.roll(last, -1, axis=1)
+        typical = np.median(np.abs(last), axis=1, keepdims=True)
+        change = (np.sign(last) != np.sign(after)) & (np.abs(last) + np.abs(after) < typical)
+        counts.append(change.sum(axis=1))
+        widest.append(np.abs(det).min(axis=1))
+    choice = np.argmax(widest, axis=0)
+    return np.asarray(np.take_along_axis(np.stack(counts), choice[None, :], axis=0)[0])
+
+
+@pytest.mark.parametrize("kinds", KINDS)
+def test_mode_count_agrees_with_a_sweep_of_the_base_rotation(kinds: str) -> None:
+    designs = random_designs(60 + KINDS.index(kinds), COUNTED, kinds)
+    modes = assembly_modes(designs.group, designs.inputs(np.zeros(COUNTED)))
+    size = np.abs(np.log(np.abs(modes.roots)))
+    robust = ~((size > 1e-6) & (size < 1e-3)).any(axis=1) \
+        & ~(np.nan_to_num(modes.margin, nan=1.0) < 1e-3).any(axis=1)
+    assert robust.mean() >= 0.95
+    swept = _swept(designs)
+    assert (swept[robust] == modes.count[robust]).all()
+    degree = designs.group.degree
+    assert degree == (1 if len(set(designs.kinds)) == 1 else 2)
+    assert set(modes.count.tolist()) <= set(range(0, 2 * degree + 1, 2))
+    assert modes.count.max() == 2 * degree
+
+
+@pytest.mark.parametrize("kinds", KINDS)
+def test_every_leash_stays_closed_over_the_cycle(kinds: str) -> None:
+    """Over the cycle every leash stays on its line (to 1e-9 L) wherever the mode exists."""
+    designs = random_designs(70 + KINDS.index(kinds), CYCLED, kinds)
+    phi = np.radians(np.arange(0.0, 360.0, 10.0))
+    solution = follow_mode(designs.group, designs.inputs, phi)
+    ok = solution.exists
+    assert ok.any(axis=1).all()
+    turn = np.exp(1j * phi)
+    a = [np.broadcast_to(v[:, None] * t, ok.shape)
+         for v, t in zip(designs.external, (turn, 1.0, 1.0), strict=True)]
+    u = [np.broadcast_to(v[:, None] * t, ok.shape)
+         for v, t in zip(designs.guide, (turn, 1.0, 1.0), strict=True)]
+    x = solution.x
+    p1 = a[0] + x[..., 0] + 1j * x[..., 1]
+    e = np.exp(1j * x[..., 2])
+    size = np.broadcast_to(np.asarray(designs.group.size)[:, None], ok.shape)
+    for offset in _offsets(designs, p1, e, a, u):
+        assert (np.abs(offset[ok]) <= 1e-9 * size[ok]).all()
+    assert np.allclose(solution.rotations["base"][ok], x[..., 2][ok])
+
+
+@pytest.mark.parametrize("kinds", KINDS)
+def test_analogs_against_central_differences(kinds: str) -> None:
+    d = DIFFERENCED
+    designs = random_designs(80 + KINDS.index(kinds), d, kinds)
+    centre = np.radians([17.0, 95.0, 200.0, 290.0])
+    h = 1e-5
+    solution = follow_mode(designs.group, designs.inputs,
+                           np.concatenate([centre, centre - h, centre + h]), analogs=True)
+    n = len(centre)
+    ok = solution.exists.reshape(d, 3, n).all(axis=1) & (solution.margin[:, :n] > 0.05)
+    assert ok.any()
+    size = np.asarray(designs.group.size)[:, None]
+    for name, jet in list(solution.joints.items()) + list(solution.rotations.items()):
+        v, v1 = jet.v.reshape(d, 3, n), jet.d1.reshape(d, 3, n)
+        d2 = jet.d2.reshape(d, 3, n)
+        unit = np.broadcast_to(size, ok.shape) if name in solution.joints else 1.0
+        for fd, analog in (((v[:, 2] - v[:, 1]) / (2 * h), v1[:, 0]),
+                           ((v1[:, 2] - v1[:, 1]) / (2 * h), d2[:, 0])):
+            error = np.abs(fd - analog) / (np.abs(analog) + unit)
+            assert (error[ok] <= 1e-5).all(), (name, error[ok].max())
+
+
+def test_the_example_table_keeps_its_blocks_on_their_guides() -> None:
+    """``six_bar_triad_sliders.yaml``: 2 modes at the sketch; over the turn C stays on the
+    crank's slot, D on y = −10, F on x = 5 and the base's distances constant."""
+    from assur.kinematics.analysis import analyse, values
+    from assur.kinematics.build import load_model
+    from assur.kinematics.higher.kind import HigherGroupSolution
+
+    table = Path(__file__).parents[2] / "input_tables" / "six_bar_triad_sliders.yaml"
+    model = load_model(table)
+    phi = np.radians(np.arange(0.0, 360.0, 5.0))
+    motion = analyse(model, phi)
+    assert motion.exists.all()
+    c, d, f = (np.asarray(values(motion.joints[p])) for p in "CDF")
+    slot = np.exp(1j * (np.radians(35.5376778) + phi))
+    offset = (np.conj(slot) * (c - (42 + 30j) * np.exp(1j * phi))).imag
+    assert np.abs(offset).max() < 1e-9
+    assert np.abs(d.imag + 10).max() < 1e-9 and np.abs(f.real - 5).max() < 1e-9
+    for p, q, p0, q0 in ((c, d, 42 + 30j, 55 - 10j), (c, f, 42 + 30j, 5 + 45j),
+                         (d, f, 55 - 10j, 5 + 45j)):
+        assert np.abs(np.abs(p - q) - abs(p0 - q0)).max() < 1e-9
+    solution = motion.solutions["III(2,3,4,5)"]
+    assert isinstance(solution, HigherGroupSolution) and len(solution.modes()) == 2

@@ -122,12 +122,6 @@ class HigherGroup(ABC):
     def sketch(self) -> dict[str, Value]:
         """The drawn positions of the joints named as in :meth:`joints`."""
 
-    @property
-    def turn_drawn(self) -> bool:
-        """Whether the drawn rotation (θ = 0 of the eliminated angle) picks the sketch's mode
-        with the joints: True where the joints leave it open."""
-        return False
-
     @abstractmethod
     def residual(self, x: Unknowns, k: Any) -> list[Value]:
         """The reduced loop equations F(x) (lengths, in the drawing's unit)."""
@@ -258,11 +252,6 @@ class Triad(HigherGroup):
 
     def _length(self, k: int) -> np.ndarray:
         return self._lengths[k]
-
-    @property
-    def turn_drawn(self) -> bool:
-        """Two or three leashes slide on the base: their joints are the known hinges."""
-        return self.leashes.count("PR") >= 2
 
     @property
     def barless(self) -> bool:

@@ -204,10 +204,6 @@ def select_mode(group: HigherGroup, k: Any, modes: AssemblyModes
                 ) -> tuple[np.ndarray, np.ndarray]:
     """The mode of the sketch: the one nearest the drawn joints, with the drawn sign of det J.
 
-    Where the joints leave the group's rotation open (a triad with two or three leashes that
-    slide on the base: their joints are the known hinges), the drawn rotation θ = 0 counts as
-    one more point, e^{iθ} at the distance L.
-
     Parameters
     ----------
     group : Triad or ClassIV
@@ -238,12 +234,7 @@ def select_mode(group: HigherGroup, k: Any, modes: AssemblyModes
     with np.errstate(all="ignore"):
         sq = sum(np.abs(modes.joints[name] - np.asarray(drawn[name])[..., None]) ** 2
                  for name in drawn)
-        terms = len(drawn)
-        if group.turn_drawn:
-            size = np.asarray(group.size)[..., None]
-            sq = sq + np.abs(size * np.expm1(1j * modes.x[..., group.eliminated])) ** 2
-            terms += 1
-        rms = np.sqrt(np.asarray(sq) / terms)
+        rms = np.sqrt(np.asarray(sq) / len(drawn))
         sign = np.sign(det_rows(group.jacobian(group.drawn(), k)))
         rms = np.where(np.isnan(rms), np.inf, rms)
         ranked = np.sort(rms, axis=-1)

@@ -27,6 +27,7 @@ from __future__ import annotations
 import cmath
 import math
 import os
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -253,14 +254,7 @@ def _chain_form(top: Node, mechanism: _Mechanism, general: _General) -> _Form:
                        rotation=model.direction, found=stated)
     bounds: Bounds = {}
     values: dict[str, float] = {}
-    done: set[GroupKey] = set()
-    for row in top.rows("parameters", None, required=False):
-        key = _group_of(row, groups)
-        if key is None or key not in groups:
-            continue
-        if key in done:
-            reader.problem(f"{row.location} 'links'", "problem.links_repeated", links=list(key))
-        done.add(key)
+    for row, key in _parameter_rows(top, groups):
         for column, value in row.mapping.items():
             name = f"{groups[key]}.{column}"
             location = f"{row.location} {column!r}"
@@ -373,6 +367,22 @@ def _group_of(row: Node, groups: dict[GroupKey, Any]) -> GroupKey | None:
     return key
 
 
+def _parameter_rows(top: Node, groups: dict[GroupKey, Any]
+                    ) -> Iterator[tuple[Node, GroupKey]]:
+    """The rows of ``parameters`` that name a group, with its key; a group named twice is
+    reported (its cells are still read)."""
+    done: set[GroupKey] = set()
+    for row in top.rows("parameters", None, required=False):
+        key = _group_of(row, groups)
+        if key is None or key not in groups:
+            continue
+        if key in done:
+            top.reader.problem(f"{row.location} 'links'", "problem.links_repeated",
+                               links=list(key))
+        done.add(key)
+        yield row, key
+
+
 def _merge_parameters(top: Node, mechanism: _Mechanism, groups: dict[GroupKey, Any],
                       direction: Any) -> tuple[list[Any], Bounds]:
     """New identification rows with the cells of ``parameters`` and plain numbers.
@@ -385,12 +395,7 @@ def _merge_parameters(top: Node, mechanism: _Mechanism, groups: dict[GroupKey, A
     """
     reader = top.reader
     cells: dict[GroupKey, dict[str, tuple[Any, str]]] = {}
-    for row in top.rows("parameters", None, required=False):
-        key = _group_of(row, groups)
-        if key is None or key not in groups:
-            continue
-        if key in cells:
-            reader.problem(f"{row.location} 'links'", "problem.links_repeated", links=list(key))
+    for row, key in _parameter_rows(top, groups):
         cells.setdefault(key, {}).update(
             {column: (value, f"{row.location} {column!r}")
              for column, value in row.mapping.items() if column != "links"})

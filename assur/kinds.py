@@ -30,6 +30,7 @@ Examples
 from __future__ import annotations
 
 import cmath
+import importlib
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -37,24 +38,15 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from assur.forces import groups as statics
 from assur.kinematics import dyads
 from assur.kinematics import jets as J
 from assur.kinematics.dyads import Value
-from assur.kinematics.higher.kind import (
-    HigherGroupSolution,
-    Layout,
-    shortfall_higher,
-    sketch_class_iv,
-    sketch_triad,
-    solve_class_iv,
-    solve_triad,
-)
 from assur.model import joint_key
 from assur.text import render
 
 if TYPE_CHECKING:  # pragma: no cover
     from assur.forces.groups import Loads, Solved
+    from assur.kinematics.higher.kind import HigherGroupSolution, Layout
     from assur.kinematics.analysis import _State
     from assur.kinematics.build import _Builder
     from assur.kinematics.dyads import DyadSolution
@@ -452,6 +444,24 @@ _HI, _HJ = ("x_Hi", "y_Hi"), ("x_Hj", "y_Hj")
 _R: RowPair = ("R", None)
 _P_PREV: RowPair = ("P", "prev")
 
+#: The modules of the per-kind computations that only some programs use, loaded on first call.
+_FORCES = "assur.forces.groups"
+_HIGHER = "assur.kinematics.higher.kind"
+
+
+def _later(module: str, name: str) -> Callable[..., Any]:
+    """The function ``name`` of ``module``, imported when first called.
+
+    The registry names the kinetostatics and the rules of the higher groups without loading
+    them, so a program that only reads tables and analyses dyads never imports them.
+    """
+    def call(*args: Any, **kwargs: Any) -> Any:
+        return getattr(importlib.import_module(module), name)(*args, **kwargs)
+
+    call.__name__ = call.__qualname__ = name
+    return call
+
+
 #: The kinds of the DGTU method: L0 (input group) and the dyads L1–L5.
 KINDS: Mapping[int, GroupKind] = {
     0: GroupKind(0, "L0", "", 1, roles=(("H_i", "i"),),
@@ -463,20 +473,20 @@ KINDS: Mapping[int, GroupKind] = {
                  condition="|l_i − l_j| ≤ |H_iH_j| ≤ l_i + l_j,  |cos ∠H_i| ≤ 1 − δ",
                  row_pairs=(_R, _R, _R), j_rule="frame_last", solve=_solve_rrr,
                  sketch=_sketch_rrr, shortfall=_shortfall_rrr, pressure=_pressure_rrr,
-                 equilibrium=statics.equilibrium_rrr),
+                 equilibrium=_later(_FORCES, "equilibrium_rrr")),
     2: GroupKind(2, "L2", "RRP", 2, ("R", "PR"), (("P_i", "i"), ("C", "c"), ("H_j", "j")),
                  (*_HJ, "l_j", "x_Ak", "y_Ak", "beta_g", "e", *_TAIL), {"j": _HJ},
                  {"i": ("x_Ak", "y_Ak", "beta_g", "e")}, variants=(1, -1), default_variant=1,
                  out_code="7;3", condition="|h| ≤ (1 − δ)·l_j",
                  row_pairs=(_P_PREV, _R, _R), j_rule="revolute", solve=_solve_rrp,
                  sketch=_sketch_rrp, shortfall=_shortfall_rrp, pressure=_pressure_rrp,
-                 equilibrium=statics.equilibrium_rrp),
+                 equilibrium=_later(_FORCES, "equilibrium_rrp")),
     3: GroupKind(3, "L3", "RPR", 2, ("P", "RR"), (("H_i", "i"), ("P_c", "c"), ("H_j", "j")),
                  (*_HI, *_HJ, "d", *_TAIL), {"i": _HI, "j": _HJ}, variants=(0, 1, -1),
                  default_variant=0, out_code="5", condition="|d| ≤ (1 − δ)·|H_iH_j|",
                  row_pairs=(_R, ("P", "i"), _R), j_rule="not_carrier", solve=_solve_rpr,
                  sketch=_sketch_rpr, shortfall=_shortfall_rpr,
-                 equilibrium=statics.equilibrium_rpr),
+                 equilibrium=_later(_FORCES, "equilibrium_rpr")),
     4: GroupKind(4, "L4", "PRP", 2, ("R", "PP"), (("P_i", "i"), ("C", "c"), ("P_j", "j")),
                  ("x_Ak", "y_Ak", "beta_i", "e_i", "x_Bk", "y_Bk", "beta_j", "e_j", *_TAIL),
                  guides={"i": ("x_Ak", "y_Ak", "beta_i", "e_i"),
@@ -484,13 +494,13 @@ KINDS: Mapping[int, GroupKind] = {
                  out_code="4", condition="|sin(θ_j − θ_i)| ≥ δ",
                  row_pairs=(_P_PREV, _R, _P_PREV), j_rule="frame_first", solve=_solve_prp,
                  sketch=_sketch_prp, shortfall=_shortfall_guides,
-                 equilibrium=statics.equilibrium_prp),
+                 equilibrium=_later(_FORCES, "equilibrium_prp")),
     5: GroupKind(5, "L5", "RPP", 2, ("P", "PR"), (("P_i", "i"), ("P_c", "c"), ("H_j", "j")),
                  (*_HJ, "gamma", "x_Ak", "y_Ak", "beta_S", "e", *_TAIL), {"j": _HJ},
                  {"i": ("x_Ak", "y_Ak", "beta_S", "e")}, out_code="5",
                  condition="|sin γ| ≥ δ", row_pairs=(_P_PREV, ("P", "j"), _R),
                  j_rule="revolute", solve=_solve_rpp, sketch=_sketch_rpp,
-                 shortfall=_shortfall_guides, equilibrium=statics.equilibrium_rpp),
+                 shortfall=_shortfall_guides, equilibrium=_later(_FORCES, "equilibrium_rpp")),
 }
 
 #: The kinds outside the DGTU table, by code: the triad (class III, order 3, with bars,
@@ -499,9 +509,12 @@ KINDS: Mapping[int, GroupKind] = {
 #: (:mod:`assur.kinematics.higher`). No identification row names them (``docs/tables.md``).
 HIGHER: Mapping[str, GroupKind] = {
     "III": GroupKind(None, "III", "", 3, condition="m = |det R| / Π‖R_k‖ ≥ δ",
-                     solve=solve_triad, sketch=sketch_triad, shortfall=shortfall_higher),
-    "IV": GroupKind(None, "IV", "", 4, condition="m = |det R| / Π‖R_k‖ ≥ δ", solve=solve_class_iv,
-                    sketch=sketch_class_iv, shortfall=shortfall_higher),
+                     solve=_later(_HIGHER, "solve_triad"), sketch=_later(_HIGHER, "sketch_triad"),
+                     shortfall=_later(_HIGHER, "shortfall_higher")),
+    "IV": GroupKind(None, "IV", "", 4, condition="m = |det R| / Π‖R_k‖ ≥ δ",
+                    solve=_later(_HIGHER, "solve_class_iv"),
+                    sketch=_later(_HIGHER, "sketch_class_iv"),
+                    shortfall=_later(_HIGHER, "shortfall_higher")),
 }
 _BY_CLASS = {kind.group_class: kind for kind in HIGHER.values()}
 

@@ -10,7 +10,10 @@ as the file's ``Plural-Forms`` header says), which Russian needs.
 Code never holds a user-visible sentence: it holds a code and numbers (a :class:`Message`),
 and the sentence is rendered here, in one place. A teacher adds a language by copying
 ``en.po`` to ``<lang>.po`` and translating every ``msgstr``; ``--lang <lang>`` then works
-everywhere. The PO files are read with Babel and compiled in memory for :mod:`gettext`.
+everywhere. The PO files are the one source: a language's file is compiled with Babel the
+first time it is used and the compiled catalogue is kept in the user's cache folder
+(``$XDG_CACHE_HOME/assur`` or ``~/.cache/assur``), named by a hash of the PO file's content,
+so that later runs load it with :mod:`gettext` alone and an edited PO file is compiled anew.
 
 Examples
 --------
@@ -25,7 +28,10 @@ Examples
 from __future__ import annotations
 
 import gettext
+import hashlib
 import io
+import os
+import struct
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cache
@@ -62,16 +68,49 @@ def check_lang(lang: str) -> str:
 
 @cache
 def catalogue(lang: str) -> gettext.GNUTranslations:
-    """The compiled catalogue of ``lang`` (read once per process)."""
+    """The compiled catalogue of ``lang`` (read once per process).
+
+    Loaded from the cache folder when it holds the compilation of the PO file as it is now;
+    otherwise compiled from the PO file and kept there (a cache that cannot be written is
+    skipped).
+    """
+    source = (LOCALE / f"{lang}.po").read_bytes()
+    compiled = _cached(lang, source)
+    if compiled is not None:
+        try:
+            return gettext.GNUTranslations(io.BytesIO(compiled.read_bytes()))
+        except (OSError, ValueError, LookupError, struct.error):
+            pass  # a missing or damaged copy: compiled again below
+    data = _compile(source)
+    if compiled is not None:
+        from assur.io.files import atomic_write_bytes
+
+        try:
+            atomic_write_bytes(compiled, data)
+        except OSError:
+            pass
+    return gettext.GNUTranslations(io.BytesIO(data))
+
+
+def _cached(lang: str, source: bytes) -> Path | None:
+    """Where the compilation of this content of ``<lang>.po`` is kept; None without a home."""
+    folder = os.environ.get("XDG_CACHE_HOME")
+    try:
+        base = Path(folder) if folder else Path.home() / ".cache"
+    except RuntimeError:  # no home folder
+        return None
+    digest = hashlib.sha256(source).hexdigest()[:20]
+    return base / "assur" / f"{lang}-{digest}.mo"
+
+
+def _compile(source: bytes) -> bytes:
+    """A PO file compiled to the MO form that :class:`gettext.GNUTranslations` reads."""
     from babel.messages.mofile import write_mo
     from babel.messages.pofile import read_po
 
-    with (LOCALE / f"{lang}.po").open("rb") as stream:
-        parsed = read_po(stream, locale=None)
     buffer = io.BytesIO()
-    write_mo(buffer, parsed, use_fuzzy=False)
-    buffer.seek(0)
-    return gettext.GNUTranslations(buffer)
+    write_mo(buffer, read_po(io.BytesIO(source), locale=None), use_fuzzy=False)
+    return buffer.getvalue()
 
 
 def _lookup(code: str, lang: str, count: int | None) -> str | None:

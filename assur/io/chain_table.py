@@ -53,9 +53,10 @@ __all__ = [
     "recentre_hinge",
 ]
 
+#: The sections of the force analysis (:data:`assur.forces.table.SECTIONS`).
+_FORCES = ("masses", "loads", "gravity")
 _TOP_CHAIN = ("schema_version", "mechanism", "general", "geometry", "structure_identification",
-              "n_moving_links", "p5", "p4", "W", "N_Q", "layering_order", "masses", "loads",
-              "gravity")
+              "n_moving_links", "p5", "p4", "W", "N_Q", "layering_order", *_FORCES)
 _TOP_TABLE = ("schema_version", "mechanism", "name", "frame", "general", "geometry",
               "structure_identification", "n_moving_links", "p5", "p4", "W", "N_Q",
               "layering_order")
@@ -200,7 +201,12 @@ def _read_chain_form(reader: TableReader) -> Chain:
 
 def _read_forces(top: Node, links: list[LinkId], frame: LinkId, inputs: list[Drive],
                  joints: Joints) -> ForceData | None:
-    """The ``masses:``, ``loads:`` and ``gravity:`` sections (``docs/forces.md`` §1)."""
+    """The ``masses:``, ``loads:`` and ``gravity:`` sections (``docs/forces.md`` §1).
+
+    The force analysis is loaded only for a table that has one of them.
+    """
+    if not any(top.has(section) for section in _FORCES):
+        return None
     from assur.forces.table import read_sections
 
     driven = [joints.get(drive.pair) for drive in inputs

@@ -34,12 +34,11 @@ import difflib
 import math
 import os
 from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from assur.errors import Issue, StructureError, TableError
 from assur.io.reader import Node, TableReader, describe
 from assur.kinds import GroupKind, GuideColumns, HingeColumns, kind_of, kind_of_class
-from assur.kinematics.higher.kind import Layout
 from assur.kinematics.model import (
     KIND_COLUMNS,
     Anchor,
@@ -52,6 +51,9 @@ from assur.model import GroupParams, LinkId, Pair, PairId, PairType, Sketch, joi
 from assur.structure.analysis import StructuralAnalysis
 from assur.structure.classification import AssurGroup
 from assur.text import Message, joined
+
+if TYPE_CHECKING:  # pragma: no cover
+    from assur.kinematics.higher.kind import Layout
 
 __all__ = ["build_model", "load_model", "model_from_params", "model_from_sketch"]
 

@@ -35,6 +35,7 @@ from assur.kinds import KINDS
 from assur.model import Chain, LinkId, Pair, PairId, PairType, id_key, joint_key
 from assur.plot.formats import PICTURE_FORMATS, PictureFormatError, figure_bytes, picture_format
 from assur.structure.classification import roman as roman_numeral
+from assur.text import render
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
@@ -58,16 +59,6 @@ __all__ = [
 
 _GROUP_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b",
                   "#e377c2", "#7f7f7f", "#bcbd22")
-_TEXT = {
-    "en": {"structural": "Structural scheme", "formalised": "Formalised structural scheme",
-           "frame": "frame 0", "class": "class", "order": "order", "kind": "kind",
-           "input": "input group", "level": "level"},
-    "ru": {"structural": "Структурная схема", "formalised": "Формализованная структурная схема",
-           "frame": "стойка 0", "class": "класс", "order": "порядок", "kind": "вид",
-           "input": "начальный механизм", "level": "уровень"},
-}
-
-
 def roman(value: Any) -> str:
     """A group or mechanism class as a Roman numeral (``2`` → ``"II"``; texts pass through).
 
@@ -129,14 +120,13 @@ def _kind_text(group: _Group, lang: str) -> str:
 
 
 def _group_caption(group: _Group, lang: str) -> str:
-    text = _TEXT[lang]
     if group.is_input:
-        return f"{group.name}\n{text['input']}"
+        return f"{group.name}\n{render('scheme.input', lang)}"
     kind = _kind_text(group, lang)
     if group.kind is not None:
-        kind = f"{text['kind']} {kind}"
-    return (f"{group.name}\n{text['class']} {roman(group.group_class)}, "
-            f"{text['order']} {group.order}, {kind}")
+        kind = render("scheme.kind", lang, pairs=kind)
+    return f"{group.name}\n" + render("scheme.group", lang, group_class=roman(group.group_class),
+                                       order=group.order, kind=kind)
 
 
 def group_graph(chain: Chain, analysis: StructuralAnalysis
@@ -547,7 +537,7 @@ def draw_structural_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
     ax.autoscale_view()
     ax.margins(0.12)
     ax.set_axis_off()
-    ax.set_title(_TEXT[lang]["structural"], fontsize=12)
+    ax.set_title(render("scheme.structural", lang), fontsize=12)
     return ax
 
 
@@ -616,13 +606,12 @@ def draw_formalised_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
         for k, group in enumerate(members):
             where[group.name] = complex(2.4 * level, 1.2 * (tallest - len(members)) / 2
                                         + 1.2 * (len(members) - 1 - k) + 1.3)
-    text = _TEXT[lang]
     colour = {g.name: ("black" if g.is_input else _GROUP_COLOURS[k % len(_GROUP_COLOURS)])
               for k, g in enumerate(groups)}
     left, right = -1.1, 2.4 * max(by_level, default=0) + 1.1
     ax.add_patch(Rectangle((left, -0.25), right - left, 0.25, facecolor="#eeeeee",
                            edgecolor="black", hatch="///", lw=1.0, zorder=1))
-    ax.text(left + 0.05, -0.5, text["frame"], ha="left", va="top", fontsize=8)
+    ax.text(left + 0.05, -0.5, render("scheme.frame", lang), ha="left", va="top", fontsize=8)
     for group in groups:
         at = where[group.name]
         label = group.name if group.is_input else (
@@ -647,12 +636,12 @@ def draw_formalised_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
                 va="bottom", fontsize=7, color="#444444", zorder=4)
     top = 1.2 * tallest + 0.6
     for level in sorted(by_level):
-        ax.text(2.4 * level, top, f"{text['level']} {level}", ha="center", fontsize=8,
-                color="#666666")
+        ax.text(2.4 * level, top, render("scheme.level", lang, level=level), ha="center",
+                fontsize=8, color="#666666")
     ax.set_xlim(left - 0.1, right + 0.1)
     ax.set_ylim(-0.9, top + 0.4)
     ax.set_axis_off()
-    ax.set_title(text["formalised"], fontsize=12)
+    ax.set_title(render("scheme.formalised", lang), fontsize=12)
     return ax
 
 

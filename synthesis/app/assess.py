@@ -22,25 +22,25 @@ import os
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
-from assur import (
-    AssurError,
-    Chain,
-    ExistenceReport,
-    KinematicModel,
-    StructuralAnalysis,
-    StructureError,
-    analyse_structure,
-    build_model,
-    chain_from_dict,
-    check_existence,
+from assur.errors import AssurError, StructureError
+from assur.io.chain_table import chain_from_dict
+from assur.io.reader import TableReader
+from assur.kinematics.build import build_model
+from assur.kinematics.model import GroupModel, KinematicModel
+from assur.model import Chain
+from assur.structure.analysis import StructuralAnalysis, analyse_structure
+from assur.structure.identification import (
+    IdentificationRow,
+    Mismatch,
     check_identification,
     identification_table,
-    load_chain,
 )
-from assur.kinematics.model import GroupModel
-from assur.structure.identification import IdentificationRow, Mismatch
 from assur.text import Message
+
+if TYPE_CHECKING:  # pragma: no cover
+    from assur.kinematics.existence import ExistenceReport
 
 __all__ = ["Assessment", "VariantFinding", "assess", "is_problem", "load_table_chain"]
 
@@ -145,29 +145,36 @@ class Assessment:
 
 def is_problem(path: str | os.PathLike[str]) -> bool:
     """Whether a table file is a synthesis problem (it has the problem's own tables)."""
-    from assur.io.reader import TableReader
-
     try:
         data = TableReader.from_path(path).data
     except AssurError:
         return False
+    return _is_problem_data(data)
+
+
+def _is_problem_data(data: Any) -> bool:
     return isinstance(data, dict) and any(key in data for key in _SYNTHESIS_KEYS)
 
 
 def load_table_chain(path: str | os.PathLike[str]) -> Chain:
     """The chain of a table file; for a synthesis problem, its mechanism at the initial design.
 
+    The file is read and parsed once, then given to the reader of its kind.
+
     Raises
     ------
     AssurError
         When the file cannot be read as a table (every problem listed).
     """
-    if is_problem(path):
-        from synthesis.problem import load_problem
+    reader = TableReader.from_path(path)
+    if _is_problem_data(reader.data):
+        from synthesis.problem import problem_from_dict
 
-        problem = load_problem(path)
-        return chain_from_dict(problem.mechanism_table(problem.initial), source=str(path))
-    return load_chain(path)
+        reader.expect("problem")
+        problem = problem_from_dict(reader.data, reader.source, Path(path).parent)
+        return chain_from_dict(problem.mechanism_table(problem.initial), source=reader.source)
+    reader.expect("chain")
+    return chain_from_dict(reader.data, source=reader.source)
 
 
 def assess(table: str | os.PathLike[str] | Chain, *, points: int | None = 360) -> Assessment:
@@ -218,8 +225,11 @@ def assess(table: str | os.PathLike[str] | Chain, *, points: int | None = 360) -
     given = chain.identification
     mismatches = None if given is None else tuple(check_identification(analysis, given))
     variants = () if given is None or model is None else tuple(_variants(model, given))
-    existence = (check_existence(model, points=points)
-                 if model is not None and points is not None else None)
+    existence = None
+    if model is not None and points is not None:
+        from assur.kinematics.existence import check_existence
+
+        existence = check_existence(model, points=points)
     return Assessment(chain, analysis, rows, table_error, mismatches, variants, model,
                       why_not, existence)
 

@@ -17,7 +17,7 @@ import sys
 from collections.abc import Callable, Mapping
 from typing import Any, Protocol, runtime_checkable
 
-from assur.text import languages
+from assur.text import DEFAULT, Message, languages, render
 
 __all__ = ["Case", "add_output_args", "add_table_arg", "emit"]
 
@@ -27,27 +27,27 @@ class Case(Protocol):
     """The command module of a built-in case (``synthesis/cases/<name>/cli.py``)."""
 
     NAME: str
-    HELP: str
+    HELP: Message
 
-    def add_args(self, parser: argparse.ArgumentParser) -> None:
-        """Add the options of the case."""
+    def add_args(self, parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
+        """Add the options of the case, their help in ``lang``."""
 
     def run(self, args: argparse.Namespace) -> int:
         """Run the case; returns the exit code."""
 
 
-def add_table_arg(parser: argparse.ArgumentParser, help: str) -> None:
+def add_table_arg(parser: argparse.ArgumentParser, help: Message, lang: str = DEFAULT) -> None:
     """``--table FILE.yaml``: the input table of the case (its options override it)."""
-    parser.add_argument("--table", metavar="FILE.yaml", help=help)
+    parser.add_argument("--table", metavar="FILE.yaml", help=help.text(lang))
 
 
-def add_output_args(parser: argparse.ArgumentParser, *, plot: str,
+def add_output_args(parser: argparse.ArgumentParser, *, plot: Message, lang: str = DEFAULT,
                     plot_metavar: str = "FILE") -> None:
-    """``--json``, ``--plot`` (what it writes: ``plot``) and ``--lang``."""
-    parser.add_argument("--json", action="store_true", help="print the results as JSON")
-    parser.add_argument("--plot", metavar=plot_metavar, help=plot)
-    parser.add_argument("--lang", choices=languages(), default="en",
-                        help="language of the report")
+    """``--json``, ``--plot`` (what it writes: ``plot``) and ``--lang``, their help in ``lang``."""
+    parser.add_argument("--json", action="store_true", help=render("cli.case.json", lang))
+    parser.add_argument("--plot", metavar=plot_metavar, help=plot.text(lang))
+    parser.add_argument("--lang", choices=languages(), default=lang,
+                        help=render("cli.case.lang", lang))
 
 
 def emit(args: argparse.Namespace, as_json: Callable[[], Mapping[str, Any]],

@@ -1,11 +1,16 @@
-"""The argument parser of ``assur``, built for the one command chosen.
+"""The argument parser of ``assur``, built for the one command chosen, in the user's language.
 
 Each subcommand is a module of :mod:`synthesis.cli.commands` named after the word typed after
-``assur``; it defines ``add_args(parser)`` and ``run(args) -> int``, and may define
+``assur``; it defines ``add_args(parser, lang)`` and ``run(args) -> int``, and may define
 ``OUTPUTS`` (option → ``'file'`` or ``'folder'``: the paths checked before the run).  The
 modules are found without importing them, and only the chosen one is imported, so
 ``assur check`` does not load what ``assur synthesize`` needs.  The one-line help of every
 command is the catalogue entry ``cli.<name>.help``.
+
+The help is written in the language the command line asks for with ``--lang`` (before or
+after the command, before or after ``--help``), English by default, like every report; the
+parser's own words (usage, the titles of the option lists, ``--help``, ``--version``) come
+from the catalogue too (``help.*``).
 """
 
 from __future__ import annotations
@@ -13,16 +18,66 @@ from __future__ import annotations
 import argparse
 import importlib
 import pkgutil
+import sys
 from collections.abc import Sequence
-from importlib.metadata import PackageNotFoundError, version
 from types import ModuleType
+from typing import Any
 
-from assur.text import render
+from assur.text import DEFAULT, languages, render
 
-__all__ = ["ORDER", "build_parser", "command_module", "command_names"]
+__all__ = ["ORDER", "HelpFormatter", "Parser", "build_parser", "command_module", "command_names",
+           "help_lang"]
 
 #: The commands in the order of the help (a new module is listed after them).
 ORDER = ("check", "analyze", "synthesize", "case", "report", "batch")
+
+
+class HelpFormatter(argparse.HelpFormatter):
+    """The help formatter whose ``usage:`` is in ``lang``."""
+
+    def __init__(self, prog: str, lang: str = DEFAULT) -> None:
+        super().__init__(prog)
+        self.lang = lang
+
+    def add_usage(self, usage: str | None, actions: Any, groups: Any,
+                  prefix: str | None = None) -> None:
+        super().add_usage(usage, actions, groups,
+                          render("help.usage", self.lang) if prefix is None else prefix)
+
+
+class Parser(argparse.ArgumentParser):
+    """An argument parser whose own words (usage, option lists, ``--help``) are in ``lang``.
+
+    Its subcommand parsers are of the same class: ``add_parser(name, lang=lang, …)``.
+    """
+
+    def __init__(self, *args: Any, lang: str = DEFAULT, **kwargs: Any) -> None:
+        kwargs.update(add_help=False, formatter_class=lambda prog: HelpFormatter(prog, lang))
+        super().__init__(*args, **kwargs)
+        self.lang = lang
+        self._positionals.title = render("help.positionals", lang)
+        self._optionals.title = render("help.options", lang)
+        self.add_argument("-h", "--help", action="help", default=argparse.SUPPRESS,
+                          help=render("help.help", lang))
+
+
+class _Version(argparse.Action):
+    """``--version``: the installed version, looked up only when asked for."""
+
+    def __init__(self, option_strings: Sequence[str], dest: str, help: str | None = None
+                 ) -> None:
+        super().__init__(option_strings, dest, nargs=0, default=argparse.SUPPRESS, help=help)
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
+                 values: Any, option_string: str | None = None) -> None:
+        from importlib.metadata import PackageNotFoundError, version
+
+        try:
+            found = version("assur")
+        except PackageNotFoundError:  # pragma: no cover - a source tree that is not installed
+            found = "unknown"
+        print(f"assur {found}", file=sys.stdout)
+        parser.exit()
 
 
 def command_names() -> list[str]:
@@ -40,18 +95,30 @@ def command_module(name: str) -> ModuleType:
     return importlib.import_module(f"synthesis.cli.commands.{name}")
 
 
-def _version() -> str:
-    try:
-        return version("assur")
-    except PackageNotFoundError:  # pragma: no cover - a source tree that is not installed
-        return "unknown"
+def help_lang(argv: Sequence[str]) -> str:
+    """The language ``argv`` asks for with ``--lang X`` or ``--lang=X``, else English.
+
+    >>> help_lang(["check", "--help", "--lang", "ru"]), help_lang(["--lang=xx"]), help_lang([])
+    ('ru', 'en', 'en')
+    """
+    for word, following in zip(argv, [*argv[1:], ""]):
+        value = following if word == "--lang" else word.partition("=")[2] \
+            if word.startswith("--lang=") else None
+        if value in languages():
+            return value
+    return DEFAULT
 
 
 def chosen_command(argv: Sequence[str]) -> str | None:
-    """The subcommand named in ``argv`` (the first word that is not an option)."""
+    """The subcommand named in ``argv`` (the first word that is neither an option nor the
+    language of ``--lang``).
+
+    >>> chosen_command(["--lang", "ru", "check", "t.yaml"]), chosen_command(["t.yaml"])
+    ('check', None)
+    """
     names = set(command_names())
-    for word in argv:
-        if not word.startswith("-"):
+    for word, previous in zip(argv, ["", *argv]):
+        if not word.startswith("-") and previous != "--lang":
             return word if word in names else None
     return None
 
@@ -75,20 +142,22 @@ def build_parser(argv: Sequence[str] = ()) -> argparse.ArgumentParser:
     >>> args.command, args.table, args.debug
     ('check', 't.yaml', False)
     """
-    parser = argparse.ArgumentParser(prog="assur", description=render("cli.description"))
-    parser.add_argument("--version", action="version", version=f"assur {_version()}")
-    parser.add_argument("--debug", action="store_true", help=render("cli.debug"))
+    lang = help_lang(argv)
+    parser = Parser(prog="assur", description=render("cli.description", lang), lang=lang)
+    parser.add_argument("--version", action=_Version, help=render("help.version", lang))
+    parser.add_argument("--lang", choices=languages(), default=lang, help=render("help.lang", lang))
+    parser.add_argument("--debug", action="store_true", help=render("cli.debug", lang))
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
     commands.required = True
     chosen = chosen_command(argv)
     for name in command_names():
-        text = render(f"cli.{name}.help")
-        sub = commands.add_parser(name, help=text, description=text)
+        text = render(f"cli.{name}.help", lang)
+        sub = commands.add_parser(name, help=text, description=text, lang=lang)
         if name != chosen:
             continue
         module = command_module(name)
-        module.add_args(sub)
+        module.add_args(sub, lang)
         sub.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
-                         help=render("cli.debug"))
+                         help=render("cli.debug", lang))
         sub.set_defaults(handler=module.run, module=module)
     return parser

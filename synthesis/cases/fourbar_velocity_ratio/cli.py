@@ -8,7 +8,7 @@ import math
 from typing import Any
 
 from assur.io.reader import TableReader
-from assur.text import Message
+from assur.text import DEFAULT, Message, render
 from synthesis.app.outputs import outputs_of
 from synthesis.cases.command import add_output_args, add_table_arg, emit
 from synthesis.cases.fourbar_velocity_ratio.conditions import NoSolution, Request
@@ -23,29 +23,27 @@ from synthesis.cases.fourbar_velocity_ratio.study import METHODS, run_study
 __all__ = ["HELP", "NAME", "add_args", "read_request", "run"]
 
 NAME = "fourbar-velocity-ratio"
-HELP = ("crank-rocker four-bar whose velocity ratio stays within δ of its peak n* over a zone "
-        "of crank angles (nested false position of the source and a modern solver, each design "
-        "checked independently)")
+HELP = Message("cli.case.fourbar.help")
 
 TABLE = "fourbar_velocity_ratio"
 _FIELDS = (
-    ("--e", "e", "crank length e (frame = 1); leave out to find it"),
-    ("--n-star", "n_star", "peak velocity ratio n* (negative: return stroke)"),
-    ("--delta", "delta", "allowed relative variation δ; leave out to find it"),
-    ("--psi1", "psi1_deg", "zone before the peak ψ′, degrees"),
-    ("--psi2", "psi2_deg", "zone after the peak ψ″, degrees; leave out to find it"),
+    ("--e", "e", Message("cli.case.fourbar.e")),
+    ("--n-star", "n_star", Message("cli.case.fourbar.n_star")),
+    ("--delta", "delta", Message("cli.case.fourbar.delta")),
+    ("--psi1", "psi1_deg", Message("cli.case.fourbar.psi1")),
+    ("--psi2", "psi2_deg", Message("cli.case.fourbar.psi2")),
 )
 
 
-def add_args(parser: argparse.ArgumentParser) -> None:
+def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
     """Options of the case; each overrides the value of the input table."""
-    add_table_arg(parser, "input table (see input_tables/case_fourbar_velocity_ratio.yaml)")
+    add_table_arg(parser, Message("cli.case.fourbar.table"), lang)
     for flag, dest, text in _FIELDS:
         parser.add_argument(flag, dest=dest, type=float, metavar=dest.split("_")[0].upper(),
-                            help=text)
+                            help=text.text(lang))
     parser.add_argument("--method", choices=METHODS, default=None,
-                        help="solver: modern (default), paper or both")
-    add_output_args(parser, plot="write a picture of the design (PNG, SVG…)")
+                        help=render("cli.case.fourbar.method", lang))
+    add_output_args(parser, plot=Message("cli.case.fourbar.plot"), lang=lang)
 
 
 def _open_interval(low: float, high: float, what: str):
@@ -98,7 +96,7 @@ def read_request(data: dict[str, Any], source: str) -> tuple[Request, str]:
 
 def _gather(args: argparse.Namespace) -> tuple[dict[str, Any], str]:
     data: dict[str, Any] = {}
-    source = "command line"
+    source = render("cli.case.source.command_line", args.lang)
     if args.table:
         reader = TableReader.from_path(args.table, kind="fourbar_velocity_ratio")
         top = reader.root(allowed=[TABLE])

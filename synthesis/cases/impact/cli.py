@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from assur.text import DEFAULT, Message, render
 from synthesis.app.outputs import outputs_of
 from synthesis.cases.command import add_output_args, add_table_arg, emit
 from synthesis.cases.impact.data import PAPER
@@ -18,26 +19,26 @@ from synthesis.cases.impact.table import (
 )
 
 NAME = "impact"
-HELP = ("impact in a four-bar with a clearance in a bearing: the source's model and "
-        "Townsend–Mansour's against Table 1 (Vjaters, Viba, Grasmanis)")
+HELP = Message("cli.case.impact.help")
 
 
-def add_args(parser: argparse.ArgumentParser) -> None:
+def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
     """Options of the case; each overrides the table (by default the source's data)."""
-    add_table_arg(parser, "input table (default: the source's data, as in "
-                          "input_tables/case_impact.yaml)")
-    parser.add_argument("--theta2", type=float, metavar="DEG", help="crank angle at impact")
-    parser.add_argument("--omega2", type=float, metavar="RAD_S", help="crank speed before impact")
+    add_table_arg(parser, Message("cli.case.impact.table"), lang)
+    parser.add_argument("--theta2", type=float, metavar="DEG",
+                        help=render("cli.case.impact.theta2", lang))
+    parser.add_argument("--omega2", type=float, metavar="RAD_S",
+                        help=render("cli.case.impact.omega2", lang))
     parser.add_argument("--omega4", type=float, nargs="+", metavar="RAD_S",
-                        help="rocker speed(s) before impact, one impact each")
-    parser.add_argument("--k", type=float, help="coefficient of restitution, 0 … 1")
-    parser.add_argument("--mu", type=float, help="coefficient of friction (full slip)")
-    parser.add_argument("--clearance", type=float, metavar="MM", help="clearance ξ in mm")
-    parser.add_argument("--sigma", type=int, help="assembly: 1 (the source's) or -1")
+                        help=render("cli.case.impact.omega4", lang))
+    parser.add_argument("--k", type=float, help=render("cli.case.impact.k", lang))
+    parser.add_argument("--mu", type=float, help=render("cli.case.impact.mu", lang))
+    parser.add_argument("--clearance", type=float, metavar="MM",
+                        help=render("cli.case.impact.clearance", lang))
+    parser.add_argument("--sigma", type=int, help=render("cli.case.impact.sigma", lang))
     parser.add_argument("--lever", choices=("paper", "exact"), default="paper",
-                        help="rocker lever in the restitution law: as printed in (7)-(8) "
-                             "(default) or exact")
-    add_output_args(parser, plot="draw the mechanism and the model comparison (PNG, SVG, PDF)")
+                        help=render("cli.case.impact.lever", lang))
+    add_output_args(parser, plot=Message("cli.case.impact.plot"), lang=lang)
 
 
 def _table(args: argparse.Namespace) -> dict[str, Any]:
@@ -56,7 +57,8 @@ def _table(args: argparse.Namespace) -> dict[str, Any]:
 
 def run(args: argparse.Namespace) -> int:
     """Solve the case, print the report, optionally draw it."""
-    source = f"{args.table} with command-line options" if args.table else "command-line options"
+    source = (render("cli.case.source.table_options", args.lang, table=args.table) if args.table
+              else render("cli.case.source.options", args.lang))
     table = _table(args)
     study = run_study(impact_data_from_dict(table, source), lever=args.lever)
     emit(args, lambda: report_json(study), lambda lang: report_text(study, lang))

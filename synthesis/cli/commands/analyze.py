@@ -15,49 +15,50 @@ import argparse
 import json
 import sys
 
-from assur.plot.formats import animation_format, picture_format
-from assur.plot.mechanism import save_animation, save_mechanism_picture
-from assur.plot.modes import save_modes_png
-from assur.text import languages, render
-from synthesis.app.analysis import analyse_table
-from synthesis.app.analysis_csv import analysis_csv
-from synthesis.app.analysis_forces import table_forces
-from synthesis.app.analysis_forces_plot import save_forces_png
-from synthesis.app.analysis_forces_render import forces_columns, forces_record, forces_text
-from synthesis.app.analysis_json import analysis_record
-from synthesis.app.analysis_text import analysis_text
-from synthesis.app.outputs import outputs_of
+from assur.text import DEFAULT, languages, render
 
 #: The output options, checked before the run.
 OUTPUTS = {"csv": "file", "plot": "file", "animate": "file", "modes_plot": "file"}
 
 
-def add_args(parser: argparse.ArgumentParser) -> None:
+def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
     """Options of ``assur analyze``."""
-    parser.add_argument("table", help=render("cli.analyze.table"))
-    parser.add_argument("--points", type=int, default=360, help=render("cli.analyze.points"))
-    parser.add_argument("--json", action="store_true", help=render("cli.analyze.json"))
-    parser.add_argument("--csv", metavar="FILE", help=render("cli.analyze.csv"))
-    parser.add_argument("--plot", metavar="FILE.png|svg|pdf|jpg", help=render("cli.analyze.plot"))
-    parser.add_argument("--at", type=float, default=0.0, help=render("cli.analyze.at"))
-    parser.add_argument("--animate", metavar="FILE.gif|mp4", help=render("cli.analyze.animate"))
-    parser.add_argument("--modes-plot", metavar="FILE.png", help=render("higher.cli.modes_plot"))
-    parser.add_argument("--frames", type=int, default=48, help=render("cli.analyze.frames"))
-    parser.add_argument("--omega", type=float, default=None, help=render("cli.analyze.omega"))
-    parser.add_argument("--forces", action="store_true", help=render("force.cli.forces"))
-    parser.add_argument("--lang", choices=languages(), default="en",
-                        help=render("cli.analyze.lang"))
+    parser.add_argument("table", help=render("cli.analyze.table", lang))
+    parser.add_argument("--points", type=int, default=360, help=render("cli.analyze.points", lang))
+    parser.add_argument("--json", action="store_true", help=render("cli.analyze.json", lang))
+    parser.add_argument("--csv", metavar="FILE", help=render("cli.analyze.csv", lang))
+    parser.add_argument("--plot", metavar="FILE.png|svg|pdf|jpg", help=render("cli.analyze.plot", lang))
+    parser.add_argument("--at", type=float, default=0.0, help=render("cli.analyze.at", lang))
+    parser.add_argument("--animate", metavar="FILE.gif|mp4", help=render("cli.analyze.animate", lang))
+    parser.add_argument("--modes-plot", metavar="FILE.png", help=render("higher.cli.modes_plot", lang))
+    parser.add_argument("--frames", type=int, default=48, help=render("cli.analyze.frames", lang))
+    parser.add_argument("--omega", type=float, default=None, help=render("cli.analyze.omega", lang))
+    parser.add_argument("--forces", action="store_true", help=render("force.cli.forces", lang))
+    parser.add_argument("--lang", choices=languages(), default=lang,
+                        help=render("cli.analyze.lang", lang))
 
 
 def run(args: argparse.Namespace) -> int:
-    """Analyse the table and report."""
+    """Analyse the table and report (what a run does not ask for is never imported)."""
+    from assur.plot.formats import animation_format, picture_format
+    from synthesis.app.analysis import analyse_table
+    from synthesis.app.analysis_text import analysis_text
+    from synthesis.app.outputs import outputs_of
+
     if args.plot:  # a format that cannot be written is refused before any work
         picture_format(args.plot)
     if args.animate:
         animation_format(args.animate)
     result = analyse_table(args.table, points=args.points, omega=args.omega)
-    forces = table_forces(args.table, result) if args.forces else None
+    forces = None
+    if args.forces:
+        from synthesis.app.analysis_forces import table_forces
+        from synthesis.app.analysis_forces_render import forces_columns, forces_record, forces_text
+
+        forces = table_forces(args.table, result)
     if args.json:
+        from synthesis.app.analysis_json import analysis_record
+
         record = analysis_record(result)
         if forces is not None:
             record["forces"] = forces_record(forces)
@@ -69,17 +70,26 @@ def run(args: argparse.Namespace) -> int:
             print("\n" + forces_text(result, forces, args.lang))
     outputs = outputs_of(args)
     if args.csv:
+        from synthesis.app.analysis_csv import analysis_csv
+
         extra = forces_columns(forces) if forces is not None else []
         outputs.write_text(args.csv, analysis_csv(result, extra))
     if args.plot:
+        from assur.plot.mechanism import save_mechanism_picture
+        from synthesis.app.analysis_forces_plot import save_forces_png
+
         index = result.index_at(args.at)
         outputs.write(args.plot, lambda path: save_mechanism_picture(
             result.motion, path, index=index, lang=args.lang) if forces is None
             else save_forces_png(result, forces, path, index=index, lang=args.lang))
     if args.animate:
+        from assur.plot.mechanism import save_animation
+
         outputs.write(args.animate, lambda path: save_animation(
             result.motion, path, frames=args.frames, lang=args.lang))
     if args.modes_plot:
+        from assur.plot.modes import save_modes_png
+
         outputs.write(args.modes_plot, lambda path: save_modes_png(
             result.motion, path, index=result.index_at(0.0), lang=args.lang))
     return 0

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from assur.text import languages, render
+from assur.text import DEFAULT, languages, render
 from synthesis.app.outputs import outputs_of
 from synthesis.app.progress import counting
 from synthesis.cli.options import check_at_least
@@ -14,20 +14,20 @@ from synthesis.cli.options import check_at_least
 OUTPUTS = {"csv": "file", "reports": "folder"}
 
 
-def add_args(parser: argparse.ArgumentParser) -> None:
+def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
     """Arguments of ``assur batch``."""
-    parser.add_argument("folder", metavar="DIR", help=render("cli.batch.folder"))
-    parser.add_argument("--csv", metavar="FILE", help=render("cli.batch.csv"))
+    parser.add_argument("folder", metavar="DIR", help=render("cli.batch.folder", lang))
+    parser.add_argument("--csv", metavar="FILE", help=render("cli.batch.csv", lang))
     parser.add_argument("--no-bom", dest="bom", action="store_false",
-                        help=render("cli.batch.no_bom"))
-    parser.add_argument("--json", action="store_true", help=render("cli.batch.json"))
+                        help=render("cli.batch.no_bom", lang))
+    parser.add_argument("--json", action="store_true", help=render("cli.batch.json", lang))
     parser.add_argument("--jobs", type=int, default=None, metavar="N",
-                        help=render("cli.batch.jobs"))
-    parser.add_argument("--reports", metavar="DIR", help=render("cli.batch.reports"))
-    parser.add_argument("--lang", choices=languages(), default="en",
-                        help=render("cli.batch.lang"))
-    parser.add_argument("--quiet", action="store_true", help=render("cli.quiet"))
-    parser.add_argument("--scheduler", metavar="SPEC", default=None, help=render("dist.option"))
+                        help=render("cli.batch.jobs", lang))
+    parser.add_argument("--reports", metavar="DIR", help=render("cli.batch.reports", lang))
+    parser.add_argument("--lang", choices=languages(), default=lang,
+                        help=render("cli.batch.lang", lang))
+    parser.add_argument("--quiet", action="store_true", help=render("cli.quiet", lang))
+    parser.add_argument("--scheduler", metavar="SPEC", default=None, help=render("dist.option", lang))
 
 
 def run(args: argparse.Namespace) -> int:

@@ -12,27 +12,28 @@ from __future__ import annotations
 import argparse
 import json
 
-from assur.plot.formats import picture_format
-from assur.text import languages, render
-from synthesis.app.assess import assess
-from synthesis.app.check_report import check_record, check_text
-from synthesis.app.outputs import outputs_of
+from assur.text import DEFAULT, languages, render
 
 #: The output options, checked before the run.
 OUTPUTS = {"plot": "file"}
 
 
-def add_args(parser: argparse.ArgumentParser) -> None:
+def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
     """Arguments of ``assur check``."""
-    parser.add_argument("table", help=render("cli.check.table"))
-    parser.add_argument("--json", action="store_true", help=render("cli.check.json"))
-    parser.add_argument("--lang", choices=languages(), default="en",
-                        help=render("cli.check.lang"))
-    parser.add_argument("--plot", metavar="FILE", default=None, help=render("cli.check.plot"))
+    parser.add_argument("table", help=render("cli.check.table", lang))
+    parser.add_argument("--json", action="store_true", help=render("cli.check.json", lang))
+    parser.add_argument("--lang", choices=languages(), default=lang,
+                        help=render("cli.check.lang", lang))
+    parser.add_argument("--plot", metavar="FILE", default=None, help=render("cli.check.plot", lang))
 
 
 def run(args: argparse.Namespace) -> int:
     """Analyse the table and print the report."""
+    from assur.plot.formats import picture_format
+    from synthesis.app.assess import assess
+    from synthesis.app.check_report import check_record, check_text
+    from synthesis.app.outputs import outputs_of
+
     if args.plot:  # a format that cannot be written is refused before any work
         picture_format(args.plot)
     assessment = assess(args.table, points=None)

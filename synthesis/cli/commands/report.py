@@ -6,7 +6,7 @@ import argparse
 import json
 from pathlib import Path
 
-from assur.text import languages, render
+from assur.text import DEFAULT, languages, render
 from synthesis.app.outputs import outputs_of
 from synthesis.app.progress import following_search
 from synthesis.cli.options import check_at_least, check_search_options
@@ -17,19 +17,19 @@ OUTPUTS = {"out": "file"}
 MIN_POINTS = 8
 
 
-def add_args(parser: argparse.ArgumentParser) -> None:
+def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
     """Arguments of ``assur report``."""
-    parser.add_argument("table", metavar="TABLE.yaml", help=render("cli.report.table"))
+    parser.add_argument("table", metavar="TABLE.yaml", help=render("cli.report.table", lang))
     parser.add_argument("--out", metavar="REPORT.html", default=None,
-                        help=render("cli.report.out"))
-    parser.add_argument("--lang", choices=languages(), default="en",
-                        help=render("cli.report.lang"))
+                        help=render("cli.report.out", lang))
+    parser.add_argument("--lang", choices=languages(), default=lang,
+                        help=render("cli.report.lang", lang))
     parser.add_argument("--points", type=int, default=360, metavar="N",
-                        help=render("cli.report.points"))
-    parser.add_argument("--json", action="store_true", help=render("cli.report.json"))
+                        help=render("cli.report.points", lang))
+    parser.add_argument("--json", action="store_true", help=render("cli.report.json", lang))
     parser.add_argument("--budget", type=int, default=None, metavar="M",
-                        help=render("cli.report.budget"))
-    parser.add_argument("--quiet", action="store_true", help=render("cli.quiet"))
+                        help=render("cli.report.budget", lang))
+    parser.add_argument("--quiet", action="store_true", help=render("cli.quiet", lang))
 
 
 def run(args: argparse.Namespace) -> int:

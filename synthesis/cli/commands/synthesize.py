@@ -12,11 +12,7 @@ import math
 import sys
 from typing import Any
 
-from assur.text import languages, render
-from synthesis.app.outputs import outputs_of
-from synthesis.app.progress import following_search
-from synthesis.cli.options import check_search_options
-from synthesis.report import text_report, write_result, write_trials
+from assur.text import DEFAULT, languages, render
 
 #: The options that override a search setting → its field of ``SearchSettings``.
 _SETTINGS = {"budget": "budget_log2", "seed": "seed", "refine": "refine",
@@ -25,44 +21,44 @@ _SETTINGS = {"budget": "budget_log2", "seed": "seed", "refine": "refine",
 OUTPUTS = {"out": "file", "trials": "file", "plot": "folder"}
 
 
-def add_args(parser: argparse.ArgumentParser) -> None:
+def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
     """Arguments of ``assur synthesize``."""
-    parser.add_argument("problem", metavar="PROBLEM.yaml", help="the synthesis problem table")
+    parser.add_argument("problem", metavar="PROBLEM.yaml",
+                        help=render("cli.synthesize.problem", lang))
     parser.add_argument("--budget", type=int, metavar="M", default=None,
-                        help="draw up to 2**M LPτ trials per round (default: the problem's, "
-                             "else 10)")
-    parser.add_argument("--seed", type=int, default=None,
-                        help="seed of the scrambled LPτ sequence (default: the problem's, else 0)")
+                        help=render("cli.synthesize.budget", lang))
+    parser.add_argument("--seed", type=int, default=None, help=render("cli.synthesize.seed", lang))
     parser.add_argument("--refine", action=argparse.BooleanOptionalAction, default=None,
-                        help="refine the best trials locally (scipy.optimize.least_squares; "
-                             "default: on)")
+                        help=render("cli.synthesize.refine", lang))
     parser.add_argument("--shrink", type=int, metavar="PASSES", default=None,
-                        help="passive passes in boxes shrunk around the best design "
-                             "(default: 3)")
+                        help=render("cli.synthesize.shrink", lang))
     parser.add_argument("--restarts", type=int, metavar="R", default=None,
-                        help="search again R times with fresh LPτ sequences while [Q] is "
-                             "not reached (default: 3)")
+                        help=render("cli.synthesize.restarts", lang))
     parser.add_argument("--time-limit", type=float, metavar="SEC", default=None,
-                        help="stop the search after this many seconds")
+                        help=render("cli.synthesize.time_limit", lang))
     parser.add_argument("--out", metavar="RESULT", default=None,
-                        help="write the mechanism table of the best design (.yaml or .json); "
-                             "'assur analyze RESULT' reads it back")
+                        help=render("cli.synthesize.out", lang))
     parser.add_argument("--trials", metavar="CSV", default=None,
-                        help="write every feasible passive trial (best Q first) as CSV")
-    parser.add_argument("--json", action="store_true", help="print the summary as JSON")
+                        help=render("cli.synthesize.trials", lang))
+    parser.add_argument("--json", action="store_true", help=render("cli.synthesize.json", lang))
     parser.add_argument("--plot", metavar="DIR", default=None,
-                        help="save output.png, mechanism.png and convergence.png into DIR")
-    parser.add_argument("--lang", choices=languages(), default="en",
-                        help="language of the report")
-    parser.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
-    parser.add_argument("--scheduler", metavar="SPEC", default=None, help=render("dist.option"))
+                        help=render("cli.synthesize.plot", lang))
+    parser.add_argument("--lang", choices=languages(), default=lang,
+                        help=render("cli.synthesize.lang", lang))
+    parser.add_argument("--quiet", action="store_true", help=render("cli.quiet", lang))
+    parser.add_argument("--scheduler", metavar="SPEC", default=None,
+                        help=render("dist.option", lang))
 
 
 def run(args: argparse.Namespace) -> int:
     """Read the problem, synthesise it (:func:`synthesis.synthesize.synthesize`), report."""
+    from synthesis.app.outputs import outputs_of
+    from synthesis.app.progress import following_search
+    from synthesis.cli.options import check_search_options
     from synthesis.distributed import executor_for
     from synthesis.problem import load_problem
     from synthesis.search import settings_for
+    from synthesis.report import text_report, write_result, write_trials
     from synthesis.synthesize import synthesize
 
     check_search_options(args, _SETTINGS)

@@ -46,10 +46,10 @@ from assur.text import render
 
 if TYPE_CHECKING:  # pragma: no cover
     from assur.forces.groups import Loads, Solved
-    from assur.kinematics.higher.kind import HigherGroupSolution, Layout
     from assur.kinematics.analysis import _State
     from assur.kinematics.build import _Builder
     from assur.kinematics.dyads import DyadSolution
+    from assur.kinematics.higher.kind import HigherGroupSolution, Layout
     from assur.kinematics.model import Anchor, GroupModel, Guide
     from assur.model import LinkId, Pair
     from assur.structure.classification import AssurGroup

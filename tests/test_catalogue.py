@@ -28,13 +28,14 @@ SAME = "same-in-all-languages"
 def _entries(lang: str) -> dict[str, tuple[tuple[str, ...], set[str]]]:
     with (text.LOCALE / f"{lang}.po").open("rb") as stream:
         catalog = read_po(stream)
-    out = {}
+    out: dict[str, tuple[tuple[str, ...], set[str]]] = {}
     for message in catalog:
         if not message.id:
             continue
-        key = message.id[0] if isinstance(message.id, tuple) else message.id
-        strings = message.string if isinstance(message.string, tuple) else (message.string,)
-        out[key] = (tuple(strings), set(message.flags))
+        key = message.id[0] if isinstance(message.id, (tuple, list)) else message.id
+        strings = (message.string if isinstance(message.string, (tuple, list))
+                   else (message.string,))
+        out[str(key)] = (tuple(str(s) for s in strings), set(message.flags))
     return out
 
 
@@ -75,7 +76,7 @@ def test_every_code_is_translated_with_the_same_fields(lang: str) -> None:
 def test_every_code_named_in_the_source_is_in_the_catalogue() -> None:
     known = set(_entries("en"))
     pattern = re.compile(r"""(?:Message|render)\(\s*["']([a-z0-9_]+(?:\.[a-z0-9_]+)+)["']""")
-    named = {}
+    named: dict[str, str] = {}
     for path in list((ROOT / "assur").rglob("*.py")) + list((ROOT / "synthesis").rglob("*.py")):
         for code in pattern.findall(path.read_text(encoding="utf-8")):
             named.setdefault(code, path.relative_to(ROOT).as_posix())

@@ -8,7 +8,6 @@ Each case is a subpackage of :mod:`synthesis.cases` whose ``cli`` module is a
 from __future__ import annotations
 
 import argparse
-import functools
 import importlib
 import importlib.util
 import pkgutil
@@ -23,8 +22,7 @@ def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
     """Add one sub-subcommand per built-in case, the help in ``lang``."""
     import synthesis.cases as package
 
-    cases = parser.add_subparsers(dest="case", metavar="CASE",
-                                  parser_class=functools.partial(Parser, lang=lang))
+    cases = parser.add_subparsers(dest="case", metavar="CASE", parser_class=Parser)
     cases.required = True
     for info in sorted(pkgutil.iter_modules(package.__path__), key=lambda i: i.name):
         name = f"{package.__name__}.{info.name}.cli"
@@ -32,7 +30,7 @@ def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
             continue
         module = cast(Case, importlib.import_module(name))
         text = module.HELP.text(lang)
-        sub = cases.add_parser(module.NAME, help=text, description=text)
+        sub = cases.add_parser(module.NAME, help=text, description=text, lang=lang)
         module.add_args(sub, lang)
         sub.add_argument("--quiet", action="store_true", help=render("cli.quiet", lang))
         sub.set_defaults(case_handler=module.run)

@@ -57,8 +57,8 @@ def run(args: argparse.Namespace) -> int:
     from synthesis.cli.options import check_search_options
     from synthesis.distributed import executor_for
     from synthesis.problem import load_problem
-    from synthesis.search import settings_for
     from synthesis.report import text_report, write_result, write_trials
+    from synthesis.search import settings_for
     from synthesis.synthesize import synthesize
 
     check_search_options(args, _SETTINGS)

@@ -29,12 +29,13 @@ def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Analyse the table and print the report."""
-    from assur.plot.formats import picture_format
     from synthesis.app.assess import assess
     from synthesis.app.check_report import check_record, check_text
     from synthesis.app.outputs import outputs_of
 
     if args.plot:  # a format that cannot be written is refused before any work
+        from assur.plot.formats import picture_format
+
         picture_format(args.plot)
     assessment = assess(args.table, points=None)
     if args.plot:

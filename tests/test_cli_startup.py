@@ -1,0 +1,128 @@
+"""What ``assur check`` loads and reads: no module it does not use, each table file once, the
+text catalogue compiled once and then read from the cache.
+
+The modules are read from ``sys.modules`` of a fresh interpreter after the command ran; the
+files opened are counted by an audit hook (``open`` events of the interpreter), so a second
+read is seen whatever function makes it.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+import pytest
+
+from assur import text
+from assur.io.chain_table import chain_from_dict, load_chain
+from synthesis.app.assess import assess
+from synthesis.problem import load_problem
+
+ROOT = Path(__file__).resolve().parents[1]
+TABLE = ROOT / "input_tables" / "four_bar.yaml"
+PROBLEM = ROOT / "input_tables" / "problems" / "class1_fourbar_rocker.yaml"
+#: Packages that ``assur check`` of a small table has no use for.
+UNUSED = ("scipy", "matplotlib", "tqdm", "dask", "assur.forces", "assur.kinematics.higher")
+#: Runs ``assur check`` and prints the modules loaded (JSON) as its last line.
+CHECK = ("import io, json, sys, contextlib\n"
+         "from synthesis.cli import main\n"
+         "with contextlib.redirect_stdout(io.StringIO()):\n"
+         "    code = main(['check', sys.argv[1]])\n"
+         "print(json.dumps({'code': code, 'modules': sorted(sys.modules)}))\n")
+
+
+def _check_modules(cache: Path) -> tuple[int, set[str]]:
+    env = dict(os.environ, PYTHONPATH=str(ROOT), XDG_CACHE_HOME=str(cache))
+    done = subprocess.run([sys.executable, "-c", CHECK, str(TABLE)], env=env, cwd=ROOT,
+                          capture_output=True, text=True, check=True, timeout=120)
+    found = json.loads(done.stdout.strip().splitlines()[-1])
+    return found["code"], set(found["modules"])
+
+
+def _loaded(package: str, modules: set[str]) -> bool:
+    return any(m == package or m.startswith(package + ".") for m in modules)
+
+
+def test_check_loads_only_what_it_uses_and_the_catalogue_from_the_cache(tmp_path: Path) -> None:
+    code, first = _check_modules(tmp_path)
+    assert code == 0
+    # the command did its work: the structure was analysed and the catalogue compiled
+    assert {"assur.structure.analysis", "networkx", "numpy", "yaml"} <= first
+    assert _loaded("babel", first)
+    assert sorted((tmp_path / "assur").glob("en-*.mo"))
+    assert [name for name in UNUSED if _loaded(name, first)] == []
+    # a second run reads the compiled catalogue with gettext alone
+    code, second = _check_modules(tmp_path)
+    assert code == 0 and not _loaded("babel", second)
+    assert [name for name in UNUSED if _loaded(name, second)] == []
+
+
+@pytest.fixture
+def fresh_catalogues():
+    """Catalogues read anew before and after the test (it changes where they live)."""
+    text.languages.cache_clear()
+    text.catalogue.cache_clear()
+    yield
+    text.languages.cache_clear()
+    text.catalogue.cache_clear()
+
+
+def test_an_edited_catalogue_is_compiled_again(tmp_path, monkeypatch, fresh_catalogues) -> None:
+    for lang in ("en", "ru"):
+        shutil.copy(text.LOCALE / f"{lang}.po", tmp_path / f"{lang}.po")
+    monkeypatch.setattr(text, "LOCALE", tmp_path)
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    assert text.render("cli.interrupted", "en") == "interrupted"
+    po = tmp_path / "en.po"
+    po.write_text(po.read_text(encoding="utf-8").replace(
+        'msgid "cli.interrupted"\nmsgstr "interrupted"',
+        'msgid "cli.interrupted"\nmsgstr "stopped by the user"'), encoding="utf-8")
+    text.catalogue.cache_clear()
+    assert text.render("cli.interrupted", "en") == "stopped by the user"
+    assert len(list((tmp_path / "cache" / "assur").glob("en-*.mo"))) == 2
+    # a damaged copy in the cache is compiled again, not shown to the user
+    for compiled in (tmp_path / "cache" / "assur").glob("en-*.mo"):
+        compiled.write_bytes(b"not a catalogue")
+    text.catalogue.cache_clear()
+    assert text.render("cli.interrupted", "en") == "stopped by the user"
+
+
+#: The files opened while an audit hook is watching (one hook per process, switched here).
+_OPENED: list[list[str]] = []
+
+
+def _audit(event: str, args: tuple) -> None:
+    if event == "open" and _OPENED and isinstance(args[0], (str, os.PathLike)):
+        _OPENED[-1].append(os.path.realpath(args[0]))
+
+
+sys.addaudithook(_audit)
+
+
+@contextmanager
+def _opened() -> Iterator[list[str]]:
+    _OPENED.append([])
+    try:
+        yield _OPENED[-1]
+    finally:
+        _OPENED.pop()
+
+
+@pytest.mark.parametrize("path", [TABLE, PROBLEM], ids=["chain", "problem"])
+def test_assess_reads_a_table_once(path: Path) -> None:
+    with _opened() as files:
+        found = assess(path, points=None)
+    assert files.count(os.path.realpath(path)) == 1
+    # the chain is the one that the table's own reader gives
+    if path == PROBLEM:
+        problem = load_problem(path)
+        expected = chain_from_dict(problem.mechanism_table(problem.initial), source=str(path))
+    else:
+        expected = load_chain(path)
+    assert found.chain == expected

@@ -18,6 +18,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
+from test_catalogue import fresh_catalogues  # noqa: F401 - a fixture
 
 from assur import text
 from assur.io.chain_table import chain_from_dict, load_chain
@@ -63,17 +64,8 @@ def test_check_loads_only_what_it_uses_and_the_catalogue_from_the_cache(tmp_path
     assert [name for name in UNUSED if _loaded(name, second)] == []
 
 
-@pytest.fixture
-def fresh_catalogues():
-    """Catalogues read anew before and after the test (it changes where they live)."""
-    text.languages.cache_clear()
-    text.catalogue.cache_clear()
-    yield
-    text.languages.cache_clear()
-    text.catalogue.cache_clear()
-
-
-def test_an_edited_catalogue_is_compiled_again(tmp_path, monkeypatch, fresh_catalogues) -> None:
+@pytest.mark.usefixtures("fresh_catalogues")
+def test_an_edited_catalogue_is_compiled_again(tmp_path, monkeypatch) -> None:
     for lang in ("en", "ru"):
         shutil.copy(text.LOCALE / f"{lang}.po", tmp_path / f"{lang}.po")
     monkeypatch.setattr(text, "LOCALE", tmp_path)

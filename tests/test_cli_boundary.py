@@ -143,7 +143,7 @@ def test_an_internal_error_is_one_line_naming_the_file(capsys, monkeypatch):
     def broken(*_args, **_kwargs):
         return 1 / 0
 
-    monkeypatch.setattr("synthesis.cli.commands.check.assess", broken)
+    monkeypatch.setattr("synthesis.app.assess.assess", broken)
     assert main(["check", FOUR_BAR]) == 3
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and FOUR_BAR in err and "ZeroDivisionError" in err
@@ -156,7 +156,7 @@ def test_interrupted_command_exits_130(capsys, monkeypatch):
     def interrupted(*_args, **_kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr("synthesis.cli.commands.check.assess", interrupted)
+    monkeypatch.setattr("synthesis.app.assess.assess", interrupted)
     assert main(["check", FOUR_BAR]) == 130
     assert capsys.readouterr().err.strip() == "interrupted"
 

@@ -10,7 +10,6 @@ Exit code 0 when the analysis ran (whatever it found), 2 for an unreadable or in
 from __future__ import annotations
 
 import argparse
-import json
 
 from assur.text import DEFAULT, languages, render
 
@@ -44,6 +43,8 @@ def run(args: argparse.Namespace) -> int:
         outputs_of(args).write(args.plot, lambda path: save_schemes(
             assessment.chain, assessment.analysis, path, lang=args.lang))
     if args.json:
+        import json
+
         print(json.dumps(check_record(assessment), ensure_ascii=False, indent=2))
     else:
         print(check_text(assessment, args.lang))

@@ -21,7 +21,7 @@ import pkgutil
 import sys
 from collections.abc import Sequence
 from types import ModuleType
-from typing import Any
+from typing import Any, NoReturn
 
 from assur.text import DEFAULT, languages, render
 
@@ -59,6 +59,23 @@ class Parser(argparse.ArgumentParser):
         self._optionals.title = render("help.options", lang)
         self.add_argument("-h", "--help", action="help", default=argparse.SUPPRESS,
                           help=render("help.help", lang))
+
+    def _every_option(self) -> list[str]:
+        """The option strings of this parser and of its built subcommands."""
+        found = list(self._option_string_actions)
+        for action in self._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                for sub in action.choices.values():
+                    found += [o for o in sub._option_string_actions if o not in found]
+        return found
+
+    def error(self, message: str) -> NoReturn:
+        """Exit 2 with the usage and argparse's ``message`` in the parser's language."""
+        from synthesis.cli.argument_errors import translated
+
+        self.print_usage(sys.stderr)
+        text = translated(message, self.lang, self._every_option)
+        self.exit(2, f"{self.prog}: {render('cli.error.prefix', self.lang)}: {text}\n")
 
 
 class _Version(argparse.Action):

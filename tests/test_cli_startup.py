@@ -118,3 +118,13 @@ def test_assess_reads_a_table_once(path: Path) -> None:
     else:
         expected = load_chain(path)
     assert found.chain == expected
+
+
+@pytest.mark.parametrize("path", [TABLE, PROBLEM], ids=["chain", "problem"])
+def test_the_coursework_report_reads_its_table_once(path: Path) -> None:
+    from synthesis.app.coursework.report import build_report
+
+    with _opened() as files:
+        report = build_report(path, points=12, budget=4)
+    assert files.count(os.path.realpath(path)) == 1
+    assert report.source == str(path)

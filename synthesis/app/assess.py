@@ -22,7 +22,7 @@ import os
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from assur.errors import AssurError, StructureError
 from assur.io.chain_table import chain_from_dict
@@ -41,8 +41,9 @@ from assur.text import Message
 
 if TYPE_CHECKING:  # pragma: no cover
     from assur.kinematics.existence import ExistenceReport
+    from synthesis.problem import Problem
 
-__all__ = ["Assessment", "VariantFinding", "assess", "is_problem", "load_table_chain"]
+__all__ = ["Assessment", "VariantFinding", "assess", "load_table_chain", "read_table"]
 
 #: The table name used in the labels of the student's rows.
 TABLE = "structure_identification"
@@ -143,23 +144,9 @@ class Assessment:
         return len(self.chain.identification or ())
 
 
-def is_problem(path: str | os.PathLike[str]) -> bool:
-    """Whether a table file is a synthesis problem (it has the problem's own tables)."""
-    try:
-        data = TableReader.from_path(path).data
-    except AssurError:
-        return False
-    return _is_problem_data(data)
-
-
-def _is_problem_data(data: Any) -> bool:
-    return isinstance(data, dict) and any(key in data for key in _SYNTHESIS_KEYS)
-
-
-def load_table_chain(path: str | os.PathLike[str]) -> Chain:
-    """The chain of a table file; for a synthesis problem, its mechanism at the initial design.
-
-    The file is read and parsed once, then given to the reader of its kind.
+def read_table(path: str | os.PathLike[str]) -> Chain | Problem:
+    """The table of a file, read and parsed once: a synthesis problem (it has the problem's
+    own tables) or a chain (a chain table or an identification table).
 
     Raises
     ------
@@ -167,14 +154,28 @@ def load_table_chain(path: str | os.PathLike[str]) -> Chain:
         When the file cannot be read as a table (every problem listed).
     """
     reader = TableReader.from_path(path)
-    if _is_problem_data(reader.data):
+    data = reader.data
+    if isinstance(data, dict) and any(key in data for key in _SYNTHESIS_KEYS):
         from synthesis.problem import problem_from_dict
 
         reader.expect("problem")
-        problem = problem_from_dict(reader.data, reader.source, Path(path).parent)
-        return chain_from_dict(problem.mechanism_table(problem.initial), source=reader.source)
+        return problem_from_dict(data, reader.source, Path(path).parent)
     reader.expect("chain")
-    return chain_from_dict(reader.data, source=reader.source)
+    return chain_from_dict(data, source=reader.source)
+
+
+def load_table_chain(path: str | os.PathLike[str]) -> Chain:
+    """The chain of a table file; for a synthesis problem, its mechanism at the initial design.
+
+    Raises
+    ------
+    AssurError
+        When the file cannot be read as a table (every problem listed).
+    """
+    table = read_table(path)
+    if isinstance(table, Chain):
+        return table
+    return chain_from_dict(table.mechanism_table(table.initial), source=str(path))
 
 
 def assess(table: str | os.PathLike[str] | Chain, *, points: int | None = 360) -> Assessment:

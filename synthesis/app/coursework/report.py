@@ -14,7 +14,7 @@ import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from assur import (
     AssurError,
@@ -33,9 +33,12 @@ from assur.model import PairType
 from assur.plot.schemes import roman, scheme_bytes
 from assur.structure.report import group_description
 from assur.text import check_lang, render
-from synthesis.app.assess import Assessment, assess, is_problem
+from synthesis.app.assess import Assessment, assess, read_table
 from synthesis.app.coursework.forces_section import forces_sections
 from synthesis.app.coursework.page import Section, esc, figure, figure_html, page, table
+
+if TYPE_CHECKING:  # pragma: no cover
+    from synthesis.problem import Problem
 
 __all__ = ["CourseworkReport", "build_report", "render_html", "write_report"]
 
@@ -109,11 +112,10 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
     path = Path(path)
     synthesis_sections: list[Section] = []
     report = CourseworkReport(title="", source=str(path), lang=lang)
-    if is_problem(path):
-        chain, synthesis_sections = _synthesis(path, lang, budget, report)
-        found = assess(chain, points=points)
-    else:
-        found = assess(path, points=points)
+    table = read_table(path)
+    if not isinstance(table, Chain):
+        table, synthesis_sections = _synthesis(table, lang, budget, report)
+    found = assess(table, points=points)
     chain, analysis = found.chain, found.analysis
     name = chain.name or path.stem
     report.title = f"{_cap(render('term.report', lang))}: {name}"
@@ -332,7 +334,7 @@ def _motion_section(motion: Motion, lang: str) -> Section:
 # ----------------------------------------------------------------------------- synthesis
 
 
-def _synthesis(path: Path, lang: str, budget: int | None, report: CourseworkReport
+def _synthesis(problem: Problem, lang: str, budget: int | None, report: CourseworkReport
                ) -> tuple[Chain, list[Section]]:
     """Run the synthesis of a problem: the chain of the best design and the result section
     (the verdict goes to the report's summary)."""
@@ -340,11 +342,9 @@ def _synthesis(path: Path, lang: str, budget: int | None, report: CourseworkRepo
 
     from synthesis.app.coursework.synthesis_tables import synthesis_tables
     from synthesis.plots import plot_convergence, plot_mechanism, plot_output
-    from synthesis.problem import load_problem
     from synthesis.search import settings_for
     from synthesis.synthesize import synthesize
 
-    problem = load_problem(path)
     own = problem.search.get("budget")
     budget = budget if budget is not None else min(int(own) if own else BUDGET, BUDGET)
     outcome = synthesize(problem, settings_for(problem, budget_log2=budget), progress=False)
@@ -364,7 +364,7 @@ def _synthesis(path: Path, lang: str, budget: int | None, report: CourseworkRepo
         fig = Figure(figsize=(7.5, 4.0), layout="constrained")
         draw(fig.add_subplot())
         body += figure(fig, _cap(caption), ident=f"synthesis-{k}")
-    chain = chain_from_dict(problem.mechanism_table(result.x), source=str(path))
+    chain = chain_from_dict(problem.mechanism_table(result.x), source=report.source)
     report.summary[render("term.synthesis", lang)] = f"{verdict}, Q = {q}"
     report.facts.update(feasible=feasible, Q=data.get("Q"))
     return chain, [Section("synthesis", _cap(render("term.synthesis", lang)), body)]

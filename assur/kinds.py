@@ -446,6 +446,7 @@ _P_PREV: RowPair = ("P", "prev")
 
 #: The modules of the per-kind computations that only some programs use, loaded on first call.
 _FORCES = "assur.forces.groups"
+_LINEAR = "assur.forces.linear"
 _HIGHER = "assur.kinematics.higher.kind"
 
 
@@ -510,11 +511,13 @@ KINDS: Mapping[int, GroupKind] = {
 HIGHER: Mapping[str, GroupKind] = {
     "III": GroupKind(None, "III", "", 3, condition="m = |det R| / Π‖R_k‖ ≥ δ",
                      solve=_later(_HIGHER, "solve_triad"), sketch=_later(_HIGHER, "sketch_triad"),
-                     shortfall=_later(_HIGHER, "shortfall_higher")),
+                     shortfall=_later(_HIGHER, "shortfall_higher"),
+                     equilibrium=_later(_LINEAR, "equilibrium_linear")),
     "IV": GroupKind(None, "IV", "", 4, condition="m = |det R| / Π‖R_k‖ ≥ δ",
                     solve=_later(_HIGHER, "solve_class_iv"),
                     sketch=_later(_HIGHER, "sketch_class_iv"),
-                    shortfall=_later(_HIGHER, "shortfall_higher")),
+                    shortfall=_later(_HIGHER, "shortfall_higher"),
+                    equilibrium=_later(_LINEAR, "equilibrium_linear")),
 }
 _BY_CLASS = {kind.group_class: kind for kind in HIGHER.values()}
 

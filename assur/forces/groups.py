@@ -76,6 +76,9 @@ class Loads(Protocol):
     def normal(self, pair: PairId) -> np.ndarray:
         """The unit left normal n = i·u of a prismatic pair's current guide direction u."""
 
+    def pair(self, pair: PairId) -> tuple[str, tuple[LinkId, LinkId]]:
+        """The type of a pair (``"R"`` or ``"P"``) and its two links as the table lists them."""
+
     def force(self, link: LinkId) -> np.ndarray:
         """The resultant known force on a link (N)."""
 

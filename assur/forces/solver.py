@@ -328,6 +328,10 @@ class _Bodies:
             self._normals[pair] = 1j * _expi(values(self.motion.sliders[pair].angle))
         return self._normals[pair]
 
+    def pair(self, pair: PairId) -> tuple[str, tuple[LinkId, LinkId]]:
+        kind, links, _ = self.motion.model.pair_links[pair]
+        return kind, links
+
     def force(self, link: LinkId) -> np.ndarray:
         return self.forces[link]
 
@@ -468,7 +472,7 @@ def _groups(bodies: _Bodies, motion: Motion
             singular[new] = group.label
         blocked |= here | apart
         ill |= solved.determinant < NEAR
-        own = (group.i, group.j, *group.composite)
+        own = (*group.members, *group.composite)
         for transfer in solved.transfers:
             if blocked.any():
                 transfer = _blanked(transfer, blocked)

@@ -1,0 +1,153 @@
+"""The equilibrium of an Assur group of any class as one linear solve (``docs/forces.md`` §4.6).
+
+A group of n links with p lower pairs is statically determinate: 3n = 2p. Every revolute
+pair has two unknowns (the force of one link on the other), every prismatic pair two (the
+normal force N along the guide's left normal n and the couple M about the slider point K).
+The three equilibrium equations of each link (d'Alembert, its known loads included) make one
+square system per position, solved for all positions (and designs) at once with a batched
+:func:`numpy.linalg.solve`. It serves the triads and the class IV groups
+(``assur.kinds.HIGHER[...].equilibrium``); for a dyad it gives what the closed forms of
+:mod:`assur.forces.groups` give.
+
+Scaling: each link's moment equation is taken about the mean of its pair points and divided
+by a length of the group (the RMS distance of its pair points from their mean), and a couple
+is solved for in the same length's units, so that every entry of the matrix is of the order
+of 1. The group's normalised determinant is the reciprocal condition number of that matrix
+(smallest over largest singular value): 0 where the reactions are indeterminate (the
+constraint lines of the group's pairs meet in one point, the dead position). There, and where
+the group is not assembled, the reactions are NaN; the solve never raises.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from assur.forces.groups import ForceReason, Loads, Solved, Transfer, cross
+from assur.model import LinkId, PairId
+
+if TYPE_CHECKING:  # pragma: no cover
+    from assur.kinematics.model import GroupModel
+
+__all__ = ["equilibrium_linear"]
+
+#: A matrix with a reciprocal condition number at or below this is not solved (NaN).
+_DEGENERATE = 1e-14
+
+
+def _pairs(group: GroupModel, loads: Loads) -> list[tuple[PairId, str, LinkId, LinkId]]:
+    """Every pair of the group with its type, the link whose reaction it solves for (the
+    source: the link outside the group for an external pair) and the link it acts on."""
+    layout = group.layout
+    assert layout is not None, "a triad or a class IV group has a layout"
+    members = set(layout.links)
+    out = []
+    for pair in (*layout.internal, *layout.external):
+        kind, (first, second) = loads.pair(pair)
+        source, target = (second, first) if second not in members else (first, second)
+        out.append((pair, kind, source, target))
+    return out
+
+
+def equilibrium_linear(group: GroupModel, loads: Loads) -> Solved:
+    """The reactions of every pair of a group of any class from one linear solve per position.
+
+    Parameters
+    ----------
+    group : GroupModel
+        A triad or a class IV group (its ``layout`` names its links and pairs).
+    loads : Loads
+        The joint points, guide normals and known loads of the group's links (SI units).
+
+    Returns
+    -------
+    Solved
+        One :class:`~assur.forces.groups.Transfer` per pair (for an external pair, the force
+        of the outside link on the group's link), the reciprocal condition number of the
+        scaled matrix, and :attr:`ForceReason.TOGGLE` as the reason where it is 0.
+
+    Examples
+    --------
+    The eight-bar of ``input_tables`` with a torque on a leash of its triad:
+
+    >>> from pathlib import Path
+    >>> import numpy as np, assur
+    >>> from assur.forces import ForceData, Load, kinetostatics
+    >>> TABLES = Path(assur.__file__).parents[1] / "input_tables"
+    >>> model = assur.load_model(TABLES / "eight_bar_triad.yaml")
+    >>> motion = assur.analyse(model, np.radians([0.0, 120.0]), analogs=True)
+    >>> result = kinetostatics(motion, ForceData(loads=(Load(6, torque=-5.0),)))
+    >>> bool(np.all(np.abs(result.power_balance) < 1e-12))
+    True
+    """
+    layout = group.layout
+    assert layout is not None, "a triad or a class IV group has a layout"
+    links = layout.links
+    pairs = _pairs(group, loads)
+    points = {pair: loads.joint(pair) for pair, *_ in pairs}
+    shape = np.broadcast_shapes(*(np.shape(p) for p in points.values()))
+    size = 3 * len(links)
+    if 2 * len(pairs) != size:
+        raise ValueError(f"group {group.label}: {len(links)} links and {len(pairs)} pairs "
+                         "are not statically determinate")
+    row = {link: 3 * k for k, link in enumerate(links)}
+    centroid = sum(points.values()) / len(points)
+    length = np.sqrt(sum(np.abs(p - centroid) ** 2 for p in points.values()) / len(points))
+    centres = {link: _mean([points[pair] for pair, _, source, target in pairs
+                            if link in (source, target)]) for link in links}
+    matrix = np.zeros((*shape, size, size))
+    rhs = np.zeros((*shape, size))
+    normals = {}
+    for k, (pair, kind, source, target) in enumerate(pairs):
+        point = points[pair]
+        if kind == "P":
+            normals[pair] = loads.normal(pair)
+        for link, sign in ((target, 1.0), (source, -1.0)):
+            if link not in row:
+                continue
+            r, arm = row[link], (point - centres[link]) / length
+            if kind == "R":
+                matrix[..., r, 2 * k] += sign
+                matrix[..., r + 1, 2 * k + 1] += sign
+                matrix[..., r + 2, 2 * k] -= sign * arm.imag
+                matrix[..., r + 2, 2 * k + 1] += sign * arm.real
+            else:
+                n = normals[pair]
+                matrix[..., r, 2 * k] += sign * n.real
+                matrix[..., r + 1, 2 * k] += sign * n.imag
+                matrix[..., r + 2, 2 * k] += sign * cross(arm, n)
+                matrix[..., r + 2, 2 * k + 1] += sign
+    for link in links:
+        r, force = row[link], loads.force(link)
+        rhs[..., r] = -force.real
+        rhs[..., r + 1] = -force.imag
+        rhs[..., r + 2] = -loads.moment(link, centres[link]) / length
+    unknowns, determinant = _solve(matrix, rhs)
+    transfers = []
+    for k, (pair, kind, source, target) in enumerate(pairs):
+        first, second = unknowns[..., 2 * k], unknowns[..., 2 * k + 1]
+        if kind == "R":
+            transfers.append(Transfer(pair, source, target, first + 1j * second,
+                                      points[pair]))
+        else:
+            transfers.append(Transfer(pair, source, target, first * normals[pair],
+                                      points[pair], first, second * length))
+    return Solved(tuple(transfers), determinant, ForceReason.TOGGLE)
+
+
+def _mean(points: list[np.ndarray]) -> np.ndarray:
+    return np.asarray(sum(points) / len(points))
+
+
+def _solve(matrix: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Batched solve of ``matrix @ x = rhs`` and the reciprocal condition numbers; NaN (and a
+    condition number of 0) where a matrix is not finite or singular, never an error."""
+    finite = np.all(np.isfinite(matrix), axis=(-2, -1)) & np.all(np.isfinite(rhs), axis=-1)
+    safe = np.where(finite[..., None, None], matrix, np.eye(matrix.shape[-1]))
+    values = np.linalg.svd(safe, compute_uv=False)
+    rcond = np.where(finite, values[..., -1] / values[..., 0], 0.0)
+    good = rcond > _DEGENERATE
+    safe = np.where(good[..., None, None], safe, np.eye(matrix.shape[-1]))
+    x = np.linalg.solve(safe, np.where(good[..., None], rhs, 0.0)[..., None])[..., 0]
+    return np.where(good[..., None], x, np.nan), rcond

@@ -58,8 +58,8 @@ def table_forces(path: str | os.PathLike[str], result: TableAnalysis) -> ForceAn
     Raises
     ------
     TableError
-        When the table has neither ``masses:`` nor ``loads:``, no input speed was given, or
-        the mechanism has a triad or a class IV group (every problem at once).
+        When the table has neither ``masses:`` nor ``loads:``, or no input speed was given
+        (every problem at once).
     """
     data = load_chain(path).forces
     issues = []
@@ -67,11 +67,7 @@ def table_forces(path: str | os.PathLike[str], result: TableAnalysis) -> ForceAn
         issues.append(Issue("--forces", Message("force.cli.no_sections", {})))
     if result.omega is None:
         issues.append(Issue("--omega", Message("force.cli.no_omega", {})))
-    higher = [g.label for g in result.model.groups if g.layout is not None]
-    if higher:
-        issues.append(Issue("--forces", Message("higher.forces.unsupported",
-                                                {"groups": ", ".join(higher)})))
-    if data is None or result.omega is None or higher:
+    if data is None or result.omega is None:
         raise TableError(str(path), issues)
     return kinetostatics(result.motion, data, result.omega)
 

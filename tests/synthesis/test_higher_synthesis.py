@@ -61,21 +61,3 @@ def test_a_search_recovers_the_designed_point() -> None:
                     [p.initial for p in problem.parameters], settings)
     assert result.feasible
     assert np.abs(np.asarray(result.x) - TRUE).max() < 0.5
-
-
-def test_forces_refuse_a_triad_with_a_message(tmp_path: Path) -> None:
-    """``analyze --forces`` on a mechanism with a triad: a problem naming the group, no trace."""
-    from assur.errors import TableError
-    from synthesis.app.analysis import analyse_table
-    from synthesis.app.analysis_forces import table_forces
-
-    table = tmp_path / "triad_forces.yaml"
-    table.write_text((TABLE.parent / "six_bar_triad.yaml").read_text()
-                     + "loads:\n  - {link: 3, torque: -15}\n")
-    result = analyse_table(table, points=4, omega=10.0)
-    try:
-        table_forces(table, result)
-    except TableError as error:
-        assert "III(2,3,4,5)" in str(error)
-    else:
-        raise AssertionError("no problem reported")

@@ -83,30 +83,46 @@ def equilibrium_linear(group: GroupModel, loads: Loads) -> Solved:
     """
     layout = group.layout
     assert layout is not None, "a triad or a class IV group has a layout"
-    links = layout.links
     pairs = _pairs(group, loads)
+    if 2 * len(pairs) != 3 * len(layout.links):
+        raise ValueError(f"group {group.label}: {len(layout.links)} links and {len(pairs)} "
+                         "pairs are not statically determinate")
     points = {pair: loads.joint(pair) for pair, *_ in pairs}
-    shape = np.broadcast_shapes(*(np.shape(p) for p in points.values()))
+    normals = {pair: loads.normal(pair) for pair, kind, *_ in pairs if kind == "P"}
+    with np.errstate(invalid="ignore", divide="ignore"):
+        centroid = sum(points.values()) / len(points)
+        length = np.sqrt(sum(np.abs(p - centroid) ** 2 for p in points.values()) / len(points))
+        matrix, rhs = _system(layout.links, pairs, points, normals, loads, length)
+        unknowns, determinant = _solve(matrix, rhs)
+    transfers = []
+    for k, (pair, kind, source, target) in enumerate(pairs):
+        first, second = unknowns[..., 2 * k], unknowns[..., 2 * k + 1]
+        if kind == "R":
+            transfers.append(Transfer(pair, source, target, first + 1j * second,
+                                      points[pair]))
+        else:
+            transfers.append(Transfer(pair, source, target, first * normals[pair],
+                                      points[pair], first, second * length))
+    return Solved(tuple(transfers), determinant, ForceReason.TOGGLE)
+
+
+def _system(links: tuple[LinkId, ...], pairs: list[tuple[PairId, str, LinkId, LinkId]],
+            points: dict[PairId, np.ndarray], normals: dict[PairId, np.ndarray],
+            loads: Loads, length: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The scaled equilibrium equations of the group's links: matrix (…, 3n, 3n) and right-hand
+    side (…, 3n); rows x, y and moment/length per link, columns two per pair."""
+    shape = np.broadcast_shapes(*(np.shape(p) for p in points.values()), np.shape(length))
     size = 3 * len(links)
-    if 2 * len(pairs) != size:
-        raise ValueError(f"group {group.label}: {len(links)} links and {len(pairs)} pairs "
-                         "are not statically determinate")
     row = {link: 3 * k for k, link in enumerate(links)}
-    centroid = sum(points.values()) / len(points)
-    length = np.sqrt(sum(np.abs(p - centroid) ** 2 for p in points.values()) / len(points))
     centres = {link: _mean([points[pair] for pair, _, source, target in pairs
                             if link in (source, target)]) for link in links}
     matrix = np.zeros((*shape, size, size))
     rhs = np.zeros((*shape, size))
-    normals = {}
     for k, (pair, kind, source, target) in enumerate(pairs):
-        point = points[pair]
-        if kind == "P":
-            normals[pair] = loads.normal(pair)
         for link, sign in ((target, 1.0), (source, -1.0)):
             if link not in row:
                 continue
-            r, arm = row[link], (point - centres[link]) / length
+            r, arm = row[link], (points[pair] - centres[link]) / length
             if kind == "R":
                 matrix[..., r, 2 * k] += sign
                 matrix[..., r + 1, 2 * k + 1] += sign
@@ -123,17 +139,7 @@ def equilibrium_linear(group: GroupModel, loads: Loads) -> Solved:
         rhs[..., r] = -force.real
         rhs[..., r + 1] = -force.imag
         rhs[..., r + 2] = -loads.moment(link, centres[link]) / length
-    unknowns, determinant = _solve(matrix, rhs)
-    transfers = []
-    for k, (pair, kind, source, target) in enumerate(pairs):
-        first, second = unknowns[..., 2 * k], unknowns[..., 2 * k + 1]
-        if kind == "R":
-            transfers.append(Transfer(pair, source, target, first + 1j * second,
-                                      points[pair]))
-        else:
-            transfers.append(Transfer(pair, source, target, first * normals[pair],
-                                      points[pair], first, second * length))
-    return Solved(tuple(transfers), determinant, ForceReason.TOGGLE)
+    return matrix, rhs
 
 
 def _mean(points: list[np.ndarray]) -> np.ndarray:
@@ -146,7 +152,8 @@ def _solve(matrix: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     finite = np.all(np.isfinite(matrix), axis=(-2, -1)) & np.all(np.isfinite(rhs), axis=-1)
     safe = np.where(finite[..., None, None], matrix, np.eye(matrix.shape[-1]))
     values = np.linalg.svd(safe, compute_uv=False)
-    rcond = np.where(finite, values[..., -1] / values[..., 0], 0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rcond = np.where(finite & (values[..., 0] > 0), values[..., -1] / values[..., 0], 0.0)
     good = rcond > _DEGENERATE
     safe = np.where(good[..., None, None], safe, np.eye(matrix.shape[-1]))
     x = np.linalg.solve(safe, np.where(good[..., None], rhs, 0.0)[..., None])[..., 0]

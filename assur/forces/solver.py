@@ -363,7 +363,7 @@ def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet
     """Weights, inertia forces and torques, and the external loads of every link; their power
     per unit input speed (the power balance)."""
     model = motion.model
-    sketch = None if data.local else _frames(analyse(model, _sketched(model), analogs=True))
+    sketch = None if data.local else _sketch_frames(motion, frames)
     rotors: dict[LinkId, np.ndarray] = {}
     w2 = omega * omega
 
@@ -375,7 +375,7 @@ def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet
         local: complex | np.ndarray = x * MM
         if sketch is not None:
             origin0, angle0 = sketch[link]
-            local = (x - origin0.v) * np.exp(-1j * angle0.v) * MM
+            local = (x - origin0) * np.exp(-1j * angle0) * MM
         return np.asarray(local * rotors[link])
 
     def power(link: LinkId, force: np.ndarray, moment: np.ndarray) -> np.ndarray:
@@ -408,6 +408,26 @@ def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet
             terms.append(torque * frames[load.link][1].d1)
     zero = np.zeros(bodies.shape)
     return Power(sum(terms, zero), sum((np.abs(t) for t in terms), zero))
+
+
+def _sketch_frames(motion: Motion, frames: dict[LinkId, tuple[Jet, Jet]]
+                   ) -> dict[LinkId, tuple[np.ndarray, np.ndarray]]:
+    """The frame (origin, mm; angle, rad) of every moving link at the sketched position: from
+    the motion where it analyses that position (the crank grids start there), else from an
+    analysis of that one position."""
+    model = motion.model
+    sketched = _sketched(model)
+    q = np.asarray(motion.q)
+    hit = np.flatnonzero(q == sketched[0]) if q.ndim == 1 else np.zeros(0, int)
+    if hit.size == 0 or not np.all(np.take(np.asarray(motion.exists), hit[:1], axis=-1)):
+        frames = _frames(analyse(model, sketched, analogs=True))
+        return {link: (origin.v, angle.v) for link, (origin, angle) in frames.items()}
+    shape = np.shape(motion.exists)
+
+    def at(x: np.ndarray) -> np.ndarray:
+        return np.broadcast_to(x, shape)[..., hit[0]:hit[0] + 1]
+
+    return {link: (at(origin.v), at(angle.v)) for link, (origin, angle) in frames.items()}
 
 
 def _expi(angle: np.ndarray) -> np.ndarray:
@@ -472,7 +492,7 @@ def _groups(bodies: _Bodies, motion: Motion
             singular[new] = group.label
         blocked |= here | apart
         ill |= solved.determinant < NEAR
-        own = (*group.members, *group.composite)
+        own = (group.i, group.j, *group.composite)
         for transfer in solved.transfers:
             if blocked.any():
                 transfer = _blanked(transfer, blocked)

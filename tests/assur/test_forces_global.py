@@ -135,7 +135,12 @@ def _global(motion: assur.Motion, data: ForceData, omega: float, sketched: float
     """
     model = motion.model
     frames = _frames(motion)
-    frames0 = _frames(assur.analyse(model, np.array([sketched]), analogs=True))
+    at = np.flatnonzero(np.asarray(motion.q) == sketched)[:1]
+    if at.size:   # the sketched position is among the analysed ones
+        frames0 = {link: tuple(Jet(j.v[at], j.d1[at], j.d2[at]) for j in pose)
+                   for link, pose in frames.items()}
+    else:
+        frames0 = _frames(assur.analyse(model, np.array([sketched]), analogs=True))
     links = sorted(frames)
     row = {link: 3 * k for k, link in enumerate(links)}
     pairs = list(model.pair_links)

@@ -1,4 +1,4 @@
-"""The equilibrium of an Assur group of any class as one linear solve (``docs/forces.md`` §4.6).
+"""The equilibrium of an Assur group of any class as one linear solve (``docs/forces.md`` §3.1).
 
 A group of n links with p lower pairs is statically determinate: 3n = 2p. Every revolute
 pair has two unknowns (the force of one link on the other), every prismatic pair two (the

@@ -54,8 +54,8 @@ def main() -> None:
                               assur.input_grid(model, 360))):
         count = int(np.prod(np.broadcast_shapes(design.design_shape, q.shape)))
         motion = assur.analyse(design, q, analogs=True)
-        t_kin = best_time(lambda: assur.analyse(design, q, analogs=True), args.repeat)
-        t_force = best_time(lambda: kinetostatics(motion, data, 10.0), args.repeat)
+        t_kin = best_time(lambda d=design, x=q: assur.analyse(d, x, analogs=True), args.repeat)
+        t_force = best_time(lambda m=motion: kinetostatics(m, data, 10.0), args.repeat)
         rows.append((label, count, t_kin, t_force))
     print(f"{args.table.name}, {'wall' if args.wall else 'CPU'} time, best of {args.repeat}")
     print(f"{'run':<22}{'positions':>11}{'kinematics/s':>15}{'forces/s':>13}{'both/s':>12}"

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 import pytest
 from force_tables import TABLES
-from test_forces_global import _global
+from test_forces_global import _global, agrees
 
 import assur
 from assur.forces import ForceData, Load, Mass, kinetostatics
@@ -106,24 +106,7 @@ def _agrees(model: assur.KinematicModel, data: ForceData) -> int:
     assert np.all(np.isnan(result.driving[~solved]))
     if not solved.any():
         return 0
-    forces, moments = [], [(result.driving, expected["driving"])]
-    for pid, (kind, _, _) in model.pair_links.items():
-        reaction = result.reactions[pid]
-        first, second = expected[pid]
-        if kind == "R":
-            forces += [(reaction.x, first), (reaction.y, second)]
-        else:
-            forces.append((reaction.normal, first))
-            moments.append((reaction.moment, second))
-    length = max(np.max(np.abs(motion.joints[p].v[solved])) for p in motion.joints) * MM
-    force_scale = np.max([np.abs(want[solved]) for _, want in forces], axis=0)
-    moment_scale = np.max([np.abs(want[solved]) for _, want in moments], axis=0)
-    moment_scale = moment_scale + force_scale * length
-    for got, want in forces:
-        assert np.all(np.abs(got[solved] - want[solved]) <= 1e-9 * force_scale)
-    for got, want in moments:
-        assert np.all(np.abs(got[solved] - want[solved]) <= 1e-9 * moment_scale)
-    assert np.all(np.abs(result.power_balance[solved]) <= 1e-9 * result.power_scale[solved])
+    agrees(motion, result, expected, solved, 1e-9)
     for residual in result.residuals.values():
         assert np.max(residual.force[solved]) <= 1e-9
         assert np.max(residual.moment[solved]) <= 1e-9

@@ -37,6 +37,8 @@ import numpy as np
 
 import assur
 from assur.forces import ForceData, Load, Mass, kinetostatics
+from assur.kinematics.jets import Jet
+from assur.model import LinkId
 
 ROOT2 = math.sqrt(2.0)
 #: The printed results, N.
@@ -58,8 +60,8 @@ def _example() -> tuple[assur.KinematicModel, ForceData]:
     chain = assur.chain_from_dict({"mechanism": {"pairs": pairs, "inputs": [1]},
                                    "geometry": geometry})
     model = assur.build_model(assur.analyse_structure(chain))
-    masses = {1: Mass(1.0, b / 2, 0.0833417), 2: Mass(1.0, (b + c) / 2, 0.0833417),
-              3: Mass(1.0, c)}
+    masses: dict[LinkId, Mass] = {1: Mass(1.0, b / 2, 0.0833417),
+                                  2: Mass(1.0, (b + c) / 2, 0.0833417), 3: Mass(1.0, c)}
     return model, ForceData(masses, (Load(3, force=100.0 + 0j, point=c),), -10j)
 
 
@@ -67,8 +69,9 @@ def test_the_printed_joint_force_at_b_is_reproduced() -> None:
     model, data = _example()
     motion = assur.analyse(model, np.array([0.0]), analogs=True)   # the sketch: φ = π/4
     # the example's kinematics as printed: v_C = −√2 m/s (opposed by F_ext), ε2 = 0
-    assert abs(motion.joints["C"].d1[0] * 1e-3 + ROOT2) < 1e-12
-    assert abs(motion.frames[2][1].d2[0]) < 1e-12
+    slider, rod = motion.joints["C"], motion.frames[2][1]
+    assert isinstance(slider, Jet) and isinstance(rod, Jet)
+    assert abs(slider.d1[0] * 1e-3 + ROOT2) < 1e-12 and abs(rod.d2[0]) < 1e-12
     result = kinetostatics(motion, data, omega=1.0)
     reaction = result.reactions["B"]
     assert reaction.links == (1, 2)

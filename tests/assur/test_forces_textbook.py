@@ -5,8 +5,9 @@ I. I. Artobolevsky, *Теория механизмов и машин* (4th ed., 
 on the force analysis of mechanisms: d'Alembert's inertia forces, then the groups from the
 last one back to the crank. No published slider-crank example with printed results at three
 crank angles was found (``test_forces_published.py`` reproduces one printed at a single
-angle), so the hand calculation at three angles is our own, written out step by step in ``_hand`` below
-with scalar components only and sharing nothing with the program but the data: the
+angle), so the hand calculation at three angles is our own, written out step by step in
+``_hand`` below with scalar components only and sharing nothing with the program but the
+data: the
 closed-form kinematics of the offset slider-crank differentiated by hand (rod angle β from
 l·sin β = e − r·sin φ), then the slider's x-equation, the rod's moments about the crank pin,
 the slider's y-equation, the rod's force polygon and the crank's moments.

@@ -20,8 +20,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "assur"))
 
-from test_forces_global import _global, worst
-from test_forces_higher import OMEGA, TRIADS, _class_iv, _loads, _triad
+from test_forces_global import _global, worst  # type: ignore[import-not-found]
+from test_forces_higher import OMEGA, TRIADS, _class_iv, _loads, _triad  # type: ignore[import-not-found]
 
 import assur
 from assur.forces import kinetostatics

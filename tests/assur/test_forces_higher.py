@@ -36,7 +36,7 @@ TRIADS = ["RR-RR-RR", "RR-RR-RP", "RR-RR-PR", "RR-RP-RP", "RR-RP-PR", "RR-PR-PR"
 
 def _triad(kind: str, rng: np.random.Generator) -> assur.KinematicModel:
     """A crank 1 (O–B) driving a triad: base 4 with the internal pairs C, D, F; leash 2
-    (B–C), leash 3 (D to E on the frame) and leash 5 (F to G on the frame) of the kinds
+    (B–C, RR or PR), leash 3 (D to E on the frame) and leash 5 (F to G on the frame) of the kinds
     ``kind`` names (RR: two hinges; RP: a block hinged to the base sliding on the frame; PR:
     a leash sliding on a guide of the base, hinged to the frame)."""
     turn = rng.uniform(0, 2 * math.pi)
@@ -64,6 +64,9 @@ def _triad(kind: str, rng: np.random.Generator) -> assur.KinematicModel:
             internal.update(type="P", guide=4)
             geometry[inner]["direction"] = angle
         pairs += [internal, external]
+    if kind[:2] == "PR":   # leash 2 slides on a guide of the base through C
+        pairs[2].update(type="P", guide=4)
+        geometry["C"]["direction"] = float(rng.uniform(-180, 180))
     for pair in pairs[1:]:   # either listing order: the reactions are of the first on the second
         if rng.uniform() < 0.5:
             pair["links"] = pair["links"][::-1]
@@ -121,6 +124,19 @@ def test_triad_reactions_equal_the_global_solve(kind: str) -> None:
         model = _triad(kind, rng)
         assert model.groups[-1].layout is not None
         assert sorted(model.groups[-1].layout.leashes) == sorted(kind.split("-"))
+        compared += _agrees(model, _loads(model, rng))
+    assert compared >= PHI.size / 2
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "kinematics: the frame of a triad's base whose first leash in pair order slides on it "
+    "has its origin at that leash's slider point, which is not fixed to the base (a hinge of "
+    "the base moves by ~30 mm in it), so the points carried by the base are misplaced"))
+def test_triad_without_a_bar_equals_the_global_solve() -> None:
+    compared = 0
+    for seed in SEEDS:
+        rng = np.random.default_rng(seed)
+        model = _triad("PR-RP-PR", rng)
         compared += _agrees(model, _loads(model, rng))
     assert compared >= PHI.size / 2
 

@@ -8,7 +8,8 @@ by up to ±1 %); then the ratio force analysis / kinematics. ``--table`` takes a
 with force sections, e.g. the six-bar with a triad (one linear solve per position).
 
 Run: ``python benchmarks/bench_forces.py [--repeat 5] [--positions 100000] [--wall]``;
-``python benchmarks/bench_forces.py --table input_tables/six_bar_triad.yaml --positions 3600``.
+``python benchmarks/bench_forces.py --table input_tables/six_bar_triad_forces.yaml
+--positions 3600``.
 """
 
 from __future__ import annotations

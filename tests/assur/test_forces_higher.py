@@ -237,7 +237,7 @@ def test_analyze_forces_on_the_six_bar_with_a_triad(capsys: pytest.CaptureFixtur
     (the lever torque printed beside it), and the text report has the force section."""
     import json
 
-    table = str(TABLES / "six_bar_triad.yaml")
+    table = str(TABLES / "six_bar_triad_forces.yaml")
     assert main(["analyze", table, "--forces", "--omega", "10", "--points", "24",
                  "--json"]) == 0
     forces = json.loads(capsys.readouterr().out)["forces"]

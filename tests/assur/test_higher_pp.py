@@ -1,0 +1,159 @@
+"""Triads with a P–P leash on seeded random crank-driven designs.
+
+The P–P leash slides on a guide of the base and on a guide of the crank, so the base turns
+with the crank; the first leash (a bar) hangs on the crank, the second (R–R, R–P or P–R) on
+the frame. Each check compares with a computation written here: the number of real modes by
+a dense sweep of the first leash's angle (the second leash's offset from its circle or line,
+sign changes counted), the closure of every leash and the base's rotation over full cycles,
+and central differences of the positions. ``ASSUR_HIGHER_FULL=1`` takes more designs.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pytest
+
+from assur.kinematics import jets as J
+from assur.kinematics.higher import Triad, TriadInputs, assembly_modes, follow_mode
+
+TWO_PI = 2 * np.pi
+FULL = os.environ.get("ASSUR_HIGHER_FULL") == "1"
+COUNTED, CYCLED, DIFFERENCED = (1000, 60, 12) if FULL else (200, 6, 4)
+SECOND = ["RR", "RP", "PR"]
+
+
+@dataclass
+class Designs:
+    """Per leash the drawn base point b_k, the external point a_k (hinge A_k, or a point of
+    the known link's guide for R–P and P–P) and the guide direction u_k (the known link's
+    for R–P and P–P, the base's for P–R)."""
+
+    second: str
+    base: tuple[np.ndarray, ...]
+    external: tuple[np.ndarray, ...]
+    guide: tuple[np.ndarray, ...]
+
+    @property
+    def group(self) -> Triad:
+        guides = (None, None if self.second == "RR" else self.guide[1], self.guide[2])
+        return Triad(("RR", self.second, "PP"), self.base, self.external,  # type: ignore[arg-type]
+                     guides)  # type: ignore[arg-type]
+
+    def inputs(self, phi: Any) -> TriadInputs:
+        """The crank turns leash 1's hinge and leash 3's guide; leash 2 is on the frame."""
+        turn = J.expi(phi)
+        return TriadInputs((self.external[0] * turn, self.external[1], self.external[2] * turn),
+                           (None, self.guide[1] if self.second == "RP" else None,
+                            self.guide[2] * turn))
+
+
+def random_designs(seed: int, d: int, second: str) -> Designs:
+    """Drawn assembled: an R–P guide through its base hinge, a P–R hinge on the base's guide."""
+    rng = np.random.default_rng(seed)
+
+    def polar(low: float, high: float) -> np.ndarray:
+        return rng.uniform(low, high, d) * np.exp(TWO_PI * 1j * rng.uniform(size=d))
+
+    p1 = polar(20, 40)
+    base = (p1, p1 + polar(30, 60), p1 + polar(30, 60))
+    guide = tuple(np.exp(TWO_PI * 1j * rng.uniform(size=d)) for _ in range(3))
+    second_hinge = {"RR": base[1] + polar(30, 80), "RP": base[1],
+                    "PR": base[1] + rng.uniform(-30, 30, d) * guide[1]}[second]
+    external = (p1 + polar(40, 60), second_hinge, base[2] + polar(10, 30))
+    return Designs(second, base, external, guide)
+
+
+def _second_offset(designs: Designs, p1: Any, turn: Any, phi: Any) -> np.ndarray:
+    """The second leash's distance from its circle (R–R) or line (R–P, P–R), the base at P₁
+    turned by ``turn``, the crank at φ."""
+    b = designs.base
+    point = p1 + (b[1] - b[0])[..., None] * turn
+    a2 = designs.external[1][..., None]
+    if designs.second == "RR":
+        return np.asarray(np.abs(point - a2) - np.abs(b[1] - a2[..., 0])[..., None])
+    if designs.second == "RP":
+        return np.asarray((np.conj(designs.guide[1][..., None]) * (point - a2)).imag)
+    return np.asarray((np.conj(designs.guide[1][..., None] * turn) * (a2 - point)).imag)
+
+
+@pytest.mark.parametrize("second", SECOND)
+def test_mode_count_agrees_with_a_sweep_of_the_first_leash(second: str) -> None:
+    """At a random crank angle the base turns with the crank; the first leash's angle ψ is
+    swept and the sign changes of the second leash's offset counted."""
+    designs = random_designs(90 + SECOND.index(second), COUNTED, second)
+    rng = np.random.default_rng(7)
+    phi = rng.uniform(0, TWO_PI, COUNTED)
+    modes = assembly_modes(designs.group, designs.inputs(phi))
+    samples = 8192
+    psi = (np.arange(samples) + 0.5) * TWO_PI / samples
+    r1 = np.abs(designs.base[0] - designs.external[0])[:, None]
+    a1 = (designs.external[0] * np.exp(1j * phi))[:, None]
+    turn = np.exp(1j * phi)[:, None]
+    offset = _second_offset(designs, a1 + r1 * np.exp(1j * psi), turn, phi)
+    swept = (np.sign(offset) != np.sign(np.roll(offset, -1, axis=1))).sum(axis=1)
+    grazing = np.abs(np.log(np.abs(modes.roots)))
+    robust = ~((grazing > 1e-6) & (grazing < 1e-3)).any(axis=1) \
+        & ~(np.nan_to_num(modes.margin, nan=1.0) < 1e-3).any(axis=1)
+    assert robust.mean() >= 0.95
+    assert (swept[robust] == modes.count[robust]).all()
+    assert set(modes.count.tolist()) == {0, 2}
+    assert designs.group.degree == 1
+
+
+@pytest.mark.parametrize("second", SECOND)
+def test_every_leash_stays_closed_and_the_base_turns_with_the_crank(second: str) -> None:
+    """Over the cycle leash 1 keeps its length, leash 2 stays on its circle or line, the
+    base keeps its shape and turns with the crank (to 1e-9 L), wherever the mode exists."""
+    designs = random_designs(100 + SECOND.index(second), CYCLED, second)
+    phi = np.radians(np.arange(0.0, 360.0, 5.0))
+    solution = follow_mode(designs.group, designs.inputs, phi)
+    ok = solution.exists
+    assert ok.any(axis=1).all()
+    assert (~ok).any()  # some designs stop assembling: both ends of the mode are exercised
+    size = np.broadcast_to(np.asarray(designs.group.size)[:, None], ok.shape)
+    b = designs.base
+    p = [np.asarray(solution.joints[f"P{i + 1}"]) for i in range(3)]
+    a1 = designs.external[0][:, None] * np.exp(1j * phi)
+    errors = [np.abs(p[0] - a1) - np.abs(b[0] - designs.external[0])[:, None],
+              _second_offset(designs, p[0], np.exp(1j * phi), phi)]
+    shape = ((0, 1), (0, 2)) if second != "PR" else ((0, 2),)  # a P–R leash's P2 is A₂
+    errors += [np.abs(p[i] - p[j]) - np.abs(b[i] - b[j])[:, None] for i, j in shape]
+    errors.append(np.angle(np.exp(1j * (solution.rotations["base"] - phi))) * size)
+    errors.append(np.angle(np.exp(1j * (solution.rotations["leash3"] - phi))) * size)
+    for error in errors:
+        assert (np.abs(error[ok]) <= 1e-9 * size[ok]).all()
+
+
+@pytest.mark.parametrize("second", SECOND)
+def test_analogs_against_central_differences(second: str) -> None:
+    d = DIFFERENCED
+    designs = random_designs(110 + SECOND.index(second), d, second)
+    centre = np.radians([17.0, 95.0, 200.0, 290.0])
+    h = 1e-5
+    solution = follow_mode(designs.group, designs.inputs,
+                           np.concatenate([centre, centre - h, centre + h]), analogs=True)
+    n = len(centre)
+    ok = solution.exists.reshape(d, 3, n).all(axis=1) & (solution.margin[:, :n] > 0.05)
+    assert ok.any()
+    size = np.asarray(designs.group.size)[:, None]
+    for name, jet in list(solution.joints.items()) + list(solution.rotations.items()):
+        v, v1 = jet.v.reshape(d, 3, n), jet.d1.reshape(d, 3, n)
+        d2 = jet.d2.reshape(d, 3, n)
+        unit = np.broadcast_to(size, ok.shape) if name in solution.joints else 1.0
+        for fd, analog in (((v[:, 2] - v[:, 1]) / (2 * h), v1[:, 0]),
+                           ((v1[:, 2] - v1[:, 1]) / (2 * h), d2[:, 0])):
+            error = np.abs(fd - analog) / (np.abs(analog) + unit)
+            assert (error[ok] <= 1e-5).all(), (name, error[ok].max())
+
+
+def test_a_pp_leash_needs_a_bar_first_and_comes_last() -> None:
+    designs = random_designs(120, 1, "RP")
+    g = designs.group
+    for kinds in (("RR", "PP", "RP"), ("RP", "RP", "PP")):
+        with pytest.raises(ValueError, match="P–P"):
+            Triad(kinds, g.base, g.external, (designs.guide[0], designs.guide[1],  # type: ignore[arg-type]
+                                              designs.guide[2]))

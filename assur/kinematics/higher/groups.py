@@ -202,7 +202,7 @@ class Triad(HigherGroup):
         Leash kinds, internal pair first. A bar, if there is one, must come first; a triad
         without a bar has all three equations linear in W (§2.2). A P–P leash comes last,
         after a bar: it fixes the base's rotation θ to the known link's, and the unknowns
-        become the polar angle ψ and length ρ of W = P₁ − A₁ and θ (§2.3).
+        become the rotation ψ of W = P₁ − A₁ from the sketch, its length ρ and θ (§2.3).
     base : tuple of 3 complex
         Drawn points of the base: the hinge P_k⁰ (R–R, R–P) or a point of the base's guide
         (P–R, usually the drawn slider point).
@@ -297,9 +297,9 @@ class Triad(HigherGroup):
         return np.asarray(np.abs(stack[..., :, None] - stack[..., None, :]).max(axis=(-2, -1)))
 
     def drawn(self) -> np.ndarray:
-        """(W⁰_x, W⁰_y, 0) with W⁰ = P₁⁰ − A₁⁰; (arg W⁰, |W⁰|, 0) with a P–P leash."""
+        """(W⁰_x, W⁰_y, 0) with W⁰ = P₁⁰ − A₁⁰; (0, |W⁰|, 0) with a P–P leash."""
         w = np.asarray(self.base[0]) - np.asarray(self.external[0])
-        first = (np.angle(w), np.abs(w)) if self.pinned else (w.real, w.imag)
+        first = (0.0 * np.abs(w), np.abs(w)) if self.pinned else (w.real, w.imag)
         return np.stack(np.broadcast_arrays(*first, np.zeros(np.shape(w))), axis=-1)
 
     @property
@@ -312,8 +312,14 @@ class Triad(HigherGroup):
 
     def _pose(self, x: Unknowns, k: TriadInputs) -> tuple[Value, Value]:
         """P₁ and E = e^{iθ}."""
-        w = x[1] * J.expi(x[0]) if self.pinned else x[0] + 1j * x[1]
+        w = x[1] * self._heading * J.expi(x[0]) if self.pinned else x[0] + 1j * x[1]
         return k.a[0] + w, J.expi(x[2])
+
+    @cached_property
+    def _heading(self) -> np.ndarray:
+        """W⁰/|W⁰|: the drawn direction of the first leash, from which ψ is measured."""
+        w = np.asarray(self.base[0]) - np.asarray(self.external[0])
+        return np.asarray(w / np.abs(w))
 
     def _turn(self, k: TriadInputs) -> Value:
         """E_K = u_K/u_K⁰: the rotation of the known link carrying a P–P leash's guide."""
@@ -364,7 +370,7 @@ class Triad(HigherGroup):
         The Jacobian over (W_x, W_y, θ) has the rows [ν_k, cross(X_k − P₁, ν_k)], the line
         coordinates of the constraint lines. A P–P leash's row is [0, 0, L cos(θ − θ_K)] (the
         line at infinity, [0, 0, 1] in the margin), and the columns of W become those of ψ
-        and ρ by ∂W/∂ψ = iW, ∂W/∂ρ = W/ρ.
+        and ρ by ∂W/∂ψ = iW, ∂W/∂ρ = W/ρ (W = ρ·e^{iψ}·W⁰/|W⁰|).
         """
         nu, at, base, p1 = self._constraints(x, k)
         centre = base.mean(axis=-1, keepdims=True)
@@ -377,7 +383,8 @@ class Triad(HigherGroup):
         jac, rows = jac.copy(), rows.copy()
         jac[..., 2, :] = np.stack(np.broadcast_arrays(0.0 * turn, 0.0 * turn, turn), axis=-1)
         rows[..., 2, :] = (0.0, 0.0, 1.0)
-        along = np.conj(jac[..., 0] + 1j * jac[..., 1]) * np.exp(1j * x[..., None, 0])
+        heading = self._heading[..., None] * np.exp(1j * x[..., None, 0])
+        along = np.conj(jac[..., 0] + 1j * jac[..., 1]) * heading
         jac[..., 0], jac[..., 1] = (1j * along).real * x[..., None, 1], along.real
         return jac, rows
 
@@ -418,7 +425,7 @@ class Triad(HigherGroup):
     def recover(self, e: np.ndarray, k: TriadInputs) -> np.ndarray:
         """W = −i(p_ia_j − p_ja_i)/cross(a_i, a_j) (after a bar i, j = 2, 3; without one the
         two lines that meet at the widest angle), θ = arg E; with a P–P leash (ψ, ρ, θ) =
-        (arg e, r₁, θ_K)."""
+        (arg e, r₁, θ_K), ψ the first leash's rotation from the sketch."""
         if self.pinned:
             theta = np.angle(self._turn(k))
             return np.stack(np.broadcast_arrays(np.angle(e), self._length(0), theta), axis=-1)

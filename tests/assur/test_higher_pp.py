@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -157,3 +158,34 @@ def test_a_pp_leash_needs_a_bar_first_and_comes_last() -> None:
         with pytest.raises(ValueError, match="P–P"):
             Triad(kinds, g.base, g.external, (designs.guide[0], designs.guide[1],  # type: ignore[arg-type]
                                               designs.guide[2]))
+
+
+def test_the_example_table_keeps_its_leashes_on_their_pairs() -> None:
+    """``six_bar_triad_pp.yaml``: 2 modes at the sketch; over the turn the base turns with
+    the crank, the bars keep their lengths, the leash 5 slides on the base's guide through
+    G4 and on the crank's guide through G1 at a fixed angle to both, and both blocks stay
+    on one rigid leash."""
+    from assur.kinematics.analysis import analyse, values
+    from assur.kinematics.build import load_model
+    from assur.kinematics.higher.kind import HigherGroupSolution
+
+    table = Path(__file__).parents[2] / "input_tables" / "six_bar_triad_pp.yaml"
+    model = load_model(table)
+    phi = np.radians(np.arange(0.0, 360.0, 5.0))
+    motion = analyse(model, phi)
+    assert motion.exists.all()
+    turn = np.exp(1j * phi)
+    b, c, d, g4, g1 = (np.asarray(values(motion.joints[p])) for p in ("B", "C", "D", "G4", "G1"))
+    drawn = {"B": 40 + 0j, "C": 60 + 90j, "D": 40 + 100j, "E": -30 + 140j, "G4": 100 + 100j,
+             "G1": 50 + 40j}
+    assert np.abs(b - drawn["B"] * turn).max() < 1e-9
+    assert np.abs(np.abs(c - b) - abs(drawn["C"] - drawn["B"])).max() < 1e-9
+    assert np.abs(np.abs(d - drawn["E"]) - abs(drawn["D"] - drawn["E"])).max() < 1e-9
+    assert np.abs(d - c - (drawn["D"] - drawn["C"]) * turn).max() < 1e-9  # base turns by φ
+    base_guide = (np.conj(turn) * (g4 - c - (drawn["G4"] - drawn["C"]) * turn)).imag
+    crank_guide = (np.conj(np.exp(1j * np.radians(70)) * turn)
+                   * (g1 - drawn["G1"] * turn)).imag
+    assert np.abs(base_guide).max() < 1e-9 and np.abs(crank_guide).max() < 1e-9
+    assert np.abs(g1 - g4 - (drawn["G1"] - drawn["G4"]) * turn).max() < 1e-9  # one leash
+    solution = motion.solutions["III(2,3,4,5)"]
+    assert isinstance(solution, HigherGroupSolution) and len(solution.modes()) == 2

@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+from higher_checks import check_analogs_against_central_differences, random_base
 
 from assur.kinematics import jets as J
 from assur.kinematics.higher import Triad, TriadInputs, assembly_modes, follow_mode
@@ -55,16 +56,10 @@ class Designs:
 def random_designs(seed: int, d: int, second: str) -> Designs:
     """Drawn assembled: an R–P guide through its base hinge, a P–R hinge on the base's guide."""
     rng = np.random.default_rng(seed)
-
-    def polar(low: float, high: float) -> np.ndarray:
-        return rng.uniform(low, high, d) * np.exp(TWO_PI * 1j * rng.uniform(size=d))
-
-    p1 = polar(20, 40)
-    base = (p1, p1 + polar(30, 60), p1 + polar(30, 60))
-    guide = tuple(np.exp(TWO_PI * 1j * rng.uniform(size=d)) for _ in range(3))
+    polar, base, guide = random_base(rng, d)
     second_hinge = {"RR": base[1] + polar(30, 80), "RP": base[1],
                     "PR": base[1] + rng.uniform(-30, 30, d) * guide[1]}[second]
-    external = (p1 + polar(40, 60), second_hinge, base[2] + polar(10, 30))
+    external = (base[0] + polar(40, 60), second_hinge, base[2] + polar(10, 30))
     return Designs(second, base, external, guide)
 
 
@@ -131,24 +126,8 @@ def test_every_leash_stays_closed_and_the_base_turns_with_the_crank(second: str)
 
 @pytest.mark.parametrize("second", SECOND)
 def test_analogs_against_central_differences(second: str) -> None:
-    d = DIFFERENCED
-    designs = random_designs(110 + SECOND.index(second), d, second)
-    centre = np.radians([17.0, 95.0, 200.0, 290.0])
-    h = 1e-5
-    solution = follow_mode(designs.group, designs.inputs,
-                           np.concatenate([centre, centre - h, centre + h]), analogs=True)
-    n = len(centre)
-    ok = solution.exists.reshape(d, 3, n).all(axis=1) & (solution.margin[:, :n] > 0.05)
-    assert ok.any()
-    size = np.asarray(designs.group.size)[:, None]
-    for name, jet in list(solution.joints.items()) + list(solution.rotations.items()):
-        v, v1 = jet.v.reshape(d, 3, n), jet.d1.reshape(d, 3, n)
-        d2 = jet.d2.reshape(d, 3, n)
-        unit = np.broadcast_to(size, ok.shape) if name in solution.joints else 1.0
-        for fd, analog in (((v[:, 2] - v[:, 1]) / (2 * h), v1[:, 0]),
-                           ((v1[:, 2] - v1[:, 1]) / (2 * h), d2[:, 0])):
-            error = np.abs(fd - analog) / (np.abs(analog) + unit)
-            assert (error[ok] <= 1e-5).all(), (name, error[ok].max())
+    designs = random_designs(110 + SECOND.index(second), DIFFERENCED, second)
+    check_analogs_against_central_differences(designs.group, designs.inputs, DIFFERENCED)
 
 
 def test_a_pp_leash_needs_a_bar_first_and_comes_last() -> None:

@@ -202,7 +202,8 @@ class Triad(HigherGroup):
         Leash kinds, internal pair first. A bar, if there is one, must come first; a triad
         without a bar has all three equations linear in W (§2.2). A P–P leash comes last,
         after a bar: it fixes the base's rotation θ to the known link's, and the unknowns
-        become the rotation ψ of W = P₁ − A₁ from the sketch, its length ρ and θ (§2.3).
+        become the rotation ψ of W = P₁ − A₁ from the sketch, its length ρ and θ
+        (``docs/higher_groups.md``, "A P–P leash").
     base : tuple of 3 complex
         Drawn points of the base: the hinge P_k⁰ (R–R, R–P) or a point of the base's guide
         (P–R, usually the drawn slider point).
@@ -260,7 +261,7 @@ class Triad(HigherGroup):
 
     @property
     def pinned(self) -> bool:
-        """The last leash slides on both its pairs: θ is the known link's rotation (§2.3)."""
+        """The last leash slides on both its pairs: θ is the known link's rotation."""
         return self.leashes[2] == "PP"
 
     @property
@@ -281,7 +282,7 @@ class Triad(HigherGroup):
     @property
     def degree(self) -> int:
         """3, or 2 when leashes 2 and 3 are both R–P or both P–R; without a bar 1 when the
-        three leashes are of one kind, else 2 (§2.2); 1 with a P–P leash (§2.3)."""
+        three leashes are of one kind, else 2 (§2.2); 1 with a P–P leash."""
         if self.pinned:
             return 1
         if self.barless:
@@ -411,7 +412,7 @@ class Triad(HigherGroup):
     def eliminant(self, e: np.ndarray, k: TriadInputs) -> np.ndarray:
         """Φ(θ) = |p₂a₃ − p₃a₂|² − r₁² cross(a₂, a₃)²; without a bar the determinant of the
         three rows [a_k, p_k] (the three lines a_k·W = p_k meet in one W); with a P–P leash
-        the second leash's equation at W = r₁e^{iψ}, θ = θ_K (§2.3)."""
+        the second leash's equation at ρ = r₁, θ = θ_K."""
         if self.pinned:
             return np.asarray(self.residual(self.recover(e, k), k)[1])
         coef, rhs = self._linear(e, k)

@@ -168,3 +168,31 @@ def test_the_example_table_keeps_its_leashes_on_their_pairs() -> None:
     assert np.abs(g1 - g4 - (drawn["G1"] - drawn["G4"]) * turn).max() < 1e-9  # one leash
     solution = motion.solutions["III(2,3,4,5)"]
     assert isinstance(solution, HigherGroupSolution) and len(solution.modes()) == 2
+
+
+@pytest.mark.parametrize(("changes", "code", "data"), [
+    ({"{id: B, type: R, links: [1, 2]}": "{id: B, type: P, links: [1, 2], guide: 1}",
+      "{id: E, type: R, links: [3, 0]}": "{id: E, type: P, links: [3, 0], guide: 0}",
+      "B: {point: [40, 0]}": "B: {point: [40, 0], direction: 20}",
+      "E: {point: [-30, 140]}": "E: {point: [-30, 140], direction: 80}"},
+     "higher.sketch.leashes", {"group": "III(2,3,4,5)", "found": "R–P, R–P, P–P"}),
+    ({"direction: 70}": "direction: 0}"},
+     "higher.sketch.pp_parallel", {"group": "III(2,3,4,5)", "pair": "G1"}),
+])
+def test_a_pp_leash_without_a_bar_or_on_parallel_guides_is_refused(
+        tmp_path: Path, changes: dict[str, str], code: str, data: dict[str, str]) -> None:
+    """The example with both other leashes made R–P (no bar), or with the crank's guide
+    drawn parallel to the base's: one problem naming the group."""
+    from assur.errors import TableError
+    from assur.kinematics.build import load_model
+
+    text = (Path(__file__).parents[2] / "input_tables" / "six_bar_triad_pp.yaml").read_text(
+        encoding="utf-8")
+    for old, new in changes.items():
+        assert text.count(old) == 1
+        text = text.replace(old, new)
+    table = tmp_path / "table.yaml"
+    table.write_text(text, encoding="utf-8")
+    with pytest.raises(TableError) as error:
+        load_model(table)
+    assert [(i.message.code, i.message.data) for i in error.value.issues] == [(code, data)]

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+from higher_checks import check_analogs_against_central_differences, random_base
 
 from assur.kinematics import jets as J
 from assur.kinematics.higher import Triad, TriadInputs, assembly_modes, follow_mode
@@ -59,13 +60,7 @@ def random_designs(seed: int, d: int, kinds: str) -> Designs:
     """Drawn assembled: an R–P leash's guide passes through its base hinge, a P–R leash's
     hinge lies on the base's guide through its base point."""
     rng = np.random.default_rng(seed)
-
-    def polar(low: float, high: float) -> np.ndarray:
-        return rng.uniform(low, high, d) * np.exp(TWO_PI * 1j * rng.uniform(size=d))
-
-    p1 = polar(20, 40)
-    base = (p1, p1 + polar(30, 60), p1 + polar(30, 60))
-    guide = tuple(np.exp(TWO_PI * 1j * rng.uniform(size=d)) for _ in range(3))
+    _, base, guide = random_base(rng, d)
     external = tuple(b if kind == "RP" else b + rng.uniform(-30, 30, d) * u
                      for b, u, kind in zip(base, guide, kinds.split("-"), strict=True))
     return Designs(tuple(kinds.split("-")), base, external, guide)  # type: ignore[arg-type]
@@ -160,24 +155,8 @@ def test_every_leash_stays_closed_over_the_cycle(kinds: str) -> None:
 
 @pytest.mark.parametrize("kinds", KINDS)
 def test_analogs_against_central_differences(kinds: str) -> None:
-    d = DIFFERENCED
-    designs = random_designs(80 + KINDS.index(kinds), d, kinds)
-    centre = np.radians([17.0, 95.0, 200.0, 290.0])
-    h = 1e-5
-    solution = follow_mode(designs.group, designs.inputs,
-                           np.concatenate([centre, centre - h, centre + h]), analogs=True)
-    n = len(centre)
-    ok = solution.exists.reshape(d, 3, n).all(axis=1) & (solution.margin[:, :n] > 0.05)
-    assert ok.any()
-    size = np.asarray(designs.group.size)[:, None]
-    for name, jet in list(solution.joints.items()) + list(solution.rotations.items()):
-        v, v1 = jet.v.reshape(d, 3, n), jet.d1.reshape(d, 3, n)
-        d2 = jet.d2.reshape(d, 3, n)
-        unit = np.broadcast_to(size, ok.shape) if name in solution.joints else 1.0
-        for fd, analog in (((v[:, 2] - v[:, 1]) / (2 * h), v1[:, 0]),
-                           ((v1[:, 2] - v1[:, 1]) / (2 * h), d2[:, 0])):
-            error = np.abs(fd - analog) / (np.abs(analog) + unit)
-            assert (error[ok] <= 1e-5).all(), (name, error[ok].max())
+    designs = random_designs(80 + KINDS.index(kinds), DIFFERENCED, kinds)
+    check_analogs_against_central_differences(designs.group, designs.inputs, DIFFERENCED)
 
 
 def test_the_example_table_keeps_its_blocks_on_their_guides() -> None:

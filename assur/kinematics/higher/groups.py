@@ -36,8 +36,9 @@ Value = Any
 #: The unknowns: an ndarray (..., n) or a sequence of n values (jets for the analogs).
 Unknowns = Sequence[Value] | np.ndarray
 #: Leash kinds, internal pair first: a bar, a block hinged to the base on a guide of a known
-#: link, a leash hinged to a known link sliding along a guide of the base.
-Leash = Literal["RR", "RP", "PR"]
+#: link, a leash hinged to a known link sliding along a guide of the base, a leash sliding on
+#: both (its guides fix the base's rotation to the known link's).
+Leash = Literal["RR", "RP", "PR", "PP"]
 T = TypeVar("T")
 
 
@@ -183,7 +184,8 @@ class TriadInputs:
         Per leash: the external hinge A_k (R–R, P–R) or the point Q_k of the guide (R–P, the
         drawn hinge P_k⁰ carried by the guide's link).
     u : tuple of 3 complex or None
-        Per leash: the unit direction u_k of the guide of an R–P leash; None otherwise.
+        Per leash: the unit direction u_k of the known link's guide of an R–P or P–P leash;
+        None otherwise.
     """
 
     a: tuple[Value, Value, Value]
@@ -196,17 +198,20 @@ class Triad(HigherGroup):
 
     Parameters
     ----------
-    leashes : tuple of 3 of {"RR", "RP", "PR"}
+    leashes : tuple of 3 of {"RR", "RP", "PR", "PP"}
         Leash kinds, internal pair first. A bar, if there is one, must come first; a triad
-        without a bar has all three equations linear in W (§2.2).
+        without a bar has all three equations linear in W (§2.2). A P–P leash comes last,
+        after a bar: it fixes the base's rotation θ to the known link's, and the unknowns
+        become the rotation ψ of W = P₁ − A₁ from the sketch, its length ρ and θ
+        (``docs/higher_groups.md``, "A P–P leash").
     base : tuple of 3 complex
         Drawn points of the base: the hinge P_k⁰ (R–R, R–P) or a point of the base's guide
         (P–R, usually the drawn slider point).
     external : tuple of 3 complex
-        Drawn external points: the hinge A_k⁰ (R–R, P–R) or a point of the guide (R–P).
+        Drawn external points: the hinge A_k⁰ (R–R, P–R) or a point of the guide (R–P, P–P).
     guide : tuple of 3 complex or None
-        Drawn unit guide directions: of the known link's guide (R–P) or of the base's guide
-        (P–R); None for a bar.
+        Drawn unit guide directions: of the known link's guide (R–P, P–P) or of the base's
+        guide (P–R); None for a bar.
 
     Examples
     --------
@@ -222,14 +227,15 @@ class Triad(HigherGroup):
     guide: tuple[Value, Value, Value] = (None, None, None)
 
     n = 3
-    eliminated = 2
-    lengths = (True, True, False)
 
     def __post_init__(self) -> None:
         if "RR" in self.leashes and self.leashes[0] != "RR":
             raise ValueError(render("higher.error.first_leash", found="–".join(self.leashes[0])))
+        if "PP" in self.leashes[:2] or (self.pinned and self.leashes[0] != "RR"):
+            raise ValueError(render("higher.error.pp_leash",
+                                    found=", ".join("–".join(k) for k in self.leashes)))
         for kind, u in zip(self.leashes, self.guide, strict=True):
-            if kind not in ("RR", "RP", "PR"):
+            if kind not in ("RR", "RP", "PR", "PP"):
                 raise ValueError(render("higher.error.leash_kind", found=kind))
             if kind != "RR" and u is None:
                 raise ValueError(render("higher.error.guide_missing", found=kind))
@@ -254,6 +260,21 @@ class Triad(HigherGroup):
         return self._lengths[k]
 
     @property
+    def pinned(self) -> bool:
+        """The last leash slides on both its pairs: θ is the known link's rotation."""
+        return self.leashes[2] == "PP"
+
+    @property
+    def eliminated(self) -> int:  # type: ignore[override]
+        """ψ (index 0) with a P–P leash, else θ (index 2)."""
+        return 0 if self.pinned else 2
+
+    @property
+    def lengths(self) -> tuple[bool, ...]:  # type: ignore[override]
+        """(ψ, ρ, θ) with a P–P leash, else (W_x, W_y, θ)."""
+        return (False, True, False) if self.pinned else (True, True, False)
+
+    @property
     def barless(self) -> bool:
         """No leash is a bar: every equation is linear in W at a fixed θ."""
         return "RR" not in self.leashes
@@ -261,7 +282,9 @@ class Triad(HigherGroup):
     @property
     def degree(self) -> int:
         """3, or 2 when leashes 2 and 3 are both R–P or both P–R; without a bar 1 when the
-        three leashes are of one kind, else 2 (§2.2)."""
+        three leashes are of one kind, else 2 (§2.2); 1 with a P–P leash."""
+        if self.pinned:
+            return 1
         if self.barless:
             return 1 if len(set(self.leashes)) == 1 else 2
         return 2 if self.leashes[1] == self.leashes[2] != "RR" else 3
@@ -275,9 +298,10 @@ class Triad(HigherGroup):
         return np.asarray(np.abs(stack[..., :, None] - stack[..., None, :]).max(axis=(-2, -1)))
 
     def drawn(self) -> np.ndarray:
-        """(W⁰_x, W⁰_y, 0) with W⁰ = P₁⁰ − A₁⁰."""
+        """(W⁰_x, W⁰_y, 0) with W⁰ = P₁⁰ − A₁⁰; (0, |W⁰|, 0) with a P–P leash."""
         w = np.asarray(self.base[0]) - np.asarray(self.external[0])
-        return np.stack(np.broadcast_arrays(w.real, w.imag, np.zeros(np.shape(w))), axis=-1)
+        first = (0.0 * np.abs(w), np.abs(w)) if self.pinned else (w.real, w.imag)
+        return np.stack(np.broadcast_arrays(*first, np.zeros(np.shape(w))), axis=-1)
 
     @property
     def sketch(self) -> dict[str, Value]:
@@ -289,10 +313,22 @@ class Triad(HigherGroup):
 
     def _pose(self, x: Unknowns, k: TriadInputs) -> tuple[Value, Value]:
         """P₁ and E = e^{iθ}."""
-        return k.a[0] + (x[0] + 1j * x[1]), J.expi(x[2])
+        w = x[1] * self._heading * J.expi(x[0]) if self.pinned else x[0] + 1j * x[1]
+        return k.a[0] + w, J.expi(x[2])
+
+    @cached_property
+    def _heading(self) -> np.ndarray:
+        """W⁰/|W⁰|: the drawn direction of the first leash, from which ψ is measured."""
+        w = np.asarray(self.base[0]) - np.asarray(self.external[0])
+        return np.asarray(w / np.abs(w))
+
+    def _turn(self, k: TriadInputs) -> Value:
+        """E_K = u_K/u_K⁰: the rotation of the known link carrying a P–P leash's guide."""
+        return k.u[2] / self.guide[2]
 
     def residual(self, x: Unknowns, k: TriadInputs) -> list[Value]:
-        """f_k: (|P_k − A_k|² − r_k²)/(2r_k), n_k·(P_k − Q_k) or n_k·(P₁ + s_kE − A_k)."""
+        """f_k: (|P_k − A_k|² − r_k²)/(2r_k), n_k·(P_k − Q_k), n_k·(P₁ + s_kE − A_k) or,
+        for a P–P leash, L·sin(θ − θ_K)."""
         p1, e = self._pose(_columns(x), k)
         out: list[Value] = []
         for i, kind in enumerate(self.leashes):
@@ -303,6 +339,8 @@ class Triad(HigherGroup):
                 out.append((J.dot(arm, arm) - r * r) / (2.0 * r))
             elif kind == "RP":
                 out.append(J.dot(1j * k.u[i], point - k.a[i]))
+            elif kind == "PP":
+                out.append(self.size * J.cross(self._turn(k), e))
             else:
                 out.append(J.dot(1j * self.guide[i] * e, point - k.a[i]))
         return out
@@ -318,7 +356,7 @@ class Triad(HigherGroup):
             if kind == "RR":
                 nu.append((point - k.a[i]) / self._length(i))
                 at.append(point)
-            elif kind == "RP":
+            elif kind in ("RP", "PP"):  # a P–P row is replaced in lines()
                 nu.append(1j * np.asarray(k.u[i]))
                 at.append(point)
             else:
@@ -327,18 +365,29 @@ class Triad(HigherGroup):
         stack = [np.stack(np.broadcast_arrays(*v), axis=-1) for v in (nu, at, base)]
         return stack[0], stack[1], stack[2], np.asarray(p1)
 
-    def jacobian(self, x: np.ndarray, k: TriadInputs) -> np.ndarray:
-        """Rows [ν_k, cross(X_k − P₁, ν_k)]: the line coordinates of the constraint lines."""
-        nu, at, _, p1 = self._constraints(x, k)
-        return _line_rows(nu, at, p1[..., None], 1.0)
-
     def lines(self, x: np.ndarray, k: TriadInputs) -> tuple[np.ndarray, np.ndarray]:
-        """The Jacobian and the margin rows about the base centroid."""
+        """The Jacobian and the margin rows about the base centroid.
+
+        The Jacobian over (W_x, W_y, θ) has the rows [ν_k, cross(X_k − P₁, ν_k)], the line
+        coordinates of the constraint lines. A P–P leash's row is [0, 0, L cos(θ − θ_K)] (the
+        line at infinity, [0, 0, 1] in the margin), and the columns of W become those of ψ
+        and ρ by ∂W/∂ψ = iW, ∂W/∂ρ = W/ρ (W = ρ·e^{iψ}·W⁰/|W⁰|).
+        """
         nu, at, base, p1 = self._constraints(x, k)
         centre = base.mean(axis=-1, keepdims=True)
         spread = np.sqrt((np.abs(base - centre) ** 2).mean(axis=-1, keepdims=True))
         rows = _line_rows(nu / np.abs(nu), at, centre, spread)
-        return _line_rows(nu, at, p1[..., None], 1.0), rows
+        jac = _line_rows(nu, at, p1[..., None], 1.0)
+        if not self.pinned:
+            return jac, rows
+        turn = np.asarray(np.cos(x[..., 2] - np.angle(self._turn(k))) * self.size)
+        jac, rows = jac.copy(), rows.copy()
+        jac[..., 2, :] = np.stack(np.broadcast_arrays(0.0 * turn, 0.0 * turn, turn), axis=-1)
+        rows[..., 2, :] = (0.0, 0.0, 1.0)
+        heading = self._heading[..., None] * np.exp(1j * x[..., None, 0])
+        along = np.conj(jac[..., 0] + 1j * jac[..., 1]) * heading
+        jac[..., 0], jac[..., 1] = (1j * along).real * x[..., None, 1], along.real
+        return jac, rows
 
     def _linear(self, e: np.ndarray, k: TriadInputs) -> tuple[list[Any], list[Any]]:
         """a_k·W = p_k at the base rotation E (§2.2): k = 2, 3 after a bar, all three
@@ -362,7 +411,10 @@ class Triad(HigherGroup):
 
     def eliminant(self, e: np.ndarray, k: TriadInputs) -> np.ndarray:
         """Φ(θ) = |p₂a₃ − p₃a₂|² − r₁² cross(a₂, a₃)²; without a bar the determinant of the
-        three rows [a_k, p_k] (the three lines a_k·W = p_k meet in one W)."""
+        three rows [a_k, p_k] (the three lines a_k·W = p_k meet in one W); with a P–P leash
+        the second leash's equation at ρ = r₁, θ = θ_K."""
+        if self.pinned:
+            return np.asarray(self.residual(self.recover(e, k), k)[1])
         coef, rhs = self._linear(e, k)
         if self.barless:
             return np.asarray(sum(rhs[i] * J.cross(coef[(i + 1) % 3], coef[(i + 2) % 3])
@@ -373,7 +425,11 @@ class Triad(HigherGroup):
 
     def recover(self, e: np.ndarray, k: TriadInputs) -> np.ndarray:
         """W = −i(p_ia_j − p_ja_i)/cross(a_i, a_j) (after a bar i, j = 2, 3; without one the
-        two lines that meet at the widest angle), θ = arg E."""
+        two lines that meet at the widest angle), θ = arg E; with a P–P leash (ψ, ρ, θ) =
+        (arg e, r₁, θ_K), ψ the first leash's rotation from the sketch."""
+        if self.pinned:
+            theta = np.angle(self._turn(k))
+            return np.stack(np.broadcast_arrays(np.angle(e), self._length(0), theta), axis=-1)
         coef, rhs = self._linear(e, k)
         pairs = ((1, 2), (2, 0), (0, 1)) if self.barless else ((0, 1),)
         best, w = None, None
@@ -403,7 +459,7 @@ class Triad(HigherGroup):
             if kind == "RR":
                 drawn = np.asarray(self.base[i]) - np.asarray(self.external[i])
                 out[f"leash{i + 1}"] = J.arg((p1 + self._offset(i) * e - k.a[i]) / drawn)
-            elif kind == "RP":
+            elif kind in ("RP", "PP"):
                 out[f"leash{i + 1}"] = J.arg(k.u[i] / np.asarray(self.guide[i]))
             else:
                 out[f"leash{i + 1}"] = cols[2]

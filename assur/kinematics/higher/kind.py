@@ -205,8 +205,9 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
     Returns
     -------
     Sketched or None
-        Its :class:`Layout` and the frames of its links; None after recording a problem (a
-        leash with two sliders, a block's guide on the block, an actuator in the group).
+        Its :class:`Layout` and the frames of its links; None after recording a problem (two
+        leashes with two sliders, or one without a bar; a P–P leash on parallel guides; a
+        block's guide on the block; an actuator in the group).
     """
     pairs = build.topo.pairs
     if group.composite:
@@ -219,9 +220,9 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
         inner = next(p for p in group.internal if leash in pairs[p].links)
         kind = pairs[inner].type.value + pairs[ext].type.value
         rows.append((kind != "RR", kind, leash, inner, ext, known))
-    rows.sort(key=lambda row: row[0])
+    rows.sort(key=lambda row: (row[0], row[1] == "PP"))
     kinds = [row[1] for row in rows]
-    if "PP" in kinds:
+    if kinds.count("PP") > 1 or ("PP" in kinds and kinds[0] != "RR"):
         _problem(build, label, "leashes", found=", ".join("–".join(k) for k in kinds))
         return None
     frames: dict[LinkId, tuple[complex, float]] = {}
@@ -229,12 +230,19 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
     guides: list[Guide | None] = []
     drawn: list[complex] = []
     for _, kind, leash, inner, ext, known in rows:
-        if kind == "RP":
+        if kind in ("RP", "PP"):
             if pairs[ext].guide not in (None, known):
                 _problem(build, label, "block_guide", pair=str(ext))
                 return None
             point, theta = build.point(pairs[inner]), build.direction(pairs[ext])
-            guides.append(build.guide(pairs[ext], known, point, theta, label,
+            line = build.point(pairs[ext]) if kind == "PP" else point
+            if kind == "PP":
+                own = build.direction(pairs[inner])
+                if abs(math.sin(own - theta)) < 1e-6:
+                    _problem(build, label, "pp_parallel", pair=str(ext))
+                    return None
+                build.put(label, f"beta_{inner}", math.degrees(own))
+            guides.append(build.guide(pairs[ext], known, line, theta, label,
                                       (f"x_{ext}", f"y_{ext}", f"beta_{ext}", None), None))
             anchors.append(None)
             frames[leash] = (point, theta)
@@ -395,7 +403,7 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
     p = state.flat_value
 
     def guide(k0: TriadInputs, i: int, kind: str) -> Any:
-        if kind == "RP":
+        if kind in ("RP", "PP"):
             return k0.u[i]
         if kind == "PR":
             return J.expi(p(_column(group.label, f"beta_{layout.internal[i]}")))
@@ -415,6 +423,11 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
                                                strict=True)):
         name = TRIAD_LINKS[i + 1]
         anchor, guide_k = layout.anchors[i], layout.guides[i]
+        if kind == "PP":
+            assert guide_k is not None
+            frames[name] = _pp_sliders(state, group, i, follow, (base[i], k0.a[i], k0.u[i]),
+                                       guide_k)
+            continue
         if guide_k is not None:  # R–P: a block hinged to the base on a known link's guide
             point = follow.joints[f"P{i + 1}"]
             line, angle, offset = state.guide(guide_k)
@@ -441,6 +454,39 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
     joints = {f"P{i + 1}": (ext if kind == "PR" else inner) for i, (kind, inner, ext) in
               enumerate(zip(layout.leashes, layout.internal, layout.external, strict=True))}
     return _record(state, group, follow, solved, joints, frames)
+
+
+def _pp_sliders(state: _State, group: GroupModel, i: int, follow: HigherSolution,
+                drawn: tuple[Any, Any, Any], guide_k: Guide) -> tuple[Any, float]:
+    """Write the two sliders of a P–P leash; its frame (origin, drawn angle).
+
+    The leash turns with the base (θ); its point drawn at the internal pair, X⁰, runs on the
+    base's guide, X = P_k + t·u_bE, and its point drawn at the external pair, Y⁰ (the known
+    link's guide point at the reference position), on the known link's guide (Q, u_K):
+    cross(u_K, X + (Y⁰ − X⁰)E − Q) = 0 gives t. ``drawn`` holds X⁰, Y⁰ and u_K⁰.
+    """
+    layout = group.layout
+    assert layout is not None
+    inner, ext = layout.internal[i], layout.external[i]
+    leash = layout.links[i + 1]
+    theta = follow.rotations["base"]
+    turn = J.expi(theta)
+    own = state.flat_value(_column(group.label, f"beta_{inner}"))
+    along = J.expi(theta + own)
+    line, angle, offset = state.guide(guide_k)
+    known = J.expi(angle)
+    arm = _col(drawn[1] - drawn[0]) * turn
+    start = follow.joints[f"P{i + 1}"]
+    t = -J.cross(known, start + arm - line) / J.cross(known, along)
+    point = start + t * along
+    outer = point + arm
+    state.joints[inner], state.joints[ext] = point, outer
+    carrier = state.model.pair_links[inner][2] or layout.links[0]
+    slider = next(link for link in state.model.pair_links[inner][1] if link != carrier)
+    state.slider(inner, carrier, slider, point, t, start, theta + own, 0.0)
+    state.slider(ext, guide_k.carrier, leash, outer, J.dot(outer - line, known), line, angle,
+                 offset)
+    return point, _phase(drawn[2])
 
 
 def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution:

@@ -1,0 +1,47 @@
+"""Checks shared by the tests of triads on seeded random designs."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from assur.kinematics.higher import Triad, follow_mode
+
+
+def check_analogs_against_central_differences(group: Triad, inputs: Callable[[Any], Any],
+                                              d: int) -> None:
+    """The exact analogs of every joint and rotation of ``d`` designs against central
+    differences (step 1e-5 rad) at four crank angles, where the mode exists with margin."""
+    centre = np.radians([17.0, 95.0, 200.0, 290.0])
+    h = 1e-5
+    solution = follow_mode(group, inputs, np.concatenate([centre, centre - h, centre + h]),
+                           analogs=True)
+    n = len(centre)
+    ok = solution.exists.reshape(d, 3, n).all(axis=1) & (solution.margin[:, :n] > 0.05)
+    assert ok.any()
+    size = np.asarray(group.size)[:, None]
+    for name, jet in list(solution.joints.items()) + list(solution.rotations.items()):
+        v, v1 = jet.v.reshape(d, 3, n), jet.d1.reshape(d, 3, n)
+        d2 = jet.d2.reshape(d, 3, n)
+        unit = np.broadcast_to(size, ok.shape) if name in solution.joints else 1.0
+        for fd, analog in (((v[:, 2] - v[:, 1]) / (2 * h), v1[:, 0]),
+                           ((v1[:, 2] - v1[:, 1]) / (2 * h), d2[:, 0])):
+            error = np.abs(fd - analog) / (np.abs(analog) + unit)
+            assert (error[ok] <= 1e-5).all(), (name, error[ok].max())
+
+
+def random_base(rng: np.random.Generator, d: int
+                ) -> tuple[Callable[[float, float], np.ndarray], tuple[np.ndarray, ...],
+                           tuple[np.ndarray, ...]]:
+    """A sampler of random vectors (length in [low, high], any direction), the drawn base
+    points P₁ (20–40 from the origin), P₂, P₃ (30–60 from P₁) and three unit guide directions
+    of ``d`` designs."""
+    def polar(low: float, high: float) -> np.ndarray:
+        return rng.uniform(low, high, d) * np.exp(2j * np.pi * rng.uniform(size=d))
+
+    p1 = polar(20, 40)
+    base = (p1, p1 + polar(30, 60), p1 + polar(30, 60))
+    guide = tuple(np.exp(2j * np.pi * rng.uniform(size=d)) for _ in range(3))
+    return polar, base, guide

@@ -193,6 +193,8 @@ def findings(argv: list[str]) -> tuple[int, list[str]]:
             code = main(argv)
         except SystemExit as exc:
             code = exc.code if isinstance(exc.code, int) else 2
+    if argv[0] not in ("check", "analyze") and code != 2:
+        return code, []  # a run's own notes (hints of a search), not findings
     return code, [line[4:] for line in out.getvalue().splitlines() if line.startswith("  - ")]
 
 

@@ -430,7 +430,13 @@ _BLOCKING = {"E_OVERCONSTRAINED", "E_UNDERCONSTRAINED", "W_PASSIVE_LINK", "E_PRI
 
 
 def _applicability(a: StructuralAnalysis, graph: BodyGraph) -> list[Message]:
-    """Failed DGTU conditions of ``method.md`` §1.1, each as a sentence."""
+    """Failed DGTU conditions of ``method.md`` §1.1, each as a sentence.
+
+    An open chain (idle or disconnected links) fails condition 4 only: the count of W, the
+    free or redundant constraints and the layering into dyads (conditions 5, 6 and 8) then
+    count the idle links too, and fail only because of them.  A chain without an input fails
+    condition 5 only: nothing can be layered on no input group (conditions 6 and 8).
+    """
     failed: list[Message] = []
     codes = {d.code for d in a.issues}
     chain = a.chain
@@ -449,21 +455,23 @@ def _applicability(a: StructuralAnalysis, graph: BodyGraph) -> list[Message]:
     if bad_inputs:
         names = ", ".join(str(d.link if d.link is not None else d.pair) for d in bad_inputs)
         failed.append(Message("structure.condition.crank", {"names": names}))
-    if "W_IDLE_LINK" in codes or "E_DISCONNECTED" in codes:
+    closed = "W_IDLE_LINK" not in codes and "E_DISCONNECTED" not in codes
+    if not closed:
         failed.append(Message("structure.condition.closed"))
-    if a.W != 1 or a.W_star != 1 or a.m != 1:
+    if closed and (a.W != 1 or a.W_star != 1 or a.m != 1):
         failed.append(Message("structure.condition.mobility",
                               {"W": a.W, "W_star": a.W_star, "m": a.m}))
     blocking = sorted(codes & _BLOCKING)
-    if blocking:
+    layered = closed and a.m > 0
+    if layered and blocking:
         failed.append(Message("structure.condition.redundant", {"codes": ", ".join(blocking)}))
     heavy = [link for link in chain.moving_links if len(chain.pairs_of(link)) > 3]
     if heavy:
         failed.append(Message("structure.condition.degree",
                               {"names": ", ".join(map(str, heavy))}))
     others = [g.label for g in a.groups if not g.is_dyad]
-    if a.leftover or others or any(d.code in {"E_UNSUPPORTED_GROUP", "E_INTERNAL"} for d in
-                                   a.issues):
+    if layered and (a.leftover or others or any(
+            d.code in {"E_UNSUPPORTED_GROUP", "E_INTERNAL"} for d in a.issues)):
         failed.append(Message("structure.condition.dyads", {"what": _incomplete(a, others)}))
     return failed
 

@@ -42,7 +42,7 @@ from typing import Any
 import yaml  # type: ignore[import-untyped]
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from fuzz_tables import LOOK_ALIKES, TABLES, command, copy_tables, shipped_tables  # noqa: E402
+from fuzz_tables import LOOK_ALIKES, TABLES, command, copy_tables, shipped_tables
 
 #: A number in a line of YAML (outside its comment), with its fraction if it has one.
 _NUMBER = re.compile(r"(?<![\w.#-])(\d+)\.(\d+)(?![\w.])")
@@ -129,8 +129,9 @@ def _tree_slips(tree: Any) -> Iterator[tuple[str, str, Callable[[Any], None]]]:
                 other = keys[position + 1]
                 yield "swapped-columns", f"{where}<->{other}", \
                     lambda t, p=path, o=other: _swap(_at(t, p[:-1]), p[-1], o)
-        if isinstance(value, str) and _lookalike(value):
-            yield "lookalike-value", where, lambda t, p=path, n=_lookalike(value): _set(t, p, n)
+        look = _lookalike(value) if isinstance(value, str) else None
+        if look:
+            yield "lookalike-value", where, lambda t, p=path, n=look: _set(t, p, n)
         if _is_number(value):
             yield "wrong-type", where, lambda t, p=path: _set(t, p, "ten")
             if not (isinstance(key, str) and key in _RANGED):

@@ -20,6 +20,7 @@ kept for the kinematic model. Every problem of a table is collected and raised a
 from __future__ import annotations
 
 import os
+from collections.abc import Collection
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
@@ -180,13 +181,15 @@ def _read_chain_form(reader: TableReader) -> Chain:
         reader.problem("mechanism 'frame'", "chain.frame_not_a_link", frame=repr(frame),
                        links=_list(links))
     inputs = _read_inputs(mech)
-    _check_pairs(reader, raw_pairs, set(links))
+    _check_pairs(reader, raw_pairs, set(links) | ({frame} - {MISSING}))  # (frame: reported)
     read = isinstance(mech.mapping.get("pairs"), list) and \
         len(raw_pairs) == len(mech.mapping["pairs"])
     _check_inputs(reader, inputs, set(links), raw_pairs, frame,
                   links_known=known is not None or read, pairs_known=read)
     joints = {pair.id: (pair.type.value, tuple(pair.links)) for pair in raw_pairs}
-    geometry = _geometry(reader, top, mech, joints, links, frame, inputs, all_joints=read)
+    named = {drive.pair for drive in inputs if drive.pair is not None} - set(joints)
+    geometry = _geometry(reader, top, mech, joints, links, frame, inputs,
+                         reported=named if read else None)
     general = top.get("general", kind="mapping", required=False, default=None)
     rows, _ = _read_rows(top, required=False)
     claims = _read_claims(top)
@@ -421,8 +424,9 @@ def recentre_hinge(origin: PairId, links: list[LinkId] | tuple[LinkId, ...],
 
 def _geometry(reader: TableReader, top: Node, mech: Node | None, joints: Joints,
               links: list[LinkId], frame: LinkId, inputs: list[Drive], *,
-              all_joints: bool = True) -> Sketch | None:
-    """The sketch, given inside ``mechanism:`` or at the top of the file (not both)."""
+              reported: Collection[PairId] | None = ()) -> Sketch | None:
+    """The sketch, given inside ``mechanism:`` or at the top of the file (not both);
+    ``reported`` as in :func:`~assur.io.sketch.read_sketch`."""
     inner = mech.get("geometry", kind="mapping", required=False, default=None) if mech else None
     outer = top.get("geometry", kind="mapping", required=False, default=None)
     if isinstance(inner, dict) and isinstance(outer, dict):
@@ -432,7 +436,7 @@ def _geometry(reader: TableReader, top: Node, mech: Node | None, joints: Joints,
     if not isinstance(data, dict) or frame is MISSING:
         return None
     return read_sketch(reader, data, joints, links=links, frame=frame,
-                       optional=actuator_pairs(inputs, joints, frame), all_joints=all_joints)
+                       optional=actuator_pairs(inputs, joints, frame), reported=reported)
 
 
 def _read_claims(top: Node) -> dict[str, int]:
@@ -532,12 +536,8 @@ def _read_table_form(reader: TableReader) -> Chain:
     claims = _read_claims(top)
     if not rows and not reader.issues:
         reader.problem("structure_identification", "chain.no_rows")
-    for row in rows if read is not None else ():  # (a row without i or j may hold the link)
-        for key in ("i_minus_1", "j_minus_1", "i_plus_1", "j_plus_1"):
-            link = row.get(key)
-            if link is not None and link not in read | {frame}:
-                reader.problem(f"{row.location} {key!r}", "chain.link_not_in_rows",
-                               link=repr(link), frame=repr(frame))
+    if read is not None:  # (a row whose i or j could not be read may hold the link)
+        _check_members(reader, rows, read | {frame}, frame)
     if reader.issues:
         return _empty(reader.source)
     members = {frame} | {link for row in rows for link in (row.i, row.j) if link is not None}
@@ -556,6 +556,17 @@ def _read_table_form(reader: TableReader) -> Chain:
                  pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,
                  source=reader.source, group_params=_group_params(rows),
                  identification=tuple(rows), claims=claims)
+
+
+def _check_members(reader: TableReader, rows: list[IdentificationRow], members: set[LinkId],
+                   frame: LinkId) -> None:
+    """Every link a row joins to (``i_minus_1`` … ``j_plus_1``) is the frame or a row's link."""
+    for row in rows:
+        for key in ("i_minus_1", "j_minus_1", "i_plus_1", "j_plus_1"):
+            link = row.get(key)
+            if link is not None and link not in members:
+                reader.problem(f"{row.location} {key!r}", "chain.link_not_in_rows",
+                               link=repr(link), frame=repr(frame))
 
 
 def _group_pairs(row: IdentificationRow, frame: LinkId) -> list[Pair]:

@@ -99,7 +99,7 @@ def actuator_pairs(inputs: Iterable[Any], joints: Joints, frame: Any) -> set[Pai
 
 def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterable[LinkId],
                 frame: LinkId, optional: Iterable[PairId] = (),
-                all_joints: bool = True) -> Sketch | None:
+                reported: Iterable[PairId] | None = ()) -> Sketch | None:
     """Read the ``geometry:`` section, recording every problem in ``reader``.
 
     Parameters
@@ -115,10 +115,10 @@ def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterab
     optional : iterable of joint ids
         Joints that may be left out: driven actuator pairs, which the kinematic model does
         not use (the rank test and the scheme then do without the sketch).
-    all_joints : bool
-        Whether ``joints`` holds every joint of the chain; False when a row of the pairs
-        table could not be read (reported already), and a key that names no joint of
-        ``joints`` may name that pair's: it is then not reported.
+    reported : iterable of joint ids, or None
+        Pairs whose absence is reported already (a pair an input names): a key naming one
+        is not reported again.  None when a row of the pairs table could not be read: a key
+        that names no joint may then name that row's pair, and is not reported.
 
     Returns
     -------
@@ -131,7 +131,8 @@ def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterab
         reader.problem("geometry", "sketch.not_mapping", found=describe(data))
         return None
     raw = {normalise_id(key): value for key, value in data.items()}
-    meant = _unknown_keys(reader, raw, joints) if all_joints else set()
+    meant = set() if reported is None else \
+        _unknown_keys(reader, {k: v for k, v in raw.items() if k not in set(reported)}, joints)
     points: dict[PairId, complex] = {}
     directions: dict[PairId, Direction] = {}
     for key, (ptype, ends) in joints.items():

@@ -193,7 +193,8 @@ def _read_chain_form(reader: TableReader) -> Chain:
     general = top.get("general", kind="mapping", required=False, default=None)
     rows, _ = _read_rows(top, required=False)
     claims = _read_claims(top)
-    forces = _read_forces(top, links, frame, inputs, joints)
+    every = [*links, *(link for link in dict.fromkeys(mentioned) if link not in links)]
+    forces = _read_forces(top, every, frame, inputs, joints)  # (a link not in links: reported)
     if reader.issues:
         return _empty(reader.source)
     input_links = [d.link for d in inputs if d.link is not None]
@@ -560,13 +561,20 @@ def _read_table_form(reader: TableReader) -> Chain:
 
 def _check_members(reader: TableReader, rows: list[IdentificationRow], members: set[LinkId],
                    frame: LinkId) -> None:
-    """Every link a row joins to (``i_minus_1`` … ``j_plus_1``) is the frame or a row's link."""
+    """Every link a row joins to (``i_minus_1`` … ``j_plus_1``) is the frame or a row's link;
+    a link that is not is reported once, where it is first named, with the other places."""
+    places: dict[LinkId, list[str]] = {}
     for row in rows:
         for key in ("i_minus_1", "j_minus_1", "i_plus_1", "j_plus_1"):
             link = row.get(key)
             if link is not None and link not in members:
-                reader.problem(f"{row.location} {key!r}", "chain.link_not_in_rows",
-                               link=repr(link), frame=repr(frame))
+                places.setdefault(link, []).append(f"{row.location} {key!r}")
+    for link, (first, *others) in places.items():
+        if others:
+            reader.problem(first, "chain.link_not_in_rows_also", link=repr(link),
+                           frame=repr(frame), places="; ".join(others))
+        else:
+            reader.problem(first, "chain.link_not_in_rows", link=repr(link), frame=repr(frame))
 
 
 def _group_pairs(row: IdentificationRow, frame: LinkId) -> list[Pair]:

@@ -413,6 +413,11 @@ class Node:
         """Whether the key is present (even with a null value)."""
         return key in self.mapping
 
+    def given(self, key: str) -> bool:
+        """Whether the key is present, or written misspelt (reported already): a check that
+        a key is there uses this, so that a misspelt key is not also reported missing."""
+        return key in self.mapping or key in self.misspelt
+
     def get(self, key: str, *, kind: str = "any", required: bool = True, default: Any = MISSING,
             check: Callable[[Any], Message | None] | None = None,
             nullable: bool = False) -> Any:

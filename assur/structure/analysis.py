@@ -27,6 +27,7 @@ import networkx as nx  # type: ignore[import-untyped]
 
 from assur.io.chain_table import recentre_hinge
 from assur.model import Chain, Drive, LinkId, PairId, PairType, id_key
+from assur.structure._fast import closed_by_dyads
 from assur.structure.classification import AssurGroup, classify, input_group, roman
 from assur.structure.diagnostics import Diagnostic, diagnostic
 from assur.structure.peeling import BodyGraph, Peeling, body_graph, peel
@@ -199,7 +200,8 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
     issues += _with_suggestions(chain, peeling.issues) if suggest else peeling.issues
     for group in groups:
         issues += [d for d in group.issues if not _in_loop(d, loops)]
-    issues += _idle(chain)
+    if not closed_by_dyads(graph, peeling):
+        issues += _idle(chain)
     if rank is not None:
         issues += _rank_issues(chain, rank, peeling)
     issues += [diagnostic("I_HIGH_DEGREE", [link], [p.id for p in chain.pairs_of(link)],

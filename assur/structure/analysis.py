@@ -436,7 +436,9 @@ def _applicability(a: StructuralAnalysis, graph: BodyGraph) -> list[Message]:
 
     An open chain (idle or disconnected links) fails condition 4 only: the count of W, the
     free or redundant constraints and the layering into dyads (conditions 5, 6 and 8) then
-    count the idle links too, and fail only because of them.  A chain without an input fails
+    count the idle links too, and fail only because of them; an input link with no pair
+    with the frame is then a part of the gap (a link number mistyped in its pair), not a
+    failure of condition 3.  A chain without an input fails
     condition 5 only: nothing can be layered on no input group (conditions 6 and 8).
     """
     failed: list[Message] = []
@@ -453,11 +455,16 @@ def _applicability(a: StructuralAnalysis, graph: BodyGraph) -> list[Message]:
         link = driven_link(drive)
         return link in graph.driven and chain.pair(graph.driven[link]).type is PairType.R
 
-    bad_inputs = [d for d in chain.inputs if not driven_by_hinge(d)]
+    def off_frame(drive: Drive) -> bool:  # an input link with no pair with the frame
+        return drive.link is not None and drive.pair is None and all(
+            chain.frame not in p.links for p in chain.pairs_of(drive.link))
+
+    closed = "W_IDLE_LINK" not in codes and "E_DISCONNECTED" not in codes
+    bad_inputs = [d for d in chain.inputs if not driven_by_hinge(d)
+                  and (closed or not off_frame(d))]
     if bad_inputs:
         names = ", ".join(str(d.link if d.link is not None else d.pair) for d in bad_inputs)
         failed.append(Message("structure.condition.crank", {"names": names}))
-    closed = "W_IDLE_LINK" not in codes and "E_DISCONNECTED" not in codes
     if not closed:
         failed.append(Message("structure.condition.closed"))
     if closed and (a.W != 1 or a.W_star != 1 or a.m != 1):

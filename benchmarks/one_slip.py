@@ -42,7 +42,14 @@ from typing import Any
 import yaml  # type: ignore[import-untyped]
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from fuzz_tables import LOOK_ALIKES, TABLES, command, copy_tables, shipped_tables
+from fuzz_tables import (
+    LOOK_ALIKES,
+    TABLES,
+    command,
+    copy_tables,
+    shipped_tables,
+    tree_paths,
+)
 
 #: A number in a line of YAML (outside its comment), with its fraction if it has one.
 _NUMBER = re.compile(r"(?<![\w.#-])(\d+)\.(\d+)(?![\w.])")
@@ -58,17 +65,6 @@ class Slip:
     mistake: str
     where: str
     text: str
-
-
-def _paths(node: Any, prefix: tuple[Any, ...] = ()) -> Iterator[tuple[Any, ...]]:
-    if isinstance(node, dict):
-        for key, value in node.items():
-            yield (*prefix, key)
-            yield from _paths(value, (*prefix, key))
-    elif isinstance(node, list):
-        for index, value in enumerate(node):
-            yield (*prefix, index)
-            yield from _paths(value, (*prefix, index))
 
 
 def _at(tree: Any, path: tuple[Any, ...]) -> Any:
@@ -106,52 +102,58 @@ def _is_number(value: Any) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
-def _tree_slips(tree: Any) -> Iterator[tuple[str, str, Callable[[Any], None]]]:
-    """Every one-place mistake of a parsed table: (mistake, where, the change in place)."""
-    for path in _paths(tree):
+#: One change of a parsed table: (what: rename, set, swap or pop; the path; its argument).
+Edit = tuple[str, tuple[Any, ...], Any]
+
+
+def _tree_slips(tree: Any) -> Iterator[tuple[str, str, Edit]]:
+    """Every one-place mistake of a parsed table: (mistake, where, the change)."""
+    for path in tree_paths(tree):
         parent, key = _at(tree, path[:-1]), path[-1]
         value = parent[key]
         where = ".".join(map(str, path))
         if isinstance(parent, dict) and isinstance(key, str):
             look, typo = _lookalike(key), _misspelt(key)
             if look:
-                yield "lookalike-key", where, lambda t, p=path, n=look: _renamed(
-                    _at(t, p[:-1]), p[-1], n)
+                yield "lookalike-key", where, ("rename", path, look)
             if typo:
-                yield "misspelt-key", where, lambda t, p=path, n=typo: _renamed(
-                    _at(t, p[:-1]), p[-1], n)
+                yield "misspelt-key", where, ("rename", path, typo)
             if key in _RANGED and not isinstance(value, (list, dict)):
-                yield "out-of-range", where, lambda t, p=path: _set(t, p, _RANGED[p[-1]])
+                yield "out-of-range", where, ("set", path, _RANGED[key])
             keys = list(parent)
             position = keys.index(key)
             if position + 1 < len(keys) and isinstance(_at(tree, path[:-2]) if len(path) > 1
                                                        else None, list):
                 other = keys[position + 1]
-                yield "swapped-columns", f"{where}<->{other}", \
-                    lambda t, p=path, o=other: _swap(_at(t, p[:-1]), p[-1], o)
+                yield "swapped-columns", f"{where}<->{other}", ("swap", path, other)
         look = _lookalike(value) if isinstance(value, str) else None
         if look:
-            yield "lookalike-value", where, lambda t, p=path, n=look: _set(t, p, n)
+            yield "lookalike-value", where, ("set", path, look)
         if _is_number(value):
-            yield "wrong-type", where, lambda t, p=path: _set(t, p, "ten")
+            yield "wrong-type", where, ("set", path, "ten")
             if not (isinstance(key, str) and key in _RANGED):
-                yield "out-of-range", where, lambda t, p=path: _set(t, p, 10 ** 12)
+                yield "out-of-range", where, ("set", path, 10 ** 12)
         elif isinstance(value, list) and value:
-            yield "wrong-type", where, lambda t, p=path: _set(t, p, 5)
+            yield "wrong-type", where, ("set", path, 5)
             if isinstance(value[0], dict):
                 for index in range(len(value)):
-                    yield "missing-row", f"{where}[{index}]", \
-                        lambda t, p=path, i=index: _at(t, p).pop(i)
+                    yield "missing-row", f"{where}[{index}]", ("pop", path, index)
         elif isinstance(value, dict) and value:
-            yield "wrong-type", where, lambda t, p=path: _set(t, p, [1, 2])
+            yield "wrong-type", where, ("set", path, [1, 2])
 
 
-def _set(tree: Any, path: tuple[Any, ...], value: Any) -> None:
-    _at(tree, path[:-1])[path[-1]] = value
-
-
-def _swap(row: dict[Any, Any], a: Any, b: Any) -> None:
-    row[a], row[b] = row[b], row[a]
+def _apply(tree: Any, edit: Edit) -> None:
+    """Make one change of :func:`_tree_slips` in ``tree``."""
+    what, path, argument = edit
+    parent, key = _at(tree, path[:-1]), path[-1]
+    if what == "rename":
+        _renamed(parent, key, argument)
+    elif what == "set":
+        parent[key] = argument
+    elif what == "swap":
+        parent[key], parent[argument] = parent[argument], parent[key]
+    else:
+        parent[key].pop(argument)
 
 
 def _comma_slips(text: str) -> Iterator[tuple[str, str]]:
@@ -170,9 +172,9 @@ def slips(origin: str, text: str, sites: int, rng: random.Random) -> list[Slip]:
     """Up to ``sites`` mutants of each mistake for one table (drawn with ``rng``)."""
     by_mistake: dict[str, list[Slip]] = {}
     tree = yaml.safe_load(text)
-    for mistake, where, change in list(_tree_slips(tree)):
+    for mistake, where, edit in list(_tree_slips(tree)):
         copy = yaml.safe_load(text)
-        change(copy)
+        _apply(copy, edit)
         by_mistake.setdefault(mistake, []).append(Slip(origin, mistake, where, yaml.safe_dump(
             copy, allow_unicode=True, sort_keys=False, default_flow_style=None)))
     for where, changed in _comma_slips(text):
@@ -231,9 +233,10 @@ def census(sites: int, seed: int, folder: Path, only: set[str] | None = None,
             target.write_text(slip.text, encoding="utf-8")
             worst: list[str] = []
             for argv in argvs:
-                found = findings(argv)[1]
-                before = list(base.get(tuple(argv[:1]), []))
-                extra = [f for f in found if not (f in before and not before.remove(f))]
+                extra = findings(argv)[1]
+                for line in base.get(tuple(argv[:1]), []):  # what the unchanged table gets
+                    if line in extra:
+                        extra.remove(line)
                 if len(extra) > len(worst):
                     worst, shown = extra, argv
             counts[f"{slip.mistake} {min(len(worst), 2)}"] += 1

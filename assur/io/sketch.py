@@ -131,8 +131,7 @@ def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterab
         reader.problem("geometry", "sketch.not_mapping", found=describe(data))
         return None
     raw = {normalise_id(key): value for key, value in data.items()}
-    meant = set() if reported is None else \
-        _unknown_keys(reader, {k: v for k, v in raw.items() if k not in set(reported)}, joints)
+    meant = set() if reported is None else _unknown_keys(reader, raw, joints, set(reported))
     points: dict[PairId, complex] = {}
     directions: dict[PairId, Direction] = {}
     for key, (ptype, ends) in joints.items():
@@ -147,9 +146,11 @@ def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterab
     return Sketch(points, directions, rotation, stroke, tracing, margin)
 
 
-def _unknown_keys(reader: TableReader, raw: dict[Any, Any], joints: Joints) -> set[PairId]:
-    """Report the keys that name no joint; returns the joints they were meant for (a joint
-    with a look-alike or a close name), whose missing point is then not reported again."""
+def _unknown_keys(reader: TableReader, raw: dict[Any, Any], joints: Joints,
+                  reported: set[PairId]) -> set[PairId]:
+    """Report the keys that name no joint (but those in ``reported``); returns the joints
+    they were meant for (a joint with a look-alike or a close name), whose missing point is
+    then not reported again."""
     allowed = [str(j) for j in joints] + list(RESERVED)
     by_latin = {latin_form(str(joint)): joint for joint in joints if joint not in raw}
     meant: set[PairId] = set()
@@ -159,7 +160,9 @@ def _unknown_keys(reader: TableReader, raw: dict[Any, Any], joints: Joints) -> s
         where = f"geometry {key!r}"
         twin = by_latin.get(latin_form(str(key)))
         hint = difflib.get_close_matches(str(key), allowed, n=1, cutoff=0.5)
-        if twin is not None:
+        if key in reported:
+            meant.update(() if twin is None else (twin,))
+        elif twin is not None:
             reader.problem(where, "sketch.unknown_key_lookalike", hint=str(twin),
                            letters=lookalike_letters(str(key)) or lookalike_letters(str(twin)))
             meant.add(twin)

@@ -438,8 +438,10 @@ def _applicability(a: StructuralAnalysis, graph: BodyGraph) -> list[Message]:
     free or redundant constraints and the layering into dyads (conditions 5, 6 and 8) then
     count the idle links too, and fail only because of them; an input link with no pair
     with the frame is then a part of the gap (a link number mistyped in its pair), not a
-    failure of condition 3.  A chain without an input fails
-    condition 5 only: nothing can be layered on no input group (conditions 6 and 8).
+    failure of condition 3.  A chain short of inputs (none, or fewer than W where more
+    inputs would complete the decomposition, as the finding suggests) fails condition 5
+    only: the free links and the links in no group (conditions 6 and 8) are the inputs
+    that are missing.
     """
     failed: list[Message] = []
     codes = {d.code for d in a.issues}
@@ -471,7 +473,10 @@ def _applicability(a: StructuralAnalysis, graph: BodyGraph) -> list[Message]:
         failed.append(Message("structure.condition.mobility",
                               {"W": a.W, "W_star": a.W_star, "m": a.m}))
     blocking = sorted(codes & _BLOCKING)
-    layered = closed and a.m > 0
+    under = [d for d in a.issues if d.code == "E_UNDERCONSTRAINED"]
+    short = a.m == 0 or (a.W_star > a.m and bool(under) and all("hint" in d.notes for d in under)
+                         and not codes & (_BLOCKING - {"E_UNDERCONSTRAINED"}))
+    layered = closed and not short
     if layered and blocking:
         failed.append(Message("structure.condition.redundant", {"codes": ", ".join(blocking)}))
     heavy = [link for link in chain.moving_links if len(chain.pairs_of(link)) > 3]

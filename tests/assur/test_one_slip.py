@@ -86,6 +86,10 @@ SLIPS: dict[str, Slip] = {
         "hydraulic_boom.yaml", lambda t: t["mechanism"]["pairs"].pop(
             next(k for k, p in enumerate(t["mechanism"]["pairs"]) if p["id"] == "Pd")),
         "mechanism.inputs[0] 'pair'", "chain.unknown_pair", {"pair": "'Pd'"}),
+    "look-alike letter in the id of the driven pair": (
+        "hydraulic_boom.yaml", lambda t: next(
+            p for p in t["mechanism"]["pairs"] if p["id"] == "Pd").update(id="Рd"),
+        "mechanism.inputs[0] 'pair'", "chain.unknown_pair", {"pair": "'Pd'"}),
     "an assembly variant out of range": (
         "course_11_link_table.yaml", lambda t: t["structure_identification"][1].update(variant=7),
         "structure_identification[1] (L1, i = 2, j = 3) 'variant'", "table.rule_broken", {}),
@@ -157,3 +161,11 @@ def test_a_mistyped_link_number_fails_the_closed_chain_condition_only(pair: int,
 
 def test_a_chain_without_its_input_fails_the_mobility_condition_only() -> None:
     assert _verdict(lambda m: m.update(inputs=[])) == ["structure.condition.mobility"]
+
+
+def test_a_chain_short_of_an_input_fails_the_mobility_condition_only() -> None:
+    """The five-bar with one of its two inputs left out: W = 2, one input."""
+    table = _table("five_bar_two_inputs.yaml")
+    table["mechanism"]["inputs"].pop(1)
+    assert [m.code for m in analyse_structure(chain_from_dict(table)).applicability] == [
+        "structure.condition.mobility"]

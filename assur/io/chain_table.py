@@ -184,7 +184,7 @@ def _read_chain_form(reader: TableReader) -> Chain:
     _check_pairs(reader, raw_pairs, set(links) | ({frame} - {MISSING}))  # (frame: reported)
     read = isinstance(mech.mapping.get("pairs"), list) and \
         len(raw_pairs) == len(mech.mapping["pairs"])
-    _check_inputs(reader, inputs, set(links), raw_pairs, frame,
+    _check_inputs(reader, inputs, set(links) | set(mentioned), raw_pairs, frame,  # (reported)
                   links_known=known is not None or read, pairs_known=read)
     joints = {pair.id: (pair.type.value, tuple(pair.links)) for pair in raw_pairs}
     named = {drive.pair for drive in inputs if drive.pair is not None} - set(joints)

@@ -79,6 +79,10 @@ SLIPS: dict[str, Slip] = {
         "whitworth.yaml", lambda t: t["mechanism"]["links"].pop(3),
         "mechanism.pairs[2] (id 'C') 'links'", "chain.unknown_link_pairs",
         {"link": "3", "pairs": "'D', 'E'"}),
+    "the input link missing from the links table": (
+        "slotted_lever.yaml", lambda t: t["mechanism"]["links"].pop(1),
+        "mechanism.pairs[0] (id 'A') 'links'", "chain.unknown_link_pairs",
+        {"link": "1", "pairs": "'B'"}),
     "the frame missing from the links table": (
         "whitworth.yaml", lambda t: t["mechanism"]["links"].pop(0),
         "mechanism 'frame'", "chain.frame_not_a_link", {"frame": "0"}),

@@ -99,16 +99,16 @@ def command(kind: str, path: str, rng: random.Random) -> list[str]:
 # ------------------------------------------------------------------------------ mutations
 
 
-def _paths(node: Any, prefix: tuple[Any, ...] = ()) -> Iterator[tuple[Any, ...]]:
+def tree_paths(node: Any, prefix: tuple[Any, ...] = ()) -> Iterator[tuple[Any, ...]]:
     """Every path to a value inside parsed YAML."""
     if isinstance(node, dict):
         for key, value in node.items():
             yield (*prefix, key)
-            yield from _paths(value, (*prefix, key))
+            yield from tree_paths(value, (*prefix, key))
     elif isinstance(node, list):
         for index, value in enumerate(node):
             yield (*prefix, index)
-            yield from _paths(value, (*prefix, index))
+            yield from tree_paths(value, (*prefix, index))
 
 
 def _parent(tree: Any, path: tuple[Any, ...]) -> Any:
@@ -128,7 +128,7 @@ def _odd_value(rng: random.Random, old: Any) -> Any:
 
 
 def _tree_mutation(rng: random.Random, tree: Any) -> tuple[str, Any]:
-    paths = list(_paths(tree))
+    paths = list(tree_paths(tree))
     if not paths:
         return "replace root", _odd_value(rng, tree)
     path = rng.choice(paths)

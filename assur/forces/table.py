@@ -193,7 +193,7 @@ def _masses(root: Node, moving: tuple[LinkId, ...]) -> dict[LinkId, Mass]:
         mass = _nonnegative(node, "mass", MISSING)
         inertia = _nonnegative(node, "inertia", 0.0)
         centre = _point(node, "centre")
-        if mass is not MISSING and mass > 0 and not node.has("centre"):
+        if mass is not MISSING and mass > 0 and not node.given("centre"):
             section.reader.problem(where, "force.mass.centre_missing", link=str(raw))
         if link is not None and MISSING not in (mass, inertia):
             out[link] = Mass(float(mass), centre, float(inertia))
@@ -212,7 +212,7 @@ def _loads(root: Node, moving: tuple[LinkId, ...], key: str) -> tuple[Load, ...]
         point = _point(node, "point")
         if has_force:
             force = _tabulated(node, "force", key, ("x", "y"))
-            if not node.has("point"):
+            if not node.given("point"):
                 node.reader.problem(node.location, "force.load.point_missing",
                                     link=str(raw))
             if link is not None and force is not None and point is not None:

@@ -20,6 +20,7 @@ kept for the kinematic model. Every problem of a table is collected and raised a
 from __future__ import annotations
 
 import os
+from collections.abc import Collection
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
@@ -180,15 +181,20 @@ def _read_chain_form(reader: TableReader) -> Chain:
         reader.problem("mechanism 'frame'", "chain.frame_not_a_link", frame=repr(frame),
                        links=_list(links))
     inputs = _read_inputs(mech)
-    _check_pairs(reader, raw_pairs, set(links))
-    if known is not None or mentioned or not reader.issues:  # (no pair row could be read)
-        _check_inputs(reader, inputs, set(links), raw_pairs, frame)
+    _check_pairs(reader, raw_pairs, set(links) | ({frame} - {MISSING}))  # (frame: reported)
+    read = isinstance(mech.mapping.get("pairs"), list) and \
+        len(raw_pairs) == len(mech.mapping["pairs"])
+    _check_inputs(reader, inputs, set(links) | set(mentioned), raw_pairs, frame,  # (reported)
+                  links_known=known is not None or read, pairs_known=read)
     joints = {pair.id: (pair.type.value, tuple(pair.links)) for pair in raw_pairs}
-    geometry = _geometry(reader, top, mech, joints, links, frame, inputs)
+    named = {drive.pair for drive in inputs if drive.pair is not None} - set(joints)
+    geometry = _geometry(reader, top, mech, joints, links, frame, inputs,
+                         reported=named if read else None)
     general = top.get("general", kind="mapping", required=False, default=None)
-    rows = _read_rows(top, required=False)
+    rows, _ = _read_rows(top, required=False)
     claims = _read_claims(top)
-    forces = _read_forces(top, links, frame, inputs, joints)
+    every = [*links, *(link for link in dict.fromkeys(mentioned) if link not in links)]
+    forces = _read_forces(top, every, frame, inputs, joints)  # (a link not in links: reported)
     if reader.issues:
         return _empty(reader.source)
     input_links = [d.link for d in inputs if d.link is not None]
@@ -216,17 +222,21 @@ def _read_forces(top: Node, links: list[LinkId], frame: LinkId, inputs: list[Dri
 
 
 def _read_links(mech: Node, names: dict[LinkId, str]) -> list[LinkId] | None:
+    """The links table; None when there is none, or when it could not be read whole (the
+    problem is recorded, and the pairs are not checked against what is left of it)."""
     if not mech.has("links"):
         return None
+    count = len(mech.reader.issues)
     value = mech.get("links", kind="list")
     if value is MISSING:
-        return []
+        return None
     links: list[LinkId] = []
     seen: dict[LinkId, int] = {}
     for index, item in enumerate(value):
         where = f"mechanism.links[{index}]"
         if isinstance(item, dict):
             row = Node(mech.reader, where, item, _LINK)
+            row.swapped({"id": _is_id, "name": lambda v: isinstance(v, str)})
             link = row.get("id", kind="id")
             name = row.get("name", kind="str", required=False, default=None)
             if link is not MISSING and name:
@@ -243,7 +253,7 @@ def _read_links(mech: Node, names: dict[LinkId, str]) -> list[LinkId] | None:
             continue
         seen[link] = index
         links.append(link)
-    return links
+    return links if len(mech.reader.issues) == count else None
 
 
 class _RawPair:
@@ -262,6 +272,8 @@ def _read_pairs(mech: Node) -> tuple[list[_RawPair], list[LinkId]]:
     mentioned: list[LinkId] = []
     seen: dict[PairId, str] = {}
     for row in mech.rows("pairs", _PAIR, label=_pair_label):
+        row.swapped({"id": _is_id, "type": lambda v: v in ("R", "P"),
+                     "links": lambda v: isinstance(v, list), "guide": _is_id})
         pid = row.get("id", kind="id")
         ptype = row.choice("type", ["R", "P"])
         links = row.get("links", kind="list")
@@ -290,7 +302,7 @@ def _read_pairs(mech: Node) -> tuple[list[_RawPair], list[LinkId]]:
         if ptype == "P" and guide is None and not row.has("guide"):
             row.reader.problem(row._where("guide"), "chain.guide_missing")
             ok = False
-        elif ptype == "R" and guide is not None:
+        elif ptype == "R" and guide not in (None, MISSING):
             row.reader.problem(row._where("guide"), "chain.guide_on_revolute",
                                found=describe(guide))
             ok = False
@@ -339,29 +351,43 @@ def _read_inputs(mech: Node) -> list[Drive]:
 
 
 def _check_pairs(reader: TableReader, pairs: list[_RawPair], links: set[LinkId]) -> None:
+    """Report each link of the pairs that is not in the links table once, at the first pair
+    that joins it, naming the other pairs that join it."""
+    users: dict[LinkId, list[_RawPair]] = {}
     for pair in pairs:
         for link in pair.links:
             if link not in links:
-                reader.problem(f"{pair.where} 'links'", "chain.unknown_link", link=repr(link),
-                               links=_list(links))
+                users.setdefault(link, []).append(pair)
+    for link, (first, *others) in users.items():
+        if others:
+            reader.problem(f"{first.where} 'links'", "chain.unknown_link_pairs",
+                           link=repr(link), links=_list(links),
+                           pairs=", ".join(repr(pair.id) for pair in others))
+        else:
+            reader.problem(f"{first.where} 'links'", "chain.unknown_link", link=repr(link),
+                           links=_list(links))
 
 
 def _check_inputs(reader: TableReader, inputs: list[Drive], links: set[LinkId],
-                  pairs: list[_RawPair], frame: Any) -> None:
+                  pairs: list[_RawPair], frame: Any, *, links_known: bool,
+                  pairs_known: bool) -> None:
+    """Check the inputs against the links and pairs; a link or pair that is not known is
+    reported only when its table was read whole (a row that failed may hold it)."""
     by_id = {pair.id: pair for pair in pairs}
     seen: set[Any] = set()
     for index, drive in enumerate(inputs):
         where = f"mechanism.inputs[{index}]"
         if drive.link is not None and drive.link == frame:
             reader.problem(f"{where} 'link'", "chain.frame_input", frame=repr(frame))
-        elif drive.link is not None and drive.link not in links:
+        elif drive.link is not None and drive.link not in links and links_known:
             reader.problem(f"{where} 'link'", "chain.unknown_link", link=repr(drive.link),
                            links=_list(links))
         if drive.pair is not None:
             pair = by_id.get(drive.pair)
             if pair is None:
-                reader.problem(f"{where} 'pair'", "chain.unknown_pair", pair=repr(drive.pair),
-                               pairs=_list(by_id))
+                if pairs_known:
+                    reader.problem(f"{where} 'pair'", "chain.unknown_pair",
+                                   pair=repr(drive.pair), pairs=_list(by_id))
             elif len(pair.links) != 2:
                 reader.problem(f"{where} 'pair'", "chain.driven_pair_links",
                                pair=repr(drive.pair), links=str(pair.links))
@@ -398,8 +424,10 @@ def recentre_hinge(origin: PairId, links: list[LinkId] | tuple[LinkId, ...],
 
 
 def _geometry(reader: TableReader, top: Node, mech: Node | None, joints: Joints,
-              links: list[LinkId], frame: LinkId, inputs: list[Drive]) -> Sketch | None:
-    """The sketch, given inside ``mechanism:`` or at the top of the file (not both)."""
+              links: list[LinkId], frame: LinkId, inputs: list[Drive], *,
+              reported: Collection[PairId] | None = ()) -> Sketch | None:
+    """The sketch, given inside ``mechanism:`` or at the top of the file (not both);
+    ``reported`` as in :func:`~assur.io.sketch.read_sketch`."""
     inner = mech.get("geometry", kind="mapping", required=False, default=None) if mech else None
     outer = top.get("geometry", kind="mapping", required=False, default=None)
     if isinstance(inner, dict) and isinstance(outer, dict):
@@ -409,7 +437,7 @@ def _geometry(reader: TableReader, top: Node, mech: Node | None, joints: Joints,
     if not isinstance(data, dict) or frame is MISSING:
         return None
     return read_sketch(reader, data, joints, links=links, frame=frame,
-                       optional=actuator_pairs(inputs, joints, frame))
+                       optional=actuator_pairs(inputs, joints, frame), reported=reported)
 
 
 def _read_claims(top: Node) -> dict[str, int]:
@@ -432,8 +460,13 @@ def _row_label(row: dict[str, Any]) -> str | None:
     return ", ".join(parts) or None
 
 
-def _read_rows(top: Node, *, required: bool) -> list[IdentificationRow]:
-    """Read and validate identification rows (every problem recorded in the reader)."""
+def _read_rows(top: Node, *, required: bool
+               ) -> tuple[list[IdentificationRow], set[LinkId] | None]:
+    """Read and validate identification rows (every problem recorded in the reader).
+
+    Returns the rows read whole, and the links ``i`` and ``j`` of every row, also of the rows
+    that failed on another field (None if a row's ``i`` or ``j`` could not be read).
+    """
     rows: list[IdentificationRow] = []
     clean_rows: list[tuple[dict[str, Any], str]] = []
     owner: dict[LinkId, str] = {}
@@ -481,7 +514,11 @@ def _read_rows(top: Node, *, required: bool) -> list[IdentificationRow]:
             if clean["params"] is not None:
                 clean["params"] = _read_params(top.reader, clean)
             rows.append(IdentificationRow(**clean, location=location))
-    return rows
+    value = top.mapping.get("structure_identification")
+    whole = isinstance(value, list) and len(clean_rows) == len(value) and \
+        all(clean[key] is not MISSING for clean, _ in clean_rows for key in ("i", "j"))
+    members = {clean[key] for clean, _ in clean_rows for key in ("i", "j")} - {None}
+    return rows, members if whole else None
 
 
 def _read_params(reader: TableReader, row: dict[str, Any]) -> GroupParams:
@@ -495,20 +532,16 @@ def _read_table_form(reader: TableReader) -> Chain:
     name = top.get("mechanism", kind="str", required=False, default=None)
     name = top.get("name", kind="str", required=False, default=name)
     frame = top.get("frame", kind="id", required=False, default=0)
-    rows = _read_rows(top, required=True)
+    rows, read = _read_rows(top, required=True)
     general = top.get("general", kind="mapping", required=False, default=None)
     claims = _read_claims(top)
     if not rows and not reader.issues:
         reader.problem("structure_identification", "chain.no_rows")
-    members = {frame} | {link for row in rows for link in (row.i, row.j) if link is not None}
-    for row in rows:
-        for key in ("i_minus_1", "j_minus_1", "i_plus_1", "j_plus_1"):
-            link = row.get(key)
-            if link is not None and link not in members:
-                reader.problem(f"{row.location} {key!r}", "chain.link_not_in_rows",
-                               link=repr(link), frame=repr(frame))
+    if read is not None:  # (a row whose i or j could not be read may hold the link)
+        _check_members(reader, rows, read | {frame}, frame)
     if reader.issues:
         return _empty(reader.source)
+    members = {frame} | {link for row in rows for link in (row.i, row.j) if link is not None}
     links = [frame, *sorted((m for m in members if m != frame), key=id_key)]
     pairs: list[Pair] = []
     inputs: list[Drive] = []
@@ -524,6 +557,24 @@ def _read_table_form(reader: TableReader) -> Chain:
                  pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,
                  source=reader.source, group_params=_group_params(rows),
                  identification=tuple(rows), claims=claims)
+
+
+def _check_members(reader: TableReader, rows: list[IdentificationRow], members: set[LinkId],
+                   frame: LinkId) -> None:
+    """Every link a row joins to (``i_minus_1`` … ``j_plus_1``) is the frame or a row's link;
+    a link that is not is reported once, where it is first named, with the other places."""
+    places: dict[LinkId, list[str]] = {}
+    for row in rows:
+        for key in ("i_minus_1", "j_minus_1", "i_plus_1", "j_plus_1"):
+            link = row.get(key)
+            if link is not None and link not in members:
+                places.setdefault(link, []).append(f"{row.location} {key!r}")
+    for link, (first, *others) in places.items():
+        if others:
+            reader.problem(first, "chain.link_not_in_rows_also", link=repr(link),
+                           frame=repr(frame), places="; ".join(others))
+        else:
+            reader.problem(first, "chain.link_not_in_rows", link=repr(link), frame=repr(frame))
 
 
 def _group_pairs(row: IdentificationRow, frame: LinkId) -> list[Pair]:

@@ -41,6 +41,7 @@ __all__ = [
     "TableReader",
     "describe",
     "is_number",
+    "latin_form",
     "lookalike_letters",
     "normalise_id",
     "number_problem",
@@ -161,7 +162,12 @@ def lookalike_letters(text: str) -> str:
     return found if _LATIN.search(text) or not others else ""
 
 
-def _latin(text: str) -> str:
+def latin_form(text: str) -> str:
+    """``text`` with its Cyrillic letters that look like Latin ones made Latin.
+
+    >>> latin_form("pаirs"), latin_form("Р")
+    ('pairs', 'P')
+    """
     return "".join(_LOOK_ALIKES.get(ch, ch) for ch in text)
 
 
@@ -339,22 +345,66 @@ class Node:
         self.reader = reader
         self.location = location
         self.mapping = mapping
+        #: Keys reported already (misspelt: the allowed key meant → the key as written; or
+        #: swapped with another): such a key is not reported again, and reads as
+        #: :data:`MISSING`.
+        self.misspelt: dict[str, Any] = {}
         if allowed is not None:
             allowed = list(allowed)
             for key, value in mapping.items():
                 if key not in allowed:
-                    hint = difflib.get_close_matches(str(key), allowed, n=1, cutoff=0.6)
-                    letters = lookalike_letters(key) if isinstance(key, str) else ""
-                    if letters and _latin(key) in allowed:
-                        reader.problem(location, "table.unknown_key_lookalike", key=key,
-                                       letters=letters, hint=_latin(key))
-                    elif isinstance(key, int) and value is None:
-                        reader.problem(location, "table.decimal_comma_key", key=key)
-                    elif hint:
-                        reader.problem(location, "table.unknown_key_hint", key=key, hint=hint[0])
-                    else:
-                        reader.problem(location, "table.unknown_key", key=key,
-                                       keys=", ".join(repr(k) for k in allowed))
+                    self._unknown(key, value, allowed)
+
+    def _unknown(self, key: Any, value: Any, allowed: list[str]) -> None:
+        """Report a key that is not allowed, naming the key meant when it is clear."""
+        hint = difflib.get_close_matches(str(key), allowed, n=1, cutoff=0.6)
+        letters = lookalike_letters(key) if isinstance(key, str) else ""
+        if letters and latin_form(key) in allowed:
+            self.reader.problem(self.location, "table.unknown_key_lookalike", key=key,
+                                letters=letters, hint=latin_form(key))
+            meant = latin_form(key)
+        elif isinstance(key, int) and value is None:
+            self.reader.problem(self.location, "table.decimal_comma_key", key=key)
+            return
+        elif hint:
+            self.reader.problem(self.location, "table.unknown_key_hint", key=key, hint=hint[0])
+            meant = hint[0]
+        else:
+            self.reader.problem(self.location, "table.unknown_key", key=key,
+                                keys=", ".join(repr(k) for k in allowed))
+            return
+        if meant not in self.mapping:
+            self.misspelt.setdefault(meant, key)
+
+    def swapped(self, fits: dict[str, Callable[[Any], bool]]) -> None:
+        """Report two fields whose values look swapped, once, as such: the value of one does
+        not fit it but fits the other, whose value fits the first.  Both then read as
+        :data:`MISSING`, without a message of their own.
+
+        Parameters
+        ----------
+        fits : dict
+            Field → whether a value fits it (a quick test of its kind and options).
+
+        >>> reader = TableReader.from_data({}, "t.yaml")
+        >>> row = Node(reader, "pairs[0]", {"type": [1, 2], "links": "R"}, None)
+        >>> row.swapped({"type": lambda v: v in ("R", "P"),
+        ...              "links": lambda v: isinstance(v, list)})
+        >>> reader.issues[0].text("en"), row.get("type"), row.get("links")
+        ("pairs[0]: the values of 'type' and 'links' look swapped", MISSING, MISSING)
+        """
+        keys = [key for key in fits if key in self.mapping and key not in self.misspelt]
+        for a in keys:
+            value_a = self.mapping[a]
+            if fits[a](value_a):
+                continue
+            for b in keys:
+                value_b = self.mapping[b]
+                if b != a and b not in self.misspelt and fits[a](value_b) and \
+                        fits[b](value_a):
+                    self.reader.problem(self.location, "table.swapped", a=a, b=b)
+                    self.misspelt[a], self.misspelt[b] = b, a
+                    break
 
     def _where(self, key: str) -> str:
         return f"{self.location} {key!r}".strip() if self.location else repr(key)
@@ -362,6 +412,11 @@ class Node:
     def has(self, key: str) -> bool:
         """Whether the key is present (even with a null value)."""
         return key in self.mapping
+
+    def given(self, key: str) -> bool:
+        """Whether the key is present, or written misspelt (reported already): a check that
+        a key is there uses this, so that a misspelt key is not also reported missing."""
+        return key in self.mapping or key in self.misspelt
 
     def get(self, key: str, *, kind: str = "any", required: bool = True, default: Any = MISSING,
             check: Callable[[Any], Message | None] | None = None,
@@ -387,8 +442,11 @@ class Node:
         Returns
         -------
         object
-            The value, or :data:`MISSING` when it is absent or invalid (already recorded).
+            The value, or :data:`MISSING` when it is absent or invalid (already recorded),
+            or written misspelt (reported as such, not again as missing).
         """
+        if key in self.misspelt:
+            return MISSING
         if key not in self.mapping:
             if required:
                 self.reader.problem(self._where(key), "table.missing",
@@ -428,10 +486,10 @@ class Node:
             return value
         if _hashable(value) and value in options:
             return value
-        if isinstance(value, str) and _latin(value) in options and lookalike_letters(value):
+        if isinstance(value, str) and latin_form(value) in options and lookalike_letters(value):
             letters = lookalike_letters(value)
             self.reader.problem(self._where(key), "table.option_lookalike", value=value,
-                                letters=letters, hint=_latin(value))
+                                letters=letters, hint=latin_form(value))
         else:
             self.reader.problem(self._where(key), "table.not_an_option",
                                 options=", ".join(repr(o) for o in options), found=describe(value))

@@ -31,7 +31,16 @@ from collections.abc import Iterable, Mapping
 from dataclasses import replace
 from typing import Any
 
-from assur.io.reader import MISSING, Node, TableReader, describe, is_number, normalise_id
+from assur.io.reader import (
+    MISSING,
+    Node,
+    TableReader,
+    describe,
+    is_number,
+    latin_form,
+    lookalike_letters,
+    normalise_id,
+)
 from assur.model import Chain, Direction, LinkId, PairId, Sketch, SketchTrace, joint_key
 from assur.text import Message
 
@@ -89,7 +98,8 @@ def actuator_pairs(inputs: Iterable[Any], joints: Joints, frame: Any) -> set[Pai
 
 
 def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterable[LinkId],
-                frame: LinkId, optional: Iterable[PairId] = ()) -> Sketch | None:
+                frame: LinkId, optional: Iterable[PairId] = (),
+                reported: Iterable[PairId] | None = ()) -> Sketch | None:
     """Read the ``geometry:`` section, recording every problem in ``reader``.
 
     Parameters
@@ -105,6 +115,10 @@ def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterab
     optional : iterable of joint ids
         Joints that may be left out: driven actuator pairs, which the kinematic model does
         not use (the rank test and the scheme then do without the sketch).
+    reported : iterable of joint ids, or None
+        Pairs whose absence is reported already (a pair an input names): a key naming one
+        is not reported again.  None when a row of the pairs table could not be read: a key
+        that names no joint may then name that row's pair, and is not reported.
 
     Returns
     -------
@@ -117,26 +131,49 @@ def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterab
         reader.problem("geometry", "sketch.not_mapping", found=describe(data))
         return None
     raw = {normalise_id(key): value for key, value in data.items()}
-    allowed = [str(j) for j in joints] + list(RESERVED)
-    for key in raw:
-        if key not in joints and key not in RESERVED:
-            hint = difflib.get_close_matches(str(key), allowed, n=1, cutoff=0.5)
-            if hint:
-                reader.problem(f"geometry {key!r}", "sketch.unknown_key_hint", hint=hint[0])
-            else:
-                reader.problem(f"geometry {key!r}", "sketch.unknown_key",
-                               joints=", ".join(sorted(map(str, joints))),
-                               reserved=", ".join(RESERVED))
+    meant = set() if reported is None else _unknown_keys(reader, raw, joints, set(reported))
     points: dict[PairId, complex] = {}
     directions: dict[PairId, Direction] = {}
     for key, (ptype, ends) in joints.items():
-        _joint(reader, key, raw.get(key), ptype, ends, points, directions, key in optional)
+        if key not in meant:
+            _joint(reader, key, raw.get(key), ptype, ends, points, directions,
+                   key in optional)
     rotation, stroke = _input(reader, raw.get("input"))
     tracing = _tracing(reader, raw.get("tracing"), set(links) - {frame})
     margin = _margin(reader, raw.get("margin"))
     if len(reader.issues) > count:
         return None
     return Sketch(points, directions, rotation, stroke, tracing, margin)
+
+
+def _unknown_keys(reader: TableReader, raw: dict[Any, Any], joints: Joints,
+                  reported: set[PairId]) -> set[PairId]:
+    """Report the keys that name no joint (but those in ``reported``); returns the joints
+    they were meant for (a joint with a look-alike or a close name), whose missing point is
+    then not reported again."""
+    allowed = [str(j) for j in joints] + list(RESERVED)
+    by_latin = {latin_form(str(joint)): joint for joint in joints if joint not in raw}
+    meant: set[PairId] = set()
+    for key in raw:
+        if key in joints or key in RESERVED:
+            continue
+        where = f"geometry {key!r}"
+        twin = by_latin.get(latin_form(str(key)))
+        hint = difflib.get_close_matches(str(key), allowed, n=1, cutoff=0.5)
+        if key in reported:
+            meant.update(() if twin is None else (twin,))
+        elif twin is not None:
+            reader.problem(where, "sketch.unknown_key_lookalike", hint=str(twin),
+                           letters=lookalike_letters(str(key)) or lookalike_letters(str(twin)))
+            meant.add(twin)
+        elif hint:
+            reader.problem(where, "sketch.unknown_key_hint", hint=hint[0])
+            meant.update(joint for joint in joints if str(joint) == hint[0])
+        else:
+            reader.problem(where, "sketch.unknown_key",
+                           joints=", ".join(sorted(map(str, joints))),
+                           reserved=", ".join(RESERVED))
+    return meant
 
 
 def _joint(reader: TableReader, key: PairId, value: Any, ptype: str,
@@ -150,14 +187,20 @@ def _joint(reader: TableReader, key: PairId, value: Any, ptype: str,
         reader.problem(where, "sketch.joint", found=describe(value))
         return
     node = Node(reader, where, value or {}, ("point", "direction"))
+    node.swapped({"point": lambda v: _vector(v) is not None,
+                  "direction": lambda v: is_number(v) or _vector(v) is not None})
     point = node.get("point", required=False, default=None)
-    if point is None:
+    if point is MISSING:
+        pass  # misspelt: reported already
+    elif point is None:
         reader.problem(where, "sketch.needs_point", type=ptype, joint=repr(key), a=a, b=b)
     elif _vector(point) is None:
         reader.problem(f"{where} 'point'", "sketch.point", found=describe(point))
     else:
         points[key] = _vector(point) or 0j
     direction = node.get("direction", required=False, default=None)
+    if direction is MISSING:
+        return  # misspelt: reported already
     if direction is None:
         if ptype == "P":
             reader.problem(where, "sketch.needs_direction", joint=repr(key), a=a, b=b)

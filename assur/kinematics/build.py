@@ -37,7 +37,7 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 from assur.errors import Issue, StructureError, TableError
-from assur.io.reader import Node, TableReader, describe
+from assur.io.reader import Node, TableReader, describe, latin_form, lookalike_letters
 from assur.kinds import GroupKind, GuideColumns, HingeColumns, kind_of, kind_of_class
 from assur.kinematics.model import (
     KIND_COLUMNS,
@@ -564,12 +564,18 @@ def _params(build: _Builder, rows: Mapping[tuple[LinkId, ...], GroupParams],
     allowed = set(kind.columns) | {"delta", "tracing"} | ({"s"} if kind.is_input else set())
     extra = [column for column in params.keys if column not in allowed
              and column.startswith(("l_", "beta_"))]
+    meant = set()  # columns written misspelt: reported so, not also as missing
     for column in params.keys:
         if column not in allowed and column not in extra:
             hint = difflib.get_close_matches(column, sorted(allowed), n=1, cutoff=0.6)
-            if hint:
+            if latin_form(column) in allowed:
+                build.problem(where, "model.unknown_column_lookalike", column=repr(column),
+                              letters=lookalike_letters(column), hint=latin_form(column))
+                meant.add(latin_form(column))
+            elif hint:
                 build.problem(where, "model.unknown_column_hint", column=repr(column),
                               hint=hint[0])
+                meant.add(hint[0])
             else:
                 build.problem(where, "model.unknown_column", column=repr(column),
                               kind=kind.code, columns=", ".join(kind.columns))
@@ -583,7 +589,7 @@ def _params(build: _Builder, rows: Mapping[tuple[LinkId, ...], GroupParams],
             elif rule[0].startswith("frame"):
                 build.problem(at, f"model.{rule[0]}_needs_number")
         elif column not in params.values:
-            if column != "delta" and column not in params.keys:  # else: a bad value, reported
+            if column != "delta" and column not in params.keys and column not in meant:
                 build.problem(at, "model.missing_column")
         elif rule is not None and rule[0] == "moving_hinge":
             value = params.values[column]

@@ -27,6 +27,7 @@ import networkx as nx  # type: ignore[import-untyped]
 
 from assur.io.chain_table import recentre_hinge
 from assur.model import Chain, Drive, LinkId, PairId, PairType, id_key
+from assur.structure._fast import closed_by_dyads
 from assur.structure.classification import AssurGroup, classify, input_group, roman
 from assur.structure.diagnostics import Diagnostic, diagnostic
 from assur.structure.peeling import BodyGraph, Peeling, body_graph, peel
@@ -199,7 +200,8 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
     issues += _with_suggestions(chain, peeling.issues) if suggest else peeling.issues
     for group in groups:
         issues += [d for d in group.issues if not _in_loop(d, loops)]
-    issues += _idle(chain)
+    if not closed_by_dyads(graph, peeling):
+        issues += _idle(chain)
     if rank is not None:
         issues += _rank_issues(chain, rank, peeling)
     issues += [diagnostic("I_HIGH_DEGREE", [link], [p.id for p in chain.pairs_of(link)],
@@ -430,7 +432,17 @@ _BLOCKING = {"E_OVERCONSTRAINED", "E_UNDERCONSTRAINED", "W_PASSIVE_LINK", "E_PRI
 
 
 def _applicability(a: StructuralAnalysis, graph: BodyGraph) -> list[Message]:
-    """Failed DGTU conditions of ``method.md`` §1.1, each as a sentence."""
+    """Failed DGTU conditions of ``method.md`` §1.1, each as a sentence.
+
+    An open chain (idle or disconnected links) fails condition 4 only: the count of W, the
+    free or redundant constraints and the layering into dyads (conditions 5, 6 and 8) then
+    count the idle links too, and fail only because of them; an input link with no pair
+    with the frame is then a part of the gap (a link number mistyped in its pair), not a
+    failure of condition 3.  A chain short of inputs (none, or fewer than W where more
+    inputs would complete the decomposition, as the finding suggests) fails condition 5
+    only: the free links and the links in no group (conditions 6 and 8) are the inputs
+    that are missing.
+    """
     failed: list[Message] = []
     codes = {d.code for d in a.issues}
     chain = a.chain
@@ -445,25 +457,35 @@ def _applicability(a: StructuralAnalysis, graph: BodyGraph) -> list[Message]:
         link = driven_link(drive)
         return link in graph.driven and chain.pair(graph.driven[link]).type is PairType.R
 
-    bad_inputs = [d for d in chain.inputs if not driven_by_hinge(d)]
+    def off_frame(drive: Drive) -> bool:  # an input link with no pair with the frame
+        return drive.link is not None and drive.pair is None and all(
+            chain.frame not in p.links for p in chain.pairs_of(drive.link))
+
+    closed = "W_IDLE_LINK" not in codes and "E_DISCONNECTED" not in codes
+    bad_inputs = [d for d in chain.inputs if not driven_by_hinge(d)
+                  and (closed or not off_frame(d))]
     if bad_inputs:
         names = ", ".join(str(d.link if d.link is not None else d.pair) for d in bad_inputs)
         failed.append(Message("structure.condition.crank", {"names": names}))
-    if "W_IDLE_LINK" in codes or "E_DISCONNECTED" in codes:
+    if not closed:
         failed.append(Message("structure.condition.closed"))
-    if a.W != 1 or a.W_star != 1 or a.m != 1:
+    if closed and (a.W != 1 or a.W_star != 1 or a.m != 1):
         failed.append(Message("structure.condition.mobility",
                               {"W": a.W, "W_star": a.W_star, "m": a.m}))
     blocking = sorted(codes & _BLOCKING)
-    if blocking:
+    under = [d for d in a.issues if d.code == "E_UNDERCONSTRAINED"]
+    short = a.m == 0 or (a.W_star > a.m and bool(under) and all("hint" in d.notes for d in under)
+                         and not codes & (_BLOCKING - {"E_UNDERCONSTRAINED"}))
+    layered = closed and not short
+    if layered and blocking:
         failed.append(Message("structure.condition.redundant", {"codes": ", ".join(blocking)}))
     heavy = [link for link in chain.moving_links if len(chain.pairs_of(link)) > 3]
     if heavy:
         failed.append(Message("structure.condition.degree",
                               {"names": ", ".join(map(str, heavy))}))
     others = [g.label for g in a.groups if not g.is_dyad]
-    if a.leftover or others or any(d.code in {"E_UNSUPPORTED_GROUP", "E_INTERNAL"} for d in
-                                   a.issues):
+    if layered and (a.leftover or others or any(
+            d.code in {"E_UNSUPPORTED_GROUP", "E_INTERNAL"} for d in a.issues)):
         failed.append(Message("structure.condition.dyads", {"what": _incomplete(a, others)}))
     return failed
 

@@ -21,6 +21,10 @@ from assur.structure.peeling import BodyGraph, RawGroup
 __all__ = ["AssurGroup", "classify", "input_group", "roman", "subscript"]
 
 _SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+#: The dyad kind of every (internal, external, external) pair-type triple, looked up in the
+#: registry once.
+_DYAD_KINDS: dict[tuple[str, str, str], GroupKind | None] = {
+    (c, a, b): kind_of_pattern(c, (a, b)) for c in "RP" for a in "RP" for b in "RP"}
 
 
 def roman(number: int) -> str:
@@ -212,7 +216,7 @@ def _dyad(raw: RawGroup, graph: BodyGraph, common: dict[str, Any],
     pc = raw.internal[0]
     tc = _type(graph, pc)
     ta, tb = _type(graph, pa), _type(graph, pb)
-    kind = kind_of_pattern(tc, (ta, tb))
+    kind = _DYAD_KINDS[tc, ta, tb]
     frame = graph.body_of[chain.frame]
     first, second = sorted((ba, bb), key=id_key)
     ext = {ba: (pa, ka, ta), bb: (pb, kb, tb)}
@@ -232,8 +236,8 @@ def _dyad(raw: RawGroup, graph: BodyGraph, common: dict[str, Any],
         assert guide is not None  # a P pair names its guide carrier
         j = bb if graph.body_of[guide] == ba else ba
     i = bb if j == ba else ba
-    ext_i = _real_external(graph, ext[i][0], i)
-    ext_j = _real_external(graph, ext[j][0], j)
+    real = dict(zip((ba, bb), common["external"], strict=True))
+    ext_i, ext_j = real[i], real[j]
     return AssurGroup(group_class=2, kind=kind.number, name=kind.pairs, i=ext_i[1], j=ext_j[1],
                       pair_i=ext_i[0], pair_j=ext_j[0], pair_c=pc, i_minus_1=ext_i[2],
                       j_minus_1=ext_j[2], issues=tuple(issues), **common)

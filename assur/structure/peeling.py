@@ -113,7 +113,7 @@ def body_graph(chain: Chain) -> BodyGraph:
     for pair in chain.pairs:
         if pair.id in frozen_set:
             continue
-        a, b = (body_of[x] for x in pair.links)
+        a, b = body_of[pair.links[0]], body_of[pair.links[1]]
         if a == b:
             inner.append(pair.id)
         else:
@@ -122,7 +122,8 @@ def body_graph(chain: Chain) -> BodyGraph:
     for link in input_links:
         if body_of[link] not in input_bodies and link != chain.frame:
             input_bodies.append(body_of[link])
-    return BodyGraph(chain, body_of, {k: tuple(sorted(v, key=id_key)) for k, v in members.items()},
+    return BodyGraph(chain, body_of, {k: tuple(v) if len(v) == 1 else tuple(sorted(v, key=id_key))
+                                      for k, v in members.items()},
                      edges, tuple(frozen), inner, input_bodies, driven, issues)
 
 
@@ -160,21 +161,25 @@ class _Peeler:
             b: sum(1 for _, o in self.adj[b] if o in self.known) for b in self.unknown}
         self.groups: list[RawGroup] = []
         self.issues: list[Diagnostic] = []
-        keys = {body: id_key(body) for body in self.unknown}
+        #: The sort key of every body (:func:`id_key`), computed once.
+        self.key = {body: id_key(body) for body in graph.members}
+        keys = self.key
         self.work: deque[tuple[PairId, LinkId, LinkId]] = deque(
             sorted((e for e in graph.edges if e[1] in self.unknown and e[2] in self.unknown),
-                   key=lambda e: sorted((keys[e[1]], keys[e[2]]))))
+                   key=lambda e: (keys[e[1]], keys[e[2]]) if keys[e[1]] <= keys[e[2]]
+                   else (keys[e[2]], keys[e[1]])))
 
     # -- bookkeeping -------------------------------------------------------------------
 
     def _pairs(self, bodies: set[LinkId]) -> tuple[list, list]:
         """External (pair, body, known body) and internal pairs of a set of unknown bodies."""
         external, internal = [], []
-        for body in sorted(bodies, key=id_key):
+        key = self.key
+        for body in sorted(bodies, key=key.__getitem__):
             for pid, other in self.adj[body]:
                 if other in self.known:
                     external.append((pid, body, other))
-                elif other in bodies and id_key(body) < id_key(other):
+                elif other in bodies and key[body] < key[other]:
                     internal.append(pid)
         return external, internal
 
@@ -197,8 +202,8 @@ class _Peeler:
     def _accept(self, bodies: set[LinkId]) -> None:
         external, internal = self._pairs(bodies)
         level = self._mark_known(bodies, external)
-        self.groups.append(RawGroup(tuple(sorted(bodies, key=id_key)), level, external,
-                                    internal))
+        self.groups.append(RawGroup(tuple(sorted(bodies, key=self.key.__getitem__)), level,
+                                    external, internal))
 
     def _count(self, bodies: set[LinkId]) -> tuple[int, int]:
         p = 0
@@ -236,7 +241,7 @@ class _Peeler:
         return found
 
     def _search(self) -> bool:
-        order = sorted(self.unknown, key=id_key)
+        order = sorted(self.unknown, key=self.key.__getitem__)
         for size in range(1, min(len(order), self.s_max) + 1):
             for subset in _connected_subsets(order, self.adj, self.unknown, size):
                 d, p = self._count(subset)

@@ -149,9 +149,14 @@ def test_russian_report_has_no_english_sentences() -> None:
     pairs = [("A", 0, 1), ("B", 1, 2), ("C", 2, 3), ("D", 3, 0), ("E", 4, 5)]
     russian = structure_report(analyse_structure(_revolute_chain(pairs, [1])), lang="ru")
     assert "звенья {4, 5} не связаны со стойкой" in russian
-    assert "звенья 4, 5 не вошли в группы" in russian
+    # a closed four-bar with a chain of three links from 2 to 3 (W = 2, and no input on the
+    # frame can take it): links 4, 5, 6 are left over (condition 8)
+    loop = [("A", 0, 1), ("B", 1, 2), ("C", 2, 3), ("D", 3, 0), ("E", 2, 4), ("F", 4, 5),
+            ("G", 5, 6), ("H", 6, 3)]
+    leftover = structure_report(analyse_structure(_revolute_chain(loop, [1])), lang="ru")
+    assert "звенья 4, 5, 6 не вошли в группы" in leftover
     for english in ("links", "group", "condition", "expected", "found"):
-        assert english not in russian
+        assert english not in russian and english not in leftover
 
 
 def test_two_pairs_between_the_same_links_make_no_bridge() -> None:

@@ -110,3 +110,20 @@ def test_too_few_positions(capsys: pytest.CaptureFixture[str]) -> None:
         analyse_table(COURSE, points=1)
     assert main(["analyze", str(COURSE), "--points", "0", "--lang", "ru"]) == 2
     assert "нужно не меньше 2 положений; задано 0" in capsys.readouterr().err
+
+
+def test_a_mechanism_with_a_triad_is_outside_the_course_but_analysed_over_the_cycle() -> None:
+    """Class III is outside the course's method (condition 8) yet has a kinematic model: the
+    existence check finds the gap its table documents (φ ≈ 168°…256°, found there by a dense
+    scan through every assembly mode), and the coursework report shows kinematics and forces."""
+    from synthesis.app.coursework.report import build_report, render_html
+
+    found = assess(ROOT / "input_tables" / "six_bar_triad_fails.yaml", points=360)
+    assert not found.analysis.applicable and found.model is not None
+    assert found.existence is not None
+    ((start, end),) = [(i.start, i.end) for g in found.existence.groups for i in g.intervals]
+    assert abs(math.degrees(start) - 168) < 0.5 and abs(math.degrees(end) - 256) < 0.5
+    html = render_html(build_report(ROOT / "input_tables" / "six_bar_triad_forces.yaml",
+                                    points=24))
+    for section in ('id="existence"', 'id="kinematics"', 'id="forces"', 'id="play"'):
+        assert section in html

@@ -107,8 +107,9 @@ class Assessment:
         The kinematic model of the dimensions.
     why_no_model : Message or AssurError or None
         Why there is no model: the table gives no dimensions (``term.no_geometry``), the
-        course method does not apply (``term.not_applicable``), or the dimensions are wrong
-        (the error, which lists every problem). None when there is a model.
+        mechanism is neither one the course's method covers nor one the kinematics solves
+        (``term.not_applicable``; a group of class III or IV has a model), or the dimensions
+        are wrong (the error, which lists every problem). None when there is a model.
     existence : ExistenceReport or None
         Existence of every group over the cycle; None without a model or when not asked for.
     """
@@ -241,12 +242,12 @@ def _model(analysis: StructuralAnalysis) -> tuple[KinematicModel | None,
     chain = analysis.chain
     if not (chain.geometry or chain.group_params):
         return None, Message("term.no_geometry")
-    if not (analysis.decomposed and analysis.applicable):
+    if not analysis.decomposed:
         return None, Message("term.not_applicable")
-    try:
+    try:  # groups of class III and IV are outside the course's method, not its kinematics
         return build_model(analysis), None
     except AssurError as exc:
-        return None, exc
+        return None, exc if analysis.applicable else Message("term.not_applicable")
 
 
 def _variants(model: KinematicModel,

@@ -16,8 +16,10 @@ Steps (``method.md`` §6):
    (half-width × ``shrink``), clipped to the bounds;
 4. optional local refinement with :func:`scipy.optimize.least_squares` (bounded
    trust-region, Jacobian by one batched forward-difference call) from the best few
-   distinct designs, then the minimax polish of the best; a refined design is kept only
-   if it is better by the ranking rule;
+   distinct designs, each followed by the minimax polish of where it ended (SLSQP, the
+   desirable conditions held as inequality constraints); a refined design is kept only
+   if it is better by the ranking rule, so never one that breaks a condition the best
+   design keeps;
 5. optional restarts, while no favourable design is found: steps 2–3 again (a round) with
    a fresh LPτ sequence over the whole box, the shrinking centred on the new round's own
    best; after the last round step 4 again, from the best designs of the rounds (best
@@ -589,8 +591,9 @@ class _Search:
             self.passive(lower, upper, 2 ** max(s.budget_log2 - 2, 4), 1 + k, "shrink")
 
     def refine(self) -> None:
-        """Bounded least-squares refinement from the best few distinct designs, then the
-        minimax polish of the best.
+        """Bounded least-squares refinement from the best few distinct designs, each followed
+        by the minimax polish of where it ended (the basin with the best Σ Δ_K² is not always
+        the one with the best Q).
 
         The starts are the best designs of the rounds (best first), then the best trials,
         skipping designs within 1e-3 of the box of a start already taken (now or by an
@@ -617,10 +620,9 @@ class _Search:
         for x0 in starts:
             self.local_merit, self.local = np.inf, None
             self.refine_from(x0)
+            if self.local is not None:
+                self.minimax_from(self.local[0])
             self.keep_optimum("refine", self.local)
-        if self.best_x is not None and self.best_criteria is not None \
-                and self.best_criteria.p1[0] == 0:
-            self.minimax_from(self.best_x)
 
     def refine_from(self, x0: FloatArray) -> None:
         span = self.upper - self.lower

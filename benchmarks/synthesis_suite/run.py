@@ -51,6 +51,9 @@ SETTINGS: dict[str, dict[str, Any]] = {
     "b10-s3-r3": {"budget_log2": 10, "refine": True, "shrink_passes": 3, "restarts": 3},
     "b8-s3-r3": {"budget_log2": 8, "refine": True, "shrink_passes": 3, "restarts": 3},
     "b10-s3-r7": {"budget_log2": 10, "refine": True, "shrink_passes": 3, "restarts": 7},
+    # the stop-on-stall rule: a round ends after 512 trials without improving its best
+    "b10-s3-r3-stall512": {"budget_log2": 10, "refine": True, "shrink_passes": 3,
+                           "restarts": 3, "stall": 512},
 }
 PROFILES: dict[str, dict[str, Any]] = {
     "quick": {"problems": ["e01_fourbar_angle", "e08_slider_crank", "c01_rocker_pressure_45",

@@ -100,8 +100,10 @@ MAX_BUDGET = 24
 MAX_SHRINK_PASSES = 10
 #: Largest number of restarts.
 MAX_RESTARTS = 64
-#: The minimax polish stops when Q gains less than this fraction of [Q] ...
+#: The minimax polish stops when Q gains less than this fraction of [Q] (of Q at its start
+#: when the problem gives no [Q]) ...
 POLISH_GAIN = 1e-3
+POLISH_GAIN_RELATIVE = 1e-6
 #: ... over this many SLSQP iterations.
 POLISH_PATIENCE = 3
 #: Relative clearance inside the limit at which the polish holds a desirable condition.
@@ -675,8 +677,8 @@ class _Search:
         region instead of stopping where it first touches it.  A step that breaks the chain
         or worsens the rest of P2 is rejected.  Variables are scaled to the unit box; the
         Jacobians come from one batched forward-difference call.  The polish ends when Q
-        gains less than :data:`POLISH_GAIN` of [Q] (of Q at x0 without [Q]) in
-        :data:`POLISH_PATIENCE` iterations.
+        gains less than :data:`POLISH_GAIN` of [Q] (:data:`POLISH_GAIN_RELATIVE` of Q at x0
+        without [Q]) in :data:`POLISH_PATIENCE` iterations.
         """
         lo, span = self.lower, self.upper - self.lower
         base = self.record(x0[None, :], "refine", check_stall=False)
@@ -730,7 +732,8 @@ class _Search:
                               np.hstack([-jm, np.zeros((jm.shape[0], 1))])])
 
         q_req = self.settings.q_required
-        watch = _Gain(POLISH_GAIN * (q_req if q_req else q0), POLISH_PATIENCE)
+        watch = _Gain(POLISH_GAIN * q_req if q_req else POLISH_GAIN_RELATIVE * q0,
+                      POLISH_PATIENCE)
         q = span.size
         objective_grad = np.zeros(q + 1)
         objective_grad[-1] = 1.0

@@ -716,10 +716,10 @@ class _Search:
             step = np.where(u + 1e-7 > 1.0, -1e-7, 1e-7)
             shifted = values(self.record(design(u[None, :] + np.diag(step)), "refine",
                                          check_stall=False))
-            d0, m0_ = at(u)
+            d0, m_at = at(u)
             d = np.array([item[0] for item in shifted])
-            m = np.array([item[1] for item in shifted]).reshape(len(step), m0_.size)
-            return ((d - d0[None, :]) / step[:, None]).T, ((m - m0_[None, :]) / step[:, None]).T
+            m = np.array([item[1] for item in shifted]).reshape(len(step), m_at.size)
+            return ((d - d0[None, :]) / step[:, None]).T, ((m - m_at[None, :]) / step[:, None]).T
 
         def constraints(z: FloatArray) -> FloatArray:
             d, m = at(z[:-1])

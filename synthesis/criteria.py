@@ -23,7 +23,7 @@ Two designs, three control points of a class-2 task (slider stroke law):
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Literal
 
 import numpy as np
@@ -36,6 +36,7 @@ __all__ = [
     "criterion_rms",
     "desirable_penalty",
     "existence_penalty",
+    "margin_penalty",
     "merit",
     "nearest_on_path",
     "path_deviations",
@@ -400,6 +401,35 @@ def rotation_penalty(rotation: FloatArray, allowed: FloatArray) -> FloatArray:
     return pressure_penalty(rotation, allowed)
 
 
+def margin_penalty(margins: FloatArray) -> FloatArray:
+    """The share of P2 of the conditions given by signed margins.
+
+    A pressure angle, a joint swing or a workspace box is held when its margin is ≤ 0::
+
+        m_α = (α_max − [α]) / [α],   m_r = (Δθ − [Δθ]) / [Δθ],
+        m_w = max_φ s_P(φ) / L_P,    P2 share = Σ max(0, m)
+
+    with s_P the summed excursion of point P outside its box (as in
+    :func:`workspace_penalty`) where it is outside and minus its distance to the nearest
+    side where it is inside; so the share equals :func:`pressure_penalty`,
+    :func:`rotation_penalty` and :func:`workspace_penalty` together.
+
+    Parameters
+    ----------
+    margins : array_like, shape (D, M)
+
+    Returns
+    -------
+    ndarray, shape (D,)
+
+    Examples
+    --------
+    >>> margin_penalty(np.array([[-0.5, 0.25], [-0.1, -0.2]])).tolist()
+    [0.25, 0.0]
+    """
+    return np.sum(np.maximum(np.asarray(margins, dtype=float), 0.0), axis=-1)
+
+
 def workspace_penalty(excess: FloatArray, scale: FloatArray) -> FloatArray:
     """Desirable condition 4: tracked points stay inside their allowed boxes.
 
@@ -456,6 +486,12 @@ class Criteria:
         refinement): Δ_K itself for classes 1–2 (for a class-1 zone the signed
         overshoot of :func:`zone_residuals`), the two coordinates of E_K·(Ж − P_K) for
         classes 3–4.
+    margins : ndarray, shape (D, M)
+        Signed, normalised margin of each desirable condition that has one (pressure
+        angles, joint swings, workspace boxes; :func:`margin_penalty`): ≤ 0 where the
+        condition holds, and its positive part is that condition's share of P2 — so the
+        refinement can hold the conditions as inequality constraints and slide along
+        their boundary.  Empty (M = 0) when none is given; NaN where P1 > 0.
     """
 
     p1: FloatArray
@@ -463,18 +499,22 @@ class Criteria:
     q: FloatArray
     deviations: FloatArray
     residuals: FloatArray
+    margins: FloatArray = field(default_factory=lambda: np.zeros((0, 0)))
+
+    def __post_init__(self) -> None:
+        if self.margins.shape[0] != self.p1.shape[0] and self.margins.size == 0:
+            object.__setattr__(self, "margins", np.zeros((self.p1.shape[0], 0)))
 
     def __len__(self) -> int:
         return int(self.p1.shape[0])
 
     def arrays(self) -> tuple[FloatArray, ...]:
-        """The five arrays, in field order."""
-        return self.p1, self.p2, self.q, self.deviations, self.residuals
+        """The six arrays, in field order."""
+        return self.p1, self.p2, self.q, self.deviations, self.residuals, self.margins
 
     def take(self, index: Sequence[int] | npt.NDArray[np.intp]) -> Criteria:
         """The criteria of a subset of the designs."""
-        return Criteria(self.p1[index], self.p2[index], self.q[index], self.deviations[index],
-                        self.residuals[index])
+        return Criteria(*(array[index] for array in self.arrays()))
 
 
 def merit(criteria: Criteria, *, objective: Objective = "lexicographic",

@@ -261,14 +261,16 @@ class Evaluator:
                 gap = control.weight * (out - control.point)
                 res = np.concatenate([gap.real, gap.imag], axis=1)
             pressure, rotation = self._desirable(motion, d, n)
-            workspace = self._workspace(motion, d, n)
+            signed = self._workspace(motion, d, n)
+        workspace = {label: np.maximum(v, 0.0) for label, v in signed.items()}
         feasible = p1 == 0
         q = np.where(feasible, C.criterion_q(dev), np.nan)
         bounds = C.bounds_penalty(x, self.lower, self.upper)
-        p2_alpha = C.pressure_penalty(
-            _stack(pressure, d), np.array([self.problem.pressure_angles[k] for k in pressure]))
-        limits = [lim for label in rotation for lim in self.problem.rotations[label].values()]
-        p2_rot = C.rotation_penalty(_stack(rotation, d), np.array(limits))
+        alpha_allowed = np.array([self.problem.pressure_angles[k] for k in pressure])
+        p2_alpha = C.pressure_penalty(_stack(pressure, d), alpha_allowed)
+        limits = np.array([lim for label in rotation
+                           for lim in self.problem.rotations[label].values()])
+        p2_rot = C.rotation_penalty(_stack(rotation, d), limits)
         scales = []
         for label, excess in workspace.items():
             x_min, x_max, y_min, y_max = self.problem.workspace[label]
@@ -277,10 +279,12 @@ class Evaluator:
         p2_force = force_penalties(self.problem.forces, self.model, x, feasible, self.grid)
         p2 = np.where(feasible, C.desirable_penalty(bounds, p2_alpha, p2_rot, p2_work)
                       + p2_force, np.nan)
-        dev = np.where(feasible[:, None], dev, np.nan)
-        res = np.where(feasible[:, None], res, np.nan)
+        margins = np.concatenate([_stack(pressure, d) / alpha_allowed - 1.0,
+                                  _stack(rotation, d) / limits - 1.0,
+                                  _stack(signed, d) / np.array(scales)], axis=1)
+        dev, res, margins = (np.where(feasible[:, None], a, np.nan) for a in (dev, res, margins))
         return Analysis(motion, self.grid, out_grid, out, np.asarray(phi_c),
-                        C.Criteria(p1, p2, q, dev, res), pressure, rotation, workspace)
+                        C.Criteria(p1, p2, q, dev, res, margins), pressure, rotation, workspace)
 
     def _nearest(self, model: KinematicModel, phi: FloatArray
                  ) -> tuple[FloatArray, npt.NDArray[Any]]:
@@ -344,7 +348,9 @@ class Evaluator:
         return pressure, rotation
 
     def _workspace(self, motion: Motion, d: int, n: int) -> dict[str, FloatArray]:
-        """Largest excursion of each group's revolute joints outside its box, (D, J) mm."""
+        """Signed largest excursion of each group's revolute joints outside its box, (D, J)
+        mm: positive outside (as :func:`_outside`), minus the smallest clearance to a side
+        where the joint stays inside."""
         out: dict[str, FloatArray] = {}
         size = self.positions.size
         for label, box in self.problem.workspace.items():
@@ -354,17 +360,22 @@ class Evaluator:
                 if role.startswith("P") or pid not in motion.joints:
                     continue
                 z = _full(assur.kinematics.analysis.values(motion.joints[pid]), d, size)[:, :n]
-                columns.append(np.max(_outside(z, box), axis=1))
+                columns.append(_outside(z, box))
             out[label] = np.stack(columns, axis=1)
         return out
 
 
 def _outside(z: npt.NDArray[Any], box: tuple[float, float, float, float]) -> FloatArray:
-    """How far points lie outside an axis-aligned box (0 inside), per coordinate summed."""
+    """Signed largest excursion of points outside an axis-aligned box over the positions
+    (axis 1), per design: the excursion summed over the coordinates where a point leaves
+    the box, else minus the smallest clearance to a side (positions not analysed are skipped).
+    """
     x_min, x_max, y_min, y_max = box
-    dx = np.maximum(np.maximum(x_min - z.real, z.real - x_max), 0.0)
-    dy = np.maximum(np.maximum(y_min - z.imag, z.imag - y_max), 0.0)
-    return np.nan_to_num(dx + dy)
+    ex = np.maximum(x_min - z.real, z.real - x_max)
+    ey = np.maximum(y_min - z.imag, z.imag - y_max)
+    out = np.fmax.reduce(np.maximum(ex, 0.0) + np.maximum(ey, 0.0), axis=1)
+    inside = np.fmax.reduce(np.maximum(ex, ey), axis=1)
+    return np.nan_to_num(np.where(out > 0, out, inside))
 
 
 def _full(value: Any, d: int, n: int) -> npt.NDArray[Any]:

@@ -16,8 +16,10 @@ Steps (``method.md`` §6):
    (half-width × ``shrink``), clipped to the bounds;
 4. optional local refinement with :func:`scipy.optimize.least_squares` (bounded
    trust-region, Jacobian by one batched forward-difference call) from the best few
-   distinct designs, then the minimax polish of the best; a refined design is kept only
-   if it is better by the ranking rule;
+   distinct designs, each followed by the minimax polish of where it ended (SLSQP, the
+   desirable conditions held as inequality constraints); a refined design is kept only
+   if it is better by the ranking rule, so never one that breaks a condition the best
+   design keeps;
 5. optional restarts, while no favourable design is found: steps 2–3 again (a round) with
    a fresh LPτ sequence over the whole box, the shrinking centred on the new round's own
    best; after the last round step 4 again, from the best designs of the rounds (best
@@ -52,7 +54,7 @@ from scipy.stats import qmc
 
 from assur import AssurError
 from assur.text import Message
-from synthesis.criteria import Criteria, Objective, merit
+from synthesis.criteria import Criteria, Objective, margin_penalty, merit
 
 if TYPE_CHECKING:
     from synthesis.problem import Problem
@@ -98,6 +100,14 @@ MAX_BUDGET = 24
 MAX_SHRINK_PASSES = 10
 #: Largest number of restarts.
 MAX_RESTARTS = 64
+#: The minimax polish stops when Q gains less than this fraction of [Q] (of Q at its start
+#: when the problem gives no [Q]) ...
+POLISH_GAIN = 1e-3
+POLISH_GAIN_RELATIVE = 1e-6
+#: ... over this many SLSQP iterations.
+POLISH_PATIENCE = 3
+#: Relative clearance inside the limit at which the polish holds a desirable condition.
+_CLEARANCE = 1e-7
 
 
 def _whole(value: Any) -> bool:
@@ -583,8 +593,9 @@ class _Search:
             self.passive(lower, upper, 2 ** max(s.budget_log2 - 2, 4), 1 + k, "shrink")
 
     def refine(self) -> None:
-        """Bounded least-squares refinement from the best few distinct designs, then the
-        minimax polish of the best.
+        """Bounded least-squares refinement from the best few distinct designs, each followed
+        by the minimax polish of where it ended (the basin with the best Σ Δ_K² is not always
+        the one with the best Q).
 
         The starts are the best designs of the rounds (best first), then the best trials,
         skipping designs within 1e-3 of the box of a start already taken (now or by an
@@ -611,10 +622,9 @@ class _Search:
         for x0 in starts:
             self.local_merit, self.local = np.inf, None
             self.refine_from(x0)
+            if self.local is not None:
+                self.minimax_from(self.local[0])
             self.keep_optimum("refine", self.local)
-        if self.best_x is not None and self.best_criteria is not None \
-                and self.best_criteria.p1[0] == 0:
-            self.minimax_from(self.best_x)
 
     def refine_from(self, x0: FloatArray) -> None:
         span = self.upper - self.lower
@@ -659,57 +669,85 @@ class _Search:
         """Minimise Q itself near x0: min t subject to −t ≤ Δ_K(x) ≤ t (SLSQP).
 
         Least squares minimises Σ Δ_K², which is not Q = max |Δ_K| when the target cannot be
-        met exactly; this epigraph form moves to the Chebyshev (minimax) design.  Variables
-        are scaled to the unit box; the Jacobian of Δ comes from one batched
-        forward-difference call.
+        met exactly; this epigraph form moves to the Chebyshev (minimax) design.  Under the
+        lexicographic objective the desirable conditions that have a margin
+        (:attr:`~synthesis.criteria.Criteria.margins`) are inequality constraints: one that
+        holds at x0 is kept at m ≤ −10⁻⁷ (a hair inside, so the end is feasible), one that
+        does not may not worsen; so the polish slides along the boundary of the allowed
+        region instead of stopping where it first touches it.  A step that breaks the chain
+        or worsens the rest of P2 is rejected.  Variables are scaled to the unit box; the
+        Jacobians come from one batched forward-difference call.  The polish ends when Q
+        gains less than :data:`POLISH_GAIN` of [Q] (:data:`POLISH_GAIN_RELATIVE` of Q at x0
+        without [Q]) in :data:`POLISH_PATIENCE` iterations.
         """
         lo, span = self.lower, self.upper - self.lower
         base = self.record(x0[None, :], "refine", check_stall=False)
         q0 = float(base.q[0])
         if base.p1[0] > 0 or not np.isfinite(q0) or q0 == 0.0:
             return
-        p2_start = base.p2[0]
-        fallback = np.full(base.deviations.shape[1], 10.0 * q0)
-        cache: dict[bytes, FloatArray] = {}
+        held = self.settings.objective == "lexicographic"
+        m0 = base.margins[0] if held else np.zeros(0)
+        limit = np.where(m0 <= 0.0, -_CLEARANCE, m0)
+        rest0 = _rest(base, held)
+        fallback = (np.full(base.deviations.shape[1], 10.0 * q0), limit + 1.0)
+        cache: dict[bytes, tuple[FloatArray, FloatArray]] = {}
 
         def design(u: FloatArray) -> FloatArray:
             return lo + np.clip(u, 0.0, 1.0) * span
 
-        def deviations(u: FloatArray) -> FloatArray:
+        def values(c: Criteria) -> list[tuple[FloatArray, FloatArray]]:
+            """Deviations and held margins of each design of c (the fallback if rejected)."""
+            rest = _rest(c, held)
+            margins = c.margins if held else np.zeros((len(c), 0))
+            return [(c.deviations[k], margins[k])
+                    if c.p1[k] == 0 and rest[k] <= rest0 + 1e-12 * (1.0 + rest0)
+                    and np.all(np.isfinite(c.deviations[k])) and np.all(np.isfinite(margins[k]))
+                    else fallback for k in range(len(c))]
+
+        def at(u: FloatArray) -> tuple[FloatArray, FloatArray]:
             key = np.clip(u, 0.0, 1.0).tobytes()
             if key not in cache:
-                c = self.record(design(u)[None, :], "refine", check_stall=False)
-                ok = (c.p1[0] == 0 and c.p2[0] <= p2_start
-                      and np.all(np.isfinite(c.deviations[0])))
-                cache[key] = c.deviations[0] if ok else fallback
+                cache[key] = values(self.record(design(u)[None, :], "refine",
+                                                check_stall=False))[0]
             return cache[key]
 
-        def jacobian(u: FloatArray) -> FloatArray:
+        def jacobians(u: FloatArray) -> tuple[FloatArray, FloatArray]:
             u = np.clip(u, 0.0, 1.0)
             step = np.where(u + 1e-7 > 1.0, -1e-7, 1e-7)
-            c = self.record(design(u[None, :] + np.diag(step)), "refine", check_stall=False)
-            d0 = deviations(u)
-            d = np.where(np.isfinite(c.deviations), c.deviations, d0[None, :])
-            return ((d - d0[None, :]) / step[:, None]).T
+            shifted = values(self.record(design(u[None, :] + np.diag(step)), "refine",
+                                         check_stall=False))
+            d0, m_at = at(u)
+            d = np.array([item[0] for item in shifted])
+            m = np.array([item[1] for item in shifted]).reshape(len(step), m_at.size)
+            return ((d - d0[None, :]) / step[:, None]).T, ((m - m_at[None, :]) / step[:, None]).T
 
         def constraints(z: FloatArray) -> FloatArray:
-            d = deviations(z[:-1])
-            return np.concatenate([z[-1] - d, z[-1] + d])
+            d, m = at(z[:-1])
+            return np.concatenate([z[-1] - d, z[-1] + d, limit - m])
 
         def constraints_jac(z: FloatArray) -> FloatArray:
-            jac = jacobian(z[:-1])
-            ones = np.ones((jac.shape[0], 1))
-            return np.vstack([np.hstack([-jac, ones]), np.hstack([jac, ones])])
+            jd, jm = jacobians(z[:-1])
+            ones = np.ones((jd.shape[0], 1))
+            return np.vstack([np.hstack([-jd, ones]), np.hstack([jd, ones]),
+                              np.hstack([-jm, np.zeros((jm.shape[0], 1))])])
 
+        q_req = self.settings.q_required
+        watch = _Gain(POLISH_GAIN * q_req if q_req else POLISH_GAIN_RELATIVE * q0,
+                      POLISH_PATIENCE)
         q = span.size
         objective_grad = np.zeros(q + 1)
         objective_grad[-1] = 1.0
-        optimize.minimize(lambda z: z[-1], np.append((x0 - lo) / np.where(span > 0, span, 1.0), q0),
-                          jac=lambda z: objective_grad, method="SLSQP",
-                          bounds=[(0.0, 1.0)] * q + [(0.0, None)],
-                          constraints=[{"type": "ineq", "fun": constraints,
-                                        "jac": constraints_jac}],
-                          options={"maxiter": 60, "ftol": 1e-15})
+        try:
+            optimize.minimize(lambda z: z[-1],
+                              np.append((x0 - lo) / np.where(span > 0, span, 1.0), q0),
+                              jac=lambda z: objective_grad, method="SLSQP",
+                              bounds=[(0.0, 1.0)] * q + [(0.0, None)],
+                              constraints=[{"type": "ineq", "fun": constraints,
+                                            "jac": constraints_jac}],
+                              callback=lambda z: watch(float(z[-1])),
+                              options={"maxiter": 60, "ftol": watch.gain})
+        except _Settled:
+            pass
 
     # -------------------------------------------------------------------------- run
     def keep_optimum(self, stage: str, found: tuple[FloatArray, Criteria] | None) -> None:
@@ -769,8 +807,31 @@ class _Search:
 
 
 def _concat(parts: list[Criteria]) -> Criteria:
-    return Criteria(*(np.concatenate([getattr(p, name) for p in parts])
-                      for name in ("p1", "p2", "q", "deviations", "residuals")))
+    return Criteria(*(np.concatenate(arrays) for arrays in zip(*(p.arrays() for p in parts))))
+
+
+def _rest(criteria: Criteria, held: bool) -> FloatArray:
+    """P2 less the share of the conditions the refinement holds as constraints."""
+    return criteria.p2 - margin_penalty(criteria.margins) if held else criteria.p2
+
+
+class _Settled(Exception):
+    """Raised by the minimax polish's callback when Q no longer gains."""
+
+
+class _Gain:
+    """Follows the bound t on Q of a polish's iterations; raises :class:`_Settled` when it
+    has gained less than ``gain`` over the last ``patience`` iterations."""
+
+    def __init__(self, gain: float, patience: int) -> None:
+        self.gain = gain
+        self.patience = patience
+        self.seen: list[float] = []
+
+    def __call__(self, t: float) -> None:
+        self.seen.append(t)
+        if len(self.seen) > self.patience and self.seen[-1 - self.patience] - t < self.gain:
+            raise _Settled()
 
 
 def settings_for(problem: Problem, **overrides: Any) -> SearchSettings:

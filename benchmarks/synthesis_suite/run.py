@@ -51,7 +51,16 @@ SETTINGS: dict[str, dict[str, Any]] = {
     "b10-s3-r3": {"budget_log2": 10, "refine": True, "shrink_passes": 3, "restarts": 3},
     "b8-s3-r3": {"budget_log2": 8, "refine": True, "shrink_passes": 3, "restarts": 3},
     "b10-s3-r7": {"budget_log2": 10, "refine": True, "shrink_passes": 3, "restarts": 7},
+    # the stop-on-stall rule: a round ends after 512 trials without improving its best
+    "b10-s3-r3-stall512": {"budget_log2": 10, "refine": True, "shrink_passes": 3,
+                           "restarts": 3, "stall": 512},
 }
+#: Settings measured on the search before the refinement held the desirable conditions as
+#: constraints (docs/synthesis_suite.md, "before"): name → (success %, mean s per run).
+#: Their results files are not kept; the plot shows them beside the runs of this tree.
+BEFORE: dict[str, tuple[float, float]] = {
+    "before-shipped": (88.5, 4.20), "before-program": (6.9, 2.75),
+    "b10-s3-r3 (before)": (92.3, 8.82)}
 PROFILES: dict[str, dict[str, Any]] = {
     "quick": {"problems": ["e01_fourbar_angle", "e08_slider_crank", "c01_rocker_pressure_45",
                            "i01_rocker_law"], "seeds": 3},
@@ -124,8 +133,8 @@ def report() -> None:
             if row and row["problem"] in optima and key not in seen:
                 seen.add(key)
                 rows[row["setting"]].append(row)
-    lines = ["| setting | runs | success | failed (problem: runs) | median s | mean s | max s |",
-             "|---|---|---|---|---|---|---|"]
+    lines = [("| setting | runs | success | failed (problem: runs) | median s | mean s | max s "
+              "| mean trials |"), "|---|---|---|---|---|---|---|---|"]
     points = []
     for name in SETTINGS:
         runs = rows.get(name)
@@ -143,7 +152,7 @@ def report() -> None:
                 if len(failed) <= 6 else f"{len(failed)} problems") or "—"
         lines.append(f"| {name} | {len(runs)} | {rate:.1f} % | {text} | "
                      f"{secs[len(secs) // 2]:.2f} | {sum(secs) / len(secs):.2f} | "
-                     f"{secs[-1]:.2f} |")
+                     f"{secs[-1]:.2f} | {sum(r['trials'] for r in runs) / len(runs):.0f} |")
         points.append((name, rate, sum(secs) / len(secs)))
     table = "\n".join(lines) + "\n"
     (HERE / "results" / "table.md").write_text(table, encoding="utf-8")
@@ -156,6 +165,10 @@ def _plot(points: list[tuple[str, float, float]]) -> None:
 
     fig = Figure(figsize=(7, 4.5))
     ax = fig.add_subplot()
+    for name, (rate, seconds) in BEFORE.items():
+        ax.plot(seconds, rate, "o", color="grey")
+        ax.annotate(name, (seconds, rate), textcoords="offset points", xytext=(5, -10),
+                    fontsize=8, color="grey")
     for name, rate, seconds in points:
         ax.plot(seconds, rate, "o")
         ax.annotate(name, (seconds, rate), textcoords="offset points", xytext=(5, 3),

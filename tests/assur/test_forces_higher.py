@@ -128,10 +128,6 @@ def test_triad_reactions_equal_the_global_solve(kind: str) -> None:
     assert compared >= PHI.size / 2
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "kinematics: the frame of a triad's base whose first leash in pair order slides on it "
-    "has its origin at that leash's slider point, which is not fixed to the base (a hinge of "
-    "the base moves by ~30 mm in it), so the points carried by the base are misplaced"))
 def test_triad_without_a_bar_equals_the_global_solve() -> None:
     compared = 0
     for seed in SEEDS:

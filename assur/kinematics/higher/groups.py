@@ -445,10 +445,14 @@ class Triad(HigherGroup):
         return np.stack(np.broadcast_arrays(w.real, w.imag, np.angle(e)), axis=-1)
 
     def joints(self, x: Unknowns, k: TriadInputs) -> dict[str, Value]:
-        """P1, P2, P3: the internal pairs (for a P–R leash, the slider at its hinge A_k)."""
+        """P1, P2, P3: the internal pairs (for a P–R leash, the slider at its hinge A_k); O:
+        the base's point drawn at P₁⁰ carried by the base, the origin of its frame (P1 itself
+        unless the first leash slides on the base, where P1 is the hinge A₁ on the leash)."""
         p1, e = self._pose(_columns(x), k)
-        return {f"P{i + 1}": (k.a[i] if kind == "PR" else p1 + self._offset(i) * e)
-                for i, kind in enumerate(self.leashes)}
+        out = {f"P{i + 1}": (k.a[i] if kind == "PR" else p1 + self._offset(i) * e)
+               for i, kind in enumerate(self.leashes)}
+        out["O"] = p1
+        return out
 
     def rotations(self, x: Unknowns, k: TriadInputs) -> dict[str, Value]:
         """base: θ; leash1–3: the rotation of each leash (a P–R leash turns with the base)."""

@@ -418,7 +418,7 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
     follow, k0, solved = _follow(state, group, q, make, _triad_inputs(group))
     theta = follow.rotations["base"]
     frames: dict[str, tuple[Any, float]] = {
-        "base": (follow.joints["P1"], _phase(base[1] - base[0]))}
+        "base": (follow.joints["O"], _phase(base[1] - base[0]))}
     for i, (kind, inner, ext) in enumerate(zip(layout.leashes, layout.internal, layout.external,
                                                strict=True)):
         name = TRIAD_LINKS[i + 1]
@@ -444,7 +444,7 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
             frames[name] = (hinge, _phase(base[i] - k0.a[i]))
         else:  # P–R: a leash hinged to a known link, sliding along the base's guide
             angle0 = p(_column(group.label, f"beta_{inner}"))
-            line = follow.joints["P1"] + _col(base[i] - base[0]) * J.expi(theta)
+            line = follow.joints["O"] + _col(base[i] - base[0]) * J.expi(theta)
             carrier = state.model.pair_links[inner][2] or layout.links[0]
             slider = next(link for link in state.model.pair_links[inner][1] if link != carrier)
             angle = theta + angle0

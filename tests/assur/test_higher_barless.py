@@ -217,7 +217,8 @@ def test_the_base_frame_carries_the_base_rigidly(mix: str) -> None:
     """Points carried by the base's frame, z(φ) = O(φ) + (z⁰ − O(0))·e^{i(θ(φ) − θ(0))}, stay
     on the base over the cycle (to 1e-9 L): the base's hinges (R–P leashes) land on the
     solved hinges, an arbitrary carried point keeps its drawn distances to them, and the hinge
-    of a P–R leash stays on the base's guide carried the same way."""
+    of a P–R leash stays on the base's guide carried the same way, whose point drawn at the
+    hinge is the slider's guide point (fixed on the base)."""
     from assur.kinematics.analysis import analyse, values
     from assur.kinematics.build import build_model
     from assur.io.chain_table import chain_from_dict
@@ -254,7 +255,10 @@ def test_the_base_frame_carries_the_base_rigidly(mix: str) -> None:
             else:
                 hinge = np.asarray(values(motion.joints[pout]))
                 along = np.exp(1j * (np.radians(geometry[pin]["direction"]) + angle - angle[0]))
-                off = np.imag(np.conj(along) * (hinge - carried(drawn(pout))))
+                on = carried(drawn(pout))
+                off = np.imag(np.conj(along) * (hinge - on))
                 assert np.abs(off)[ok].max() <= 1e-9 * scale
+                line = np.asarray(values(motion.sliders[pin].base))
+                assert np.abs(line - on)[ok].max() <= 1e-9 * scale
         checked += int((ok & (np.abs(np.sin(angle - angle[0])) > 0.02)).sum())
     assert checked >= 4   # positions where the base has turned

@@ -20,10 +20,14 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
+import numpy.typing as npt
 
 from assur.model import LinkId
 
 __all__ = ["ForceData", "Load", "Mass", "Tabulated"]
+
+#: A value per design: a number, or an array broadcast against the positions (``(D, 1)``).
+PerDesign = float | npt.NDArray[np.float64]
 
 
 @dataclass(frozen=True, slots=True)
@@ -78,20 +82,24 @@ class Tabulated:
 class Mass:
     """Inertia data of one moving link.
 
+    Each value is one number, or (for a batch of designs whose masses follow their
+    dimensions) an array that broadcasts against the kinematics' arrays: shape ``(D, 1)``
+    for D designs × positions.
+
     Parameters
     ----------
-    mass : float
+    mass : float or ndarray
         kg, ≥ 0.
-    centre : complex or None
-        Centre of mass as a sketch point x + i·y (mm), fixed on the link; None when the mass
-        is 0.
-    inertia : float
+    centre : complex or ndarray or None
+        Centre of mass as a sketch point x + i·y (mm), fixed on the link (or a point of the
+        link's frame, see ``ForceData.local``); None when the mass is 0.
+    inertia : float or ndarray
         Moment of inertia about the centre, kg·m², ≥ 0.
     """
 
-    mass: float
-    centre: complex | None = None
-    inertia: float = 0.0
+    mass: PerDesign
+    centre: complex | npt.NDArray[np.complex128] | None = None
+    inertia: PerDesign = 0.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -144,8 +152,8 @@ class ForceData:
     gravity: complex = 0j
     local: bool = False
 
-    def weight(self, link: LinkId) -> complex:
-        """The weight m·g of a link, N (0 without a mass)."""
+    def weight(self, link: LinkId) -> complex | npt.NDArray[np.complexfloating]:
+        """The weight m·g of a link, N (0 without a mass; an array for masses per design)."""
         mass = self.masses.get(link)
         return 0j if mass is None else mass.mass * self.gravity
 

@@ -367,9 +367,9 @@ def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet
     rotors: dict[LinkId, np.ndarray] = {}
     w2 = omega * omega
 
-    def carried(link: LinkId, x: complex) -> np.ndarray:
-        """A point fixed on the link, sketched at x (or at x in the link's frame), mm: its
-        arm from the link's origin, m."""
+    def carried(link: LinkId, x: complex | np.ndarray) -> np.ndarray:
+        """A point fixed on the link, sketched at x (or at x in the link's frame; an array
+        per design), mm: its arm from the link's origin, m."""
         if link not in rotors:
             rotors[link] = _expi(frames[link][1].v)
         local: complex | np.ndarray = x * MM
@@ -389,7 +389,7 @@ def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet
     for link, mass in data.masses.items():
         origin, angle = frames[link]
         spin = -mass.inertia * w2 * angle.d2
-        if mass.mass > 0 and mass.centre is not None:
+        if mass.centre is not None and np.any(np.asarray(mass.mass) > 0):
             arm = carried(link, mass.centre)
             acceleration = origin.d2 * MM + arm * (1j * angle.d2 - angle.d1 * angle.d1)
             force = data.weight(link) - mass.mass * w2 * acceleration

@@ -177,8 +177,8 @@ class ForceConditions:
         >>> model = problem.model
         >>> motion = analyse(model, np.zeros(1), analogs=True)
         >>> data = problem.forces.data_of(motion)
-        >>> round(float(data.masses[2].mass[0]), 6)     # 0.01 kg/mm × l_i = 120 mm
-        1.2
+        >>> round(float(data.masses[2].mass[0]), 9)     # 0.02 kg/mm × l_i = 110 mm
+        2.2
         """
         if not self.follow:
             return self.data
@@ -224,7 +224,7 @@ def read_force_conditions(top: Node, model: KinematicModel | None) -> ForceCondi
     limits = node.child("limits", allowed=_LIMITS)
     torque, reactions, couples = (_limits(limits, model) if limits is not None
                                   else (None, {}, {}))
-    if limits is not None and torque is None and not reactions and not couples:
+    if limits is not None and not any(limits.has(key) for key in _LIMITS):
         reader.problem(limits.location, "force.condition.no_limits")
     if len(reader.issues) > before or data is None or omega is MISSING:
         return None
@@ -318,7 +318,7 @@ def _mass_rule(node: Node, link: LinkId, hinges: list[PairId] | None) -> MassRul
     words = [word for word, used in (("per_mm", per_mm), (MIDDLE, centre == MIDDLE),
                                      (ROD, inertia == ROD)) if used]
     named = _between(node, link, hinges) if node.has("between") else None
-    if hinges is None or len(reader.issues) > before:
+    if hinges is None or mass is MISSING or len(reader.issues) > before:
         return None
     if named is None and words:
         named = _two_hinges(node, link, hinges, words[0])
@@ -366,7 +366,8 @@ def _between(node: Node, link: LinkId, hinges: list[PairId] | None
                                    and all(pair in hinges for pair in named)):
         node.reader.problem(f"{node.location} 'between'", "force.condition.between",
                             link=str(link), known=", ".join(map(str, hinges)) or "—",
-                            found=describe(value))
+                            found=(f"[{', '.join(map(str, value))}]"
+                                   if isinstance(value, list) else describe(value)))
         return None
     return tuple(named)
 

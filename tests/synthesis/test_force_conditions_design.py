@@ -37,11 +37,12 @@ OMEGA, RHO = 10.0, 0.005
 #: link → the two hinges whose distance is its length (the ternary links 2 and 8 name them)
 BARS = {1: ("0-1", "1-2"), 2: ("1-2", "2-6"), 3: ("2-3", "3-0"), 6: ("2-6", "6-8"),
         8: ("6-8", "8-10")}
-#: slider or block → its one hinge and its mass, kg
-BLOCKS = {4: ("4-5", 0.3), 7: ("7-0", 0.4), 9: ("8-9", 0.5), 10: ("8-10", 0.6)}
+#: slider or block → its one hinge, its mass, kg, and moment of inertia, kg·m²
+BLOCKS = {4: ("4-5", 0.3, 0.0), 7: ("7-0", 0.4, 2e-4), 9: ("8-9", 0.5, 0.0),
+          10: ("8-10", 0.6, 1e-3)}
 #: a resistance on slider 11 at the origin of its frame (it has no hinge), N
 RESISTANCE = -500j
-COUPLES = {"10-11": 40.0, "6-7": 0.05}
+COUPLES = {"10-11": 80.0, "6-7": 0.02}
 
 
 def _eleven_link() -> Problem:
@@ -50,7 +51,8 @@ def _eleven_link() -> Problem:
     masses: dict[int, Any] = {
         link: {"per_mm": RHO, "centre": "middle", "inertia": "rod", "between": list(pairs)}
         for link, pairs in BARS.items()}
-    masses.update({link: {"mass": mass} for link, (_, mass) in BLOCKS.items()})
+    masses.update({link: {"mass": mass, "inertia": inertia}
+                   for link, (_, mass, inertia) in BLOCKS.items()})
     data["forces"] = {"omega": OMEGA, "gravity": [0, -9.81], "masses": masses,
                       "loads": [{"link": 11, "force": [0, -500], "point": [0, 0]}],
                       "limits": {"couples": COUPLES}}
@@ -67,8 +69,8 @@ def _by_hand(model: KinematicModel) -> ForceData:
         length = abs(joint[b] - joint[a])
         mass = RHO * length
         masses[link] = Mass(mass, (joint[a] + joint[b]) / 2, mass * (length * 1e-3) ** 2 / 12)
-    for link, (hinge, mass) in BLOCKS.items():
-        masses[link] = Mass(mass, joint[hinge], 0.0)
+    for link, (hinge, mass, inertia) in BLOCKS.items():
+        masses[link] = Mass(mass, joint[hinge], inertia)
     origin = complex(np.asarray(values(sketch.frames[11][0])).ravel()[0])
     return ForceData(masses, (Load(11, force=RESISTANCE, point=origin),), -9.81j)
 
@@ -124,7 +126,7 @@ def test_a_couple_limit_is_the_excess_of_the_largest_couple() -> None:
             assert couple is not None and np.isfinite(couple).all()
             want[d] += max(0.0, float(np.max(np.abs(couple))) - limit) / limit
     np.testing.assert_allclose(got, want, rtol=1e-10)
-    assert (got > 0).any() and (got < 2 * want.max()).all()
+    assert (got > 0).any() and (got == 0).any()      # binding for some designs only
 
 
 def _respecting(problem: Problem, x: np.ndarray) -> float:
@@ -154,7 +156,9 @@ def test_masses_following_the_design_move_the_optimum_and_it_respects_the_limit(
     fixed = dataclasses.replace(problem, forces=dataclasses.replace(
         problem.forces, follow=(),
         data=dataclasses.replace(problem.forces.data, masses=fixed_masses)))
-    settings = dataclasses.replace(problem.settings, refine=False, q_required=1e-4)
+    # 2^9 LPτ trials and their shrinking boxes, no early stop: each run ends at its best
+    settings = dataclasses.replace(problem.settings, refine=False, q_required=1e-4,
+                                   budget_log2=9)
     follow_run = synthesize(problem, settings, progress=False)
     fixed_run = synthesize(fixed, settings, progress=False)
     x_follow = np.asarray(follow_run.result.x).ravel()

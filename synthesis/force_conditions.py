@@ -119,8 +119,9 @@ class MassRule:
         Parameters
         ----------
         motion : Motion
-            A batch of designs; the hinges are measured at each design's first assembled
-            position (a rigid link keeps them).
+            A batch of designs (a crank input); the hinges are measured in the link's frame
+            (``Motion.frames``) at each design's first assembled position (a rigid link
+            keeps them there).
 
         Returns
         -------
@@ -320,11 +321,12 @@ def _mass_rule(node: Node, link: LinkId, hinges: list[PairId] | None) -> MassRul
     named = _between(node, link, hinges) if node.has("between") else None
     if hinges is None or mass is MISSING or len(reader.issues) > before:
         return None
+    at_hinge = centre is None and len(hinges) == 1    # a slider or a block
     if named is None and words:
         named = _two_hinges(node, link, hinges, words[0])
-    elif named is None and centre is None and len(hinges) == 1:
-        named = tuple(hinges)              # a slider or a block: the mass at its hinge
-    if centre is None and named is None and (per_mm or mass > 0):
+    elif named is None and at_hinge:
+        named = tuple(hinges)
+    if centre is None and not at_hinge and (per_mm or mass > 0):
         reader.problem(node.location, "force.condition.centre_missing", link=str(link),
                        known=", ".join(map(str, hinges)) or "—")
     if len(reader.issues) > before:

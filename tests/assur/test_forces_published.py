@@ -26,7 +26,8 @@ F_ext = 100). The book's notation F_ij is the force of link i on link j, as the 
 reaction of a pair listed [i, j]; units and axes are the same (m → mm in the table).
 
 Only this one crank position is printed in the source with numbers; the three-angle
-check of the method is the hand calculation in ``test_forces_textbook.py``.
+checks of the method are the hand calculation in ``test_forces_textbook.py`` and the three
+printed engine examples (45°, 60°, 125°) of Khurmi and Gupta in ``test_forces_khurmi.py``.
 """
 
 from __future__ import annotations

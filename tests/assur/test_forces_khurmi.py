@@ -57,6 +57,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import pytest
+from force_tables import load
 
 import assur
 from assur.forces import ForceData, Load, Mass, kinetostatics
@@ -224,3 +225,14 @@ def test_the_program_agrees_with_the_printed_figures(engine: Engine) -> None:
                      + abs(rounded[quantity] - unrounded[quantity]) + unit / 2)
         assert tolerance < 0.01 * abs(value), quantity          # a real check, under 1 %
         assert abs(program[quantity] - value) <= tolerance, quantity
+
+
+def test_the_shipped_table_is_example_15_7_at_its_sketch() -> None:
+    """``input_tables/slider_crank_engine.yaml``: Ex. 15.7 sketched at θ = 60°."""
+    e = Engine(**{**ENGINES[0].__dict__, "load": 68722.34})   # the table's load, to 0.01 N
+    model, data = load("slider_crank_engine.yaml")
+    result = kinetostatics(assur.analyse(model, np.array([0.0]), analogs=True), data, e.omega)
+    exact = _solution(e, book=False)
+    assert -result.driving[0] == pytest.approx(exact["torque"], rel=1e-9)
+    guide = result.reactions["C_T"].normal
+    assert guide is not None and -guide[0] == pytest.approx(exact["normal"], rel=1e-9)

@@ -3,12 +3,11 @@
 The method is the kinetostatics of Assur groups as taught in the course's textbook,
 I. I. Artobolevsky, *Теория механизмов и машин* (4th ed., Moscow: Nauka, 1988), the chapters
 on the force analysis of mechanisms: d'Alembert's inertia forces, then the groups from the
-last one back to the crank. No published slider-crank example with printed results at three
-crank angles was found (``test_forces_published.py`` reproduces one printed at a single
-angle), so the hand calculation at three angles is our own, written out step by step in
+last one back to the crank. The printed examples are checked elsewhere: one engine at a
+single angle in ``test_forces_published.py`` and three engines of one textbook at 45°, 60° and
+125° in ``test_forces_khurmi.py``. Here one engine is worked through three angles by hand, in
 ``_hand`` below with scalar components only and sharing nothing with the program but the
-data: the
-closed-form kinematics of the offset slider-crank differentiated by hand (rod angle β from
+data: the closed-form kinematics of the offset slider-crank differentiated by hand (rod angle β from
 l·sin β = e − r·sin φ), then the slider's x-equation, the rod's moments about the crank pin,
 the slider's y-equation, the rod's force polygon and the crank's moments.
 

@@ -12,8 +12,9 @@ and the sentence is rendered here, in one place. A teacher adds a language by co
 ``en.po`` to ``<lang>.po`` and translating every ``msgstr``; ``--lang <lang>`` then works
 everywhere. The PO files are the one source: a language's file is compiled with Babel the
 first time it is used and the compiled catalogue is kept in the user's cache folder
-(``$XDG_CACHE_HOME/assur`` or ``~/.cache/assur``), named by a hash of the PO file's content,
-so that later runs load it with :mod:`gettext` alone and an edited PO file is compiled anew.
+(``$XDG_CACHE_HOME/assur`` or ``~/.cache/assur``), named by the size and CRC-32 of the PO
+file's content, so that later runs load it with :mod:`gettext` alone and an edited PO file is
+compiled anew.
 
 Examples
 --------
@@ -28,10 +29,10 @@ Examples
 from __future__ import annotations
 
 import gettext
-import hashlib
 import io
 import os
 import struct
+import zlib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cache
@@ -99,8 +100,9 @@ def _cached(lang: str, source: bytes) -> Path | None:
         base = Path(folder) if folder else Path.home() / ".cache"
     except RuntimeError:  # no home folder
         return None
-    digest = hashlib.sha256(source).hexdigest()[:20]
-    return base / "assur" / f"{lang}-{digest}.mo"
+    # the size and CRC-32 of the content name it (zlib is loaded anyway; hashlib would load
+    # OpenSSL for a name that only tells the versions of one file apart)
+    return base / "assur" / f"{lang}-{len(source):x}-{zlib.crc32(source):08x}.mo"
 
 
 def _compile(source: bytes) -> bytes:

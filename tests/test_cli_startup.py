@@ -1,5 +1,6 @@
-"""What ``assur check`` loads and reads: no module it does not use, each table file once, the
-text catalogue compiled once and then read from the cache.
+"""What ``assur check`` loads and reads: no module it does not use (networkx only for a chain
+that needs the general structural path), each table file once, the text catalogue compiled
+once and then read from the cache.
 
 The modules are read from ``sys.modules`` of a fresh interpreter after the command ran; the
 files opened are counted by an audit hook (``open`` events of the interpreter), so a second
@@ -28,22 +29,38 @@ from synthesis.problem import load_problem
 ROOT = Path(__file__).resolve().parents[1]
 TABLE = ROOT / "input_tables" / "four_bar.yaml"
 PROBLEM = ROOT / "input_tables" / "problems" / "class1_fourbar_rocker.yaml"
-#: Packages that ``assur check`` of a small table has no use for.
-UNUSED = ("scipy", "matplotlib", "tqdm", "dask", "assur.forces", "assur.kinematics.higher")
-#: Runs ``assur check`` and prints the modules loaded (JSON) as its last line.
+#: Packages that ``assur check`` of a small table of dyads has no use for.
+UNUSED = ("networkx", "scipy", "matplotlib", "tqdm", "dask", "assur.forces",
+          "assur.kinematics.higher")
+#: Runs ``assur check`` and prints its output and the modules loaded (JSON) as its last line.
 CHECK = ("import io, json, sys, contextlib\n"
          "from synthesis.cli import main\n"
-         "with contextlib.redirect_stdout(io.StringIO()):\n"
+         "with contextlib.redirect_stdout(io.StringIO()) as out:\n"
          "    code = main(['check', sys.argv[1]])\n"
-         "print(json.dumps({'code': code, 'modules': sorted(sys.modules)}))\n")
+         "print(json.dumps({'code': code, 'out': out.getvalue(), 'modules': sorted(sys.modules)}))\n")
+#: A four-bar with a link hung on the coupler by one hinge: the general path finds it idle.
+IDLE = """mechanism:
+  pairs:
+    - {id: A, type: R, links: [0, 1]}
+    - {id: B, type: R, links: [1, 2]}
+    - {id: C, type: R, links: [2, 3]}
+    - {id: D, type: R, links: [3, 0]}
+    - {id: E, type: R, links: [2, 4]}
+  inputs: [1]
+"""
+
+
+def _run_check(cache: Path, table: Path = TABLE) -> tuple[int, str, set[str]]:
+    env = dict(os.environ, PYTHONPATH=str(ROOT), XDG_CACHE_HOME=str(cache))
+    done = subprocess.run([sys.executable, "-c", CHECK, str(table)], env=env, cwd=ROOT,
+                          capture_output=True, text=True, check=True, timeout=120)
+    found = json.loads(done.stdout.strip().splitlines()[-1])
+    return found["code"], found["out"], set(found["modules"])
 
 
 def _check_modules(cache: Path) -> tuple[int, set[str]]:
-    env = dict(os.environ, PYTHONPATH=str(ROOT), XDG_CACHE_HOME=str(cache))
-    done = subprocess.run([sys.executable, "-c", CHECK, str(TABLE)], env=env, cwd=ROOT,
-                          capture_output=True, text=True, check=True, timeout=120)
-    found = json.loads(done.stdout.strip().splitlines()[-1])
-    return found["code"], set(found["modules"])
+    code, _, modules = _run_check(cache)
+    return code, modules
 
 
 def _loaded(package: str, modules: set[str]) -> bool:
@@ -54,7 +71,7 @@ def test_check_loads_only_what_it_uses_and_the_catalogue_from_the_cache(tmp_path
     code, first = _check_modules(tmp_path)
     assert code == 0
     # the command did its work: the structure was analysed and the catalogue compiled
-    assert {"assur.structure.analysis", "networkx", "numpy", "yaml"} <= first
+    assert {"assur.structure.analysis", "numpy", "yaml"} <= first
     assert _loaded("babel", first)
     assert sorted((tmp_path / "assur").glob("en-*.mo"))
     assert [name for name in UNUSED if _loaded(name, first)] == []
@@ -62,6 +79,25 @@ def test_check_loads_only_what_it_uses_and_the_catalogue_from_the_cache(tmp_path
     code, second = _check_modules(tmp_path)
     assert code == 0 and not _loaded("babel", second)
     assert [name for name in UNUSED if _loaded(name, second)] == []
+
+
+@pytest.mark.parametrize("name", ["slider_crank", "course_11_link_table"])
+def test_check_of_a_table_of_dyads_loads_no_graph_library(name: str, tmp_path: Path) -> None:
+    """A slider (a prismatic pair: no loop of them to look for) and an identification table."""
+    code, out, modules = _run_check(tmp_path, ROOT / "input_tables" / f"{name}.yaml")
+    assert code == 0 and "Structure formula: I(0,1) → II" in out
+    assert [package for package in UNUSED if _loaded(package, modules)] == []
+
+
+def test_check_of_an_open_chain_takes_the_general_path(tmp_path: Path) -> None:
+    table = tmp_path / "idle.yaml"
+    table.write_text(IDLE, encoding="utf-8")
+    code, out, modules = _run_check(tmp_path, table)
+    # W = 3·4 − 2·5 = 2 with one input; link 4 hangs on the one hinge E (a bridge)
+    assert code == 0 and "W = 3n − 2p5 − p4 = 3·4 − 2·5 − 0 = 2" in out
+    idle = [line for line in out.splitlines() if "W_IDLE_LINK" in line]
+    assert len(idle) == 1 and "link 4 " in idle[0]
+    assert "networkx" in modules
 
 
 @pytest.mark.usefixtures("fresh_catalogues")

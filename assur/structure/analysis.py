@@ -23,11 +23,10 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Any
 
-import networkx as nx  # type: ignore[import-untyped]
-
 from assur.io.chain_table import recentre_hinge
 from assur.model import Chain, Drive, LinkId, PairId, PairType, id_key
-from assur.structure._fast import closed_by_dyads
+from assur.structure._fast import closed_by_dyads, no_prismatic_loop
+from assur.structure._nx import networkx
 from assur.structure.classification import AssurGroup, classify, input_group, roman
 from assur.structure.diagnostics import Diagnostic, diagnostic
 from assur.structure.peeling import BodyGraph, Peeling, body_graph, peel
@@ -183,7 +182,7 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
     p5 = len(chain.pairs)
     p4 = 0
     w = 3 * n - 2 * p5 - p4
-    loops = _prismatic_loops(chain)
+    loops = [] if no_prismatic_loop(graph, peeling) else _prismatic_loops(chain)
     w_star = w + sum(d.data["r"] for d in loops)
     m = len(chain.inputs)
 
@@ -295,6 +294,7 @@ def _prismatic_loops(chain: Chain) -> list[Diagnostic]:
     r_P = |E_P| − |V_P| + c(P-subgraph) (``structure.md`` §3.3), counted per component.
     """
     prismatic = [pair for pair in chain.pairs if pair.type is PairType.P]
+    nx = networkx()
     graph = nx.Graph()
     graph.add_edges_from(pair.links for pair in prismatic)
     component = {link: k for k, links in enumerate(nx.connected_components(graph))
@@ -338,6 +338,7 @@ def _appendages(chain: Chain, inputs: set[LinkId]) -> list[list[LinkId]]:
     end, a contiguous run of the preorder. Sides come in depth-first order, each in
     depth-first order.
     """
+    nx = networkx()
     graph = nx.Graph()
     graph.add_node(chain.frame)
     graph.add_edges_from(pair.links for pair in chain.pairs)

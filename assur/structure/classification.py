@@ -9,14 +9,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from itertools import combinations
-from typing import Any
-
-import networkx as nx  # type: ignore[import-untyped]
+from typing import TYPE_CHECKING, Any
 
 from assur.kinds import GroupKind, kind_of, kind_of_pattern
 from assur.model import LinkId, PairId, id_key
+from assur.structure._nx import networkx
 from assur.structure.diagnostics import Diagnostic, diagnostic
 from assur.structure.peeling import BodyGraph, RawGroup
+
+if TYPE_CHECKING:  # pragma: no cover
+    from networkx import MultiGraph  # type: ignore[import-untyped]
 
 __all__ = ["AssurGroup", "classify", "input_group", "roman", "subscript"]
 
@@ -168,6 +170,7 @@ def classify(raw: RawGroup, graph: BodyGraph) -> AssurGroup:
                                  [p for p, _, _ in ext_real], base=next(iter(knowns))))
     if len(bodies) == 2 and len(raw.external) == 2 and len(raw.internal) == 1:
         return _dyad(raw, graph, common, issues)
+    nx = networkx()
     internal = nx.MultiGraph()
     internal.add_nodes_from(bodies)
     for pid in raw.internal:
@@ -243,7 +246,7 @@ def _dyad(raw: RawGroup, graph: BodyGraph, common: dict[str, Any],
                       j_minus_1=ext_j[2], issues=tuple(issues), **common)
 
 
-def _four(raw: RawGroup, graph: BodyGraph, internal: nx.MultiGraph,
+def _four(raw: RawGroup, graph: BodyGraph, internal: MultiGraph,
           ext_count: dict[LinkId, int]) -> tuple[int, str] | None:
     degree = dict(internal.degree())
     ext_type = {body: _type(graph, pid) for pid, body, _ in raw.external}
@@ -256,6 +259,7 @@ def _four(raw: RawGroup, graph: BodyGraph, internal: nx.MultiGraph,
                 return None
             leashes.append(f"{_type(graph, pid)}–{ext_type[leash]}")
         return 3, f"III(base {base}; leashes {', '.join(leashes)})"
+    nx = networkx()
     simple = nx.Graph(internal)
     if (len(raw.external) == 2 and internal.number_of_edges() == 4
             and simple.number_of_edges() == 4 and all(d == 2 for d in degree.values())

@@ -19,9 +19,8 @@ from collections import Counter, deque
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 
-import networkx as nx  # type: ignore[import-untyped]
-
 from assur.model import Chain, LinkId, PairId, id_key
+from assur.structure._nx import networkx
 from assur.structure.diagnostics import Diagnostic, diagnostic
 from assur.text import Message
 
@@ -76,7 +75,6 @@ def body_graph(chain: Chain) -> BodyGraph:
 
     The links joined by frozen actuator pairs become one body, named by its smallest link.
     """
-    welded = nx.Graph()  # the frozen actuator pairs only: links of no actuator stay alone
     frozen: list[PairId] = []
     input_links: list[LinkId] = []
     driven: dict[LinkId, PairId] = {}
@@ -90,7 +88,6 @@ def body_graph(chain: Chain) -> BodyGraph:
                 driven[link] = pair.id
             else:
                 frozen.append(pair.id)
-                welded.add_edge(*pair.links)
             continue
         assert drive.link is not None  # a drive names a link or a pair
         link = drive.link
@@ -102,8 +99,12 @@ def body_graph(chain: Chain) -> BodyGraph:
             issues.append(diagnostic("E_INPUT_NOT_ON_FRAME", [link], [p.id for p in on_frame],
                                      k=len(on_frame)))
     body_of = {link: link for link in chain.links}
-    body_of.update({link: min(body, key=id_key) for body in nx.connected_components(welded)
-                    for link in body})
+    if frozen:  # the links welded by frozen actuator pairs; a link of no actuator stays alone
+        nx = networkx()
+        welded = nx.Graph()
+        welded.add_edges_from(chain.pair(pid).links for pid in frozen)
+        body_of.update({link: min(body, key=id_key) for body in nx.connected_components(welded)
+                        for link in body})
     members: dict[LinkId, list[LinkId]] = {}
     for link in chain.links:
         members.setdefault(body_of[link], []).append(link)
@@ -267,6 +268,7 @@ class _Peeler:
                           p=p, d=d, q=-d)
 
     def _components(self) -> list[set[LinkId]]:
+        nx = networkx()
         sub = nx.Graph()
         sub.add_nodes_from(self.unknown)
         sub.add_edges_from((a, b) for _, a, b in self.g.edges

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from assur import structure_report
+from assur.structure.report import structure_report
 from synthesis.app.assess import Assessment
 
 __all__ = ["check_record", "check_text"]

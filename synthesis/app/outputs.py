@@ -18,7 +18,6 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-import tempfile
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -57,6 +56,8 @@ def _existing_ancestor(path: Path) -> Path:
 
 def _cannot_create_in(folder: Path) -> str | None:
     """Why no file can be created in ``folder`` (None when one can)."""
+    import tempfile  # with the modules it loads, only by a command that writes a file
+
     try:
         handle, name = tempfile.mkstemp(prefix=".assur-probe.", dir=folder)
     except OSError as exc:
@@ -112,6 +113,8 @@ def output_problem(option: str, path: str | os.PathLike[str], kind: str = FILE
 
 def _fallbacks(path: Path) -> Iterator[Path]:
     """Where a result goes when its path fails: next to it, here, the temporary folder."""
+    import tempfile
+
     spare = f"{path.stem}.saved{path.suffix}"
     yield path.with_name(spare)
     yield Path.cwd() / spare

@@ -268,7 +268,8 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
 
 
 def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched | None:
-    """The sketch rule of the class IV group: drawn C, D, E, F and the anchors of H_a, H_c.
+    """The sketch rule of the class IV group: drawn C, D, E, F, the anchors of hinged external
+    pairs and the guides of prismatic ones on the known links.
 
     Parameters
     ----------
@@ -283,17 +284,22 @@ def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched 
     -------
     Sketched or None
         Its :class:`Layout` and link frames; None after recording a problem (a prismatic
-        pair or an actuator in the group).
+        internal pair, a guide of an external prismatic pair carried by the group's link, or
+        an actuator in the group).
     """
     pairs = build.topo.pairs
-    kinds = {pairs[pid].type.value for pid in (*group.internal, *(e[0] for e in group.external))}
     if group.composite:
         _problem(build, label, "actuator")
         return None
-    if kinds != {"R"} or len(group.external) != 2:
-        _problem(build, label, "class_iv_sliders")
+    inner = sorted(str(pid) for pid in group.internal if pairs[pid].type.value != "R")
+    if inner or len(group.external) != 2:
+        _problem(build, label, "class_iv_sliders", pairs=", ".join(inner))
         return None
     (h_a, a, known_a), (h_c, c, known_c) = group.external
+    for ext, known in ((h_a, known_a), (h_c, known_c)):
+        if pairs[ext].type.value == "P" and pairs[ext].guide not in (None, known):
+            _problem(build, label, "class_iv_guide", pair=str(ext))
+            return None
 
     def between(x: LinkId, y: LinkId | None = None) -> list[PairId]:
         return [p for p in group.internal if x in pairs[p].links
@@ -307,15 +313,24 @@ def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched 
     pts = {name: build.point(pairs[pid]) for name, pid in
            zip(CLASS_IV_JOINTS, (p_c, p_d, p_e, p_f), strict=True)}
     ha, hc = build.point(pairs[h_a]), build.point(pairs[h_c])
-    anchors = (build.attachment(known_a, ha, label, (f"x_{h_a}", f"y_{h_a}")),
-               build.attachment(known_c, hc, label, (f"x_{h_c}", f"y_{h_c}")))
+    anchors: list[Anchor | None] = []
+    guides: list[Guide | None] = []
+    for ext, known, hinge in ((h_a, known_a, ha), (h_c, known_c, hc)):
+        if pairs[ext].type.value == "P":
+            guides.append(build.guide(pairs[ext], known, hinge, build.direction(pairs[ext]),
+                                      label, (f"x_{ext}", f"y_{ext}", f"beta_{ext}", None),
+                                      None))
+            anchors.append(None)
+        else:
+            anchors.append(build.attachment(known, hinge, label, (f"x_{ext}", f"y_{ext}")))
+            guides.append(None)
     for name, pid in zip(CLASS_IV_JOINTS, (p_c, p_d, p_e, p_f), strict=True):
         build.put(label, f"x_{pid}", pts[name].real)
         build.put(label, f"y_{pid}", pts[name].imag)
     frames = {a: (ha, cmath.phase(pts["C"] - ha)), b: (pts["C"], cmath.phase(pts["D"] - pts["C"])),
               c: (hc, cmath.phase(pts["D"] - hc)), d: (pts["F"], cmath.phase(pts["E"] - pts["F"]))}
     layout = Layout((a, b, c, d), CLASS_IV_LINKS, (p_c, p_d, p_e, p_f), (h_a, h_c),
-                    anchors=anchors, guides=(None, None))
+                    anchors=tuple(anchors), guides=tuple(guides))
     return _sketched(layout, frames)
 
 
@@ -495,7 +510,8 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
     Parameters
     ----------
     state : _State
-        The analysis so far; the group's joints and link frames are written into it.
+        The analysis so far; the group's joints, the sliders of its prismatic external pairs
+        and its link frames are written into it.
     group : GroupModel
         The group's model (its :class:`Layout`).
     q : ndarray or Jet
@@ -508,26 +524,46 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
     """
     layout = group.layout
     assert layout is not None
-    anchor_a, anchor_c = layout.anchors
-    assert anchor_a is not None and anchor_c is not None
     pts = dict(zip(CLASS_IV_JOINTS, (_drawn(state, group, pid) for pid in layout.internal),
                    strict=True))
 
+    def external(known: _State, side: int) -> tuple[Any, Any]:
+        """The hinge, or the guide's point and direction, of one external pair."""
+        anchor, guide = layout.anchors[side], layout.guides[side]
+        if guide is not None:
+            base, angle, _ = known.guide(guide)
+            return base, J.expi(angle)
+        assert anchor is not None
+        return known.point(anchor), None
+
     def inputs(known: _State) -> ClassIVInputs:
-        return ClassIVInputs(known.point(anchor_a), known.point(anchor_c))
+        (h_a, u_a), (h_c, u_c) = external(known, 0), external(known, 1)
+        return ClassIVInputs(h_a, h_c, u_a, u_c)
 
     def make(k0: ClassIVInputs) -> ClassIV:
-        return ClassIV(k0.h_a, pts["C"], pts["F"], k0.h_c, pts["D"], pts["E"])
+        return ClassIV(k0.h_a, pts["C"], pts["F"], k0.h_c, pts["D"], pts["E"], k0.u_a, k0.u_c)
 
     follow, k0, solved = _follow(state, group, q, make, inputs)
-    h_a, h_c = state.point(anchor_a), state.point(anchor_c)
-    state.joints.update({layout.external[0]: h_a, layout.external[1]: h_c})
-    state.joints.update({pid: follow.joints[name]
-                         for name, pid in zip(CLASS_IV_JOINTS, layout.internal, strict=True)})
     j = follow.joints
+    origins = []
+    for side, (name, link) in enumerate((("Ha", layout.links[0]), ("Hc", layout.links[2]))):
+        anchor, guide = layout.anchors[side], layout.guides[side]
+        ext = layout.external[side]
+        if guide is None:
+            assert anchor is not None
+            origins.append(state.point(anchor))
+        else:  # the link slides on the known link's guide, its point drawn there on the line
+            point = j[name]
+            line, angle, offset = state.guide(guide)
+            state.slider(ext, guide.carrier, link, point, J.dot(point - line, J.expi(angle)),
+                         line, angle, offset)
+            origins.append(point)
+        state.joints[ext] = origins[-1]
+    state.joints.update({pid: j[name]
+                         for name, pid in zip(CLASS_IV_JOINTS, layout.internal, strict=True)})
     frames: dict[str, tuple[Any, float]] = {
-        "a": (h_a, _phase(pts["C"] - k0.h_a)), "b": (j["C"], _phase(pts["D"] - pts["C"])),
-        "c": (h_c, _phase(pts["D"] - k0.h_c)), "d": (j["F"], _phase(pts["E"] - pts["F"]))}
+        "a": (origins[0], _phase(pts["C"] - k0.h_a)), "b": (j["C"], _phase(pts["D"] - pts["C"])),
+        "c": (origins[1], _phase(pts["D"] - k0.h_c)), "d": (j["F"], _phase(pts["E"] - pts["F"]))}
     return _record(state, group, follow, solved,
                    dict(zip(CLASS_IV_JOINTS, layout.internal, strict=True)), frames)
 

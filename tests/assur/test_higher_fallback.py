@@ -1,0 +1,124 @@
+"""The general fallback (full pose system, one-parameter sweep, multi-start Newton).
+
+Its modes are checked against numbers obtained elsewhere: the published modes of the test
+vectors V1–V3 (``higher_groups.md`` §6) and, on seeded random designs, the closed forms'
+modes (the RRR and RR-RR-RP triads and the revolute class IV group; the class IV forms with
+sliders are compared in ``test_higher_class_iv_sliders.py``). ``ASSUR_HIGHER_FULL=1`` runs
+1,000 designs per kind instead of 80.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+import numpy as np
+import pytest
+from test_higher_properties import random_class_iv, random_triads
+from test_higher_vectors import V1, V1_MODES, V2, V2_MODES, V3, V3_MODES
+
+from assur.kinematics.higher import assembly_modes
+from assur.kinematics.higher.fallback import (
+    Joint,
+    Motion,
+    PoseModes,
+    PoseSystem,
+    newton_modes,
+    sweep_modes,
+)
+
+FULL = os.environ.get("ASSUR_HIGHER_FULL") == "1"
+COUNTED = 1000 if FULL else 80
+STILL = Motion(0.0, 1.0)
+
+
+def _triad(base: tuple[Any, ...], outer: tuple[Any, ...], slider: Any = None) -> PoseSystem:
+    """Base 0 with hinges to leashes 1–3; each leash hinged to its own known link k1–k3 (the
+    third sliding on k3's guide of direction ``slider`` through ``outer[2]`` if given)."""
+    joints = [Joint("R", 0, k + 1, base[k]) for k in range(3)]
+    joints += [Joint("R", k + 1, f"k{k + 1}", outer[k]) for k in range(2)]
+    joints.append(Joint("R", 3, "k3", outer[2]) if slider is None
+                  else Joint("P", 3, "k3", outer[2], slider))
+    return PoseSystem(tuple(joints))
+
+
+def _class_iv(h_a: Any, c: Any, d: Any, e: Any, f: Any, h_c: Any) -> PoseSystem:
+    """a = 0 (H_a on k1), b = 1, c = 2 (H_c on k2), d = 3."""
+    return PoseSystem((Joint("R", 0, "k1", h_a), Joint("R", 0, 1, c), Joint("R", 1, 2, d),
+                       Joint("R", 2, 3, e), Joint("R", 3, 0, f), Joint("R", 2, "k2", h_c)))
+
+
+def _still() -> dict[str, Motion]:
+    return {f"k{k}": STILL for k in (1, 2, 3)}
+
+
+def _sorted_points(found: PoseModes, joints: list[int]) -> np.ndarray:
+    """The modes' points of the listed joints, ordered by the first joint's x."""
+    pts = found.points[: int(found.count)][:, joints]
+    return pts[np.argsort(pts[:, 0].real)]
+
+
+@pytest.mark.parametrize("vector", ["V1", "V2", "V3"])
+def test_every_mode_of_the_test_vectors(vector: str) -> None:
+    """All real modes at the sketch, to the printed 10 digits (1e-9 of the group's size)."""
+    if vector == "V1":
+        system = _triad((V1["E"], V1["F"], V1["H"]), (V1["D"], V1["G"], V1["I"]))
+        table, joints = V1_MODES, [0, 1, 2]
+    elif vector == "V2":
+        system = _class_iv(V2["B"], V2["C"], V2["D"], V2["E"], V2["F"], V2["G"])
+        table, joints = V2_MODES, [1, 2, 3, 4]
+    else:
+        system = _triad((V3["C"], V3["D"], V3["F"]), (V3["B"], V3["E"], 2 + 52j), 1 + 0j)
+        table, joints = V3_MODES, [0, 1, 2]
+    found = sweep_modes(system, _still())
+    assert int(found.count) == len(table)
+    expected = np.array([[complex(*p) for p in row[1:]] for row in table])
+    expected = expected[np.argsort(expected[:, 0].real)]
+    assert np.abs(_sorted_points(found, joints) - expected).max() <= 1e-9 * float(system.size)
+
+
+def _robust(modes: Any) -> np.ndarray:
+    """Designs away from a birth or merge of modes (no root of p within 1e-3 of the circle,
+    off it; no mode with a margin under 1e-3)."""
+    size = np.abs(np.log(np.abs(modes.roots)))
+    near = ((size > 1e-6) & (size < 1e-3)).any(axis=1)
+    thin = (np.nan_to_num(modes.margin, nan=1.0) < 1e-3).any(axis=1)
+    return ~near & ~thin
+
+
+@pytest.mark.parametrize("kind", ["RR-RR-RR", "RR-RR-RP", "IV"])
+def test_mode_counts_agree_with_the_closed_forms(kind: str) -> None:
+    """The sweep's number of modes equals the eliminant's on random crank-driven designs at
+    the sketch (the same designs as ``test_higher_properties``)."""
+    if kind == "IV":
+        designs = random_class_iv(130, COUNTED)
+        g = designs.group
+        system = _class_iv(g.h_a, g.c, g.d, g.e, g.f, g.h_c)
+    else:
+        designs = random_triads(120, COUNTED, kind[-2:])
+        g = designs.group
+        system = _triad(g.base, g.external, designs.fixed[2])
+    modes = assembly_modes(g, designs.inputs(np.zeros(COUNTED)))
+    found = sweep_modes(system, _still())
+    keep = _robust(modes)
+    assert keep.mean() >= 0.97
+    assert (modes.count[keep] == found.count[keep]).all()
+    assert modes.count.max() >= 4
+
+
+def test_newton_from_random_starts_finds_only_modes_of_the_sweep() -> None:
+    """Multi-start Newton on the full pose system: every pose it accepts is one of the sweep's
+    modes (it may miss some, it adds none), on the test vectors and 10 random class IV groups."""
+    designs = random_class_iv(140, 6)
+    g = designs.group
+    systems = [_class_iv(V2["B"], V2["C"], V2["D"], V2["E"], V2["F"], V2["G"]),
+               _class_iv(g.h_a, g.c, g.d, g.e, g.f, g.h_c)]
+    for system in systems:
+        known = _still()
+        swept, started = sweep_modes(system, known), newton_modes(system, known, starts=120)
+        assert started.count.sum() >= 0.5 * swept.count.sum()
+        apart = np.abs(started.points[..., :, None, :] - swept.points[..., None, :, :])
+        nearest = np.nan_to_num(apart.max(axis=-1), nan=np.inf).min(axis=-1)
+        real = ~np.isnan(started.points[..., 0])
+        size = np.broadcast_to(np.asarray(system.size)[..., None], real.shape)
+        assert (nearest[real] <= 1e-7 * size[real]).all()

@@ -235,9 +235,10 @@ def _equations(system: PoseSystem, bodies: dict[Body, Pose]) -> np.ndarray:
     return np.stack(np.broadcast_arrays(*rows), axis=-1)
 
 
-def _roles(system: PoseSystem) -> _Roles | None:
-    """A sweep plan: x turned (revolute) or slid (prismatic) at a joint with a known link; y
-    hinged to x, z hinged to y and jointed to a known link; the two joints left on w."""
+def _plans(system: PoseSystem) -> list[_Roles]:
+    """The sweep plans, one per link that can be turned (revolute) or slid (prismatic) at a
+    joint with a known link: y hinged to x, z hinged to y and jointed to a known link, the two
+    joints left on w."""
     joints = system.joints
 
     def between(a: Body, b: Body) -> list[int]:
@@ -247,6 +248,7 @@ def _roles(system: PoseSystem) -> _Roles | None:
         return [k for k, j in enumerate(joints) if a in (j.first, j.second)
                 and isinstance(j.first if j.second == a else j.second, str)]
 
+    plans: dict[int, _Roles] = {}
     for x, y, z, w in permutations(range(4)):
         for turned in known(x):
             for p1 in between(x, y):
@@ -256,8 +258,9 @@ def _roles(system: PoseSystem) -> _Roles | None:
                         rest = [k for k in range(6) if k not in used]
                         if joints[p1].kind == joints[p2].kind == "R" and len(rest) == 2 \
                                 and all(w in (joints[k].first, joints[k].second) for k in rest):
-                            return _Roles(x, turned, y, z, p1, p2, p3, w, rest[0], rest[1])
-    return None
+                            plans.setdefault(x, _Roles(x, turned, y, z, p1, p2, p3, w,
+                                                       rest[0], rest[1]))
+    return list(plans.values())
 
 
 def _other(j: Joint, body: Body) -> Body:
@@ -385,7 +388,8 @@ def _brackets(system: PoseSystem, roles: _Roles, known: dict[str, Motion], sampl
               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Brackets [α₀, α₁] of a sign change on a branch σ, (..., 2·samples) each, NaN where
     there is none; a change across the join of the two branches at a dyad's limit is moved
-    onto the branch that carries it by locating the limit."""
+    onto the branch that carries it by locating the limit, and so is a pair of roots, one on
+    each branch, between a sample and the limit."""
     revolute = system.joints[roles.turned].kind == "R"
     step = 2.0 * np.pi / samples
     alpha = -np.pi + step * (np.arange(samples) + 0.5)
@@ -398,23 +402,56 @@ def _brackets(system: PoseSystem, roles: _Roles, known: dict[str, Motion], sampl
         lo.append(np.where(change, alpha, np.nan))
         hi.append(np.where(change, alpha + step, np.nan))
         branch.append(np.where(change, s, np.nan))
+        for pair in _pairs(wide, roles, grown, alpha, f, ok, s, revolute):
+            lo.append(pair[0])
+            hi.append(pair[1])
+            branch.append(np.where(np.isnan(pair[0]), np.nan, s))
     (fp, okp), (fm, _) = walks[1.0], walks[-1.0]
     for shift in (1, -1):  # the dyad stops assembling after (shift 1) or before a sample
         edge = okp & ~np.roll(okp, -shift, axis=-1)
         if not revolute:
             edge[..., -1 if shift == 1 else 0] = False
-        join = edge & (np.sign(fp) != np.sign(fm))
-        inside, outside, sign = _compress(np.where(join, alpha, np.nan), alpha + shift * step
-                                          + 0.0 * fp, np.sign(fp))
+        inside, outside, plus, minus = _compress(np.where(edge, alpha, np.nan),
+                                                 alpha + shift * step + 0.0 * fp, fp, fm)
         limit = _limit(wide, roles, grown, inside, outside)
         f_limit, _ = _walk(wide, roles, grown, limit, 1.0)
         ends = np.sort(np.stack([inside, limit]), axis=0)
-        lo.append(ends[0])
-        hi.append(ends[1])
-        branch.append(np.where(np.isnan(inside), np.nan,
-                               np.where(np.sign(f_limit) != sign, 1.0, -1.0)))
+        for s, f in ((1.0, plus), (-1.0, minus)):  # a root between the sample and the limit
+            change = np.sign(f_limit) != np.sign(f)
+            lo.append(np.where(change, ends[0], np.nan))
+            hi.append(np.where(change, ends[1], np.nan))
+            branch.append(np.where(change & ~np.isnan(inside), s, np.nan))
     return np.concatenate(lo, axis=-1), np.concatenate(hi, axis=-1), np.concatenate(branch,
                                                                                     axis=-1)
+
+
+def _pairs(system: PoseSystem, roles: _Roles, known: dict[str, Motion], alpha: np.ndarray,
+           f: np.ndarray, ok: np.ndarray, sigma: float, revolute: bool
+           ) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+    """Brackets of two roots closer than a sample on one branch: where |f| has a local
+    minimum without a sign change, the extremum of f between the neighbours (golden-section
+    search, 50 steps) is located; if f changes sign there, [α_{j−1}, α*] and [α*, α_{j+1}]."""
+    step = alpha[1] - alpha[0]
+    before, after = np.roll(f, 1, axis=-1), np.roll(f, -1, axis=-1)
+    near = ok & np.roll(ok, 1, axis=-1) & np.roll(ok, -1, axis=-1)
+    if not revolute:
+        near[..., 0] = near[..., -1] = False
+    dip = near & (np.abs(f) < np.abs(before)) & (np.abs(f) <= np.abs(after)) \
+        & (np.sign(before) == np.sign(f)) & (np.sign(after) == np.sign(f))
+    a, b, sign = _compress(np.where(dip, alpha - step, np.nan), alpha + step + 0.0 * f,
+                           np.sign(f))
+    lo, hi = a, b
+    ratio = (np.sqrt(5.0) - 1.0) / 2.0
+    for _ in range(50):
+        left, right = hi - ratio * (hi - lo), lo + ratio * (hi - lo)
+        f_left = sign * _walk(system, roles, known, left, sigma)[0]
+        f_right = sign * _walk(system, roles, known, right, sigma)[0]
+        lower = f_left < f_right
+        lo, hi = np.where(lower, lo, left), np.where(lower, right, hi)
+    middle = 0.5 * (lo + hi)
+    crossed = sign * _walk(system, roles, known, middle, sigma)[0] < 0
+    middle = np.where(crossed, middle, np.nan)
+    return (np.where(crossed, a, np.nan), middle), (middle, np.where(crossed, b, np.nan))
 
 
 def _limit(system: PoseSystem, roles: _Roles, known: dict[str, Motion], inside: np.ndarray,
@@ -502,8 +539,8 @@ def _compress(*columns: np.ndarray) -> tuple[np.ndarray, ...]:
     return tuple(np.take_along_axis(c, order, axis=-1)[..., :width] for c in columns)
 
 
-def sweep_modes(system: PoseSystem, known: dict[str, Motion], samples: int = 1440
-                ) -> PoseModes:
+def sweep_modes(system: PoseSystem, known: dict[str, Motion], samples: int = 1440,
+                plans_used: int = 2) -> PoseModes:
     """Every real assembly mode by the one-parameter sweep, polished on the full system.
 
     Parameters
@@ -514,6 +551,9 @@ def sweep_modes(system: PoseSystem, known: dict[str, Motion], samples: int = 144
         The known links at the position.
     samples : int
         Sweep samples over the full turn (720–4096).
+    plans_used : int
+        How many sweeps (each turning or sliding another link) to join: a pair of roots
+        closer than a sample to a dyad's limit in one sweep is away from it in another.
 
     Returns
     -------
@@ -525,17 +565,22 @@ def sweep_modes(system: PoseSystem, known: dict[str, Motion], samples: int = 144
         When the group has no link to turn or slide with a dyad of two hinged links beside it
         (use :func:`newton_modes`).
     """
-    roles = _roles(system)
-    if roles is None:
+    plans = _plans(system)[:plans_used]
+    if not plans:
         raise ValueError("no sweep: no link with an external pair beside a dyad of two "
                          "hinges; use newton_modes")
-    lo, hi, sigma = _compress(*_brackets(system, roles, known, samples))
     wide, grown = _expand(system, known)
-    with np.errstate(all="ignore"):
-        alpha = _bisect(wide, roles, grown, lo, hi, sigma)
-        x = _assemble(wide, roles, grown, alpha, sigma)
-        x, residual = wide.polish(x, grown)
-    return _distinct(wide, grown, x, np.where(np.isnan(sigma), np.inf, residual))
+    found = []
+    for roles in plans:
+        lo, hi, sigma = _compress(*_brackets(system, roles, known, samples))
+        with np.errstate(all="ignore"):
+            alpha = _bisect(wide, roles, grown, lo, hi, sigma)
+            x = _assemble(wide, roles, grown, alpha, sigma)
+            x, residual = wide.polish(x, grown)
+        found.append((x, np.where(np.isnan(sigma), np.inf, residual)))
+    x = np.concatenate([f[0] for f in found], axis=-2)
+    residual = np.concatenate([f[1] for f in found], axis=-1)
+    return _distinct(wide, grown, x, residual)
 
 
 def newton_modes(system: PoseSystem, known: dict[str, Motion], starts: int = 400,

@@ -27,6 +27,7 @@ from assur.kinematics import jets as J
 from assur.kinematics.higher import ClassIV, ClassIVInputs, assembly_modes, follow_mode
 from assur.kinematics.higher.fallback import Joint, Motion, PoseSystem, sweep_modes
 from assur.kinematics.higher.groups import expand
+from assur.kinematics.higher.kind import HigherGroupSolution
 
 FULL = os.environ.get("ASSUR_HIGHER_FULL") == "1"
 COUNTED, RIGID, WALKED = (1000, 40, 12) if FULL else (40, 6, 3)
@@ -73,10 +74,10 @@ class Designs:
     def pose_system(self) -> PoseSystem:
         """The full pose system: a = 0, b = 1, c = 2, d = 3; H_a on "k", H_c on "frame"."""
         g = self.group
-        kind_a, kind_c = ("P" if u is not None else "R" for u in (g.u_a, g.u_c))
-        return PoseSystem((Joint(kind_a, 0, "k", g.h_a, g.u_a), Joint("R", 0, 1, g.c),
-                           Joint("R", 1, 2, g.d), Joint("R", 2, 3, g.e), Joint("R", 3, 0, g.f),
-                           Joint(kind_c, 2, "frame", g.h_c, g.u_c)))
+        ends = [Joint("P", link, body, h, u) if u is not None else Joint("R", link, body, h)
+                for link, body, h, u in ((0, "k", g.h_a, g.u_a), (2, "frame", g.h_c, g.u_c))]
+        return PoseSystem((ends[0], Joint("R", 0, 1, g.c), Joint("R", 1, 2, g.d),
+                           Joint("R", 2, 3, g.e), Joint("R", 3, 0, g.f), ends[1]))
 
     def known(self, phi: float) -> dict[str, Motion]:
         shift, turn = self.carrier(phi)
@@ -229,13 +230,13 @@ def test_no_mode_switch_and_the_interval_against_a_walk_through_all_modes(form: 
     coarse = np.arange(0, fine, 10)
     phi = grid[coarse]
     solution = follow_mode(g, designs.inputs, phi)
-    step = 2 * TWO_PI / fine
+    tolerance = 2 * TWO_PI / fine
     ahead = np.where(np.isnan(solution.ends[:, 0]), TWO_PI, solution.ends[:, 0])
-    assert (np.abs(ahead - ends[:, 0]) <= step).all()
+    assert (np.abs(ahead - ends[:, 0]) <= tolerance).all()
     back = ~np.isnan(solution.ends[:, 1])
-    assert (np.abs(solution.ends[back, 1] - ends[back, 1]) <= step).all()
+    assert (np.abs(solution.ends[back, 1] - ends[back, 1]) <= tolerance).all()
     walked = walk[:, coarse]
-    away = (np.abs(phi - ends[:, :1]) > step) & (np.abs(phi - ends[:, 1:]) > step)
+    away = (np.abs(phi - ends[:, :1]) > tolerance) & (np.abs(phi - ends[:, 1:]) > tolerance)
     assert (solution.exists == ~np.isnan(walked[..., 0]))[away].all()
     both = solution.exists & ~np.isnan(walked[..., 0])
     gap = np.abs(solution.x - walked) * scale[:, 0][:, None, :]
@@ -263,12 +264,14 @@ def test_the_example_table_through_the_analysis() -> None:
                          Joint("R", 1, 2, drawn["D"]), Joint("R", 2, 3, drawn["E"]),
                          Joint("R", 3, 0, drawn["F"]), Joint("P", 2, "frame", drawn["G"], u)))
     found = sweep_modes(system, {"crank": Motion(0.0, 1.0), "frame": Motion(0.0, 1.0)})
-    listed = motion.solutions["IV(2,3,4,5)"].modes()
+    group = motion.solutions["IV(2,3,4,5)"]
+    assert isinstance(group, HigherGroupSolution)
+    listed = group.modes()
     assert int(found.count) == len(listed) == 2
     for mode in listed:
         here = np.array([mode.joints[p] for p in "CDEF"])
         assert np.min(np.abs(found.points[:, 1:5] - here).max(axis=-1)) <= 1e-9 * 200
-    j = motion.joints
+    j = {name: np.asarray(z) for name, z in motion.joints.items()}
     for a, b in (("B", "C"), ("B", "F"), ("C", "F"), ("D", "E"), ("D", "G"), ("E", "G"),
                  ("C", "D"), ("F", "E")):
         assert np.abs(np.abs(j[a] - j[b]) - abs(drawn[a] - drawn[b])).max() <= 1e-9 * 200

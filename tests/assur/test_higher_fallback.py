@@ -10,6 +10,7 @@ sliders are compared in ``test_higher_class_iv_sliders.py``). ``ASSUR_HIGHER_FUL
 from __future__ import annotations
 
 import os
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -61,6 +62,7 @@ def _sorted_points(found: PoseModes, joints: list[int]) -> np.ndarray:
 @pytest.mark.parametrize("vector", ["V1", "V2", "V3"])
 def test_every_mode_of_the_test_vectors(vector: str) -> None:
     """All real modes at the sketch, to the printed 10 digits (1e-9 of the group's size)."""
+    table: Sequence[tuple[Any, ...]]
     if vector == "V1":
         system = _triad((V1["E"], V1["F"], V1["H"]), (V1["D"], V1["G"], V1["I"]))
         table, joints = V1_MODES, [0, 1, 2]

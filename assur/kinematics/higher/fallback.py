@@ -488,7 +488,7 @@ def _assemble(system: PoseSystem, roles: _Roles, known: dict[str, Motion], alpha
               sigma: np.ndarray) -> np.ndarray:
     """The full unknowns at (α, σ): x, y, z from the sweep, w from its first joint (hinge:
     turned as drawn about it, then the polish corrects it)."""
-    poses = {}
+    poses: dict[Body, Pose] = {}
     x_pose = _swept(system, roles, known, alpha)
     plus = _dyad(system, roles, known, x_pose, 1.0)
     minus = _dyad(system, roles, known, x_pose, -1.0)

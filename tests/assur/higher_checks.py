@@ -1,4 +1,4 @@
-"""Checks shared by the tests of triads on seeded random designs."""
+"""Checks shared by the tests of triads and class IV groups on seeded random designs."""
 
 from __future__ import annotations
 
@@ -7,10 +7,10 @@ from typing import Any
 
 import numpy as np
 
-from assur.kinematics.higher import Triad, follow_mode
+from assur.kinematics.higher import HigherGroup, follow_mode
 
 
-def check_analogs_against_central_differences(group: Triad, inputs: Callable[[Any], Any],
+def check_analogs_against_central_differences(group: HigherGroup, inputs: Callable[[Any], Any],
                                               d: int) -> None:
     """The exact analogs of every joint and rotation of ``d`` designs against central
     differences (step 1e-5 rad) at four crank angles, where the mode exists with margin."""

@@ -21,6 +21,8 @@ from typing import Any
 
 import numpy as np
 import pytest
+from higher_checks import check_analogs_against_central_differences
+from test_higher_properties import walk_through
 
 import assur
 from assur.kinematics import jets as J
@@ -176,23 +178,10 @@ def test_links_stay_rigid_and_on_their_guides_over_the_cycle(form: str) -> None:
 
 @pytest.mark.parametrize("form", FORMS)
 def test_analogs_against_central_differences(form: str) -> None:
+    """Every joint's and link rotation's analogs against central differences (1e-5 rad) of the
+    positions and of the velocity analogs, at four crank angles."""
     designs = random_designs(form, 90 + FORMS.index(form), 8)
-    centre = np.radians([17.0, 95.0, 200.0, 290.0])
-    h = 1e-5
-    solution = follow_mode(designs.group, designs.inputs,
-                           np.concatenate([centre, centre - h, centre + h]), analogs=True)
-    n, d = len(centre), 8
-    ok = solution.exists.reshape(d, 3, n).all(axis=1) & (solution.margin[:, :n] > 0.05)
-    assert ok.mean() > 0.25
-    size = _col(designs.group.size)
-    for name, jet in list(solution.joints.items()) + list(solution.rotations.items()):
-        v, v1 = jet.v.reshape(d, 3, n), jet.d1.reshape(d, 3, n)
-        if name in solution.rotations:
-            v = np.unwrap(v, axis=1)
-        unit = size if name in solution.joints else 1.0
-        for fd, analog in (((v[:, 2] - v[:, 1]) / (2 * h), v1[:, 0]),
-                           ((v1[:, 2] - v1[:, 1]) / (2 * h), jet.d2[:, :n])):
-            assert (np.abs(fd - analog) <= 1e-6 * (unit + np.abs(analog)))[ok].all(), name
+    check_analogs_against_central_differences(designs.group, designs.inputs, 8)
 
 
 # --- the followed mode and its interval against a walk through all modes ----------------------
@@ -207,26 +196,8 @@ def test_no_mode_switch_and_the_interval_against_a_walk_through_all_modes(form: 
     g = designs.group
     fine = 1800
     grid = np.linspace(0, TWO_PI, fine, endpoint=False)
-    d = WALKED
-    modes = assembly_modes(expand(g), designs.grid(grid)).x
-    scale = np.where(g.lengths, 1.0 / _col(g.size), 1.0)[:, None, :]
-    walk = np.full((d, fine, 2), np.nan)
-    ends = np.array([[TWO_PI, 0.0]] * d)
-    rows = np.arange(d)
-    for side, order in enumerate((np.arange(fine), np.r_[0, np.arange(fine - 1, 0, -1)])):
-        x = np.broadcast_to(g.drawn(), (d, 2))
-        alive = np.ones(d, dtype=bool)
-        for step, m in enumerate(order):
-            gap = np.abs(modes[:, m] - x[:, None, :])
-            gap = np.where(np.asarray(g.lengths), gap, np.abs(np.angle(np.exp(1j * gap))))
-            apart = np.nan_to_num((gap * scale).sum(axis=-1), nan=np.inf)
-            best = apart.argmin(axis=1)
-            lost = alive & (apart[rows, best] > 0.1)
-            ends[lost, side] = step * TWO_PI / fine if side == 0 else TWO_PI - step * TWO_PI / fine
-            alive &= ~lost
-            x = np.where(alive[:, None], modes[rows, m, best], x)
-            fresh = alive & np.isnan(walk[:, m, 0])
-            walk[fresh, m] = x[fresh]
+    walk, forward, backward = walk_through(g, assembly_modes(expand(g), designs.grid(grid)).x)
+    ends = np.stack([forward, backward], axis=-1)
     coarse = np.arange(0, fine, 10)
     phi = grid[coarse]
     solution = follow_mode(g, designs.inputs, phi)
@@ -239,7 +210,8 @@ def test_no_mode_switch_and_the_interval_against_a_walk_through_all_modes(form: 
     away = (np.abs(phi - ends[:, :1]) > tolerance) & (np.abs(phi - ends[:, 1:]) > tolerance)
     assert (solution.exists == ~np.isnan(walked[..., 0]))[away].all()
     both = solution.exists & ~np.isnan(walked[..., 0])
-    gap = np.abs(solution.x - walked) * scale[:, 0][:, None, :]
+    scale = np.where(g.lengths, 1.0 / _col(g.size), 1.0)[:, None, :]
+    gap = np.abs(solution.x - walked) * scale
     assert both.any() and np.nanmax(np.where(both[..., None], gap, np.nan)) <= 1e-7
 
 

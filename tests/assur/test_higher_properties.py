@@ -24,6 +24,7 @@ from assur.kinematics.dyads import solve_rrr
 from assur.kinematics.higher import (
     ClassIV,
     ClassIVInputs,
+    HigherGroup,
     Leash,
     Triad,
     TriadInputs,
@@ -252,7 +253,13 @@ def _walked(designs: Designs, fine: int) -> tuple[np.ndarray, np.ndarray, np.nda
     wide = Designs(expand(designs.group), designs.pin[:, None],
                    tuple(None if v is None else v[:, None] for v in designs.fixed))
     modes = assembly_modes(wide.group, wide.inputs(np.broadcast_to(phi, (d, fine)))).x
-    g = designs.group
+    return walk_through(designs.group, modes)
+
+
+def walk_through(g: HigherGroup, modes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The walk of :func:`_walked` through the modes (D, fine, 2m, n) of the group ``g`` on a
+    grid of ``fine`` crank angles over a turn."""
+    d, fine = modes.shape[:2]
     scale = np.where(g.lengths, 1.0 / np.asarray(g.size)[:, None], 1.0)[:, None, :]
     walk = np.full((d, fine, g.n), np.nan)
     ends = np.array([[TWO_PI, 0.0]] * d)

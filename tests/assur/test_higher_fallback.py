@@ -108,6 +108,25 @@ def test_mode_counts_agree_with_the_closed_forms(kind: str) -> None:
     assert modes.count.max() >= 4
 
 
+@pytest.mark.parametrize("kind", ["RR-RR-RR", "RR-RR-RP", "IV"])
+def test_a_coarse_sweep_still_finds_every_mode(kind: str) -> None:
+    """With 90 samples (4° apart; three sweeps joined) roots lie between samples in pairs and
+    beside the dyads' limits on many designs; the brackets of pairs and of the joins must still
+    find them all (200 designs of each kind against the closed forms)."""
+    if kind == "IV":
+        designs = random_class_iv(150, 200)
+        g = designs.group
+        system = _class_iv(g.h_a, g.c, g.d, g.e, g.f, g.h_c)
+    else:
+        designs = random_triads(160, 200, kind[-2:])
+        g = designs.group
+        system = _triad(g.base, g.external, designs.fixed[2])
+    modes = assembly_modes(g, designs.inputs(np.zeros(200)))
+    keep = _robust(modes)
+    found = sweep_modes(system, _still(), samples=90, plans_used=3)
+    assert (modes.count[keep] == found.count[keep]).all()
+
+
 def test_newton_from_random_starts_finds_only_modes_of_the_sweep() -> None:
     """Multi-start Newton on the full pose system: every pose it accepts is one of the sweep's
     modes (it may miss some, it adds none), on the test vectors and 10 random class IV groups."""

@@ -131,8 +131,8 @@ class HigherGroupSolution:
                   for name, z in self.group.sketch.items()}
         rows = []
         for k in range(count):
-            points = {self.joints[name]: complex(modes.joints[name][index + (k,)])
-                      for name in sketch}
+            points = {pid: complex(modes.joints[name][index + (k,)])
+                      for name, pid in self.joints.items()}
             apart = max(abs(complex(modes.joints[name][index + (k,)]) - z)
                         for name, z in sketch.items())
             angle = float(modes.x[index + (k, self.group.eliminated)])
@@ -564,8 +564,11 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
     frames: dict[str, tuple[Any, float]] = {
         "a": (origins[0], _phase(pts["C"] - k0.h_a)), "b": (j["C"], _phase(pts["D"] - pts["C"])),
         "c": (origins[1], _phase(pts["D"] - k0.h_c)), "d": (j["F"], _phase(pts["E"] - pts["F"]))}
-    return _record(state, group, follow, solved,
-                   dict(zip(CLASS_IV_JOINTS, layout.internal, strict=True)), frames)
+    joints = dict(zip(CLASS_IV_JOINTS, layout.internal, strict=True))
+    joints.update({name: ext for name, ext, guide in zip(("Ha", "Hc"), layout.external,
+                                                          layout.guides, strict=True)
+                   if guide is not None})  # a sliding point moves from mode to mode
+    return _record(state, group, follow, solved, joints, frames)
 
 
 def _col(z: Any) -> Any:

@@ -18,7 +18,7 @@ import pytest
 from test_higher_properties import random_class_iv, random_triads
 from test_higher_vectors import V1, V1_MODES, V2, V2_MODES, V3, V3_MODES
 
-from assur.kinematics.higher import assembly_modes
+from assur.kinematics.higher import HigherGroup, Triad, TriadInputs, assembly_modes
 from assur.kinematics.higher.fallback import (
     Joint,
     Motion,
@@ -88,19 +88,39 @@ def _robust(modes: Any) -> np.ndarray:
     return ~near & ~thin
 
 
-@pytest.mark.parametrize("kind", ["RR-RR-RR", "RR-RR-RP", "IV"])
+def _pr_leash(seed: int, d: int) -> tuple[Triad, TriadInputs, PoseSystem]:
+    """Random triads whose third leash is hinged to the frame at A₃ and slides along a guide
+    of the base through A₃ (P–R), drawn assembled: the triad, its inputs at the sketch and its
+    pose system (leash 3 sliding on the base's guide, carried by the base)."""
+    designs = random_triads(seed, d, "RR")
+    g = designs.group
+    a3 = designs.fixed[1]
+    u3 = np.exp(2j * np.pi * np.random.default_rng(seed).uniform(size=d))
+    triad = Triad(("RR", "RR", "PR"), (g.base[0], g.base[1], a3), g.external, (None, None, u3))
+    joints = [Joint("R", 0, 1, g.base[0]), Joint("R", 0, 2, g.base[1]), Joint("P", 3, 0, a3, u3)]
+    joints += [Joint("R", k + 1, f"k{k + 1}", g.external[k]) for k in range(3)]
+    return triad, TriadInputs(g.external), PoseSystem(tuple(joints))
+
+
+@pytest.mark.parametrize("kind", ["RR-RR-RR", "RR-RR-RP", "RR-RR-PR", "IV"])
 def test_mode_counts_agree_with_the_closed_forms(kind: str) -> None:
     """The sweep's number of modes equals the eliminant's on random crank-driven designs at
-    the sketch (the same designs as ``test_higher_properties``)."""
+    the sketch (the same designs as ``test_higher_properties``; a P–R third leash on the
+    base's guide through its frame hinge)."""
+    group: HigherGroup
     if kind == "IV":
         designs = random_class_iv(130, COUNTED)
-        g = designs.group
-        system = _class_iv(g.h_a, g.c, g.d, g.e, g.f, g.h_c)
+        group = g = designs.group
+        system, inputs = _class_iv(g.h_a, g.c, g.d, g.e, g.f, g.h_c), designs.inputs(np.zeros(
+            COUNTED))
+    elif kind == "RR-RR-PR":
+        group, inputs, system = _pr_leash(125, COUNTED)
     else:
         designs = random_triads(120, COUNTED, kind[-2:])
-        g = designs.group
-        system = _triad(g.base, g.external, designs.fixed[2])
-    modes = assembly_modes(g, designs.inputs(np.zeros(COUNTED)))
+        group = t = designs.group
+        system = _triad(t.base, t.external, designs.fixed[2])
+        inputs = designs.inputs(np.zeros(COUNTED))
+    modes = assembly_modes(group, inputs)
     found = sweep_modes(system, _still())
     keep = _robust(modes)
     assert keep.mean() >= 0.97

@@ -5,7 +5,9 @@ and a Newton corrector, with step control and a test that the corrector stays in
 own basin, so that it never moves to a neighbouring mode. Where the mode ends (two modes
 merge at a change point) the backward pass from φ = 0 finds the other end; the angles in
 between do not assemble. Every design has its own angle and step: the designs advance
-together under masks, one crank step after another.
+together under masks, one crank step after another. The passes walk the turn in coarse
+steps; the requested angles are then solved in one batch from the accepted states, with
+the same corrector and tests, and the few that fail them are stepped to.
 """
 
 from __future__ import annotations

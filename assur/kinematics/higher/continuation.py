@@ -5,7 +5,9 @@ and a Newton corrector, with step control and a test that the corrector stays in
 own basin, so that it never moves to a neighbouring mode. Where the mode ends (two modes
 merge at a change point) the backward pass from φ = 0 finds the other end; the angles in
 between do not assemble. Every design has its own angle and step: the designs advance
-together under masks, one crank step after another.
+together under masks, one crank step after another. The passes walk the turn in coarse
+steps; the requested angles are then solved in one batch from the accepted states, with
+the same corrector and tests, and the few that fail them are stepped to.
 """
 
 from __future__ import annotations
@@ -49,6 +51,12 @@ CONVERGED = 1e-10
 CHANGE = 1e-4
 #: After a full turn the joints are back at the sketch within this times L.
 CLOSED = 1e-9
+#: Step sizes h, h/2, …, h/2^(RUNGS−1) are tried at once while a walk has at most
+#: RUNGS_BUDGET rows (one row: the Python cost of a step dominates, not its arithmetic).
+RUNGS = 8
+RUNGS_BUDGET = 64
+#: Lays the accepted angles of the designs side by side on one line (> 2π).
+OFFSET = 8.0
 
 Inputs = Callable[[Any], Any]
 
@@ -71,7 +79,8 @@ def _part(v: Any, name: str) -> np.ndarray:
     return np.asarray(getattr(v, name)) if isinstance(v, Jet) else np.zeros(np.shape(v))
 
 
-def analogs(group: HigherGroup, k: Any, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def analogs(group: HigherGroup, k: Any, x: np.ndarray, jac: np.ndarray | None = None
+            ) -> tuple[np.ndarray, np.ndarray]:
     """Velocity and acceleration analogs x′, x″ of the unknowns by implicit differentiation.
 
     Parameters
@@ -82,6 +91,8 @@ def analogs(group: HigherGroup, k: Any, x: np.ndarray) -> tuple[np.ndarray, np.n
         Its inputs at the position as jets in the crank angle φ.
     x : ndarray, shape (..., n)
         A solution there.
+    jac : ndarray, shape (..., n, n), optional
+        The Jacobian at x, if already at hand.
 
     Returns
     -------
@@ -99,7 +110,8 @@ def analogs(group: HigherGroup, k: Any, x: np.ndarray) -> tuple[np.ndarray, np.n
     >>> x1.shape
     (2,)
     """
-    jac = group.jacobian(x, values(k))
+    if jac is None:
+        jac = group.jacobian(x, values(k))
     cols = [Jet(x[..., i], 0.0, 0.0) for i in range(group.n)]
     f = group.residual(cols, k)
     x1 = solve(jac, -np.stack(np.broadcast_arrays(*(_part(v, "d1") for v in f)), axis=-1))
@@ -142,11 +154,116 @@ def _finite(k: Any) -> np.ndarray:
 
 
 @dataclass(frozen=True, eq=False)
+class _Point:
+    """States of a pass: the pass parameter t (φ = s·t), the unknowns x and their analogs."""
+
+    t: np.ndarray
+    x: np.ndarray
+    x1: np.ndarray
+    x2: np.ndarray
+
+    def at(self, index: Any) -> _Point:
+        """The states at ``index`` (of the axes before the unknowns)."""
+        return _Point(self.t[index], self.x[index], self.x1[index], self.x2[index])
+
+    def where(self, mask: np.ndarray, other: _Point) -> _Point:
+        """This state where ``mask``, ``other`` elsewhere."""
+        wide = mask[..., None]
+        return _Point(np.where(mask, self.t, other.t), np.where(wide, self.x, other.x),
+                      np.where(wide, self.x1, other.x1), np.where(wide, self.x2, other.x2))
+
+
+def _correct(group: HigherGroup, kv: Any, guess: np.ndarray, sign: np.ndarray
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Newton from the predictor ``guess`` and the acceptance tests (a)–(c) of §1.6.
+
+    Returns the corrected unknowns, their Jacobian and margin rows, and where they pass:
+    Newton converged, det J has the sign ``sign``, and the correction is at most a quarter
+    of the separation bound.
+    """
+    xn, step = newton(group, kv, guess, ITERATIONS, CONVERGED)
+    with np.errstate(all="ignore"):
+        jac, rows = group.lines(xn, kv)
+        apart = (np.abs(xn - guess) * weights(group)).sum(axis=-1)
+        ok = (step <= CONVERGED) & (np.sign(det_rows(jac)) == sign) \
+            & (apart <= 0.25 * separation(group, kv, xn))
+    return xn, jac, rows, ok
+
+
+def _pick(a: np.ndarray, first: np.ndarray) -> np.ndarray:
+    """``a`` at the rung ``first`` of its leading axis, for every row."""
+    a = np.broadcast_to(a, a.shape[:1] + first.shape + a.shape[1 + first.ndim:])
+    index = first.reshape((1,) + first.shape + (1,) * (a.ndim - 1 - first.ndim))
+    return np.take_along_axis(a, index, axis=0)[0]
+
+
+def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.ndarray,
+          active: np.ndarray, sign: np.ndarray, log: list[tuple[_Point, np.ndarray]] | None
+          ) -> tuple[_Point, np.ndarray, np.ndarray]:
+    """Step every active row from ``start.t`` to its ``goal`` (arrays (R, D)) under step control.
+
+    One step from t: the predictor from the analogs, the corrector and the acceptance tests
+    (:func:`_correct`); an accepted step doubles h (to at most ``H_MAX``), a rejected one
+    halves it, and below ``H_MIN`` the row stops. While the rows are few, the halvings
+    h, h/2, h/4, … are tried at once and the largest accepted one is taken, which is where
+    the one-at-a-time halving would arrive. The accepted states go to ``log`` (with the
+    mask of the rows that moved). Returns the last accepted state of each row and, where a
+    row stopped short, the pass parameter and the reason (inf and 0 elsewhere).
+    """
+    shape = goal.shape
+    count = max(1, min(RUNGS, RUNGS_BUDGET // max(1, int(np.prod(shape)))))
+    halves = 0.5 ** np.arange(count).reshape((count,) + (1,) * len(shape))
+    here, h = start, np.full(shape, H_MAX)
+    end, why = np.full(shape, np.inf), np.zeros(shape, dtype=np.int8)
+    done = ~active
+    while not done.all():
+        moving = ~done
+        hs = np.where(moving, np.minimum(h, goal - here.t), 0.0)
+        trial = hs * halves
+        k = inputs(Jet(s * (here.t + trial), 1.0, 0.0))
+        kv = values(k)
+        guess = here.x + (s * trial)[..., None] * here.x1 \
+            + 0.5 * (trial * trial)[..., None] * here.x2
+        xn, jac, _, ok = _correct(group, kv, guess, sign)
+        ok &= moving & ((halves == 1.0) | (trial >= H_MIN))
+        taken = np.asarray(ok.any(axis=0))
+        first = np.argmax(ok, axis=0)
+        with np.errstate(all="ignore"):
+            n1, n2 = analogs(group, k, xn, jac)
+        step = _pick(trial, first)
+        hit = taken & (first == 0) & (hs >= goal - here.t)
+        moved = _Point(np.where(hit, goal, here.t + step), _pick(xn, first), _pick(n1, first),
+                       _pick(n2, first))
+        here = moved.where(taken, here)
+        h = np.where(taken, np.minimum(2.0 * np.where(first == 0, h, step), H_MAX),
+                     hs * 0.5 ** count)
+        if log is not None:
+            log.append((here, taken))
+        stuck = moving & ~taken & (h < H_MIN)
+        if stuck.any():
+            kv = values(inputs(s * here.t))
+            with np.errstate(all="ignore"):
+                margin = group.margin(here.x, kv)
+            code = np.where(~_finite(kv), Reason.UNDEFINED_INPUT,
+                            np.where(margin <= CHANGE, HigherReason.MODE_ENDS,
+                                     HigherReason.NOT_FOLLOWED))
+            end = np.where(stuck, here.t, end)
+            why = np.where(stuck, code, why).astype(np.int8)
+        done = done | stuck | hit
+    return here, end, why
+
+
+@dataclass(frozen=True, eq=False)
 class _Pass:
-    """The mode followed in one direction: records at the targets and where it ended."""
+    """The mode followed in one direction: results at the targets and where it ended.
+
+    ``x`` (D, N, n) and ``margin`` (D, N) are NaN at targets not reached; ``out`` holds the
+    joints ("p.") and rotations ("r.") as their value, or value and both analogs, (D, N).
+    """
 
     x: np.ndarray
-    out: dict[str, np.ndarray]
+    out: dict[str, list[np.ndarray]]
+    margin: np.ndarray
     end: np.ndarray
     why: np.ndarray
 
@@ -155,81 +272,99 @@ class _Pass:
         return ~np.isnan(self.x[..., 0])
 
 
-def _store(store: dict[str, np.ndarray], rows: np.ndarray, j: np.ndarray,
-           found: dict[str, Any], shape: tuple[int, int]) -> None:
-    """Write the jets (or values) of the designs ``rows`` at their target indices."""
-    for name, v in found.items():
-        parts = (v.v, v.d1, v.d2) if isinstance(v, Jet) else (v, 0.0 * v, 0.0 * v)
-        if name not in store:
-            dtype = complex if any(np.iscomplexobj(p) for p in parts) else float
-            store[name] = np.full((len(parts),) + shape, np.nan, dtype=dtype)
-        for i, p in enumerate(parts):
-            store[name][i, rows, j[rows]] = np.broadcast_to(p, shape[:1])[rows]
+def _anchors(log: list[tuple[_Point, np.ndarray]], targets: np.ndarray
+             ) -> tuple[_Point, np.ndarray, np.ndarray, np.ndarray]:
+    """The accepted states of a pass, and per target and design the nearest and the
+    preceding one.
 
-
-def _outputs(group: HigherGroup, k: Any, x: np.ndarray, x1: np.ndarray, x2: np.ndarray,
-             rows: np.ndarray) -> dict[str, Any]:
-    """Joints ("p.") and rotations ("r.") as jets, and the margin, at a solution."""
-    cols = [Jet(x[:, i], x1[:, i], x2[:, i]) for i in range(group.n)]
-    found: dict[str, Any] = {"p." + a: b for a, b in group.joints(cols, k).items()}
-    found.update({"r." + a: b for a, b in group.rotations(cols, k).items()})
-    found["margin"] = hadamard(rows)
-    return found
+    Returns the states laid flat (design after design, t increasing), the flat index of the
+    nearest and of the preceding state (N, D), and where the target lies within the
+    stretch the pass covered.
+    """
+    followed = log[0][1]
+    moved = np.stack([mask for _, mask in log])
+    moved[0] |= ~followed.any()  # no design is followed: keep the starts, reach nothing
+    design, step = np.nonzero(moved.T)
+    states = _Point(*(np.stack([getattr(p, f) for p, _ in log])[step, design]
+                      for f in ("t", "x", "x1", "x2")))
+    d = moved.shape[1]
+    count = np.bincount(design, minlength=d)
+    first = np.cumsum(count) - count
+    # the designs side by side on one line: t < 2π < OFFSET
+    query = targets[:, None] + OFFSET * np.arange(d)
+    after = np.searchsorted(states.t + OFFSET * design, query, side="right")
+    before = np.maximum(after - 1, 0)
+    inside = (after > first) & (after < first + count) & followed
+    on_last = (after > first) & (states.t[before] == targets[:, None]) & followed
+    nearest = np.where(inside & (states.t[np.minimum(after, len(design) - 1)] - targets[:, None]
+                                 < targets[:, None] - states.t[before]), after, before)
+    return states, nearest, before, inside | on_last
 
 
 def _follow(group: HigherGroup, inputs: Inputs, x0: np.ndarray, targets: np.ndarray,
-            s: float, done: np.ndarray) -> _Pass:
-    """Follow x0 from φ = 0 through φ = s·t for the increasing targets t (the pass of §1.6)."""
-    d, n_t = x0.shape[0], len(targets)
-    scale = weights(group)
-    store: dict[str, np.ndarray] = {}
-    rec = np.full((d, n_t, group.n), np.nan)
-    t, h = np.zeros(d), np.full(d, H_MAX)
-    j = np.zeros(d, dtype=int)
-    end, why = np.full(d, np.inf), np.zeros(d, dtype=np.int8)
-    done = done.copy()
-    x = np.where(done[:, None], group.drawn(), x0)
-    k = inputs(Jet(np.zeros(d), 1.0, 0.0))
-    x1, x2 = analogs(group, k, x)
-    jac, rows = group.lines(x, values(k))
+            s: float, done: np.ndarray, jets: bool) -> _Pass:
+    """Follow x0 from φ = 0 through φ = s·t for the increasing targets t ≤ 2π (§1.6).
+
+    The pass walks to 2π in coarse accepted steps (:func:`_walk`); then every target is
+    solved at once from the nearest accepted state (predictor from its analogs, corrector,
+    the same acceptance tests), and the few that fail are stepped to from the state before
+    them. ``jets`` asks for the analogs of the joints and rotations.
+    """
+    d = x0.shape[0]
+    x = np.where(done[:, None], group.drawn(), x0)[None]
+    k = inputs(Jet(np.zeros((1, d)), 1.0, 0.0))
+    jac = group.jacobian(x, values(k))
     sign = np.sign(det_rows(jac))
-    _store(store, np.zeros(0, dtype=int), j, _outputs(group, k, x, x1, x2, rows), (d, n_t))
-    while not done.all():
-        active = ~done
-        goal = targets[np.minimum(j, n_t - 1)]
-        hs = np.where(active, np.minimum(h, goal - t), 0.0)
-        k = inputs(Jet(s * (t + hs), 1.0, 0.0))
-        kv = values(k)
-        guess = x + (s * hs)[:, None] * x1 + 0.5 * (hs * hs)[:, None] * x2
-        xn, step = newton(group, kv, guess, ITERATIONS, CONVERGED)
+    with np.errstate(all="ignore"):
+        x1, x2 = analogs(group, k, x, jac)
+    log = [(_Point(np.zeros((1, d)), x, x1, x2), ~done[None])]
+    _, end, why = _walk(group, inputs, s, log[0][0], np.full((1, d), TWO_PI), ~done[None],
+                        sign, log)
+    log = [(p.at(0), mask[0]) for p, mask in log]
+    states, nearest, before, reach = _anchors(log, targets)
+    angle = np.broadcast_to(s * targets[:, None], reach.shape)
+    k = inputs(Jet(angle, 1.0, 0.0)) if jets else inputs(angle)
+    kv = values(k)
+    anchor = states.at(nearest)
+    h = targets[:, None] - anchor.t
+    guess = anchor.x + (s * h)[..., None] * anchor.x1 + 0.5 * (h * h)[..., None] * anchor.x2
+    x, jac, rows, ok = _correct(group, kv, guess, sign[0])
+    retry = reach & ~ok
+    if retry.any():
+        rank = np.cumsum(retry, axis=0) - 1
+        j, design = np.nonzero(retry)
+        shape = (int(rank.max()) + 1, d)
+        start = _Point(np.zeros(shape), np.zeros(shape + (group.n,)), np.zeros(shape + (group.n,)),
+                       np.zeros(shape + (group.n,)))
+        for name in ("t", "x", "x1", "x2"):
+            getattr(start, name)[rank[j, design], design] = \
+                getattr(states, name)[before[j, design]]
+        goal, active = np.zeros(shape), np.zeros(shape, dtype=bool)
+        goal[rank[j, design], design] = targets[j]
+        active[rank[j, design], design] = True
+        last, _, _ = _walk(group, inputs, s, start, goal, active, sign[0], None)
+        ok[j, design] = last.t[rank[j, design], design] == goal[rank[j, design], design]
+        x[j, design] = last.x[rank[j, design], design]
         with np.errstate(all="ignore"):
-            jac, rows = group.lines(xn, kv)
-            apart = (np.abs(xn - guess) * scale).sum(axis=-1)
-            ok = active & (step <= CONVERGED) & (np.sign(det_rows(jac)) == sign) \
-                & (apart <= 0.25 * separation(group, kv, xn))
-            n1, n2 = analogs(group, k, xn)
-        hit = ok & (hs >= goal - t)
-        t = np.where(hit, goal, np.where(ok, t + hs, t))
-        x = np.where(ok[:, None], xn, x)
-        x1 = np.where(ok[:, None], n1, x1)
-        x2 = np.where(ok[:, None], n2, x2)
-        h = np.where(ok, np.minimum(2.0 * h, H_MAX), 0.5 * hs)
-        if hit.any():
-            hits = np.flatnonzero(hit)
-            rec[hits, j[hits]] = xn[hits]
-            _store(store, hits, j, _outputs(group, k, xn, n1, n2, rows), (d, n_t))
-        j = j + hit
-        stuck = active & ~ok & (h < H_MIN)
-        if stuck.any():
-            with np.errstate(all="ignore"):
-                margin = group.margin(x, values(inputs(s * t)))
-            code = np.where(~_finite(kv), Reason.UNDEFINED_INPUT,
-                            np.where(margin <= CHANGE, HigherReason.MODE_ENDS,
-                                     HigherReason.NOT_FOLLOWED))
-            end = np.where(stuck, t, end)
-            why = np.where(stuck, code, why).astype(np.int8)
-        done = done | stuck | (j >= n_t)
-    return _Pass(x=rec, out=store, end=end, why=why)
+            jac, rows = group.lines(x, kv)
+    reached = reach & ok
+    x = np.where(reached[..., None], x, np.nan)
+    if jets:
+        with np.errstate(all="ignore"):
+            x1, x2 = analogs(group, k, x, jac)
+        cols: Any = [Jet(x[..., i], x1[..., i], x2[..., i]) for i in range(group.n)]
+    else:
+        cols, k = x, kv
+    with np.errstate(all="ignore"):
+        found = {"p." + a: b for a, b in group.joints(cols, k).items()}
+        found.update({"r." + a: b for a, b in group.rotations(cols, k).items()})
+    out = {name: [np.where(reached, np.broadcast_to(part, reached.shape), np.nan).T
+                  for part in ((v.v, v.d1, v.d2) if isinstance(v, Jet)
+                               else (v, 0.0 * v, 0.0 * v) if jets else (v,))]
+           for name, v in found.items()}
+    with np.errstate(all="ignore"):
+        margin = np.where(reached, hadamard(rows), np.nan).T
+    return _Pass(x=x.transpose(1, 0, 2), out=out, margin=margin, end=end[0], why=why[0])
 
 
 @dataclass(frozen=True, eq=False)
@@ -309,9 +444,9 @@ class HigherSolution:
 
 def _gap(group: HigherGroup, k: Any, rows: np.ndarray) -> np.ndarray:
     """−min|ln|E|| over the roots of p off the unit circle (the margin where a mode is gone),
-    for the designs ``rows`` (NaN elsewhere)."""
-    coef = np.broadcast_to(coefficients(group, k), (len(rows),) + (2 * group.degree + 1,))
-    out = np.full(len(rows), np.nan)
+    where the mask ``rows`` holds (NaN elsewhere)."""
+    coef = np.broadcast_to(coefficients(group, k), rows.shape + (2 * group.degree + 1,))
+    out = np.full(rows.shape, np.nan)
     with np.errstate(all="ignore"):
         size = np.abs(np.log(np.abs(roots(coef[rows]))))
         out[rows] = -np.where(size > TAU, size, np.inf).min(axis=-1)
@@ -399,15 +534,15 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
     unsort = np.argsort(order)
     grid = wrapped[order]
     n = len(grid)
-    ahead = _follow(group, inputs, x0, np.append(grid, TWO_PI), 1.0, ~found)
+    ahead = _follow(group, inputs, x0, np.append(grid, TWO_PI), 1.0, ~found, analogs)
     around = ahead.reached[:, -1]
     size = np.broadcast_to(group.size, (d,))
     with np.errstate(all="ignore"):
-        home = np.max([np.abs(ahead.out["p." + a][0, :, -1] - np.broadcast_to(v, (d,)))
+        home = np.max([np.abs(ahead.out["p." + a][0][:, -1] - np.broadcast_to(v, (d,)))
                        for a, v in group.joints(x0, k0).items()], axis=0)
     closed = ~around | (home <= CLOSED * size)
     back_targets = np.append(TWO_PI - grid[grid > 0][::-1], TWO_PI)
-    behind = _follow(group, inputs, x0, back_targets, -1.0, ~found | around)
+    behind = _follow(group, inputs, x0, back_targets, -1.0, ~found | around, analogs)
     back_index = np.full(n, -1)
     back_index[grid > 0] = np.arange(len(back_targets) - 1)[::-1]
     use_ahead = ahead.reached[:, :n]
@@ -419,26 +554,27 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
         return np.asarray(merged[..., unsort])
 
     x = np.stack([merge(ahead.x[..., i], behind.x[..., i]) for i in range(group.n)], axis=-1)
-    margin = merge(ahead.out["margin"], behind.out["margin"])[0]
+    margin = merge(ahead.margin, behind.margin)
     reason = np.zeros((d, n), dtype=np.int8)
     merged_ends = (ahead.why == HigherReason.MODE_ENDS) & (behind.why == HigherReason.MODE_ENDS)
-    for column in np.flatnonzero(~reached.all(axis=0)):
-        kv = values(inputs(np.full(d, phi[column])))
-        defined = _finite(kv)
-        gone = ~reached[:, column]
-        margin[:, column] = np.where(gone, np.where(defined, _gap(group, kv, gone), np.nan),
-                                     margin[:, column])
-        reason[:, column] = np.where(
-            gone, np.where(defined, np.where(found & merged_ends, HigherReason.MODE_ENDS,
-                                             HigherReason.NOT_FOLLOWED),
+    columns = np.flatnonzero(~reached.all(axis=0))
+    if columns.size:
+        kv = values(inputs(np.broadcast_to(phi[columns, None], (columns.size, d))))
+        defined = np.broadcast_to(_finite(kv), (columns.size, d)).T
+        gone = ~reached[:, columns]
+        margin[:, columns] = np.where(gone, np.where(defined, _gap(group, kv, gone.T).T, np.nan),
+                                      margin[:, columns])
+        reason[:, columns] = np.where(
+            gone, np.where(defined, np.where((found & merged_ends)[:, None],
+                                             HigherReason.MODE_ENDS, HigherReason.NOT_FOLLOWED),
                            Reason.UNDEFINED_INPUT), 0)
     with np.errstate(invalid="ignore"):
         exists = reached & (margin >= np.asarray(delta)[..., None])
     reason = np.where(reached & ~exists, HigherReason.MODE_ENDS, reason).astype(np.int8)
 
     def final(name: str) -> Any:
-        parts = [np.where(exists, part, np.nan) for part in
-                 merge(ahead.out[name], behind.out[name])]
+        parts = [np.where(exists, merge(a, b), np.nan)
+                 for a, b in zip(ahead.out[name], behind.out[name], strict=True)]
         return Jet(*parts) if analogs else parts[0]
 
     ends = np.stack([np.where(ahead.why > 0, ahead.end, np.nan),

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from assur.kinematics import jets as J
 from assur.kinematics.dyads import Reason
 from assur.kinematics.higher.continuation import (
     HigherReason,
@@ -89,7 +90,10 @@ def place(group: Triad, k0: TriadInputs, k: TriadInputs, *, delta: float | np.nd
         cols = [x[..., i] for i in range(3)]
 
     def blank(v: Jet | np.ndarray) -> Jet | np.ndarray:
-        if isinstance(v, Jet):
+        """NaN where the group does not exist; a jet (a fixed input's with zero analogs)
+        when the inputs are jets."""
+        if jets:
+            v = J.as_jet(v)
             return Jet(*(np.where(exists, part, np.nan) for part in (v.v, v.d1, v.d2)))
         return np.where(exists, v, np.nan)
 

@@ -82,20 +82,19 @@ def place(group: Triad, k0: TriadInputs, k: TriadInputs, *, delta: float | np.nd
                       np.where(~np.asarray(found)[..., None], HigherReason.NOT_FOLLOWED,
                                np.where(exists, 0, Reason.GUIDES_PARALLEL))).astype(np.int8)
     jets = any(isinstance(v, Jet) for v in (*k.a, *k.u))
+    cols: list[Jet | np.ndarray] = [x[..., i] for i in range(3)]
     if jets:
         with np.errstate(all="ignore"):
             x1, x2 = analogs(wide, k, x)
         cols = [Jet(x[..., i], x1[..., i], x2[..., i]) for i in range(3)]
-    else:
-        cols = [x[..., i] for i in range(3)]
 
     def blank(v: Jet | np.ndarray) -> Jet | np.ndarray:
         """NaN where the group does not exist; a jet (a fixed input's with zero analogs)
         when the inputs are jets."""
         if jets:
-            v = J.as_jet(v)
-            return Jet(*(np.where(exists, part, np.nan) for part in (v.v, v.d1, v.d2)))
-        return np.where(exists, v, np.nan)
+            jet = J.as_jet(v)
+            return Jet(*(np.where(exists, part, np.nan) for part in (jet.v, jet.d1, jet.d2)))
+        return np.where(exists, np.asarray(v), np.nan)
 
     design = np.shape(found)
     return HigherSolution(

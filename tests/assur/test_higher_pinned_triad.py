@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -292,3 +293,73 @@ def test_existence_agrees_with_a_dense_scan_of_the_lines(kinds: str) -> None:
     assert (solution.reason[~solution.exists] == 5).all()
     assert (solution.reason[solution.exists] == 0).all()
     assert np.allclose(solution.margin, scan, atol=1e-9)
+
+
+TABLE = Path(__file__).parents[2] / "input_tables" / "six_bar_triad_pp_sliders.yaml"
+LABEL = "III(2,3,4,5)"
+
+
+def _example() -> Designs:
+    """The triad of ``six_bar_triad_pp_sliders.yaml`` as one design of this file: leash 1 the
+    block 2 hinged at C in the crank's slot, leash 2 the leash 3 hinged to the frame at E on
+    the base's vertical guide, the P–P leash 5 (base's guide through G4, crank's through G1)."""
+    def one(z: complex) -> np.ndarray:
+        return np.array([z])
+
+    def unit(degrees: float) -> np.ndarray:
+        return np.exp(1j * np.radians(np.array([degrees])))
+
+    return Designs(("RP", "PR", "PP"), (one(42 + 30j), one(70 - 10j), one(20 + 60j)),
+                   (one(42 + 30j), one(70 - 10j), one(30 + 70j)),
+                   (unit(35.5376778), unit(90.0), unit(120.0)), unit(0.0))
+
+
+def test_the_example_table_through_the_analysis() -> None:
+    """``six_bar_triad_pp_sliders.yaml`` through ``analyse``: one mode at the sketch, every
+    pair's pose equation, the joints' analogs against central differences of the analysis,
+    the margin against the one written here."""
+    from assur.kinematics.analysis import analyse, values
+    from assur.kinematics.build import load_model
+    from assur.kinematics.higher.kind import HigherGroupSolution
+
+    model = load_model(TABLE)
+    centre = np.radians([10.0, 100.0, 190.0, 280.0])
+    h = 1e-5
+    motion = analyse(model, np.concatenate([centre, centre - h, centre + h]), analogs=True)
+    assert np.asarray(motion.exists).all()
+    solution = motion.solutions[LABEL]
+    assert isinstance(solution, HigherGroupSolution) and len(solution.modes()) == 1
+    for pid in ("C", "G4", "G1", "D"):
+        jet = motion.joints[pid] if pid in motion.joints else motion.sliders[pid].point
+        v, d1, d2 = (np.asarray(part).reshape(3, 4) for part in (jet.v, jet.d1, jet.d2))
+        assert np.abs((v[2] - v[1]) / (2 * h) - d1[0]).max() <= 1e-6 * 100, pid
+        assert np.abs((d1[2] - d1[1]) / (2 * h) - d2[0]).max() <= 1e-6 * 100, pid
+    designs = _example()
+    phi = np.radians(np.arange(0.0, 360.0, 1.0))
+    plain = analyse(model, phi)
+    scan = _margin(designs, phi[None, :])[0]
+    assert np.abs(np.asarray(values(plain.solutions[LABEL].margin)) - scan).max() <= 1e-9
+
+
+def test_existence_intervals_of_the_example_against_a_dense_scan() -> None:
+    """With δ = 0.4 the example fails where its lines' margin, written here, is below δ: the
+    intervals of ``check_existence`` (reason 5, ends bisected) against the crossings of
+    δ on a 0.001° grid."""
+    from assur.kinematics.build import load_model
+    from assur.kinematics.existence import check_existence
+
+    delta = 0.4
+    model = load_model(TABLE).with_params({f"{LABEL}.delta": delta})
+    report = check_existence(model, points=360)
+    (group,) = [g for g in report.groups if g.label == LABEL]
+    phi = np.radians(np.arange(0.0, 360.0, 0.001))
+    below = _margin(_example(), phi[None, :])[0] < delta
+    starts = phi[np.flatnonzero(below & ~np.roll(below, 1))]
+    ends = phi[np.flatnonzero(below & ~np.roll(below, -1))]
+    assert len(group.intervals) == len(starts) >= 1
+    step = np.radians(0.002)
+    for interval in group.intervals:
+        assert interval.reason == 5
+        assert np.abs(np.angle(np.exp(1j * (starts - interval.start)))).min() <= step
+        assert np.abs(np.angle(np.exp(1j * (ends - interval.end)))).min() <= step
+        assert interval.worst_margin < delta

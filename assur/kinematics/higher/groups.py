@@ -266,6 +266,12 @@ class Triad(HigherGroup):
         return self.leashes[2] == "PP"
 
     @property
+    def unique(self) -> bool:
+        """A P–P leash and no bar: exactly one mode, the crossing of two lines at θ = θ_K,
+        solved in closed form (:func:`~assur.kinematics.higher.pinned.place`)."""
+        return self.pinned and self.barless
+
+    @property
     def polar(self) -> bool:
         """A bar and a P–P leash: the unknowns are (ψ, ρ, θ), W = ρ·e^{iψ}·W⁰/|W⁰|."""
         return self.pinned and not self.barless
@@ -423,7 +429,7 @@ class Triad(HigherGroup):
         three rows [a_k, p_k] (the three lines a_k·W = p_k meet in one W); with a bar and a
         P–P leash the second leash's equation at ρ = r₁, θ = θ_K; with a P–P leash and no
         bar the P–P leash's own equation L·sin(θ − θ_K)."""
-        if self.pinned and self.barless:
+        if self.unique:
             return np.asarray(self.size * _cross(self._turn(k), e))
         if self.pinned:
             return np.asarray(self.residual(self.recover(e, k), k)[1])
@@ -445,7 +451,7 @@ class Triad(HigherGroup):
         the known link, so the antiparallel root −E_K is no pose of its own, and the
         deduplication of :func:`~assur.kinematics.higher.modes.assembly_modes` keeps one mode.
         """
-        if self.pinned and self.barless:
+        if self.unique:
             e = self._turn(k) * np.ones(np.shape(e))
         elif self.pinned:
             theta = np.angle(self._turn(k))

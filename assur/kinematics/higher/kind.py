@@ -111,6 +111,13 @@ class HigherGroupSolution:
     origin_j: None = None
     angle_j: None = None
 
+    @property
+    def followed(self) -> bool:
+        """The positions come from a continuation from the sketch; False for a group solved
+        in closed form at every position (a triad with a P–P leash and no bar), whose
+        existence may be re-solved at any single position."""
+        return not (isinstance(self.group, Triad) and self.group.unique)
+
     def modes(self, design: int = 0) -> list[SketchMode]:
         """Every real assembly mode at the sketch of one design, the drawn one marked.
 
@@ -347,7 +354,7 @@ def _follow(state: _State, group: GroupModel, q: Any, make: Callable[[Any], High
     delta = np.reshape(state.delta(group), -1) if np.ndim(state.delta(group)) \
         else state.delta(group)
     solved = make(k0)
-    if isinstance(solved, Triad) and solved.pinned and solved.barless:
+    if isinstance(solved, Triad) and solved.unique:
         return place(solved, k0, inputs(state), delta=delta), k0, solved
     follow = follow_mode(solved, lambda angle: inputs(known(angle)), phi,
                          analogs=isinstance(q, Jet), delta=delta)

@@ -363,3 +363,23 @@ def test_existence_intervals_of_the_example_against_a_dense_scan() -> None:
         assert np.abs(np.angle(np.exp(1j * (starts - interval.start)))).min() <= step
         assert np.abs(np.angle(np.exp(1j * (ends - interval.end)))).min() <= step
         assert interval.worst_margin < delta
+
+
+def test_designs_in_one_call_equal_each_design_alone() -> None:
+    """The example with its group's drawn points moved at random (up to 2 mm), three designs
+    in one analysis (as the synthesis evaluates them) and each alone."""
+    from assur.kinematics.analysis import analyse, values
+    from assur.kinematics.build import load_model
+
+    model = load_model(TABLE)
+    rng = np.random.default_rng(11)
+    varied = {name: value + rng.uniform(-2, 2, (3, 1)) for name, value in model.params.items()
+              if name.startswith(LABEL) and (".x_" in name or ".y_" in name)}
+    phi = np.radians(np.arange(0.0, 360.0, 30.0))
+    batch = analyse(model.with_params(varied), phi)
+    assert np.asarray(batch.exists).all()
+    for i in range(3):
+        alone = analyse(model.with_params({n: float(v[i, 0]) for n, v in varied.items()}), phi)
+        for pid in ("C", "G4", "G1"):
+            apart = np.asarray(values(batch.joints[pid]))[i] - np.asarray(values(alone.joints[pid]))
+            assert np.abs(apart).max() <= 1e-9 * 100

@@ -78,7 +78,8 @@ class Layout:
     external : tuple of pair ids
         Triad: the external pair of each leash; class IV: H_a, H_c.
     leashes : tuple of str
-        Triad: ``"RR"``, ``"RP"`` or ``"PR"`` per leash (internal pair first); empty for IV.
+        Triad: ``"RR"``, ``"RP"``, ``"PR"`` or ``"PP"`` per leash (internal pair first);
+        empty for IV.
     anchors : tuple
         Per external pair: the :class:`Anchor` of its hinge on the known link, or None.
     guides : tuple

@@ -311,7 +311,7 @@ class Triad(HigherGroup):
         return np.asarray(np.abs(stack[..., :, None] - stack[..., None, :]).max(axis=(-2, -1)))
 
     def drawn(self) -> np.ndarray:
-        """(W⁰_x, W⁰_y, 0) with W⁰ = P₁⁰ − A₁⁰; (0, |W⁰|, 0) with a P–P leash."""
+        """(W⁰_x, W⁰_y, 0) with W⁰ = P₁⁰ − A₁⁰; (0, |W⁰|, 0) with a bar and a P–P leash."""
         w = np.asarray(self.base[0]) - np.asarray(self.external[0])
         first = (0.0 * np.abs(w), np.abs(w)) if self.polar else (w.real, w.imag)
         return np.stack(np.broadcast_arrays(*first, np.zeros(np.shape(w))), axis=-1)

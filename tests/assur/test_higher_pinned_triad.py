@@ -330,7 +330,7 @@ def test_the_example_table_through_the_analysis() -> None:
     solution = motion.solutions[LABEL]
     assert isinstance(solution, HigherGroupSolution) and len(solution.modes()) == 1
     for pid in ("C", "G4", "G1", "D"):
-        jet = motion.joints[pid] if pid in motion.joints else motion.sliders[pid].point
+        jet = J.as_jet(motion.joints[pid] if pid in motion.joints else motion.sliders[pid].point)
         v, d1, d2 = (np.asarray(part).reshape(3, 4) for part in (jet.v, jet.d1, jet.d2))
         assert np.abs((v[2] - v[1]) / (2 * h) - d1[0]).max() <= 1e-6 * 100, pid
         assert np.abs((d1[2] - d1[1]) / (2 * h) - d2[0]).max() <= 1e-6 * 100, pid

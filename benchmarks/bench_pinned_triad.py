@@ -52,9 +52,8 @@ def known(phi: Value) -> TriadInputs:
 
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--points", type=int, default=360)
-    parser.add_argument("--designs", type=int, default=1000)
-    parser.add_argument("--rounds", type=int, default=3)
+    for option, default in (("--points", 360), ("--designs", 1000), ("--rounds", 3)):
+        parser.add_argument(option, type=int, default=default)
     args = parser.parse_args(argv)
     rng = np.random.default_rng(0)
     phi = np.linspace(0, 2 * np.pi, args.points, endpoint=False)

@@ -311,8 +311,9 @@ def _boundary(model: KinematicModel, group: GroupModel, index: int, sol: object,
               bad: float, tol: float) -> float:
     """The end of a failure interval between ``good`` and ``bad``: bisection for a dyad; for
     a triad or class IV group the change point where its followed mode ended, if it lies
-    there (no re-solving: each solve follows the mode from the sketch), else ``bad``."""
-    if not isinstance(sol, HigherGroupSolution):
+    there (no re-solving: each solve follows the mode from the sketch), else ``bad``; a
+    higher group solved in closed form is bisected like a dyad."""
+    if not isinstance(sol, HigherGroupSolution) or not sol.followed:
         return _bisect(model, group, index, good, bad, tol)
     lo, hi = sorted((good, bad))
     for end in np.asarray(sol.follow.ends, dtype=float).ravel():

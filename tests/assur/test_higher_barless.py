@@ -186,6 +186,8 @@ def test_the_example_table_keeps_its_blocks_on_their_guides() -> None:
 MIXES = [f"{a}-{b}-{c}" for a in ("RP", "PR") for b in ("RP", "PR") for c in ("RP", "PR")]
 #: The same check with a bar first (the base's frame is then on the bar's hinge).
 BARRED = ["RR-RR-RR", "RR-RP-PR", "RR-PR-RP", "RR-RR-PP", "RR-PR-PP"]
+#: And without a bar beside a P–P leash (the base's frame on its first leash's point).
+PINNED = ["RP-PR-PP", "PR-RP-PP"]
 
 
 def _table(mix: str, rng: np.random.Generator) -> dict[str, Any]:
@@ -224,7 +226,7 @@ def _base_turns_rigidly(mix: str, seed: int) -> int:
     from assur.kinematics.build import build_model
     from assur.structure.analysis import analyse_structure
 
-    rng = np.random.default_rng(1000 * (MIXES + BARRED).index(mix) + seed)
+    rng = np.random.default_rng(1000 * (MIXES + BARRED + PINNED).index(mix) + seed)
     table = _table(mix, rng)
     geometry = table["geometry"]
     model = build_model(analyse_structure(chain_from_dict(table)))
@@ -262,7 +264,7 @@ def _base_turns_rigidly(mix: str, seed: int) -> int:
     return int((ok & (np.abs(carried(extra) - extra) > 0.01 * scale)).sum())
 
 
-@pytest.mark.parametrize("mix", MIXES + BARRED)
+@pytest.mark.parametrize("mix", MIXES + BARRED + PINNED)
 def test_the_base_frame_carries_the_base_rigidly(mix: str) -> None:
     """Points carried by the base's frame, z(φ) = O(φ) + (z⁰ − O(0))·e^{i(θ(φ) − θ(0))}, stay
     on the base over the cycle (to 1e-9 L): the base's hinges (R–P leashes) land on the

@@ -133,10 +133,10 @@ def test_analogs_against_central_differences(second: str) -> None:
     check_analogs_against_central_differences(designs.group, designs.inputs, DIFFERENCED)
 
 
-def test_a_pp_leash_needs_a_bar_first_and_comes_last() -> None:
+def test_a_pp_leash_comes_last_and_alone() -> None:
     designs = random_designs(120, 1, "RP")
     g = designs.group
-    for kinds in (("RR", "PP", "RP"), ("RP", "RP", "PP")):
+    for kinds in (("RR", "PP", "RP"), ("RP", "PP", "PP")):
         with pytest.raises(ValueError, match="P–P"):
             Triad(kinds, g.base, g.external, (designs.guide[0], designs.guide[1],  # type: ignore[arg-type]
                                               designs.guide[2]))
@@ -174,18 +174,18 @@ def test_the_example_table_keeps_its_leashes_on_their_pairs() -> None:
 
 
 @pytest.mark.parametrize(("changes", "code", "data"), [
-    ({"{id: B, type: R, links: [1, 2]}": "{id: B, type: P, links: [1, 2], guide: 1}",
-      "{id: E, type: R, links: [3, 0]}": "{id: E, type: P, links: [3, 0], guide: 0}",
-      "B: {point: [40, 0]}": "B: {point: [40, 0], direction: 20}",
-      "E: {point: [-30, 140]}": "E: {point: [-30, 140], direction: 80}"},
-     "higher.sketch.leashes", {"group": "III(2,3,4,5)", "found": "R–P, R–P, P–P"}),
+    ({"{id: E, type: R, links: [3, 0]}": "{id: E, type: P, links: [3, 0], guide: 0}",
+      "{id: D, type: R, links: [3, 4]}": "{id: D, type: P, links: [3, 4], guide: 4}",
+      "E: {point: [-30, 140]}": "E: {point: [-30, 140], direction: 20}",
+      "D: {point: [40, 100]}": "D: {point: [40, 100], direction: 80}"},
+     "higher.sketch.leashes", {"group": "III(2,3,4,5)", "found": "R–R, P–P, P–P"}),
     ({"direction: 70}": "direction: 0}"},
      "higher.sketch.pp_parallel", {"group": "III(2,3,4,5)", "pair": "G1"}),
 ])
-def test_a_pp_leash_without_a_bar_or_on_parallel_guides_is_refused(
+def test_two_pp_leashes_or_a_pp_leash_on_parallel_guides_are_refused(
         tmp_path: Path, changes: dict[str, str], code: str, data: dict[str, str]) -> None:
-    """The example with both other leashes made R–P (no bar), or with the crank's guide
-    drawn parallel to the base's: one problem naming the group."""
+    """The example with the bar E–D made a second P–P leash (on the frame and the base), or
+    with the crank's guide drawn parallel to the base's: one problem naming the group."""
     from assur.errors import TableError
     from assur.kinematics.build import load_model
 

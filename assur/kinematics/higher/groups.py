@@ -200,9 +200,10 @@ class Triad(HigherGroup):
     ----------
     leashes : tuple of 3 of {"RR", "RP", "PR", "PP"}
         Leash kinds, internal pair first. A bar, if there is one, must come first; a triad
-        without a bar has all three equations linear in W (§2.2). A P–P leash comes last,
-        after a bar: it fixes the base's rotation θ to the known link's, and the unknowns
-        become the rotation ψ of W = P₁ − A₁ from the sketch, its length ρ and θ
+        without a bar has all three equations linear in W (§2.2). A P–P leash comes last
+        (at most one): it fixes the base's rotation θ to the known link's. After a bar the
+        unknowns become the rotation ψ of W = P₁ − A₁ from the sketch, its length ρ and θ;
+        without a bar the other two leashes are lines that place P₁ at θ = θ_K
         (``docs/higher_groups.md``, "A P–P leash").
     base : tuple of 3 complex
         Drawn points of the base: the hinge P_k⁰ (R–R, R–P) or a point of the base's guide
@@ -231,7 +232,7 @@ class Triad(HigherGroup):
     def __post_init__(self) -> None:
         if "RR" in self.leashes and self.leashes[0] != "RR":
             raise ValueError(render("higher.error.first_leash", found="–".join(self.leashes[0])))
-        if "PP" in self.leashes[:2] or (self.pinned and self.leashes[0] != "RR"):
+        if "PP" in self.leashes[:2]:
             raise ValueError(render("higher.error.pp_leash",
                                     found=", ".join("–".join(k) for k in self.leashes)))
         for kind, u in zip(self.leashes, self.guide, strict=True):
@@ -265,14 +266,25 @@ class Triad(HigherGroup):
         return self.leashes[2] == "PP"
 
     @property
+    def unique(self) -> bool:
+        """A P–P leash and no bar: exactly one mode, the crossing of two lines at θ = θ_K,
+        solved in closed form (:func:`~assur.kinematics.higher.pinned.place`)."""
+        return self.pinned and self.barless
+
+    @property
+    def polar(self) -> bool:
+        """A bar and a P–P leash: the unknowns are (ψ, ρ, θ), W = ρ·e^{iψ}·W⁰/|W⁰|."""
+        return self.pinned and not self.barless
+
+    @property
     def eliminated(self) -> int:  # type: ignore[override]
-        """ψ (index 0) with a P–P leash, else θ (index 2)."""
-        return 0 if self.pinned else 2
+        """ψ (index 0) with a bar and a P–P leash, else θ (index 2)."""
+        return 0 if self.polar else 2
 
     @property
     def lengths(self) -> tuple[bool, ...]:  # type: ignore[override]
-        """(ψ, ρ, θ) with a P–P leash, else (W_x, W_y, θ)."""
-        return (False, True, False) if self.pinned else (True, True, False)
+        """(ψ, ρ, θ) with a bar and a P–P leash, else (W_x, W_y, θ)."""
+        return (False, True, False) if self.polar else (True, True, False)
 
     @property
     def barless(self) -> bool:
@@ -282,7 +294,8 @@ class Triad(HigherGroup):
     @property
     def degree(self) -> int:
         """3, or 2 when leashes 2 and 3 are both R–P or both P–R; without a bar 1 when the
-        three leashes are of one kind, else 2 (§2.2); 1 with a P–P leash."""
+        three leashes are of one kind, else 2 (§2.2); 1 with a P–P leash (with a bar at most
+        2 modes; without one Φ = L·sin(θ − θ_K) and a single mode, :meth:`recover`)."""
         if self.pinned:
             return 1
         if self.barless:
@@ -298,9 +311,9 @@ class Triad(HigherGroup):
         return np.asarray(np.abs(stack[..., :, None] - stack[..., None, :]).max(axis=(-2, -1)))
 
     def drawn(self) -> np.ndarray:
-        """(W⁰_x, W⁰_y, 0) with W⁰ = P₁⁰ − A₁⁰; (0, |W⁰|, 0) with a P–P leash."""
+        """(W⁰_x, W⁰_y, 0) with W⁰ = P₁⁰ − A₁⁰; (0, |W⁰|, 0) with a bar and a P–P leash."""
         w = np.asarray(self.base[0]) - np.asarray(self.external[0])
-        first = (0.0 * np.abs(w), np.abs(w)) if self.pinned else (w.real, w.imag)
+        first = (0.0 * np.abs(w), np.abs(w)) if self.polar else (w.real, w.imag)
         return np.stack(np.broadcast_arrays(*first, np.zeros(np.shape(w))), axis=-1)
 
     @property
@@ -313,7 +326,7 @@ class Triad(HigherGroup):
 
     def _pose(self, x: Unknowns, k: TriadInputs) -> tuple[Value, Value]:
         """P₁ and E = e^{iθ}."""
-        w = x[1] * self._heading * J.expi(x[0]) if self.pinned else x[0] + 1j * x[1]
+        w = x[1] * self._heading * J.expi(x[0]) if self.polar else x[0] + 1j * x[1]
         return k.a[0] + w, J.expi(x[2])
 
     @cached_property
@@ -370,8 +383,8 @@ class Triad(HigherGroup):
 
         The Jacobian over (W_x, W_y, θ) has the rows [ν_k, cross(X_k − P₁, ν_k)], the line
         coordinates of the constraint lines. A P–P leash's row is [0, 0, L cos(θ − θ_K)] (the
-        line at infinity, [0, 0, 1] in the margin), and the columns of W become those of ψ
-        and ρ by ∂W/∂ψ = iW, ∂W/∂ρ = W/ρ (W = ρ·e^{iψ}·W⁰/|W⁰|).
+        line at infinity, [0, 0, 1] in the margin); after a bar the columns of W become those
+        of ψ and ρ by ∂W/∂ψ = iW, ∂W/∂ρ = W/ρ (W = ρ·e^{iψ}·W⁰/|W⁰|).
         """
         nu, at, base, p1 = self._constraints(x, k)
         centre = base.mean(axis=-1, keepdims=True)
@@ -384,6 +397,8 @@ class Triad(HigherGroup):
         jac, rows = jac.copy(), rows.copy()
         jac[..., 2, :] = np.stack(np.broadcast_arrays(0.0 * turn, 0.0 * turn, turn), axis=-1)
         rows[..., 2, :] = (0.0, 0.0, 1.0)
+        if self.barless:
+            return jac, rows
         heading = self._heading[..., None] * np.exp(1j * x[..., None, 0])
         along = np.conj(jac[..., 0] + 1j * jac[..., 1]) * heading
         jac[..., 0], jac[..., 1] = (1j * along).real * x[..., None, 1], along.real
@@ -391,11 +406,11 @@ class Triad(HigherGroup):
 
     def _linear(self, e: np.ndarray, k: TriadInputs) -> tuple[list[Any], list[Any]]:
         """a_k·W = p_k at the base rotation E (§2.2): k = 2, 3 after a bar, all three
-        without one."""
+        without one (the first two beside a P–P leash)."""
         a1 = np.asarray(k.a[0])
         r1 = self._length(0)
         coef, rhs = [], []
-        for i in ((0, 1, 2) if self.barless else (1, 2)):
+        for i in (((0, 1) if self.pinned else (0, 1, 2)) if self.barless else (1, 2)):
             kind = self.leashes[i]
             ai = np.asarray(k.a[i])
             offset = self._offset(i) * e
@@ -411,8 +426,11 @@ class Triad(HigherGroup):
 
     def eliminant(self, e: np.ndarray, k: TriadInputs) -> np.ndarray:
         """Φ(θ) = |p₂a₃ − p₃a₂|² − r₁² cross(a₂, a₃)²; without a bar the determinant of the
-        three rows [a_k, p_k] (the three lines a_k·W = p_k meet in one W); with a P–P leash
-        the second leash's equation at ρ = r₁, θ = θ_K."""
+        three rows [a_k, p_k] (the three lines a_k·W = p_k meet in one W); with a bar and a
+        P–P leash the second leash's equation at ρ = r₁, θ = θ_K; with a P–P leash and no
+        bar the P–P leash's own equation L·sin(θ − θ_K)."""
+        if self.unique:
+            return np.asarray(self.size * _cross(self._turn(k), e))
         if self.pinned:
             return np.asarray(self.residual(self.recover(e, k), k)[1])
         coef, rhs = self._linear(e, k)
@@ -425,13 +443,21 @@ class Triad(HigherGroup):
 
     def recover(self, e: np.ndarray, k: TriadInputs) -> np.ndarray:
         """W = −i(p_ia_j − p_ja_i)/cross(a_i, a_j) (after a bar i, j = 2, 3; without one the
-        two lines that meet at the widest angle), θ = arg E; with a P–P leash (ψ, ρ, θ) =
-        (arg e, r₁, θ_K), ψ the first leash's rotation from the sketch."""
-        if self.pinned:
+        two lines that meet at the widest angle), θ = arg E; with a bar and a P–P leash
+        (ψ, ρ, θ) = (arg e, r₁, θ_K), ψ the first leash's rotation from the sketch.
+
+        With a P–P leash and no bar, θ = θ_K and W is where the lines of the other two
+        leashes cross at E_K, for both roots ±E_K of Φ: the leash turns with the base and with
+        the known link, so the antiparallel root −E_K is no pose of its own, and the
+        deduplication of :func:`~assur.kinematics.higher.modes.assembly_modes` keeps one mode.
+        """
+        if self.unique:
+            e = self._turn(k) * np.ones(np.shape(e))
+        elif self.pinned:
             theta = np.angle(self._turn(k))
             return np.stack(np.broadcast_arrays(np.angle(e), self._length(0), theta), axis=-1)
         coef, rhs = self._linear(e, k)
-        pairs = ((1, 2), (2, 0), (0, 1)) if self.barless else ((0, 1),)
+        pairs = ((1, 2), (2, 0), (0, 1)) if len(coef) == 3 else ((0, 1),)
         best, w = None, None
         for i, j in pairs:
             det = _cross(coef[i], coef[j])

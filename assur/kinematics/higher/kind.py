@@ -40,6 +40,7 @@ from assur.kinematics.higher.groups import (
     TriadInputs,
     values,
 )
+from assur.kinematics.higher.pinned import place
 from assur.kinematics.jets import Jet
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -77,7 +78,8 @@ class Layout:
     external : tuple of pair ids
         Triad: the external pair of each leash; class IV: H_a, H_c.
     leashes : tuple of str
-        Triad: ``"RR"``, ``"RP"`` or ``"PR"`` per leash (internal pair first); empty for IV.
+        Triad: ``"RR"``, ``"RP"``, ``"PR"`` or ``"PP"`` per leash (internal pair first);
+        empty for IV.
     anchors : tuple
         Per external pair: the :class:`Anchor` of its hinge on the known link, or None.
     guides : tuple
@@ -109,6 +111,13 @@ class HigherGroupSolution:
     angle_i: Any
     origin_j: None = None
     angle_j: None = None
+
+    @property
+    def followed(self) -> bool:
+        """The positions come from a continuation from the sketch; False for a group solved
+        in closed form at every position (a triad with a P–P leash and no bar), whose
+        existence may be re-solved at any single position."""
+        return not (isinstance(self.group, Triad) and self.group.unique)
 
     def modes(self, design: int = 0) -> list[SketchMode]:
         """Every real assembly mode at the sketch of one design, the drawn one marked.
@@ -206,8 +215,16 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
     -------
     Sketched or None
         Its :class:`Layout` and the frames of its links; None after recording a problem (two
-        leashes with two sliders, or one without a bar; a P–P leash on parallel guides; a
-        block's guide on the block; an actuator in the group).
+        or three leashes with two sliders, which fix the base's rotation more than once and
+        its position not at all; a P–P leash on parallel guides; an actuator in the group).
+
+    Notes
+    -----
+    A prismatic pair makes its two links turn together and slide along the guide's
+    direction, whichever of them carries the guide: a block's guide on the leash (a slotted
+    leash on a block or pin of the known link or of the base) gives the same equations as
+    on the other link, and is taken as drawn on the other link here; the slider is written
+    with the table's carrier (:func:`solve_triad`).
     """
     pairs = build.topo.pairs
     if group.composite:
@@ -222,7 +239,7 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
         rows.append((kind != "RR", kind, leash, inner, ext, known))
     rows.sort(key=lambda row: (row[0], row[1] == "PP"))
     kinds = [row[1] for row in rows]
-    if kinds.count("PP") > 1 or ("PP" in kinds and kinds[0] != "RR"):
+    if kinds.count("PP") > 1:
         _problem(build, label, "leashes", found=", ".join("–".join(k) for k in kinds))
         return None
     frames: dict[LinkId, tuple[complex, float]] = {}
@@ -231,9 +248,6 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
     drawn: list[complex] = []
     for _, kind, leash, inner, ext, known in rows:
         if kind in ("RP", "PP"):
-            if pairs[ext].guide not in (None, known):
-                _problem(build, label, "block_guide", pair=str(ext))
-                return None
             point, theta = build.point(pairs[inner]), build.direction(pairs[ext])
             line = build.point(pairs[ext]) if kind == "PP" else point
             if kind == "PP":
@@ -348,13 +362,16 @@ def _drawn(state: _State, group: GroupModel, pid: PairId) -> Any:
 def _follow(state: _State, group: GroupModel, q: Any, make: Callable[[Any], HigherGroup],
             inputs: Callable[[_State], Any]) -> tuple[HigherSolution, Any, HigherGroup]:
     """Follow the group's drawn mode over q; also its inputs at the reference position and
-    the group as solved."""
+    the group as solved. A triad with a P–P leash and no bar has one mode, placed at every
+    position in closed form from the inputs at q (:func:`~assur.kinematics.higher.pinned.place`)."""
     known = state.earlier(group)
     k0 = values(inputs(known(np.zeros(state.flat_shape))))
     phi = np.asarray(J.value(q), dtype=float)
     delta = np.reshape(state.delta(group), -1) if np.ndim(state.delta(group)) \
         else state.delta(group)
     solved = make(k0)
+    if isinstance(solved, Triad) and solved.unique:
+        return place(solved, k0, inputs(state), delta=delta), k0, solved
     follow = follow_mode(solved, lambda angle: inputs(known(angle)), phi,
                          analogs=isinstance(q, Jet), delta=delta)
     return follow, k0, solved
@@ -447,8 +464,8 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
             point = follow.joints[f"P{i + 1}"]
             line, angle, offset = state.guide(guide_k)
             state.joints[inner] = point
-            state.slider(ext, guide_k.carrier, layout.links[i + 1], point,
-                         J.dot(point - line, J.expi(angle)), line, angle, offset)
+            _slide(state, ext, (layout.links[i + 1], point), (guide_k.carrier, line), angle,
+                   offset)
             frames[name] = (point, _phase(k0.u[i]))
             continue
         assert anchor is not None
@@ -460,11 +477,8 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
         else:  # P–R: a leash hinged to a known link, sliding along the base's guide
             angle0 = p(_column(group.label, f"beta_{inner}"))
             line = follow.joints["O"] + _col(base[i] - base[0]) * J.expi(theta)
-            carrier = state.model.pair_links[inner][2] or layout.links[0]
-            slider = next(link for link in state.model.pair_links[inner][1] if link != carrier)
-            angle = theta + angle0
-            state.slider(inner, carrier, slider, hinge, J.dot(hinge - line, J.expi(angle)), line,
-                         angle, 0.0)
+            _slide(state, inner, (layout.links[i + 1], hinge), (layout.links[0], line),
+                   theta + angle0, 0.0)
             frames[name] = (hinge, angle0)
     joints = {f"P{i + 1}": (ext if kind == "PR" else inner) for i, (kind, inner, ext) in
               enumerate(zip(layout.leashes, layout.internal, layout.external, strict=True))}
@@ -496,12 +510,26 @@ def _pp_sliders(state: _State, group: GroupModel, i: int, follow: HigherSolution
     point = start + t * along
     outer = point + arm
     state.joints[inner], state.joints[ext] = point, outer
-    carrier = state.model.pair_links[inner][2] or layout.links[0]
-    slider = next(link for link in state.model.pair_links[inner][1] if link != carrier)
-    state.slider(inner, carrier, slider, point, t, start, theta + own, 0.0)
-    state.slider(ext, guide_k.carrier, leash, outer, J.dot(outer - line, known), line, angle,
-                 offset)
+    _slide(state, inner, (leash, point), (layout.links[0], start), theta + own, 0.0)
+    _slide(state, ext, (leash, outer), (guide_k.carrier, line), angle, offset)
     return point, _phase(drawn[2])
+
+
+def _slide(state: _State, pair: PairId, pin: tuple[LinkId, Any], slot: tuple[LinkId, Any],
+           angle: Any, offset: Any) -> None:
+    """Write the slider of a prismatic pair from its two links and their coincident points.
+
+    ``slot`` is the link taken as the guide's carrier in the equations with the guide's
+    point on it, ``pin`` the other link with its point on the guide line. A prismatic pair
+    makes both links turn together and slide along the guide, whichever carries it; where
+    the table puts the guide on the ``pin`` link (a slotted leash), the two swap, so that
+    the slider's base point is fixed on its carrier and s = (point − base)·u(angle).
+    """
+    if state.model.pair_links[pair][2] == pin[0]:
+        pin, slot = slot, pin
+    (slider, point), (carrier, base) = pin, slot
+    state.slider(pair, carrier, slider, point, J.dot(point - base, J.expi(angle)), base, angle,
+                 offset)
 
 
 def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution:

@@ -90,7 +90,9 @@ def _check(designs: Designs, phi: np.ndarray) -> Any:
     want = designs.group.joints(expected.transpose(1, 0, 2), k)
     size = np.asarray(designs.group.size)
     for name, points in want.items():
-        error = np.abs(solution.joints[name] - np.asarray(points).T) / size[:, None]
+        point = np.asarray(points)  # (angles, designs), or (designs,) for a joint held fixed
+        point = point.T if point.ndim == 2 else point[:, None]
+        error = np.abs(solution.joints[name] - point) / size[:, None]
         assert (error[reached] <= 1e-9).all(), (name, error[reached].max())
     return solution
 

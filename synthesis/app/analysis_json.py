@@ -53,7 +53,8 @@ def higher_item(sol: object) -> Record:
                    "margin": number(m.margin), "det_sign": m.det_sign,
                    "joints": {str(pid): [z.real, z.imag] for pid, z in m.joints.items()}}
                   for m in modes],
-        "ends_deg": [number(math.degrees(v)) for v in np.ravel(sol.follow.ends)]}}
+        "ends_deg": [number(math.degrees(v)) for v in np.ravel(sol.follow.ends)],
+        "full_turn": not bool(np.ravel(sol.follow.overlap)[0])}}
 
 
 def number(value: float) -> float | None:

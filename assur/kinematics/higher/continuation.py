@@ -416,6 +416,16 @@ class HigherSolution:
     found: np.ndarray
     modes: AssemblyModes
 
+    @property
+    def overlap(self) -> np.ndarray:
+        """True where both passes end at change points and the backward end φ_b comes before
+        the forward end φ_f: every angle has a position, but the crank cannot make a full turn,
+        and the positions after φ_f are those reached turning backward from the sketch (another
+        assembly at the same angles, so the motion jumps at φ_f)."""
+        both = (self.end_reasons == HigherReason.MODE_ENDS).all(axis=-1)
+        with np.errstate(invalid="ignore"):
+            return np.asarray(both & (self.ends[..., 1] < self.ends[..., 0]))
+
     def notes(self, design: int = 0) -> list[Message]:
         """What a user is told about one design: the sketch, the ends, the return.
 
@@ -439,6 +449,10 @@ class HigherSolution:
                 out.append(Message(codes[int(code)], {"angle": float(np.degrees(angle))}))
         if not self.closed[index]:
             out.append(Message("higher.not_closed"))
+        if self.overlap[index]:
+            forward, backward = np.degrees(self.ends[index])
+            out.append(Message("higher.overlap", {"forward": float(forward),
+                                                  "backward": float(backward)}))
         return out
 
 

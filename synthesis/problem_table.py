@@ -27,6 +27,7 @@ from __future__ import annotations
 import cmath
 import math
 import os
+import re
 from collections.abc import Iterator
 from dataclasses import dataclass
 from itertools import pairwise
@@ -39,6 +40,7 @@ import assur
 import assur.kinematics.model
 import assur.model
 from assur import AssurError, KinematicModel, TableError
+from assur.errors import Issue
 from assur.io.reader import (
     MISSING,
     Node,
@@ -83,6 +85,9 @@ _POINT_COLUMNS = {
 #: Locations whose problems leave no mechanism to build.
 _STRUCTURE = ("mechanism", "structure_identification", "parameters", "frame", "geometry")
 Bounds = dict[tuple[GroupKey, str], tuple[float, float, float]]
+#: Where the kinematic model puts a problem of a cell of a group's parameters.
+_PARAMS_AT = re.compile(r"structure_identification \(L\d+\((?P<links>[^)]*)\)\) 'params' "
+                        r"'(?P<column>[^']+)'")
 #: Most positions of the analysis grid over a crank turn.
 MAX_GRID = 20_000
 
@@ -238,13 +243,44 @@ def _identification_form(top: Node, mechanism: _Mechanism, general: _General) ->
         else:
             reader.problem("general 'groups'", "problem.groups_count", rows=count,
                            found=general.n_groups)
-    rows, bounds = _merge_parameters(top, mechanism, groups, general.direction)
+    rows, bounds, places = _merge_parameters(top, mechanism, groups, general.direction)
     table = {**mechanism.data, "structure_identification": rows}
     structure_ok = bool(mechanism.rows) and not any(
         issue.location.startswith(_STRUCTURE) for issue in reader.issues)
+    start = len(reader.issues)
     model, foreign = _build_model(reader, table, mechanism.source) if structure_ok \
         else (None, None)
+    if model is None and structure_ok:
+        _tell_swapped_cells(reader, table, mechanism.source, start, places)
     return _Form(groups, model, foreign, bounds, table)
+
+
+def _tell_swapped_cells(reader: TableReader, table: dict[str, Any], source: str, start: int,
+                        places: dict[tuple[GroupKey, str], str]) -> None:
+    """Two cells of one group that the kinematic model finds wrong, and right once swapped
+    (a number where the group's rule wants ``'A'`` and ``'A'`` where it wants a number):
+    told once, as swapped, at the row they were read from.  ``start`` is the first problem
+    of the model."""
+    wrong: dict[str, list[tuple[int, str]]] = {}
+    for n, issue in enumerate(reader.issues[start:], start):
+        match = _PARAMS_AT.fullmatch(issue.location)
+        if match:
+            wrong.setdefault(match["links"], []).append((n, match["column"]))
+    for links, cells in wrong.items():
+        if len(cells) != 2:
+            continue
+        (n_a, a), (n_b, b) = cells
+        key = tuple(normalise_id(link) for link in links.split(","))
+        rows = [{**row, "params": {**row["params"], a: row["params"][b], b: row["params"][a]}}
+                if _has_links(row) and row_key(row) == key else row
+                for row in table["structure_identification"]]
+        trial = TableReader.from_data(None, source)
+        _build_model(trial, {**table, "structure_identification": rows}, source)
+        locations = {reader.issues[n_a].location, reader.issues[n_b].location}
+        if not any(issue.location in locations for issue in trial.issues) \
+                and places.get((key, a)) == places.get((key, b)) is not None:
+            reader.issues[n_a] = Issue(places[key, a], Message("table.swapped", {"a": a, "b": b}))
+            del reader.issues[n_b]
 
 
 def _named_groups(top: Node, groups: dict[GroupKey, Any]) -> dict[GroupKey, list[str]]:
@@ -458,8 +494,9 @@ def _parameter_rows(top: Node, groups: dict[GroupKey, Any]
 
 
 def _merge_parameters(top: Node, mechanism: _Mechanism, groups: dict[GroupKey, Any],
-                      direction: Any) -> tuple[list[Any], Bounds]:
-    """New identification rows with the cells of ``parameters`` and plain numbers.
+                      direction: Any) -> tuple[list[Any], Bounds, dict[tuple[GroupKey, str], str]]:
+    """New identification rows with the cells of ``parameters`` and plain numbers, their
+    bounds, and the row each cell was read from (by links and column).
 
     Each row of ``parameters`` replaces the same columns of the identification row with the
     same links.  A cell ``[initial, lower, upper]`` (in either table) is checked here and
@@ -474,6 +511,7 @@ def _merge_parameters(top: Node, mechanism: _Mechanism, groups: dict[GroupKey, A
             {column: (value, f"{row.location} {column!r}")
              for column, value in row.mapping.items() if column != "links"})
     bounds: Bounds = {}
+    places: dict[tuple[GroupKey, str], str] = {}
     rows: list[Any] = []
     for index, row in enumerate(mechanism.rows):
         if not _has_links(row):
@@ -491,12 +529,13 @@ def _merge_parameters(top: Node, mechanism: _Mechanism, groups: dict[GroupKey, A
         params = {}
         for column, (value, location) in merged.items():
             params[column] = _cell(reader, value, location, key, column, bounds)
+            places[key, column] = location[:-len(f" {column!r}")]
         if row.get("L") == 0 and direction in (1, -1) \
                 and params.setdefault("s", direction) != direction:
             reader.problem("general 'direction'", "problem.direction_mismatch",
                            s=params["s"], found=direction)
         rows.append({**row, "params": params})
-    return rows, bounds
+    return rows, bounds, places
 
 
 def _cell(reader: TableReader, value: Any, location: str, key: GroupKey, column: str,

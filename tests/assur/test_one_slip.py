@@ -108,6 +108,15 @@ SLIPS: dict[str, Slip] = {
     "look-alike letter in the key of a load's point": (
         "slider_crank_press.yaml", lambda t: _rename(t["loads"][0], "point", "рoint"),
         "loads[0]", "table.unknown_key_lookalike", {"hint": "point"}),
+    "misspelt torque of a load": (
+        "four_bar_gravity.yaml", lambda t: _rename(t["loads"][0], "torque", "troque"),
+        "loads[0]", "table.unknown_key_hint", {"key": "troque", "hint": "torque"}),
+    "link and force of a load swapped": (
+        "slider_crank_press.yaml", lambda t: _swap(t["loads"][0], "link", "force"),
+        "loads[0]", "table.swapped", {"a": "link", "b": "force"}),
+    "look-alike letter in the pairs key of a table with masses and loads": (
+        "slider_crank_press.yaml", lambda t: _rename(t["mechanism"], "pairs", "рairs"),
+        "mechanism", "table.unknown_key_lookalike", {"hint": "pairs"}),
     "look-alike letter in the key of a mass centre": (
         "slider_crank_press.yaml", lambda t: _rename(t["masses"][3], "centre", "сentre"),
         "masses.3", "table.unknown_key_lookalike", {"hint": "centre"}),
@@ -279,6 +288,9 @@ PROBLEM_SLIPS: dict[str, tuple[str, Callable[[dict[str, Any]], None], str, str]]
         "class1_fourbar_rocker.yaml",
         lambda t: _swap(t["structure_identification"][1], "j", "i_minus_1"),
         "structure_identification[1]", "table.swapped"),
+    "a number and an 'A' of a parameters row swapped": (
+        "class1_fourbar_zone.yaml", lambda t: _swap(t["parameters"][1], "y_Hi", "x_Hj"),
+        "parameters[1]", "table.swapped"),
     "a link of an identification row out of range": (
         "class1_fourbar_rocker.yaml",
         lambda t: t["structure_identification"][1].update(i=10 ** 12),

@@ -227,9 +227,10 @@ def _identification_form(top: Node, mechanism: _Mechanism, general: _General) ->
     groups: dict[GroupKey, Any] = {row_key(row): row for row in mechanism.rows
                                    if _has_links(row)}
     _check_links(reader, mechanism)
-    named = _named_groups(top, groups)
-    for key in _tie_to_rows(reader, mechanism, named):
-        groups[key] = named.pop(key)
+    named = _named_groups(top)
+    for key in _tie_to_rows(reader, mechanism, groups, named):
+        groups[key] = named[key]
+    named = {key: places for key, places in named.items() if key not in groups}
     count = len(mechanism.rows)
     if general.n_groups is not MISSING and count and general.n_groups != count:
         if general.n_groups > count and named:
@@ -262,6 +263,7 @@ def _tell_swapped_cells(reader: TableReader, table: dict[str, Any], source: str,
     told once, as swapped, at the row they were read from.  ``start`` is the first problem
     of the model."""
     wrong: dict[str, list[tuple[int, str]]] = {}
+    told: list[int] = []
     for n, issue in enumerate(reader.issues[start:], start):
         match = _PARAMS_AT.fullmatch(issue.location)
         if match:
@@ -271,21 +273,25 @@ def _tell_swapped_cells(reader: TableReader, table: dict[str, Any], source: str,
             continue
         (n_a, a), (n_b, b) = cells
         key = tuple(normalise_id(link) for link in links.split(","))
+        where = places.get((key, a))
+        if where is None or places.get((key, b)) != where:
+            continue  # (not two cells of one row)
         rows = [{**row, "params": {**row["params"], a: row["params"][b], b: row["params"][a]}}
                 if _has_links(row) and row_key(row) == key else row
                 for row in table["structure_identification"]]
         trial = TableReader.from_data(None, source)
         _build_model(trial, {**table, "structure_identification": rows}, source)
         locations = {reader.issues[n_a].location, reader.issues[n_b].location}
-        if not any(issue.location in locations for issue in trial.issues) \
-                and places.get((key, a)) == places.get((key, b)) is not None:
-            reader.issues[n_a] = Issue(places[key, a], Message("table.swapped", {"a": a, "b": b}))
-            del reader.issues[n_b]
+        if not any(issue.location in locations for issue in trial.issues):
+            reader.issues[n_a] = Issue(where, Message("table.swapped", {"a": a, "b": b}))
+            told.append(n_b)
+    for n in sorted(told, reverse=True):
+        del reader.issues[n]
 
 
-def _named_groups(top: Node, groups: dict[GroupKey, Any]) -> dict[GroupKey, list[str]]:
-    """The groups that rows of ``parameters`` and ``allowable`` name by their links and that
-    are not among ``groups``, with the rows that name them."""
+def _named_groups(top: Node) -> dict[GroupKey, list[str]]:
+    """The groups that rows of ``parameters`` and ``allowable`` name by their links, with
+    the rows that name them."""
     named: dict[GroupKey, list[str]] = {}
     for table in ("parameters", "allowable"):
         rows = top.mapping.get(table)
@@ -293,23 +299,23 @@ def _named_groups(top: Node, groups: dict[GroupKey, Any]) -> dict[GroupKey, list
             links = row.get("links") if isinstance(row, dict) else None
             if isinstance(links, list) and links and all(map(_is_link, links)):
                 key = tuple(normalise_id(link) for link in links)
-                if key not in groups:
-                    named.setdefault(key, []).append(f"{table}[{index}]")
+                named.setdefault(key, []).append(f"{table}[{index}]")
     return named
 
 
-def _tie_to_rows(reader: TableReader, mechanism: _Mechanism,
+def _tie_to_rows(reader: TableReader, mechanism: _Mechanism, groups: dict[GroupKey, Any],
                  named: dict[GroupKey, list[str]]) -> list[GroupKey]:
-    """The groups named elsewhere that a row of the identification table nearly has: the
-    row shares a link with the group, and no row has the group.  The row is reported once
-    (as two swapped columns when swapping them back gives it the group's links); the
-    groups returned are then read as that row's.  Columns: ``i``, ``j`` and their
-    neighbours, of a row of the group's size."""
+    """The groups named elsewhere that a row of the identification table nearly has: no row
+    has the group, and a row that no other table names has as many links and shares one
+    with it.  That row is reported once (as two swapped columns when swapping them back
+    gives it the group's links); the groups returned are then read as that row's."""
     tied = []
     for key, places in named.items():
+        if key in groups:
+            continue
         for index, row in enumerate(mechanism.rows):
-            if not isinstance(row, dict) or not set(map(str, row_key(row))) & set(map(str, key)) \
-                    or len(row_key(row)) != len(key):
+            if not _has_links(row) or row_key(row) in named or len(row_key(row)) != len(key) \
+                    or not set(map(str, row_key(row))) & set(map(str, key)):
                 continue
             where = f"{mechanism.prefix}structure_identification[{index}]"
             pair = _swap_giving(row, key)

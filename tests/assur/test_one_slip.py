@@ -291,6 +291,9 @@ PROBLEM_SLIPS: dict[str, tuple[str, Callable[[dict[str, Any]], None], str, str]]
     "a number and an 'A' of a parameters row swapped": (
         "class1_fourbar_zone.yaml", lambda t: _swap(t["parameters"][1], "y_Hi", "x_Hj"),
         "parameters[1]", "table.swapped"),
+    "a link of a parameters row mistyped, not blamed on the identification row": (
+        "class1_fourbar_rocker.yaml", lambda t: t["parameters"][1].update(links=[2, 4]),
+        "parameters[1] 'links'", "problem.links_unknown"),
     "a link of an identification row out of range": (
         "class1_fourbar_rocker.yaml",
         lambda t: t["structure_identification"][1].update(i=10 ** 12),

@@ -608,6 +608,7 @@ def _read_output(top: Node, task_class: Any, groups: dict[GroupKey, Any],
     members = {k for key in groups for k in key}
     if link is not MISSING and members and link not in members:
         top.reader.problem("output 'link'", "problem.output_link_unknown", link=link)
+        link = MISSING  # (told: not judged again against the mechanism)
     if task_class in (3, 4) and point is None:
         top.reader.problem("output 'point'", "problem.point_needed")
     elif task_class in (1, 2) and point is not None:
@@ -647,6 +648,8 @@ def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> C
         if isinstance(table, list) else []
     numbers = []
     for n, row in enumerate(rows):
+        row.swapped({"K": lambda v: isinstance(v, int) and not isinstance(v, bool),
+                     "phi": is_number})
         numbers.append(row.get("K", kind="int", required=False, default=places[n]))
         e = row.get("E", kind="number", required=False, default=1.0, check=positive)
         weight[n] = e if e is not MISSING else np.nan

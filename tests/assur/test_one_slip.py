@@ -100,6 +100,11 @@ SLIPS: dict[str, Slip] = {
     "a group kind out of range": (
         "course_11_link_table.yaml", lambda t: t["structure_identification"][3].update(L=7),
         "structure_identification[3] (L7, i = 6, j = 7) 'L'", "table.rule_broken", {}),
+    "i_minus_1 and j_minus_1 of the input group's row swapped": (
+        "course_11_link_table.yaml",
+        lambda t: _swap(t["structure_identification"][0], "i_minus_1", "j_minus_1"),
+        "structure_identification[0] (L0, i = 1)", "table.swapped",
+        {"a": "i_minus_1", "b": "j_minus_1"}),
     "an identification row missing": (
         "course_11_link_table.yaml", lambda t: t["structure_identification"].pop(3),
         "structure_identification[1] (L1, i = 2, j = 3) 'i_plus_1'",
@@ -294,6 +299,17 @@ PROBLEM_SLIPS: dict[str, tuple[str, Callable[[dict[str, Any]], None], str, str]]
     "a link of a parameters row mistyped, not blamed on the identification row": (
         "class1_fourbar_rocker.yaml", lambda t: t["parameters"][1].update(links=[2, 4]),
         "parameters[1] 'links'", "problem.links_unknown"),
+    "j and i_minus_1 of the input group's row swapped": (
+        "class1_fourbar_torque_limit.yaml",
+        lambda t: _swap(t["structure_identification"][0], "j", "i_minus_1"),
+        "structure_identification[0] (L0, i = 1, j = 0)", "table.swapped"),
+    "K and phi of a control point swapped": (
+        "class1_fourbar_velocity_ratio.yaml",
+        lambda t: _swap(t["control_points"][10], "K", "phi"),
+        "control_points[10]", "table.swapped"),
+    "the output link given as a word": (
+        "class1_fourbar_zone.yaml", lambda t: t["output"].update(link="ten"),
+        "output 'link'", "problem.output_link_unknown"),
     "a link of an identification row out of range": (
         "class1_fourbar_rocker.yaml",
         lambda t: t["structure_identification"][1].update(i=10 ** 12),

@@ -173,7 +173,7 @@ def _read(reader: TableReader, base: Path) -> Problem:
             _check_varied(reader, model, bounds, labels)
         parameters = _parameters(model, bounds)
         if not parameters and "parameters" not in top.misspelt and not any(
-                issue.location.startswith("parameters") for issue in reader.issues):
+                issue.location.lstrip("'").startswith("parameters") for issue in reader.issues):
             reader.problem("parameters", "problem.nothing_varied")
         _check_rotations(reader, model, {labels[k]: v for k, v in rotations.items()})
         if output.link is not MISSING:
@@ -246,7 +246,7 @@ def _identification_form(top: Node, mechanism: _Mechanism, general: _General) ->
                            found=general.n_groups)
     rows, bounds, places = _merge_parameters(top, mechanism, groups, general.direction)
     table = {**mechanism.data, "structure_identification": rows}
-    structure_ok = bool(mechanism.rows) and not any(
+    structure_ok = bool(mechanism.rows) and "parameters" not in top.misspelt and not any(
         issue.location.startswith(_STRUCTURE) for issue in reader.issues)
     start = len(reader.issues)
     model, foreign = _build_model(reader, table, mechanism.source) if structure_ok \
@@ -630,8 +630,8 @@ def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> C
             "K", "phi", *(_VALUE_COLUMNS[quantity] if quantity in _VALUE_COLUMNS else
                           (c for v in _VALUE_COLUMNS.values() for c in v)), "E")
     else:
-        columns = _POINT_COLUMNS.get(task_class, ("K", "phi", "psi", "psi_lo", "psi_hi", "S",
-                                                  "x", "y", "E"))
+        columns = _POINT_COLUMNS.get(task_class, (  # (no valid class: every column passes)
+            "K", "phi", *(c for v in _VALUE_COLUMNS.values() for c in v), "S", "x", "y", "E"))
     rows = list(top.rows("control_points", columns))
     if quantity not in _VALUE_COLUMNS:
         used = {column for row in rows for column in row.mapping}

@@ -278,6 +278,15 @@ PROBLEM_SLIPS: dict[str, tuple[str, Callable[[dict[str, Any]], None], str, str]]
     "misspelt parameters table": (
         "class2_six_bar_triad.yaml", _misspell("parameters", "praameters"),
         "", "table.unknown_key_hint"),
+    "misspelt task class": (
+        "class1_fourbar_velocity_ratio.yaml", _misspell("task_class", "tsak_class", "general"),
+        "general", "table.unknown_key_hint"),
+    "look-alike letter in the parameters table of the identification form": (
+        "class1_fourbar_torque_limit.yaml", _misspell("parameters", "рarameters"),
+        "", "table.unknown_key_lookalike"),
+    "the parameters table given as a number": (
+        "class2_course_11_link.yaml", lambda t: t.update(parameters=5),
+        "'parameters'", "table.wrong_kind"),
     "a link of a parameters row out of range": (
         "class2_six_bar_triad.yaml", lambda t: t["parameters"][0]["links"].__setitem__(
             -1, 10 ** 12), "parameters[0] 'links'", "problem.links_unknown"),

@@ -27,8 +27,10 @@ from __future__ import annotations
 import cmath
 import math
 import os
+import re
 from collections.abc import Iterator
 from dataclasses import dataclass
+from itertools import pairwise
 from pathlib import Path
 from typing import Any
 
@@ -38,6 +40,7 @@ import assur
 import assur.kinematics.model
 import assur.model
 from assur import AssurError, KinematicModel, TableError
+from assur.errors import Issue
 from assur.io.reader import (
     MISSING,
     Node,
@@ -82,6 +85,9 @@ _POINT_COLUMNS = {
 #: Locations whose problems leave no mechanism to build.
 _STRUCTURE = ("mechanism", "structure_identification", "parameters", "frame", "geometry")
 Bounds = dict[tuple[GroupKey, str], tuple[float, float, float]]
+#: Where the kinematic model puts a problem of a cell of a group's parameters.
+_PARAMS_AT = re.compile(r"structure_identification \(L\d+\((?P<links>[^)]*)\)\) 'params' "
+                        r"'(?P<column>[^']+)'")
 #: Most positions of the analysis grid over a crank turn.
 MAX_GRID = 20_000
 
@@ -166,7 +172,8 @@ def _read(reader: TableReader, base: Path) -> Problem:
         if not mechanism.chain:
             _check_varied(reader, model, bounds, labels)
         parameters = _parameters(model, bounds)
-        if not parameters:
+        if not parameters and "parameters" not in top.misspelt and not any(
+                issue.location.lstrip("'").startswith("parameters") for issue in reader.issues):
             reader.problem("parameters", "problem.nothing_varied")
         _check_rotations(reader, model, {labels[k]: v for k, v in rotations.items()})
         if output.link is not MISSING:
@@ -217,19 +224,127 @@ def _read_general(top: Node) -> _General:
 def _identification_form(top: Node, mechanism: _Mechanism, general: _General) -> _Form:
     """The identification form: groups keyed by the rows, parameters merged into them."""
     reader = top.reader
-    groups = {row_key(row): row for row in mechanism.rows if _has_links(row)}
+    groups: dict[GroupKey, Any] = {row_key(row): row for row in mechanism.rows
+                                   if _has_links(row)}
     _check_links(reader, mechanism)
-    if general.n_groups is not MISSING and mechanism.rows \
-            and general.n_groups != len(mechanism.rows):
-        reader.problem("general 'groups'", "problem.groups_count", rows=len(mechanism.rows),
-                       found=general.n_groups)
-    rows, bounds = _merge_parameters(top, mechanism, groups, general.direction)
+    named = _named_groups(top)
+    for key in _tie_to_rows(reader, mechanism, groups, named):
+        groups[key] = named[key]
+    named = {key: places for key, places in named.items() if key not in groups}
+    count = len(mechanism.rows)
+    if general.n_groups is not MISSING and count and general.n_groups != count:
+        if general.n_groups > count and named:
+            # rows left out: told once, with the groups the other tables name; those tables
+            # are then read as if the rows were there
+            reader.problem(f"{mechanism.prefix}structure_identification",
+                           "problem.rows_missing", rows=count, found=general.n_groups,
+                           links=", ".join(str(list(key)) for key in named),
+                           places=", ".join(p for places in named.values() for p in places))
+            groups.update(named)
+        else:
+            reader.problem("general 'groups'", "problem.groups_count", rows=count,
+                           found=general.n_groups)
+    rows, bounds, places = _merge_parameters(top, mechanism, groups, general.direction)
     table = {**mechanism.data, "structure_identification": rows}
-    structure_ok = bool(mechanism.rows) and not any(
+    structure_ok = bool(mechanism.rows) and "parameters" not in top.misspelt and not any(
         issue.location.startswith(_STRUCTURE) for issue in reader.issues)
+    start = len(reader.issues)
     model, foreign = _build_model(reader, table, mechanism.source) if structure_ok \
         else (None, None)
+    if model is None and structure_ok:
+        _tell_swapped_cells(reader, table, mechanism.source, start, places)
     return _Form(groups, model, foreign, bounds, table)
+
+
+def _tell_swapped_cells(reader: TableReader, table: dict[str, Any], source: str, start: int,
+                        places: dict[tuple[GroupKey, str], str]) -> None:
+    """Two cells of one group that the kinematic model finds wrong, and right once swapped
+    (a number where the group's rule wants ``'A'`` and ``'A'`` where it wants a number):
+    told once, as swapped, at the row they were read from.  ``start`` is the first problem
+    of the model."""
+    wrong: dict[str, list[tuple[int, str]]] = {}
+    told: list[int] = []
+    for n, issue in enumerate(reader.issues[start:], start):
+        match = _PARAMS_AT.fullmatch(issue.location)
+        if match:
+            wrong.setdefault(match["links"], []).append((n, match["column"]))
+    for links, cells in wrong.items():
+        if len(cells) != 2:
+            continue
+        (n_a, a), (n_b, b) = cells
+        key = tuple(normalise_id(link) for link in links.split(","))
+        where = places.get((key, a))
+        if where is None or places.get((key, b)) != where:
+            continue  # (not two cells of one row)
+        rows = [{**row, "params": {**row["params"], a: row["params"][b], b: row["params"][a]}}
+                if _has_links(row) and row_key(row) == key else row
+                for row in table["structure_identification"]]
+        trial = TableReader.from_data(None, source)
+        _build_model(trial, {**table, "structure_identification": rows}, source)
+        locations = {reader.issues[n_a].location, reader.issues[n_b].location}
+        if not any(issue.location in locations for issue in trial.issues):
+            reader.issues[n_a] = Issue(where, Message("table.swapped", {"a": a, "b": b}))
+            told.append(n_b)
+    for n in sorted(told, reverse=True):
+        del reader.issues[n]
+
+
+def _named_groups(top: Node) -> dict[GroupKey, list[str]]:
+    """The groups that rows of ``parameters`` and ``allowable`` name by their links, with
+    the rows that name them."""
+    named: dict[GroupKey, list[str]] = {}
+    for table in ("parameters", "allowable"):
+        rows = top.mapping.get(table)
+        for index, row in enumerate(rows if isinstance(rows, list) else []):
+            links = row.get("links") if isinstance(row, dict) else None
+            if isinstance(links, list) and links and all(map(_is_link, links)):
+                key = tuple(normalise_id(link) for link in links)
+                named.setdefault(key, []).append(f"{table}[{index}]")
+    return named
+
+
+def _tie_to_rows(reader: TableReader, mechanism: _Mechanism, groups: dict[GroupKey, Any],
+                 named: dict[GroupKey, list[str]]) -> list[GroupKey]:
+    """The groups named elsewhere that a row of the identification table nearly has: no row
+    has the group, and a row that no other table names has as many links and shares one
+    with it.  That row is reported once (as two swapped columns when swapping them back
+    gives it the group's links); the groups returned are then read as that row's."""
+    tied = []
+    for key, places in named.items():
+        if key in groups:
+            continue
+        for index, row in enumerate(mechanism.rows):
+            if not _has_links(row) or row_key(row) in named or len(row_key(row)) != len(key) \
+                    or not set(map(str, row_key(row))) & set(map(str, key)):
+                continue
+            where = f"{mechanism.prefix}structure_identification[{index}]"
+            pair = _swap_giving(row, key)
+            if pair is not None:
+                reader.problem(where, "table.swapped", a=pair[0], b=pair[1])
+            else:
+                reader.problem(where, "problem.row_links", links=list(row_key(row)),
+                               group=list(key), places=", ".join(places))
+            tied.append(key)
+            break
+    return tied
+
+
+def _swap_giving(row: dict[str, Any], key: GroupKey) -> tuple[str, str] | None:
+    """Two columns of an identification row whose values, swapped, give it the links
+    ``key`` (None if no two do)."""
+    columns = [c for c in ("L", "seq", "i_minus_1", "j_minus_1", "i", "j", "i_plus_1",
+                           "j_plus_1", "variant") if c in row]
+    for n, a in enumerate(columns):
+        for b in columns[n + 1:]:
+            if "i" in (a, b) or "j" in (a, b):
+                swapped = {**row, a: row[b], b: row[a]}
+                if _has_links(swapped) and row_key(swapped) == key:
+                    return a, b
+    return None
+
+
+def _is_link(value: Any) -> bool:
+    return isinstance(value, (int, str)) and not isinstance(value, bool)
 
 
 def _chain_form(top: Node, mechanism: _Mechanism, general: _General) -> _Form:
@@ -324,7 +439,8 @@ def _read_mechanism(reader: TableReader, top: Node, base: Path) -> _Mechanism:
         return _Mechanism({"frame": frame, "structure_identification": rows}, reader.source)
     path = top.get("mechanism", kind="str", required=False, default=None)
     if path is None:
-        reader.problem("mechanism", "problem.mechanism_missing")
+        if not top.given("structure_identification"):  # (written misspelt: reported)
+            reader.problem("mechanism", "problem.mechanism_missing")
         return here
     if path is MISSING:
         return here
@@ -355,7 +471,7 @@ def _group_of(row: Node, groups: dict[GroupKey, Any]) -> GroupKey | None:
     links = row.get("links", kind="list")
     if links is MISSING:
         return None
-    if not all(isinstance(v, (int, str)) and not isinstance(v, bool) for v in links):
+    if not all(map(_is_link, links)):
         row.reader.problem(f"{row.location} 'links'", "table.wrong_kind",
                            expected=Message("value.kind.id_list"), found=describe(links))
         return None
@@ -384,8 +500,9 @@ def _parameter_rows(top: Node, groups: dict[GroupKey, Any]
 
 
 def _merge_parameters(top: Node, mechanism: _Mechanism, groups: dict[GroupKey, Any],
-                      direction: Any) -> tuple[list[Any], Bounds]:
-    """New identification rows with the cells of ``parameters`` and plain numbers.
+                      direction: Any) -> tuple[list[Any], Bounds, dict[tuple[GroupKey, str], str]]:
+    """New identification rows with the cells of ``parameters`` and plain numbers, their
+    bounds, and the row each cell was read from (by links and column).
 
     Each row of ``parameters`` replaces the same columns of the identification row with the
     same links.  A cell ``[initial, lower, upper]`` (in either table) is checked here and
@@ -400,6 +517,7 @@ def _merge_parameters(top: Node, mechanism: _Mechanism, groups: dict[GroupKey, A
             {column: (value, f"{row.location} {column!r}")
              for column, value in row.mapping.items() if column != "links"})
     bounds: Bounds = {}
+    places: dict[tuple[GroupKey, str], str] = {}
     rows: list[Any] = []
     for index, row in enumerate(mechanism.rows):
         if not _has_links(row):
@@ -417,12 +535,13 @@ def _merge_parameters(top: Node, mechanism: _Mechanism, groups: dict[GroupKey, A
         params = {}
         for column, (value, location) in merged.items():
             params[column] = _cell(reader, value, location, key, column, bounds)
+            places[key, column] = location[:-len(f" {column!r}")]
         if row.get("L") == 0 and direction in (1, -1) \
                 and params.setdefault("s", direction) != direction:
             reader.problem("general 'direction'", "problem.direction_mismatch",
                            s=params["s"], found=direction)
         rows.append({**row, "params": params})
-    return rows, bounds
+    return rows, bounds, places
 
 
 def _cell(reader: TableReader, value: Any, location: str, key: GroupKey, column: str,
@@ -489,6 +608,7 @@ def _read_output(top: Node, task_class: Any, groups: dict[GroupKey, Any],
     members = {k for key in groups for k in key}
     if link is not MISSING and members and link not in members:
         top.reader.problem("output 'link'", "problem.output_link_unknown", link=link)
+        link = MISSING  # (told: not judged again against the mechanism)
     if task_class in (3, 4) and point is None:
         top.reader.problem("output 'point'", "problem.point_needed")
     elif task_class in (1, 2) and point is not None:
@@ -500,33 +620,40 @@ def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> C
     """Tables 2.12–2.15.
 
     Class 1 reads ψ (degrees → radians) or, with ``output: ratio``, the dimensionless ratio n
-    (columns ``n``, ``n_lo``, ``n_hi``); an invalid ``output`` (already reported) accepts the
-    columns of both, so that it is reported once.
+    (columns ``n``, ``n_lo``, ``n_hi``); with an invalid or misspelt ``output`` (already
+    reported) the rows are read in the columns they use, so that it is reported once.
+    A row cut by a decimal comma (reported by the reader) is not checked against itself or
+    the other rows: its values are not the ones meant.
     """
-    if task_class == 1 and quantity in _VALUE_COLUMNS:
-        names = _VALUE_COLUMNS[quantity]
-        columns: tuple[str, ...] = ("K", "phi", *names, "E")
-    elif task_class == 1:
-        names = _VALUE_COLUMNS["angle"]
-        columns = ("K", "phi", *(c for v in _VALUE_COLUMNS.values() for c in v), "E")
+    if task_class == 1:
+        columns: tuple[str, ...] = (
+            "K", "phi", *(_VALUE_COLUMNS[quantity] if quantity in _VALUE_COLUMNS else
+                          (c for v in _VALUE_COLUMNS.values() for c in v)), "E")
     else:
-        names = _VALUE_COLUMNS["angle"]
-        columns = _POINT_COLUMNS.get(task_class, ("K", "phi", "psi", "psi_lo", "psi_hi", "S",
-                                                  "x", "y", "E"))
-    value_col, lo_col, hi_col = names
-    convert = _num if quantity == "ratio" else _deg
+        columns = _POINT_COLUMNS.get(task_class, (  # (no valid class: every column passes)
+            "K", "phi", *(c for v in _VALUE_COLUMNS.values() for c in v), "S", "x", "y", "E"))
     rows = list(top.rows("control_points", columns))
+    if quantity not in _VALUE_COLUMNS:
+        used = {column for row in rows for column in row.mapping}
+        quantity = "ratio" if used & set(_VALUE_COLUMNS["ratio"]) else "angle"
+    value_col, lo_col, hi_col = _VALUE_COLUMNS[quantity]
+    convert = _num if quantity == "ratio" else _deg
     k = len(rows)
     phi, value, lo, hi, weight = (np.full(k, np.nan) for _ in range(5))
     point = np.full(k, np.nan, dtype=complex)
     zone_rows = 0
     reader = top.reader
+    table = top.mapping.get("control_points")
+    places = [n for n, row in enumerate(table) if isinstance(row, dict)] \
+        if isinstance(table, list) else []
+    numbers = []
     for n, row in enumerate(rows):
-        number = row.get("K", kind="int", required=False, default=n)
-        if number is not MISSING and number != n:
-            reader.problem(f"{row.location} 'K'", "problem.control_numbering", expected=n)
+        row.swapped({"K": lambda v: isinstance(v, int) and not isinstance(v, bool),
+                     "phi": is_number})
+        numbers.append(row.get("K", kind="int", required=False, default=places[n]))
         e = row.get("E", kind="number", required=False, default=1.0, check=positive)
         weight[n] = e if e is not MISSING else np.nan
+        cut = _cut_by_comma(row)
         if task_class in (1, 2, 4):
             phi[n] = _deg(row.get("phi", kind="number"))
         if task_class == 1:
@@ -537,7 +664,7 @@ def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> C
                 if row.has(value_col):
                     reader.problem(f"{row.location} {value_col!r}", "problem.zone_value",
                                    lo=lo_col, hi=hi_col, value=value_col)
-                elif lo[n] > hi[n]:
+                elif lo[n] > hi[n] and not cut:
                     reader.problem(f"{row.location} {hi_col!r}", "problem.zone_order",
                                    lower=row.mapping[lo_col])
             else:
@@ -546,18 +673,58 @@ def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> C
             value[n] = _num(row.get("S", kind="number"))
         elif task_class in (3, 4):
             point[n] = complex(_num(row.get("x", kind="number")), _num(row.get("y", kind="number")))
+        if cut:
+            phi[n] = np.nan
     _check_repeated_angles(reader, rows, phi, value, point, lo, hi)
     if 0 < zone_rows < k:
         reader.problem("control_points", "problem.zone_mixed", lo=lo_col, hi=hi_col,
                        zone=zone_rows, rows=k)
-    if n_points is not MISSING and k != n_points:
-        reader.problem("general 'control_points'", "problem.control_count", rows=k,
+    left_out = _check_numbering(reader, rows, places, numbers)
+    if n_points is not MISSING and isinstance(table, list) \
+            and n_points not in (len(table), len(table) + left_out):
+        reader.problem("general 'control_points'", "problem.control_count", rows=len(table),
                        found=n_points)
     if k == 0 and not reader.issues:
         reader.problem("control_points", "problem.control_empty")
     zone = task_class == 1 and zone_rows == k and k > 0
     return ControlPoints(phi=phi, value=value, point=point, weight=weight,
                          lower=lo if zone else None, upper=hi if zone else None)
+
+
+def _cut_by_comma(row: Node) -> bool:
+    """Whether a number of the row was written with a decimal comma inside ``{…}``, which
+    YAML splits into a value and a stray key (reported by the reader)."""
+    return any(isinstance(key, int) and value is None for key, value in row.mapping.items())
+
+
+def _check_numbering(reader: TableReader, rows: list[Node], places: list[int],
+                     numbers: list[Any]) -> int:
+    """Control points are numbered 0, 1, 2, … in table order (``K``).
+
+    When the numbers rise with gaps, rows were left out: the first gap is reported once, at
+    the row after it, and the rows after it are not reported again.  Otherwise each row whose
+    number is not its place is reported.  Returns how many rows the gaps leave out.
+    """
+    given = [(row, place, number) for row, place, number in zip(rows, places, numbers)
+             if number is not MISSING]
+    wrong = [(row, place) for row, place, number in given if number != place]
+    if not wrong:
+        return 0
+    values = [number for _, _, number in given]
+    if values[0] >= 0 and all(b > a for a, b in pairwise(values)):
+        gaps = sorted(set(range(values[-1] + 1)) - set(values))
+        first = next(n for n, (_, place, number) in enumerate(given) if number != place)
+        shown = values[max(0, first - 3):max(first + 1, 3)]
+        numbers_shown = ("…, " if first > 3 else "") + ", ".join(map(str, shown)) + (
+            ", …" if len(values) > max(first + 1, 3) else "")
+        reader.problem(f"{given[first][0].location} 'K'",
+                       "problem.control_row_missing" if len(gaps) == 1
+                       else "problem.control_rows_missing",
+                       missing=", ".join(map(str, gaps)), numbers=numbers_shown)
+        return len(gaps)
+    for row, place in wrong:
+        reader.problem(f"{row.location} 'K'", "problem.control_numbering", expected=place)
+    return 0
 
 
 def _check_repeated_angles(reader: TableReader, rows: list[Node], phi: np.ndarray,
@@ -595,6 +762,10 @@ def _read_allowable(top: Node, groups: dict[GroupKey, Any]
     boxes: dict[GroupKey, tuple[float, float, float, float]] = {}
     for row in top.rows("allowable", ("links", "pressure_angle", "rotations", "workspace"),
                         required=False):
+        row.swapped({"links": lambda v: isinstance(v, list),
+                     "pressure_angle": lambda v: is_number(v) or v == "default",
+                     "rotations": lambda v: isinstance(v, dict),
+                     "workspace": lambda v: isinstance(v, dict)})
         key = _group_of(row, groups)
         if row.mapping.get("pressure_angle") == "default":
             angle = DEFAULT_PRESSURE_ANGLE

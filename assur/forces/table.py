@@ -144,8 +144,10 @@ def _actuated(chain: Chain) -> bool:
 
 
 def _link(node: Node, moving: tuple[LinkId, ...], where: str, value: Any) -> LinkId | None:
+    """The moving link ``value`` names; none is judged when no moving link is known (the
+    chain could not be read, which is reported)."""
     link = normalise_id(value)
-    if link not in moving:
+    if moving and link not in moving:
         node.reader.problem(where, "force.link.not_moving", found=describe(value),
                             known=", ".join(map(str, moving)))
         return None
@@ -203,8 +205,12 @@ def _masses(root: Node, moving: tuple[LinkId, ...]) -> dict[LinkId, Mass]:
 def _loads(root: Node, moving: tuple[LinkId, ...], key: str) -> tuple[Load, ...]:
     out = []
     for node in root.rows("loads", _LOAD, required=False):
+        node.swapped({"link": lambda v: isinstance(v, (int, str)) and not isinstance(v, bool),
+                      "force": lambda v: isinstance(v, (list, dict))})
         raw = node.get("link", kind="id")
         link = None if raw is MISSING else _link(node, moving, f"{node.location} 'link'", raw)
+        if node.misspelt.keys() & {"force", "torque"}:
+            continue  # written misspelt or swapped with the link: reported as such
         has_force, has_torque = node.has("force"), node.has("torque")
         if has_force == has_torque:
             node.reader.problem(node.location, "force.load.force_or_torque")

@@ -476,6 +476,9 @@ def _read_rows(top: Node, *, required: bool
                        Message("rule.group_kind"))
         clean: dict[str, Any] = {"L": kind}
         dyad = kind is not MISSING and kind != 0
+        if kind == 0:  # the input group: a link i on i_minus_1, no j
+            row.swapped({"i_minus_1": _is_id, "j": lambda v: v is None,
+                         "j_minus_1": lambda v: v is None})
         for key in ("i", "i_minus_1"):
             clean[key] = row.get(key, kind="id")
         for key in ("j", "j_minus_1"):
@@ -539,6 +542,8 @@ def _read_table_form(reader: TableReader) -> Chain:
         reader.problem("structure_identification", "chain.no_rows")
     if read is not None:  # (a row whose i or j could not be read may hold the link)
         _check_members(reader, rows, read | {frame}, frame)
+    if not reader.issues:
+        _check_seq_gap(reader, rows, claims)
     if reader.issues:
         return _empty(reader.source)
     members = {frame} | {link for row in rows for link in (row.i, row.j) if link is not None}
@@ -562,19 +567,48 @@ def _read_table_form(reader: TableReader) -> Chain:
 def _check_members(reader: TableReader, rows: list[IdentificationRow], members: set[LinkId],
                    frame: LinkId) -> None:
     """Every link a row joins to (``i_minus_1`` … ``j_plus_1``) is the frame or a row's link;
-    a link that is not is reported once, where it is first named, with the other places."""
+    a link that is not is reported once, where it is first named, with the other places.
+    Several such links (the two links of a dyad whose row was left out) are one finding,
+    at the first place, naming every link and place."""
     places: dict[LinkId, list[str]] = {}
     for row in rows:
         for key in ("i_minus_1", "j_minus_1", "i_plus_1", "j_plus_1"):
             link = row.get(key)
             if link is not None and link not in members:
                 places.setdefault(link, []).append(f"{row.location} {key!r}")
+    if len(places) > 1:
+        first = min((where[0] for where in places.values()), key=_row_order)
+        reader.problem(first, "chain.links_not_in_rows", links=_list(places), frame=repr(frame),
+                       places="; ".join(f"{link!r}: {', '.join(where)}"
+                                        for link, where in places.items()))
+        return
     for link, (first, *others) in places.items():
         if others:
             reader.problem(first, "chain.link_not_in_rows_also", link=repr(link),
                            frame=repr(frame), places="; ".join(others))
         else:
             reader.problem(first, "chain.link_not_in_rows", link=repr(link), frame=repr(frame))
+
+
+def _row_order(location: str) -> int:
+    """The index of the row of a location ``structure_identification[K] …``."""
+    return int(location.split("[", 1)[1].split("]", 1)[0])
+
+
+def _check_seq_gap(reader: TableReader, rows: list[IdentificationRow],
+                   claims: dict[str, int]) -> None:
+    """Rows left out of a table that numbers its rows (``seq``): the numbers have a gap, and
+    the header's ``N_Q``, if given, counts the rows that are there and the ones left out.
+    Told once; the header's counts are not judged against a table short of rows."""
+    seqs = sorted(row.seq for row in rows if row.seq is not None)
+    if len(seqs) != len(rows) or len(set(seqs)) != len(seqs) or not seqs or seqs[0] < 1:
+        return
+    gaps = sorted(set(range(1, seqs[-1] + 1)) - set(seqs))
+    if not gaps or claims.get("N_Q", len(rows) + len(gaps)) != len(rows) + len(gaps):
+        return
+    reader.problem("structure_identification",
+                   "chain.seq_row_missing" if len(gaps) == 1 else "chain.seq_rows_missing",
+                   missing=", ".join(map(str, gaps)), seqs=", ".join(map(str, seqs)))
 
 
 def _group_pairs(row: IdentificationRow, frame: LinkId) -> list[Pair]:

@@ -54,7 +54,7 @@ def test_good_problem_reads_the_design_vector() -> None:
 def test_every_problem_is_reported_at_once() -> None:
     bad = copy.deepcopy(GOOD)
     bad["general"]["task_class"] = 7
-    bad["general"]["groups"] = 3
+    bad["general"]["groups"] = 1  # (3 would be read with [4, 5] below as a row left out)
     bad["general"]["gird"] = 90
     bad["control_points"][1]["K"] = 5
     bad["parameters"][1]["l_j"] = [150, 180, 120]

@@ -220,7 +220,7 @@ def read_force_conditions(top: Node, model: KinematicModel | None) -> ForceCondi
     rules = _mass_rules(node, model)
     local = Node(reader, node.location, _localised(node.mapping), None)
     data = read_sections(local, tuple(model.links), model.drive != "crank")
-    if not (node.has("masses") or node.has("loads")):
+    if not (node.given("masses") or node.given("loads")):
         reader.problem(node.location, "force.condition.no_loads")
     limits = node.child("limits", allowed=_LIMITS)
     torque, reactions, couples = (_limits(limits, model) if limits is not None
@@ -326,7 +326,7 @@ def _mass_rule(node: Node, link: LinkId, hinges: list[PairId] | None) -> MassRul
         named = _two_hinges(node, link, hinges, words[0])
     elif named is None and at_hinge:
         named = tuple(hinges)
-    if centre is None and not at_hinge and (per_mm or mass > 0):
+    if centre is None and not at_hinge and (per_mm or mass > 0) and not node.given("centre"):
         reader.problem(node.location, "force.condition.centre_missing", link=str(link),
                        known=", ".join(map(str, hinges)) or "—")
     if len(reader.issues) > before:

@@ -256,9 +256,14 @@ def test_two_rows_left_out_are_told_together() -> None:
     assert issue.text("ru").startswith("control_points[3] 'K': нет строк K = 3, 7")
 
 
-def _misspell(key: str, new: str, section: str | None = None
+def _misspell(key: str, new: str, section: str | None = None, path: tuple[Any, ...] = ()
               ) -> Callable[[dict[str, Any]], None]:
-    return lambda t: _rename(t[section] if section else t, key, new)
+    def change(t: dict[str, Any]) -> None:
+        for step in path:
+            t = t[step]
+        _rename(t[section] if section else t, key, new)
+
+    return change
 
 
 PROBLEM_SLIPS: dict[str, tuple[str, Callable[[dict[str, Any]], None], str, str]] = {
@@ -329,6 +334,13 @@ PROBLEM_SLIPS: dict[str, tuple[str, Callable[[dict[str, Any]], None], str, str]]
     "the input group's identification row left out": (
         "class4_fourbar_timed.yaml", lambda t: t["structure_identification"].pop(0),
         "structure_identification", "problem.rows_missing"),
+    "look-alike letter in the centre of a mass that follows the design": (
+        "class1_fourbar_inertia_limit.yaml", _misspell("centre", "сentre", None, ("forces",
+                                                                                  "masses", 2)),
+        "forces.masses.2", "table.unknown_key_lookalike"),
+    "look-alike letter in the loads of the force conditions": (
+        "class1_fourbar_torque_limit.yaml", _misspell("loads", "lоads", "forces"),
+        "forces", "table.unknown_key_lookalike"),
 }
 
 

@@ -478,7 +478,8 @@ def _read_rows(top: Node, *, required: bool
         dyad = kind is not MISSING and kind != 0
         if kind == 0:  # the input group: a link i on i_minus_1, no j
             row.swapped({"i_minus_1": _is_id, "j": lambda v: v is None,
-                         "j_minus_1": lambda v: v is None})
+                         "j_minus_1": lambda v: v is None,
+                         "i_plus_1": lambda v: v is None or _is_id(v)})
         for key in ("i", "i_minus_1"):
             clean[key] = row.get(key, kind="id")
         for key in ("j", "j_minus_1"):

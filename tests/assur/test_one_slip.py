@@ -66,6 +66,11 @@ SLIPS: dict[str, Slip] = {
     "look-alike letter in a pair id, not in the sketch": (
         "four_bar.yaml", lambda t: t["mechanism"]["pairs"][0].update(id="А"),
         "geometry 'A'", "sketch.unknown_key_lookalike", {"hint": "А", "letters": "А"}),
+    "j and i_plus_1 of the input group's identification row swapped": (
+        "course_11_link_table.yaml",
+        lambda t: _swap(t["structure_identification"][0], "j", "i_plus_1"),
+        "structure_identification[0] (L0, i = 1, j = 2)", "table.swapped",
+        {"a": "j", "b": "i_plus_1"}),
     "type and links of a pair swapped": (
         "four_bar.yaml", lambda t: _swap(t["mechanism"]["pairs"][2], "type", "links"),
         "mechanism.pairs[2] (id 'C')", "table.swapped", {"a": "type", "b": "links"}),

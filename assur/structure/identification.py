@@ -290,6 +290,23 @@ def _neighbours(analysis: StructuralAnalysis, group: AssurGroup, i: LinkId | Non
         if field in row and link is not None and not _same(row[field], expected):
             out.append(_mismatch(index, label, field, expected, row[field],
                                  _successor_why(analysis, link, row[field], expected, rows_of)))
+    return _swaps(out)
+
+
+def _swaps(found: list[Mismatch]) -> list[Mismatch]:
+    """Two mismatches of one row whose values cross (each column holds what the other
+    should) told once, as swapped columns."""
+    out = list(found)
+    for a in found:
+        for b in found:
+            if a.field < b.field and a in out and b in out and \
+                    _same(a.found, b.expected) and _same(b.found, a.expected):
+                message = Message("ident.swapped", {"label": a.label, "a": a.field, "b": b.field,
+                                                    "x": _shown(a.expected),
+                                                    "y": _shown(b.expected)})
+                out[out.index(a)] = Mismatch(a.row, a.label, a.field, a.expected, a.found,
+                                             message)
+                out.remove(b)
     return out
 
 

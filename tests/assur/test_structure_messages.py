@@ -76,3 +76,18 @@ def test_the_report_has_no_english_in_russian() -> None:
     for word in ("expected", "found", "link", "group", "pair", "level", "input"):
         assert word not in russian.lower(), word
         assert word in english.lower(), word
+
+
+def test_successor_columns_swapped_in_a_row_are_one_finding() -> None:
+    # row 1 (dyad 2, 3): link 6 hangs on link 2, so i_plus_1 = 6 and j_plus_1 = null; the
+    # two values written the other way round are one slip
+    data = yaml.safe_load(TABLE.read_text(encoding="utf-8"))
+    row = data["structure_identification"][1]
+    assert (row["i_plus_1"], row["j_plus_1"]) == (6, None)
+    row["i_plus_1"], row["j_plus_1"] = None, 6
+    chain = chain_from_dict(data, source="table.yaml")
+    assert chain.identification is not None
+    found = check_identification(analyse_structure(chain), chain.identification)
+    assert [(m.row, m.field, m.message.code) for m in found] == [(1, "i_plus_1", "ident.swapped")]
+    assert "'i_plus_1' and 'j_plus_1' look swapped" in found[0].text("en")
+    assert "'i_plus_1' и 'j_plus_1', похоже, перепутаны местами" in found[0].text("ru")

@@ -2,12 +2,32 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
+from pathlib import Path
 from typing import Any
 
 import numpy as np
+import pytest
 
+from assur.errors import TableError
+from assur.kinematics.build import load_model
 from assur.kinematics.higher import HigherGroup, follow_mode
+
+TABLES = Path(__file__).resolve().parents[2] / "input_tables"
+
+
+def refused(table: str, changes: Mapping[str, str], tmp_path: Path) -> list[tuple[str, Any]]:
+    """The problems (code, data) of the shipped ``table`` with each text ``old`` (found once)
+    replaced by ``new``; the model must not build."""
+    text = (TABLES / table).read_text(encoding="utf-8")
+    for old, new in changes.items():
+        assert text.count(old) == 1
+        text = text.replace(old, new)
+    path = tmp_path / "table.yaml"
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(TableError) as error:
+        load_model(path)
+    return [(i.message.code, i.message.data) for i in error.value.issues]
 
 
 def check_analogs_against_central_differences(group: HigherGroup, inputs: Callable[[Any], Any],

@@ -235,7 +235,9 @@ def _solve_rrr(state: _State, group: GroupModel, q: Value) -> DyadSolution:
     sol = dyads.solve_rrr(h_i, h_j, l_i, l_j, group.sigma, state.delta(group))
     state.joints.update({roles["H_i"]: h_i, roles["H_j"]: h_j, roles["C"]: sol.c})
     if group.driven is not None:
-        state.actuator(group, sol, q)
+        frame = (sol.origin_i, sol.angle_i) if group.driven == "i" else \
+            (given(sol.origin_j), given(sol.angle_j))
+        state.actuator(group, frame, sol.c, q)
     else:
         state.rotors[group.i] = (sol.c - sol.origin_i) / p(col("l_i"))
         state.rotors[group.j] = (sol.c - given(sol.origin_j)) / p(col("l_j"))

@@ -304,11 +304,14 @@ class _State:
         if group.j is not None:
             self.frames[group.j] = (given(sol.origin_j), given(sol.angle_j))
 
-    def actuator(self, group: GroupModel, sol: DyadSolution, q: Value) -> None:
-        """Frames of the actuator's members and its driven pair (s = actuator length)."""
-        side = group.driven
-        origin = sol.origin_i if side == "i" else given(sol.origin_j)
-        angle = sol.angle_i if side == "i" else given(sol.angle_j)
+    def actuator(self, group: GroupModel, frame: tuple[Value, Value], point: Value,
+                 q: Value) -> None:
+        """Frames of the actuator's members and its driven pair (s = actuator length).
+
+        ``frame`` is the frame of the bar the actuator is (origin at one hinge, axis towards
+        the other), ``point`` its other hinge, where the slider's point is taken.
+        """
+        origin, angle = frame
         for member in group.composite:
             self.frames[member] = (origin, angle)
         pairs = self.model.pair_links
@@ -317,8 +320,8 @@ class _State:
         for pid in driven:
             carrier = pairs[pid][2] or group.composite[0]
             slider = next(link for link in pairs[pid][1] if link != carrier)
-            self.slider(pid, carrier, slider, sol.c, q + np.zeros(np.shape(sol.margin)), origin,
-                        angle, 0.0)
+            self.slider(pid, carrier, slider, point, q + np.zeros(np.shape(J.value(point))),
+                        origin, angle, 0.0)
 
     def trace(self) -> dict[str, Value]:
         return {point.name: self.point(point.anchor) for point in self.model.tracing}

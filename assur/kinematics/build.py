@@ -39,6 +39,7 @@ from typing import TYPE_CHECKING, Any
 from assur.errors import Issue, StructureError, TableError
 from assur.io.reader import Node, TableReader, describe, latin_form, lookalike_letters
 from assur.kinds import GroupKind, GuideColumns, HingeColumns, kind_of, kind_of_class
+from assur.kinematics.higher.kind import actuator_ends
 from assur.kinematics.model import (
     KIND_COLUMNS,
     Anchor,
@@ -315,7 +316,7 @@ class _Builder:
             self.links[link] = (group.label, side)
             self.owner[link] = group
         if group.driven is not None:
-            frame = frame_i if group.driven == "i" else frame_j
+            frame = given.get(group.composite[0], frame_i if group.driven == "i" else frame_j)
             for member in group.composite:
                 if frame is not None:
                     self.frames[member] = frame
@@ -417,8 +418,8 @@ def model_from_sketch(analysis: StructuralAnalysis) -> KinematicModel:
         return build.model(direction=sketch.rotation, drive="crank", tracing=tracing)
     span = sketch.stroke
     if span is None:
-        first = build.groups[0]
-        length = build.params[first.column("l_i" if first.driven == "i" else "l_j")]
+        ends = actuator_ends(next(group for group in build.groups if group.driven))
+        length = abs(build.point(topo.pairs[ends[0]]) - build.point(topo.pairs[ends[1]]))
         span = (length, length)
     return build.model(direction=1, drive="actuator", input_range=span, tracing=tracing)
 

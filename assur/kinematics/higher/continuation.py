@@ -37,7 +37,7 @@ from assur.kinematics.higher.modes import (
 from assur.kinematics.jets import Jet
 from assur.text import Message
 
-__all__ = ["REASON_CODES", "HigherReason", "HigherSolution", "analogs", "follow_mode"]
+__all__ = ["REASON_CODES", "HigherReason", "HigherSolution", "Stroke", "analogs", "follow_mode"]
 
 TWO_PI = 2.0 * np.pi
 #: Largest crank step of the continuation (rad).
@@ -272,14 +272,15 @@ class _Pass:
         return ~np.isnan(self.x[..., 0])
 
 
-def _anchors(log: list[tuple[_Point, np.ndarray]], targets: np.ndarray
+def _anchors(log: list[tuple[_Point, np.ndarray]], targets: np.ndarray, offset: float
              ) -> tuple[_Point, np.ndarray, np.ndarray, np.ndarray]:
-    """The accepted states of a pass, and per target and design the nearest and the
-    preceding one.
+    """The accepted states of a pass, and per target and design (``targets`` (N, D)) the
+    nearest and the preceding one.
 
     Returns the states laid flat (design after design, t increasing), the flat index of the
     nearest and of the preceding state (N, D), and where the target lies within the
-    stretch the pass covered.
+    stretch the pass covered. ``offset`` exceeds every pass parameter: it lays the designs
+    side by side on one line.
     """
     followed = log[0][1]
     moved = np.stack([mask for _, mask in log])
@@ -290,27 +291,32 @@ def _anchors(log: list[tuple[_Point, np.ndarray]], targets: np.ndarray
     d = moved.shape[1]
     count = np.bincount(design, minlength=d)
     first = np.cumsum(count) - count
-    # the designs side by side on one line: t < 2π < OFFSET
-    query = targets[:, None] + OFFSET * np.arange(d)
-    after = np.searchsorted(states.t + OFFSET * design, query, side="right")
+    # the designs side by side on one line: t < offset
+    query = targets + offset * np.arange(d)
+    after = np.searchsorted(states.t + offset * design, query, side="right")
     before = np.maximum(after - 1, 0)
     inside = (after > first) & (after < first + count) & followed
-    on_last = (after > first) & (states.t[before] == targets[:, None]) & followed
-    nearest = np.where(inside & (states.t[np.minimum(after, len(design) - 1)] - targets[:, None]
-                                 < targets[:, None] - states.t[before]), after, before)
+    on_last = (after > first) & (states.t[before] == targets) & followed
+    nearest = np.where(inside & (states.t[np.minimum(after, len(design) - 1)] - targets
+                                 < targets - states.t[before]), after, before)
     return states, nearest, before, inside | on_last
 
 
 def _follow(group: HigherGroup, inputs: Inputs, x0: np.ndarray, targets: np.ndarray,
-            s: float, done: np.ndarray, jets: bool) -> _Pass:
-    """Follow x0 from φ = 0 through φ = s·t for the increasing targets t ≤ 2π (§1.6).
+            s: float, done: np.ndarray, jets: bool, span: Any = TWO_PI) -> _Pass:
+    """Follow x0 from φ = 0 through φ = s·t for the targets 0 ≤ t ≤ span (§1.6).
 
-    The pass walks to 2π in coarse accepted steps (:func:`_walk`); then every target is
-    solved at once from the nearest accepted state (predictor from its analogs, corrector,
-    the same acceptance tests), and the few that fail are stepped to from the state before
-    them. ``jets`` asks for the analogs of the joints and rotations.
+    The pass walks to ``span`` (2π for a crank; per design along a stroke) in coarse
+    accepted steps (:func:`_walk`); then every target is solved at once from the nearest
+    accepted state (predictor from its analogs, corrector, the same acceptance tests), and
+    the few that fail are stepped to from the state before them. ``targets`` are (N,) for
+    every design or (N, D), one column per design. ``jets`` asks for the analogs of the
+    joints and rotations.
     """
     d = x0.shape[0]
+    grid = np.broadcast_to(targets[:, None] if targets.ndim == 1 else targets,
+                           (len(targets), d))
+    goal = np.broadcast_to(np.asarray(span, dtype=float), (1, d)).copy()
     x = np.where(done[:, None], group.drawn(), x0)[None]
     k = inputs(Jet(np.zeros((1, d)), 1.0, 0.0))
     jac = group.jacobian(x, values(k))
@@ -318,15 +324,14 @@ def _follow(group: HigherGroup, inputs: Inputs, x0: np.ndarray, targets: np.ndar
     with np.errstate(all="ignore"):
         x1, x2 = analogs(group, k, x, jac)
     log = [(_Point(np.zeros((1, d)), x, x1, x2), ~done[None])]
-    _, end, why = _walk(group, inputs, s, log[0][0], np.full((1, d), TWO_PI), ~done[None],
-                        sign, log)
+    _, end, why = _walk(group, inputs, s, log[0][0], goal, ~done[None], sign, log)
     log = [(p.at(0), mask[0]) for p, mask in log]
-    states, nearest, before, reach = _anchors(log, targets)
-    angle = np.broadcast_to(s * targets[:, None], reach.shape)
+    states, nearest, before, reach = _anchors(log, grid, max(OFFSET, float(goal.max()) + 1.0))
+    angle = np.broadcast_to(s * grid, reach.shape)
     k = inputs(Jet(angle, 1.0, 0.0)) if jets else inputs(angle)
     kv = values(k)
     anchor = states.at(nearest)
-    h = targets[:, None] - anchor.t
+    h = grid - anchor.t
     guess = anchor.x + (s * h)[..., None] * anchor.x1 + 0.5 * (h * h)[..., None] * anchor.x2
     x, jac, rows, ok = _correct(group, kv, guess, sign[0])
     retry = reach & ~ok
@@ -339,11 +344,11 @@ def _follow(group: HigherGroup, inputs: Inputs, x0: np.ndarray, targets: np.ndar
         for name in ("t", "x", "x1", "x2"):
             getattr(start, name)[rank[j, design], design] = \
                 getattr(states, name)[before[j, design]]
-        goal, active = np.zeros(shape), np.zeros(shape, dtype=bool)
-        goal[rank[j, design], design] = targets[j]
+        aims, active = np.zeros(shape), np.zeros(shape, dtype=bool)
+        aims[rank[j, design], design] = grid[j, design]
         active[rank[j, design], design] = True
-        last, _, _ = _walk(group, inputs, s, start, goal, active, sign[0], None)
-        ok[j, design] = last.t[rank[j, design], design] == goal[rank[j, design], design]
+        last, _, _ = _walk(group, inputs, s, start, aims, active, sign[0], None)
+        ok[j, design] = last.t[rank[j, design], design] == aims[rank[j, design], design]
         x[j, design] = last.x[rank[j, design], design]
         with np.errstate(all="ignore"):
             jac, rows = group.lines(x, kv)
@@ -402,6 +407,10 @@ class HigherSolution:
         The sketch picks a mode (§1.5).
     modes : AssemblyModes
         Every real mode at the sketch position.
+    periodic : bool
+        True for a crank (angles modulo 2π); False along an actuator's stroke, where the
+        positions and ``ends`` are actuator lengths (mm), the analogs derivatives with
+        respect to the length, and neither ``closed`` nor ``overlap`` apply.
     """
 
     joints: dict[str, Any]
@@ -415,6 +424,7 @@ class HigherSolution:
     closed: np.ndarray
     found: np.ndarray
     modes: AssemblyModes
+    periodic: bool = True
 
     @property
     def overlap(self) -> np.ndarray:
@@ -422,7 +432,7 @@ class HigherSolution:
         the forward end φ_f: every angle has a position, but the crank cannot make a full turn,
         and the positions after φ_f are those reached turning backward from the sketch (another
         assembly at the same angles, so the motion jumps at φ_f)."""
-        both = (self.end_reasons == HigherReason.MODE_ENDS).all(axis=-1)
+        both = (self.end_reasons == HigherReason.MODE_ENDS).all(axis=-1) & self.periodic
         with np.errstate(invalid="ignore"):
             return np.asarray(both & (self.ends[..., 1] < self.ends[..., 0]))
 
@@ -444,9 +454,14 @@ class HigherSolution:
         codes: dict[int, str] = {Reason.UNDEFINED_INPUT: "higher.end.input",
                  HigherReason.MODE_ENDS: "higher.end.change_point",
                  HigherReason.NOT_FOLLOWED: "higher.end.lost"}
-        for angle, code in zip(self.ends[index], self.end_reasons[index], strict=True):
-            if code:
-                out.append(Message(codes[int(code)], {"angle": float(np.degrees(angle))}))
+        if not self.periodic:
+            codes = {code: f"higher.sketch.actuator_end.{name.rsplit('.', 1)[1]}"
+                     for code, name in codes.items()}
+        for end, code in zip(self.ends[index], self.end_reasons[index], strict=True):
+            if code and self.periodic:
+                out.append(Message(codes[int(code)], {"angle": float(np.degrees(end))}))
+            elif code:
+                out.append(Message(codes[int(code)], {"length": float(end)}))
         if not self.closed[index]:
             out.append(Message("higher.not_closed"))
         if self.overlap[index]:
@@ -490,8 +505,26 @@ def _designs(group: HigherGroup, inputs: Inputs) -> tuple[int, ...]:
     return () if shape in ((), (1,)) and np.shape(group.size) == () else shape
 
 
+@dataclass(frozen=True, eq=False)
+class Stroke:
+    """An actuator's stroke: the input is a length q (mm) over [low, high], drawn at start.
+
+    Attributes
+    ----------
+    low, high : float
+        The ends of the stroke.
+    start : float or ndarray
+        The actuator's length at the sketch, q₀ (shape () or (D,)).
+    """
+
+    low: float
+    high: float
+    start: Any
+
+
 def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool = False,
-                delta: float | np.ndarray = 0.0) -> HigherSolution:
+                delta: float | np.ndarray = 0.0, stroke: Stroke | None = None
+                ) -> HigherSolution:
     """Positions of the sketched assembly mode over the crank cycle, for one or many designs.
 
     Parameters
@@ -509,6 +542,10 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
         Return the joints and rotations as jets with the exact analogs.
     delta : float or ndarray
         The assigned tolerance: the group exists where ``margin >= delta``.
+    stroke : Stroke, optional
+        The input is an actuator's length: ``phi`` and the argument of ``inputs`` are
+        lengths q (mm), the mode is followed from the sketch's length q₀ up to the stroke's
+        upper end and down to its lower end (:func:`_follow_stroke`).
 
     Returns
     -------
@@ -536,6 +573,13 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
     [(56.068701+80.176725j), (77.60907+105.948616j)]
     """
     phi = np.asarray(phi, dtype=float).reshape(-1)
+    if stroke is not None:
+        scale, start = group.size, stroke.start
+        actuator = inputs
+
+        def inputs(t: Any) -> Any:
+            return actuator(start + scale * t)
+
     shape = _designs(group, inputs)
     d = int(np.prod(shape))
     k0 = _spread(values(inputs(np.zeros(d))), d)
@@ -543,6 +587,10 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
     x0, found = select_mode(group, k0, modes)
     x0 = np.broadcast_to(x0, (d, group.n))
     found = np.broadcast_to(found, (d,))
+    if stroke is not None:
+        solution = _follow_stroke(group, inputs, phi, stroke, x0, (modes, found), analogs,
+                                  delta)
+        return _squeeze(solution) if shape == () else solution
     wrapped = np.mod(phi, TWO_PI)
     order = np.argsort(wrapped, kind="stable")
     unsort = np.argsort(order)
@@ -602,9 +650,77 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
     return _squeeze(solution) if shape == () else solution
 
 
+def _follow_stroke(group: HigherGroup, inputs: Inputs, q: np.ndarray, stroke: Stroke,
+                   x0: np.ndarray, sketch: tuple[AssemblyModes, np.ndarray], jets: bool,
+                   delta: float | np.ndarray) -> HigherSolution:
+    """The drawn mode along an actuator's stroke, one row per design.
+
+    The pass parameter is t = (q − q₀)/L (L the group's size, so that the largest step is
+    that of a crank, ``H_MAX``·L of length): the forward pass runs from q₀ up to the stroke's
+    upper end, the backward pass down to its lower end (both further if a requested length
+    lies beyond), each as a crank's pass (step control, tests (a)–(c), ends and reasons);
+    a length above q₀ is reached by the forward pass only, one below by the backward pass
+    only. ``inputs`` takes t; the analogs are returned with respect to q. There is no
+    period: no return to the sketch and no overlap of the two passes.
+    """
+    modes, found = sketch
+    d = x0.shape[0]
+    scale = np.broadcast_to(group.size, (d,))
+    start = np.broadcast_to(np.asarray(stroke.start, dtype=float), (d,))
+    t = (q[:, None] - start) / scale
+    up = np.maximum((stroke.high - start) / scale, t.max(axis=0, initial=0.0))
+    down = np.maximum((start - stroke.low) / scale, (-t).max(axis=0, initial=0.0))
+    ahead = _follow(group, inputs, x0, np.maximum(t, 0.0), 1.0, ~found, jets, up)
+    behind = _follow(group, inputs, x0, np.maximum(-t, 0.0), -1.0, ~found, jets, down)
+    above = (t >= 0.0).T
+    use_ahead, use_behind = above & ahead.reached, ~above & behind.reached
+    reached = use_ahead | use_behind
+
+    def merge(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        return np.where(use_ahead, a, np.where(use_behind, b, np.nan))
+
+    x = np.stack([merge(ahead.x[..., i], behind.x[..., i]) for i in range(group.n)], axis=-1)
+    margin = merge(ahead.margin, behind.margin)
+    why = np.where(above, ahead.why[:, None], behind.why[:, None])
+    reason = np.zeros(reached.shape, dtype=np.int8)
+    columns = np.flatnonzero(~reached.all(axis=0))
+    if columns.size:
+        kv = values(inputs(t[columns]))
+        defined = np.broadcast_to(_finite(kv), (columns.size, d)).T
+        gone = ~reached[:, columns]
+        margin[:, columns] = np.where(gone, np.where(defined, _gap(group, kv, gone.T).T, np.nan),
+                                      margin[:, columns])
+        ends_here = found[:, None] & (why[:, columns] == HigherReason.MODE_ENDS)
+        reason[:, columns] = np.where(
+            gone, np.where(defined, np.where(ends_here, HigherReason.MODE_ENDS,
+                                             HigherReason.NOT_FOLLOWED),
+                           Reason.UNDEFINED_INPUT), 0)
+    with np.errstate(invalid="ignore"):
+        exists = reached & (margin >= np.asarray(delta)[..., None])
+    reason = np.where(reached & ~exists, HigherReason.MODE_ENDS, reason).astype(np.int8)
+    per = scale[:, None]
+
+    def final(name: str) -> Any:
+        parts = [np.where(exists, merge(a, b), np.nan) / per ** order
+                 for order, (a, b) in enumerate(zip(ahead.out[name], behind.out[name],
+                                                    strict=True))]
+        return Jet(*parts) if jets else parts[0]
+
+    ends = np.stack([np.where(ahead.why > 0, start + scale * ahead.end, np.nan),
+                     np.where(behind.why > 0, start - scale * behind.end, np.nan)], axis=-1)
+    return HigherSolution(
+        joints={a[2:]: final(a) for a in ahead.out if a.startswith("p.")},
+        rotations={a[2:]: final(a) for a in ahead.out if a.startswith("r.")},
+        x=np.where(exists[..., None], x, np.nan), margin=margin, exists=exists, reason=reason,
+        ends=ends, end_reasons=np.stack([ahead.why, behind.why], axis=-1),
+        closed=np.ones(d, dtype=bool), found=found, modes=modes, periodic=False)
+
+
 def _squeeze(solution: HigherSolution) -> HigherSolution:
     """The solution of a single design without its design axis."""
     def one(v: Any) -> Any:
+        if isinstance(v, bool):
+            return v
         if isinstance(v, Jet):
             return Jet(v.v[0], v.d1[0], v.d2[0])
         if isinstance(v, dict):

@@ -186,10 +186,15 @@ class TriadInputs:
     u : tuple of 3 complex or None
         Per leash: the unit direction u_k of the known link's guide of an R–P or P–P leash;
         None otherwise.
+    lengths : tuple of 3 float or None
+        Per bar leash: its length r_k where it is an input (a linear actuator, cylinder and
+        rod hinged at the bar's two ends: the input coordinate q, a jet in q for the analogs);
+        None for the drawn length |P_k⁰ − A_k⁰|.
     """
 
     a: tuple[Value, Value, Value]
     u: tuple[Value, Value, Value] = (None, None, None)
+    lengths: tuple[Value, Value, Value] = (None, None, None)
 
 
 @dataclass(frozen=True, eq=False)
@@ -257,8 +262,10 @@ class Triad(HigherGroup):
     def _offset(self, k: int) -> np.ndarray:
         return self._offsets[k]
 
-    def _length(self, k: int) -> np.ndarray:
-        return self._lengths[k]
+    def _length(self, i: int, k: TriadInputs) -> Value:
+        """r_i: the input's length of an actuator leash, else the drawn one."""
+        given = k.lengths[i]
+        return self._lengths[i] if given is None else given
 
     @property
     def pinned(self) -> bool:
@@ -347,7 +354,7 @@ class Triad(HigherGroup):
         for i, kind in enumerate(self.leashes):
             point = p1 + self._offset(i) * e
             if kind == "RR":
-                r = self._length(i)
+                r = self._length(i, k)
                 arm = point - k.a[i]
                 out.append((J.dot(arm, arm) - r * r) / (2.0 * r))
             elif kind == "RP":
@@ -367,7 +374,7 @@ class Triad(HigherGroup):
             point = p1 + self._offset(i) * e
             base.append(point)
             if kind == "RR":
-                nu.append((point - k.a[i]) / self._length(i))
+                nu.append((point - k.a[i]) / self._length(i, k))
                 at.append(point)
             elif kind in ("RP", "PP"):  # a P–P row is replaced in lines()
                 nu.append(1j * np.asarray(k.u[i]))
@@ -408,7 +415,7 @@ class Triad(HigherGroup):
         """a_k·W = p_k at the base rotation E (§2.2): k = 2, 3 after a bar, all three
         without one (the first two beside a P–P leash)."""
         a1 = np.asarray(k.a[0])
-        r1 = self._length(0)
+        r1 = self._length(0, k)
         coef, rhs = [], []
         for i in (((0, 1) if self.pinned else (0, 1, 2)) if self.barless else (1, 2)):
             kind = self.leashes[i]
@@ -417,7 +424,7 @@ class Triad(HigherGroup):
             if kind == "RR":
                 v = offset - (ai - a1)
                 coef.append(v)
-                rhs.append((self._length(i) ** 2 - r1 ** 2 - np.abs(v) ** 2) / 2.0)
+                rhs.append((self._length(i, k) ** 2 - r1 ** 2 - np.abs(v) ** 2) / 2.0)
             else:
                 normal = 1j * np.asarray(k.u[i]) if kind == "RP" else 1j * self.guide[i] * e
                 coef.append(normal)
@@ -439,7 +446,7 @@ class Triad(HigherGroup):
                                   for i in range(3)))
         (a2, a3), (p2, p3) = coef, rhs
         m = p2 * a3 - p3 * a2
-        return np.asarray(np.abs(m) ** 2 - (self._length(0) * J.cross(a2, a3)) ** 2)
+        return np.asarray(np.abs(m) ** 2 - (self._length(0, k) * J.cross(a2, a3)) ** 2)
 
     def recover(self, e: np.ndarray, k: TriadInputs) -> np.ndarray:
         """W = −i(p_ia_j − p_ja_i)/cross(a_i, a_j) (after a bar i, j = 2, 3; without one the
@@ -455,7 +462,7 @@ class Triad(HigherGroup):
             e = self._turn(k) * np.ones(np.shape(e))
         elif self.pinned:
             theta = np.angle(self._turn(k))
-            return np.stack(np.broadcast_arrays(np.angle(e), self._length(0), theta), axis=-1)
+            return np.stack(np.broadcast_arrays(np.angle(e), self._length(0, k), theta), axis=-1)
         coef, rhs = self._linear(e, k)
         pairs = ((1, 2), (2, 0), (0, 1)) if len(coef) == 3 else ((0, 1),)
         best, w = None, None
@@ -508,12 +515,18 @@ class ClassIVInputs:
     u_a, u_c : complex or None
         The unit direction of the known link's guide of a prismatic external pair, carried by
         that link; None for a revolute pair.
+    l_b, l_d : float or None
+        The length of the coupler b (d) where it is an input (a linear actuator, cylinder and
+        rod hinged at C and D, or at F and E: the input coordinate q, a jet in q for the
+        analogs); None for the drawn length.
     """
 
     h_a: Value
     h_c: Value
     u_a: Value = None
     u_c: Value = None
+    l_b: Value = None
+    l_d: Value = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -598,12 +611,14 @@ class ClassIV(HigherGroup):
         """C, D, E, F as drawn."""
         return {"C": self.c, "D": self.d, "E": self.e, "F": self.f}
 
-    def _arms(self) -> tuple[Value, Value, Value, Value, Value, Value]:
-        """γ_C, γ_F, δ_D, δ_E and the lengths l_b, l_d."""
+    def _arms(self, k: ClassIVInputs | None = None
+              ) -> tuple[Value, Value, Value, Value, Value, Value]:
+        """γ_C, γ_F, δ_D, δ_E and the lengths l_b, l_d (drawn, or an actuator's from ``k``)."""
         g_c, g_f = np.asarray(self.c) - self.h_a, np.asarray(self.f) - self.h_a
         d_d, d_e = np.asarray(self.d) - self.h_c, np.asarray(self.e) - self.h_c
-        return (g_c, g_f, d_d, d_e, np.abs(np.asarray(self.c) - self.d),
-                np.abs(np.asarray(self.f) - self.e))
+        l_b = np.abs(np.asarray(self.c) - self.d) if k is None or k.l_b is None else k.l_b
+        l_d = np.abs(np.asarray(self.f) - self.e) if k is None or k.l_d is None else k.l_d
+        return g_c, g_f, d_d, d_e, l_b, l_d
 
     def _turns(self, x: Sequence[Value], k: ClassIVInputs) -> tuple[Value, Value]:
         """E_a, E_c: e^{iθ} of a hinged link, u/u⁰ of a sliding one."""
@@ -629,14 +644,14 @@ class ClassIV(HigherGroup):
 
     def _rest(self, k: ClassIVInputs, turns: tuple[Value, Value]) -> tuple[Value, Value]:
         """C̃ − D̃ and F̃ − Ẽ: the couplers' ends at zero slides (both pairs sliding)."""
-        g_c, g_f, d_d, d_e, _, _ = self._arms()
+        g_c, g_f, d_d, d_e, _, _ = self._arms(k)
         ea, ec = turns
         return (k.h_a + g_c * ea - k.h_c - d_d * ec, k.h_a + g_f * ea - k.h_c - d_e * ec)
 
     def _points(self, x: Unknowns, k: ClassIVInputs) -> tuple[Value, ...]:
         """C, F, D, E and the origins O_a, O_c."""
         cols = _columns(x)
-        g_c, g_f, d_d, d_e, _, _ = self._arms()
+        g_c, g_f, d_d, d_e, _, _ = self._arms(k)
         turns = self._turns(cols, k)
         oa, oc = self._origins(cols, k, turns)
         ea, ec = turns
@@ -645,7 +660,7 @@ class ClassIV(HigherGroup):
     def residual(self, x: Unknowns, k: ClassIVInputs) -> list[Value]:
         """g_b = (|C − D|² − l_b²)/(2l_b), g_d = (|F − E|² − l_d²)/(2l_d)."""
         c, f, d, e, _, _ = self._points(x, k)
-        *_, lb, ld = self._arms()
+        *_, lb, ld = self._arms(k)
         return [(J.dot(c - d, c - d) - lb * lb) / (2.0 * lb),
                 (J.dot(f - e, f - e) - ld * ld) / (2.0 * ld)]
 
@@ -660,7 +675,7 @@ class ClassIV(HigherGroup):
         ∂(C − D)/∂ρ = (C − D)/ρ, the same for F − E.
         """
         c, f, d, e, oa, oc = (np.asarray(p) for p in self._points(x, k))
-        g_c, g_f, d_d, d_e, lb, ld = self._arms()
+        g_c, g_f, d_d, d_e, lb, ld = self._arms(k)
         nb, nd = (c - d) / lb, (f - e) / ld
         a_slides, c_slides = self.slides
         radius_a = np.sqrt((np.abs(g_c) ** 2 + np.abs(g_f) ** 2) / 2.0)
@@ -680,7 +695,7 @@ class ClassIV(HigherGroup):
 
     def _linear(self, e: np.ndarray, k: ClassIVInputs) -> tuple[Any, Any, Any, Any]:
         """α_b·E_c = π_b, α_d·E_c = π_d at E_a = e (§3.2)."""
-        g_c, g_f, d_d, d_e, lb, ld = self._arms()
+        g_c, g_f, d_d, d_e, lb, ld = self._arms(k)
         c = np.asarray(k.h_a) + g_c * e - k.h_c
         f = np.asarray(k.h_a) + g_f * e - k.h_c
         return (c * np.conj(d_d), (np.abs(c) ** 2 + np.abs(d_d) ** 2 - lb ** 2) / 2.0,
@@ -689,7 +704,7 @@ class ClassIV(HigherGroup):
     def _slider(self, e: np.ndarray, k: ClassIVInputs) -> tuple[Any, Any, Any]:
         """One pair sliding: V_b = X_b − Y_b, V_d = X_d − Y_d (X on the turning link at its
         rotation e, Y on the sliding one at zero slide, so that |V − s·u| = l) and u."""
-        g_c, g_f, d_d, d_e, _, _ = self._arms()
+        g_c, g_f, d_d, d_e, _, _ = self._arms(k)
         if self.slides[1]:
             ec = np.asarray(k.u_c) / self.u_c
             return (np.asarray(k.h_a) + g_c * e - k.h_c - d_d * ec,
@@ -702,7 +717,7 @@ class ClassIV(HigherGroup):
         """s = N/Σ from the difference of the two circle equations, and N, Σ, with
         N = (|X_d − Y_d|² − l_d²) − (|X_b − Y_b|² − l_b²), Σ = 2u·((X_d − Y_d) − (X_b − Y_b))."""
         vb, vd, u = self._slider(e, k)
-        *_, lb, ld = self._arms()
+        *_, lb, ld = self._arms(k)
         n = (np.abs(vd) ** 2 - ld ** 2) - (np.abs(vb) ** 2 - lb ** 2)
         sigma = 2.0 * _dot(u, vd - vb)
         return n / sigma, n, sigma
@@ -713,7 +728,7 @@ class ClassIV(HigherGroup):
         both sliding |(F̃ − Ẽ) − (C̃ − D̃) + (C − D)|² − l_d² in ψ, C − D at ρ = l_b."""
         a_slides, c_slides = self.slides
         if a_slides and c_slides:
-            *_, lb, ld = self._arms()
+            *_, lb, ld = self._arms(k)
             b_rest, d_rest = self._rest(k, (np.asarray(k.u_a) / self.u_a,
                                             np.asarray(k.u_c) / self.u_c))
             gap = d_rest - b_rest + self._coupler([np.angle(e), lb])
@@ -721,7 +736,7 @@ class ClassIV(HigherGroup):
         if a_slides or c_slides:
             vb, _, u = self._slider(e, k)
             _, n, sigma = self._slide(e, k)
-            lb = self._arms()[4]
+            lb = self._arms(k)[4]
             return np.asarray(n * n - 2.0 * n * sigma * _dot(u, vb)
                               + sigma * sigma * (np.abs(vb) ** 2 - lb ** 2))
         ab, pb, ad, pd = self._linear(e, k)
@@ -732,7 +747,7 @@ class ClassIV(HigherGroup):
         pair sliding the turning link's arg e and s = N/Σ; both (ψ, ρ) = (arg e, l_b)."""
         a_slides, c_slides = self.slides
         if a_slides and c_slides:
-            return np.stack(np.broadcast_arrays(np.angle(e), self._arms()[4]), axis=-1)
+            return np.stack(np.broadcast_arrays(np.angle(e), self._arms(k)[4]), axis=-1)
         if a_slides or c_slides:
             s = self._slide(e, k)[0]
             pair = (s, np.angle(e)) if a_slides else (np.angle(e), s)

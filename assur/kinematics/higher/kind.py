@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from assur.kinematics import jets as J
-from assur.kinematics.higher.continuation import HigherSolution, follow_mode
+from assur.kinematics.higher.continuation import HigherSolution, Stroke, follow_mode
 from assur.kinematics.higher.groups import (
     ClassIV,
     ClassIVInputs,
@@ -51,8 +51,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from assur.model import LinkId, PairId
     from assur.structure.classification import AssurGroup
 
-__all__ = ["HigherGroupSolution", "Layout", "SketchMode", "shortfall_higher", "sketch_class_iv",
-           "sketch_triad", "solve_class_iv", "solve_triad"]
+__all__ = ["HigherGroupSolution", "Layout", "SketchMode", "actuator_ends", "shortfall_higher",
+           "sketch_class_iv", "sketch_triad", "solve_class_iv", "solve_triad"]
 
 #: Link names of a triad (base, leashes in solving order) and of a class IV group.
 TRIAD_LINKS = ("base", "leash1", "leash2", "leash3")
@@ -192,11 +192,26 @@ def _column(label: str, name: str) -> str:
     return f"{label}.{name}"
 
 
-def _sketched(layout: Layout, frames: dict[LinkId, tuple[complex, float]]) -> Sketched:
+def _sketched(layout: Layout, frames: dict[LinkId, tuple[complex, float]],
+              driven: str | None = None) -> Sketched:
     from assur.kinds import Sketched
 
     first = layout.links[0]
-    return Sketched(1, frames[first], frames[first], layout=layout, frames=frames)
+    return Sketched(1, frames[first], frames[first], layout=layout, frames=frames,
+                    driven=driven)
+
+
+def _bodies(group: AssurGroup) -> Callable[[LinkId], LinkId]:
+    """Each link of the group as a body: an actuator's members (cylinder, rod, welded by the
+    frozen driven pair) as its first member."""
+    members = tuple(group.composite or ())
+    return lambda link: members[0] if link in members else link
+
+
+def _actuator_refused(build: _Builder, group: AssurGroup, label: str, code: str,
+                      **data: str) -> None:
+    members = ", ".join(map(str, group.composite or ()))
+    _problem(build, label, code, members=members, **data)
 
 
 def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | None:
@@ -216,7 +231,8 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
     Sketched or None
         Its :class:`Layout` and the frames of its links; None after recording a problem (two
         or three leashes with two sliders, which fix the base's rotation more than once and
-        its position not at all; a P–P leash on parallel guides; an actuator in the group).
+        its position not at all; a P–P leash on parallel guides; an actuator that is the
+        base, or a leash other than a bar).
 
     Notes
     -----
@@ -225,17 +241,26 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
     leash on a block or pin of the known link or of the base) gives the same equations as
     on the other link, and is taken as drawn on the other link here; the slider is written
     with the table's carrier (:func:`solve_triad`).
+
+    A linear actuator (cylinder and rod, their driven prismatic pair frozen) may be a bar
+    leash, hinged at both ends: its length is the input, and both members get the leash's
+    frame (its ``driven`` name, ``leash1``…).
     """
     pairs = build.topo.pairs
-    if group.composite:
-        _problem(build, label, "actuator")
-        return None
-    count = Counter(link for pid in group.internal for link in pairs[pid].links)
+    body = _bodies(group)
+    count = Counter(body(link) for pid in group.internal for link in pairs[pid].links)
     base = next(link for link, n in count.items() if n == 3)
+    if group.composite and base == body(group.composite[0]):
+        _actuator_refused(build, group, label, "actuator")
+        return None
     rows = []
     for ext, leash, known in group.external:
-        inner = next(p for p in group.internal if leash in pairs[p].links)
+        inner = next(p for p in group.internal
+                     if body(leash) in {body(link) for link in pairs[p].links})
         kind = pairs[inner].type.value + pairs[ext].type.value
+        if leash in (group.composite or ()) and kind != "RR":
+            _actuator_refused(build, group, label, "actuator_slider", kind="–".join(kind))
+            return None
         rows.append((kind != "RR", kind, leash, inner, ext, known))
     rows.sort(key=lambda row: (row[0], row[1] == "PP"))
     kinds = [row[1] for row in rows]
@@ -278,7 +303,11 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
     layout = Layout((base, *(row[2] for row in rows)), TRIAD_LINKS,
                     tuple(row[3] for row in rows), tuple(row[4] for row in rows),
                     tuple(kinds), tuple(anchors), tuple(guides))
-    return _sketched(layout, frames)
+    driven = next((k for k, row in enumerate(rows) if row[2] in (group.composite or ())),
+                  None)
+    if driven is not None:
+        frames.update({member: frames[rows[driven][2]] for member in group.composite or ()})
+    return _sketched(layout, frames, None if driven is None else TRIAD_LINKS[driven + 1])
 
 
 def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched | None:
@@ -348,6 +377,26 @@ def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched 
     return _sketched(layout, frames)
 
 
+def actuator_ends(group: GroupModel) -> tuple[PairId, PairId]:
+    """The two hinges of the bar that a linear actuator is (its length is the input): the
+    internal joint first (the RRR dyad's C, a triad leash's internal pair), then its other
+    end (the dyad's or the leash's external hinge).
+
+    Parameters
+    ----------
+    group : GroupModel
+        A group whose ``driven`` is set.
+
+    Returns
+    -------
+    tuple of two pair ids
+    """
+    if group.layout is None:
+        return group.pairs["C"], group.pairs["H_j" if group.driven == "j" else "H_i"]
+    k = TRIAD_LINKS.index(str(group.driven)) - 1
+    return group.layout.internal[k], group.layout.external[k]
+
+
 # ------------------------------------------------------------------------------ solvers
 
 #: The known links evaluated at any crank angle: the analysis state of the earlier groups.
@@ -359,11 +408,22 @@ def _drawn(state: _State, group: GroupModel, pid: PairId) -> Any:
     return p(_column(group.label, f"x_{pid}")) + 1j * p(_column(group.label, f"y_{pid}"))
 
 
+@dataclass(frozen=True)
+class _Actuator:
+    """How a linear actuator that is a bar of the group enters its inputs: its drawn length
+    (from the inputs at the sketch, the stroke's start q₀) and the inputs with the length q."""
+
+    drawn: Callable[[Any], Any]
+    put: Callable[[Any, Any], Any]
+
+
 def _follow(state: _State, group: GroupModel, q: Any, make: Callable[[Any], HigherGroup],
-            inputs: Callable[[_State], Any]) -> tuple[HigherSolution, Any, HigherGroup]:
+            inputs: Callable[[_State], Any], actuator: _Actuator | None = None
+            ) -> tuple[HigherSolution, Any, HigherGroup]:
     """Follow the group's drawn mode over q; also its inputs at the reference position and
     the group as solved. A triad with a P–P leash and no bar has one mode, placed at every
-    position in closed form from the inputs at q (:func:`~assur.kinematics.higher.pinned.place`)."""
+    position in closed form from the inputs at q (:func:`~assur.kinematics.higher.pinned.place`).
+    With an ``actuator`` q is its length and the mode is followed along the model's stroke."""
     known = state.earlier(group)
     k0 = values(inputs(known(np.zeros(state.flat_shape))))
     phi = np.asarray(J.value(q), dtype=float)
@@ -372,8 +432,14 @@ def _follow(state: _State, group: GroupModel, q: Any, make: Callable[[Any], High
     solved = make(k0)
     if isinstance(solved, Triad) and solved.unique:
         return place(solved, k0, inputs(state), delta=delta), k0, solved
-    follow = follow_mode(solved, lambda angle: inputs(known(angle)), phi,
-                         analogs=isinstance(q, Jet), delta=delta)
+    if actuator is None:
+        follow = follow_mode(solved, lambda angle: inputs(known(angle)), phi,
+                             analogs=isinstance(q, Jet), delta=delta)
+        return follow, k0, solved
+    low, high = state.model.input_range
+    follow = follow_mode(solved, lambda length: actuator.put(inputs(known(length)), length), phi,
+                         analogs=isinstance(q, Jet), delta=delta,
+                         stroke=Stroke(low, high, actuator.drawn(k0)))
     return follow, k0, solved
 
 
@@ -447,7 +513,12 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
                      (guide(k0, 0, layout.leashes[0]), guide(k0, 1, layout.leashes[1]),
                       guide(k0, 2, layout.leashes[2])))
 
-    follow, k0, solved = _follow(state, group, q, make, _triad_inputs(group))
+    driven = None if group.driven is None else TRIAD_LINKS.index(group.driven) - 1
+    actuator = None if driven is None else _Actuator(
+        lambda k0: np.abs(base[driven] - k0.a[driven]),
+        lambda k, length: replace(k, lengths=tuple(length if i == driven else None
+                                                   for i in range(3))))
+    follow, k0, solved = _follow(state, group, q, make, _triad_inputs(group), actuator)
     theta = follow.rotations["base"]
     frames: dict[str, tuple[Any, float]] = {
         "base": (follow.joints["O"], _phase(base[1] - base[0]))}
@@ -482,7 +553,11 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
             frames[name] = (hinge, angle0)
     joints = {f"P{i + 1}": (ext if kind == "PR" else inner) for i, (kind, inner, ext) in
               enumerate(zip(layout.leashes, layout.internal, layout.external, strict=True))}
-    return _record(state, group, follow, solved, joints, frames)
+    solution = _record(state, group, follow, solved, joints, frames)
+    if driven is not None:
+        state.actuator(group, state.frames[layout.links[driven + 1]],
+                       state.joints[layout.internal[driven]], q)
+    return solution
 
 
 def _pp_sliders(state: _State, group: GroupModel, i: int, follow: HigherSolution,

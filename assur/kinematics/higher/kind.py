@@ -331,22 +331,23 @@ def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched 
         an actuator in the group).
     """
     pairs = build.topo.pairs
-    if group.composite:
-        _problem(build, label, "actuator")
-        return None
+    body = _bodies(group)
     inner = sorted(str(pid) for pid in group.internal if pairs[pid].type.value != "R")
     if inner or len(group.external) != 2:
         _problem(build, label, "class_iv_sliders", pairs=", ".join(inner))
         return None
     (h_a, a, known_a), (h_c, c, known_c) = group.external
+    if group.composite and body(group.composite[0]) in (body(a), body(c)):
+        _actuator_refused(build, group, label, "actuator")
+        return None
     for ext, known in ((h_a, known_a), (h_c, known_c)):
         if pairs[ext].type.value == "P" and pairs[ext].guide not in (None, known):
             _problem(build, label, "class_iv_guide", pair=str(ext))
             return None
 
     def between(x: LinkId, y: LinkId | None = None) -> list[PairId]:
-        return [p for p in group.internal if x in pairs[p].links
-                and (y is None or y in pairs[p].links)]
+        return [p for p in group.internal if body(x) in (ends := {body(n) for n in pairs[p].links})
+                and (y is None or body(y) in ends)]
 
     p_c, p_f = between(a)
     b = next(link for link in pairs[p_c].links if link != a)
@@ -374,13 +375,19 @@ def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched 
               c: (hc, cmath.phase(pts["D"] - hc)), d: (pts["F"], cmath.phase(pts["E"] - pts["F"]))}
     layout = Layout((a, b, c, d), CLASS_IV_LINKS, (p_c, p_d, p_e, p_f), (h_a, h_c),
                     anchors=tuple(anchors), guides=tuple(guides))
-    return _sketched(layout, frames)
+    driven = next((name for name, link in (("b", b), ("d", d))
+                   if link in (group.composite or ())), None)
+    if driven is not None:
+        frames.update({member: frames[b if driven == "b" else d]
+                       for member in group.composite or ()})
+    return _sketched(layout, frames, driven)
 
 
 def actuator_ends(group: GroupModel) -> tuple[PairId, PairId]:
     """The two hinges of the bar that a linear actuator is (its length is the input): the
-    internal joint first (the RRR dyad's C, a triad leash's internal pair), then its other
-    end (the dyad's or the leash's external hinge).
+    hinge where its slider's point is taken (the RRR dyad's C, a triad leash's internal pair,
+    D of the class IV coupler b, E of d), then the origin of the bar's frame (the dyad's or
+    the leash's external hinge, C of b, F of d).
 
     Parameters
     ----------
@@ -391,10 +398,14 @@ def actuator_ends(group: GroupModel) -> tuple[PairId, PairId]:
     -------
     tuple of two pair ids
     """
-    if group.layout is None:
+    layout = group.layout
+    if layout is None:
         return group.pairs["C"], group.pairs["H_j" if group.driven == "j" else "H_i"]
+    if not layout.leashes:  # a class IV coupler: b from C to D, d from F to E
+        c, d, e, f = layout.internal
+        return (d, c) if group.driven == "b" else (e, f)
     k = TRIAD_LINKS.index(str(group.driven)) - 1
-    return group.layout.internal[k], group.layout.external[k]
+    return layout.internal[k], layout.external[k]
 
 
 # ------------------------------------------------------------------------------ solvers
@@ -554,9 +565,7 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
     joints = {f"P{i + 1}": (ext if kind == "PR" else inner) for i, (kind, inner, ext) in
               enumerate(zip(layout.leashes, layout.internal, layout.external, strict=True))}
     solution = _record(state, group, follow, solved, joints, frames)
-    if driven is not None:
-        state.actuator(group, state.frames[layout.links[driven + 1]],
-                       state.joints[layout.internal[driven]], q)
+    _drive(state, group, q)
     return solution
 
 
@@ -646,7 +655,11 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
     def make(k0: ClassIVInputs) -> ClassIV:
         return ClassIV(k0.h_a, pts["C"], pts["F"], k0.h_c, pts["D"], pts["E"], k0.u_a, k0.u_c)
 
-    follow, k0, solved = _follow(state, group, q, make, inputs)
+    actuator = None if group.driven is None else _Actuator(
+        lambda k0: np.abs(pts["C"] - pts["D"]) if group.driven == "b" else
+        np.abs(pts["F"] - pts["E"]),
+        lambda k, length: replace(k, **{f"l_{group.driven}": length}))
+    follow, k0, solved = _follow(state, group, q, make, inputs, actuator)
     j = follow.joints
     origins = []
     for side, (name, link) in enumerate((("Ha", layout.links[0]), ("Hc", layout.links[2]))):
@@ -671,7 +684,21 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
     joints.update({name: ext for name, ext, guide in zip(("Ha", "Hc"), layout.external,
                                                           layout.guides, strict=True)
                    if guide is not None})  # a sliding point moves from mode to mode
-    return _record(state, group, follow, solved, joints, frames)
+    solution = _record(state, group, follow, solved, joints, frames)
+    _drive(state, group, q)
+    return solution
+
+
+def _drive(state: _State, group: GroupModel, q: Any) -> None:
+    """The frames of an actuator's members and its driven pair, once the group's own frames
+    are written (nothing for a group without an actuator)."""
+    if group.driven is None:
+        return
+    layout = group.layout
+    assert layout is not None
+    point = actuator_ends(group)[0]
+    bar = layout.links[layout.names.index(group.driven)]
+    state.actuator(group, state.frames[bar], state.joints[point], q)
 
 
 def _col(z: Any) -> Any:

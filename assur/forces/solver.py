@@ -25,7 +25,8 @@ from assur.forces.checks import LinkResidual, Power, lever_torque, link_residual
 from assur.forces.groups import ForceReason, Transfer, cross, dot
 from assur.forces.model import ForceData, Tabulated
 from assur.kinematics import jets as J
-from assur.kinematics.analysis import Motion, analyse, values
+from assur.kinematics.analysis import Motion, analyse, sketch_input, values
+from assur.kinematics.higher.kind import actuator_ends
 from assur.kinematics.jets import Jet
 from assur.kinematics.model import GroupModel
 from assur.model import LinkId, PairId
@@ -284,14 +285,42 @@ def _frames(motion: Motion) -> dict[LinkId, tuple[Jet, Jet]]:
               if link != model.frame}
     group = _driven(model)
     if group is not None:
-        member = _member(model, group, group.pairs["C"])
-        frames[member] = (_jet(motion.joints[group.pairs["C"]]), frames[member][1])
+        point = actuator_ends(group)[0]
+        member = _member(model, group, point)
+        frames[member] = (_jet(motion.joints[point]), frames[member][1])
     return frames
 
 
 def _driven(model: Any) -> GroupModel | None:
-    """The RRR group holding a linear actuator, if the input is one."""
+    """The group holding a linear actuator (an RRR dyad, a triad, a class IV group), if the
+    input is one."""
     return next((group for group in model.groups if group.driven is not None), None)
+
+
+def _bar(group: GroupModel) -> LinkId:
+    """The link of an actuator's group that stands for its composite (the bar it is)."""
+    if group.layout is not None:
+        return group.layout.links[group.layout.names.index(str(group.driven))]
+    side = group.j if group.driven == "j" else group.i
+    assert side is not None
+    return side
+
+
+class _Welded:
+    """The loads of a higher group whose actuator's members count as its one bar link: the
+    pairs on either member are seen on that link (:class:`~assur.forces.groups.Loads`)."""
+
+    def __init__(self, bodies: _Bodies, group: GroupModel) -> None:
+        self.bodies = bodies
+        self.members = set(group.composite)
+        self.bar = _bar(group)
+        self.joint, self.normal = bodies.joint, bodies.normal
+        self.force, self.moment = bodies.force, bodies.moment
+
+    def pair(self, pair: PairId) -> tuple[str, tuple[LinkId, LinkId]]:
+        kind, (first, second) = self.bodies.pair(pair)
+        return kind, (self.bar if first in self.members else first,
+                      self.bar if second in self.members else second)
 
 
 def _member(model: Any, group: GroupModel, pair: PairId) -> LinkId:
@@ -449,8 +478,7 @@ def _sketched(model: Any) -> np.ndarray:
     group = _driven(model)
     if group is None:
         return np.zeros(1)
-    length = model.params[group.column("l_j" if group.driven == "j" else "l_i")]
-    return np.atleast_1d(np.asarray(length, dtype=float))
+    return np.atleast_1d(np.asarray(sketch_input(model), dtype=float))
 
 
 def _jet(x: Any) -> Jet:
@@ -481,7 +509,8 @@ def _groups(bodies: _Bodies, motion: Motion
         if equilibrium is None:      # the input group: solved last, by the drive
             continue
         members = _merge(bodies, group) if group.driven is not None else None
-        solved = equilibrium(group, bodies)
+        welded = members is not None and group.layout is not None
+        solved = equilibrium(group, _Welded(bodies, group) if welded else bodies)
         solution = motion.solutions[group.label]
         apart = ~np.broadcast_to(np.asarray(solution.exists, dtype=bool), shape)
         here = ~apart & ((solved.determinant <= SINGULAR) | (solution.margin <= SINGULAR))
@@ -508,10 +537,9 @@ def _groups(bodies: _Bodies, motion: Motion
 
 
 def _merge(bodies: _Bodies, group: GroupModel) -> dict[LinkId, tuple[np.ndarray, np.ndarray]]:
-    """Make an actuator's composite one body for its RRR group: the loads of its
-    members summed on the member that stands for it. Returns the members' own loads."""
-    side = group.j if group.driven == "j" else group.i
-    assert side is not None
+    """Make an actuator's composite one body for its group: the loads of its members
+    summed on the member that stands for it. Returns the members' own loads."""
+    side = _bar(group)
     own = {link: (bodies.forces[link], bodies.moments[link]) for link in group.composite}
     origin = bodies.origins[side]
     bodies.forces[side] = sum((f for f, _ in own.values()), np.zeros(bodies.shape, complex))
@@ -536,9 +564,9 @@ def _split(bodies: _Bodies, motion: Motion, group: GroupModel,
            members: dict[LinkId, tuple[np.ndarray, np.ndarray]],
            reactions: dict[PairId, Reaction]) -> tuple[np.ndarray, DriveLoad]:
     """The actuator's force and the reaction in its driven pair from the equilibrium of the
-    member hinged at C."""
+    member hinged at the bar's far end (the dyad's C)."""
     model = motion.model
-    pair_c = group.pairs["C"]
+    pair_c, hinge = actuator_ends(group)
     member = _member(model, group, pair_c)
     c = bodies.joint(pair_c)
     on_member = reactions[pair_c]
@@ -549,7 +577,6 @@ def _split(bodies: _Bodies, motion: Motion, group: GroupModel,
     pair = next(pid for pid, (kind, links, _) in model.pair_links.items()
                 if kind == "P" and set(links) <= set(group.composite))
     slider = motion.sliders[pair]
-    hinge = group.pairs["H_j" if group.driven == "j" else "H_i"]
     ends = {member: c, next(m for m in group.composite if m != member): bodies.joint(hinge)}
     axis = ends[slider.slider] - ends[slider.carrier]
     axis = axis / np.abs(axis)

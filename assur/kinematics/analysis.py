@@ -26,7 +26,7 @@ import numpy as np
 from assur.kinds import given
 from assur.kinematics import jets as J
 from assur.kinematics.dyads import DyadSolution, Value
-from assur.kinematics.higher.kind import HigherGroupSolution
+from assur.kinematics.higher.kind import HigherGroupSolution, actuator_ends
 from assur.kinematics.jets import Jet
 from assur.kinematics.model import Anchor, GroupModel, Guide, KinematicModel
 from assur.model import LinkId, PairId
@@ -42,6 +42,7 @@ __all__ = [
     "acceleration",
     "analyse",
     "input_grid",
+    "sketch_input",
     "unwrap",
     "values",
     "velocity",
@@ -205,6 +206,31 @@ def analyse(model: KinematicModel, q: np.ndarray | None = None, *, points: int =
                for pid, st in state.sliders.items()}
     tracing = {name: full(z, shape, analogs) for name, z in tracing.items()}
     return Motion(model, q, state.solutions, frames, joints, sliders, tracing, analogs)
+
+
+def sketch_input(model: KinematicModel) -> Any:
+    """The input coordinate of the sketched position: φ = 0 for a crank; for an actuator its
+    drawn length (mm; shape () or of the designs), the distance of the two hinges of the bar
+    it is (:func:`~assur.kinematics.higher.kind.actuator_ends`) as drawn."""
+    group = next((g for g in model.groups if g.driven is not None), None)
+    if group is None:
+        return 0.0
+    if group.layout is None:
+        return model.params[group.column("l_j" if group.driven == "j" else "l_i")]
+    state = _State(model)
+    for earlier in model.groups[:model.groups.index(group)]:
+        state.solve(earlier, 0.0)
+    anchors = dict(zip(group.layout.external, group.layout.anchors, strict=True))
+
+    def drawn(pair: PairId) -> Any:
+        anchor = anchors.get(pair)
+        if anchor is not None:
+            return state.point(anchor)
+        return model.params[group.column(f"x_{pair}")] \
+            + 1j * model.params[group.column(f"y_{pair}")]
+
+    point, origin = actuator_ends(group)
+    return np.abs(drawn(point) - drawn(origin))
 
 
 def full(x: Any, shape: tuple[int, ...], jet: bool = False) -> Any:

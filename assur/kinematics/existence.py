@@ -319,7 +319,7 @@ def _boundary(model: KinematicModel, group: GroupModel, index: int, sol: object,
     for end in np.asarray(sol.follow.ends, dtype=float).ravel():
         if not math.isfinite(end):
             continue
-        turns = math.floor((hi - end) / (2 * math.pi))
+        turns = math.floor((hi - end) / (2 * math.pi)) if sol.follow.periodic else 0
         shifted = end + 2 * math.pi * turns
         if lo <= shifted <= hi:
             return shifted

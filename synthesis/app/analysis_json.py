@@ -53,8 +53,9 @@ def higher_item(sol: object) -> Record:
                    "margin": number(m.margin), "det_sign": m.det_sign,
                    "joints": {str(pid): [z.real, z.imag] for pid, z in m.joints.items()}}
                   for m in modes],
-        "ends_deg": [number(math.degrees(v)) for v in np.ravel(sol.follow.ends)],
-        "full_turn": not bool(np.ravel(sol.follow.overlap)[0])}}
+        **({"ends_deg": [number(math.degrees(v)) for v in np.ravel(sol.follow.ends)],
+            "full_turn": not bool(np.ravel(sol.follow.overlap)[0])} if sol.follow.periodic
+           else {"ends_mm": [number(v) for v in np.ravel(sol.follow.ends)]})}}
 
 
 def number(value: float) -> float | None:

@@ -30,9 +30,10 @@ import numpy as np
 import pytest
 import yaml
 from test_forces_global import _global, agrees
+from test_forces_higher import _loads
 
 import assur
-from assur.forces import ForceData, Load, Mass, kinetostatics
+from assur.forces import kinetostatics
 from assur.forces.table import load_with_forces
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import sketch_input, values
@@ -229,28 +230,12 @@ def test_mode_end_below_the_stroke_against_a_dense_scan_and_existence() -> None:
     assert f"q = {end:.4f} mm" in notes[-1] and "merges" in notes[-1]
 
 
-def _random_loads(model: assur.KinematicModel, seed: int) -> ForceData:
-    rng = np.random.default_rng(seed)
-    moving = sorted({link for _, links, _ in model.pair_links.values() for link in links}
-                    - {model.frame})
-
-    def near() -> complex:
-        return complex(*rng.uniform(-60, 180, 2))
-
-    masses = {link: Mass(float(rng.uniform(0.1, 2.0)), near(), float(rng.uniform(0, 5e-3)))
-              for link in moving}
-    loads = tuple(load for link in moving[1:] for load in (
-        Load(link, force=complex(*rng.uniform(-400, 400, 2)), point=near()),
-        Load(link, torque=float(rng.uniform(-10, 10)))))
-    return ForceData(masses, loads, complex(*rng.uniform(-10, 10, 2)))
-
-
 @pytest.mark.parametrize("which", ["triad", "triad table loads", "class IV"])
 def test_actuator_force_equals_the_global_solve(which: str, tmp_path: Path) -> None:
     path = EXAMPLE if which.startswith("triad") else _write(tmp_path, "civ.yaml", CLASS_IV)
     model, table = load_with_forces(path)
     data = table if which == "triad table loads" and table is not None else \
-        _random_loads(model, 3)
+        _loads(model, np.random.default_rng(3))
     low, high = model.input_range
     q = np.linspace(low, high, 9)
     motion = assur.analyse(model, q, analogs=True)

@@ -305,3 +305,19 @@ def test_example_reports_the_stroke_in_json(capsys: pytest.CaptureFixture[str]) 
     assert group["mode"]["count_at_sketch"] == 2
     assert group["mode"]["ends_mm"] == [None, None]     # the mode ends below the stroke
     assert "ends_deg" not in group["mode"]
+
+
+def test_designs_with_their_own_sketch_length_in_one_call_equal_each_alone() -> None:
+    """Moving C changes the actuator's drawn length q₀, so each design starts its passes
+    from its own length; together they equal each design solved alone."""
+    model = assur.load_model(EXAMPLE)
+    column = model.groups[0].column("x_C")
+    xs = np.array([58.0, 60.0, 63.0])
+    q = np.linspace(85.0, 115.0, 7)
+    together = assur.analyse(model.with_params({column: xs[:, None]}), q, analogs=True)
+    for k, x in enumerate(xs):
+        alone = assur.analyse(model.with_params({column: x}), q, analogs=True)
+        for pid, jet in alone.joints.items():
+            z, both = J.as_jet(jet), J.as_jet(together.joints[pid])
+            assert np.max(np.abs(both.v[k] - z.v)) <= 1e-12 * 250, pid
+            assert np.max(np.abs(both.d1[k] - z.d1)) <= 1e-10, pid

@@ -328,7 +328,8 @@ def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched 
     Sketched or None
         Its :class:`Layout` and link frames; None after recording a problem (a prismatic
         internal pair, a guide of an external prismatic pair carried by the group's link, or
-        an actuator in the group).
+        an actuator that is a or c). An actuator that is the coupler b or d (hinged at both
+        ends) gives its members the coupler's frame (its ``driven`` name).
     """
     pairs = build.topo.pairs
     body = _bodies(group)
@@ -499,7 +500,8 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
     group : GroupModel
         The triad's model (its :class:`Layout`).
     q : ndarray or Jet
-        Crank rotations from the sketch (radians); a jet for the analogs.
+        Crank rotations from the sketch (radians), or the lengths of an actuator that is a
+        bar of the group (mm, over the model's stroke); a jet for the analogs.
 
     Returns
     -------
@@ -627,7 +629,8 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
     group : GroupModel
         The group's model (its :class:`Layout`).
     q : ndarray or Jet
-        Crank rotations from the sketch (radians); a jet for the analogs.
+        Crank rotations from the sketch (radians), or the lengths of an actuator that is a
+        bar of the group (mm, over the model's stroke); a jet for the analogs.
 
     Returns
     -------

@@ -39,7 +39,6 @@ from typing import TYPE_CHECKING, Any
 from assur.errors import Issue, StructureError, TableError
 from assur.io.reader import Node, TableReader, describe, latin_form, lookalike_letters
 from assur.kinds import GroupKind, GuideColumns, HingeColumns, kind_of, kind_of_class
-from assur.kinematics.higher.kind import actuator_ends
 from assur.kinematics.model import (
     KIND_COLUMNS,
     Anchor,
@@ -418,6 +417,8 @@ def model_from_sketch(analysis: StructuralAnalysis) -> KinematicModel:
         return build.model(direction=sketch.rotation, drive="crank", tracing=tracing)
     span = sketch.stroke
     if span is None:
+        from assur.kinematics.higher.kind import actuator_ends  # only for an actuator
+
         ends = actuator_ends(next(group for group in build.groups if group.driven))
         length = abs(build.point(topo.pairs[ends[0]]) - build.point(topo.pairs[ends[1]]))
         span = (length, length)

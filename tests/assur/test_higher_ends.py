@@ -13,13 +13,16 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
 from test_higher_properties import Designs, random_class_iv, random_triads
 
-from assur.kinematics.higher import follow_mode
+from assur.kinematics import jets as J
+from assur.kinematics.higher import ClassIV, ClassIVInputs, assembly_modes, follow_mode
+from assur.kinematics.higher.groups import expand
 
 #: A point, or an array of points over θ.
 Point = complex | np.ndarray
@@ -144,3 +147,31 @@ def test_the_ends_of_a_mode_are_change_points_to_1e_10_rad(kind: str) -> None:
                 break
         assert found is not None and abs(found - end[column]) <= 1e-10, (i, found, end[column])
     assert len(rows) >= 20
+
+
+def test_the_gap_of_a_class_iv_group_on_two_turning_guides_has_a_finite_margin() -> None:
+    """a slides on a guide of the crank, c on a guide of the frame: the drawn mode ends where
+    the guides become parallel (twice a turn) and its partner modes go on there with
+    unbounded slides, so no root of p leaves the unit circle. In such a gap the margin is
+    −|sin| of the angle between the guides, computed here from the guides' directions."""
+    designs = random_class_iv(23, 24)
+    g = designs.group
+    rng = np.random.default_rng(23)
+    u_a, u_c = (np.exp(2j * np.pi * rng.uniform(size=24)) for _ in range(2))
+    group = ClassIV(g.h_a, g.c, g.f, g.h_c, g.d, g.e, u_a, u_c)
+
+    def inputs(phi: Any) -> ClassIVInputs:
+        return ClassIVInputs(g.h_a * J.expi(phi), g.h_c, u_a * J.expi(phi), u_c)
+
+    phi = np.radians(np.arange(0.5, 360.0, 1.0))
+    solution = follow_mode(group, inputs, phi)
+    turn = np.exp(1j * phi)
+    grid = ClassIVInputs(g.h_a[:, None] * turn, g.h_c[:, None], u_a[:, None] * turn,
+                         u_c[:, None])
+    counts = assembly_modes(expand(group), grid).count
+    guides = -np.abs(np.sin(np.angle(u_c[:, None] / (u_a[:, None] * turn))))
+    gap = ~solution.exists
+    on_circle = gap & (counts == 2)  # every root of p (degree 2) is a real mode
+    assert on_circle.any(axis=1).sum() >= 2  # two of the designs have such a gap
+    assert np.isfinite(solution.margin[gap]).all()
+    assert np.allclose(solution.margin[on_circle], guides[on_circle], rtol=1e-12, atol=1e-15)

@@ -22,7 +22,7 @@ import numpy as np
 
 from assur.kinematics import jets as J
 from assur.kinematics.dyads import Reason
-from assur.kinematics.higher.groups import HigherGroup, det_rows, hadamard, values
+from assur.kinematics.higher.groups import ClassIV, HigherGroup, det_rows, hadamard, values
 from assur.kinematics.higher.modes import (
     TAU,
     AssemblyModes,
@@ -571,13 +571,21 @@ class HigherSolution:
 
 
 def _gap(group: HigherGroup, k: Any, rows: np.ndarray) -> np.ndarray:
-    """−min|ln|E|| over the roots of p off the unit circle (the margin where a mode is gone),
-    where the mask ``rows`` holds (NaN elsewhere)."""
+    """The margin where a mode is gone, where the mask ``rows`` holds (NaN elsewhere).
+
+    −min|ln|E|| over the roots of p off the unit circle. A class IV group with both external
+    pairs sliding may have none (its modes go on, with unbounded slides, beyond the position
+    where the guides are parallel): there −|sin| of the angle between the guides, 0 where the
+    mode ends at the parallel position.
+    """
     coef = np.broadcast_to(coefficients(group, k), rows.shape + (2 * group.degree + 1,))
     out = np.full(rows.shape, np.nan)
     with np.errstate(all="ignore"):
         size = np.abs(np.log(np.abs(roots(coef[rows]))))
         out[rows] = -np.where(size > TAU, size, np.inf).min(axis=-1)
+        if isinstance(group, ClassIV) and all(group.slides):
+            guides = -np.abs(np.sin(np.angle(np.asarray(k.u_c) / k.u_a)))
+            out = np.where(rows & np.isneginf(out), guides, out)
     return out
 
 

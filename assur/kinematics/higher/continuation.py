@@ -22,7 +22,7 @@ import numpy as np
 
 from assur.kinematics import jets as J
 from assur.kinematics.dyads import Reason
-from assur.kinematics.higher.groups import HigherGroup, det_rows, hadamard, values
+from assur.kinematics.higher.groups import ClassIV, HigherGroup, det_rows, hadamard, values
 from assur.kinematics.higher.modes import (
     TAU,
     AssemblyModes,
@@ -57,6 +57,12 @@ RUNGS = 8
 RUNGS_BUDGET = 64
 #: Lays the accepted angles of the designs side by side on one line (> 2π).
 OFFSET = 8.0
+#: Newton iterations on the extended system of a change point, and the bound on its scaled
+#: residuals |F|/L and |g| at which the point is accepted.
+FOLD_ITERATIONS = 8
+FOLD_RESIDUAL = 1e-12
+#: Central-difference step of g's derivatives (rad for angles and φ, times L for lengths).
+FOLD_DIFFERENCE = 1e-6
 
 Inputs = Callable[[Any], Any]
 
@@ -77,6 +83,12 @@ REASON_CODES: dict[int, str] = {
 
 def _part(v: Any, name: str) -> np.ndarray:
     return np.asarray(getattr(v, name)) if isinstance(v, Jet) else np.zeros(np.shape(v))
+
+
+def _stacked(f: list[Any], name: str) -> np.ndarray:
+    """The part ``name`` ("v", "d1", "d2") of the residuals ``f``, stacked on a last axis."""
+    parts = [np.asarray(J.value(v)) if name == "v" else _part(v, name) for v in f]
+    return np.stack(np.broadcast_arrays(*parts), axis=-1)
 
 
 def analogs(group: HigherGroup, k: Any, x: np.ndarray, jac: np.ndarray | None = None
@@ -113,11 +125,9 @@ def analogs(group: HigherGroup, k: Any, x: np.ndarray, jac: np.ndarray | None = 
     if jac is None:
         jac = group.jacobian(x, values(k))
     cols = [Jet(x[..., i], 0.0, 0.0) for i in range(group.n)]
-    f = group.residual(cols, k)
-    x1 = solve(jac, -np.stack(np.broadcast_arrays(*(_part(v, "d1") for v in f)), axis=-1))
+    x1 = solve(jac, -_stacked(group.residual(cols, k), "d1"))
     cols = [Jet(x[..., i], x1[..., i], 0.0) for i in range(group.n)]
-    f = group.residual(cols, k)
-    x2 = solve(jac, -np.stack(np.broadcast_arrays(*(_part(v, "d2") for v in f)), axis=-1))
+    x2 = solve(jac, -_stacked(group.residual(cols, k), "d2"))
     return x1, x2
 
 
@@ -190,6 +200,60 @@ def _correct(group: HigherGroup, kv: Any, guess: np.ndarray, sign: np.ndarray
     return xn, jac, rows, ok
 
 
+def _singularity(group: HigherGroup, x: np.ndarray, kv: Any) -> np.ndarray:
+    """g = det J / Π‖J_k‖ with the columns of lengths times L: 0 exactly where J is singular,
+    dimensionless, in [−1, 1]."""
+    jac = group.jacobian(x, kv) / weights(group)[..., None, :]
+    return np.asarray(det_rows(jac) / np.prod(np.linalg.norm(jac, axis=-1), axis=-1))
+
+
+def _fold(group: HigherGroup, inputs: Inputs, s: float, start: _Point, active: np.ndarray
+          ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The change point nearest ``start`` by Newton's method on the extended system.
+
+    The unknowns are (x, t) with φ = s·t; the equations F(x, φ) = 0 and g(x, φ) = 0
+    (:func:`_singularity`). The Jacobian's rows: [J, s·∂F/∂φ] with ∂F/∂φ exact (the inputs
+    as jets), and [∂g/∂x, ∂g/∂t] by central differences (step ``FOLD_DIFFERENCE``). Returns
+    t, x and where the rows ``active`` converged: max|F| ≤ ``FOLD_RESIDUAL``·L and
+    |g| ≤ ``FOLD_RESIDUAL``.
+    """
+    n = group.n
+    width = FOLD_DIFFERENCE / weights(group)
+    shift = np.eye(n).reshape((n,) + (1,) * (start.x.ndim - 1) + (n,)) * width
+    eye = np.eye(n + 1)
+    size = np.asarray(group.size)
+    t, x = start.t, start.x
+    with np.errstate(all="ignore"):
+        for iteration in range(FOLD_ITERATIONS + 1):
+            k = inputs(Jet(s * t, 1.0, 0.0))
+            kv = values(k)
+            f = group.residual([Jet(x[..., i], 0.0, 0.0) for i in range(n)], k)
+            value = np.broadcast_to(_stacked(f, "v"), x.shape)
+            g = _singularity(group, x, kv)
+            done = (np.abs(value).max(axis=-1) <= FOLD_RESIDUAL * size) \
+                & (np.abs(g) <= FOLD_RESIDUAL)
+            if iteration == FOLD_ITERATIONS or (done | ~active).all():
+                break
+            xs = np.concatenate([x + shift, x - shift, np.broadcast_to(x, (2,) + x.shape)])
+            ts = np.concatenate([np.broadcast_to(t, (2 * n,) + t.shape),
+                                 [t + FOLD_DIFFERENCE, t - FOLD_DIFFERENCE]])
+            gs = _singularity(group, xs, values(inputs(s * ts)))
+            system = np.zeros(x.shape[:-1] + (n + 1, n + 1))
+            system[..., :n, :n] = group.jacobian(x, kv)
+            system[..., :n, n] = s * np.broadcast_to(_stacked(f, "d1"), x.shape)
+            system[..., n, :n] = np.moveaxis((gs[:n] - gs[n:2 * n]), 0, -1) / (2.0 * width)
+            system[..., n, n] = (gs[-2] - gs[-1]) / (2.0 * FOLD_DIFFERENCE)
+            rhs = -np.concatenate([value, g[..., None]], axis=-1)
+            safe = active & ~done & np.isfinite(system).all(axis=(-2, -1)) \
+                & np.isfinite(rhs).all(axis=-1)
+            safe &= np.linalg.det(np.where(safe[..., None, None], system, eye)) != 0.0
+            step = np.linalg.solve(np.where(safe[..., None, None], system, eye),
+                                   np.where(safe[..., None], rhs, 0.0)[..., None])[..., 0]
+            x = x + step[..., :n]
+            t = t + step[..., n]
+    return t, x, active & done
+
+
 def _pick(a: np.ndarray, first: np.ndarray) -> np.ndarray:
     """``a`` at the rung ``first`` of its leading axis, for every row."""
     a = np.broadcast_to(a, a.shape[:1] + first.shape + a.shape[1 + first.ndim:])
@@ -206,15 +270,18 @@ def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.
     (:func:`_correct`); an accepted step doubles h (to at most ``H_MAX``), a rejected one
     halves it, and below ``H_MIN`` the row stops. While the rows are few, the halvings
     h, h/2, h/4, … are tried at once and the largest accepted one is taken, which is where
-    the one-at-a-time halving would arrive. The accepted states go to ``log`` (with the
-    mask of the rows that moved). Returns the last accepted state of each row and, where a
-    row stopped short, the pass parameter and the reason (inf and 0 elsewhere).
+    the one-at-a-time halving would arrive. Where a row's mode is ending (a step beyond its
+    state rejected, the margin falling), the change point is solved for (:func:`_ending`)
+    and the row stops there. The accepted states go to ``log`` (with the mask of the rows
+    that moved). Returns the last accepted state of each row and, where a row stopped short,
+    the pass parameter and the reason (inf and 0 elsewhere).
     """
     shape = goal.shape
     count = max(1, min(RUNGS, RUNGS_BUDGET // max(1, int(np.prod(shape)))))
     halves = 0.5 ** np.arange(count).reshape((count,) + (1,) * len(shape))
     here, h = start, np.full(shape, H_MAX)
     end, why = np.full(shape, np.inf), np.zeros(shape, dtype=np.int8)
+    margin, falling, tried = np.full(shape, np.inf), np.zeros(shape, bool), np.zeros(shape, bool)
     done = ~active
     while not done.all():
         moving = ~done
@@ -224,14 +291,18 @@ def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.
         kv = values(k)
         guess = here.x + (s * trial)[..., None] * here.x1 \
             + 0.5 * (trial * trial)[..., None] * here.x2
-        xn, jac, _, ok = _correct(group, kv, guess, sign)
+        xn, jac, rows, ok = _correct(group, kv, guess, sign)
         ok &= moving & ((halves == 1.0) | (trial >= H_MIN))
         taken = np.asarray(ok.any(axis=0))
         first = np.argmax(ok, axis=0)
         with np.errstate(all="ignore"):
             n1, n2 = analogs(group, k, xn, jac)
+            now = _pick(hadamard(rows), first)
         step = _pick(trial, first)
         hit = taken & (first == 0) & (hs >= goal - here.t)
+        # the nearest rejected step beyond the new state
+        beyond = here.t + np.where(taken, _pick(trial, np.maximum(first - 1, 0)),
+                                   trial[-1])
         moved = _Point(np.where(hit, goal, here.t + step), _pick(xn, first), _pick(n1, first),
                        _pick(n2, first))
         here = moved.where(taken, here)
@@ -239,18 +310,54 @@ def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.
                      hs * 0.5 ** count)
         if log is not None:
             log.append((here, taken))
-        stuck = moving & ~taken & (h < H_MIN)
+        falling = np.where(taken, now < margin, falling)
+        margin = np.where(taken, now, margin)
+        tried &= ~taken
+        ending = moving & ~hit & (~taken | (first > 0)) & falling & ~tried
+        if ending.any():
+            tried |= ending
+            fold, stop = _ending(group, inputs, s, here, beyond, goal, ending)
+            here = fold.where(stop, here)
+            if log is not None:
+                log.append((here, stop))
+            end = np.where(stop, here.t, end)
+            why = np.where(stop, HigherReason.MODE_ENDS, why).astype(np.int8)
+            done = done | stop
+        stuck = moving & ~done & ~taken & (h < H_MIN)
         if stuck.any():
             kv = values(inputs(s * here.t))
             with np.errstate(all="ignore"):
-                margin = group.margin(here.x, kv)
+                margin_here = group.margin(here.x, kv)
             code = np.where(~_finite(kv), Reason.UNDEFINED_INPUT,
-                            np.where(margin <= CHANGE, HigherReason.MODE_ENDS,
+                            np.where(margin_here <= CHANGE, HigherReason.MODE_ENDS,
                                      HigherReason.NOT_FOLLOWED))
             end = np.where(stuck, here.t, end)
             why = np.where(stuck, code, why).astype(np.int8)
         done = done | stuck | hit
     return here, end, why
+
+
+def _ending(group: HigherGroup, inputs: Inputs, s: float, here: _Point, beyond: np.ndarray,
+            goal: np.ndarray, rows: np.ndarray) -> tuple[_Point, np.ndarray]:
+    """The change point where the mode of the ``rows`` ends, if it lies near ``beyond``.
+
+    The change point (t*, x*) by :func:`_fold` from the accepted state is taken where
+    Newton converged, here.t < t* < here.t + 2·(beyond − here.t) and t* < ``goal`` (the step
+    to ``beyond`` was rejected, but near a change point its predictor fails before the mode
+    ends; a goal before t* is reached by stepping), and x* is where the square-root form of a fold
+    (x − x* ∝ √(t* − t)) puts it from the state and its analog, x* ≈ x + 2(t* − t)·s·x′,
+    to half the distance |x* − x| (a change point of other modes is far from there).
+    Returns the change points as states (analogs NaN: unbounded there) and where they hold.
+    """
+    t, x, ok = _fold(group, inputs, s, here, rows)
+    w = weights(group)
+    with np.errstate(all="ignore"):
+        model = here.x + (2.0 * s * (t - here.t))[..., None] * here.x1
+        apart = (np.abs(x - here.x) * w).sum(axis=-1)
+        off = (np.abs(x - model) * w).sum(axis=-1)
+        ok &= (t > here.t) & (t < 2.0 * beyond - here.t) & (t < goal) & (off <= 0.5 * apart)
+    blank = np.full(x.shape, np.nan)
+    return _Point(t, x, blank, blank), ok
 
 
 @dataclass(frozen=True, eq=False)
@@ -333,6 +440,13 @@ def _follow(group: HigherGroup, inputs: Inputs, x0: np.ndarray, targets: np.ndar
     anchor = states.at(nearest)
     h = grid - anchor.t
     guess = anchor.x + (s * h)[..., None] * anchor.x1 + 0.5 * (h * h)[..., None] * anchor.x2
+    # between the last accepted state and the change point where the pass ended (its
+    # analogs NaN): x* + (x_b − x*)·√((t* − t)/(t* − t_b)), the square-root form of a fold
+    prior, tip = states.at(before), states.at(np.minimum(before + 1, len(states.t) - 1))
+    with np.errstate(all="ignore"):
+        root = np.sqrt((tip.t - targets[:, None]) / (tip.t - prior.t))
+        ending = reach & (tip.t > prior.t) & np.isnan(tip.x1[..., 0]) & (root <= 1.0)
+        guess = np.where(ending[..., None], tip.x + (prior.x - tip.x) * root[..., None], guess)
     x, jac, rows, ok = _correct(group, kv, guess, sign[0])
     retry = reach & ~ok
     if retry.any():
@@ -472,13 +586,21 @@ class HigherSolution:
 
 
 def _gap(group: HigherGroup, k: Any, rows: np.ndarray) -> np.ndarray:
-    """−min|ln|E|| over the roots of p off the unit circle (the margin where a mode is gone),
-    where the mask ``rows`` holds (NaN elsewhere)."""
+    """The margin where a mode is gone, where the mask ``rows`` holds (NaN elsewhere).
+
+    −min|ln|E|| over the roots of p off the unit circle. A class IV group with both external
+    pairs sliding may have none (its modes go on, with unbounded slides, beyond the position
+    where the guides are parallel): there −|sin| of the angle between the guides, 0 where the
+    mode ends at the parallel position.
+    """
     coef = np.broadcast_to(coefficients(group, k), rows.shape + (2 * group.degree + 1,))
     out = np.full(rows.shape, np.nan)
     with np.errstate(all="ignore"):
         size = np.abs(np.log(np.abs(roots(coef[rows]))))
         out[rows] = -np.where(size > TAU, size, np.inf).min(axis=-1)
+        if isinstance(group, ClassIV) and all(group.slides):
+            guides = -np.abs(np.sin(np.angle(np.asarray(k.u_c) / k.u_a)))
+            out = np.where(rows & np.isneginf(out), guides, out)
     return out
 
 

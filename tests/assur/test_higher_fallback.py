@@ -249,7 +249,7 @@ def _sliding_couplers(internal: str, seed: int, d: int, external: str = "RR"
     h_c = _polar(rng, d, 90, 110)
     dd, e = h_c + _polar(rng, d, 30, 60), h_c + _polar(rng, d, 30, 60)
     joints = []
-    pairs = ((0, "crank", h_a), (2, "frame", h_c), (0, 1, c), (1, 2, dd), (2, 3, e), (3, 0, f))
+    pairs: tuple[tuple[int, int | str, np.ndarray], ...] = ((0, "crank", h_a), (2, "frame", h_c), (0, 1, c), (1, 2, dd), (2, 3, e), (3, 0, f))
     for (one, two, point), kind in zip(pairs, external + internal, strict=True):
         joints.append(Joint("P", one, two, point, np.exp(2j * np.pi * rng.uniform(size=d)))
                       if kind == "P" else Joint("R", one, two, point))
@@ -282,7 +282,7 @@ def _coupler_modes(system: PoseSystem, known: dict[str, Motion]) -> tuple[np.nda
     h_a, h_c = j[(0, "crank")].point, j[(2, "frame")].point
     at_a, at_c = np.asarray(known["crank"].turn) * h_a, h_c + 0j * h_a
     ab, cd = j[(0, 1)], j[(2, 3)]
-    d_pt, f_pt = j[(1, 2)].point, j[(3, 0)].point
+    d_pt, f_pt = np.asarray(j[(1, 2)].point), np.asarray(j[(3, 0)].point)
     # a–b: a's point C on b's guide, b = c's point D shifted: R = H_a − H_c, X = θ_a.
     first = _quadratic_rows(np.asarray(ab.direction), at_a - at_c, d_pt - h_a, d_pt - h_c)
     # c–d: c's point E on d's guide, d = a's point F shifted: R = H_c − H_a, X = θ_c.
@@ -345,7 +345,7 @@ def test_plans_with_prismatic_pairs_give_the_modes_of_the_hinged_plans(kind: str
     plans = sweep_plans(system)
     hinged = [plan for plan in plans if plan.kinds[:2] == "RR"]
     sliding = [plan for plan in plans if plan.kinds[:2] != "RR"]
-    assert len(hinged) >= 2 and sliding
+    assert len(hinged) >= 2 and sliding and plans[:len(hinged)] == hinged
     old = sweep_modes(system, known, plans=hinged[:2])
     assert old.count.max() >= 2
     real = ~np.isnan(old.points[..., 0])

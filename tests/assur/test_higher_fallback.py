@@ -94,7 +94,8 @@ def _leashed(kinds: str, seed: int, d: int) -> tuple[Triad, TriadInputs, PoseSys
     """Random triads of the leash kinds ``kinds`` ("RR-RP-PR": internal pair first), drawn
     assembled, leash 1 on a crank turned by 37°, leashes 2, 3 on the frame: the triad, its
     inputs there, its pose system (an R–P leash slides on a guide of its known link, a P–R
-    leash on a guide of the base through its hinge) and the known links."""
+    leash on a guide of the base through its hinge; the prismatic pair drawn at a point of
+    its guide up to 30 from the hinge) and the known links."""
     rng = np.random.default_rng(seed)
     a1 = _polar(rng, d, 8, 15)
     p1 = a1 + _polar(rng, d, 40, 70)
@@ -103,16 +104,18 @@ def _leashed(kinds: str, seed: int, d: int) -> tuple[Triad, TriadInputs, PoseSys
     guide: list[np.ndarray | None] = [None, None, None]
     joints = []
     for k, kind in enumerate(kinds.split("-")):
+        u = np.exp(2j * np.pi * rng.uniform(size=d))
+        slide = rng.uniform(-30, 30, d) * u
         if kind != "RR":
-            guide[k] = np.exp(2j * np.pi * rng.uniform(size=d))
+            guide[k] = u
         if kind == "PR":
             base[k] = outer[k]
-            joints.append(Joint("P", k + 1, 0, outer[k], guide[k]))
+            joints.append(Joint("P", k + 1, 0, outer[k] + slide, u))
         else:
             joints.append(Joint("R", 0, k + 1, base[k]))
         if kind == "RP":
             outer[k] = base[k]
-            joints.append(Joint("P", k + 1, f"k{k + 1}", outer[k], guide[k]))
+            joints.append(Joint("P", k + 1, f"k{k + 1}", outer[k] + slide, u))
         else:
             joints.append(Joint("R", k + 1, f"k{k + 1}", outer[k]))
     leashes = tuple(kinds.split("-"))

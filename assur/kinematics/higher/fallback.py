@@ -507,8 +507,46 @@ def _brackets(system: PoseSystem, roles: Plan, known: dict[str, Motion], samples
             lo.append(np.where(change, ends[0], np.nan))
             hi.append(np.where(change, ends[1], np.nan))
             branch.append(np.where(change & ~np.isnan(inside), s, np.nan))
+    if roles.kinds == "PRP":  # a root between a sample and a pole of the slides
+        for near, far in _poles(wide, roles, grown, alpha, revolute):
+            change = np.sign(_walk(wide, roles, grown, near, 1.0)[0]) \
+                != np.sign(_walk(wide, roles, grown, far, 1.0)[0])
+            lo.append(np.where(change, near, np.nan))
+            hi.append(np.where(change, far, np.nan))
+            branch.append(np.where(change & ~np.isnan(near), 1.0, np.nan))
     return np.concatenate(lo, axis=-1), np.concatenate(hi, axis=-1), np.concatenate(branch,
                                                                                     axis=-1)
+
+
+def _parallel(system: PoseSystem, roles: Plan, known: dict[str, Motion], alpha: np.ndarray
+              ) -> np.ndarray:
+    """Im(conj(g₃)·g₁) of a P, R, P dyad's guides at the sweep parameters α: zero where they
+    are parallel and its slides grow without bound (a pole of the last residual)."""
+    turn = _swept(system, roles, known, alpha)[1]
+    outer = known[str(_other(system.joints[roles.p3], roles.z))]
+    g1 = np.asarray(system.joints[roles.p1].direction) * turn
+    g3 = np.asarray(system.joints[roles.p3].direction) * np.asarray(outer.turn)
+    return np.asarray((np.conj(g3) * g1).imag)
+
+
+def _poles(system: PoseSystem, roles: Plan, known: dict[str, Motion], alpha: np.ndarray,
+           revolute: bool) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+    """The intervals from a sample to a pole of the slides and from the pole to the next
+    sample (the pole located by bisection, 60 halvings), where the guides turn parallel
+    between two samples; NaN where they do not."""
+    step = alpha[1] - alpha[0]
+    gap = _parallel(system, roles, known, alpha)
+    flip = np.sign(gap) != np.sign(np.roll(gap, -1, axis=-1))
+    if not revolute:
+        flip[..., -1] = False
+    start, sign = _compress(np.where(flip, alpha, np.nan), np.sign(gap))
+    a, b = start, start + step
+    end = b
+    for _ in range(60):
+        mid = 0.5 * (a + b)
+        left = np.sign(_parallel(system, roles, known, mid)) == sign
+        a, b = np.where(left, mid, a), np.where(left, b, mid)
+    return (start, a), (b, end)
 
 
 def _pairs(system: PoseSystem, roles: Plan, known: dict[str, Motion], alpha: np.ndarray,

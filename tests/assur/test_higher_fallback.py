@@ -393,3 +393,15 @@ def test_a_group_of_sliders_only_has_no_sweep() -> None:
     assert sweep_plans(sliders) == []
     with pytest.raises(ValueError, match="0–crank P"):
         sweep_modes(sliders, known)
+
+
+def test_a_coarse_sweep_finds_the_roots_beside_a_pole_of_the_slides() -> None:
+    """A P, R, P dyad's guides turn parallel twice a turn and its slides pass through
+    infinity: with 180 samples roots lie between a sample and the pole on some of 200 designs,
+    and the sweep through that dyad alone still finds every mode of the closed form."""
+    group, inputs, system, known = _leashed("RP-RP-PR", 196, 200)
+    modes = assembly_modes(group, inputs)
+    keep = _robust(modes)
+    plans = [plan for plan in sweep_plans(system) if plan.kinds == "PRP"]
+    found = sweep_modes(system, known, samples=180, plans=plans)
+    assert (modes.count[keep] == found.count[keep]).all()

@@ -175,6 +175,15 @@ def test_a_coarse_sweep_still_finds_every_mode(kind: str) -> None:
     assert (modes.count[keep] == found.count[keep]).all()
 
 
+def _among(some: PoseModes, every: PoseModes, system: PoseSystem) -> bool:
+    """Every mode of ``some`` is one of ``every``'s: its joints within 1e-7 L."""
+    apart = np.abs(some.points[..., :, None, :] - every.points[..., None, :, :]).max(axis=-1)
+    nearest = np.nan_to_num(apart, nan=np.inf).min(axis=-1)
+    real = ~np.isnan(some.points[..., 0])
+    size = np.broadcast_to(np.asarray(system.size)[..., None], real.shape)
+    return bool((nearest[real] <= 1e-7 * size[real]).all())
+
+
 def test_newton_from_random_starts_finds_only_modes_of_the_sweep() -> None:
     """Multi-start Newton on the full pose system: every pose it accepts is one of the sweep's
     modes (it may miss some, it adds none), on the test vectors and 10 random class IV groups."""
@@ -188,11 +197,7 @@ def test_newton_from_random_starts_finds_only_modes_of_the_sweep() -> None:
         known = _still()
         swept, started = sweep_modes(system, known), newton_modes(system, known, starts=120)
         assert started.count.sum() >= 0.5 * swept.count.sum()
-        apart = np.abs(started.points[..., :, None, :] - swept.points[..., None, :, :])
-        nearest = np.nan_to_num(apart.max(axis=-1), nan=np.inf).min(axis=-1)
-        real = ~np.isnan(started.points[..., 0])
-        size = np.broadcast_to(np.asarray(system.size)[..., None], real.shape)
-        assert (nearest[real] <= 1e-7 * size[real]).all()
+        assert _among(started, swept, system)
 
 
 SLIDING = 1000 if FULL else 200
@@ -351,14 +356,10 @@ def test_plans_with_prismatic_pairs_give_the_modes_of_the_hinged_plans(kind: str
     assert len(hinged) >= 2 and sliding and plans[:len(hinged)] == hinged
     old = sweep_modes(system, known, plans=hinged[:2])
     assert old.count.max() >= 2
-    real = ~np.isnan(old.points[..., 0])
-    size = np.broadcast_to(np.asarray(system.size)[..., None], real.shape)
     for plan in sliding:
         new = sweep_modes(system, known, plans=[plan])
         assert (old.count == new.count).all(), plan.kinds
-        apart = np.abs(old.points[..., :, None, :] - new.points[..., None, :, :]).max(axis=-1)
-        nearest = np.nan_to_num(apart, nan=np.inf).min(axis=-1)
-        assert (nearest[real] <= 1e-7 * size[real]).all(), plan.kinds
+        assert _among(old, new, system), plan.kinds
 
 
 def test_the_groups_compared_have_every_kind_of_dyad() -> None:
@@ -377,11 +378,7 @@ def test_newton_finds_only_modes_of_the_sweep_through_sliding_couplers(internal:
     system, known = _sliding_couplers(internal, 200, 6)
     swept, started = sweep_modes(system, known), newton_modes(system, known, starts=200)
     assert started.count.sum() >= 0.9 * swept.count.sum()
-    apart = np.abs(started.points[..., :, None, :] - swept.points[..., None, :, :])
-    nearest = np.nan_to_num(apart.max(axis=-1), nan=np.inf).min(axis=-1)
-    real = ~np.isnan(started.points[..., 0])
-    size = np.broadcast_to(np.asarray(system.size)[..., None], real.shape)
-    assert (nearest[real] <= 1e-7 * size[real]).all()
+    assert _among(started, swept, system)
 
 
 def test_a_group_of_sliders_only_has_no_sweep() -> None:

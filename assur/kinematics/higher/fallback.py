@@ -25,13 +25,15 @@ It is an independent second method: it shares no equation with the closed forms.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from itertools import permutations
 from typing import Literal
 
 import numpy as np
 
-__all__ = ["Joint", "Motion", "PoseModes", "PoseSystem", "newton_modes", "sweep_modes"]
+__all__ = ["Joint", "Motion", "Plan", "PoseModes", "PoseSystem", "newton_modes", "sweep_modes",
+           "sweep_plans"]
 
 #: A body of a joint: a link of the group (0–3) or a known link by name.
 Body = int | str
@@ -101,10 +103,20 @@ class PoseModes:
 
 
 @dataclass(frozen=True)
-class _Roles:
-    """The sweep's plan: link x turned or slid at its external joint, the dyad (y, z) closed on
-    x at joint p1, between them at p2 and on a known link at p3, the last link w with its two
-    joints q1, q2."""
+class Plan:
+    """A sweep's plan: link x turned or slid at its external joint ``turned``, the dyad (y, z)
+    closed on x at joint p1, between them at p2 and on a known link at p3, the last link w
+    with its two joints q1, q2.
+
+    Attributes
+    ----------
+    x, y, z, w : int
+        The links in their roles.
+    turned, p1, p2, p3, q1, q2 : int
+        The joints (indices into ``PoseSystem.joints``) in their roles.
+    kinds : str
+        The kinds of p1, p2, p3 (``"RRR"``, ``"RPR"``, …; never ``"PPP"``).
+    """
 
     x: int
     turned: int
@@ -116,6 +128,7 @@ class _Roles:
     w: int
     q1: int
     q2: int
+    kinds: str
 
 
 @dataclass(frozen=True, eq=False)
@@ -235,10 +248,21 @@ def _equations(system: PoseSystem, bodies: dict[Body, Pose]) -> np.ndarray:
     return np.stack(np.broadcast_arrays(*rows), axis=-1)
 
 
-def _plans(system: PoseSystem) -> list[_Roles]:
-    """The sweep plans, one per link that can be turned (revolute) or slid (prismatic) at a
-    joint with a known link: y hinged to x, z hinged to y and jointed to a known link, the two
-    joints left on w."""
+def sweep_plans(system: PoseSystem) -> list[Plan]:
+    """The sweep plans of a group: first, one per link x, those whose dyad has two internal
+    hinges (y hinged to x, z hinged to y); then, one per link x, those with a prismatic pair
+    at p1 or p2 (any kinds but three prismatic pairs).
+
+    Parameters
+    ----------
+    system : PoseSystem
+        The group.
+
+    Returns
+    -------
+    list of Plan
+        Possibly empty (every link with an external pair sits beside prismatic pairs only).
+    """
     joints = system.joints
 
     def between(a: Body, b: Body) -> list[int]:
@@ -246,28 +270,31 @@ def _plans(system: PoseSystem) -> list[_Roles]:
 
     def known(a: int) -> list[int]:
         return [k for k, j in enumerate(joints) if a in (j.first, j.second)
-                and isinstance(j.first if j.second == a else j.second, str)]
+                and isinstance(_other(j, a), str)]
 
-    plans: dict[int, _Roles] = {}
+    hinged: dict[int, Plan] = {}
+    other: dict[int, Plan] = {}
     for x, y, z, w in permutations(range(4)):
         for turned in known(x):
             for p1 in between(x, y):
                 for p2 in between(y, z):
                     for p3 in known(z):
-                        used = {turned, p1, p2, p3}
-                        rest = [k for k in range(6) if k not in used]
-                        if joints[p1].kind == joints[p2].kind == "R" and len(rest) == 2 \
-                                and all(w in (joints[k].first, joints[k].second) for k in rest):
-                            plans.setdefault(x, _Roles(x, turned, y, z, p1, p2, p3, w,
-                                                       rest[0], rest[1]))
-    return list(plans.values())
+                        rest = [k for k in range(6) if k not in {turned, p1, p2, p3}]
+                        kinds = "".join(joints[k].kind for k in (p1, p2, p3))
+                        if kinds == "PPP" or len(rest) != 2 or not all(
+                                w in (joints[k].first, joints[k].second) for k in rest):
+                            continue
+                        plans = hinged if kinds[:2] == "RR" else other
+                        plans.setdefault(x, Plan(x, turned, y, z, p1, p2, p3, w, rest[0],
+                                                 rest[1], kinds))
+    return list(hinged.values()) + list(other.values())
 
 
 def _other(j: Joint, body: Body) -> Body:
     return j.second if j.first == body else j.first
 
 
-def _swept(system: PoseSystem, roles: _Roles, known: dict[str, Motion], alpha: np.ndarray
+def _swept(system: PoseSystem, roles: Plan, known: dict[str, Motion], alpha: np.ndarray
            ) -> Pose:
     """The pose of x at the sweep parameter α: turned by α about its hinge, or slid by
     L·tan(α/2) along its guide (turning with the guide's link)."""
@@ -282,42 +309,101 @@ def _swept(system: PoseSystem, roles: _Roles, known: dict[str, Motion], alpha: n
     return base[0] + shift, base[1] + 0j * shift
 
 
-def _dyad(system: PoseSystem, roles: _Roles, known: dict[str, Motion], x_pose: Pose,
+def _meet(centre: np.ndarray, radius: np.ndarray, start: np.ndarray, guide: np.ndarray,
+          sigma: float) -> tuple[np.ndarray, np.ndarray]:
+    """The slide s of the point ``start + s·guide`` (|guide| = 1) at the distance ``radius``
+    from ``centre`` on branch σ, and the discriminant (negative: the line misses the circle)."""
+    gap = start - centre
+    b = (np.conj(guide) * gap).real
+    height2 = b ** 2 - np.abs(gap) ** 2 + radius ** 2
+    return -b + sigma * np.sqrt(np.maximum(height2, 0.0)), height2
+
+
+def _cross(start: np.ndarray, guide: np.ndarray, other: np.ndarray, along: np.ndarray
+           ) -> np.ndarray:
+    """The slide s where the line ``start + s·guide`` meets the line ``other + t·along``."""
+    return np.asarray((np.conj(along) * (other - start)).imag / (np.conj(along) * guide).imag)
+
+
+def _single(slide: np.ndarray, sigma: float) -> np.ndarray:
+    """The discriminant of a line–line closure: its one branch is σ = +1, assembled where the
+    lines cross."""
+    return np.where(np.isfinite(slide) & (sigma > 0), 1.0, -1.0)
+
+
+def _dyad(system: PoseSystem, roles: Plan, known: dict[str, Motion], x_pose: Pose,
           sigma: float) -> tuple[Pose, Pose, np.ndarray]:
     """The poses of y and z closed as a dyad on x (branch σ) and whether it assembles: y
-    hinged to x at p1 and to z at p2; z hinged (circle–circle) or sliding (circle–line) on
-    its known link at p3."""
+    jointed to x at p1, to z at p2, z to its known link K at p3; a prismatic pair makes its
+    two links turn together. Circle–circle (R, R, R), circle–line (R, R, P; P, R, R), the
+    rotation of y and z from a line's distance (R, P, R), or line–line (P, R, P; R, P, P;
+    P, P, R: one branch, σ = −1 never assembles)."""
     j1, j2, j3 = (system.joints[k] for k in (roles.p1, roles.p2, roles.p3))
     p1, p2, p3 = (np.asarray(j.point) for j in (j1, j2, j3))
-    centre = _at(x_pose, p1)
-    reach = np.abs(p2 - p1)
     outer = known[str(_other(j3, roles.z))]
     out_pose = (np.asarray(outer.shift), np.asarray(outer.turn))
+    kinds = roles.kinds
     with np.errstate(all="ignore"):
-        if j3.kind == "R":
-            hinge = _at(out_pose, p3)
-            arm = np.abs(p2 - p3)
-            d = hinge - centre
-            rho = np.abs(d)
-            along = (reach ** 2 - arm ** 2 + rho ** 2) / (2.0 * rho)
-            height2 = reach ** 2 - along ** 2
-            joint = centre + (along + 1j * sigma * np.sqrt(np.maximum(height2, 0.0))) * d / rho
-            z_turn = (joint - hinge) / (p2 - p3)
-            z_pose = (hinge - z_turn * p3, z_turn)
+        if kinds[:2] == "RR":
+            centre = _at(x_pose, p1)
+            reach = np.abs(p2 - p1)
+            if kinds == "RRR":
+                hinge = _at(out_pose, p3)
+                arm = np.abs(p2 - p3)
+                d = hinge - centre
+                rho = np.abs(d)
+                along = (reach ** 2 - arm ** 2 + rho ** 2) / (2.0 * rho)
+                height2 = reach ** 2 - along ** 2
+                joint = centre + (along + 1j * sigma * np.sqrt(np.maximum(height2, 0.0))) \
+                    * d / rho
+                z_turn = (joint - hinge) / (p2 - p3)
+                z_pose = (hinge - z_turn * p3, z_turn)
+            else:
+                guide = np.asarray(j3.direction) * out_pose[1]
+                s, height2 = _meet(centre, reach, _at(out_pose, p2), guide, sigma)
+                joint = _at(out_pose, p2) + s * guide
+                z_pose = (out_pose[0] + s * guide, out_pose[1] + 0j * s)
+            y_turn = (joint - centre) / (p2 - p1)
+            y_pose = (centre - y_turn * p1, y_turn)
+        elif kinds == "RPR":
+            centre, hinge = _at(x_pose, p1), _at(out_pose, p3)
+            u2 = np.asarray(j2.direction)
+            rho = np.abs(centre - hinge)
+            ratio = (np.conj(u2) * (p1 - p3)).imag / rho
+            height2 = 1.0 - ratio ** 2
+            tilt = sigma * np.sqrt(np.maximum(height2, 0.0)) + 1j * ratio
+            turn = (centre - hinge) / rho * np.conj(u2 * tilt)
+            y_pose, z_pose = (centre - turn * p1, turn), (hinge - turn * p3, turn)
+        elif kinds[0] == "P" and kinds[1] == "R":
+            g1 = np.asarray(j1.direction) * x_pose[1]
+            if kinds[2] == "R":
+                hinge = _at(out_pose, p3)
+                s, height2 = _meet(hinge, np.abs(p2 - p3), _at(x_pose, p2), g1, sigma)
+                z_turn = (_at(x_pose, p2) + s * g1 - hinge) / (p2 - p3)
+                z_pose = (hinge - z_turn * p3, z_turn)
+            else:
+                g3 = np.asarray(j3.direction) * out_pose[1]
+                s = _cross(_at(x_pose, p2), g1, _at(out_pose, p2), g3)
+                z_pose = (_at(x_pose, p2) + s * g1 - out_pose[1] * p2, out_pose[1] + 0j * s)
+                height2 = _single(s, sigma)
+            y_pose = (x_pose[0] + s * g1, x_pose[1] + 0j * s)
         else:
-            guide = np.asarray(j3.direction) * out_pose[1]
-            start = _at(out_pose, p2) - centre
-            b = (np.conj(guide) * start).real
-            height2 = b ** 2 - np.abs(start) ** 2 + reach ** 2
-            s = -b + sigma * np.sqrt(np.maximum(height2, 0.0))
-            joint = centre + start + s * guide
-            z_pose = (out_pose[0] + s * guide, out_pose[1] + 0j * s)
-        y_turn = (joint - centre) / (p2 - p1)
-        y_pose = (centre - y_turn * p1, y_turn)
+            g2 = np.asarray(j2.direction)
+            if kinds[0] == "R":  # R, P, P: y and z turn with K
+                turn = out_pose[1]
+                y_pose = (_at(x_pose, p1) - turn * p1, turn)
+                t = _cross(y_pose[0], g2 * turn, out_pose[0], np.asarray(j3.direction) * turn)
+                z_pose = (y_pose[0] + t * g2 * turn, turn + 0j * t)
+            else:  # P, P, R: y and z turn with x
+                turn = x_pose[1]
+                z_pose = (_at(out_pose, p3) - turn * p3, turn)
+                t = _cross(x_pose[0], np.asarray(j1.direction) * turn, z_pose[0], g2 * turn)
+                y_pose = (x_pose[0] + t * np.asarray(j1.direction) * turn, turn + 0j * t)
+            height2 = _single(t, sigma)
     return y_pose, z_pose, np.asarray(height2 >= 0.0)
 
 
-def _last(system: PoseSystem, roles: _Roles, bodies: dict[Body, Pose]) -> np.ndarray:
+def _last(system: PoseSystem, roles: Plan, bodies: dict[Body, Pose]) -> np.ndarray:
     """The constraint left on the last link w: hinge–hinge distance minus its drawn length;
     with one prismatic joint the offset of w's drawn point there from the guide (w turning
     with the guide's link); with two, L times the two links' rotation difference."""
@@ -333,13 +419,13 @@ def _last(system: PoseSystem, roles: _Roles, bodies: dict[Body, Pose]) -> np.nda
     return np.asarray(system.size * np.angle(np.conj(u[1]) * v[1]))
 
 
-def _ends(system: PoseSystem, roles: _Roles) -> tuple[Joint, Joint]:
+def _ends(system: PoseSystem, roles: Plan) -> tuple[Joint, Joint]:
     """The last link's two joints, a revolute one first."""
     q1, q2 = system.joints[roles.q1], system.joints[roles.q2]
     return (q2, q1) if q1.kind == "P" and q2.kind == "R" else (q1, q2)
 
 
-def _closing(system: PoseSystem, roles: _Roles, bodies: dict[Body, Pose]) -> Pose:
+def _closing(system: PoseSystem, roles: Plan, bodies: dict[Body, Pose]) -> Pose:
     """The last link's pose at a root of its residual: through its two hinges; hinged and
     turning with the guide's link; or turning with both guides' links, its drawn points on
     both guide lines."""
@@ -360,7 +446,7 @@ def _closing(system: PoseSystem, roles: _Roles, bodies: dict[Body, Pose]) -> Pos
         return g1 + along * d1, turn
 
 
-def _walk(system: PoseSystem, roles: _Roles, known: dict[str, Motion], alpha: np.ndarray,
+def _walk(system: PoseSystem, roles: Plan, known: dict[str, Motion], alpha: np.ndarray,
           sigma: float) -> tuple[np.ndarray, np.ndarray]:
     """The last residual and whether the dyad assembles at the sweep parameters α."""
     x_pose = _swept(system, roles, known, alpha)
@@ -384,7 +470,7 @@ def _expand(system: PoseSystem, known: dict[str, Motion]
                                 for n, m in known.items()}
 
 
-def _brackets(system: PoseSystem, roles: _Roles, known: dict[str, Motion], samples: int
+def _brackets(system: PoseSystem, roles: Plan, known: dict[str, Motion], samples: int
               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Brackets [α₀, α₁] of a sign change on a branch σ, (..., 2·samples) each, NaN where
     there is none; a change across the join of the two branches at a dyad's limit is moved
@@ -421,11 +507,49 @@ def _brackets(system: PoseSystem, roles: _Roles, known: dict[str, Motion], sampl
             lo.append(np.where(change, ends[0], np.nan))
             hi.append(np.where(change, ends[1], np.nan))
             branch.append(np.where(change & ~np.isnan(inside), s, np.nan))
+    if roles.kinds == "PRP":  # a root between a sample and a pole of the slides
+        for near, far in _poles(wide, roles, grown, alpha, revolute):
+            change = np.sign(_walk(wide, roles, grown, near, 1.0)[0]) \
+                != np.sign(_walk(wide, roles, grown, far, 1.0)[0])
+            lo.append(np.where(change, near, np.nan))
+            hi.append(np.where(change, far, np.nan))
+            branch.append(np.where(change & ~np.isnan(near), 1.0, np.nan))
     return np.concatenate(lo, axis=-1), np.concatenate(hi, axis=-1), np.concatenate(branch,
                                                                                     axis=-1)
 
 
-def _pairs(system: PoseSystem, roles: _Roles, known: dict[str, Motion], alpha: np.ndarray,
+def _parallel(system: PoseSystem, roles: Plan, known: dict[str, Motion], alpha: np.ndarray
+              ) -> np.ndarray:
+    """Im(conj(g₃)·g₁) of a P, R, P dyad's guides at the sweep parameters α: zero where they
+    are parallel and its slides grow without bound (a pole of the last residual)."""
+    turn = _swept(system, roles, known, alpha)[1]
+    outer = known[str(_other(system.joints[roles.p3], roles.z))]
+    g1 = np.asarray(system.joints[roles.p1].direction) * turn
+    g3 = np.asarray(system.joints[roles.p3].direction) * np.asarray(outer.turn)
+    return np.asarray((np.conj(g3) * g1).imag)
+
+
+def _poles(system: PoseSystem, roles: Plan, known: dict[str, Motion], alpha: np.ndarray,
+           revolute: bool) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+    """The intervals from a sample to a pole of the slides and from the pole to the next
+    sample (the pole located by bisection, 60 halvings), where the guides turn parallel
+    between two samples; NaN where they do not."""
+    step = alpha[1] - alpha[0]
+    gap = _parallel(system, roles, known, alpha)
+    flip = np.sign(gap) != np.sign(np.roll(gap, -1, axis=-1))
+    if not revolute:
+        flip[..., -1] = False
+    start, sign = _compress(np.where(flip, alpha, np.nan), np.sign(gap))
+    a, b = start, start + step
+    end = b
+    for _ in range(60):
+        mid = 0.5 * (a + b)
+        left = np.sign(_parallel(system, roles, known, mid)) == sign
+        a, b = np.where(left, mid, a), np.where(left, b, mid)
+    return (start, a), (b, end)
+
+
+def _pairs(system: PoseSystem, roles: Plan, known: dict[str, Motion], alpha: np.ndarray,
            f: np.ndarray, ok: np.ndarray, sigma: float, revolute: bool
            ) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
     """Brackets of two roots closer than a sample on one branch: where |f| has a local
@@ -454,7 +578,7 @@ def _pairs(system: PoseSystem, roles: _Roles, known: dict[str, Motion], alpha: n
     return (np.where(crossed, a, np.nan), middle), (middle, np.where(crossed, b, np.nan))
 
 
-def _limit(system: PoseSystem, roles: _Roles, known: dict[str, Motion], inside: np.ndarray,
+def _limit(system: PoseSystem, roles: Plan, known: dict[str, Motion], inside: np.ndarray,
            outside: np.ndarray) -> np.ndarray:
     """The sweep parameter where the dyad stops assembling, between ``inside`` (assembled) and
     ``outside``, by bisection (60 halvings)."""
@@ -466,7 +590,7 @@ def _limit(system: PoseSystem, roles: _Roles, known: dict[str, Motion], inside: 
     return a
 
 
-def _bisect(system: PoseSystem, roles: _Roles, known: dict[str, Motion], lo: np.ndarray,
+def _bisect(system: PoseSystem, roles: Plan, known: dict[str, Motion], lo: np.ndarray,
             hi: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     """The root of the last residual on branch σ between lo and hi (60 halvings)."""
     def f(alpha: np.ndarray) -> np.ndarray:
@@ -484,7 +608,7 @@ def _bisect(system: PoseSystem, roles: _Roles, known: dict[str, Motion], lo: np.
     return 0.5 * (lo + hi)
 
 
-def _assemble(system: PoseSystem, roles: _Roles, known: dict[str, Motion], alpha: np.ndarray,
+def _assemble(system: PoseSystem, roles: Plan, known: dict[str, Motion], alpha: np.ndarray,
               sigma: np.ndarray) -> np.ndarray:
     """The full unknowns at (α, σ): x, y, z from the sweep, w from its first joint (hinge:
     turned as drawn about it, then the polish corrects it)."""
@@ -540,7 +664,7 @@ def _compress(*columns: np.ndarray) -> tuple[np.ndarray, ...]:
 
 
 def sweep_modes(system: PoseSystem, known: dict[str, Motion], samples: int = 1440,
-                plans_used: int = 2) -> PoseModes:
+                plans_used: int = 2, *, plans: Sequence[Plan] | None = None) -> PoseModes:
     """Every real assembly mode by the one-parameter sweep, polished on the full system.
 
     Parameters
@@ -554,6 +678,8 @@ def sweep_modes(system: PoseSystem, known: dict[str, Motion], samples: int = 144
     plans_used : int
         How many sweeps (each turning or sliding another link) to join: a pair of roots
         closer than a sample to a dyad's limit in one sweep is away from it in another.
+    plans : sequence of Plan, optional
+        The sweeps to join instead of the first ``plans_used`` of :func:`sweep_plans`.
 
     Returns
     -------
@@ -562,16 +688,18 @@ def sweep_modes(system: PoseSystem, known: dict[str, Motion], samples: int = 144
     Raises
     ------
     ValueError
-        When the group has no link to turn or slide with a dyad of two hinged links beside it
-        (use :func:`newton_modes`).
+        When the group has no sweep plan: every link with an external pair is joined to the
+        rest through prismatic pairs only (use :func:`newton_modes`).
     """
-    plans = _plans(system)[:plans_used]
-    if not plans:
-        raise ValueError("no sweep: no link with an external pair beside a dyad of two "
-                         "hinges; use newton_modes")
+    chosen = list(sweep_plans(system)[:plans_used] if plans is None else plans)
+    if not chosen:
+        kinds = ", ".join(f"{j.first}–{j.second} {j.kind}" for j in system.joints)
+        raise ValueError(f"no sweep plan for the group with the pairs {kinds}: every link "
+                         "with an external pair has only prismatic pairs to the next two "
+                         "links; use newton_modes")
     wide, grown = _expand(system, known)
     found = []
-    for roles in plans:
+    for roles in chosen:
         lo, hi, sigma = _compress(*_brackets(system, roles, known, samples))
         with np.errstate(all="ignore"):
             alpha = _bisect(wide, roles, grown, lo, hi, sigma)

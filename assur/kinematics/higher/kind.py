@@ -32,6 +32,7 @@ import numpy as np
 
 from assur.kinematics import jets as J
 from assur.kinematics.higher.continuation import HigherSolution, follow_mode
+from assur.kinematics.higher.coupled import ClassIVCoupled
 from assur.kinematics.higher.groups import (
     ClassIV,
     ClassIVInputs,
@@ -366,7 +367,10 @@ def _class_iv_refusals(build: _Builder, internal: dict[str, PairId],
     and leave c a free translation against a; one such coupler beside two sliding external
     pairs (the rotations of a and c both fixed by the known links) puts its condition on the
     known links only and leaves the two slides one equation; and a coupler whose two guides
-    are parallel as drawn keeps a free slide along them.
+    are parallel as drawn keeps a free slide along them. Any other form that
+    :attr:`ClassIVCoupled.determinate` rejects (a slide parallel to the guides of the
+    couplers' prismatic pairs, which then enters neither equation) is named by its sliding
+    pairs.
 
     Returns
     -------
@@ -390,6 +394,19 @@ def _class_iv_refusals(build: _Builder, internal: dict[str, PairId],
         if abs(math.sin(build.direction(pairs[one]) - build.direction(pairs[two]))) < 1e-6:
             refusals.append(("class_iv_parallel", {"link": coupler,
                                                    "pairs": f"{one}, {two}"}))
+    sliding = [pid for pid in (*internal.values(), *external) if pairs[pid].type.value == "P"]
+    if refusals or all(pairs[pid].type.value == "R" for pid in internal.values()):
+        return refusals
+
+    def guide(pid: PairId) -> complex | None:
+        return cmath.exp(1j * build.direction(pairs[pid])) if pid in sliding else None
+
+    drawn = ClassIVCoupled(*(build.point(pairs[pid]) for pid in
+                             (external[0], internal["C"], internal["F"], external[1],
+                              internal["D"], internal["E"])),
+                           *(guide(pid) for pid in (*external, *internal.values())))
+    if not drawn.determinate:
+        refusals.append(("class_iv_unfixed", {"pairs": ", ".join(map(str, sliding))}))
     return refusals
 
 
@@ -630,8 +647,6 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
         drawn = (k0.h_a, pts["C"], pts["F"], k0.h_c, pts["D"], pts["E"], k0.u_a, k0.u_c)
         if not betas:
             return ClassIV(*drawn)
-        from assur.kinematics.higher.coupled import ClassIVCoupled
-
         w = {name: J.expi(beta) for name, beta in betas.items()}
         return ClassIVCoupled(*drawn, w_c=w.get("C"), w_d=w.get("D"), w_e=w.get("E"),
                               w_f=w.get("F"))

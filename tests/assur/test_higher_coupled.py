@@ -106,7 +106,7 @@ def random_designs(form: str, seed: int, d: int) -> Designs:
     return Designs(form, ClassIVCoupled(h_a, c, f, h_c, dd, e, **guides))
 
 
-def _clear(modes: AssemblyModes) -> np.ndarray:
+def clear(modes: AssemblyModes) -> np.ndarray:
     """Designs away from a birth or merge of modes: no root of p just off the unit circle, no
     mode with a thin margin."""
     size = np.abs(np.log(np.abs(modes.roots)))
@@ -142,7 +142,7 @@ def test_hinged_couplers_give_the_modes_of_class_iv(form: str) -> None:
     plain = ClassIV(g.h_a, g.c, g.f, g.h_c, g.d, g.e, g.u_a, g.u_c)
     k = designs.inputs(np.full(COUNTED, np.radians(37.0)))
     mine, theirs = assembly_modes(g, k), assembly_modes(plain, k)
-    keep = _clear(mine) & _clear(theirs)
+    keep = clear(mine) & clear(theirs)
     assert keep.mean() >= 0.9
     assert (mine.count[keep] == theirs.count[keep]).all()
     assert mine.count.max() >= 2
@@ -175,7 +175,7 @@ def test_mode_count_agrees_with_the_fallback(form: str) -> None:
     phi = np.radians(37.0)
     modes = assembly_modes(g, designs.inputs(np.full(d, phi)))
     found = fallback_modes(designs, phi)
-    keep = _clear(modes)
+    keep = clear(modes)
     assert keep.mean() >= 0.9
     assert (modes.count[keep] == found.count[keep]).all()
     assert modes.count.max() >= 2

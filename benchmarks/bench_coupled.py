@@ -20,7 +20,7 @@ import argparse
 import os
 import sys
 import time
-from collections.abc import Callable
+from functools import partial
 from pathlib import Path
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")  # one core: no threaded BLAS anywhere
@@ -29,7 +29,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "assur"))
 
-from test_higher_coupled import (
+from bench_higher import rate
+from test_higher_coupled import (  # type: ignore[import-not-found]
     COUPLED,
     SHARED,
     clear,
@@ -37,7 +38,7 @@ from test_higher_coupled import (
     random_designs,
 )
 
-from assur.kinematics.higher import ClassIV, assembly_modes, follow_mode
+from assur.kinematics.higher import ClassIV, HigherGroup, assembly_modes, follow_mode
 
 
 def counts(form: str, d: int) -> tuple[int, int, int]:
@@ -51,23 +52,6 @@ def counts(form: str, d: int) -> tuple[int, int, int]:
     return int((keep & same).sum()), int((~keep).sum()), int((keep & ~same).sum())
 
 
-def rate(run: Callable[[], object], amount: int, rounds: int, batch: float = 0.3
-         ) -> tuple[float, float]:
-    """Median and best amount per second over ``rounds`` timings of at least ``batch`` s."""
-    run()
-    rates = []
-    for _ in range(rounds):
-        calls, start = 0, time.perf_counter()
-        while True:
-            run()
-            calls += 1
-            elapsed = time.perf_counter() - start
-            if elapsed >= batch:
-                break
-        rates.append(calls * amount / elapsed)
-    return float(np.median(rates)), float(np.max(rates))
-
-
 def speed(form: str, d: int, rounds: int) -> None:
     """Designs/s of all modes and positions/s of one design's cycle, both solvers."""
     designs = random_designs(form, 2000 + SHARED.index(form), d)
@@ -79,9 +63,11 @@ def speed(form: str, d: int, rounds: int) -> None:
     single = one.group
     single_plain = ClassIV(single.h_a, single.c, single.f, single.h_c, single.d, single.e,
                            single.u_a, single.u_c)
-    for name, group, alone in (("coupled", g, single), ("ClassIV", plain, single_plain)):
-        modes = rate(lambda group=group: assembly_modes(group, k), d, rounds)
-        cycle = rate(lambda alone=alone: follow_mode(alone, one.inputs, phi), 360, rounds)
+    solvers: tuple[tuple[str, HigherGroup, HigherGroup], ...] = (
+        ("coupled", g, single), ("ClassIV", plain, single_plain))
+    for name, group, alone in solvers:
+        modes = rate(partial(assembly_modes, group, k), d, rounds)
+        cycle = rate(partial(follow_mode, alone, one.inputs, phi), 360, rounds)
         print(f"{form:9s} {name:8s} modes {modes[0]:10.0f} {modes[1]:10.0f} designs/s   "
               f"cycle {cycle[0]:9.0f} {cycle[1]:9.0f} positions/s")
 

@@ -49,6 +49,15 @@ SPLIT = GRID[None, :] ** -np.arange(-FULL_DEGREE, FULL_DEGREE + 1)[:, None] / GR
 VANISH = 1e-10
 
 
+#: (p, m) of each form (couplers' kinds, slides, ε) once read (see ClassIVCoupled._form).
+_FORMS: dict[tuple[tuple[str, str], tuple[bool, bool], int], tuple[int, int]] = {}
+
+
+def _everywhere(holds: np.ndarray, values: np.ndarray) -> bool:
+    """Whether ``holds`` on every design where ``values`` is finite."""
+    return bool(np.all(holds | ~np.isfinite(values)))
+
+
 def _deflate(series: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The quotient and the remainder of the polynomials (increasing powers) by E + 1."""
     n = series.shape[-1] - 1
@@ -185,10 +194,17 @@ class ClassIVCoupled(HigherGroup):
         """The degree m of the deflated eliminant Φ̃ (see :meth:`eliminant`)."""
         return self._form[1]
 
-    @cached_property
+    @property
     def _form(self) -> tuple[int, int]:
         """The multiplicity p of the root e = −1 that Φ has on every design and input, and
-        the degree of Φ̃: both structural, read off Φ at generic inputs."""
+        the degree of Φ̃: both structural, read once per form off Φ at generic inputs."""
+        key = (self.kinds, self.slides, self.eliminated)
+        if key not in _FORMS:
+            _FORMS[key] = self._probe()
+        return _FORMS[key]
+
+    def _probe(self) -> tuple[int, int]:
+        """(p, m) of this group's Φ at generic inputs (designs where Φ is undefined aside)."""
         turn = np.exp(0.4j)
         size = self.size
         probe = ClassIVInputs(self.h_a + 0.1 * size * np.exp(0.7j),
@@ -200,12 +216,12 @@ class ClassIVCoupled(HigherGroup):
         p = 0
         while p < FULL_DEGREE * 2:
             quotient, rest = _deflate(series)
-            if not bool(np.all(np.abs(rest) <= VANISH * np.abs(series).max(axis=-1))):
+            if not _everywhere(np.abs(rest) <= VANISH * np.abs(series).max(axis=-1), rest):
                 break
             series, p = quotient, p + 1
         top = np.abs(series).max(axis=-1)
         half = FULL_DEGREE - p // 2
-        vanish = [bool(np.all(np.abs(series[..., -1 - n]) <= VANISH * top))
+        vanish = [_everywhere(np.abs(series[..., -1 - n]) <= VANISH * top, top)
                   for n in range(half)]
         return p, half - (vanish.index(False) if False in vanish else half)
 

@@ -291,9 +291,10 @@ class ClassIVCoupled(HigherGroup):
         its external pair, a slide's is ∂/∂s = ∂/∂t·2L/(L² + s²) (as :class:`ClassIV`).
         """
         cols = _columns(x)
+        seeds = [[J.Jet(v, float(i == j)) for i, v in enumerate(cols)] for j in range(2)]
         jac = np.stack([np.stack(np.broadcast_arrays(
-            *(J.as_jet(g).d1 for g in self.residual([J.Jet(v, float(i == j)) for i, v in enumerate(cols)],
-                                          k))), axis=-1) for j in range(2)], axis=-1)
+            *(J.as_jet(g).d1 for g in self.residual(seed, k))), axis=-1) for seed in seeds],
+            axis=-1)
         scales = []
         for y, slides, (p, q), h in zip(cols, self.slides, ((self.c, self.f), (self.d, self.e)),
                                         (self.h_a, self.h_c), strict=True):

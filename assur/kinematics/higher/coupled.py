@@ -32,6 +32,7 @@ from assur.kinematics.higher.groups import (
     _columns,
     _cross,
     _dot,
+    expand,
 )
 from assur.text import render
 
@@ -39,6 +40,33 @@ __all__ = ["ClassIVCoupled"]
 
 #: Two drawn directions whose cross product is at most this are parallel.
 PARALLEL = 1e-9
+#: The degree of Φ before deflation.
+FULL_DEGREE = 4
+#: Φ sampled at these points (not at −1) gives its coefficients: SPLIT[n] · Φ(GRID) = φ_{n−4}.
+GRID = np.exp(1j * np.pi * (2 * np.arange(2 * FULL_DEGREE + 2) + 1) / (2 * FULL_DEGREE + 2))
+SPLIT = GRID[None, :] ** -np.arange(-FULL_DEGREE, FULL_DEGREE + 1)[:, None] / GRID.size
+#: A coefficient of Φ at most this times the largest vanishes for the form.
+VANISH = 1e-10
+
+
+#: (p, m) of each form (couplers' kinds, slides, ε) once read (see ClassIVCoupled._form).
+_FORMS: dict[tuple[tuple[str, str], tuple[bool, bool], int], tuple[int, int]] = {}
+
+
+def _everywhere(holds: np.ndarray, values: np.ndarray) -> bool:
+    """Whether ``holds`` on every design where ``values`` is finite."""
+    return bool(np.all(holds | ~np.isfinite(values)))
+
+
+def _deflate(series: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The quotient and the remainder of the polynomials (increasing powers) by E + 1."""
+    n = series.shape[-1] - 1
+    quotient = np.empty(series.shape[:-1] + (n,), dtype=complex)
+    carry = series[..., n]
+    for i in range(n - 1, -1, -1):
+        quotient[..., i] = carry
+        carry = series[..., i] - carry
+    return quotient, carry
 
 
 @dataclass(frozen=True)
@@ -138,8 +166,9 @@ class ClassIVCoupled(HigherGroup):
 
     @cached_property
     def _choice(self) -> int | None:
-        """ε: a (0) or c (1) such that the other enters both equations and ε one; None."""
-        for eps in (0, 1):
+        """ε: a (0) or c (1) such that the other enters both equations and ε one, a rotation
+        rather than a slide where both would do; None."""
+        for eps in sorted((0, 1), key=lambda i: self.slides[i]):
             keep = 1 - eps
             if all(self._depends(j, keep) for j in (0, 1)) and any(
                     self._depends(j, eps) for j in (0, 1)):
@@ -162,15 +191,39 @@ class ClassIVCoupled(HigherGroup):
 
     @property
     def degree(self) -> int:
-        """2 with a PP coupler; else 3 when ε is a rotation, 4 when it is a lifted slide.
+        """The degree m of the deflated eliminant Φ̃ (see :meth:`eliminant`)."""
+        return self._form[1]
 
-        α_j, π_j are of degree 1 in y_ε, so Φ has degree at most 4; with ε a rotation the
-        top coefficient cancels as in :class:`ClassIV`, and a PP coupler's line has π = 0
-        (or does not involve ε), which leaves degree 2.
-        """
-        if "PP" in self.kinds:
-            return 2
-        return 4 if self.slides[self.eliminated] else 3
+    @property
+    def _form(self) -> tuple[int, int]:
+        """The multiplicity p of the root e = −1 that Φ has on every design and input, and
+        the degree of Φ̃: both structural, read once per form off Φ at generic inputs."""
+        key = (self.kinds, self.slides, self.eliminated)
+        if key not in _FORMS:
+            _FORMS[key] = self._probe()
+        return _FORMS[key]
+
+    def _probe(self) -> tuple[int, int]:
+        """(p, m) of this group's Φ at generic inputs (designs where Φ is undefined aside)."""
+        turn = np.exp(0.4j)
+        size = self.size
+        probe = ClassIVInputs(self.h_a + 0.1 * size * np.exp(0.7j),
+                              self.h_c - 0.13 * size * np.exp(0.3j),
+                              None if self.u_a is None else self.u_a * turn,
+                              None if self.u_c is None else self.u_c / turn)
+        with np.errstate(all="ignore"):
+            series = self._series(expand(self), expand(probe))
+        p = 0
+        while p < FULL_DEGREE * 2:
+            quotient, rest = _deflate(series)
+            if not _everywhere(np.abs(rest) <= VANISH * np.abs(series).max(axis=-1), rest):
+                break
+            series, p = quotient, p + 1
+        top = np.abs(series).max(axis=-1)
+        half = FULL_DEGREE - p // 2
+        vanish = [_everywhere(np.abs(series[..., -1 - n]) <= VANISH * top, top)
+                  for n in range(half)]
+        return p, half - (vanish.index(False) if False in vanish else half)
 
     @cached_property
     def size(self) -> np.ndarray:
@@ -238,9 +291,10 @@ class ClassIVCoupled(HigherGroup):
         its external pair, a slide's is ∂/∂s = ∂/∂t·2L/(L² + s²) (as :class:`ClassIV`).
         """
         cols = _columns(x)
+        seeds = [[J.Jet(v, float(i == j)) for i, v in enumerate(cols)] for j in range(2)]
         jac = np.stack([np.stack(np.broadcast_arrays(
-            *(J.as_jet(g).d1 for g in self.residual([J.Jet(v, float(i == j)) for i, v in enumerate(cols)],
-                                          k))), axis=-1) for j in range(2)], axis=-1)
+            *(J.as_jet(g).d1 for g in self.residual(seed, k))), axis=-1) for seed in seeds],
+            axis=-1)
         scales = []
         for y, slides, (p, q), h in zip(cols, self.slides, ((self.c, self.f), (self.d, self.e)),
                                         (self.h_a, self.h_c), strict=True):
@@ -269,10 +323,33 @@ class ClassIVCoupled(HigherGroup):
             out.append(((np.asarray(f0) - f2) / 2.0 + 1j * (np.asarray(f1) - mean), -mean))
         return out
 
-    def eliminant(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
-        """Φ(y_ε) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)²."""
+    def _full(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
+        """Φ(y_ε) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² at y_ε = arg e."""
         (ab, pb), (ad, pd) = self._linear(e, k)
         return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - _cross(ab, ad) ** 2)
+
+    @staticmethod
+    def _series(wide: ClassIVCoupled, k: ClassIVInputs) -> np.ndarray:
+        """Coefficients of E⁴Φ (increasing powers, shape (..., 9)) from Φ sampled off −1
+        (group and inputs expanded)."""
+        return np.asarray(np.einsum("...k,nk->...n", wide._full(GRID, k), SPLIT))
+
+    def eliminant(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
+        """Φ̃ = Φ/((1 + cos y_ε)/2)^{p/2} at e (group and inputs expanded).
+
+        With ε a lifted slide, Φ vanishes to an even order p at y_ε = π (s = ∞) for every
+        input (all α_j vanish there, or both lines coincide); that root is no pose, and
+        divided out, as are the top coefficients that vanish for the form.
+        """
+        p, m = self._form
+        series = self._series(self, k)
+        for _ in range(p):
+            series = _deflate(series)[0]
+        half = FULL_DEGREE - p // 2
+        powers = np.arange(-m, m + 1)
+        kept = series[..., half - m:half + m + 1] * 2.0 ** p
+        return np.asarray(np.einsum("...n,...kn->...k", kept,
+                                    np.asarray(e)[..., None] ** powers).real)
 
     def recover(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
         """y_ε = arg e, y_o = arg E_o with E_o = −i(π_bα_d − π_dα_b)/cross(α_b, α_d); NaN

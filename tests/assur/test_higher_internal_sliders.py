@@ -221,7 +221,7 @@ def test_analogs_against_central_differences(name: str) -> None:
                    analogs=True)
 
     def check(jet: Any, unit: float, angle: bool = False) -> None:
-        now, plus, minus = np.reshape(np.asarray(values(jet)), (3, -1))
+        _, plus, minus = np.reshape(np.asarray(values(jet)), (3, -1))
         step = plus - minus
         fd = (np.angle(np.exp(1j * step)) if angle else step) / (2 * h)
         assert np.abs(fd - np.reshape(np.asarray(jet.d1), (3, -1))[0]).max() <= 1e-6 * unit

@@ -508,7 +508,7 @@ KINDS: Mapping[int, GroupKind] = {
 
 #: The kinds outside the DGTU table, by code: the triad (class III, order 3, with bars,
 #: blocks hinged to the base or leashes sliding on the base) and the class IV group of
-#: order 2 (revolute pairs), solved by continuation of the drawn assembly mode
+#: order 2 (hinges or sliders), solved by continuation of the drawn assembly mode
 #: (:mod:`assur.kinematics.higher`). No identification row names them (``docs/tables.md``).
 HIGHER: Mapping[str, GroupKind] = {
     "III": GroupKind(None, "III", "", 3, condition="m = |det R| / Π‖R_k‖ ≥ δ",

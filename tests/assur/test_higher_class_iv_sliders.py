@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from higher_checks import check_analogs_against_central_differences, refused
+from higher_checks import check_analogs_against_central_differences
 from test_higher_properties import walk_through
 
 import assur
@@ -251,18 +251,25 @@ def test_the_example_table_through_the_analysis() -> None:
     assert np.abs((j["D"] - j["G"]) / (drawn["D"] - drawn["G"]) - 1.0).max() <= 1e-12
 
 
-@pytest.mark.parametrize(("changes", "code", "data"), [
-    ({"{id: C, type: R, links: [2, 3]}": "{id: C, type: P, links: [2, 3], guide: 2}",
-      "C: {point: [57, 66]}": "C: {point: [57, 66], direction: 30}"},
-     "higher.sketch.class_iv_sliders", {"group": "IV(2,3,4,5)", "pairs": "C"}),
-    ({"guide: 0}": "guide: 4}"},
-     "higher.sketch.class_iv_guide", {"group": "IV(2,3,4,5)", "pair": "G"}),
-])
-def test_refused_forms_are_named(tmp_path: Path, changes: dict[str, str], code: str,
-                                 data: dict[str, str]) -> None:
-    """The example with a prismatic internal pair, or with its guide G carried by the sliding
-    link 4 instead of the frame: one problem naming the group and the pair."""
-    assert refused("class_iv_slider.yaml", changes, tmp_path) == [(code, data)]
+def test_the_guide_carried_by_the_sliding_link_moves_no_joint(tmp_path: Path) -> None:
+    """The example with its guide G carried by the sliding link 4 (a slot of 4 on a block of
+    the frame) instead of the frame: a prismatic pair's equation is the same whichever link
+    carries the guide, so every joint stays where it was; the slider is on link 4, its base
+    point fixed on 4 and its point on the frame, and its s has the opposite sign."""
+    from test_higher_slotted_triad import check_sliders
+
+    text = (TABLES / "class_iv_slider.yaml").read_text(encoding="utf-8")
+    assert text.count("guide: 0}") == 1
+    path = tmp_path / "slotted.yaml"
+    path.write_text(text.replace("guide: 0}", "guide: 4}"), encoding="utf-8")
+    phi = np.radians(np.arange(0.0, 360.0, 10.0))
+    drawn = assur.analyse(assur.load_model(TABLES / "class_iv_slider.yaml"), phi)
+    slotted = assur.analyse(assur.load_model(path), phi)
+    assert np.all(slotted.exists)
+    for pid in "BCDEF":
+        assert np.abs(np.asarray(slotted.joints[pid]) - drawn.joints[pid]).max() <= 1e-9 * 200
+    assert check_sliders(slotted, {"G": 4}, 200.0) == 1
+    assert np.abs(np.asarray(slotted.sliders["G"].s) + drawn.sliders["G"].s).max() <= 1e-9 * 200
 
 
 def test_reactions_equal_the_global_solve() -> None:

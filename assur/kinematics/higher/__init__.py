@@ -13,6 +13,7 @@ from assur.kinematics.higher.continuation import (
     analogs,
     follow_mode,
 )
+from assur.kinematics.higher.coupled import ClassIVCoupled
 from assur.kinematics.higher.groups import (
     ClassIV,
     ClassIVInputs,
@@ -27,6 +28,7 @@ __all__ = [
     "REASON_CODES",
     "AssemblyModes",
     "ClassIV",
+    "ClassIVCoupled",
     "ClassIVInputs",
     "HigherGroup",
     "HigherReason",

@@ -32,6 +32,7 @@ import numpy as np
 
 from assur.kinematics import jets as J
 from assur.kinematics.higher.continuation import HigherSolution, Stroke, follow_mode
+from assur.kinematics.higher.coupled import ClassIVCoupled
 from assur.kinematics.higher.groups import (
     ClassIV,
     ClassIVInputs,
@@ -311,8 +312,8 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
 
 
 def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched | None:
-    """The sketch rule of the class IV group: drawn C, D, E, F, the anchors of hinged external
-    pairs and the guides of prismatic ones on the known links.
+    """The sketch rule of the class IV group: drawn C, D, E, F, the guides of its prismatic
+    internal pairs, the anchors of hinged external pairs and the guides of prismatic ones.
 
     Parameters
     ----------
@@ -326,25 +327,30 @@ def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched 
     Returns
     -------
     Sketched or None
-        Its :class:`Layout` and link frames; None after recording a problem (a prismatic
-        internal pair, a guide of an external prismatic pair carried by the group's link, or
-        an actuator that is a or c). An actuator that is the coupler b or d (hinged at both
-        ends) gives its members the coupler's frame (its ``driven`` name).
+        Its :class:`Layout` and link frames; None after recording a problem (a form that is
+        not kinematically determinate although 3n − 2p = 0, :func:`_class_iv_refusals`; an
+        actuator that is a or c, or one in a group with prismatic internal pairs). An actuator
+        that is the coupler b or d (hinged at both ends) gives its members the coupler's frame
+        (its ``driven`` name).
+
+    Notes
+    -----
+    A prismatic internal pair records ``beta_<pair>``, the absolute direction of its guide at
+    the reference position (degrees), beside its drawn point. A prismatic pair gives the same
+    equation whichever of its links carries the guide, so the guide of an external prismatic
+    pair is built on the known link even where the table puts it on the group's link; the
+    slider is written with the table's carrier (:func:`solve_class_iv`).
     """
     pairs = build.topo.pairs
     body = _bodies(group)
-    inner = sorted(str(pid) for pid in group.internal if pairs[pid].type.value != "R")
-    if inner or len(group.external) != 2:
-        _problem(build, label, "class_iv_sliders", pairs=", ".join(inner))
-        return None
     (h_a, a, known_a), (h_c, c, known_c) = group.external
     if group.composite and body(group.composite[0]) in (body(a), body(c)):
         _actuator_refused(build, group, label, "actuator")
         return None
-    for ext, known in ((h_a, known_a), (h_c, known_c)):
-        if pairs[ext].type.value == "P" and pairs[ext].guide not in (None, known):
-            _problem(build, label, "class_iv_guide", pair=str(ext))
-            return None
+    inner = sorted(str(pid) for pid in group.internal if pairs[pid].type.value != "R")
+    if group.composite and inner:
+        _actuator_refused(build, group, label, "actuator_coupled", pairs=", ".join(inner))
+        return None
 
     def between(x: LinkId, y: LinkId | None = None) -> list[PairId]:
         return [p for p in group.internal if body(x) in (ends := {body(n) for n in pairs[p].links})
@@ -355,8 +361,13 @@ def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched 
     p_d = between(b, c)[0]
     p_e = next(p for p in between(c) if p != p_d)
     d = next(link for link in pairs[p_e].links if link != c)
-    pts = {name: build.point(pairs[pid]) for name, pid in
-           zip(CLASS_IV_JOINTS, (p_c, p_d, p_e, p_f), strict=True)}
+    internal = dict(zip(CLASS_IV_JOINTS, (p_c, p_d, p_e, p_f), strict=True))
+    refusals = _class_iv_refusals(build, internal, (h_a, h_c), (a, b, c, d))
+    for code, data in refusals:
+        _problem(build, label, code, **data)
+    if refusals:
+        return None
+    pts = {name: build.point(pairs[pid]) for name, pid in internal.items()}
     ha, hc = build.point(pairs[h_a]), build.point(pairs[h_c])
     anchors: list[Anchor | None] = []
     guides: list[Guide | None] = []
@@ -369,9 +380,11 @@ def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched 
         else:
             anchors.append(build.attachment(known, hinge, label, (f"x_{ext}", f"y_{ext}")))
             guides.append(None)
-    for name, pid in zip(CLASS_IV_JOINTS, (p_c, p_d, p_e, p_f), strict=True):
+    for name, pid in internal.items():
         build.put(label, f"x_{pid}", pts[name].real)
         build.put(label, f"y_{pid}", pts[name].imag)
+        if pairs[pid].type.value == "P":
+            build.put(label, f"beta_{pid}", math.degrees(build.direction(pairs[pid])))
     frames = {a: (ha, cmath.phase(pts["C"] - ha)), b: (pts["C"], cmath.phase(pts["D"] - pts["C"])),
               c: (hc, cmath.phase(pts["D"] - hc)), d: (pts["F"], cmath.phase(pts["E"] - pts["F"]))}
     layout = Layout((a, b, c, d), CLASS_IV_LINKS, (p_c, p_d, p_e, p_f), (h_a, h_c),
@@ -407,6 +420,60 @@ def actuator_ends(group: GroupModel) -> tuple[PairId, PairId]:
         return (d, c) if group.driven == "b" else (e, f)
     k = TRIAD_LINKS.index(str(group.driven)) - 1
     return layout.internal[k], layout.external[k]
+
+
+def _class_iv_refusals(build: _Builder, internal: dict[str, PairId],
+                       external: tuple[PairId, PairId], links: tuple[LinkId, ...]
+                       ) -> list[tuple[str, dict[str, str]]]:
+    """The reasons a class IV group with prismatic pairs is not kinematically determinate.
+
+    A coupler (b between C and D, d between F and E) whose two pairs both slide turns with a
+    and with c: it only makes a and c turn together, one condition on their rotations, and
+    fixes nothing of their relative position. Two such couplers give that condition twice
+    and leave c a free translation against a; one such coupler beside two sliding external
+    pairs (the rotations of a and c both fixed by the known links) puts its condition on the
+    known links only and leaves the two slides one equation; and a coupler whose two guides
+    are parallel as drawn keeps a free slide along them. Any other form that
+    :attr:`ClassIVCoupled.determinate` rejects (a slide parallel to the guides of the
+    couplers' prismatic pairs, which then enters neither equation) is named by its sliding
+    pairs.
+
+    Returns
+    -------
+    list of (code, data)
+        Catalogue codes under ``higher.sketch.`` with their data; empty for a determinate form.
+    """
+    pairs = build.topo.pairs
+    a, b, c, d = (str(link) for link in links)
+    both = [(coupler, (internal[one], internal[two])) for coupler, one, two in
+            ((b, "C", "D"), (d, "F", "E"))
+            if all(pairs[internal[n]].type.value == "P" for n in (one, two))]
+    refusals: list[tuple[str, dict[str, str]]] = []
+    if len(both) == 2:
+        refusals.append(("class_iv_couplers", {
+            "pairs": ", ".join(str(p) for _, ps in both for p in ps), "a": a, "c": c}))
+    elif both and all(pairs[p].type.value == "P" for p in external):
+        coupler, ps = both[0]
+        refusals.append(("class_iv_turns", {"link": coupler, "a": a, "c": c,
+                                            "pairs": ", ".join(map(str, ps))}))
+    for coupler, (one, two) in both:
+        if abs(math.sin(build.direction(pairs[one]) - build.direction(pairs[two]))) < 1e-6:
+            refusals.append(("class_iv_parallel", {"link": coupler,
+                                                   "pairs": f"{one}, {two}"}))
+    sliding = [pid for pid in (*internal.values(), *external) if pairs[pid].type.value == "P"]
+    if refusals or all(pairs[pid].type.value == "R" for pid in internal.values()):
+        return refusals
+
+    def guide(pid: PairId) -> complex | None:
+        return cmath.exp(1j * build.direction(pairs[pid])) if pid in sliding else None
+
+    drawn = ClassIVCoupled(*(build.point(pairs[pid]) for pid in
+                             (external[0], internal["C"], internal["F"], external[1],
+                              internal["D"], internal["E"])),
+                           *(guide(pid) for pid in (*external, *internal.values())))
+    if not drawn.determinate:
+        refusals.append(("class_iv_unfixed", {"pairs": ", ".join(map(str, sliding))}))
+    return refusals
 
 
 # ------------------------------------------------------------------------------ solvers
@@ -602,8 +669,9 @@ def _pp_sliders(state: _State, group: GroupModel, i: int, follow: HigherSolution
 
 
 def _slide(state: _State, pair: PairId, pin: tuple[LinkId, Any], slot: tuple[LinkId, Any],
-           angle: Any, offset: Any) -> None:
-    """Write the slider of a prismatic pair from its two links and their coincident points.
+           angle: Any, offset: Any) -> Any:
+    """Write the slider of a prismatic pair from its two links and their coincident points;
+    return the slider's point (on the link that does not carry the guide).
 
     ``slot`` is the link taken as the guide's carrier in the equations with the guide's
     point on it, ``pin`` the other link with its point on the guide line. A prismatic pair
@@ -616,6 +684,7 @@ def _slide(state: _State, pair: PairId, pin: tuple[LinkId, Any], slot: tuple[Lin
     (slider, point), (carrier, base) = pin, slot
     state.slider(pair, carrier, slider, point, J.dot(point - base, J.expi(angle)), base, angle,
                  offset)
+    return point
 
 
 def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution:
@@ -624,8 +693,8 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
     Parameters
     ----------
     state : _State
-        The analysis so far; the group's joints, the sliders of its prismatic external pairs
-        and its link frames are written into it.
+        The analysis so far; the group's joints, the sliders of its prismatic pairs and its
+        link frames are written into it.
     group : GroupModel
         The group's model (its :class:`Layout`).
     q : ndarray or Jet
@@ -636,11 +705,22 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
     -------
     HigherGroupSolution
         As :func:`solve_triad`.
+
+    Notes
+    -----
+    With revolute internal pairs the group is a :class:`ClassIV`; with a prismatic internal
+    pair a :class:`ClassIVCoupled`, whose joints give the point of each link drawn at a
+    sliding pair. A prismatic pair's joint is its point on the link that does not carry the
+    guide in the table, and its slider has the table's carrier (:func:`_slide`).
     """
     layout = group.layout
     assert layout is not None
+    p = state.flat_value
     pts = dict(zip(CLASS_IV_JOINTS, (_drawn(state, group, pid) for pid in layout.internal),
                    strict=True))
+    betas = {name: p(_column(group.label, f"beta_{pid}"))
+             for name, pid in zip(CLASS_IV_JOINTS, layout.internal, strict=True)
+             if state.model.pair_links[pid][0] == "P"}
 
     def external(known: _State, side: int) -> tuple[Any, Any]:
         """The hinge, or the guide's point and direction, of one external pair."""
@@ -655,8 +735,13 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
         (h_a, u_a), (h_c, u_c) = external(known, 0), external(known, 1)
         return ClassIVInputs(h_a, h_c, u_a, u_c)
 
-    def make(k0: ClassIVInputs) -> ClassIV:
-        return ClassIV(k0.h_a, pts["C"], pts["F"], k0.h_c, pts["D"], pts["E"], k0.u_a, k0.u_c)
+    def make(k0: ClassIVInputs) -> HigherGroup:
+        drawn = (k0.h_a, pts["C"], pts["F"], k0.h_c, pts["D"], pts["E"], k0.u_a, k0.u_c)
+        if not betas:
+            return ClassIV(*drawn)
+        w = {name: J.expi(beta) for name, beta in betas.items()}
+        return ClassIVCoupled(*drawn, w_c=w.get("C"), w_d=w.get("D"), w_e=w.get("E"),
+                              w_f=w.get("F"))
 
     actuator = None if group.driven is None else _Actuator(
         lambda k0: np.abs(pts["C"] - pts["D"]) if group.driven == "b" else
@@ -665,21 +750,27 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
     follow, k0, solved = _follow(state, group, q, make, inputs, actuator)
     j = follow.joints
     origins = []
-    for side, (name, link) in enumerate((("Ha", layout.links[0]), ("Hc", layout.links[2]))):
+    for side, name in enumerate(("Ha", "Hc")):
         anchor, guide = layout.anchors[side], layout.guides[side]
-        ext = layout.external[side]
+        ext, link = layout.external[side], layout.links[2 * side]
         if guide is None:
             assert anchor is not None
             origins.append(state.point(anchor))
+            state.joints[ext] = origins[-1]
         else:  # the link slides on the known link's guide, its point drawn there on the line
-            point = j[name]
             line, angle, offset = state.guide(guide)
-            state.slider(ext, guide.carrier, link, point, J.dot(point - line, J.expi(angle)),
-                         line, angle, offset)
-            origins.append(point)
-        state.joints[ext] = origins[-1]
-    state.joints.update({pid: j[name]
-                         for name, pid in zip(CLASS_IV_JOINTS, layout.internal, strict=True)})
+            origins.append(j[name])
+            state.joints[ext] = _slide(state, ext, (link, j[name]), (guide.carrier, line),
+                                       angle, offset)
+    a, b, c, d = layout.links
+    sides = {"C": (a, b, "Ca"), "D": (c, b, "Dc"), "E": (c, d, "Ec"), "F": (a, d, "Fa")}
+    for name, pid in zip(CLASS_IV_JOINTS, layout.internal, strict=True):
+        if name not in betas:
+            state.joints[pid] = j[name]
+            continue
+        link, coupler, own = sides[name]  # the guide turns with the coupler and with link
+        angle = _col(betas[name]) + follow.rotations["b" if coupler == b else "d"]
+        state.joints[pid] = _slide(state, pid, (coupler, j[name]), (link, j[own]), angle, 0.0)
     frames: dict[str, tuple[Any, float]] = {
         "a": (origins[0], _phase(pts["C"] - k0.h_a)), "b": (j["C"], _phase(pts["D"] - pts["C"])),
         "c": (origins[1], _phase(pts["D"] - k0.h_c)), "d": (j["F"], _phase(pts["E"] - pts["F"]))}

@@ -1,0 +1,406 @@
+"""The class IV group of order 2 with prismatic internal pairs (``docs/higher_groups.md`` §2).
+
+One code path solves every form of the contour a–b–c–d: each external pair (H_a on a, H_c on
+c) a hinge or a prismatic pair on a known link's guide, each coupler (b between a and c at C,
+D; d at F, E) a bar (RR), a block turning with a (PR: C prismatic), with c (RP: D
+prismatic) or with both (PP).
+
+The unknowns are two angles y_a, y_c: a hinged link's rotation θ from the sketch, a sliding
+link's lifted slide t with s = L·tan(t/2) (L the group's size). Multiplied by cos²(t/2) of
+each sliding link it involves, every loop equation F̂_j is trigonometrically linear in y_a
+and in y_c separately (span{1, cos y, sin y}): a raw equation is at most quadratic in a slide
+s with a constant s² coefficient and bilinear in E_a, E_c, and s²cos²(t/2) = L²(1 − cos t)/2,
+s·cos²(t/2) = L·sin t/2, cos²(t/2) = (1 + cos t)/2. So F̂_j = 0 is Re(ᾱ_j E_o) = π_j in the
+kept unknown o at a fixed eliminated one ε, and the eliminant of the two lines is the class
+IV form Φ = |π_bα_d − π_dα_b|² − cross(α_b, α_d)², of degree at most 4 in y_ε.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from assur.kinematics import jets as J
+from assur.kinematics.higher.groups import (
+    ClassIVInputs,
+    HigherGroup,
+    Unknowns,
+    Value,
+    _columns,
+    _cross,
+    _dot,
+    expand,
+)
+from assur.text import render
+
+__all__ = ["ClassIVCoupled"]
+
+#: Two drawn directions whose cross product is at most this are parallel.
+PARALLEL = 1e-9
+#: The degree of Φ before deflation.
+FULL_DEGREE = 4
+#: Φ sampled at these points (not at −1) gives its coefficients: SPLIT[n] · Φ(GRID) = φ_{n−4}.
+GRID = np.exp(1j * np.pi * (2 * np.arange(2 * FULL_DEGREE + 2) + 1) / (2 * FULL_DEGREE + 2))
+SPLIT = GRID[None, :] ** -np.arange(-FULL_DEGREE, FULL_DEGREE + 1)[:, None] / GRID.size
+#: A coefficient of Φ at most this times the largest vanishes for the form.
+VANISH = 1e-10
+
+
+#: (p, m) of each form (couplers' kinds, slides, ε) once read (see ClassIVCoupled._form).
+_FORMS: dict[tuple[tuple[str, str], tuple[bool, bool], int], tuple[int, int]] = {}
+
+
+def _everywhere(holds: np.ndarray, values: np.ndarray) -> bool:
+    """Whether ``holds`` on every design where ``values`` is finite."""
+    return bool(np.all(holds | ~np.isfinite(values)))
+
+
+def _deflate(series: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The quotient and the remainder of the polynomials (increasing powers) by E + 1."""
+    n = series.shape[-1] - 1
+    quotient = np.empty(series.shape[:-1] + (n,), dtype=complex)
+    carry = series[..., n]
+    for i in range(n - 1, -1, -1):
+        quotient[..., i] = carry
+        carry = series[..., i] - carry
+    return quotient, carry
+
+
+@dataclass(frozen=True)
+class _Link:
+    """A link a or c at one pose: its turn E, the weight κ (cos(t/2) of a sliding link, 1 of
+    a hinged one) and κ·O, O its point drawn at the external pair."""
+
+    turn: Value
+    weight: Value
+    origin: Value
+
+    def at(self, drawn: Value, pair: Value) -> Value:
+        """κ times the point of the link drawn at ``drawn`` (pair: its drawn external pair)."""
+        return self.origin + self.weight * self.turn * (np.asarray(drawn) - pair)
+
+
+@dataclass(frozen=True, eq=False)
+class ClassIVCoupled(HigherGroup):
+    """The class IV group of order 2 with any internal and external pairs.
+
+    Parameters
+    ----------
+    h_a, c, f : complex
+        Drawn points of link a: its external pair's point H_a⁰ and the internal pairs C (to
+        b), F (to d).
+    h_c, d, e : complex
+        Drawn points of link c: H_c⁰ and the internal pairs D (to b), E (to d).
+    u_a, u_c : complex or None
+        The drawn unit direction of the guide of a prismatic external pair; None: a hinge.
+    w_c, w_d, w_e, w_f : complex or None
+        The drawn unit direction of the guide of a prismatic internal pair C, D, E, F; None: a
+        hinge. The guide may be carried by either link of the pair: the equation is the same.
+
+    Notes
+    -----
+    The eliminated unknown ε is chosen from the drawn data: the kept one must enter both
+    equations (a PP coupler does not involve a slide, a prismatic coupler does not involve a
+    slide parallel to its guide). :attr:`determinate` is False where no choice works (both
+    external pairs sliding with a PP coupler, a PP coupler with parallel guides, a coupler
+    guide parallel to the slide it would have to fix); two PP couplers are refused.
+
+    Examples
+    --------
+    >>> g = ClassIVCoupled(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j, w_c=1)
+    >>> g.kinds, g.degree, g.determinate, g.eliminated
+    (('PR', 'RR'), 3, True, 0)
+    """
+
+    h_a: Value
+    c: Value
+    f: Value
+    h_c: Value
+    d: Value
+    e: Value
+    u_a: Value = None
+    u_c: Value = None
+    w_c: Value = None
+    w_d: Value = None
+    w_e: Value = None
+    w_f: Value = None
+
+    n = 2
+    lengths = (False, False)
+
+    def __post_init__(self) -> None:
+        if self.kinds == ("PP", "PP"):
+            raise ValueError(render("higher.coupled.two_pp"))
+
+    # --- form -----------------------------------------------------------------------------
+
+    @property
+    def slides(self) -> tuple[bool, bool]:
+        """Whether the external pair of a, of c, is prismatic."""
+        return self.u_a is not None, self.u_c is not None
+
+    @property
+    def kinds(self) -> tuple[str, str]:
+        """The kinds of b (pairs C, D) and d (pairs F, E): RR, PR, RP or PP."""
+        def kind(first: Value, second: Value) -> str:
+            return ("R" if first is None else "P") + ("R" if second is None else "P")
+        return kind(self.w_c, self.w_d), kind(self.w_f, self.w_e)
+
+    def _guides(self, j: int) -> tuple[Value, Value]:
+        """The guides of coupler j (0: b, 1: d), the pair on a first."""
+        return (self.w_c, self.w_d) if j == 0 else (self.w_f, self.w_e)
+
+    def _depends(self, j: int, link: int) -> bool:
+        """Whether coupler j's equation involves the unknown of link (0: a, 1: c)."""
+        kind = self.kinds[j]
+        if not self.slides[link]:
+            return True
+        if kind == "PP":
+            return False
+        u = (self.u_a, self.u_c)[link]
+        return not any(w is not None and bool(np.any(np.abs(_cross(w, u)) <= PARALLEL))
+                       for w in self._guides(j))
+
+    @cached_property
+    def _choice(self) -> int | None:
+        """ε: a (0) or c (1) such that the other enters both equations and ε one, a rotation
+        rather than a slide where both would do; None."""
+        for eps in sorted((0, 1), key=lambda i: self.slides[i]):
+            keep = 1 - eps
+            if all(self._depends(j, keep) for j in (0, 1)) and any(
+                    self._depends(j, eps) for j in (0, 1)):
+                return eps
+        return None
+
+    @property
+    def determinate(self) -> bool:
+        """Whether the drawn form fixes the group: an elimination exists, no PP coupler
+        slides along parallel guides."""
+        parallel = any(kind == "PP" and bool(np.any(np.abs(_cross(*self._guides(j)))
+                                                     <= PARALLEL))
+                       for j, kind in enumerate(self.kinds))
+        return self._choice is not None and not parallel
+
+    @property
+    def eliminated(self) -> int:  # type: ignore[override]
+        """The index of ε (y_a: 0, y_c: 1)."""
+        return 0 if self._choice is None else self._choice
+
+    @property
+    def degree(self) -> int:
+        """The degree m of the deflated eliminant Φ̃ (see :meth:`eliminant`)."""
+        return self._form[1]
+
+    @property
+    def _form(self) -> tuple[int, int]:
+        """The multiplicity p of the root e = −1 that Φ has on every design and input, and
+        the degree of Φ̃: both structural, read once per form off Φ at generic inputs."""
+        key = (self.kinds, self.slides, self.eliminated)
+        if key not in _FORMS:
+            _FORMS[key] = self._probe()
+        return _FORMS[key]
+
+    def _probe(self) -> tuple[int, int]:
+        """(p, m) of this group's Φ at generic inputs (designs where Φ is undefined aside)."""
+        turn = np.exp(0.4j)
+        size = self.size
+        probe = ClassIVInputs(self.h_a + 0.1 * size * np.exp(0.7j),
+                              self.h_c - 0.13 * size * np.exp(0.3j),
+                              None if self.u_a is None else self.u_a * turn,
+                              None if self.u_c is None else self.u_c / turn)
+        with np.errstate(all="ignore"):
+            series = self._series(expand(self), expand(probe))
+        p = 0
+        while p < FULL_DEGREE * 2:
+            quotient, rest = _deflate(series)
+            if not _everywhere(np.abs(rest) <= VANISH * np.abs(series).max(axis=-1), rest):
+                break
+            series, p = quotient, p + 1
+        top = np.abs(series).max(axis=-1)
+        half = FULL_DEGREE - p // 2
+        vanish = [_everywhere(np.abs(series[..., -1 - n]) <= VANISH * top, top)
+                  for n in range(half)]
+        return p, half - (vanish.index(False) if False in vanish else half)
+
+    @cached_property
+    def size(self) -> np.ndarray:
+        """L of the six drawn points."""
+        pts = np.broadcast_arrays(*(np.asarray(p, dtype=complex) for p in
+                                    (self.h_a, self.c, self.f, self.h_c, self.d, self.e)))
+        stack = np.stack(pts, axis=-1)
+        return np.asarray(np.abs(stack[..., :, None] - stack[..., None, :]).max(axis=(-2, -1)))
+
+    def drawn(self) -> np.ndarray:
+        """Zero rotations and slides."""
+        zero = np.zeros(np.shape(self.size))
+        return np.stack([zero, zero], axis=-1)
+
+    @property
+    def sketch(self) -> dict[str, Value]:
+        """C, D, E, F as drawn."""
+        return {"C": self.c, "D": self.d, "E": self.e, "F": self.f}
+
+    # --- poses ----------------------------------------------------------------------------
+
+    def _links(self, y: Sequence[Value], k: ClassIVInputs) -> tuple[_Link, _Link]:
+        """a and c at the unknowns y (angles; plain arrays or jets)."""
+        def link(angle: Value, h: Value, u: Value, drawn: Value) -> _Link:
+            if drawn is None:
+                return _Link(J.expi(angle), 1.0, h)
+            half = J.expi(0.5 * angle)
+            weight = J.real(half)
+            return _Link(u / drawn, weight, weight * h + self.size * J.imag(half) * u)
+        return (link(y[0], k.h_a, k.u_a, self.u_a), link(y[1], k.h_c, k.u_c, self.u_c))
+
+    def _lifted(self, y: Sequence[Value], k: ClassIVInputs) -> list[tuple[Value, Value, Value]]:
+        """Per coupler: F̂_j, its lifting factor and the scale of the natural residual."""
+        a, c = self._links(y, k)
+        both = a.weight * a.weight * c.weight * c.weight
+        out = []
+        for (first, second), kind, (wa, wc) in zip(((self.c, self.d), (self.f, self.e)),
+                                                   self.kinds, (self._guides(0), self._guides(1)),
+                                                   strict=True):
+            pa = a.at(first, self.h_a)     # κ_a·(the point of a at the pair on a)
+            pc = c.at(second, self.h_c)    # κ_c·(the point of c at the pair on c)
+            gap = c.weight * pa - a.weight * pc   # κ_aκ_c·(that on a − that on c)
+            drawn = np.asarray(first) - second
+            if kind == "RR":
+                length = np.abs(drawn)
+                out.append((J.dot(gap, gap) - length * length * both, both, 0.5 / length))
+            elif kind == "PP":
+                out.append((J.cross(a.turn, c.turn), 1.0, self.size))
+            else:
+                turn, w = (a.turn, wa) if kind == "PR" else (c.turn, wc)
+                offset = _cross(w, drawn)
+                out.append((a.weight * c.weight * J.cross(turn * w, gap) - offset * both,
+                            both, 1.0))
+        return out
+
+    def residual(self, x: Unknowns, k: ClassIVInputs) -> list[Value]:
+        """g_b, g_d: RR (|C − D|² − l²)/(2l), PR/RP the offset of the hinge from the guide
+        minus its drawn value, PP L·sin(θ_a − θ_c) (rotations of a sliding link its guide's)."""
+        return [value * scale / lift for value, lift, scale in self._lifted(_columns(x), k)]
+
+    def lines(self, x: np.ndarray, k: ClassIVInputs) -> tuple[np.ndarray, np.ndarray]:
+        """The Jacobian in (y_a, y_c) and the margin rows in physical columns.
+
+        A rotation's column is divided by the RMS radius of the link's internal pairs about
+        its external pair, a slide's is ∂/∂s = ∂/∂t·2L/(L² + s²) (as :class:`ClassIV`).
+        """
+        cols = _columns(x)
+        seeds = [[J.Jet(v, float(i == j)) for i, v in enumerate(cols)] for j in range(2)]
+        jac = np.stack([np.stack(np.broadcast_arrays(
+            *(J.as_jet(g).d1 for g in self.residual(seed, k))), axis=-1) for seed in seeds],
+            axis=-1)
+        scales = []
+        for y, slides, (p, q), h in zip(cols, self.slides, ((self.c, self.f), (self.d, self.e)),
+                                        (self.h_a, self.h_c), strict=True):
+            if slides:
+                s = self.size * np.tan(0.5 * np.asarray(y))
+                scales.append(2.0 * self.size / (self.size ** 2 + s * s))
+            else:
+                scales.append(1.0 / np.sqrt((np.abs(np.asarray(p) - h) ** 2
+                                             + np.abs(np.asarray(q) - h) ** 2) / 2.0))
+        rows = jac * np.stack(np.broadcast_arrays(*scales), axis=-1)[..., None, :]
+        return jac, rows
+
+    # --- elimination ----------------------------------------------------------------------
+
+    def _linear(self, e: np.ndarray, k: ClassIVInputs) -> list[tuple[np.ndarray, np.ndarray]]:
+        """α_j, π_j of Re(ᾱ_j E_o) = π_j at y_ε = arg e."""
+        eps = self.eliminated
+        samples = []
+        for y_o in (0.0, 0.5 * np.pi, np.pi):
+            y = [np.angle(e), np.full(np.shape(e), y_o)]
+            samples.append([value for value, _, _ in self._lifted(y if eps == 0 else y[::-1],
+                                                                   k)])
+        out = []
+        for f0, f1, f2 in zip(*samples, strict=True):
+            mean = (np.asarray(f0) + f2) / 2.0
+            out.append(((np.asarray(f0) - f2) / 2.0 + 1j * (np.asarray(f1) - mean), -mean))
+        return out
+
+    def _full(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
+        """Φ(y_ε) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² at y_ε = arg e."""
+        (ab, pb), (ad, pd) = self._linear(e, k)
+        return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - _cross(ab, ad) ** 2)
+
+    @staticmethod
+    def _series(wide: ClassIVCoupled, k: ClassIVInputs) -> np.ndarray:
+        """Coefficients of E⁴Φ (increasing powers, shape (..., 9)) from Φ sampled off −1
+        (group and inputs expanded)."""
+        return np.asarray(np.einsum("...k,nk->...n", wide._full(GRID, k), SPLIT))
+
+    def eliminant(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
+        """Φ̃ = Φ/((1 + cos y_ε)/2)^{p/2} at e (group and inputs expanded).
+
+        With ε a lifted slide, Φ vanishes to an even order p at y_ε = π (s = ∞) for every
+        input (all α_j vanish there, or both lines coincide); that root is no pose, and
+        divided out, as are the top coefficients that vanish for the form.
+        """
+        p, m = self._form
+        series = self._series(self, k)
+        for _ in range(p):
+            series = _deflate(series)[0]
+        half = FULL_DEGREE - p // 2
+        powers = np.arange(-m, m + 1)
+        kept = series[..., half - m:half + m + 1] * 2.0 ** p
+        return np.asarray(np.einsum("...n,...kn->...k", kept,
+                                    np.asarray(e)[..., None] ** powers).real)
+
+    def recover(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
+        """y_ε = arg e, y_o = arg E_o with E_o = −i(π_bα_d − π_dα_b)/cross(α_b, α_d); NaN
+        where a PP coupler would be turned by π from one of its links."""
+        (ab, pb), (ad, pd) = self._linear(e, k)
+        other = np.angle(-1j * (pb * ad - pd * ab) / _cross(ab, ad))
+        pair = [np.angle(e), other] if self.eliminated == 0 else [other, np.angle(e)]
+        x = np.stack(np.broadcast_arrays(*pair), axis=-1)
+        if "PP" in self.kinds:
+            a, c = self._links(_columns(x), k)
+            x = np.where((_dot(a.turn, c.turn) > 0.0)[..., None], x, np.nan)
+        return x
+
+    # --- results --------------------------------------------------------------------------
+
+    def _points(self, x: Unknowns, k: ClassIVInputs) -> dict[str, Value]:
+        a, c = self._links(_columns(x), k)
+        out = {"Ha": a.origin / a.weight, "Hc": c.origin / c.weight}
+        for j, ((p, q), (on_a, on_c)) in enumerate(zip((("C", "D"), ("F", "E")),
+                                                       (("Ca", "Dc"), ("Fa", "Ec")), strict=True)):
+            first, second = getattr(self, p.lower()), getattr(self, q.lower())
+            pa, pc = a.at(first, self.h_a) / a.weight, c.at(second, self.h_c) / c.weight
+            drawn = np.asarray(second) - first
+            kind = self.kinds[j]
+            wa, wc = self._guides(j)
+            if kind == "RR":
+                ends = (pa, pc)
+            elif kind == "PR":
+                ends = (pc - a.turn * drawn, pc)
+            elif kind == "RP":
+                ends = (pa, pa + c.turn * drawn)
+            else:
+                rest = J.conj(a.turn) * (pc - pa) - drawn
+                start = pa + J.cross(rest, wc) / _cross(wa, wc) * a.turn * wa
+                ends = (start, start + a.turn * drawn)
+            out.update({p: ends[0], q: ends[1], on_a: pa, on_c: pc})
+        return out
+
+    def joints(self, x: Unknowns, k: ClassIVInputs) -> dict[str, Value]:
+        """C, D (of b), F, E (of d) drawn at the pairs; Ca, Fa of a; Dc, Ec of c (equal to
+        the coupler's at a hinge); Ha, Hc: the points of a and c at their external pairs."""
+        return self._points(x, k)
+
+    def rotations(self, x: Unknowns, k: ClassIVInputs) -> dict[str, Value]:
+        """a, c: θ (of a sliding link its guide's turn); b, d: of the coupler (a prismatic
+        coupler turns with the link carrying its guide pair); all from the sketch."""
+        cols = _columns(x)
+        a, c = self._links(cols, k)
+        p = self._points(cols, k)
+        turn_a, turn_c = (J.arg(link.turn) if slides else y
+                          for link, slides, y in zip((a, c), self.slides, cols, strict=True))
+        return {"a": turn_a, "c": turn_c,
+                "b": J.arg((p["D"] - p["C"]) / (np.asarray(self.d) - self.c)),
+                "d": J.arg((p["E"] - p["F"]) / (np.asarray(self.e) - self.f))}

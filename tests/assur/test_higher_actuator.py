@@ -16,7 +16,8 @@ the actuator, both over their strokes:
   the existence interval of :func:`check_existence` there;
 - the force analysis against the global solve of all links (``test_forces_global``);
 - the refusal of an actuator that is a ternary link of its group (the triad's base, a of a
-  class IV group), naming the group and the members.
+  class IV group), or a coupler of a class IV group with a prismatic internal pair, naming
+  the group and the members.
 """
 
 from __future__ import annotations
@@ -297,6 +298,17 @@ def test_an_actuator_that_is_a_ternary_link_is_refused(tmp_path: Path,
                              input={"stroke": [100, 130]})
     err = _refused(tmp_path, table, capsys, "en")
     assert "IV(" in err and "links 1, 6" in err and "three pairs" in err
+    # the coupler b is the actuator, and d slides on link a (F prismatic): the coupled
+    # solver takes no actuator length
+    pairs = [dict(p, type="P", guide=1) if p["id"] == "F" else p
+             for p in CLASS_IV["mechanism"]["pairs"]]
+    table = dict(CLASS_IV, mechanism=dict(CLASS_IV["mechanism"], pairs=pairs))
+    table["geometry"] = dict(CLASS_IV["geometry"], F={"point": [25.5, 98.5],
+                                                      "direction": 40})
+    err = _refused(tmp_path, table, capsys, "en")
+    assert "IV(" in err and "links 2, 3" in err and "prismatic internal pairs F" in err
+    err = _refused(tmp_path, table, capsys, "ru")
+    assert "звенья 2, 3" in err and "поступательными парами F" in err
 
 
 def test_example_reports_the_stroke_in_json(capsys: pytest.CaptureFixture[str]) -> None:

@@ -444,7 +444,7 @@ def _follow(group: HigherGroup, inputs: Inputs, x0: np.ndarray, targets: np.ndar
     # analogs NaN): x* + (x_b − x*)·√((t* − t)/(t* − t_b)), the square-root form of a fold
     prior, tip = states.at(before), states.at(np.minimum(before + 1, len(states.t) - 1))
     with np.errstate(all="ignore"):
-        root = np.sqrt((tip.t - targets[:, None]) / (tip.t - prior.t))
+        root = np.sqrt((tip.t - grid) / (tip.t - prior.t))
         ending = reach & (tip.t > prior.t) & np.isnan(tip.x1[..., 0]) & (root <= 1.0)
         guess = np.where(ending[..., None], tip.x + (prior.x - tip.x) * root[..., None], guess)
     x, jac, rows, ok = _correct(group, kv, guess, sign[0])

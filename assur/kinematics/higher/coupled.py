@@ -25,8 +25,8 @@ import numpy as np
 
 from assur.kinematics import jets as J
 from assur.kinematics.higher.groups import (
+    ClassIVDrawing,
     ClassIVInputs,
-    HigherGroup,
     Unknowns,
     Value,
     _columns,
@@ -84,7 +84,7 @@ class _Link:
 
 
 @dataclass(frozen=True, eq=False)
-class ClassIVCoupled(HigherGroup):
+class ClassIVCoupled(ClassIVDrawing):
     """The class IV group of order 2 with any internal and external pairs.
 
     Parameters
@@ -225,23 +225,10 @@ class ClassIVCoupled(HigherGroup):
                   for n in range(half)]
         return p, half - (vanish.index(False) if False in vanish else half)
 
-    @cached_property
-    def size(self) -> np.ndarray:
-        """L of the six drawn points."""
-        pts = np.broadcast_arrays(*(np.asarray(p, dtype=complex) for p in
-                                    (self.h_a, self.c, self.f, self.h_c, self.d, self.e)))
-        stack = np.stack(pts, axis=-1)
-        return np.asarray(np.abs(stack[..., :, None] - stack[..., None, :]).max(axis=(-2, -1)))
-
     def drawn(self) -> np.ndarray:
         """Zero rotations and slides."""
         zero = np.zeros(np.shape(self.size))
         return np.stack([zero, zero], axis=-1)
-
-    @property
-    def sketch(self) -> dict[str, Value]:
-        """C, D, E, F as drawn."""
-        return {"C": self.c, "D": self.d, "E": self.e, "F": self.f}
 
     # --- poses ----------------------------------------------------------------------------
 

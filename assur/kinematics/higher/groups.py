@@ -27,7 +27,7 @@ from assur.kinematics import jets as J
 from assur.text import render
 
 __all__ = [
-    "ClassIV", "ClassIVInputs", "HigherGroup", "Leash", "Triad", "TriadInputs", "expand", "values",
+    "ClassIV", "ClassIVDrawing", "ClassIVInputs", "HigherGroup", "Leash", "Triad", "TriadInputs", "expand", "values",
 ]
 
 #: A number, an ndarray or a :class:`~assur.kinematics.jets.Jet` (points complex, angles and
@@ -530,7 +530,48 @@ class ClassIVInputs:
 
 
 @dataclass(frozen=True, eq=False)
-class ClassIV(HigherGroup):
+class ClassIVDrawing(HigherGroup):
+    """The drawing every class IV group of order 2 is given by: the six points of links a
+    and c and the guides of their external pairs (:class:`ClassIV`, :class:`ClassIVCoupled`).
+
+    Parameters
+    ----------
+    h_a, c, f : complex
+        Drawn points of link a: its external pair's point H_a⁰ and the internal pairs C (to
+        b), F (to d).
+    h_c, d, e : complex
+        Drawn points of link c: its external pair's point H_c⁰ and the internal pairs D (to
+        b), E (to d).
+    u_a, u_c : complex or None
+        The drawn unit direction of the guide of a prismatic external pair on a (on c); None
+        for a hinge.
+    """
+
+    h_a: Value
+    c: Value
+    f: Value
+    h_c: Value
+    d: Value
+    e: Value
+    u_a: Value = None
+    u_c: Value = None
+
+    @cached_property
+    def size(self) -> np.ndarray:
+        """L of the six drawn points."""
+        pts = np.broadcast_arrays(*(np.asarray(p, dtype=complex) for p in
+                                    (self.h_a, self.c, self.f, self.h_c, self.d, self.e)))
+        stack = np.stack(pts, axis=-1)
+        return np.asarray(np.abs(stack[..., :, None] - stack[..., None, :]).max(axis=(-2, -1)))
+
+    @property
+    def sketch(self) -> dict[str, Value]:
+        """C, D, E, F as drawn."""
+        return {"C": self.c, "D": self.d, "E": self.e, "F": self.f}
+
+
+@dataclass(frozen=True, eq=False)
+class ClassIV(ClassIVDrawing):
     """The class IV group of order 2: the contour a–b–c–d, external pairs on a and c.
 
     An external pair is a hinge, or a prismatic pair on a guide of the known link: then the
@@ -560,15 +601,6 @@ class ClassIV(HigherGroup):
     3
     """
 
-    h_a: Value
-    c: Value
-    f: Value
-    h_c: Value
-    d: Value
-    e: Value
-    u_a: Value = None
-    u_c: Value = None
-
     n = 2
 
     @property
@@ -592,24 +624,11 @@ class ClassIV(HigherGroup):
         """3, or 1 when both external pairs slide (§3.2)."""
         return 1 if all(self.slides) else 3
 
-    @cached_property
-    def size(self) -> np.ndarray:
-        """L of the six drawn points."""
-        pts = np.broadcast_arrays(*(np.asarray(p, dtype=complex) for p in
-                                    (self.h_a, self.c, self.f, self.h_c, self.d, self.e)))
-        stack = np.stack(pts, axis=-1)
-        return np.asarray(np.abs(stack[..., :, None] - stack[..., None, :]).max(axis=(-2, -1)))
-
     def drawn(self) -> np.ndarray:
         """Zero rotations and slides; (0, l_b) when both slide."""
         zero = np.zeros(np.shape(self.size))
         second = self._arms()[4] + zero if all(self.slides) else zero
         return np.stack(np.broadcast_arrays(zero, second), axis=-1)
-
-    @property
-    def sketch(self) -> dict[str, Value]:
-        """C, D, E, F as drawn."""
-        return {"C": self.c, "D": self.d, "E": self.e, "F": self.f}
 
     def _arms(self, k: ClassIVInputs | None = None
               ) -> tuple[Value, Value, Value, Value, Value, Value]:

@@ -12,6 +12,8 @@ import pytest
 from assur.errors import TableError
 from assur.kinematics.build import load_model
 from assur.kinematics.higher import HigherGroup, follow_mode
+from assur.kinematics.higher.continuation import HigherSolution
+from assur.kinematics.higher.groups import ClassIVDrawing
 
 TABLES = Path(__file__).resolve().parents[2] / "input_tables"
 
@@ -65,3 +67,32 @@ def random_base(rng: np.random.Generator, d: int
     base = (p1, p1 + polar(30, 60), p1 + polar(30, 60))
     guide = tuple(np.exp(2j * np.pi * rng.uniform(size=d)) for _ in range(3))
     return polar, base, guide
+
+
+def check_class_iv_rigid(solution: HigherSolution, g: ClassIVDrawing, own: str = "") -> np.ndarray:
+    """Every distance on every link of a class IV group constant over the cycle (1e-9 L) and
+    each link's reported rotation that of a vector between two of its joints (1e-9).
+
+    ``own`` is the suffix of the points of a and c drawn at the internal pairs ("" where C,
+    D, E, F are hinges, "a"/"c" for ``Ca``, ``Dc``, … of the coupled solver). Returns where
+    the group exists (at least 30 % of the cycle is required).
+    """
+    ok = solution.exists
+    assert ok.mean() > 0.3
+    j = solution.joints
+    a_, c_ = ("a", "c") if own else ("", "")
+    ca, fa, dc, ec = "C" + a_, "F" + a_, "D" + c_, "E" + c_
+    size = np.broadcast_to(np.asarray(g.size)[:, None], ok.shape)[ok]
+    pairs = [(ca, "Ha", g.c, g.h_a), (fa, "Ha", g.f, g.h_a), (ca, fa, g.c, g.f),
+             (dc, "Hc", g.d, g.h_c), (ec, "Hc", g.e, g.h_c), (dc, ec, g.d, g.e),
+             ("C", "D", g.c, g.d), ("F", "E", g.f, g.e)]
+    for a, b, a0, b0 in pairs:
+        error = np.abs(np.abs(j[a] - j[b]) - np.abs(np.asarray(a0) - b0)[:, None])
+        assert (error[ok] <= 1e-9 * size).all(), (a, b)
+    for link, (x, y, x0, y0) in {"a": ("Ha", ca, g.h_a, g.c), "b": ("C", "D", g.c, g.d),
+                                 "c": ("Hc", dc, g.h_c, g.d), "d": ("F", "E", g.f, g.e)}.items():
+        turn = (j[y] - j[x]) / (np.asarray(y0) - x0)[:, None]
+        with np.errstate(invalid="ignore"):  # NaN where the group does not assemble
+            error = np.abs(np.exp(1j * solution.rotations[link]) - turn / np.abs(turn))
+        assert (error[ok] <= 1e-9).all(), link
+    return np.asarray(ok)

@@ -89,13 +89,8 @@ class ClassIVCoupled(ClassIVDrawing):
 
     Parameters
     ----------
-    h_a, c, f : complex
-        Drawn points of link a: its external pair's point H_a⁰ and the internal pairs C (to
-        b), F (to d).
-    h_c, d, e : complex
-        Drawn points of link c: H_c⁰ and the internal pairs D (to b), E (to d).
-    u_a, u_c : complex or None
-        The drawn unit direction of the guide of a prismatic external pair; None: a hinge.
+    h_a, c, f, h_c, d, e, u_a, u_c
+        The drawing (:class:`ClassIVDrawing`).
     w_c, w_d, w_e, w_f : complex or None
         The drawn unit direction of the guide of a prismatic internal pair C, D, E, F; None: a
         hinge. The guide may be carried by either link of the pair: the equation is the same.

@@ -582,15 +582,8 @@ class ClassIV(ClassIVDrawing):
 
     Parameters
     ----------
-    h_a, c, f : complex
-        Drawn points of link a: its external pair's point H_a⁰ and the internal hinges C (to
-        b), F (to d).
-    h_c, d, e : complex
-        Drawn points of link c: its external pair's point H_c⁰ and the internal hinges D (to
-        b), E (to d).
-    u_a, u_c : complex or None
-        The drawn unit direction of the guide of a prismatic external pair on a (on c); None
-        for a hinge.
+    h_a, c, f, h_c, d, e, u_a, u_c
+        The drawing (:class:`ClassIVDrawing`); C, D, E, F are hinges.
 
     Examples
     --------

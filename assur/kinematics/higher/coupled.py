@@ -110,14 +110,6 @@ class ClassIVCoupled(ClassIVDrawing):
     (('PR', 'RR'), 3, True, 0)
     """
 
-    h_a: Value
-    c: Value
-    f: Value
-    h_c: Value
-    d: Value
-    e: Value
-    u_a: Value = None
-    u_c: Value = None
     w_c: Value = None
     w_d: Value = None
     w_e: Value = None

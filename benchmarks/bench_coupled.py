@@ -11,7 +11,8 @@ one position (designs per second), and one design followed over 360 crank angles
 per second), both solvers in the same run; each variant runs once untimed, then R timed
 rounds (median and best).
 
-Run: ``python benchmarks/bench_coupled.py [--designs D] [--rounds R] [--forms F ...]``.
+Run: ``python benchmarks/bench_coupled.py [--designs D] [--rounds R] [--forms F ... | all]
+[--no-speed]``.
 """
 
 from __future__ import annotations
@@ -40,10 +41,21 @@ from test_higher_coupled import (  # type: ignore[import-not-found]
 
 from assur.kinematics.higher import ClassIV, HigherGroup, assembly_modes, follow_mode
 
+#: Every form with a prismatic internal pair: couplers b, d (internal pairs C–D, F–E), then
+#: the external pairs of a and c ("PR RR/RP": C prismatic, c slides on its known link).
+EVERY = [f"{b} {d}/{e}" for b in ("RR", "PR", "RP", "PP") for d in ("RR", "PR", "RP", "PP")
+         for e in ("RR", "RP", "PR", "PP") if "P" in b + d]
 
-def counts(form: str, d: int) -> tuple[int, int, int]:
-    """Designs agreeing, set aside, disagreeing."""
-    designs = random_designs(form, 1000 + COUPLED.index(form), d)
+
+def counts(form: str, d: int) -> tuple[int, int, int] | None:
+    """Designs agreeing, set aside, disagreeing; None for a form that is not kinematically
+    determinate (two couplers sliding on both their links, or no elimination)."""
+    try:
+        designs = random_designs(form, 1000 + EVERY.index(form), d)
+    except ValueError:
+        return None
+    if not designs.group.determinate:
+        return None
     phi = np.radians(37.0)
     modes = assembly_modes(designs.group, designs.inputs(np.full(d, phi)))
     found = fallback_modes(designs, phi)
@@ -76,15 +88,22 @@ def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--designs", type=int, default=1000)
     parser.add_argument("--rounds", type=int, default=3)
-    parser.add_argument("--forms", nargs="*", default=COUPLED)
+    parser.add_argument("--forms", nargs="*", default=COUPLED,
+                        help="forms to count ('all': every form with a prismatic internal pair)")
     parser.add_argument("--no-speed", action="store_true")
     args = parser.parse_args(argv)
     print(f"mode counts at 37°, {args.designs} designs per form: agree / set aside / differ")
-    for form in args.forms:
+    total = np.zeros(3, dtype=int)
+    for form in EVERY if args.forms == ["all"] else args.forms:
         start = time.perf_counter()
-        agree, aside, differ = counts(form, args.designs)
-        print(f"{form:9s} {agree:6d} {aside:6d} {differ:6d}   "
+        found = counts(form, args.designs)
+        if found is None:
+            print(f"{form:9s} not determinate: refused", flush=True)
+            continue
+        total += found
+        print(f"{form:9s} {found[0]:6d} {found[1]:6d} {found[2]:6d}   "
               f"({time.perf_counter() - start:.1f} s)", flush=True)
+    print(f"{'total':9s} {total[0]:6d} {total[1]:6d} {total[2]:6d}")
     if args.no_speed:
         return
     print("speed: median and best of the rounds")

@@ -40,7 +40,8 @@ from assur.kinematics.higher.modes import AssemblyModes
 FULL = os.environ.get("ASSUR_HIGHER_FULL") == "1"
 COUNTED, RIGID, WALKED = (400, 40, 12) if FULL else (40, 6, 3)
 SHARED = ["RR RR/RR", "RR RR/RP", "RR RR/PR", "RR RR/PP"]
-COUPLED = ["PR RR/RR", "RP RR/RR", "PP RR/RR", "PR RP/RR", "PR RR/RP"]
+COUPLED = ["PR RR/RR", "RP RR/RR", "PP RR/RR", "PR RP/RR", "PR RR/RP",
+           "PR PR/PP", "RP PR/PR", "PR RP/RP"]
 #: Forms with no sweep plan: the fallback is Newton's search from random starts (slower).
 SEARCHED = ["PR RP/RR"]
 TWO_PI = 2 * np.pi
@@ -178,7 +179,7 @@ def test_mode_count_agrees_with_the_fallback(form: str) -> None:
     keep = clear(modes)
     assert keep.mean() >= 0.9
     assert (modes.count[keep] == found.count[keep]).all()
-    assert modes.count.max() >= 2
+    assert modes.count.max() >= (1 if form == "PR PR/PP" else 2)  # PR PR/PP: two lines
     mine = np.stack([modes.joints[n] for n in COUPLER_JOINTS], axis=-1)
     # the fallback's joint points are on their first bodies: b at C, D; d at E, F
     gap = _nearest(mine, found.points[..., [1, 2, 3, 4]])
@@ -235,14 +236,15 @@ def test_analogs_against_central_differences(form: str) -> None:
 # --- the followed mode and its interval against a walk through all modes ----------------------
 
 
-@pytest.mark.parametrize("form", ["PR RR/RR", "PP RR/RR", "PR RR/RP"])
+@pytest.mark.parametrize("form", ["PR RR/RR", "PP RR/RR", "PR RR/RP", "RP PR/PR"])
 def test_no_mode_switch_and_the_interval_against_a_walk_through_all_modes(form: str) -> None:
     """On a 0.2° grid, every mode at every angle; the walk from the drawn pose steps to the
     nearest mode and ends where none is within 0.1. The continuation's positions (2° apart)
-    equal the walk's, and its ends lie within one walk step of the walk's."""
+    equal the walk's, and its ends lie within one walk step of the walk's. (A 0.1° grid for
+    RP PR/PR, whose lifted slide moves by up to 0.07 rad in 0.2° away from any end.)"""
     designs = random_designs(form, 60 + COUPLED.index(form), WALKED)
     g = designs.group
-    fine = 1800
+    fine = 3600 if form == "RP PR/PR" else 1800
     grid = np.linspace(0, TWO_PI, fine, endpoint=False)
     walk, forward, backward = walk_through(g, assembly_modes(expand(g), designs.grid(grid)).x)
     coarse = np.arange(0, fine, 10)

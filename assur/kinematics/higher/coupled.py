@@ -163,6 +163,14 @@ class ClassIVCoupled(ClassIVDrawing):
         return None
 
     @property
+    def _linear_kept(self) -> bool:
+        """Whether both equations are linear in the kept unknown, a slide (both couplers PR
+        or RP): lifted, both then vanish at y_o = π (s = ∞) for every ε, so Φ ≡ 0, and the
+        eliminant is the resultant of the two lines instead (:meth:`_full`)."""
+        return self.slides[1 - self.eliminated] and all(kind in ("PR", "RP")
+                                                         for kind in self.kinds)
+
+    @property
     def determinate(self) -> bool:
         """Whether the drawn form fixes the group: an elimination exists, no PP coupler
         slides along parallel guides."""
@@ -298,8 +306,16 @@ class ClassIVCoupled(ClassIVDrawing):
         return out
 
     def _full(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
-        """Φ(y_ε) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² at y_ε = arg e."""
+        """Φ(y_ε) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² at y_ε = arg e.
+
+        Where both equations are linear in the kept slide s_o (:attr:`_linear_kept`), each
+        is A_j·s_o + B_j = 0, lifted α_j = B_j/2 + i·L·A_j/2 and π_j = −Re α_j: then Φ ≡ 0
+        (the common root y_o = π), and Φ is the resultant A_b·B_d − A_d·B_b ∝ cross(α_b, α_d)
+        instead, of degree at most 2.
+        """
         (ab, pb), (ad, pd) = self._linear(e, k)
+        if self._linear_kept:
+            return np.asarray(_cross(ab, ad))
         return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - _cross(ab, ad) ** 2)
 
     @staticmethod
@@ -326,10 +342,15 @@ class ClassIVCoupled(ClassIVDrawing):
                                     np.asarray(e)[..., None] ** powers).real)
 
     def recover(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
-        """y_ε = arg e, y_o = arg E_o with E_o = −i(π_bα_d − π_dα_b)/cross(α_b, α_d); NaN
-        where a PP coupler would be turned by π from one of its links."""
+        """y_ε = arg e, y_o = arg E_o with E_o = −i(π_bα_d − π_dα_b)/cross(α_b, α_d) (−α/ᾱ of
+        the larger α where both equations are linear in the kept slide); NaN where a PP
+        coupler would be turned by π from one of its links."""
         (ab, pb), (ad, pd) = self._linear(e, k)
-        other = np.angle(-1j * (pb * ad - pd * ab) / _cross(ab, ad))
+        if self._linear_kept:  # s_o = −L·Re α/Im α of either line: E_o = −α/ᾱ
+            alpha = np.where(np.abs(ab) >= np.abs(ad), ab, ad)
+            other = np.angle(-alpha / np.conj(alpha))
+        else:
+            other = np.angle(-1j * (pb * ad - pd * ab) / _cross(ab, ad))
         pair = [np.angle(e), other] if self.eliminated == 0 else [other, np.angle(e)]
         x = np.stack(np.broadcast_arrays(*pair), axis=-1)
         if "PP" in self.kinds:

@@ -6,8 +6,9 @@ sliding on a guide of the crank; both sliding) and each triad whose leashes slid
 crank angle of 37° by the closed form (``assembly_modes``) and by the fallback's sweep of the
 full pose system (``sweep_modes``, 1,440 samples, two sweeps joined), in the same run. The
 class IV groups with a prismatic internal pair in both couplers (a–b and c–d, or a–b and
-d–a) have no closed form: their sweep is compared with multi-start Newton (300 starts) on
-the first ``--newton`` designs. Printed per form: designs, how many lie within 1e-3 of a
+d–a) have their sweep compared with multi-start Newton (300 starts) on the first
+``--newton`` designs (their closed form, ``ClassIVCoupled``, is counted against the sweep
+by ``bench_coupled.py``). Printed per form: designs, how many lie within 1e-3 of a
 birth or merge of modes (set aside), how many of the others disagree, and the designs per
 second of each method; against Newton, on how many designs it finds more modes than the
 sweep (a mode the sweep missed) and fewer (a mode Newton missed).

@@ -1,8 +1,9 @@
 """Class IV groups with prismatic internal pairs through the model builder and the analysis.
 
 The examples ``class_iv_internal_slider.yaml`` (link 3 a block in the slot of link 2: an
-R–P coupler) and ``class_iv_internal_frame_guide.yaml`` (the same with link 4 sliding on a
-frame guide), the same tables with the guides carried by the other link of each sliding pair,
+R–P coupler), ``class_iv_internal_frame_guide.yaml`` (the same with link 4 sliding on a
+frame guide) and ``class_iv_internal_two_blocks.yaml`` (two blocks in slots of link 2 and link
+4 on a frame guide: both equations linear in its slide), the same tables with the guides carried by the other link of each sliding pair,
 and random designs with the group's drawn points and guides moved. Each check compares with a
 computation made another way: every point of every link keeps its coordinates in the link's
 frame (rigid links, a hinge's one point on both links), a prismatic pair's two links turn
@@ -40,7 +41,8 @@ from synthesis.problem import ControlPoints, Output, Parameter, Problem
 LABEL = "IV(2,3,4,5)"
 #: The examples and their prismatic pairs.
 SLIDING = {"class_iv_internal_slider.yaml": ("C",),
-           "class_iv_internal_frame_guide.yaml": ("C", "G")}
+           "class_iv_internal_frame_guide.yaml": ("C", "G"),
+           "class_iv_internal_two_blocks.yaml": ("C", "F", "G")}
 EXAMPLES = list(SLIDING)
 PHI = np.radians(np.arange(0.0, 360.0, 10.0))
 SCALE = 200.0
@@ -134,11 +136,11 @@ def test_the_examples_keep_every_pair_over_the_cycle(name: str) -> None:
         at = ([motion.joints[pid]] if kind == "R"
               else [motion.sliders[pid].point, motion.sliders[pid].base])
         assert all(abs(complex(_array(z, PHI.shape)[0]) - drawn) <= TOL for z in at), pid
-    swapped = {"C": 3, "G": 4}
+    swapped = {"C": 3, "F": 5, "G": 4}
     swapped = {pid: link for pid, link in swapped.items() if pid in SLIDING[name]}
     other = analyse(_model(_table(name, swapped)), PHI)
     assert check_pairs(other, SCALE) == len(swapped)
-    for pid in ("B", "D", "E", "F"):
+    for pid in sorted(set("BDEF") - set(swapped)):
         apart = _array(other.joints[pid], PHI.shape) - _array(motion.joints[pid], PHI.shape)
         assert np.abs(apart).max() <= TOL, pid
     for pid in swapped:

@@ -53,7 +53,7 @@ if TYPE_CHECKING:
     from assur.structure.identification import check_identification, identification_table
     from assur.structure.report import structure_report
 
-__all__ = [
+__all__ = [  # noqa: RUF022 - grouped by topic, as the comments say
     # errors
     "AssemblyError",
     "AssurError",

@@ -23,8 +23,8 @@ import time
 import numpy as np
 
 from assur import analyse_structure, chain_from_dict
-from assur.structure.peeling import body_graph, peel
 from assur.structure.identification import identification_table
+from assur.structure.peeling import body_graph, peel
 
 _KINDS = {
     1: [("R", "a", "u", None), ("R", "u", "v", None), ("R", "v", "b", None)],

@@ -215,13 +215,13 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
     what = f"class{data['task_class']}" + ("_ratio" if data.get("output") == "ratio" else "")
     lines = [w("title", name=data["name"], cls=data["task_class"], what=w(what)), ""]
     lines += [w("design"),
-              f"  {w('param'):<22} {w('initial'):>12} {w('lower'):>12} {w('upper'):>12} "
-              f"{w('found'):>14}"]
+              (f"  {w('param'):<22} {w('initial'):>12} {w('lower'):>12} {w('upper'):>12} "
+               f"{w('found'):>14}")]
     for name, value in data["design"].items():
         lo, hi = data["bounds"][name]
         lines.append(f"  {name:<22} {data['initial'][name]:>12.6g} {lo:>12.6g} {hi:>12.6g} "
                      f"{value:>14.9g}")
-    yes_no = lambda flag: w("yes") if flag else w("no")  # noqa: E731
+    yes_no = lambda flag: w("yes") if flag else w("no")
     unit = "" if data["unit"] == "1" else w(data["unit"])  # the ratio n has no unit
     lines += ["", w("criteria"),
               f"  {w('q'):<40} {_fmt(data['Q'])} {unit}",
@@ -282,9 +282,9 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
     s = data["search"]
     lines += ["", w("search"),
               f"  {w('trials')}: {s['trials']}   {w('feasible_trials')}: {s['feasible_trials']}",
-              f"  {w('stop')}: {w(s['stop'] + '_stop')}   "
-              f"{w('time')}: {s['seconds']:.2f} {w('seconds')}   "
-              f"seed {'—' if s['seed'] is None else s['seed']}, 2^{s['budget_log2']} LPτ",
+              (f"  {w('stop')}: {w(s['stop'] + '_stop')}   "
+               f"{w('time')}: {s['seconds']:.2f} {w('seconds')}   "
+               f"seed {'—' if s['seed'] is None else s['seed']}, 2^{s['budget_log2']} LPτ"),
               f"  {w('history')}:"]
     history = s["history"]
     if len(history) > 12:

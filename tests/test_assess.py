@@ -12,12 +12,12 @@ from pathlib import Path
 
 import pytest
 import yaml
+from test_batch import FAIL_FROM, FAIL_TO, GOOD_ROWS, four_bar
 
 from assur import TableError, analyse_structure, load_chain
 from synthesis.app.analysis import analyse_table
 from synthesis.app.assess import assess
 from synthesis.cli import main
-from test_batch import FAIL_FROM, FAIL_TO, GOOD_ROWS, four_bar
 
 ROOT = Path(__file__).resolve().parent.parent
 COURSE = ROOT / "input_tables" / "course_11_link.yaml"

@@ -20,10 +20,10 @@ from typing import Any
 
 import numpy as np
 
+from assur.kinds import given
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import Motion, unwrap
 from assur.kinematics.model import KinematicModel
-from assur.kinds import given
 from assur.model import LinkId, PairId
 
 __all__ = [

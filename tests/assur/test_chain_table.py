@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 
 from assur import chain_from_dict, load_chain
-from assur.model import PairType
 from assur.errors import TableError
+from assur.model import PairType
 
 BROKEN = sorted((Path(__file__).parent / "broken").glob("*.yaml"))
 ROOT = Path(__file__).resolve().parents[2]
@@ -18,8 +18,8 @@ ROOT = Path(__file__).resolve().parents[2]
 
 def _expectations(path: Path) -> tuple[str, str]:
     text = path.read_text(encoding="utf-8")
-    expect = re.search(r"^# expect: (.*)$", text, re.M).group(1)
-    where = re.search(r"^# where: (.*)$", text, re.M).group(1)
+    expect = re.search(r"^# expect: (.*)$", text, re.MULTILINE).group(1)
+    where = re.search(r"^# where: (.*)$", text, re.MULTILINE).group(1)
     return expect, where
 
 
@@ -115,12 +115,12 @@ def test_every_problem_of_the_sketch_is_reported_when_the_chain_is_read() -> Non
         "  - geometry 'anything': unknown key; did you mean 'tracing'?",
         "  - geometry 'A': unknown key 'pont'; did you mean 'point'?",
         "  - geometry 'B' 'point': expected two numbers [x, y] (mm); found a list of 2 items",
-        "  - geometry 'C': expected {point: [x, y]} (and 'direction' for a slider pair); "
-        "found a list of 2 items",
-        "  - geometry 'D' 'direction': expected an angle in degrees or a vector [dx, dy]; "
-        "found a list of 2 items",
-        "  - geometry 'input' 'stroke': expected [min, max] actuator lengths (mm), "
-        "0 < min < max; found a list of 2 items",
+        ("  - geometry 'C': expected {point: [x, y]} (and 'direction' for a slider pair); "
+         "found a list of 2 items"),
+        ("  - geometry 'D' 'direction': expected an angle in degrees or a vector [dx, dy]; "
+         "found a list of 2 items"),
+        ("  - geometry 'input' 'stroke': expected [min, max] actuator lengths (mm), "
+         "0 < min < max; found a list of 2 items"),
         "  - geometry 'margin' 'L1(2,3)': δ must lie in [0, 1); found 2",
         "  - geometry.tracing 'K' 'link': expected a moving link of the mechanism; found 0"}
 
@@ -194,14 +194,14 @@ def test_row_params_values_are_checked_when_the_table_is_read() -> None:
     found = chain_from_dict(data, source="rows.yaml").group_params[(2, 3)]
     where = "structure_identification (L1(2,3)) 'params'"
     assert [issue.text() for issue in found.problems] == [
-        f"{where} 'l_i': a range [initial, lower, upper] belongs in the parameters table of "
-        "a synthesis problem (assur synthesize); a mechanism table takes one number; "
-        "found [1, 2, 3]",
-        f"{where} 'l_j': expected a number or 'A' (supplied by an earlier group); "
-        "found 'x' (a text)",
+        (f"{where} 'l_i': a range [initial, lower, upper] belongs in the parameters table of "
+         "a synthesis problem (assur synthesize); a mechanism table takes one number; "
+         "found [1, 2, 3]"),
+        (f"{where} 'l_j': expected a number or 'A' (supplied by an earlier group); "
+         "found 'x' (a text)"),
         f"{where} 's': s must be +1 or −1; found 2",
-        f"{where} 'tracing': expected rows {{name: Ж, link: L}} with columns l_<name>, "
-        "beta_<name>; found 'K' (a text)"]
+        (f"{where} 'tracing': expected rows {{name: Ж, link: L}} with columns l_<name>, "
+         "beta_<name>; found 'K' (a text)")]
     assert found.supplied == {"x_Hi"} and found.values == {}
 
 

@@ -19,7 +19,7 @@ of the group's size (plus the rounding of coordinates far from the origin).
 from __future__ import annotations
 
 from fractions import Fraction
-from functools import lru_cache
+from functools import cache
 
 import numpy as np
 import pytest
@@ -77,7 +77,7 @@ def to_float(n: np.ndarray, k: int) -> np.ndarray:
     return np.ldexp(n.astype(float), -k)
 
 
-@lru_cache(maxsize=None)
+@cache
 def designs(kind: str) -> dict:
     """Arguments of ``DESIGNS`` designs of ``kind``, the exact decision, the relative deficit
     (negative where the exact decision fails) and the group's size."""

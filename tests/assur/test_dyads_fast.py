@@ -91,7 +91,7 @@ def test_fast_rrr_equals_the_readable_path(arguments: tuple) -> None:
 
 @given(arguments=rrr_arguments(), delta=st.sampled_from([0.0, 1e-3]))
 def test_fast_and_readable_solutions_agree(arguments: tuple, delta: float) -> None:
-    h_i, h_j, l_i, l_j, s, shape = arguments
+    h_i, h_j, l_i, l_j, s, _shape = arguments
     fast = solve_rrr(h_i, h_j, l_i, l_j, s, delta)
     readable = solve_rrr(Jet(h_i), h_j, l_i, l_j, s, delta)  # a jet takes the readable path
     np.testing.assert_array_equal(fast.exists, readable.exists)

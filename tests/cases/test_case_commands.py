@@ -8,8 +8,8 @@ import pkgutil
 
 import pytest
 
-import synthesis.cases as cases
 from assur.text import languages
+from synthesis import cases
 from synthesis.cases.command import Case
 from synthesis.cli.parser import build_parser
 

@@ -172,8 +172,8 @@ def test_a_pressure_angle_where_none_exists_is_reported_when_evaluated() -> None
         Evaluator(problem)
     assert caught.value.source == "bad.yaml"
     assert [str(i) for i in caught.value.issues] == [
-        "allowable (L0(1)) 'pressure_angle': the pressure angle is computed only for L1 and L2 "
-        "groups with a two-hinge rod; L0(1) has none"]
+        ("allowable (L0(1)) 'pressure_angle': the pressure angle is computed only for L1 and L2 "
+         "groups with a two-hinge rod; L0(1) has none")]
 
 
 def test_bounds_are_checked_where_they_are_written() -> None:
@@ -216,8 +216,8 @@ def test_a_stroke_task_needs_a_sliding_output_link() -> None:
     bad = copy.deepcopy(GOOD)
     bad["output"] = {"link": 2}  # the rod of the RRP group: two revolute pairs, no slider
     assert _messages(bad) == [
-        "output 'link': link 2 has no prismatic pair to slide in; task class 2 controls the "
-        "displacement S of a slider"]
+        ("output 'link': link 2 has no prismatic pair to slide in; task class 2 controls the "
+         "displacement S of a slider")]
 
 
 def test_accuracy_is_read_in_the_unit_of_the_output() -> None:

@@ -27,12 +27,12 @@ def _sphere(x: np.ndarray) -> Criteria:
 @pytest.mark.parametrize(("field", "value", "rule"), [
     ("batch", 0, "batch must be a power of two (1, 2, 4, …: designs per evaluation); got 0"),
     ("batch", 48, "batch must be a power of two"),
-    ("shrink", 5.0, "shrink (the half-width factor of each shrunk box) must be a number between "
-                    "0 and 1, both excluded; got 5.0"),
+    ("shrink", 5.0, ("shrink (the half-width factor of each shrunk box) must be a number between "
+                     "0 and 1, both excluded; got 5.0")),
     ("shrink", 0.0, "got 0.0"),
     ("time_limit", -1.0, "time_limit must be a positive number of seconds, or none; got -1.0"),
-    ("budget_log2", -3, "budget (log2 of the LPτ trials) must be a whole number from 0 to 24; "
-                        "got -3"),
+    ("budget_log2", -3, ("budget (log2 of the LPτ trials) must be a whole number from 0 to 24; "
+                         "got -3")),
     ("budget_log2", 25, "got 25"),
     ("seed", -1, "seed must be a whole number ≥ 0; got -1"),
     ("seed", 1.5, "seed must be a whole number ≥ 0; got 1.5"),
@@ -81,12 +81,12 @@ def _table_with(tmp_path: Path, search: dict[str, object]) -> Path:
 
 
 @pytest.mark.parametrize(("option", "key", "value", "rule"), [
-    ("--budget", "budget", -3, "budget (log2 of the LPτ trials) must be a whole number from 0 "
-                               "to 24; got -3"),
-    ("--time-limit", "time_limit", -1.0, "time_limit must be a positive number of seconds, or "
-                                         "none; got -1.0"),
-    ("--shrink", "shrink_passes", 11, "shrink_passes must be a whole number from 0 to 10; "
-                                      "got 11"),
+    ("--budget", "budget", -3, ("budget (log2 of the LPτ trials) must be a whole number from 0 "
+                                "to 24; got -3")),
+    ("--time-limit", "time_limit", -1.0, ("time_limit must be a positive number of seconds, or "
+                                          "none; got -1.0")),
+    ("--shrink", "shrink_passes", 11, ("shrink_passes must be a whole number from 0 to 10; "
+                                       "got 11")),
     ("--seed", "seed", -1, "seed must be a whole number ≥ 0; got -1"),
 ])
 @pytest.mark.parametrize("lang", ["en", "ru"])

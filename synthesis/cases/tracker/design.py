@@ -34,10 +34,10 @@ from synthesis.cases.tracker.geometry import Proportions, check_ratios, proporti
 from synthesis.cases.tracker.patent import EXAMPLE, K2
 
 __all__ = [
+    "PATENT_TASK",
     "Design",
     "DesignTable",
     "DesignTask",
-    "PATENT_TASK",
     "Violation",
     "choose",
     "design_at",

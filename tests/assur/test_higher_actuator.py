@@ -2,7 +2,8 @@
 
 The shipped example ``input_tables/actuator_triad.yaml`` (cylinder 2 and rod 3 as the leash
 A–C of the triad with the base 4, then an RRR dyad) and a class IV group whose coupler b is
-the actuator, both over their strokes:
+the actuator (all its internal pairs hinges, or d a block in a slot of a), over their
+strokes:
 
 - positions against a solve written here: the triad's joints C, D, F (six coordinates) from
   the six distance equations (three leash lengths, the actuator's equal to q, and the three
@@ -16,8 +17,8 @@ the actuator, both over their strokes:
   the existence interval of :func:`check_existence` there;
 - the force analysis against the global solve of all links (``test_forces_global``);
 - the refusal of an actuator that is a ternary link of its group (the triad's base, a of a
-  class IV group), or a coupler of a class IV group with a prismatic internal pair, naming
-  the group and the members.
+  class IV group), or a class IV coupler with a prismatic pair at an end, naming the group
+  and the members.
 """
 
 from __future__ import annotations
@@ -65,6 +66,14 @@ CLASS_IV: dict[str, Any] = {
                  "D": {"point": [115, 67]}, "K": {"point": [140.5, 22]},
                  "E": {"point": [87, 118]}, "F": {"point": [25.5, 98.5]},
                  "input": {"stroke": [54, 76]}}}
+
+#: The same with link 5 (d) a block in a slot of link 1 (a) at F, drawn at 40°: d turns with
+#: a, so the group has a prismatic internal pair beside the actuator coupler.
+BLOCK_D: dict[str, Any] = dict(CLASS_IV, mechanism=dict(CLASS_IV["mechanism"], pairs=[
+    dict(p, type="P", guide=1) if p["id"] == "F" else p
+    for p in CLASS_IV["mechanism"]["pairs"]]),
+    geometry=dict(CLASS_IV["geometry"], F={"point": [25.5, 98.5], "direction": 40}))
+CLASS_IV_TABLES = {"class IV": CLASS_IV, "class IV, block d": BLOCK_D}
 
 
 def _write(tmp_path: Path, name: str, table: dict[str, Any]) -> Path:
@@ -163,8 +172,11 @@ def test_triad_analogs_equal_central_differences_in_the_length() -> None:
     _check_analogs(model, np.linspace(86.0, 114.0, 8))
 
 
-def test_class_iv_coupler_positions_close_and_analogs_equal_differences(tmp_path: Path) -> None:
-    model = assur.load_model(_write(tmp_path, "civ.yaml", CLASS_IV))
+@pytest.mark.parametrize("which", list(CLASS_IV_TABLES))
+def test_class_iv_coupler_positions_close_and_analogs_equal_differences(which: str,
+                                                                      tmp_path: Path) -> None:
+    table = CLASS_IV_TABLES[which]
+    model = assur.load_model(_write(tmp_path, "civ.yaml", table))
     group = model.groups[0]
     assert group.kind == "IV" and group.driven == "b" and group.composite == (2, 3)
     assert float(sketch_input(model)) == pytest.approx(abs(57 + 66j - (115 + 67j)), abs=1e-12)
@@ -172,11 +184,24 @@ def test_class_iv_coupler_positions_close_and_analogs_equal_differences(tmp_path
     motion = assur.analyse(model, q)
     assert motion.exists.all()
     j = {pid: values(z) for pid, z in motion.joints.items()}
-    g = CLASS_IV["geometry"]
+    g = table["geometry"]
     drawn = {k: complex(*g[k]["point"]) for k in ("H", "C", "D", "K", "E", "F")}
     assert np.max(np.abs(np.abs(j["D"] - j["C"]) - q)) <= 1e-9
-    for a, b in (("H", "C"), ("H", "F"), ("C", "F"), ("K", "D"), ("K", "E"), ("D", "E"),
-                 ("F", "E")):
+    if which == "class IV":
+        pairs = (("H", "C"), ("H", "F"), ("C", "F"), ("K", "D"), ("K", "E"), ("D", "E"),
+                 ("F", "E"))
+    else:  # F slides: d's point there (the slider's point) and a's (its base) differ
+        block = motion.sliders["F"]
+        j["F"], j["Fa"] = values(block.point), values(block.base)
+        turn_a = (j["C"] - j["H"]) / (drawn["C"] - drawn["H"])
+        turn_d = (j["F"] - j["E"]) / (drawn["F"] - drawn["E"])
+        guide = turn_a * np.exp(1j * np.radians(40.0))
+        assert np.max(np.abs(turn_d - turn_a)) <= 1e-9          # d turns with a
+        assert np.max(np.abs((np.conj(guide) * (j["F"] - j["Fa"])).imag)) <= 1e-9
+        pairs = (("H", "C"), ("H", "Fa"), ("C", "Fa"), ("K", "D"), ("K", "E"), ("D", "E"),
+                 ("F", "E"))
+        drawn["Fa"] = drawn["F"]
+    for a, b in pairs:
         assert np.max(np.abs(np.abs(j[a] - j[b]) - abs(drawn[a] - drawn[b]))) <= 1e-9, (a, b)
     _check_analogs(model, np.linspace(55.0, 75.0, 5))
 
@@ -231,9 +256,10 @@ def test_mode_end_below_the_stroke_against_a_dense_scan_and_existence() -> None:
     assert f"q = {end:.4f} mm" in notes[-1] and "merges" in notes[-1]
 
 
-@pytest.mark.parametrize("which", ["triad", "triad table loads", "class IV"])
+@pytest.mark.parametrize("which", ["triad", "triad table loads", *CLASS_IV_TABLES])
 def test_actuator_force_equals_the_global_solve(which: str, tmp_path: Path) -> None:
-    path = EXAMPLE if which.startswith("triad") else _write(tmp_path, "civ.yaml", CLASS_IV)
+    path = EXAMPLE if which.startswith("triad") else \
+        _write(tmp_path, "civ.yaml", CLASS_IV_TABLES[which])
     model, table = load_with_forces(path)
     data = table if which == "triad table loads" and table is not None else \
         _loads(model, np.random.default_rng(3))
@@ -298,17 +324,15 @@ def test_an_actuator_that_is_a_ternary_link_is_refused(tmp_path: Path,
                              input={"stroke": [100, 130]})
     err = _refused(tmp_path, table, capsys, "en")
     assert "IV(" in err and "links 1, 6" in err and "three pairs" in err
-    # the coupler b is the actuator, and d slides on link a (F prismatic): the coupled
-    # solver takes no actuator length
-    pairs = [dict(p, type="P", guide=1) if p["id"] == "F" else p
+    # the coupler b is the actuator, and its end C slides on link a: it has no length
+    pairs = [dict(p, type="P", guide=1) if p["id"] == "C" else p
              for p in CLASS_IV["mechanism"]["pairs"]]
     table = dict(CLASS_IV, mechanism=dict(CLASS_IV["mechanism"], pairs=pairs))
-    table["geometry"] = dict(CLASS_IV["geometry"], F={"point": [25.5, 98.5],
-                                                      "direction": 40})
+    table["geometry"] = dict(CLASS_IV["geometry"], C={"point": [57, 66], "direction": 40})
     err = _refused(tmp_path, table, capsys, "en")
-    assert "IV(" in err and "links 2, 3" in err and "prismatic internal pairs F" in err
+    assert "IV(" in err and "links 2, 3" in err and "prismatic pair at an end (C)" in err
     err = _refused(tmp_path, table, capsys, "ru")
-    assert "звенья 2, 3" in err and "поступательными парами F" in err
+    assert "звенья 2, 3" in err and "поступательной парой на конце (C)" in err
 
 
 def test_example_reports_the_stroke_in_json(capsys: pytest.CaptureFixture[str]) -> None:

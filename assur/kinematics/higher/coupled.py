@@ -242,15 +242,16 @@ class ClassIVCoupled(ClassIVDrawing):
         a, c = self._links(y, k)
         both = a.weight * a.weight * c.weight * c.weight
         out = []
-        for (first, second), kind, (wa, wc) in zip(((self.c, self.d), (self.f, self.e)),
-                                                   self.kinds, (self._guides(0), self._guides(1)),
-                                                   strict=True):
+        for j, ((first, second), kind, (wa, wc)) in enumerate(zip(
+                ((self.c, self.d), (self.f, self.e)), self.kinds,
+                (self._guides(0), self._guides(1)), strict=True)):
             pa = a.at(first, self.h_a)     # κ_a·(the point of a at the pair on a)
             pc = c.at(second, self.h_c)    # κ_c·(the point of c at the pair on c)
             gap = c.weight * pa - a.weight * pc   # κ_aκ_c·(that on a − that on c)
             drawn = np.asarray(first) - second
-            if kind == "RR":
-                length = np.abs(drawn)
+            if kind == "RR":  # a bar: its drawn length, or an actuator's from the inputs
+                given = k.l_b if j == 0 else k.l_d
+                length = np.abs(drawn) if given is None else given
                 out.append((J.dot(gap, gap) - length * length * both, both, 0.5 / length))
             elif kind == "PP":
                 out.append((J.cross(a.turn, c.turn), 1.0, self.size))

@@ -329,7 +329,7 @@ def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched 
     Sketched or None
         Its :class:`Layout` and link frames; None after recording a problem (a form that is
         not kinematically determinate although 3n − 2p = 0, :func:`_class_iv_refusals`; an
-        actuator that is a or c, or one in a group with prismatic internal pairs). An actuator
+        actuator that is a or c, or a coupler with a prismatic pair at an end). An actuator
         that is the coupler b or d (hinged at both ends) gives its members the coupler's frame
         (its ``driven`` name).
 
@@ -347,10 +347,6 @@ def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched 
     if group.composite and body(group.composite[0]) in (body(a), body(c)):
         _actuator_refused(build, group, label, "actuator")
         return None
-    inner = sorted(str(pid) for pid in group.internal if pairs[pid].type.value != "R")
-    if group.composite and inner:
-        _actuator_refused(build, group, label, "actuator_coupled", pairs=", ".join(inner))
-        return None
 
     def between(x: LinkId, y: LinkId | None = None) -> list[PairId]:
         return [p for p in group.internal if body(x) in (ends := {body(n) for n in pairs[p].links})
@@ -362,6 +358,13 @@ def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched 
     p_e = next(p for p in between(c) if p != p_d)
     d = next(link for link in pairs[p_e].links if link != c)
     internal = dict(zip(CLASS_IV_JOINTS, (p_c, p_d, p_e, p_f), strict=True))
+    driven = next((name for name, link in (("b", b), ("d", d))
+                   if link in (group.composite or ())), None)
+    ends = {"b": ("C", "D"), "d": ("F", "E")}.get(str(driven), ())
+    sliding = [str(internal[n]) for n in ends if pairs[internal[n]].type.value != "R"]
+    if sliding:
+        _actuator_refused(build, group, label, "actuator_coupled", pairs=", ".join(sliding))
+        return None
     refusals = _class_iv_refusals(build, internal, (h_a, h_c), (a, b, c, d))
     for code, data in refusals:
         _problem(build, label, code, **data)
@@ -389,8 +392,6 @@ def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched 
               c: (hc, cmath.phase(pts["D"] - hc)), d: (pts["F"], cmath.phase(pts["E"] - pts["F"]))}
     layout = Layout((a, b, c, d), CLASS_IV_LINKS, (p_c, p_d, p_e, p_f), (h_a, h_c),
                     anchors=tuple(anchors), guides=tuple(guides))
-    driven = next((name for name, link in (("b", b), ("d", d))
-                   if link in (group.composite or ())), None)
     if driven is not None:
         frames.update({member: frames[b if driven == "b" else d]
                        for member in group.composite or ()})

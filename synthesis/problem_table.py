@@ -359,6 +359,8 @@ def _chain_form(top: Node, mechanism: _Mechanism, general: _General) -> _Form:
     if model is None:
         return _Form({}, None, foreign, {}, mechanism.data)
     groups: dict[GroupKey, Any] = {group_key(g): g.label for g in model.groups}
+    if model.drive != "crank":
+        reader.problem("mechanism", "problem.actuator_drive", source=mechanism.source)
     if general.n_groups is not MISSING and general.n_groups != len(groups):
         reader.problem("general 'groups'", "higher.problem.groups_count", rows=len(groups),
                        found=general.n_groups)

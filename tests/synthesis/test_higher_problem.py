@@ -162,6 +162,18 @@ def test_bad_cells_are_reported_together(tmp_path: Path,
         assert expected in text, (expected, text)
 
 
+@pytest.mark.parametrize("table", ["actuator_triad.yaml", "hydraulic_boom.yaml"])
+def test_a_mechanism_driven_by_an_actuator_is_refused(table: str, tmp_path: Path,
+                                                      capsys: pytest.CaptureFixture[str]
+                                                      ) -> None:
+    """The search turns a crank through the control angles: an actuator's length is no
+    angle, so the problem is refused with the reason instead of being solved on nonsense."""
+    chain = str(PROBLEM.parent.parent / table)
+    code, text = _problems(tmp_path, {"mechanism": chain, "parameters": []}, capsys)
+    assert code == 2 and "Traceback" not in text
+    assert f"mechanism: the mechanism of {chain} is driven by a linear actuator" in text, text
+
+
 def test_a_chain_without_its_sketch_is_named(tmp_path: Path,
                                              capsys: pytest.CaptureFixture[str]) -> None:
     chain = yaml.safe_load((PROBLEM.parent / "../six_bar_triad.yaml").read_text())

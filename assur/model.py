@@ -19,11 +19,15 @@ from assur.errors import Issue
 
 if TYPE_CHECKING:  # pragma: no cover
     from assur.forces.model import ForceData
+    from assur.kinematics.model import KinematicModel
 
 __all__ = [
+    "DEFAULT_PRESSURE_ANGLE",
+    "Allowable",
     "Chain",
     "Direction",
     "Drive",
+    "General",
     "GroupParams",
     "IdentificationRow",
     "Input",
@@ -40,6 +44,9 @@ __all__ = [
 
 LinkId = int | str
 PairId = int | str
+
+#: The program default of the allowable pressure angle [α], degrees (``method.md`` §2.7).
+DEFAULT_PRESSURE_ANGLE = 45.0
 
 
 def id_key(value: LinkId | PairId) -> tuple[int, int | str]:
@@ -266,6 +273,70 @@ class Drive:
 Input = Drive
 
 
+@dataclass(frozen=True)
+class Allowable:
+    """One row of ``general: {allowable: [...]}``: the limits a mechanism table states for
+    one group (a synthesis result keeps its problem's own, ``method.md`` tables 2.7–2.11).
+
+    Attributes
+    ----------
+    links : tuple of link ids
+        The group's links ``(i, j)``, or ``(i,)`` for an input group.
+    pressure_angle : float or None
+        Allowable pressure angle, degrees in (0, 90]; None: the program default.
+    rotations : mapping
+        Joint role → allowable rotation, degrees (> 0).
+    workspace : tuple of 4 floats or None
+        ``(x_low, x_high, y_low, y_high)`` of the working-space box, mm.
+    """
+
+    links: tuple[LinkId, ...]
+    pressure_angle: float | None = None
+    rotations: Mapping[str, float] = field(default_factory=dict)
+    workspace: tuple[float, float, float, float] | None = None
+
+
+@dataclass(frozen=True)
+class General:
+    """The ``general:`` section of a mechanism table, read once by the table reader.
+
+    Attributes
+    ----------
+    omega : float or None
+        Input speed (rad/s of a crank, mm/s of an actuator), finite and positive; None when
+        the table gives none.
+    allowable : tuple of Allowable
+        The limits stated per group.
+
+    Examples
+    --------
+    >>> General(omega=10.0).omega, General().allowable
+    (10.0, ())
+    """
+
+    omega: float | None = None
+    allowable: tuple[Allowable, ...] = ()
+
+    def pressure_angles(self, model: KinematicModel) -> dict[str, float]:
+        """Every group of ``model`` → its allowable pressure angle, degrees: the one this
+        section states for the group's links, else :data:`DEFAULT_PRESSURE_ANGLE`.
+
+        Parameters
+        ----------
+        model : KinematicModel
+            The mechanism (its groups give the labels).
+
+        Returns
+        -------
+        dict
+        """
+        stated = {row.links: row.pressure_angle for row in self.allowable
+                  if row.pressure_angle is not None}
+        return {group.label: stated.get(tuple(v for v in (group.i, group.j) if v is not None),
+                                        DEFAULT_PRESSURE_ANGLE)
+                for group in model.groups}
+
+
 @dataclass(frozen=True, slots=True)
 class Chain:
     """A planar kinematic chain with its frame and inputs.
@@ -285,8 +356,8 @@ class Chain:
     geometry : Sketch or None
         The table's ``geometry`` section: the pose for the rank test, the scheme and the
         kinematic model.
-    general : mapping or None
-        The table's ``general`` section, untouched.
+    general : General
+        The table's ``general`` section, read and checked (empty when the table has none).
     source : str
         The file the chain came from.
     group_params : mapping
@@ -318,7 +389,7 @@ class Chain:
     pairs: tuple[Pair, ...]
     inputs: tuple[Drive, ...]
     geometry: Sketch | None = None
-    general: Mapping[str, Any] | None = None
+    general: General = field(default_factory=General)
     source: str = "<data>"
     group_params: Mapping[tuple[LinkId, ...], GroupParams] = field(default_factory=dict)
     names: Mapping[LinkId, str] = field(default_factory=dict)

@@ -67,7 +67,7 @@ import numpy.typing as npt
 
 from assur import KinematicModel
 from assur.io.reader import normalise_id
-from assur.model import LinkId, PairId
+from assur.model import DEFAULT_PRESSURE_ANGLE, LinkId, PairId
 from synthesis.criteria import Objective
 
 if TYPE_CHECKING:  # the search (scipy) is imported only when settings are made
@@ -84,7 +84,6 @@ __all__ = [
     "Output",
     "Parameter",
     "Problem",
-    "allowed_pressure_angles",
     "load_problem",
     "output_slider",
     "problem_from_dict",
@@ -95,8 +94,6 @@ __all__ = [
 #: links of the label for a triad or class IV group (``(2, 3, 4, 5)``).
 GroupKey = tuple[LinkId, ...]
 
-#: The program default of the allowable pressure angle [α], degrees (``method.md`` §2.7).
-DEFAULT_PRESSURE_ANGLE = 45.0
 #: Class-1 outputs: the output link's angle ψ, or its velocity ratio n = dψ/dφ.
 OUTPUT_QUANTITIES = ("angle", "ratio")
 #: Keys of the ``search`` table → fields of :class:`~synthesis.search.SearchSettings`.
@@ -313,42 +310,6 @@ class Problem:
         for p, value in zip(self.parameters, np.asarray(x, dtype=float)):
             rows[p.links]["params"][p.column] = _clean(float(value))
         return table
-
-
-def allowed_pressure_angles(general: Mapping[str, Any] | None, model: KinematicModel
-                            ) -> dict[str, float]:
-    """Allowable pressure angles a mechanism table states, group label → degrees.
-
-    A synthesis result file keeps the problem's conditions in its ``general`` section
-    (``general: {allowable: [{links: [2, 3], pressure_angle: 60, ...}]}``, the rows of the
-    problem's ``allowable`` table); ``assur analyze`` judges the pressure angles against
-    them.  Groups not listed, and rows whose value is not a number in (0, 90], keep the
-    program default :data:`DEFAULT_PRESSURE_ANGLE`.
-
-    Parameters
-    ----------
-    general : mapping or None
-        The table's ``general`` section.
-    model : KinematicModel
-        The mechanism (its groups give the labels).
-
-    Returns
-    -------
-    dict
-        Every group of the model → its allowable pressure angle, degrees.
-    """
-    allowed = {group.label: DEFAULT_PRESSURE_ANGLE for group in model.groups}
-    rows = (general or {}).get("allowable") or []
-    by_links = {tuple(normalise_id(v) for v in (g.i, g.j) if v is not None): g.label
-                for g in model.groups}
-    for row in rows if isinstance(rows, list) else []:
-        if not isinstance(row, Mapping):
-            continue
-        key = tuple(normalise_id(v) for v in row.get("links") or ())
-        angle = row.get("pressure_angle")
-        if key in by_links and isinstance(angle, (int, float)) and 0 < angle <= 90:
-            allowed[by_links[key]] = float(angle)
-    return allowed
 
 
 def output_slider(model: KinematicModel, link: LinkId) -> PairId | None:

@@ -12,8 +12,9 @@ Two forms are read (see ``docs/tables.md``):
 
 The ``geometry:`` sketch is read here, once, into a :class:`~assur.model.Sketch`
 (:mod:`assur.io.sketch`); the identification rows become
-:class:`~assur.model.IdentificationRow` objects; ``general:`` and the rows' ``params:`` are
-kept for the kinematic model. Every problem of a table is collected and raised as one
+:class:`~assur.model.IdentificationRow` objects; ``general:`` becomes a
+:class:`~assur.model.General` (:mod:`assur.io.general`) and the rows' ``params:`` are kept
+for the kinematic model. Every problem of a table is collected and raised as one
 :class:`~assur.errors.TableError`.
 """
 
@@ -25,6 +26,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from assur.errors import TableError
+from assur.io.general import read_general
 from assur.io.params import read_params
 from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
 from assur.io.sketch import Joints, actuator_pairs, read_sketch
@@ -190,7 +192,7 @@ def _read_chain_form(reader: TableReader) -> Chain:
     named = {drive.pair for drive in inputs if drive.pair is not None} - set(joints)
     geometry = _geometry(reader, top, mech, joints, links, frame, inputs,
                          reported=named if read else None)
-    general = top.get("general", kind="mapping", required=False, default=None)
+    general = read_general(top)
     rows, _ = _read_rows(top, required=False)
     claims = _read_claims(top)
     every = [*links, *(link for link in dict.fromkeys(mentioned) if link not in links)]
@@ -537,7 +539,7 @@ def _read_table_form(reader: TableReader) -> Chain:
     name = top.get("name", kind="str", required=False, default=name)
     frame = top.get("frame", kind="id", required=False, default=0)
     rows, read = _read_rows(top, required=True)
-    general = top.get("general", kind="mapping", required=False, default=None)
+    general = read_general(top)
     claims = _read_claims(top)
     if not rows and not reader.issues:
         reader.problem("structure_identification", "chain.no_rows")

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, overload
 
 from assur.errors import StructureError
 from assur.kinds import KINDS, kind_of
@@ -158,23 +158,35 @@ def _flexible(group: AssurGroup, frame: LinkId) -> bool:
     return (group.i_minus_1 == frame) == (group.j_minus_1 == frame)
 
 
+@overload
 def check_identification(analysis: StructuralAnalysis,
                          rows: Iterable[Mapping[str, Any] | IdentificationRow],
-                         *, table: str = "structure_identification") -> list[Mismatch]:
+                         *, table: str = ...) -> list[Mismatch]: ...
+
+
+@overload
+def check_identification(analysis: StructuralAnalysis, rows: None,
+                         *, table: str = ...) -> None: ...
+
+
+def check_identification(analysis: StructuralAnalysis,
+                         rows: Iterable[Mapping[str, Any] | IdentificationRow] | None,
+                         *, table: str = "structure_identification") -> list[Mismatch] | None:
     """Compare a filled identification table with the analysis, field by field.
 
     Parameters
     ----------
     analysis : StructuralAnalysis
-    rows : iterable of mappings (or :class:`IdentificationRow`)
-        The user's rows, in any order, with the keys of ``method.md`` §3.3.
+    rows : iterable of mappings (or :class:`IdentificationRow`), or None
+        The user's rows, in any order, with the keys of ``method.md`` §3.3; None when
+        there is no table to check (``Chain.identification`` of a table without one).
     table : str
         Table name used in the labels.
 
     Returns
     -------
-    list of Mismatch
-        Empty when the table agrees with the analysis.
+    list of Mismatch or None
+        Empty when the table agrees with the analysis; None when no table was given.
 
     Examples
     --------
@@ -190,7 +202,11 @@ def check_identification(analysis: StructuralAnalysis,
     >>> wrong = [rows[0], dataclasses.replace(rows[1], L=2)]
     >>> len(assur.check_identification(analysis, wrong)) > 0
     True
+    >>> assur.check_identification(analysis, analysis.chain.identification) is None
+    True
     """
+    if rows is None:
+        return None
     table_rows = [r.to_dict() if isinstance(r, IdentificationRow) else dict(r) for r in rows]
     groups = (*analysis.input_groups, *analysis.groups)
     seq_of = {id(g): k for k, g in enumerate(groups, start=1)}

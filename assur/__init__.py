@@ -27,10 +27,12 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from assur.api import Analysis, analyse, check, load
+    from assur.assessment import Assessment
     from assur.errors import AssemblyError, AssurError, StructureError, TableError
     from assur.io.chain_table import chain_from_dict, load_chain
     from assur.kinds import KINDS, GroupKind, kind_of
-    from assur.kinematics.analysis import Motion, analyse, input_grid
+    from assur.kinematics.analysis import Motion, input_grid
     from assur.kinematics.build import build_model, load_model
     from assur.kinematics.dyads import (
         solve_input,
@@ -54,6 +56,12 @@ if TYPE_CHECKING:
     from assur.structure.report import structure_report
 
 __all__ = [  # noqa: RUF022 - grouped by topic, as the comments say
+    # the verbs of the four tasks and their results (docs/api.md)
+    "Analysis",
+    "Assessment",
+    "analyse",
+    "check",
+    "load",
     # errors
     "AssemblyError",
     "AssurError",
@@ -81,7 +89,6 @@ __all__ = [  # noqa: RUF022 - grouped by topic, as the comments say
     "Jet",
     "KinematicModel",
     "Motion",
-    "analyse",
     "build_model",
     "check_existence",
     "input_grid",

@@ -24,7 +24,7 @@ import numpy as np
 import yaml
 from bench_mechanism import best_time
 
-import assur
+from assur.kinematics.analysis import analyse
 from synthesis.evaluate import Evaluator
 from synthesis.force_conditions import force_penalties
 from synthesis.problem import problem_from_dict
@@ -72,7 +72,7 @@ def main() -> None:
     grid = evaluator.grid
     count = len(x) * grid.size
     every = np.ones(len(x), bool)
-    t_kin = best_time(lambda: assur.analyse(evaluator.model(x), grid, analogs=True),
+    t_kin = best_time(lambda: analyse(evaluator.model(x), grid, analogs=True),
                       args.repeat)
     print(f"{PROBLEM.name}, {len(x)} designs x {grid.size} angles, "
           f"{'wall' if args.wall else 'CPU'} time, best of {args.repeat}")

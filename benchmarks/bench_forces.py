@@ -26,6 +26,7 @@ from bench_mechanism import best_time
 import assur
 from assur.forces import kinetostatics
 from assur.forces.table import load_with_forces
+from assur.kinematics.analysis import analyse
 
 TABLE = Path(__file__).resolve().parent.parent / "input_tables" / "course_11_link_forces.yaml"
 
@@ -54,8 +55,8 @@ def main() -> None:
                              (f"{args.designs} designs x 360", batch,
                               assur.input_grid(model, 360))):
         count = int(np.prod(np.broadcast_shapes(design.design_shape, q.shape)))
-        motion = assur.analyse(design, q, analogs=True)
-        t_kin = best_time(lambda d=design, x=q: assur.analyse(d, x, analogs=True), args.repeat)
+        motion = analyse(design, q, analogs=True)
+        t_kin = best_time(lambda d=design, x=q: analyse(d, x, analogs=True), args.repeat)
         t_force = best_time(lambda m=motion: kinetostatics(m, data, 10.0), args.repeat)
         rows.append((label, count, t_kin, t_force))
     print(f"{args.table.name}, {'wall' if args.wall else 'CPU'} time, best of {args.repeat}")

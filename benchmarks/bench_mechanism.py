@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 import assur
+from assur.kinematics.analysis import analyse
 
 TABLE = Path(__file__).resolve().parent.parent / "input_tables" / "course_11_link.yaml"
 
@@ -57,8 +58,8 @@ def main() -> None:
     model = assur.load_model(TABLE)
     phi = np.linspace(0.0, 2 * np.pi, args.positions, endpoint=False)
 
-    t_pos = best_time(lambda: assur.analyse(model, phi), args.repeat)
-    t_jet = best_time(lambda: assur.analyse(model, phi, analogs=True), args.repeat)
+    t_pos = best_time(lambda: analyse(model, phi), args.repeat)
+    t_jet = best_time(lambda: analyse(model, phi, analogs=True), args.repeat)
 
     rng = np.random.default_rng(1)
     designs = 1000
@@ -68,9 +69,9 @@ def main() -> None:
               "L5(11,10).gamma": rng.uniform(45, 75, (designs, 1))}
     batch = model.with_params(varied)
     grid = assur.input_grid(model, 360)
-    t_batch = best_time(lambda: assur.analyse(batch, grid), args.repeat)
-    t_batch_jet = best_time(lambda: assur.analyse(batch, grid, analogs=True), args.repeat)
-    motion = assur.analyse(batch, grid)
+    t_batch = best_time(lambda: analyse(batch, grid), args.repeat)
+    t_batch_jet = best_time(lambda: analyse(batch, grid, analogs=True), args.repeat)
+    motion = analyse(batch, grid)
     feasible = int(motion.exists.all(axis=1).sum())
     t_exist = best_time(lambda: assur.check_existence(model, points=360), args.repeat)
 

@@ -25,6 +25,7 @@ from test_forces_higher import OMEGA, TRIADS, _class_iv, _loads, _triad  # type:
 
 import assur
 from assur.forces import kinetostatics
+from assur.kinematics.analysis import analyse
 
 
 def _worst(model: assur.KinematicModel, phi: np.ndarray, seed: int
@@ -32,7 +33,7 @@ def _worst(model: assur.KinematicModel, phi: np.ndarray, seed: int
     """Positions compared and the four largest relative errors of one design."""
     rng = np.random.default_rng(seed)
     data = _loads(model, rng)
-    motion = assur.analyse(model, phi, analogs=True)
+    motion = analyse(model, phi, analogs=True)
     result = kinetostatics(motion, data, OMEGA)
     with np.errstate(invalid="ignore"):
         expected = _global(motion, data, OMEGA)

@@ -37,6 +37,7 @@ import assur
 import assur.kinematics.analysis
 from assur import KinematicModel, Motion, TableError
 from assur.errors import Issue
+from assur.kinematics.analysis import analyse
 from assur.text import Message
 from synthesis import criteria as C
 from synthesis.force_conditions import force_penalties
@@ -129,7 +130,7 @@ class Evaluator:
         wanted = self.problem.pressure_angles
         if not wanted:
             return
-        motion = assur.analyse(self.problem.model, np.zeros(1))
+        motion = analyse(self.problem.model, np.zeros(1))
         computed = {item.label for item in assur.pressure_angles(motion)}
         issues = [Issue(f"allowable ({label}) 'pressure_angle'",
                         Message("problem.pressure_none", {"group": label}))
@@ -184,7 +185,7 @@ class Evaluator:
             n(φ) = dψ/dφ
 
         It is the ``d1`` part of the link angle when the analysis carries jets
-        (``assur.analyse(model, φ, analogs=True)``): every group solver is differentiated
+        (``assur.kinematics.analysis.analyse(model, φ, analogs=True)``): every group solver is differentiated
         in forward mode, so n is exact to rounding, not a finite difference.  For a
         four-bar driven counter-clockwise (s = +1; crank l₁ at angle φ₁, coupler angle φ_i,
         rocker l_j at angle φ_j, each frame's axis pointing to the joint C) this is the
@@ -192,7 +193,7 @@ class Evaluator:
         four times the positions alone, so the criteria evaluate them at the control
         angles only.
         """
-        motion = assur.analyse(model, phi, analogs=True)
+        motion = analyse(model, phi, analogs=True)
         shape = np.broadcast_shapes(model.design_shape, np.shape(phi))
         angle = motion.link_angle(self.output_link)
         assert isinstance(angle, assur.Jet)  # analogs=True carries jets
@@ -212,7 +213,7 @@ class Evaluator:
         x = np.atleast_2d(np.asarray(x, dtype=float))
         d = x.shape[0]
         model = self.model(x)
-        motion = assur.analyse(model, self.positions)
+        motion = analyse(model, self.positions)
         n = self.grid.size
         p1 = self._existence(motion, model, d)
         cls = self.problem.task_class
@@ -297,7 +298,7 @@ class Evaluator:
         targets = self.problem.control.point
         point = None
         for _ in range(_NEWTON_STEPS):
-            jet = self._point(assur.analyse(model, phi, analogs=True), model)
+            jet = self._point(analyse(model, phi, analogs=True), model)
             gap = jet.v - targets
             f1 = 2 * (np.conj(gap) * jet.d1).real
             f2 = 2 * (np.abs(jet.d1) ** 2 + (np.conj(gap) * jet.d2).real)

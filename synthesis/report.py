@@ -358,7 +358,7 @@ def allowable_rows(problem: Problem) -> list[dict[str, Any]]:
 
     The result file keeps them (``general: {allowable: [...]}``) so that ``assur analyze``
     judges the design against the problem's own limits
-    (:func:`synthesis.problem.allowed_pressure_angles`).
+    (:meth:`assur.model.General.pressure_angles`).
     """
     rows: dict[str, dict[str, Any]] = {}
 

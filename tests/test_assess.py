@@ -1,4 +1,4 @@
-"""``assess`` (a student's table checked once) and ``analyse_table`` (the analysis of
+"""``assess`` (a student's table checked once) and ``assur.analyse`` (the analysis of
 ``assur analyze``), checked against hand calculations and against the pieces they compose.
 
 The four-bar tables come from ``test_batch``: their joint C is constructed by hand from two
@@ -15,7 +15,7 @@ import yaml
 from test_batch import FAIL_FROM, FAIL_TO, GOOD_ROWS, four_bar
 
 from assur import TableError, analyse_structure, load_chain
-from synthesis.app.analysis import analyse_table
+from assur.api import analyse
 from synthesis.app.assess import assess
 from synthesis.cli import main
 
@@ -96,7 +96,7 @@ def test_unreadable_table_raises_with_every_problem(tmp_path: Path) -> None:
 
 
 def test_analysis_positions_and_the_nearest_one() -> None:
-    result = analyse_table(COURSE, points=24, omega=2.0)
+    result = analyse(COURSE, points=24, omega=2.0)
     assert result.crank and result.omega == 2.0
     assert result.motion.q.shape == (24,)
     assert result.motion.q[1] - result.motion.q[0] == pytest.approx(2 * math.pi / 24)
@@ -107,7 +107,7 @@ def test_analysis_positions_and_the_nearest_one() -> None:
 
 def test_too_few_positions(capsys: pytest.CaptureFixture[str]) -> None:
     with pytest.raises(TableError, match="expected at least 2 positions; found 1"):
-        analyse_table(COURSE, points=1)
+        analyse(COURSE, points=1)
     assert main(["analyze", str(COURSE), "--points", "0", "--lang", "ru"]) == 2
     assert "нужно не меньше 2 положений; задано 0" in capsys.readouterr().err
 

@@ -23,6 +23,7 @@ from matplotlib.axes import Axes
 
 import assur
 import assur.plot.mechanism
+from assur.kinematics.analysis import analyse
 from synthesis.app.coursework.diagrams import existence_figure, kinematic_figures, mechanism_figure
 from synthesis.cli import main
 from synthesis.criteria import Criteria
@@ -47,7 +48,7 @@ def own_axes() -> Iterator[Axes]:
 @pytest.fixture(scope="module")
 def motion() -> assur.Motion:
     model = assur.load_model(ROOT / "input_tables" / "course_11_link.yaml")
-    return assur.analyse(model, points=24, analogs=True)
+    return analyse(model, points=24, analogs=True)
 
 
 def _toy_search() -> SearchResult:

@@ -76,7 +76,8 @@ def equilibrium_linear(group: GroupModel, loads: Loads) -> Solved:
     >>> from assur.forces import ForceData, Load, kinetostatics
     >>> TABLES = Path(assur.__file__).parents[1] / "input_tables"
     >>> model = assur.load_model(TABLES / "eight_bar_triad.yaml")
-    >>> motion = assur.analyse(model, np.radians([0.0, 120.0]), analogs=True)
+    >>> from assur.kinematics.analysis import analyse
+    >>> motion = analyse(model, np.radians([0.0, 120.0]), analogs=True)
     >>> result = kinetostatics(motion, ForceData(loads=(Load(6, torque=-5.0),)))
     >>> bool(np.all(np.abs(result.power_balance) < 1e-12))
     True

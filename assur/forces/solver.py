@@ -149,6 +149,20 @@ class ForceAnalysis:
     origins: dict[LinkId, np.ndarray] = field(repr=False)
     drive_load: Any = field(repr=False)
 
+    def __repr__(self) -> str:
+        solved = int(np.count_nonzero(self.reason == 0))
+        return (f"ForceAnalysis({self.drive} at {self.reason.size} positions, "
+                f"solved at {solved}, omega={self.omega:g}, "
+                f"gravity=({self.gravity.real:g}, {self.gravity.imag:g})\n"
+                f"  reactions in pairs: {', '.join(map(str, self.reactions))})")
+
+    def to_dict(self) -> dict[str, Any]:
+        """The ``forces`` object of ``assur analyze --json``
+        (:func:`assur.records.forces_record`)."""
+        from assur.records import forces_record
+
+        return forces_record(self)
+
     @cached_property
     def residuals(self) -> dict[LinkId, LinkResidual]:
         """Moving link → its Newton–Euler residual (:class:`~assur.forces.checks.LinkResidual`)
@@ -218,7 +232,8 @@ def kinetostatics(motion: Motion, data: ForceData, omega: float = 0.0) -> ForceA
     >>> from assur.forces import ForceData, Load
     >>> TABLES = Path(assur.__file__).parents[1] / "input_tables"
     >>> model = assur.load_model(TABLES / "four_bar.yaml")
-    >>> motion = assur.analyse(model, np.radians([0.0, 90.0]), analogs=True)
+    >>> from assur.kinematics.analysis import analyse
+    >>> motion = analyse(model, np.radians([0.0, 90.0]), analogs=True)
     >>> result = kinetostatics(motion, ForceData(loads=(Load(3, torque=-15.0),)))
     >>> bool(np.all(np.abs(result.power_balance) < 1e-12))
     True

@@ -97,7 +97,8 @@ class Motion:
     >>> import pathlib, assur
     >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
     >>> model = assur.load_model(table)
-    >>> motion = assur.analyse(model, points=8)
+    >>> from assur.kinematics.analysis import analyse
+    >>> motion = analyse(model, points=8)
     >>> motion.q.shape, sorted(motion.joints)
     ((8,), ['A', 'B', 'C', 'D'])
     """
@@ -110,6 +111,17 @@ class Motion:
     sliders: dict[PairId, SliderState]
     tracing: dict[str, Value]
     analogs: bool
+
+    def __repr__(self) -> str:
+        def names(items: Iterable[object]) -> str:
+            return ", ".join(map(str, items)) or "none"
+
+        exists = np.asarray(self.exists)
+        return (f"Motion({self.model.name!r}: {self.q.shape[-1]} positions, "
+                f"analogs={self.analogs}, every group assembles at {int(exists.sum())} of "
+                f"{exists.size}\n  groups: {names(self.solutions)}\n"
+                f"  joints: {names(self.joints)}; sliders: {names(self.sliders)}; "
+                f"tracing: {names(self.tracing)})")
 
     @property
     def exists(self) -> np.ndarray:
@@ -184,7 +196,8 @@ def analyse(model: KinematicModel, q: np.ndarray | None = None, *, points: int =
     >>> import pathlib, assur
     >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
     >>> model = assur.load_model(table)
-    >>> motion = assur.analyse(model, points=4)
+    >>> from assur.kinematics.analysis import analyse
+    >>> motion = analyse(model, points=4)
     >>> c = motion.joints["C"][0]
     >>> print(f"{c.real:.3f} {c.imag:.3f}")
     110.000 80.000

@@ -117,7 +117,8 @@ def pressure_angles(motion: Motion) -> list[PressureAngle]:
     >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
     >>> model = assur.load_model(table)
     >>> import numpy as np
-    >>> angle = assur.pressure_angles(assur.analyse(model, points=4))[0]
+    >>> from assur.kinematics.analysis import analyse
+    >>> angle = assur.pressure_angles(analyse(model, points=4))[0]
     >>> angle.pair, round(float(np.degrees(angle.alpha[0])), 2)
     ('C', 33.69)
     """
@@ -160,7 +161,8 @@ def joint_rotations(motion: Motion) -> list[JointRotation]:
     >>> import pathlib, assur
     >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/four_bar.yaml"
     >>> model = assur.load_model(table)
-    >>> rotation = assur.joint_rotations(assur.analyse(model, points=36))[0]
+    >>> from assur.kinematics.analysis import analyse
+    >>> rotation = assur.joint_rotations(analyse(model, points=36))[0]
     >>> rotation.pair, rotation.full_turn
     ('A', True)
     """

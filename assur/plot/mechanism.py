@@ -88,7 +88,8 @@ def figure_for(motion: Motion, size: float = 7.0) -> tuple[Figure, Axes]:
     >>> from pathlib import Path
     >>> import assur
     >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
-    >>> motion = assur.analyse(model, points=36)
+    >>> from assur.kinematics.analysis import analyse
+    >>> motion = analyse(model, points=36)
     >>> fig, ax = assur.plot.mechanism.figure_for(motion)
     >>> ax.get_aspect(), float(fig.get_figwidth())
     (1.0, 7.0)
@@ -153,7 +154,8 @@ def failing_group(motion: Motion, index: int) -> Failure | None:
     >>> from pathlib import Path
     >>> import numpy as np, assur
     >>> table = Path(assur.__file__).parents[1] / "input_tables" / "course_11_link_fails.yaml"
-    >>> motion = assur.analyse(assur.load_model(table), np.radians(np.arange(0, 360, 10.0)))
+    >>> from assur.kinematics.analysis import analyse
+    >>> motion = analyse(assur.load_model(table), np.radians(np.arange(0, 360, 10.0)))
     >>> failure = failing_group(motion, 4)
     >>> failure.label, [(10 * a, 10 * b) for a, b in failure.runs]
     ('L3(6,7)', [(30, 70)])
@@ -432,7 +434,8 @@ def draw_mechanism(motion: Motion, index: int = 0, ax: Axes | None = None, *,
     >>> from pathlib import Path
     >>> import assur
     >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
-    >>> motion = assur.analyse(model, points=36)
+    >>> from assur.kinematics.analysis import analyse
+    >>> motion = analyse(model, points=36)
     >>> ax = assur.draw_mechanism(motion, 9)
     >>> print(ax.get_title())
     four-bar (crank-rocker)
@@ -494,7 +497,8 @@ def save_mechanism_picture(motion: Motion, path: str | os.PathLike[str], index: 
     >>> from pathlib import Path
     >>> import assur
     >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
-    >>> motion = assur.analyse(model, points=36)
+    >>> from assur.kinematics.analysis import analyse
+    >>> motion = analyse(model, points=36)
     >>> import tempfile, pathlib
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     path = pathlib.Path(folder, "four_bar.pdf")
@@ -559,7 +563,8 @@ def save_animation(motion: Motion, path: str | os.PathLike[str], *, frames: int 
     >>> from pathlib import Path
     >>> import assur
     >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
-    >>> motion = assur.analyse(model, points=36)
+    >>> from assur.kinematics.analysis import analyse
+    >>> motion = analyse(model, points=36)
     >>> import tempfile, pathlib
     >>> from PIL import Image
     >>> with tempfile.TemporaryDirectory() as folder:

@@ -90,7 +90,8 @@ def draw_modes(motion: Motion, index: int = 0, *, lang: str = "en") -> Figure:
     >>> import assur
     >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables"
     ...                          / "class_iv_group.yaml")
-    >>> fig = draw_modes(assur.analyse(model, points=4))
+    >>> from assur.kinematics.analysis import analyse
+    >>> fig = draw_modes(analyse(model, points=4))
     >>> len(fig.axes)
     6
     """

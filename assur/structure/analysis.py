@@ -99,6 +99,12 @@ class StructuralAnalysis:
     leftover: tuple[LinkId, ...]
     rank: RankResult | None = None
 
+    def __repr__(self) -> str:
+        return (f"StructuralAnalysis({self.chain.name!r}: n={self.n}, p5={self.p5}, "
+                f"p4={self.p4}, W={self.W}\n  formula: {self.formula}\n"
+                f"  class {self.mechanism_class}, applicable={self.applicable}, "
+                f"{len(self.issues)} diagnostics)")
+
     @property
     def decomposed(self) -> bool:
         """Whether every link was placed in a group with no error."""

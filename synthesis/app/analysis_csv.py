@@ -10,14 +10,15 @@ from collections.abc import Sequence
 import numpy as np
 
 from assur import Jet
+from assur.api import Analysis
 from assur.kinematics.analysis import acceleration, unwrap, values, velocity
 from assur.kinematics.jets import as_jet
-from synthesis.app.analysis import TableAnalysis, moving_links
+from assur.records import moving_links
 
 __all__ = ["analysis_csv"]
 
 
-def analysis_csv(result: TableAnalysis,
+def analysis_csv(result: Analysis,
                  extra: Sequence[tuple[str, np.ndarray]] = ()) -> str:
     """One row per position: input, joints, link angles, sliders, tracing points, existence.
 
@@ -27,7 +28,7 @@ def analysis_csv(result: TableAnalysis,
 
     Parameters
     ----------
-    result : TableAnalysis
+    result : Analysis
     extra : sequence of (name, values)
         More columns aligned with the positions (the force analysis), written last.
 
@@ -41,8 +42,8 @@ def analysis_csv(result: TableAnalysis,
     >>> from pathlib import Path
     >>> import synthesis
     >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
-    >>> from synthesis.app.analysis import analyse_table
-    >>> text = analysis_csv(analyse_table(tables / "course_11_link.yaml", points=4))
+    >>> import assur
+    >>> text = analysis_csv(assur.analyse(tables / "course_11_link.yaml", points=4))
     >>> lines = text.splitlines()
     >>> len(lines), lines[0].split(",")[:3], lines[2].split(",")[0]
     (5, ['phi_deg', 'joint_0-1_x', 'joint_0-1_y'], '90.0')

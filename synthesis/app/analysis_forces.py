@@ -1,18 +1,18 @@
-"""Force analysis of a table over the input cycle (``assur analyze --forces --omega W``).
+"""A force analysis condensed for the reports (``assur analyze --forces --omega W``).
 
-:func:`table_forces` runs the kinetostatics (``docs/forces.md``) on an analysed table with the
-table's ``masses:``, ``loads:`` and ``gravity:`` sections; :func:`summarise` condenses the
-result for the text report and the coursework report: the extreme driving torque and where,
+:func:`assur.analyse` runs the kinetostatics (``docs/forces.md``) with the table's
+``masses:``, ``loads:`` and ``gravity:`` sections; :func:`summarise` condenses the result for
+the text report and the coursework report: the extreme driving torque and where,
 the largest reaction in every pair, and the two checks (power balance and Newton–Euler).
 
 Examples
 --------
 >>> from pathlib import Path
 >>> import synthesis
->>> from synthesis.app.analysis import analyse_table
+>>> import assur
 >>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "four_bar_gravity.yaml"
->>> result = analyse_table(table, points=36, omega=10.0)
->>> forces = table_forces(table, result)
+>>> result = assur.analyse(table, points=36, forces=True, omega=10.0)
+>>> forces = result.forces
 >>> forces.drive, forces.driving.shape
 ('driving_torque', (36,))
 >>> summary = summarise(forces, result.motion.q)
@@ -22,54 +22,17 @@ Examples
 
 from __future__ import annotations
 
-import os
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from assur.errors import Issue, TableError
 from assur.forces.groups import ForceReason
-from assur.forces.solver import ForceAnalysis, kinetostatics
-from assur.io.chain_table import load_chain
+from assur.forces.solver import ForceAnalysis
 from assur.model import LinkId, PairId
-from assur.text import Message
-from synthesis.app.analysis import TableAnalysis
 
-__all__ = ["Extreme", "ForceSummary", "PairPeak", "summarise", "table_forces"]
-
-
-def table_forces(path: str | os.PathLike[str], result: TableAnalysis) -> ForceAnalysis:
-    """The force analysis of an analysed table at the analysis' positions.
-
-    Parameters
-    ----------
-    path : path-like
-        The chain table that ``result`` analyses, with ``masses:`` or ``loads:``.
-    result : TableAnalysis
-        Its kinematics (with analogs) and the input speed ``omega`` (rad/s of a crank, mm/s
-        of an actuator; 0 gives the static analysis).
-
-    Returns
-    -------
-    ForceAnalysis
-
-    Raises
-    ------
-    TableError
-        When the table has neither ``masses:`` nor ``loads:``, or no input speed was given
-        (every problem at once).
-    """
-    data = load_chain(path).forces
-    issues = []
-    if data is None:
-        issues.append(Issue("--forces", Message("force.cli.no_sections", {})))
-    if result.omega is None:
-        issues.append(Issue("--omega", Message("force.cli.no_omega", {})))
-    if data is None or result.omega is None:
-        raise TableError(str(path), issues)
-    return kinetostatics(result.motion, data, result.omega)
+__all__ = ["Extreme", "ForceSummary", "PairPeak", "summarise"]
 
 
 @dataclass(frozen=True, slots=True)

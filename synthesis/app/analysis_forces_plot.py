@@ -9,10 +9,9 @@ Examples
 >>> import synthesis
 >>> from pathlib import Path
 >>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "four_bar_gravity.yaml"
->>> from synthesis.app.analysis import analyse_table
->>> from synthesis.app.analysis_forces import table_forces
->>> result = analyse_table(table, points=36, omega=10.0)
->>> len(forces_figure(result, table_forces(table, result)).axes)
+>>> import assur
+>>> result = assur.analyse(table, points=36, forces=True, omega=10.0)
+>>> len(forces_figure(result, result.forces).axes)
 3
 """
 
@@ -23,12 +22,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from assur.api import Analysis
 from assur.forces.solver import ForceAnalysis
 from assur.io.files import atomic_write_bytes
 from assur.plot.formats import figure_bytes, picture_format
 from assur.plot.mechanism import draw_mechanism, figure_for
 from assur.text import render
-from synthesis.app.analysis import TableAnalysis
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
@@ -40,13 +39,13 @@ __all__ = ["draw_force_curves", "forces_figure", "save_forces_png"]
 PANEL = 2.6
 
 
-def forces_figure(result: TableAnalysis, forces: ForceAnalysis, index: int = 0,
+def forces_figure(result: Analysis, forces: ForceAnalysis, index: int = 0,
                   lang: str = "en") -> Figure:
     """The mechanism at position ``index`` above the drive and the reactions over the cycle.
 
     Parameters
     ----------
-    result : TableAnalysis
+    result : Analysis
         One design (positions shaped ``(N,)``).
     forces : ForceAnalysis
         Its force analysis.
@@ -72,7 +71,7 @@ def forces_figure(result: TableAnalysis, forces: ForceAnalysis, index: int = 0,
     return fig
 
 
-def draw_force_curves(torque: Axes, pairs: Axes, result: TableAnalysis,
+def draw_force_curves(torque: Axes, pairs: Axes, result: Analysis,
                       forces: ForceAnalysis, lang: str = "en") -> None:
     """The drive over the cycle (by groups and by the lever) on ``torque``, the magnitude of
     every reaction on ``pairs``.
@@ -81,7 +80,7 @@ def draw_force_curves(torque: Axes, pairs: Axes, result: TableAnalysis,
     ----------
     torque, pairs : matplotlib.axes.Axes
         Where to draw.
-    result : TableAnalysis
+    result : Analysis
         The kinematics (its positions and kind of input).
     forces : ForceAnalysis
         Of one design.
@@ -108,7 +107,7 @@ def draw_force_curves(torque: Axes, pairs: Axes, result: TableAnalysis,
         axes.grid(True, lw=0.3, alpha=0.5)
 
 
-def save_forces_png(result: TableAnalysis, forces: ForceAnalysis,
+def save_forces_png(result: Analysis, forces: ForceAnalysis,
                     path: str | os.PathLike[str], index: int = 0, *, lang: str = "en",
                     dpi: int = 110) -> None:
     """Write :func:`forces_figure` atomically, in the format of the file's ending (PNG, SVG,

@@ -1,22 +1,17 @@
-"""A force analysis as JSON, CSV columns and text (``assur analyze --forces``).
+"""A force analysis as CSV columns and text (``assur analyze --forces``); its JSON is
+:func:`assur.records.forces_record`.
 
-The JSON ``forces`` object (``docs/forces.md`` §4): lists aligned with ``input.values``, null
-where a position is not solved, with the reason beside it. Forces are in N (global axes, the
-force of a pair's first listed link on its second), torques in N·m (counter-clockwise
-positive).
+Forces are in N (global axes, the force of a pair's first listed link on its second), torques
+in N·m (counter-clockwise positive).
 
 Examples
 --------
 >>> from pathlib import Path
 >>> import synthesis
->>> from synthesis.app.analysis import analyse_table
->>> from synthesis.app.analysis_forces import table_forces
+>>> import assur
 >>> table = Path(synthesis.__file__).parents[1] / "input_tables" / "slider_crank_press.yaml"
->>> result = analyse_table(table, points=36, omega=10.0)
->>> forces = table_forces(table, result)
->>> record = forces_record(forces)
->>> sorted(record["reactions"]["3-0"]), record["reactions"]["3-0"]["links"]
-(['links', 'moment', 'normal', 'x', 'y'], [3, 0])
+>>> result = assur.analyse(table, points=36, forces=True, omega=10.0)
+>>> forces = result.forces
 >>> [name for name, _ in forces_columns(forces)][:5]
 ['driving_torque', 'driving_torque_lever', 'power_balance', 'R_0-1_x', 'R_0-1_y']
 >>> forces_text(result, forces, "ru").splitlines()[0]
@@ -26,68 +21,16 @@ Examples
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
-from assur.forces.groups import ForceReason
+from assur.api import Analysis
 from assur.forces.solver import ForceAnalysis
 from assur.text import render
-from synthesis.app.analysis import TableAnalysis
 from synthesis.app.analysis_forces import Extreme, ForceSummary, summarise
-from synthesis.app.analysis_json import number
 from synthesis.app.analysis_text import position_text
 
-__all__ = ["forces_columns", "forces_record", "forces_text"]
-
-
-def _floats(data: np.ndarray) -> list[float | None]:
-    return [number(v) for v in np.asarray(data, dtype=float).ravel()]
-
-
-def forces_record(forces: ForceAnalysis) -> dict[str, Any]:
-    """The ``forces`` object of ``assur analyze --json``.
-
-    Parameters
-    ----------
-    forces : ForceAnalysis
-
-    Returns
-    -------
-    dict
-        ``omega``, ``gravity`` ([gx, gy] m/s²), the drive (``driving_torque`` N·m, or
-        ``driving_force`` N for an actuator) and the same from the lever
-        (``driving_torque_lever``), ``power_balance`` (their difference), ``reactions``
-        (pair → ``links``, ``x``, ``y``; prismatic pairs also ``normal`` and ``moment``),
-        ``residual`` (the largest relative Newton–Euler residual of the links per position:
-        ``force``, ``moment``), ``reason`` (null where solved, else ``not_assembled``,
-        ``toggle``, ``parallel_guides`` or ``indeterminate``) and ``singular`` (the group).
-    """
-    drive = forces.drive
-    reactions: dict[str, Any] = {}
-    for pair, reaction in forces.reactions.items():
-        entry: dict[str, Any] = {"links": list(reaction.links), "x": _floats(reaction.x),
-                                 "y": _floats(reaction.y)}
-        if reaction.normal is not None and reaction.moment is not None:
-            entry["normal"] = _floats(reaction.normal)
-            entry["moment"] = _floats(reaction.moment)
-        reactions[str(pair)] = entry
-    with np.errstate(all="ignore"):
-        residuals = list(forces.residuals.values())
-        worst_force = np.max([r.force for r in residuals], axis=0)
-        worst_moment = np.max([r.moment for r in residuals], axis=0)
-    return {
-        "omega": forces.omega,
-        "gravity": [forces.gravity.real, forces.gravity.imag],
-        drive: _floats(forces.driving),
-        f"{drive}_lever": _floats(forces.driving_lever),
-        "power_balance": _floats(forces.power_balance),
-        "reactions": reactions,
-        "residual": {"force": _floats(worst_force), "moment": _floats(worst_moment)},
-        "reason": [None if r == 0 else ForceReason(int(r)).name.lower()
-                   for r in forces.reason.ravel()],
-        "singular": list(forces.singular.ravel()),
-    }
+__all__ = ["forces_columns", "forces_text"]
 
 
 def forces_columns(forces: ForceAnalysis) -> list[tuple[str, np.ndarray]]:
@@ -104,7 +47,7 @@ def forces_columns(forces: ForceAnalysis) -> list[tuple[str, np.ndarray]]:
     return columns
 
 
-def forces_text(result: TableAnalysis, forces: ForceAnalysis, lang: str = "en") -> str:
+def forces_text(result: Analysis, forces: ForceAnalysis, lang: str = "en") -> str:
     """The force section of the text report (``lang``: a catalogue language): the lines of
     :func:`summary_lines` joined, without a final newline; ``result`` is the kinematics the
     forces were computed at.
@@ -113,7 +56,7 @@ def forces_text(result: TableAnalysis, forces: ForceAnalysis, lang: str = "en") 
     return "\n".join(summary_lines(result, forces, summary, lang))
 
 
-def summary_lines(result: TableAnalysis, forces: ForceAnalysis, summary: ForceSummary,
+def summary_lines(result: Analysis, forces: ForceAnalysis, summary: ForceSummary,
                   lang: str) -> list[str]:
     """The lines of the force section (shared by the text and the coursework reports)."""
 

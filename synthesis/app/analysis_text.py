@@ -11,28 +11,29 @@ import math
 import numpy as np
 
 from assur import joint_rotations, pressure_angles
+from assur.api import Analysis
 from assur.kinematics.analysis import unwrap, values
 from assur.kinematics.existence import CONDITIONS, reason_sentence
 from assur.kinematics.higher.kind import HigherGroupSolution
+from assur.records import moving_links
 from assur.text import render
-from synthesis.app.analysis import TableAnalysis, moving_links
 
 __all__ = ["analysis_text", "modes_lines", "position_text"]
 
 
-def position_text(result: TableAnalysis, value: float) -> str:
+def position_text(result: Analysis, value: float) -> str:
     """An input position as the report writes it: ``φ = 12.50°`` or ``l = 40.000 mm``."""
     if result.crank:
         return f"φ = {math.degrees(value):.2f}°"
     return f"l = {value:.3f} mm"
 
 
-def analysis_text(result: TableAnalysis, lang: str = "en") -> str:
+def analysis_text(result: Analysis, lang: str = "en") -> str:
     """The text report of one analysis.
 
     Parameters
     ----------
-    result : TableAnalysis
+    result : Analysis
     lang : str
         A catalogue language.
 
@@ -46,8 +47,8 @@ def analysis_text(result: TableAnalysis, lang: str = "en") -> str:
     >>> from pathlib import Path
     >>> import synthesis
     >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
-    >>> from synthesis.app.analysis import analyse_table
-    >>> result = analyse_table(tables / "course_11_link.yaml", points=36)
+    >>> import assur
+    >>> result = assur.analyse(tables / "course_11_link.yaml", points=36)
     >>> analysis_text(result).splitlines()[0].split(" (")[0]
     'Kinematic analysis: DGTU example, fig. 1.25'
     """
@@ -108,13 +109,13 @@ def analysis_text(result: TableAnalysis, lang: str = "en") -> str:
     return "\n".join(lines)
 
 
-def modes_lines(result: TableAnalysis, lang: str) -> list[str]:
+def modes_lines(result: Analysis, lang: str) -> list[str]:
     """Every real assembly mode at the sketch of each triad and class IV group, the drawn
     one marked, and what became of the drawn mode over the cycle.
 
     Parameters
     ----------
-    result : TableAnalysis
+    result : Analysis
     lang : str
 
     Returns
@@ -138,7 +139,7 @@ def modes_lines(result: TableAnalysis, lang: str) -> list[str]:
     return lines
 
 
-def _pressure_lines(result: TableAnalysis, lang: str) -> list[str]:
+def _pressure_lines(result: Analysis, lang: str) -> list[str]:
     """The largest pressure angle of every L1/L2 group with a two-hinge rod."""
     angles = pressure_angles(result.motion)
     if not angles:

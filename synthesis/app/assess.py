@@ -1,148 +1,30 @@
-"""Check a student's table the way the course checks a coursework: one function, one result.
+"""A file of any table the course checks, assessed: ``assur check``, ``assur report`` and
+``assur batch`` read a file here and render :func:`assur.check`'s one
+:class:`~assur.assessment.Assessment`.
 
-:func:`assess` reads a chain table, an identification table or a synthesis problem (the
-problem's mechanism at its initial design), or takes a chain already read, and runs the
-course's checks once:
-
-1. the structure (counts, W, decomposition into Assur groups, applicability of the method);
-2. the DGTU identification table the program fills, with the assembly variants of the
-   dimensions when the table gives any;
-3. the identification table given in the file, field by field against the chain, and its
-   assembly variants against the dimensions;
-4. the kinematic model (or why there is none) and the existence of every group over the
-   cycle.
-
-The :class:`Assessment` holds numbers, codes and catalogue messages, never sentences in one
-language: ``assur check``, ``assur report`` and ``assur batch`` render it in theirs.
+A chain table or an identification table is read as a chain; a synthesis problem is checked
+at its initial design (its mechanism table at the initial values).
 """
 
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable
-from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from assur.errors import AssurError, StructureError
+from assur.api import check
+from assur.assessment import Assessment
 from assur.io.chain_table import chain_from_dict
 from assur.io.reader import TableReader
-from assur.kinematics.build import build_model
-from assur.kinematics.model import GroupModel, KinematicModel
 from assur.model import Chain
-from assur.structure.analysis import StructuralAnalysis, analyse_structure
-from assur.structure.identification import (
-    IdentificationRow,
-    Mismatch,
-    check_identification,
-    identification_table,
-)
-from assur.text import Message
 
 if TYPE_CHECKING:  # pragma: no cover
-    from assur.kinematics.existence import ExistenceReport
     from synthesis.problem import Problem
 
-__all__ = ["Assessment", "VariantFinding", "assess", "load_table_chain", "read_table"]
+__all__ = ["assess", "load_table_chain", "read_table"]
 
-#: The table name used in the labels of the student's rows.
-TABLE = "structure_identification"
 #: Tables that only a synthesis problem has.
 _SYNTHESIS_KEYS = ("parameters", "control_points", "allowable")
-
-
-@dataclass(frozen=True)
-class VariantFinding:
-    """A row of the student's table whose assembly variant is not the one of the dimensions.
-
-    The structure alone cannot tell the assembly variant σ of an RRR or RRP dyad
-    (``method.md`` §3.4 rule 7 only limits it to ±1); the dimensions can.
-
-    Attributes
-    ----------
-    row : int
-        Index of the row in the student's table.
-    kind : object
-        The row's ``L`` as given.
-    group : GroupModel
-        The dyad of the kinematic model with the row's links; its ``sigma`` is the variant
-        in which the dimensions assemble it.
-    given : int
-        The variant written in the table.
-    """
-
-    row: int
-    kind: object
-    group: GroupModel
-    given: int
-
-    @property
-    def message(self) -> Message:
-        """The finding as a catalogue message (code ``check.variant_differs``)."""
-        return Message("check.variant_differs", {
-            "table": TABLE, "row": self.row, "L": self.kind, "i": self.group.i,
-            "j": self.group.j, "sigma": self.group.sigma, "given": self.given})
-
-
-@dataclass(frozen=True)
-class Assessment:
-    """Everything the course checks on one table.
-
-    Attributes
-    ----------
-    chain : Chain
-        The chain checked (for a synthesis problem: its mechanism at the design assessed).
-    analysis : StructuralAnalysis
-    table : tuple of IdentificationRow or None
-        The identification table filled by the program in layering order, with the assembly
-        variants of the dimensions when there is a kinematic model; None when the chain is
-        not made of input groups and dyads of kinds 1–5 (:attr:`table_error` says why).
-    table_error : StructureError or None
-    mismatches : tuple of Mismatch or None
-        The student's identification table against the chain; None when the file gives no
-        table.
-    variants : tuple of VariantFinding
-        The student's rows whose assembly variant the dimensions contradict.
-    model : KinematicModel or None
-        The kinematic model of the dimensions.
-    why_no_model : Message or AssurError or None
-        Why there is no model: the table gives no dimensions (``term.no_geometry``), the
-        mechanism is neither one the course's method covers nor one the kinematics solves
-        (``term.not_applicable``; a group of class III or IV has a model), or the dimensions
-        are wrong (the error, which lists every problem). None when there is a model.
-    existence : ExistenceReport or None
-        Existence of every group over the cycle; None without a model or when not asked for.
-    """
-
-    chain: Chain
-    analysis: StructuralAnalysis
-    table: tuple[IdentificationRow, ...] | None
-    table_error: StructureError | None
-    mismatches: tuple[Mismatch, ...] | None
-    variants: tuple[VariantFinding, ...]
-    model: KinematicModel | None
-    why_no_model: Message | AssurError | None
-    existence: ExistenceReport | None
-
-    @property
-    def identification(self) -> str:
-        """The verdict on the student's table: ``matches``, ``differs`` or ``not given``."""
-        if self.mismatches is None:
-            return "not given"
-        return "differs" if self.mismatches or self.variants else "matches"
-
-    def failed_conditions(self, lang: str = "en") -> tuple[str, ...]:
-        """The conditions of the course method that the chain fails, in ``lang``."""
-        return self.analysis.conditions(lang)
-
-    def mismatch_texts(self, lang: str = "en") -> list[tuple[Mismatch, str]]:
-        """Every mismatch of the student's table with its sentence in ``lang``."""
-        return [(m, m.text(lang)) for m in self.mismatches or ()]
-
-    @property
-    def rows_given(self) -> int:
-        """Number of rows of the student's table."""
-        return len(self.chain.identification or ())
 
 
 def read_table(path: str | os.PathLike[str]) -> Chain | Problem:
@@ -180,7 +62,7 @@ def load_table_chain(path: str | os.PathLike[str]) -> Chain:
 
 
 def assess(table: str | os.PathLike[str] | Chain, *, points: int | None = 360) -> Assessment:
-    """Check a student's table: structure, identification table, variants, existence.
+    """Assess a table file (or a chain already read) with :func:`assur.check`.
 
     Parameters
     ----------
@@ -188,8 +70,7 @@ def assess(table: str | os.PathLike[str] | Chain, *, points: int | None = 360) -
         A chain table, an identification table or a synthesis problem (checked at its
         initial design), or a chain already read.
     points : int or None
-        Crank positions of the existence check over the cycle (the interval ends are
-        refined anyway); None leaves the existence out.
+        Crank positions of the existence check; None leaves the existence out.
 
     Returns
     -------
@@ -198,65 +79,15 @@ def assess(table: str | os.PathLike[str] | Chain, *, points: int | None = 360) -
     Raises
     ------
     AssurError
-        When the file cannot be read as a table (every problem listed). Problems of the
-        mechanism itself are findings of the result, never exceptions.
+        When the file cannot be read as a table (every problem listed).
 
     Examples
     --------
     >>> from pathlib import Path
     >>> import synthesis
     >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
-    >>> from synthesis.app.assess import assess
-    >>> found = assess(tables / "course_11_link_table.yaml", points=36)
-    >>> found.analysis.formula.split(" → ")[:2], found.identification
-    (['I(0,1)', 'II₁(2,3)'], 'matches')
-    >>> found.existence.all_exist
-    True
+    >>> found = assess(tables / "problems" / "class1_fourbar_rocker.yaml", points=None)
+    >>> found.analysis.W, found.identification
+    (1, 'matches')
     """
-    chain = table if isinstance(table, Chain) else load_table_chain(Path(table))
-    analysis = analyse_structure(chain)
-    model, why_not = _model(analysis)
-    sigma = {} if model is None else {(g.i, g.j): g.sigma for g in model.groups
-                                      if g.j is not None}
-    try:
-        rows: tuple[IdentificationRow, ...] | None = tuple(
-            identification_table(analysis, sigma or None))
-        table_error = None
-    except StructureError as exc:
-        rows, table_error = None, exc
-    given = chain.identification
-    mismatches = None if given is None else tuple(check_identification(analysis, given))
-    variants = () if given is None or model is None else tuple(_variants(model, given))
-    existence = None
-    if model is not None and points is not None:
-        from assur.kinematics.existence import check_existence
-
-        existence = check_existence(model, points=points)
-    return Assessment(chain, analysis, rows, table_error, mismatches, variants, model,
-                      why_not, existence)
-
-
-def _model(analysis: StructuralAnalysis) -> tuple[KinematicModel | None,
-                                                  Message | AssurError | None]:
-    """The kinematic model of the table's dimensions, or None and why there is none."""
-    chain = analysis.chain
-    if not (chain.geometry or chain.group_params):
-        return None, Message("term.no_geometry")
-    if not analysis.decomposed:
-        return None, Message("term.not_applicable")
-    try:  # groups of class III and IV are outside the course's method, not its kinematics
-        return build_model(analysis), None
-    except AssurError as exc:
-        return None, exc if analysis.applicable else Message("term.not_applicable")
-
-
-def _variants(model: KinematicModel,
-              rows: Iterable[IdentificationRow]) -> list[VariantFinding]:
-    """The L1/L2 rows whose ``variant`` differs from the σ of the model."""
-    dyads = [g for g in model.groups if g.kind in (1, 2)]
-    found = []
-    for index, row in enumerate(rows):
-        given = row.variant
-        found += [VariantFinding(index, row.L, g, given) for g in dyads
-                  if (g.i, g.j) == (row.i, row.j) and given in (1, -1) and given != g.sigma]
-    return found
+    return check(table if isinstance(table, Chain) else load_table_chain(table), points=points)

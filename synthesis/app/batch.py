@@ -39,9 +39,10 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from assur import AssurError, ExistenceReport, KinematicModel, TableError
+from assur.assessment import Assessment
 from assur.kinematics.existence import reason_sentence
 from assur.text import Message, check_lang, render
-from synthesis.app.assess import Assessment, assess
+from synthesis.app.assess import assess
 
 if TYPE_CHECKING:
     from synthesis.distributed import DaskExecutor

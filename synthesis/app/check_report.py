@@ -1,13 +1,12 @@
-"""The structural check of a table as text or as a JSON record (``assur check``)."""
+"""The structural check of a table as text (``assur check``); its JSON record is
+:meth:`assur.assessment.Assessment.to_dict`."""
 
 from __future__ import annotations
 
-from typing import Any
-
+from assur.assessment import Assessment
 from assur.structure.report import structure_report
-from synthesis.app.assess import Assessment
 
-__all__ = ["check_record", "check_text"]
+__all__ = ["check_text"]
 
 
 def check_text(assessment: Assessment, lang: str = "en") -> str:
@@ -17,7 +16,7 @@ def check_text(assessment: Assessment, lang: str = "en") -> str:
     Parameters
     ----------
     assessment : Assessment
-        From :func:`synthesis.app.assess.assess`.
+        From :func:`assur.check`.
     lang : str
         A catalogue language.
 
@@ -39,37 +38,3 @@ def check_text(assessment: Assessment, lang: str = "en") -> str:
                             mismatches=assessment.mismatches,
                             checked_rows=assessment.rows_given)
 
-
-def check_record(assessment: Assessment) -> dict[str, Any]:
-    """The structural analysis, the identification table and the check of the student's
-    table as one JSON-ready mapping.
-
-    Parameters
-    ----------
-    assessment : Assessment
-        From :func:`synthesis.app.assess.assess`.
-
-    Returns
-    -------
-    dict
-        The analysis (:meth:`StructuralAnalysis.to_dict`) with ``identification_table``
-        (None when the chain is not made of DGTU groups) and ``identification_check`` (the
-        mismatches of the student's table; None when the file gives none).
-
-    Examples
-    --------
-    >>> from pathlib import Path
-    >>> import synthesis
-    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
-    >>> from synthesis.app.assess import assess
-    >>> record = check_record(assess(tables / "course_11_link_table.yaml", points=None))
-    >>> record["W"], record["identification_check"]
-    (1, [])
-    """
-    mismatches = assessment.mismatches
-    payload = assessment.analysis.to_dict()
-    payload["identification_table"] = (None if assessment.table is None
-                                       else [row.to_dict() for row in assessment.table])
-    payload["identification_check"] = (None if mismatches is None
-                                       else [m.to_dict() for m in mismatches])
-    return payload

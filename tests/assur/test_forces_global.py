@@ -20,6 +20,7 @@ import pytest
 import assur
 from assur.forces import ForceData, Load, Mass, kinetostatics
 from assur.kinematics import jets as J
+from assur.kinematics.analysis import analyse
 from assur.kinematics.jets import Jet
 
 MM = 1e-3
@@ -140,7 +141,7 @@ def _global(motion: assur.Motion, data: ForceData, omega: float, sketched: float
         frames0 = {link: tuple(Jet(j.v[at], j.d1[at], j.d2[at]) for j in pose)
                    for link, pose in frames.items()}
     else:
-        frames0 = _frames(assur.analyse(model, np.array([sketched]), analogs=True))
+        frames0 = _frames(analyse(model, np.array([sketched]), analogs=True))
     links = sorted(frames)
     row = {link: 3 * k for k, link in enumerate(links)}
     pairs = list(model.pair_links)
@@ -254,7 +255,7 @@ def test_group_solution_equals_the_global_solve(kind: str) -> None:
     for seed in range(DESIGNS):
         model, data = _design(kind, seed)
         assert model.groups[1].kind == int(kind[1])
-        motion = assur.analyse(model, PHI, analogs=True)
+        motion = analyse(model, PHI, analogs=True)
         result = kinetostatics(motion, data, OMEGA)
         with np.errstate(invalid="ignore"):  # NaN where the design does not assemble
             expected = _global(motion, data, OMEGA)
@@ -272,10 +273,10 @@ def test_a_batch_of_designs_equals_the_loop_over_them() -> None:
     model, data = _design("L1", 3)
     lengths = model.params["L1(2,3).l_i"] * np.linspace(0.97, 1.03, 5)
     batch = model.with_params({"L1(2,3).l_i": lengths[:, None]})
-    together = kinetostatics(assur.analyse(batch, PHI, analogs=True), data, OMEGA)
+    together = kinetostatics(analyse(batch, PHI, analogs=True), data, OMEGA)
     for k, length in enumerate(lengths):
         single = model.with_params({"L1(2,3).l_i": length})
-        alone = kinetostatics(assur.analyse(single, PHI, analogs=True), data, OMEGA)
+        alone = kinetostatics(analyse(single, PHI, analogs=True), data, OMEGA)
         np.testing.assert_allclose(together.driving[k], alone.driving, rtol=1e-12, atol=1e-12)
         for pid, reaction in alone.reactions.items():
             np.testing.assert_allclose(together.reactions[pid].x[k], reaction.x, rtol=1e-12,
@@ -284,7 +285,7 @@ def test_a_batch_of_designs_equals_the_loop_over_them() -> None:
 
 def test_a_wrong_reaction_shows_in_the_residuals_of_its_two_links() -> None:
     model, data = _design("L2", 1)
-    result = kinetostatics(assur.analyse(model, PHI, analogs=True), data, OMEGA)
+    result = kinetostatics(analyse(model, PHI, analogs=True), data, OMEGA)
     solved = result.reason == 0
     wrong = dataclasses.replace(result.reactions["B"], x=result.reactions["B"].x * (1 + 1e-6))
     broken = dataclasses.replace(result, reactions={**result.reactions, "B": wrong})
@@ -324,7 +325,7 @@ def _boom(seed: int) -> tuple[assur.KinematicModel, ForceData, float]:
 def test_actuator_force_equals_the_global_solve(seed: int) -> None:
     model, data, length = _boom(seed)
     q = np.linspace(*model.input_range, 25)
-    motion = assur.analyse(model, q, analogs=True)
+    motion = analyse(model, q, analogs=True)
     speed = 40.0  # mm/s
     result = kinetostatics(motion, data, speed)
     with np.errstate(invalid="ignore"):  # NaN where the boom cannot be assembled
@@ -355,7 +356,7 @@ def test_a_thousand_designs_in_one_call_keep_the_balances(kind: str) -> None:
               for name, value in model.params.items()
               if name.startswith(f"{kind}(") and not name.endswith(".delta")}
     batch = model.with_params(varied)
-    result = kinetostatics(assur.analyse(batch, PHI[::4], analogs=True), data, OMEGA)
+    result = kinetostatics(analyse(batch, PHI[::4], analogs=True), data, OMEGA)
     solved = result.reason == 0
     assert result.driving.shape == (1000, 12) and solved.sum() > 3000
     assert np.all(np.abs(result.power_balance[solved]) <= 1e-10 * result.power_scale[solved])

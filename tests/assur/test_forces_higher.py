@@ -24,6 +24,7 @@ from test_forces_global import _global, agrees
 import assur
 from assur.forces import ForceData, Load, Mass, kinetostatics
 from assur.forces.linear import _solve, equilibrium_linear
+from assur.kinematics.analysis import analyse
 from assur.kinematics.higher.kind import Layout
 from synthesis.cli.main import main
 
@@ -100,7 +101,7 @@ def _loads(model: assur.KinematicModel, rng: np.random.Generator) -> ForceData:
 
 def _agrees(model: assur.KinematicModel, data: ForceData) -> int:
     """Compare with the global solve; the number of positions compared."""
-    motion = assur.analyse(model, PHI, analogs=True)
+    motion = analyse(model, PHI, analogs=True)
     result = kinetostatics(motion, data, OMEGA)
     with np.errstate(invalid="ignore"):  # NaN where the design does not assemble
         expected = _global(motion, data, OMEGA)
@@ -145,14 +146,14 @@ def test_designs_in_one_call_equal_each_design_alone() -> None:
     varied = {name: value * rng.uniform(0.97, 1.03, (40, 1))
               for name, value in model.params.items()
               if name.startswith("III(") and (".l_" in name or ".x_" in name)}
-    result = kinetostatics(assur.analyse(model.with_params(varied), PHI, analogs=True), data,
+    result = kinetostatics(analyse(model.with_params(varied), PHI, analogs=True), data,
                            OMEGA)
     solved = result.reason == 0
     assert result.driving.shape == (40, PHI.size) and solved.sum() > 200
     assert np.all(np.abs(result.power_balance[solved]) <= 1e-9 * result.power_scale[solved])
     for k in (0, 39):
         single = model.with_params({name: value[k, 0] for name, value in varied.items()})
-        alone = kinetostatics(assur.analyse(single, PHI, analogs=True), data, OMEGA)
+        alone = kinetostatics(analyse(single, PHI, analogs=True), data, OMEGA)
         np.testing.assert_allclose(result.driving[k], alone.driving, rtol=1e-12, atol=1e-12)
         for pid, reaction in alone.reactions.items():
             np.testing.assert_allclose(result.reactions[pid].x[k], reaction.x, rtol=1e-12,

@@ -61,6 +61,7 @@ from force_tables import load
 
 import assur
 from assur.forces import ForceData, Load, Mass, kinetostatics
+from assur.kinematics.analysis import analyse
 
 G = 9.81  # m/s², the book's value
 
@@ -166,7 +167,7 @@ def _program(e: Engine) -> dict[str, float]:
     data = ForceData({3: Mass(e.mass, piston)}, (Load(3, force=complex(-e.load, 0.0),
                                                       point=piston),),
                      complex(-G if e.vertical else 0.0, 0.0))
-    motion = assur.analyse(model, np.radians([e.theta]), analogs=True)
+    motion = analyse(model, np.radians([e.theta]), analogs=True)
     result = kinetostatics(motion, data, omega=e.omega)
     th = math.radians(e.theta)
     crank = complex(math.cos(th), math.sin(th))
@@ -231,7 +232,7 @@ def test_the_shipped_table_is_example_15_7_at_its_sketch() -> None:
     """``input_tables/slider_crank_engine.yaml``: Ex. 15.7 sketched at θ = 60°."""
     e = Engine(**{**ENGINES[0].__dict__, "load": 68722.34})   # the table's load, to 0.01 N
     model, data = load("slider_crank_engine.yaml")
-    result = kinetostatics(assur.analyse(model, np.array([0.0]), analogs=True), data, e.omega)
+    result = kinetostatics(analyse(model, np.array([0.0]), analogs=True), data, e.omega)
     exact = _solution(e, book=False)
     assert -result.driving[0] == pytest.approx(exact["torque"], rel=1e-9)
     guide = result.reactions["C_T"].normal

@@ -15,6 +15,7 @@ from force_tables import TABLES, load
 import assur
 import assur.kinematics.analysis
 from assur.forces import ForceData, ForceReason, Load, Mass, Tabulated, kinetostatics
+from assur.kinematics.analysis import analyse
 
 
 def _four_bar(c: complex, b: complex = 20j) -> assur.KinematicModel:
@@ -45,7 +46,7 @@ LOADS = ForceData({2: Mass(0.5, 40 + 40j, 1e-3), 3: Mass(0.4, 90 + 20j, 5e-4)},
 def test_the_toggle_is_null_with_its_reason_and_finite_elsewhere() -> None:
     model = _change_point()
     q = np.radians(np.arange(360.0))
-    result = kinetostatics(assur.analyse(model, q, analogs=True), LOADS, 0.0)
+    result = kinetostatics(analyse(model, q, analogs=True), LOADS, 0.0)
     toggle = np.zeros(360, bool)
     toggle[90] = True
     assert np.array_equal(result.reason != 0, toggle)
@@ -61,7 +62,7 @@ def test_the_toggle_is_null_with_its_reason_and_finite_elsewhere() -> None:
 def test_reactions_grow_like_the_inverse_determinant_next_to_the_toggle() -> None:
     model = _change_point()
     q = math.pi / 2 + np.array([-1e-2, -1e-3, -1e-4, -1e-5, 1e-5, 1e-4, 1e-3, 1e-2])
-    motion = assur.analyse(model, q, analogs=True)
+    motion = analyse(model, q, analogs=True)
     result = kinetostatics(motion, LOADS, 0.0)
     b, c, d = (assur.kinematics.analysis.values(motion.joints[p]) for p in "BCD")
     determinant = np.abs(((b - c).conjugate() * (d - c)).imag) / (abs(b - c) * abs(d - c))
@@ -73,7 +74,7 @@ def test_reactions_grow_like_the_inverse_determinant_next_to_the_toggle() -> Non
 def test_inertia_reactions_scale_with_the_square_of_the_speed() -> None:
     model, data = load("course_11_link_forces.yaml")
     inertia_only = ForceData(data.masses)
-    motion = assur.analyse(model, points=72, analogs=True)
+    motion = analyse(model, points=72, analogs=True)
     slow, fast = (kinetostatics(motion, inertia_only, w) for w in (10.0, 25.0))
     np.testing.assert_allclose(fast.driving, 6.25 * slow.driving, rtol=1e-12, atol=1e-12)
     for pid, reaction in slow.reactions.items():
@@ -83,7 +84,7 @@ def test_inertia_reactions_scale_with_the_square_of_the_speed() -> None:
 
 def test_reactions_are_linear_in_the_loads() -> None:
     model, data = load("course_11_link_forces.yaml")
-    motion = assur.analyse(model, points=36, analogs=True)
+    motion = analyse(model, points=36, analogs=True)
     whole = kinetostatics(motion, data, 10.0)
     inertia = kinetostatics(motion, ForceData(data.masses), 10.0)
     loads = kinetostatics(motion, ForceData(loads=data.loads), 10.0)
@@ -103,8 +104,8 @@ def test_turning_the_whole_problem_turns_the_reactions(turn: float) -> None:
         (Load(11, force=_turned_table(data.loads[0].force, rotor),
               point=data.loads[0].point * rotor),), data.gravity * rotor)
     q = np.radians(np.arange(0.0, 360.0, 15.0))
-    base = kinetostatics(assur.analyse(model, q, analogs=True), data, 10.0)
-    moved = kinetostatics(assur.analyse(turned, q, analogs=True), turned_data, 10.0)
+    base = kinetostatics(analyse(model, q, analogs=True), data, 10.0)
+    moved = kinetostatics(analyse(turned, q, analogs=True), turned_data, 10.0)
     np.testing.assert_allclose(moved.driving, base.driving, rtol=1e-9, atol=1e-9)
     for pid, reaction in base.reactions.items():
         force = (reaction.x + 1j * reaction.y) * rotor
@@ -139,8 +140,8 @@ def test_listing_a_pair_the_other_way_negates_its_reaction() -> None:
     swapped = copy.copy(model)
     object.__setattr__(swapped, "pair_links", {**links, "3-0": (kind, (b, a), guide)})
     q = np.radians([10.0, 100.0, 250.0])
-    base = kinetostatics(assur.analyse(model, q, analogs=True), data, 10.0)
-    other = kinetostatics(assur.analyse(swapped, q, analogs=True), data, 10.0)
+    base = kinetostatics(analyse(model, q, analogs=True), data, 10.0)
+    other = kinetostatics(analyse(swapped, q, analogs=True), data, 10.0)
     for part in ("x", "y", "normal", "moment"):
         np.testing.assert_array_equal(getattr(other.reactions["3-0"], part),
                                       -getattr(base.reactions["3-0"], part))
@@ -149,7 +150,7 @@ def test_listing_a_pair_the_other_way_negates_its_reaction() -> None:
 
 def test_the_normal_force_acts_where_its_moment_about_k_is_the_couple() -> None:
     model, data = load("course_11_link_forces.yaml")
-    result = kinetostatics(assur.analyse(model, points=36, analogs=True), data, 10.0)
+    result = kinetostatics(analyse(model, points=36, analogs=True), data, 10.0)
     for pid in ("10-11", "11-0", "6-7", "3-4"):
         reaction = result.reactions[pid]
         force = reaction.x + 1j * reaction.y
@@ -169,14 +170,14 @@ def test_each_dyad_kind_carries_its_own_equilibrium_in_the_registry() -> None:
     assert len(set(solvers.values())) == len(solvers) == 5
     # every group of the 11-link example (one of each dyad kind) is solved by its entry
     model, data = load("course_11_link_forces.yaml")
-    result = kinetostatics(assur.analyse(model, np.radians([30.0]), analogs=True), data, 10.0)
+    result = kinetostatics(analyse(model, np.radians([30.0]), analogs=True), data, 10.0)
     assert {g.kind for g in model.groups} == {0, 1, 2, 3, 4, 5}
     assert np.isfinite(result.driving).all() and result.reason.tolist() == [0]
 
 
 def test_where_a_group_does_not_assemble_the_reason_says_so() -> None:
     model = assur.load_model(TABLES / "course_11_link_fails.yaml")
-    motion = assur.analyse(model, points=72, analogs=True)
+    motion = analyse(model, points=72, analogs=True)
     result = kinetostatics(motion, ForceData(loads=(Load(3, torque=-5.0),)), 5.0)
     apart = ~np.asarray(motion.exists)
     assert 0 < apart.sum() < 72

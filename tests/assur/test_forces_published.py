@@ -38,6 +38,7 @@ import numpy as np
 
 import assur
 from assur.forces import ForceData, Load, Mass, kinetostatics
+from assur.kinematics.analysis import analyse
 from assur.kinematics.jets import Jet
 from assur.model import LinkId
 
@@ -68,7 +69,7 @@ def _example() -> tuple[assur.KinematicModel, ForceData]:
 
 def test_the_printed_joint_force_at_b_is_reproduced() -> None:
     model, data = _example()
-    motion = assur.analyse(model, np.array([0.0]), analogs=True)   # the sketch: φ = π/4
+    motion = analyse(model, np.array([0.0]), analogs=True)   # the sketch: φ = π/4
     # the example's kinematics as printed: v_C = −√2 m/s (opposed by F_ext), ε2 = 0
     slider, rod = motion.joints["C"], motion.frames[2][1]
     assert isinstance(slider, Jet) and isinstance(rod, Jet)

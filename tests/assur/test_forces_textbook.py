@@ -30,6 +30,7 @@ import pytest
 
 import assur
 from assur.forces import ForceData, Load, Mass, kinetostatics
+from assur.kinematics.analysis import analyse
 
 # Offset slider-crank (m, kg, N): crank r, rod l, offset e of the slide line y = e.
 R, L, E = 0.060, 0.240, 0.010
@@ -93,7 +94,7 @@ def _program(angles: np.ndarray) -> dict[str, np.ndarray]:
     centre2 = a0 + A2 * 1e3 * (b0 - a0) / abs(b0 - a0)
     data = ForceData({1: Mass(M1, complex(C1 * 1e3, 0)), 2: Mass(M2, centre2, I2),
                       3: Mass(M3, b0)}, (Load(3, force=complex(P, 0), point=b0),), complex(0, G))
-    result = kinetostatics(assur.analyse(model, angles, analogs=True), data, OMEGA)
+    result = kinetostatics(analyse(model, angles, analogs=True), data, OMEGA)
     out = {"driving": result.driving}
     for pid, reaction in result.reactions.items():
         out[f"{pid} x"], out[f"{pid} y"] = reaction.x, reaction.y

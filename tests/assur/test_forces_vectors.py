@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 from force_tables import load
 
-import assur
 from assur.forces import kinetostatics
+from assur.kinematics.analysis import analyse
 
 ANGLES = np.radians([30.0, 120.0, 210.0, 300.0])
 OMEGA = 10.0
@@ -117,7 +117,7 @@ def _kind(quantity: str) -> str:
 def test_vectors_are_reproduced(case: str) -> None:
     table, rows = CASES[case]
     model, data = load(table)
-    result = kinetostatics(assur.analyse(model, ANGLES, analogs=True), data, OMEGA)
+    result = kinetostatics(analyse(model, ANGLES, analogs=True), data, OMEGA)
     largest: dict[str, float] = {}
     for quantity, expected in rows:
         kind = _kind(quantity)
@@ -135,7 +135,7 @@ def test_vectors_are_reproduced(case: str) -> None:
 def test_checks_hold_over_the_cycle(case: str) -> None:
     """Power balance and every link's residual at 360 positions (``docs/forces.md`` §5)."""
     model, data = load(CASES[case][0])
-    result = kinetostatics(assur.analyse(model, points=360, analogs=True), data, OMEGA)
+    result = kinetostatics(analyse(model, points=360, analogs=True), data, OMEGA)
     assert np.all(result.reason == 0)
     assert np.all(np.abs(result.power_balance) <= 1e-10 * result.power_scale)
     for link, residual in result.residuals.items():

@@ -12,6 +12,7 @@ import pytest
 import yaml
 
 import assur
+from assur.kinematics.analysis import analyse
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "input_tables" / "course_11_link.yaml"
@@ -93,7 +94,7 @@ def test_direction_from_identification_rows() -> None:
     rows[0]["params"]["s"] = -1
     model = _model(data)
     assert model.direction == -1
-    motion = assur.analyse(model, np.radians([0.0, 90.0]))
+    motion = analyse(model, np.radians([0.0, 90.0]))
     pin = motion.joints["0-1"] + 40 * np.exp(1j * np.radians([30.0, -60.0]))
     np.testing.assert_allclose(motion.solutions["L0(1)"].c, pin, atol=1e-12)
 
@@ -142,7 +143,7 @@ def test_margin_rotation_and_tracing_from_the_sketch() -> None:
     model = _model(data)
     assert model.direction == -1
     assert all(model.params[f"{g.label}.delta"] == 0.05 for g in model.groups if g.kind)
-    motion = assur.analyse(model, np.array([0.0, 0.5]))
+    motion = analyse(model, np.array([0.0, 0.5]))
     # the tracing point is fixed on the coupler: its distances to the coupler's hinges hold
     k = motion.tracing["K"]
     for pid, sketched in (("1-2", _p("1-2")), ("2-3", _p("2-3")), ("2-6", _p("2-6"))):
@@ -185,7 +186,7 @@ def test_rrr_test_vectors_of_the_method_at_the_sketched_position(
     group = model.group("L1(2,3)")
     assert group.sigma == sigma
     assert model.params["L1(2,3).l_i"] == 80.0 and model.params["L1(2,3).l_j"] == 60.0
-    motion = assur.analyse(model, np.array([0.0, 2 * np.pi]))
+    motion = analyse(model, np.array([0.0, 2 * np.pi]))
     np.testing.assert_allclose(motion.joints["C"], complex(64, cy), atol=1e-12)
     np.testing.assert_allclose(np.degrees(motion.frames[2][1]), phi_i, atol=1e-4)
     np.testing.assert_allclose(np.degrees(motion.frames[3][1]), phi_j, atol=1e-4)

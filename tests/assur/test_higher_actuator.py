@@ -38,7 +38,7 @@ import assur
 from assur.forces import kinetostatics
 from assur.forces.table import load_with_forces
 from assur.kinematics import jets as J
-from assur.kinematics.analysis import sketch_input, values
+from assur.kinematics.analysis import analyse, sketch_input, values
 from assur.kinematics.higher.kind import HigherGroupSolution
 from synthesis.cli.main import main
 
@@ -129,7 +129,7 @@ def test_triad_positions_equal_a_stepped_newton_solve_and_every_link_closes() ->
     model = assur.load_model(EXAMPLE)
     assert model.drive == "actuator" and model.groups[0].driven == "leash1"
     q = np.linspace(85.0, 115.0, 31)
-    motion = assur.analyse(model, q)
+    motion = analyse(model, q)
     assert motion.exists.all()
     expected = _stepped(q)
     j = {pid: values(z) for pid, z in motion.joints.items()}
@@ -151,8 +151,8 @@ def test_triad_positions_equal_a_stepped_newton_solve_and_every_link_closes() ->
 
 def _check_analogs(model: assur.KinematicModel, q: np.ndarray, h: float = 1e-4) -> None:
     """Joints, link angles and the slider's s against central differences of step h."""
-    exact = assur.analyse(model, q, analogs=True)
-    up, down = assur.analyse(model, q + h), assur.analyse(model, q - h)
+    exact = analyse(model, q, analogs=True)
+    up, down = analyse(model, q + h), analyse(model, q - h)
     for pid, jet in exact.joints.items():
         z = J.as_jet(jet)
         hi, lo = values(up.joints[pid]), values(down.joints[pid])
@@ -181,7 +181,7 @@ def test_class_iv_coupler_positions_close_and_analogs_equal_differences(which: s
     assert group.kind == "IV" and group.driven == "b" and group.composite == (2, 3)
     assert float(sketch_input(model)) == pytest.approx(abs(57 + 66j - (115 + 67j)), abs=1e-12)
     q = np.linspace(54.0, 76.0, 12)
-    motion = assur.analyse(model, q)
+    motion = analyse(model, q)
     assert motion.exists.all()
     j = {pid: values(z) for pid, z in motion.joints.items()}
     g = table["geometry"]
@@ -240,7 +240,7 @@ def _four_bar_end(below: float) -> float:
 def test_mode_end_below_the_stroke_against_a_dense_scan_and_existence() -> None:
     model = dataclasses.replace(assur.load_model(EXAMPLE), input_range=(70.0, 115.0))
     end = _four_bar_end(85.0)
-    motion = assur.analyse(model, np.linspace(70.0, 115.0, 46))
+    motion = analyse(model, np.linspace(70.0, 115.0, 46))
     sol = motion.solutions[model.groups[0].label]
     assert isinstance(sol, HigherGroupSolution) and sol.follow.periodic is False
     assert np.isnan(sol.follow.ends[0]) and sol.follow.end_reasons[1] == 8
@@ -265,7 +265,7 @@ def test_actuator_force_equals_the_global_solve(which: str, tmp_path: Path) -> N
         _loads(model, np.random.default_rng(3))
     low, high = model.input_range
     q = np.linspace(low, high, 9)
-    motion = assur.analyse(model, q, analogs=True)
+    motion = analyse(model, q, analogs=True)
     result = kinetostatics(motion, data, 20.0)
     assert result.drive == "driving_force"
     with np.errstate(invalid="ignore"):
@@ -350,9 +350,9 @@ def test_designs_with_their_own_sketch_length_in_one_call_equal_each_alone() -> 
     column = model.groups[0].column("x_C")
     xs = np.array([58.0, 60.0, 63.0])
     q = np.linspace(85.0, 115.0, 7)
-    together = assur.analyse(model.with_params({column: xs[:, None]}), q, analogs=True)
+    together = analyse(model.with_params({column: xs[:, None]}), q, analogs=True)
     for k, x in enumerate(xs):
-        alone = assur.analyse(model.with_params({column: x}), q, analogs=True)
+        alone = analyse(model.with_params({column: x}), q, analogs=True)
         for pid, jet in alone.joints.items():
             z, both = J.as_jet(jet), J.as_jet(together.joints[pid])
             assert np.max(np.abs(both.v[k] - z.v)) <= 1e-12 * 250, pid

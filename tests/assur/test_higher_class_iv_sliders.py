@@ -26,6 +26,7 @@ from test_higher_properties import walk_through
 
 import assur
 from assur.kinematics import jets as J
+from assur.kinematics.analysis import analyse
 from assur.kinematics.higher import ClassIV, ClassIVInputs, assembly_modes, follow_mode
 from assur.kinematics.higher.fallback import Joint, Motion, PoseSystem, sweep_modes
 from assur.kinematics.higher.groups import expand
@@ -213,7 +214,7 @@ def test_the_example_table_through_the_analysis() -> None:
     the frame's orientation while every link keeps its drawn distances."""
     model = assur.load_model(TABLES / "class_iv_slider.yaml")
     phi = np.radians(np.arange(0.0, 360.0, 10.0))
-    motion = assur.analyse(model, phi)
+    motion = analyse(model, phi)
     assert np.all(motion.exists)
     drawn = {"B": -12.5 - 20j, "C": 57 + 66j, "D": 115 + 67j, "E": 87 + 118j,
              "F": 25.5 + 98.5j, "G": 140.5 + 22j}
@@ -249,8 +250,8 @@ def test_the_guide_carried_by_the_sliding_link_moves_no_joint(tmp_path: Path) ->
     path = tmp_path / "slotted.yaml"
     path.write_text(text.replace("guide: 0}", "guide: 4}"), encoding="utf-8")
     phi = np.radians(np.arange(0.0, 360.0, 10.0))
-    drawn = assur.analyse(assur.load_model(TABLES / "class_iv_slider.yaml"), phi)
-    slotted = assur.analyse(assur.load_model(path), phi)
+    drawn = analyse(assur.load_model(TABLES / "class_iv_slider.yaml"), phi)
+    slotted = analyse(assur.load_model(path), phi)
     assert np.all(slotted.exists)
     for pid in "BCDEF":
         assert np.abs(np.asarray(slotted.joints[pid]) - drawn.joints[pid]).max() <= 1e-9 * 200

@@ -15,6 +15,7 @@ from hypothesis import strategies as st
 
 import assur
 import assur.kinematics.analysis
+from assur.kinematics.analysis import analyse
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "input_tables" / "course_11_link.yaml"
@@ -48,7 +49,7 @@ def _mapped(point_map, angle_shift: float = 0.0, flip: bool = False,
 
 
 BASE = _model(DATA)
-BASE_MOTION = assur.analyse(BASE, PHI)
+BASE_MOTION = analyse(BASE, PHI)
 
 
 def _scale(motion: assur.Motion) -> float:
@@ -93,7 +94,7 @@ def test_constraints_hold_at_every_assembled_position_of_random_designs(
                               "L2(9,8).l_j": rod, "L5(11,10).gamma": gamma,
                               "L4(4,5).beta_j": beta_j, "L4(4,5).e_j": e_j,
                               "L1(2,3).beta_N": beta_n})
-    motion = assur.analyse(model, PHI)
+    motion = analyse(model, PHI)
     if motion.exists.any():
         _check_closure(motion)
     # the last group's output is NaN exactly where some group does not assemble
@@ -111,7 +112,7 @@ def test_slider_crank_matches_its_closed_form() -> None:
         "geometry": {"O": {"point": [0, 0]}, "A": {"point": [r, 0]},
                      "B": {"point": [x0, e]}, "G": {"point": [0, e], "direction": 0}}})
     model = assur.build_model(assur.analyse_structure(chain))
-    motion = assur.analyse(model, PHI, analogs=True)
+    motion = analyse(model, PHI, analogs=True)
     x = r * np.cos(PHI) + np.sqrt(rod * rod - (r * np.sin(PHI) - e) ** 2)
     v = -r * np.sin(PHI) - (r * np.sin(PHI) - e) * r * np.cos(PHI) / np.sqrt(
         rod * rod - (r * np.sin(PHI) - e) ** 2)
@@ -127,7 +128,7 @@ def test_rigid_motion_of_the_sketch_moves_every_joint(alpha: float, tx: float,
                                                       ty: float) -> None:
     turn, shift = cmath.exp(1j * alpha), complex(tx, ty)
     moved = _model(_mapped(lambda z: turn * z + shift, angle_shift=math.degrees(alpha)))
-    motion = assur.analyse(moved, PHI)
+    motion = analyse(moved, PHI)
     scale = _scale(BASE_MOTION) + abs(shift)
     for pid, z in BASE_MOTION.joints.items():
         assert np.abs(motion.joints[pid] - (turn * z + shift)).max() <= 1e-9 * scale, pid
@@ -138,7 +139,7 @@ def test_rigid_motion_of_the_sketch_moves_every_joint(alpha: float, tx: float,
 @pytest.mark.parametrize("factor", [2e-5, 1e-2, 1e3, 2e3])
 def test_dimensions_from_micrometres_to_kilometres(factor: float) -> None:
     """Scaled sketches (about 1e-3 mm … 1e6 mm) give scaled positions and equal angles."""
-    motion = assur.analyse(_model(_mapped(lambda z: factor * z)), PHI, analogs=True)
+    motion = analyse(_model(_mapped(lambda z: factor * z)), PHI, analogs=True)
     assert motion.exists.all()
     for pid, z in BASE_MOTION.joints.items():
         scale = factor * _scale(BASE_MOTION)
@@ -159,7 +160,7 @@ def test_mirrored_sketch_takes_the_mirrored_branch() -> None:
             assert group.sigma == -signs[group.label]
         else:
             assert group.sigma == signs[group.label]
-    motion = assur.analyse(mirrored, PHI)
+    motion = analyse(mirrored, PHI)
     scale = _scale(BASE_MOTION)
     for pid, z in BASE_MOTION.joints.items():
         assert np.abs(motion.joints[pid] - np.conj(z)).max() <= 1e-9 * scale, pid
@@ -170,9 +171,9 @@ def test_batch_of_designs_equals_a_loop_over_designs() -> None:
                "L2(9,8).l_j": [120.0, 130.0, 150.0], "L5(11,10).gamma": [45.0, 60.0, 75.0]}
     batch = BASE.with_params({k: np.array(v)[:, None] for k, v in changes.items()})
     assert batch.design_shape == (3, 1)
-    motion = assur.analyse(batch, PHI, analogs=True)
+    motion = analyse(batch, PHI, analogs=True)
     for d in range(3):
-        single = assur.analyse(BASE.with_params({k: v[d] for k, v in changes.items()}), PHI,
+        single = analyse(BASE.with_params({k: v[d] for k, v in changes.items()}), PHI,
                                analogs=True)
         for pid, z in single.joints.items():
             np.testing.assert_allclose(motion.joints[pid].v[d], z.v, rtol=1e-13, atol=1e-11)
@@ -181,9 +182,9 @@ def test_batch_of_designs_equals_a_loop_over_designs() -> None:
 
 def test_analogs_match_central_differences() -> None:
     h1, h2 = 1e-5, 1e-3
-    jet = assur.analyse(BASE, PHI, analogs=True)
-    plus, minus = assur.analyse(BASE, PHI + h1), assur.analyse(BASE, PHI - h1)
-    plus2, minus2 = assur.analyse(BASE, PHI + h2), assur.analyse(BASE, PHI - h2)
+    jet = analyse(BASE, PHI, analogs=True)
+    plus, minus = analyse(BASE, PHI + h1), analyse(BASE, PHI - h1)
+    plus2, minus2 = analyse(BASE, PHI + h2), analyse(BASE, PHI - h2)
 
     def check(name, j, p, m, p2, m2, z) -> None:
         d1 = (p - m) / (2 * h1)
@@ -205,10 +206,10 @@ def test_analogs_match_central_differences() -> None:
 def test_velocity_and_acceleration_for_a_crank_speed() -> None:
     """x(t) = x(φ(t)) with φ = ω t + ε t²/2: time differences against the analog formulas."""
     omega, epsilon, dt = 12.5, 30.0, 1e-4
-    jet = assur.analyse(BASE, PHI, analogs=True)
+    jet = analyse(BASE, PHI, analogs=True)
 
     def at(t: float) -> assur.Motion:
-        return assur.analyse(BASE, PHI + omega * t + 0.5 * epsilon * t * t)
+        return analyse(BASE, PHI + omega * t + 0.5 * epsilon * t * t)
 
     later, now, earlier = at(dt), at(0.0), at(-dt)
     for pid in ("2-3", "4-5", "8-9"):
@@ -221,12 +222,12 @@ def test_velocity_and_acceleration_for_a_crank_speed() -> None:
 
 
 def test_crank_angles_over_many_turns_keep_the_branch() -> None:
-    far = assur.analyse(BASE, PHI + 2 * np.pi * 1000)
+    far = analyse(BASE, PHI + 2 * np.pi * 1000)
     scale = _scale(BASE_MOTION)
     for pid, z in BASE_MOTION.joints.items():
         assert np.abs(far.joints[pid] - z).max() <= 1e-9 * scale, pid
     turns = np.linspace(0, 2 * np.pi * 30, 30 * 720 + 1)
-    jet = assur.analyse(BASE, turns, analogs=True)
+    jet = analyse(BASE, turns, analogs=True)
     step = turns[1] - turns[0]
     for pid, z in jet.joints.items():
         jumps = np.abs(np.diff(z.v))
@@ -253,7 +254,7 @@ def test_toggle_position_is_flagged_and_keeps_the_branch() -> None:
     """Coupler + rocker = 130 + 1e-9 = the largest hinge distance: stretched at φ = 180°."""
     model = _four_bar(60.0).with_params({"L1(2,3).l_j": 60.0 + 1e-9})
     phi = np.linspace(0, 2 * np.pi, 3601)
-    motion = assur.analyse(model, phi, analogs=True)
+    motion = analyse(model, phi, analogs=True)
     sol = motion.solutions["L1(2,3)"]
     assert sol.exists.all()
     toggle = int(np.argmin(sol.margin))
@@ -266,7 +267,7 @@ def test_toggle_position_is_flagged_and_keeps_the_branch() -> None:
     # away from the toggle the analogs are accurate; near it the margin says they are not
     h = 1e-6
     fine = sol.margin > 1e-3
-    numeric = (assur.analyse(model, phi + h).joints["C"] - assur.analyse(model, phi - h)
+    numeric = (analyse(model, phi + h).joints["C"] - analyse(model, phi - h)
                .joints["C"]) / (2 * h)
     err = np.abs(motion.joints["C"].d1 - numeric)[fine]
     assert err.max() <= 1e-6 * np.abs(motion.joints["C"].d1[fine]).max()
@@ -277,7 +278,7 @@ def test_nearly_parallel_guides_stay_on_both_guides(gap_deg: float) -> None:
     """The frame guide of slider 5 nearly parallel to rocker 3 at φ = 0."""
     rocker = float(np.degrees(BASE_MOTION.sliders["3-4"].angle[0]))  # guide of slider 4
     model = BASE.with_params({"L4(4,5).beta_j": rocker + gap_deg})
-    motion = assur.analyse(model, PHI)
+    motion = analyse(model, PHI)
     sol = motion.solutions["L4(4,5)"]
     assert sol.margin[0] == pytest.approx(math.sin(math.radians(gap_deg)), rel=1e-6)
     for pid in ("3-4", "5-0"):
@@ -310,7 +311,7 @@ def test_linear_actuator_drives_a_dyad_with_a_variable_length_link() -> None:
     model = assur.build_model(assur.analyse_structure(chain))
     assert model.drive == "actuator" and model.input_range == (950.0, 1100.0)
     q = assur.input_grid(model, 31)
-    motion = assur.analyse(model, q, analogs=True)
+    motion = analyse(model, q, analogs=True)
     assert motion.exists.all()
     np.testing.assert_allclose(np.abs(motion.joints["F"].v - e), q, rtol=1e-12)
     np.testing.assert_allclose(motion.sliders["S"].s.v, q, rtol=1e-12)

@@ -10,13 +10,14 @@ from matplotlib.patches import Circle
 
 import assur
 import assur.plot.mechanism
+from assur.kinematics.analysis import analyse
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_hinges_are_drawn_at_the_joints_of_the_position() -> None:
     model = assur.load_model(ROOT / "input_tables" / "course_11_link.yaml")
-    motion = assur.analyse(model, np.radians(np.arange(0, 360, 30.0)))
+    motion = analyse(model, np.radians(np.arange(0, 360, 30.0)))
     index = 4
     _, ax = assur.plot.mechanism.figure_for(motion)
     assur.draw_mechanism(motion, index, ax)
@@ -31,7 +32,7 @@ def test_hinges_are_drawn_at_the_joints_of_the_position() -> None:
 
 def test_a_broken_position_is_marked_in_the_title() -> None:
     model = assur.load_model(ROOT / "input_tables" / "course_11_link_fails.yaml")
-    motion = assur.analyse(model, np.radians([0.0, 45.0]))
+    motion = analyse(model, np.radians([0.0, 45.0]))
     _, ax = assur.plot.mechanism.figure_for(motion)
     assur.draw_mechanism(motion, 1, ax, lang="ru")
     assert "не собирается" in ax.get_title()

@@ -11,6 +11,7 @@ import pytest
 
 import assur
 import assur.kinematics.transmission
+from assur.kinematics.analysis import analyse
 
 ROOT = Path(__file__).resolve().parents[2]
 PHI = np.linspace(0.0, 2 * np.pi, 720, endpoint=False)
@@ -36,7 +37,7 @@ def test_four_bar_pressure_angle_is_the_transmission_angle_defect() -> None:
     model = _build(R + [{"id": "D", "type": "R", "links": [3, 0]}],
                    {"A": {"point": [0, 0]}, "B": {"point": [crank, 0]},
                     "C": {"point": [c0.real, c0.imag]}, "D": {"point": [frame, 0]}})
-    motion = assur.analyse(model, PHI)
+    motion = analyse(model, PHI)
     (item,) = assur.pressure_angles(motion)
     assert set(item.binary) == {2, 3}
     d = np.abs(frame - crank * np.exp(1j * PHI))
@@ -46,7 +47,7 @@ def test_four_bar_pressure_angle_is_the_transmission_angle_defect() -> None:
     ext = math.acos((frame ** 2 + lj ** 2 - (li + crank) ** 2) / (2 * frame * lj))
     fold = math.acos((frame ** 2 + lj ** 2 - (li - crank) ** 2) / (2 * frame * lj))
     rotations = {r.pair: r for r in assur.joint_rotations(motion)}
-    fine = assur.analyse(model, np.linspace(0, 2 * np.pi, 20001))
+    fine = analyse(model, np.linspace(0, 2 * np.pi, 20001))
     fine_rot = {r.pair: r for r in assur.joint_rotations(fine)}
     assert fine_rot["D"].swing == pytest.approx(ext - fold, abs=1e-6)
     assert rotations["A"].full_turn and rotations["A"].swing == pytest.approx(2 * np.pi)
@@ -60,7 +61,7 @@ def test_slider_crank_pressure_angle_is_arcsin_of_the_offset() -> None:
                    {"A": {"point": [0, 0]}, "B": {"point": [r, 0]},
                     "C": {"point": [r + math.sqrt(rod * rod - e * e), e]},
                     "G": {"point": [0, e], "direction": 0}})
-    motion = assur.analyse(model, PHI)
+    motion = analyse(model, PHI)
     (item,) = assur.pressure_angles(motion)
     assert item.binary == (2,)
     expected = np.arcsin(np.abs(r * np.sin(PHI) - e) / rod)
@@ -72,13 +73,13 @@ def test_course_example_has_no_two_hinge_rod_in_l1_or_l2() -> None:
     """Link 2 carries N, link 3 the guide of 4, rod 8 carries M (method.md §2.7)."""
     model = assur.load_model(ROOT / "input_tables" / "course_11_link.yaml")
     assert not ({2, 3, 8} & assur.kinematics.transmission.binary_links(model))
-    assert assur.pressure_angles(assur.analyse(model, PHI[::10])) == []
+    assert assur.pressure_angles(analyse(model, PHI[::10])) == []
 
 
 def test_joint_rotations_of_the_course_example_from_positions() -> None:
     """θ_ab from the directions of joints on each link, unwrapped by hand."""
     model = assur.load_model(ROOT / "input_tables" / "course_11_link.yaml")
-    motion = assur.analyse(model, PHI)
+    motion = analyse(model, PHI)
     rot = {r.pair: r for r in assur.joint_rotations(motion)}
     assert len(rot) == 10  # 1 + 3 + 1 + 2 + 2 + 1 revolute joints (method.md §2.8)
     j = motion.joints

@@ -18,7 +18,7 @@ import yaml
 import assur
 from assur.forces import ForceData, Mass, kinetostatics
 from assur.forces.table import load_with_forces
-from assur.kinematics.analysis import values
+from assur.kinematics.analysis import analyse, values
 from synthesis.evaluate import Evaluator
 from synthesis.force_conditions import force_penalties
 from synthesis.problem import load_problem, problem_from_dict
@@ -32,8 +32,8 @@ TORQUE, LIMIT, STEP = 15.0, 8.0, 1e-6
 def _torque_by_virtual_work(evaluator: Evaluator, x: np.ndarray) -> np.ndarray:
     """max_φ |T·dψ/dφ| over the grid, per design (central differences of the rocker angle)."""
     model = evaluator.model(x)
-    ahead = assur.analyse(model, evaluator.grid + STEP).link_angle(3)
-    behind = assur.analyse(model, evaluator.grid - STEP).link_angle(3)
+    ahead = analyse(model, evaluator.grid + STEP).link_angle(3)
+    behind = analyse(model, evaluator.grid - STEP).link_angle(3)
     rate = np.angle(np.exp(1j * (np.asarray(ahead) - np.asarray(behind)))) / (2 * STEP)
     return np.max(np.abs(TORQUE * rate), axis=-1)
 
@@ -77,13 +77,13 @@ def test_a_torque_limit_moves_the_optimum_and_the_result_respects_it() -> None:
 
 def test_points_in_the_link_frames_give_what_sketch_points_give() -> None:
     model, data = load_with_forces(TABLES / "four_bar_gravity.yaml")
-    frames = assur.analyse(model, np.zeros(1), analogs=True).frames
+    frames = analyse(model, np.zeros(1), analogs=True).frames
     local = {}
     for link, mass in data.masses.items():
         origin, angle = (np.asarray(values(v)).item() for v in frames[link])
         local[link] = Mass(mass.mass, (mass.centre - origin) * np.exp(-1j * angle),
                            mass.inertia)
-    motion = assur.analyse(model, points=24, analogs=True)
+    motion = analyse(model, points=24, analogs=True)
     sketch = kinetostatics(motion, data, 10.0)
     framed = kinetostatics(motion, ForceData(local, data.loads, data.gravity, local=True),
                            10.0)
@@ -118,7 +118,7 @@ def test_a_reaction_limit_is_the_excess_of_the_two_force_coupler() -> None:
     feasible = evaluator(x).p1 == 0
     assert feasible.all()
     got = force_penalties(conditions, evaluator.model, x, feasible, evaluator.grid)
-    joints = assur.analyse(evaluator.model(x), evaluator.grid).joints
+    joints = analyse(evaluator.model(x), evaluator.grid).joints
     b, c, d = (np.asarray(values(joints[p])) for p in ("1-2", "2-3", "3-0"))
     along = (c - b) / np.abs(c - b)
     arm = np.abs((np.conj(along) * (d - c)).imag) * 1e-3        # m

@@ -18,10 +18,9 @@ import numpy as np
 import pytest
 import yaml
 
-import assur
 from assur.forces.model import ForceData, Load, Mass
 from assur.forces.solver import ForceAnalysis, kinetostatics
-from assur.kinematics.analysis import values
+from assur.kinematics.analysis import analyse, values
 from assur.kinematics.model import KinematicModel
 from assur.model import LinkId
 from synthesis.cli import main
@@ -62,7 +61,7 @@ def _eleven_link() -> Problem:
 
 def _by_hand(model: KinematicModel) -> ForceData:
     """Fixed masses of one design, as sketch points, from its joints at φ = 0."""
-    sketch = assur.analyse(model, np.zeros(1), analogs=True)
+    sketch = analyse(model, np.zeros(1), analogs=True)
     joint = {pair: complex(np.asarray(values(z)).ravel()[0])
              for pair, z in sketch.joints.items()}
     masses: dict[LinkId, Mass] = {}
@@ -87,7 +86,7 @@ def _feasible_batch(problem: Problem, n: int, seed: int) -> tuple[Evaluator, np.
 
 def _batch_forces(problem: Problem, evaluator: Evaluator, x: np.ndarray) -> ForceAnalysis:
     assert problem.forces is not None
-    motion = assur.analyse(evaluator.model(x), evaluator.grid, analogs=True)
+    motion = analyse(evaluator.model(x), evaluator.grid, analogs=True)
     return kinetostatics(motion, problem.forces.data_of(motion), problem.forces.omega)
 
 
@@ -101,7 +100,7 @@ def test_masses_per_mm_are_the_fixed_masses_of_each_design() -> None:
     batch = _batch_forces(problem, evaluator, x)
     for d in range(3):
         model = evaluator.model(x[d:d + 1])
-        one = kinetostatics(assur.analyse(model, evaluator.grid, analogs=True),
+        one = kinetostatics(analyse(model, evaluator.grid, analogs=True),
                             _by_hand(model), OMEGA)
         assert _relative(batch.driving[d], one.driving.ravel()) < 1e-12
         for pair in ("0-1", "2-6", "6-7", "10-11"):
@@ -121,7 +120,7 @@ def test_a_couple_limit_is_the_excess_of_the_largest_couple() -> None:
     want = np.zeros(len(x))
     for d in range(len(x)):
         model = evaluator.model(x[d:d + 1])
-        one = kinetostatics(assur.analyse(model, evaluator.grid, analogs=True),
+        one = kinetostatics(analyse(model, evaluator.grid, analogs=True),
                             _by_hand(model), OMEGA)
         for pair, limit in COUPLES.items():
             couple = one.reactions[pair].moment
@@ -136,13 +135,13 @@ def _respecting(problem: Problem, x: np.ndarray) -> float:
     evaluator = Evaluator(problem)
     model = evaluator.model(np.atleast_2d(x))
     joint = {pair: complex(np.asarray(values(z)).ravel()[0]) for pair, z in
-             assur.analyse(model, np.zeros(1)).joints.items()}
+             analyse(model, np.zeros(1)).joints.items()}
     masses: dict[LinkId, Mass] = {}
     for link, (a, b) in {1: ("0-1", "1-2"), 2: ("1-2", "2-3"), 3: ("2-3", "3-0")}.items():
         length = abs(joint[b] - joint[a])
         mass = 0.02 * length
         masses[link] = Mass(mass, (joint[a] + joint[b]) / 2, mass * (length * 1e-3) ** 2 / 12)
-    forces = kinetostatics(assur.analyse(model, evaluator.grid, analogs=True),
+    forces = kinetostatics(analyse(model, evaluator.grid, analogs=True),
                            ForceData(masses, (Load(3, torque=-15.0),)), 30.0)
     return float(np.max(np.abs(forces.driving)))
 
@@ -151,7 +150,7 @@ def test_masses_following_the_design_move_the_optimum_and_it_respects_the_limit(
     problem = load_problem(FOUR_BAR)
     assert problem.forces is not None and problem.forces.driving_torque == 10.0
     # the same masses frozen at the initial design's: as the table was before rules
-    initial = assur.analyse(problem.model, np.zeros(1), analogs=True)
+    initial = analyse(problem.model, np.zeros(1), analogs=True)
     frozen = {rule.link: rule.of(initial) for rule in problem.forces.follow}
     fixed_masses: dict[LinkId, Mass] = {
         link: Mass(np.asarray(m.mass).item(), complex(np.asarray(m.centre).item()),

@@ -21,6 +21,7 @@ from closed_form import fourbar
 import assur
 import assur.kinematics.analysis
 from assur import TableError
+from assur.kinematics.analysis import analyse
 from synthesis.cli import main
 from synthesis.evaluate import Evaluator
 from synthesis.problem import load_problem, problem_from_dict
@@ -94,7 +95,7 @@ def test_ratio_against_central_difference_of_the_public_analysis() -> None:
     h = 1e-3
     phi = np.radians(phi_deg)
     stencil = (phi[:, None] + h * np.array([-2.0, -1.0, 1.0, 2.0])).ravel()
-    motion = assur.analyse(evaluator.model(x), stencil)
+    motion = analyse(evaluator.model(x), stencil)
     psi = assur.kinematics.analysis.unwrap(assur.kinematics.analysis.values(motion.link_angle(3)).reshape(len(x), phi.size, 4))
     central = (psi[..., 0] - 8 * psi[..., 1] + 8 * psi[..., 2] - psi[..., 3]) / (12 * h)
     assert np.max(np.abs(central)) > 0.1            # the ratios are not trivially small
@@ -102,7 +103,7 @@ def test_ratio_against_central_difference_of_the_public_analysis() -> None:
     # the curve over the grid (reports) is the same ratio, at the grid angles
     grid = evaluator.grid[::10]
     stencil = (grid[:, None] + h * np.array([-2.0, -1.0, 1.0, 2.0])).ravel()
-    psi = assur.kinematics.analysis.unwrap(assur.kinematics.analysis.values(assur.analyse(evaluator.model(x), stencil).link_angle(3))
+    psi = assur.kinematics.analysis.unwrap(assur.kinematics.analysis.values(analyse(evaluator.model(x), stencil).link_angle(3))
                        .reshape(len(x), grid.size, 4))
     central = (psi[..., 0] - 8 * psi[..., 1] + 8 * psi[..., 2] - psi[..., 3]) / (12 * h)
     assert analysis.output_grid[:, ::10] == pytest.approx(central, abs=1e-9)

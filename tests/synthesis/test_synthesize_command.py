@@ -14,6 +14,7 @@ import yaml
 
 import assur
 import assur.kinematics.analysis
+from assur.kinematics.analysis import analyse
 from synthesis.cli import main
 from synthesis.cli.commands import synthesize
 from synthesis.evaluate import Evaluator
@@ -39,14 +40,14 @@ def _reanalyse(problem: dict[str, Any], result: Path) -> float:
         phi = 2 * np.pi * np.arange(4000) / 4000
     else:
         phi = np.radians([row["phi"] for row in control])
-    motion = assur.analyse(model, np.concatenate([[0.0], phi]))
+    motion = analyse(model, np.concatenate([[0.0], phi]))
     assert motion.exists.all()
     weights = np.array([row.get("E", 1.0) for row in control])
     if task == 1 and general.get("output") == "ratio":
         # n = dψ/dφ by a fourth-order central difference of the positions (no analogs)
         h = 1e-3
         stencil = phi[:, None] + h * np.array([-2.0, -1.0, 1.0, 2.0])
-        angle = assur.kinematics.analysis.unwrap(assur.kinematics.analysis.values(assur.analyse(model, stencil.ravel()).link_angle(
+        angle = assur.kinematics.analysis.unwrap(assur.kinematics.analysis.values(analyse(model, stencil.ravel()).link_angle(
             output["link"])).reshape(stencil.shape))
         n = (angle[:, 0] - 8 * angle[:, 1] + 8 * angle[:, 2] - angle[:, 3]) / (12 * h)
         lo = np.array([row["n_lo"] for row in control])
@@ -74,7 +75,7 @@ def _reanalyse(problem: dict[str, Any], result: Path) -> float:
     # class 3: nearest grid point, then the polygon of a 400 times finer grid around it
     m = np.argmin(np.abs(point[1:][None, :] - targets[:, None]), axis=1)
     fine = phi[m][:, None] + np.linspace(-1, 1, 801)[None, :] * (phi[1] - phi[0])
-    motion = assur.analyse(model, fine.ravel())
+    motion = analyse(model, fine.ravel())
     curve = _tracing_point(model, motion, output["link"]).reshape(fine.shape)
     seg = np.diff(curve, axis=1)
     rel = targets[:, None] - curve[:, :-1]
@@ -167,7 +168,7 @@ def test_result_keeps_the_allowable_angles_and_analyze_judges_by_them(
     problem = yaml.safe_load(path.read_text(encoding="utf-8"))
     assert table["general"]["allowable"] == problem["allowable"]
     # the largest pressure angle, from the public kinematics of the result
-    motion = assur.analyse(assur.load_model(out), points=360)
+    motion = analyse(assur.load_model(out), points=360)
     alpha = max(np.degrees(p.maximum) for p in assur.pressure_angles(motion))
     assert 45 < alpha < 60
     assert main(["analyze", str(out)]) == 0

@@ -144,7 +144,8 @@ def kinematic_figures(motion: Motion, *, lang: str = "en") -> list[tuple[str, Fi
     >>> from pathlib import Path
     >>> import assur
     >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
-    >>> motion = assur.analyse(model, points=36, analogs=True)
+    >>> from assur.kinematics.analysis import analyse
+    >>> motion = analyse(model, points=36, analogs=True)
     >>> [caption for caption, _ in kinematic_figures(motion, lang="ru")]
     ['Углы поворота звеньев ψ: аналог скорости, аналог ускорения', 'Углы давления']
     """
@@ -235,7 +236,8 @@ def mechanism_figure(motion: Motion, *, lang: str = "en", positions: int = 4) ->
     >>> from pathlib import Path
     >>> import assur
     >>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
-    >>> fig = mechanism_figure(assur.analyse(model, points=36), positions=2)
+    >>> from assur.kinematics.analysis import analyse
+    >>> fig = mechanism_figure(analyse(model, points=36), positions=2)
     >>> [ax.get_title().splitlines()[1] for ax in fig.axes]
     ['crank angle φ = 0.0° from the sketched', 'crank angle φ = 180.0° from the sketched']
     """

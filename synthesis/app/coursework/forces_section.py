@@ -10,17 +10,16 @@ driving torque and where, the table of the largest reaction in every pair, the t
 from __future__ import annotations
 
 import math
-from typing import Any
 
+from assur.api import Analysis
+from assur.assessment import Assessment
 from assur.forces.solver import kinetostatics
 from assur.kinematics.analysis import analyse
 from assur.text import render
-from synthesis.app.analysis import TableAnalysis
 from synthesis.app.analysis_forces import summarise
 from synthesis.app.analysis_forces_plot import draw_force_curves
 from synthesis.app.analysis_forces_render import summary_lines
 from synthesis.app.analysis_text import position_text
-from synthesis.app.assess import Assessment
 from synthesis.app.coursework.page import Section, esc, figure, table
 
 __all__ = ["forces_sections"]
@@ -57,13 +56,11 @@ def forces_sections(found: Assessment, lang: str, points: int) -> list[Section]:
         return []
     from matplotlib.figure import Figure
 
-    from synthesis.problem import allowed_pressure_angles
-
-    omega = _omega(found.chain.general)
+    omega = found.chain.general.omega or 0.0  # (none stated: the static analysis)
     motion = analyse(found.model, points=points, analogs=True)
-    result = TableAnalysis(found.model, motion, found.existence,
-                           allowed_pressure_angles(found.chain.general, found.model), omega)
     forces = kinetostatics(motion, data, omega)
+    result = Analysis(found.model, motion, found.existence,
+                      found.chain.general.pressure_angles(found.model), omega, forces)
     summary = summarise(forces, motion.q)
     lines = summary_lines(result, forces, summary, lang)
     at = render("force.report.at_column", lang)
@@ -88,18 +85,9 @@ def forces_sections(found: Assessment, lang: str, points: int) -> list[Section]:
     return [Section("forces", title, body)]
 
 
-def _omega(general: Any) -> float:
-    """``general.omega`` of the table when it is a finite number ≥ 0, else 0 (static)."""
-    value = general.get("omega") if isinstance(general, dict) else None
-    if isinstance(value, (int, float)) and not isinstance(value, bool) \
-            and math.isfinite(value) and value >= 0:
-        return float(value)
-    return 0.0
-
-
 def _fixed(value: float, digits: int = 3) -> str:
     return f"{value:.{digits}f}" if math.isfinite(value) else "–"
 
 
-def _where(result: TableAnalysis, at: float) -> str:
+def _where(result: Analysis, at: float) -> str:
     return position_text(result, at) if math.isfinite(at) else "–"

@@ -23,17 +23,18 @@ from assur import (
     KinematicModel,
     Motion,
     StructuralAnalysis,
-    analyse,
     chain_from_dict,
 )
+from assur.assessment import Assessment
 from assur.io.files import atomic_write_text
+from assur.kinematics.analysis import analyse
 from assur.kinematics.dyads import reason_text
 from assur.kinematics.existence import CONDITIONS
 from assur.model import PairType
 from assur.plot.schemes import roman, scheme_bytes
 from assur.structure.report import group_description
 from assur.text import check_lang, render
-from synthesis.app.assess import Assessment, assess, read_table
+from synthesis.app.assess import assess, read_table
 from synthesis.app.coursework.forces_section import forces_sections
 from synthesis.app.coursework.page import Section, esc, figure, figure_html, page, table
 

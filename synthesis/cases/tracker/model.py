@@ -31,14 +31,13 @@ from assur import (
     Jet,
     KinematicModel,
     StructuralAnalysis,
-    analyse,
     analyse_structure,
     build_model,
     input_grid,
     load_chain,
 )
 from assur.io.sketch import with_sketch
-from assur.kinematics.analysis import unwrap, values
+from assur.kinematics.analysis import analyse, unwrap, values
 
 __all__ = ["CHAIN_TABLE", "TrackerMotion", "chain", "mechanism_model", "simulate", "sketch"]
 

@@ -33,9 +33,9 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from assur import KinematicModel, analyse, analyse_structure, build_model
+from assur import KinematicModel, analyse_structure, build_model
 from assur.io.sketch import with_sketch
-from assur.kinematics.analysis import values
+from assur.kinematics.analysis import analyse, values
 from assur.model import Drive
 from synthesis.cases.tracker.design import DesignTask
 from synthesis.cases.tracker.model import TrackerMotion, chain, simulate, sketch

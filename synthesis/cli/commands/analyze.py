@@ -40,8 +40,8 @@ def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Analyse the table and report (what a run does not ask for is never imported)."""
+    from assur.api import analyse
     from assur.plot.formats import animation_format, picture_format
-    from synthesis.app.analysis import analyse_table
     from synthesis.app.analysis_text import analysis_text
     from synthesis.app.outputs import outputs_of
 
@@ -49,28 +49,21 @@ def run(args: argparse.Namespace) -> int:
         picture_format(args.plot)
     if args.animate:
         animation_format(args.animate)
-    result = analyse_table(args.table, points=args.points, omega=args.omega)
-    forces = None
-    if args.forces:
-        from synthesis.app.analysis_forces import table_forces
-        from synthesis.app.analysis_forces_render import forces_columns, forces_record, forces_text
-
-        forces = table_forces(args.table, result)
+    result = analyse(args.table, points=args.points, forces=args.forces, omega=args.omega)
+    forces = result.forces
     if args.json:
-        from synthesis.app.analysis_json import analysis_record
-
-        record = analysis_record(result)
-        if forces is not None:
-            record["forces"] = forces_record(forces)
-        json.dump(record, sys.stdout, ensure_ascii=False)
+        json.dump(result.to_dict(), sys.stdout, ensure_ascii=False)
         sys.stdout.write("\n")
     else:
         print(analysis_text(result, args.lang))
         if forces is not None:
+            from synthesis.app.analysis_forces_render import forces_text
+
             print("\n" + forces_text(result, forces, args.lang))
     outputs = outputs_of(args)
     if args.csv:
         from synthesis.app.analysis_csv import analysis_csv
+        from synthesis.app.analysis_forces_render import forces_columns
 
         extra = forces_columns(forces) if forces is not None else []
         outputs.write_text(args.csv, analysis_csv(result, extra))

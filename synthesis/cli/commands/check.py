@@ -29,7 +29,7 @@ def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
 def run(args: argparse.Namespace) -> int:
     """Analyse the table and print the report."""
     from synthesis.app.assess import assess
-    from synthesis.app.check_report import check_record, check_text
+    from synthesis.app.check_report import check_text
     from synthesis.app.outputs import outputs_of
 
     if args.plot:  # a format that cannot be written is refused before any work
@@ -45,7 +45,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         import json
 
-        print(json.dumps(check_record(assessment), ensure_ascii=False, indent=2))
+        print(json.dumps(assessment.to_dict(), ensure_ascii=False, indent=2))
     else:
         print(check_text(assessment, args.lang))
     return 0

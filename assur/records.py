@@ -1,28 +1,39 @@
-"""Every position of a kinematic analysis as a JSON-ready record (``assur analyze --json``).
+"""An analysis as a JSON-ready record: what ``assur analyze --json`` prints
+(:meth:`assur.api.Analysis.to_dict`).
 
-Every list is aligned with ``input.values``. Points are in mm; ``d1``/``d2`` are the
+Kinematics: every list is aligned with ``input.values``. Points are in mm; ``d1``/``d2`` are the
 velocity and acceleration analogs (derivatives w.r.t. the input coordinate: per radian of
 crank rotation, or per mm of actuator length); link angles are in degrees, their analogs in
 rad/rad. Missing values (no assembly) are null.
+
+Forces (``docs/forces.md`` §4): lists aligned with ``input.values``, null where a position is
+not solved, with the reason beside it. Forces are in N (global axes, the force of a pair's
+first listed link on its second), torques in N·m (counter-clockwise positive).
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
 
-from assur import Jet, joint_rotations, pressure_angles
+from assur.forces.groups import ForceReason
 from assur.kinematics.analysis import acceleration, unwrap, values, velocity
 from assur.kinematics.existence import CONDITIONS
 from assur.kinematics.higher.kind import HigherGroupSolution
-from assur.kinematics.jets import as_jet
-from synthesis.app.analysis import TableAnalysis, moving_links
+from assur.kinematics.jets import Jet, as_jet
+from assur.kinematics.model import KinematicModel
+from assur.kinematics.transmission import joint_rotations, pressure_angles
+from assur.model import LinkId
 
-__all__ = ["analysis_record", "higher_item", "number"]
+if TYPE_CHECKING:  # pragma: no cover
+    from assur.api import Analysis
+    from assur.forces.solver import ForceAnalysis
+
+__all__ = ["analysis_record", "forces_record", "higher_item", "moving_links", "number"]
 
 #: A JSON value of the record.
 Record = dict[str, Any]
@@ -92,12 +103,17 @@ def _scalar(jet: Jet, omega: float | None) -> Record:
     return _derivatives(jet, omega, {"value": _floats(jet.v)}, _floats)
 
 
-def analysis_record(result: TableAnalysis) -> Record:
-    """Every position of an analysis as a JSON-ready mapping.
+def moving_links(model: KinematicModel) -> list[LinkId]:
+    """The moving links in the order of their numbers (named links after numbered ones)."""
+    return sorted(model.links, key=lambda link: (isinstance(link, str), str(link).zfill(6)))
+
+
+def analysis_record(result: Analysis) -> Record:
+    """Every position of an analysis as a JSON-ready mapping (without its forces).
 
     Parameters
     ----------
-    result : TableAnalysis
+    result : Analysis
 
     Returns
     -------
@@ -109,10 +125,9 @@ def analysis_record(result: TableAnalysis) -> Record:
     Examples
     --------
     >>> from pathlib import Path
-    >>> import synthesis
-    >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
-    >>> from synthesis.app.analysis import analyse_table
-    >>> record = analysis_record(analyse_table(tables / "course_11_link.yaml", points=8))
+    >>> import assur
+    >>> tables = Path(assur.__file__).parents[1] / "input_tables"
+    >>> record = analysis_record(assur.analyse(tables / "course_11_link.yaml", points=8))
     >>> record["input"]["values"][:3], record["all_exist"]
     ([0.0, 45.0, 90.0], True)
     """
@@ -180,3 +195,57 @@ def analysis_record(result: TableAnalysis) -> Record:
          "swing_deg": number(math.degrees(r.swing)), "theta_deg": _floats(np.degrees(r.theta))}
         for r in joint_rotations(motion)]
     return out
+
+
+def forces_record(forces: ForceAnalysis) -> Record:
+    """The ``forces`` object of ``assur analyze --json``.
+
+    Parameters
+    ----------
+    forces : ForceAnalysis
+
+    Returns
+    -------
+    dict
+        ``omega``, ``gravity`` ([gx, gy] m/s²), the drive (``driving_torque`` N·m, or
+        ``driving_force`` N for an actuator) and the same from the lever
+        (``driving_torque_lever``), ``power_balance`` (their difference), ``reactions``
+        (pair → ``links``, ``x``, ``y``; prismatic pairs also ``normal`` and ``moment``),
+        ``residual`` (the largest relative Newton–Euler residual of the links per position:
+        ``force``, ``moment``), ``reason`` (null where solved, else ``not_assembled``,
+        ``toggle``, ``parallel_guides`` or ``indeterminate``) and ``singular`` (the group).
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> table = Path(assur.__file__).parents[1] / "input_tables" / "slider_crank_press.yaml"
+    >>> record = forces_record(assur.analyse(table, points=36, forces=True, omega=10.0).forces)
+    >>> sorted(record["reactions"]["3-0"]), record["reactions"]["3-0"]["links"]
+    (['links', 'moment', 'normal', 'x', 'y'], [3, 0])
+    """
+    drive = forces.drive
+    reactions: Record = {}
+    for pair, reaction in forces.reactions.items():
+        entry: Record = {"links": list(reaction.links), "x": _floats(reaction.x),
+                         "y": _floats(reaction.y)}
+        if reaction.normal is not None and reaction.moment is not None:
+            entry["normal"] = _floats(reaction.normal)
+            entry["moment"] = _floats(reaction.moment)
+        reactions[str(pair)] = entry
+    with np.errstate(all="ignore"):
+        residuals = list(forces.residuals.values())
+        worst_force = np.max([r.force for r in residuals], axis=0)
+        worst_moment = np.max([r.moment for r in residuals], axis=0)
+    return {
+        "omega": forces.omega,
+        "gravity": [forces.gravity.real, forces.gravity.imag],
+        drive: _floats(forces.driving),
+        f"{drive}_lever": _floats(forces.driving_lever),
+        "power_balance": _floats(forces.power_balance),
+        "reactions": reactions,
+        "residual": {"force": _floats(worst_force), "moment": _floats(worst_moment)},
+        "reason": [None if r == 0 else ForceReason(int(r)).name.lower()
+                   for r in forces.reason.ravel()],
+        "singular": list(forces.singular.ravel()),
+    }

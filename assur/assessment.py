@@ -1,0 +1,266 @@
+"""Check a student's table the way the course checks a coursework: one function, one result.
+
+:func:`assess` takes a chain (read from a chain table or an identification table) and runs
+the course's checks once:
+
+1. the structure (counts, W, decomposition into Assur groups, applicability of the method);
+2. the DGTU identification table the program fills, with the assembly variants of the
+   dimensions when the table gives any;
+3. the identification table given in the file, field by field against the chain, and its
+   assembly variants against the dimensions;
+4. the kinematic model (or why there is none) and the existence of every group over the
+   cycle.
+
+The :class:`Assessment` holds numbers, codes and catalogue messages, never sentences in one
+language: ``assur check``, ``assur report`` and ``assur batch`` render it in theirs, and
+:meth:`Assessment.to_dict` is what ``assur check --json`` prints. :func:`assur.check` is the
+public verb.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from assur.errors import AssurError, StructureError
+from assur.kinematics.build import build_model
+from assur.kinematics.model import GroupModel, KinematicModel
+from assur.model import Chain
+from assur.structure.analysis import StructuralAnalysis, analyse_structure
+from assur.structure.identification import (
+    IdentificationRow,
+    Mismatch,
+    check_identification,
+    identification_table,
+)
+from assur.text import Message
+
+if TYPE_CHECKING:  # pragma: no cover
+    from assur.kinematics.existence import ExistenceReport
+
+__all__ = ["Assessment", "VariantFinding", "assess"]
+
+#: The table name used in the labels of the student's rows.
+TABLE = "structure_identification"
+
+
+@dataclass(frozen=True)
+class VariantFinding:
+    """A row of the student's table whose assembly variant is not the one of the dimensions.
+
+    The structure alone cannot tell the assembly variant σ of an RRR or RRP dyad
+    (``method.md`` §3.4 rule 7 only limits it to ±1); the dimensions can.
+
+    Attributes
+    ----------
+    row : int
+        Index of the row in the student's table.
+    kind : object
+        The row's ``L`` as given.
+    group : GroupModel
+        The dyad of the kinematic model with the row's links; its ``sigma`` is the variant
+        in which the dimensions assemble it.
+    given : int
+        The variant written in the table.
+    """
+
+    row: int
+    kind: object
+    group: GroupModel
+    given: int
+
+    @property
+    def message(self) -> Message:
+        """The finding as a catalogue message (code ``check.variant_differs``)."""
+        return Message("check.variant_differs", {
+            "table": TABLE, "row": self.row, "L": self.kind, "i": self.group.i,
+            "j": self.group.j, "sigma": self.group.sigma, "given": self.given})
+
+
+@dataclass(frozen=True)
+class Assessment:
+    """Everything the course checks on one table.
+
+    Attributes
+    ----------
+    chain : Chain
+        The chain checked (for a synthesis problem: its mechanism at the design assessed).
+    analysis : StructuralAnalysis
+    table : tuple of IdentificationRow or None
+        The identification table filled by the program in layering order, with the assembly
+        variants of the dimensions when there is a kinematic model; None when the chain is
+        not made of input groups and dyads of kinds 1–5 (:attr:`table_error` says why).
+    table_error : StructureError or None
+    mismatches : tuple of Mismatch or None
+        The student's identification table against the chain; None when the file gives no
+        table.
+    variants : tuple of VariantFinding
+        The student's rows whose assembly variant the dimensions contradict.
+    model : KinematicModel or None
+        The kinematic model of the dimensions.
+    why_no_model : Message or AssurError or None
+        Why there is no model: the table gives no dimensions (``term.no_geometry``), the
+        mechanism is neither one the course's method covers nor one the kinematics solves
+        (``term.not_applicable``; a group of class III or IV has a model), or the dimensions
+        are wrong (the error, which lists every problem). None when there is a model.
+    existence : ExistenceReport or None
+        Existence of every group over the cycle; None without a model or when not asked for.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parents[1] / "input_tables"
+    >>> found = assur.check(tables / "four_bar.yaml", points=36)
+    >>> for line in repr(found).splitlines()[1:]:
+    ...     print(line)
+      structure: W=1, I(0,1) → II₁(2,3), class 2, applicable=True
+      identification: not given (0 rows given, 0 mismatches, 0 variants)
+      model: 2 groups
+      existence: every group assembles)
+    >>> found.to_dict()["identification_check"] is None
+    True
+    """
+
+    chain: Chain
+    analysis: StructuralAnalysis
+    table: tuple[IdentificationRow, ...] | None
+    table_error: StructureError | None
+    mismatches: tuple[Mismatch, ...] | None
+    variants: tuple[VariantFinding, ...]
+    model: KinematicModel | None
+    why_no_model: Message | AssurError | None
+    existence: ExistenceReport | None
+
+    @property
+    def identification(self) -> str:
+        """The verdict on the student's table: ``matches``, ``differs`` or ``not given``."""
+        if self.mismatches is None:
+            return "not given"
+        return "differs" if self.mismatches or self.variants else "matches"
+
+    def failed_conditions(self, lang: str = "en") -> tuple[str, ...]:
+        """The conditions of the course method that the chain fails, in ``lang``."""
+        return self.analysis.conditions(lang)
+
+    def mismatch_texts(self, lang: str = "en") -> list[tuple[Mismatch, str]]:
+        """Every mismatch of the student's table with its sentence in ``lang``."""
+        return [(m, m.text(lang)) for m in self.mismatches or ()]
+
+    @property
+    def rows_given(self) -> int:
+        """Number of rows of the student's table."""
+        return len(self.chain.identification or ())
+
+    def to_dict(self) -> dict[str, Any]:
+        """The structural analysis, the identification table and the check of the student's
+        table as one JSON-ready mapping: what ``assur check --json`` prints.
+
+        Returns
+        -------
+        dict
+            The analysis (:meth:`StructuralAnalysis.to_dict`) with ``identification_table``
+            (None when the chain is not made of DGTU groups) and ``identification_check``
+            (the mismatches of the student's table; None when the file gives none).
+        """
+        payload = self.analysis.to_dict()
+        payload["identification_table"] = (None if self.table is None
+                                           else [row.to_dict() for row in self.table])
+        payload["identification_check"] = (None if self.mismatches is None
+                                           else [m.to_dict() for m in self.mismatches])
+        return payload
+
+    def __repr__(self) -> str:
+        if self.model is not None:
+            model = f"{len(self.model.groups)} groups"
+        elif isinstance(self.why_no_model, Message):
+            model = f"none ({self.why_no_model.code})"
+        else:
+            model = f"none ({type(self.why_no_model).__name__})"
+        existence = ("not checked" if self.existence is None else
+                     "every group assembles" if self.existence.all_exist else
+                     "a group fails to assemble")
+        return (f"Assessment({self.chain.source!r}\n"
+                f"  structure: W={self.analysis.W}, {self.analysis.formula}, "
+                f"class {self.analysis.mechanism_class}, "
+                f"applicable={self.analysis.applicable}\n"
+                f"  identification: {self.identification} ({self.rows_given} rows given, "
+                f"{len(self.mismatches or ())} mismatches, {len(self.variants)} variants)\n"
+                f"  model: {model}\n  existence: {existence})")
+
+
+def assess(chain: Chain, *, points: int | None = 360) -> Assessment:
+    """Check a student's table: structure, identification table, variants, existence.
+
+    Parameters
+    ----------
+    chain : Chain
+        The chain of a chain table or an identification table.
+    points : int or None
+        Crank positions of the existence check over the cycle (the interval ends are
+        refined anyway); None leaves the existence out.
+
+    Returns
+    -------
+    Assessment
+        Problems of the mechanism itself are findings of the result, never exceptions.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import assur
+    >>> tables = Path(assur.__file__).parents[1] / "input_tables"
+    >>> found = assess(assur.load_chain(tables / "course_11_link_table.yaml"), points=36)
+    >>> found.analysis.formula.split(" → ")[:2], found.identification
+    (['I(0,1)', 'II₁(2,3)'], 'matches')
+    >>> found.existence.all_exist
+    True
+    """
+    analysis = analyse_structure(chain)
+    model, why_not = _model(analysis)
+    sigma = {} if model is None else {(g.i, g.j): g.sigma for g in model.groups
+                                      if g.j is not None}
+    try:
+        rows: tuple[IdentificationRow, ...] | None = tuple(
+            identification_table(analysis, sigma or None))
+        table_error = None
+    except StructureError as exc:
+        rows, table_error = None, exc
+    given = chain.identification
+    checked = check_identification(analysis, given)
+    mismatches = None if checked is None else tuple(checked)
+    variants = () if given is None or model is None else tuple(_variants(model, given))
+    existence = None
+    if model is not None and points is not None:
+        from assur.kinematics.existence import check_existence
+
+        existence = check_existence(model, points=points)
+    return Assessment(chain, analysis, rows, table_error, mismatches, variants, model,
+                      why_not, existence)
+
+
+def _model(analysis: StructuralAnalysis) -> tuple[KinematicModel | None,
+                                                  Message | AssurError | None]:
+    """The kinematic model of the table's dimensions, or None and why there is none."""
+    chain = analysis.chain
+    if not (chain.geometry or chain.group_params):
+        return None, Message("term.no_geometry")
+    if not analysis.decomposed:
+        return None, Message("term.not_applicable")
+    try:  # groups of class III and IV are outside the course's method, not its kinematics
+        return build_model(analysis), None
+    except AssurError as exc:
+        return None, exc if analysis.applicable else Message("term.not_applicable")
+
+
+def _variants(model: KinematicModel,
+              rows: Iterable[IdentificationRow]) -> list[VariantFinding]:
+    """The L1/L2 rows whose ``variant`` differs from the σ of the model."""
+    dyads = [g for g in model.groups if g.kind in (1, 2)]
+    found = []
+    for index, row in enumerate(rows):
+        given = row.variant
+        found += [VariantFinding(index, row.L, g, given) for g in dyads
+                  if (g.i, g.j) == (row.i, row.j) and given in (1, -1) and given != g.sigma]
+    return found

@@ -1,5 +1,8 @@
 """The library's verbs: read a mechanism table, check it, analyse its motion and forces.
 
+``assur check`` imports this module, so what only the analysis needs (the solvers, the force
+analysis, the JSON record) is imported where it is used.
+
 Each verb is what one command runs, and each result prints as a few lines and turns into
 the record that the command's ``--json`` prints:
 
@@ -36,18 +39,16 @@ import numpy as np
 from assur.assessment import Assessment, assess
 from assur.errors import Issue, TableError
 from assur.io.chain_table import load_chain
-from assur.kinematics.analysis import Motion
-from assur.kinematics.analysis import analyse as motion_of
 from assur.kinematics.build import build_model
-from assur.kinematics.existence import ExistenceReport, check_existence
-from assur.kinematics.model import KinematicModel
 from assur.model import Chain
-from assur.records import analysis_record
 from assur.structure.analysis import analyse_structure
 from assur.text import Message
 
 if TYPE_CHECKING:  # pragma: no cover
     from assur.forces.solver import ForceAnalysis
+    from assur.kinematics.analysis import Motion
+    from assur.kinematics.existence import ExistenceReport
+    from assur.kinematics.model import KinematicModel
 
 __all__ = ["MIN_POINTS", "Analysis", "analyse", "check", "load"]
 
@@ -121,6 +122,8 @@ class Analysis:
         """Every position as a JSON-ready mapping: what ``assur analyze --json`` prints
         (:func:`assur.records.analysis_record`, with ``forces``,
         :meth:`ForceAnalysis.to_dict`, when the forces were analysed)."""
+        from assur.records import analysis_record
+
         record = analysis_record(self)
         if self.forces is not None:
             record["forces"] = self.forces.to_dict()
@@ -255,6 +258,9 @@ def analyse(chain: ChainLike, points: int = 360, forces: bool = False,
     if points < MIN_POINTS:
         raise TableError("--points", [Issue("--points", Message(
             "cli.points_at_least", {"low": MIN_POINTS, "found": points}))])
+    from assur.kinematics.analysis import analyse as motion_of
+    from assur.kinematics.existence import check_existence
+
     chain = chain if isinstance(chain, Chain) else load_chain(chain)
     model = build_model(analyse_structure(chain))
     motion = motion_of(model, points=points, analogs=True)

@@ -73,8 +73,8 @@ def _allowable(row: Node) -> Allowable | None:
             if value is not MISSING:
                 rotations[str(joint)] = float(value)
     box = _box(row)
-    if len(row.reader.issues) > before:
-        return None
+    if len(row.reader.issues) > before or MISSING in (links, angle):
+        return None  # (a misspelt key reads as MISSING: reported when the row was read)
     ids: tuple[LinkId, ...] = tuple(normalise_id(v) for v in links)
     return Allowable(ids, None if angle is None else float(angle), rotations, box)
 

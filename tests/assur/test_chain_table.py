@@ -10,7 +10,7 @@ import pytest
 
 from assur import chain_from_dict, load_chain
 from assur.errors import TableError
-from assur.model import PairType
+from assur.model import Allowable, General, PairType
 
 BROKEN = sorted((Path(__file__).parent / "broken").glob("*.yaml"))
 ROOT = Path(__file__).resolve().parents[2]
@@ -85,10 +85,9 @@ _SKETCH = {"A": {"point": [0, 0]}, "B": {"point": [0, 30]}, "C": {"point": [80, 
 
 
 def test_geometry_is_read_once_into_a_typed_sketch() -> None:
-    general = {"N_z": 12, "s": -1}
     data = _four_bar()
     data["geometry"] = _SKETCH
-    data["general"] = general
+    data["general"] = {"omega": 12}
     chain = chain_from_dict(data)
     sketch = chain.geometry
     assert sketch.points == {"A": 0j, "B": 30j, "C": complex(80, 60), "D": complex(100, 60)}
@@ -97,7 +96,7 @@ def test_geometry_is_read_once_into_a_typed_sketch() -> None:
     assert sketch.directions["D"].unit == pytest.approx(complex(0.6, 0.8))
     assert (sketch.rotation, sketch.margin, sketch.stroke) == (-1, 0.05, None)
     assert [(t.name, t.link, t.point) for t in sketch.tracing] == [("K", 2, complex(10, 50))]
-    assert chain.general == general
+    assert chain.general == General(omega=12.0)
     inner = chain_from_dict(_four_bar(geometry=_SKETCH))
     assert inner.geometry == sketch
 
@@ -172,7 +171,7 @@ def test_row_params_are_read_with_their_rows() -> None:
     data = {"structure_identification": [
         {"L": 0, "i_minus_1": 0, "j_minus_1": None, "i": 1, "j": None, "params": crank},
         {"L": 1, "i_minus_1": 1, "j_minus_1": 0, "i": 2, "j": 3, "params": dyad}],
-        "general": {"s": 1}}
+        "general": {"allowable": [{"links": [2, 3], "pressure_angle": 50}]}}
     chain = chain_from_dict(data)
     assert set(chain.group_params) == {(1,), (2, 3)}
     first, second = chain.group_params[(1,)], chain.group_params[(2, 3)]
@@ -182,7 +181,8 @@ def test_row_params_are_read_with_their_rows() -> None:
     assert second.values["delta"] == 0.1 and second.values["beta_K"] == 45.0
     assert second.tracing == (("K", 2),)
     assert chain.identification[1].params is second
-    assert chain.general == {"s": 1} and chain.geometry is None
+    assert chain.general == General(allowable=(Allowable((2, 3), 50.0),))
+    assert chain.geometry is None
 
 
 def test_row_params_values_are_checked_when_the_table_is_read() -> None:

@@ -9,6 +9,7 @@ torque balances the power of the loads.
 
 from __future__ import annotations
 
+import doctest
 import json
 import os
 import subprocess
@@ -113,3 +114,10 @@ def test_a_chain_without_a_student_table_is_no_table_to_check() -> None:
     assert assur.check(chain, points=None).identification == "not given"
     rows = assur.identification_table(analysis)
     assert check_identification(analysis, rows) == []
+
+
+def test_the_api_page_runs_as_written() -> None:
+    """Every example of ``docs/api.md`` (doctests in its ``python`` blocks)."""
+    failed, attempted = doctest.testfile(str(ROOT / "docs" / "api.md"), module_relative=False,
+                                         optionflags=doctest.ELLIPSIS, encoding="utf-8")
+    assert attempted >= 10 and failed == 0

@@ -16,7 +16,7 @@ results shaped ``(D, N)``; nothing loops over positions or designs in Python.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import Any

@@ -7,7 +7,7 @@ the driven prismatic pair S = 5–6. The structural analysis freezes the driven 
 composite link of variable length ``s = |EC|`` (the input coordinate) and finds two RRR
 dyads (``structure.md`` T21): ``II₁(3,{5,6})`` on the base hinges D and E, then
 ``II₁(1,2)`` on A and C. The kinematic model is built from a sketch of one pose and solved
-over the stroke by :func:`assur.analyse`, with analogs (derivatives with respect to ``s``).
+over the stroke by :func:`assur.kinematics.analysis.analyse`, with analogs (derivatives with respect to ``s``).
 
 The sketch pose has the long rocker at right angles to the base (angle ADC = 90°, inside
 every stroke ``[b_min, 180° − b_min]``) and B on the kite branch: the mirror image of D in the

@@ -8,8 +8,8 @@ direction A→D, where the kite folds (B on D), so ``θ0`` lies in ``(−180°, 
 
 B2, the analysis: the chain table of :mod:`~synthesis.cases.tracker.model` with the platform
 as the input link (the actuator becomes an RPR group, its length the distance E–C), every
-candidate design at every position in one call of :func:`assur.analyse` (parameters as
-``(D, 1)`` columns).
+candidate design at every position in one call of
+:func:`assur.kinematics.analysis.analyse` (parameters as ``(D, 1)`` columns).
 
 B3, the criteria (:mod:`synthesis.criteria`): P1 — the chain assembles over the whole stroke;
 P2 — the desirable conditions, each a normalised excess: the transmission angle at B not

@@ -99,7 +99,8 @@ def test_every_result_prints_in_a_few_lines() -> None:
     chain = assur.load(COURSE_FORCES)
     found = assur.check(chain, points=36)
     result = assur.analyse(chain, points=360, forces=True, omega=10.0)
-    for shown in (found, found.analysis, result, result.motion, result.forces):
+    for shown in (found, found.analysis, found.existence, result, result.motion,
+                  result.forces):
         text = repr(shown)
         assert len(text.splitlines()) <= 20 and len(text) < 2000, type(shown).__name__
     assert repr(result.motion).startswith("Motion(")

@@ -184,6 +184,12 @@ class ExistenceReport:
     groups: tuple[GroupExistence, ...]
     first: np.ndarray
 
+    def __repr__(self) -> str:
+        failing = [f"{g.label} (intervals: {len(g.intervals)})" for g in self.groups
+                   if g.intervals]
+        return (f"ExistenceReport({np.size(self.q)} positions, every group assembles: "
+                f"{self.all_exist}; fails: {', '.join(failing) or 'none'})")
+
     @property
     def all_exist(self) -> bool:
         """True when every group assembles at every position."""

@@ -281,7 +281,8 @@ class Allowable:
     Attributes
     ----------
     links : tuple of link ids
-        The group's links ``(i, j)``, or ``(i,)`` for an input group.
+        The group's links: ``(i, j)`` of a dyad, ``(i,)`` of an input group, the links of
+        the label of a triad or class IV group (``(2, 3, 4, 5)``), in any order.
     pressure_angle : float or None
         Allowable pressure angle, degrees in (0, 90]; None: the program default.
     rotations : mapping
@@ -319,7 +320,8 @@ class General:
 
     def pressure_angles(self, model: KinematicModel) -> dict[str, float]:
         """Every group of ``model`` → its allowable pressure angle, degrees: the one this
-        section states for the group's links, else :data:`DEFAULT_PRESSURE_ANGLE`.
+        section states for the group's links (in any order), else
+        :data:`DEFAULT_PRESSURE_ANGLE`.
 
         Parameters
         ----------
@@ -330,10 +332,9 @@ class General:
         -------
         dict
         """
-        stated = {row.links: row.pressure_angle for row in self.allowable
+        stated = {frozenset(row.links): row.pressure_angle for row in self.allowable
                   if row.pressure_angle is not None}
-        return {group.label: stated.get(tuple(v for v in (group.i, group.j) if v is not None),
-                                        DEFAULT_PRESSURE_ANGLE)
+        return {group.label: stated.get(frozenset(group.members), DEFAULT_PRESSURE_ANGLE)
                 for group in model.groups}
 
 

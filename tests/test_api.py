@@ -76,7 +76,7 @@ def test_analyse_with_forces_is_analyze_json_with_forces(api: Any) -> None:
 def test_the_records_hold_as_mechanics(api: Any) -> None:
     """Two joints of one link stay at the link's length; the power balance is round-off."""
     record = api["analyse"]
-    pairs: dict[tuple[int, ...], list[str]] = {}
+    pairs: dict[int | str, list[str]] = {}
     for name, joint in record["joints"].items():
         for link in joint["links"]:
             pairs.setdefault(link, []).append(name)

@@ -15,7 +15,10 @@ from typing import Any
 import pytest
 import yaml
 
+import assur
+from assur.io.general import read_general
 from assur.io.reader import TableReader
+from assur.kinematics.build import build_model
 from assur.model import Allowable, General
 from synthesis.cli import main
 
@@ -64,7 +67,9 @@ def test_the_misspelt_key_and_the_angle_out_of_range_stop_the_command(
      "general.allowable[0] 'pressure_angle'", "must lie in (0, 90]"),
     ({"allowable": [{"links": [2, 3], "pressure_angle": 90.5}]},
      "general.allowable[0] 'pressure_angle'", "must lie in (0, 90]"),
-    ({"allowable": [{"links": [1, 2, 3], "pressure_angle": 60}]},
+    ({"allowable": [{"links": [2, 3, 3], "pressure_angle": 60}]},
+     "general.allowable[0] 'links'", "must list the links of one group, each once"),
+    ({"allowable": [{"links": [], "pressure_angle": 60}]},
      "general.allowable[0] 'links'", "must list the links of one group"),
     ({"allowable": [{"links": [2, 3], "rotations": {"C": -10}}]},
      "general.allowable[0].rotations 'C'", "must be positive"),
@@ -88,8 +93,6 @@ def test_the_section_is_read_into_a_typed_object() -> None:
         {"links": ["2", 3], "pressure_angle": 30, "rotations": {"B": 170}},
         {"links": [4, 5], "pressure_angle": "default",
          "workspace": {"x": [-1, 1], "y": [0, 2.5]}}]}}, "t.yaml")
-    from assur.io.general import read_general
-
     assert read_general(reader.root()) == General(12.0, (
         Allowable((2, 3), 30.0, {"B": 170.0}, None),
         Allowable((4, 5), None, {}, (-1.0, 1.0, 0.0, 2.5))))
@@ -113,7 +116,7 @@ def test_analyze_with_forces_reads_the_file_once(
     reads: list[str] = []
     original = TableReader.from_path.__func__  # type: ignore[attr-defined]
 
-    def counted(cls: type[TableReader], path: Any, **kwargs: Any) -> TableReader:
+    def counted(cls: type[TableReader], /, path: Any, **kwargs: Any) -> TableReader:
         reads.append(str(path))
         return original(cls, path, **kwargs)  # type: ignore[no-any-return]
 
@@ -122,3 +125,15 @@ def test_analyze_with_forces_reads_the_file_once(
                          "10", "--json"], capsys)
     assert code == 0 and "forces" in json.loads(out)
     assert reads == [str(GRAVITY)]
+
+
+def test_a_limit_names_its_group_by_the_links_in_any_order(tmp_path: Path) -> None:
+    """A dyad by [j, i], a triad by the four links of its label III(2,3,4,5)."""
+    for source, links, label in ((FOUR_BAR, [3, 2], "L1(2,3)"),
+                                 (ROOT / "input_tables" / "six_bar_triad.yaml", [5, 2, 3, 4],
+                                  "III(2,3,4,5)")):
+        path = _with_general(tmp_path, {"allowable": [{"links": links,
+                                                        "pressure_angle": 30}]}, source)
+        chain = assur.load(path)
+        model = build_model(assur.analyse_structure(chain))
+        assert chain.general.pressure_angles(model) == {"L0(1)": 45.0, label: 30.0}

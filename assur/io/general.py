@@ -80,9 +80,11 @@ def _allowable(row: Node) -> Allowable | None:
 
 
 def _group_links(value: list[Any]) -> Message | None:
-    """The rule of ``links``: the links of one group, ``[i]`` or ``[i, j]``."""
-    if len(value) in (1, 2) and all(isinstance(v, (int, str)) and not isinstance(v, bool)
-                                    for v in value):
+    """The rule of ``links``: the links of one group (``[i]``, ``[i, j]``, or a higher
+    group's ``[2, 3, 4, 5]``), each once."""
+    if value and all(isinstance(v, (int, str)) and not isinstance(v, bool)
+                                    for v in value) \
+            and len({normalise_id(v) for v in value}) == len(value):
         return None
     return Message("rule.group_links")
 

@@ -12,7 +12,7 @@ points as ``x + 1j * y``, NaN where the point does not exist):
 * :class:`Guide` — a guide line over the stroke of its slider, hatched on the frame side
   when the guide is the frame's;
 * :class:`Tracer` — a tracing point (or an output point of a synthesis problem);
-* :class:`Label` — a joint's name, merged with the names of joints that coincide (``B=C``).
+* labels — a joint's name, merged with the names of joints that coincide (``B=C``).
 
 :func:`paths` gives the traced paths of the tracing points and the moving joints, with the
 paths that coincide named once. :func:`draw_scheme` renders a scheme at one position on a
@@ -43,20 +43,22 @@ import numpy.typing as npt
 from assur.kinematics.analysis import Motion, SliderState, values
 from assur.model import LinkId
 from assur.text import render
-from assur.typing import BoolArray, ComplexArray, Value
+from assur.typing import BoolArray, ComplexArray, FloatArray, IntArray, Value
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-__all__ = ["COLOURS", "Block", "Guide", "Hinge", "Label", "Path", "Plate", "Scheme", "Tracer",
+__all__ = ["COLOURS", "Block", "Guide", "Hinge", "Path", "Plate", "Scheme", "Tracer",
            "coinciding", "draw_paths", "draw_scheme", "paths", "scheme", "track",
            "working_space"]
 
 #: Colours of the links, in the order of their numbers (matplotlib's ten-colour cycle).
 COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#bcbd22", "#17becf",
            "#e377c2")
-_BLOCK = np.array([-2 - 1j, 2 - 1j, 2 + 1j, -2 + 1j, -2 - 1j]) * 1.1  # in radii, along x
-_SUPPORT = np.array([0, -1.6 - 1.6j, 1.6 - 1.6j, 0]) * 1.2  # a triangle under the hinge
+#: A slider block about its point along the x axis, and a support under a hinge, in radii.
+_BLOCK = np.array([-2.2 - 1.1j, 2.2 - 1.1j, 2.2 + 1.1j, -2.2 + 1.1j, -2.2 - 1.1j],
+                  dtype=np.complex128)
+_SUPPORT = np.array([0, -1.92 - 1.92j, 1.92 - 1.92j, 0], dtype=np.complex128)
 _TICKS = 8  # hatching strokes along a frame guide
 
 
@@ -69,15 +71,21 @@ class Plate(NamedTuple):
         The link's number.
     colour : str
         Its colour, ``#rrggbb``.
+    members : tuple of str
+        Names of its points: hinges and slider blocks by pair id, tracing points.
+    order : ndarray of int, shape (P, m)
+        At each position, its members (indices into ``members``) in drawing order: around
+        their centre for three or more, the missing ones (NaN) last.
     outline : ndarray of complex, shape (P, m)
-        Its points at each position in drawing order (around the centre for three or more),
-        the missing ones (NaN) last: a bar for two finite points, a plate for more.
+        Its points in that order: a bar for two finite points, a plate for more.
     label : ndarray of complex, shape (P,)
         Where its number is written (NaN where it has no point).
     """
 
     link: str
     colour: str
+    members: tuple[str, ...]
+    order: IntArray
     outline: ComplexArray
     label: ComplexArray
 
@@ -108,13 +116,22 @@ class Block(NamedTuple):
         The pair's id.
     at : ndarray of complex, shape (P,)
         The slider's point on the guide.
-    outline : ndarray of complex, shape (P, 5)
-        The closed rectangle of the block, along the guide.
+    angle : ndarray of float, shape (P,)
+        The guide's direction, rad.
+    shape : ndarray of complex, shape (5,)
+        The closed rectangle of the block about its point, along the x axis.
     """
 
     name: str
     at: ComplexArray
-    outline: ComplexArray
+    angle: FloatArray
+    shape: ComplexArray
+
+    @property
+    def outline(self) -> ComplexArray:
+        """The closed rectangle at each position, shape (P, 5)."""
+        turned: ComplexArray = self.at[:, None] + self.shape * np.exp(1j * self.angle)[:, None]
+        return turned
 
 
 class Guide(NamedTuple):
@@ -150,22 +167,6 @@ class Tracer(NamedTuple):
     at: ComplexArray
 
 
-class Label(NamedTuple):
-    """A joint's name at each position.
-
-    Attributes
-    ----------
-    at : ndarray of complex, shape (P,)
-        Where it is written (NaN where the joint does not exist).
-    text : tuple of str
-        Its text at each position: the names of the joints within 1.5 radii of it joined by
-        ``=`` (``B=C``), empty where it is merged into an earlier joint's label.
-    """
-
-    at: ComplexArray
-    text: tuple[str, ...]
-
-
 class Scheme(NamedTuple):
     """The primitives of a mechanism at chosen positions.
 
@@ -176,7 +177,9 @@ class Scheme(NamedTuple):
     plates, hinges, blocks, guides, tracers : tuple
         In drawing order.
     labels : dict
-        Joint or tracing point name → :class:`Label`.
+        Hinge or tracing point name → the label written beside it at each position: the
+        names of the points within 1.5 radii of it joined by ``=`` (``B=C``), empty where it
+        is merged into an earlier point's label or the point does not exist.
     """
 
     r: float
@@ -185,7 +188,7 @@ class Scheme(NamedTuple):
     blocks: tuple[Block, ...]
     guides: tuple[Guide, ...]
     tracers: tuple[Tracer, ...]
-    labels: dict[str, Label]
+    labels: dict[str, tuple[str, ...]]
 
 
 class Path(NamedTuple):
@@ -235,16 +238,14 @@ def _span(motion: Motion) -> float:
     return max(x1 - x0, y1 - y0)
 
 
-def _outline(points: list[ComplexArray]) -> ComplexArray:
-    """A link's points, shape (P, m): two as they are, more sorted around their centre."""
-    z = np.stack(points, axis=1)
+def _order(z: ComplexArray) -> IntArray:
+    """The drawing order of a link's points ``z`` (P, m): two as they are, more sorted
+    around their centre; the missing ones last."""
     finite = np.isfinite(z)
     if z.shape[1] < 3:
-        order = np.argsort(~finite, axis=1, kind="stable")
-    else:
-        angle = np.where(finite, np.angle(z - _centre(z)[:, None]), np.inf)
-        order = np.argsort(angle, axis=1, kind="stable")
-    return np.take_along_axis(z, order, axis=1)
+        return np.argsort(~finite, axis=1, kind="stable")
+    angle = np.where(finite, np.angle(z - _centre(z)[:, None]), np.inf)
+    return np.argsort(angle, axis=1, kind="stable")
 
 
 def _centre(z: ComplexArray) -> ComplexArray:
@@ -268,7 +269,8 @@ def _free(at: ComplexArray, placed: list[ComplexArray], step: complex, gap: floa
         at = np.where(near, at + step, at)
 
 
-def _labels(named: list[tuple[str, ComplexArray]], radius: float) -> dict[str, Label]:
+def _labels(named: list[tuple[str, ComplexArray]], radius: float
+            ) -> dict[str, tuple[str, ...]]:
     """Names of points that lie within ``radius`` of an earlier point's merged into its label."""
     head = np.full((len(named), named[0][1].size) if named else (0, 0), -1)
     for i, (_, z) in enumerate(named):
@@ -281,8 +283,7 @@ def _labels(named: list[tuple[str, ComplexArray]], radius: float) -> dict[str, L
         for j in range(i + 1):
             texts[j] = np.where(head[i] == j, np.where(texts[j] == "", name,
                                                        texts[j] + "=" + name), texts[j])
-    return {name: Label(np.where(head[i] >= 0, z, np.nan), tuple(str(t) for t in texts[i]))
-            for i, (name, z) in enumerate(named)}
+    return {name: tuple(str(t) for t in texts[i]) for i, (name, _) in enumerate(named)}
 
 
 def scheme(motion: Motion, picks: Sequence[int] | npt.NDArray[np.intp], *,
@@ -312,7 +313,7 @@ def scheme(motion: Motion, picks: Sequence[int] | npt.NDArray[np.intp], *,
     def at(x: Value) -> ComplexArray:
         return track(x, n)[picks]
 
-    points_of: dict[LinkId, list[ComplexArray]] = {}
+    points_of: dict[LinkId, list[tuple[str, ComplexArray]]] = {}
     hinges = []
     for pid, (kind, links, _) in model.pair_links.items():
         if kind == "R" and pid in motion.joints:
@@ -320,12 +321,12 @@ def scheme(motion: Motion, picks: Sequence[int] | npt.NDArray[np.intp], *,
             hinges.append(Hinge(str(pid), z, z[:, None] + r * _SUPPORT
                                 if model.frame in links else None))
             for link in links:
-                points_of.setdefault(link, []).append(z)
+                points_of.setdefault(link, []).append((str(pid), z))
     blocks, guides = [], []
     for pid, slider in motion.sliders.items():
         z, angle = at(slider.point), at(slider.angle).real
-        points_of.setdefault(slider.slider, []).append(z)
-        blocks.append(Block(str(pid), z, z[:, None] + _BLOCK * r * np.exp(1j * angle)[:, None]))
+        points_of.setdefault(slider.slider, []).append((str(pid), z))
+        blocks.append(Block(str(pid), z, angle, _BLOCK * r))
         guides.append(_guide(str(pid), slider, picks, n, r, slider.carrier == model.frame))
     carried = [(traced.anchor.link, traced.name, motion.tracing[traced.name])
                for traced in model.tracing]
@@ -333,16 +334,18 @@ def scheme(motion: Motion, picks: Sequence[int] | npt.NDArray[np.intp], *,
     tracers = []
     for link, name, point in carried:
         tracers.append(Tracer(name, at(point)))
-        points_of.setdefault(link, []).append(tracers[-1].at)
+        points_of.setdefault(link, []).append((name, tracers[-1].at))
     plates: list[Plate] = []
     placed: list[ComplexArray] = []
     for k, (link, pts) in enumerate(sorted(points_of.items(), key=lambda kv: str(kv[0]))):
         if link == model.frame:
             continue
-        outline = _outline(pts)
-        label = _free(_centre(outline) + 1.8 * r * (1 + 1j), placed, 2.2j * r, 2.0 * r)
+        z = np.stack([point for _, point in pts], axis=1)
+        order = _order(z)
+        label = _free(_centre(z) + 1.8 * r * (1 + 1j), placed, 2.2j * r, 2.0 * r)
         placed.append(label)
-        plates.append(Plate(str(link), COLOURS[k % len(COLOURS)], outline, label))
+        plates.append(Plate(str(link), COLOURS[k % len(COLOURS)], tuple(n for n, _ in pts),
+                            order, np.take_along_axis(z, order, axis=1), label))
     named = [(h.name, h.at) for h in hinges] + [(t.name, t.at) for t in tracers]
     return Scheme(r, tuple(plates), tuple(hinges), tuple(blocks), tuple(guides), tuple(tracers),
                   _labels(named, 1.5 * r))
@@ -522,8 +525,10 @@ def draw_scheme(ax: Axes, drawn: Scheme, k: int = 0, *, labels: bool = True) -> 
         if np.isfinite(z):
             ax.plot([z.real], [z.imag], "o", color="tab:red", ms=5, zorder=6)
     if labels:
-        for label in drawn.labels.values():
-            z, text = label.at[k], label.text[k]
-            if text and np.isfinite(z):
+        at = {hinge.name: hinge.at[k] for hinge in drawn.hinges}
+        at.update((tracer.name, tracer.at[k]) for tracer in drawn.tracers)
+        for name, texts in drawn.labels.items():
+            z, text = at[name], texts[k]
+            if text:
                 ax.text(z.real + 1.2 * r, z.imag - 2.2 * r, text, fontsize=7, color="0.2",
                         zorder=6)

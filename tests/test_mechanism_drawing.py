@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+import yaml
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.patches import Circle, Polygon
@@ -196,7 +197,8 @@ def sliders_motion() -> Motion:
     return analyse(model, np.radians(np.arange(0.0, 360.0, 3.0)))
 
 
-@pytest.mark.parametrize("table", ["six_bar_triad_sliders", "course_11_link_fails", "whitworth"])
+@pytest.mark.parametrize("table", ["six_bar_triad_sliders", "course_11_link", "course_11_link_fails",
+                                   "whitworth"])
 def test_the_static_picture_and_the_report_draw_the_same_links(table: str) -> None:
     motion = analyse(load_model(TABLES / f"{table}.yaml"), np.radians(np.arange(0.0, 360.0, 3.0)))
     data = play_data(motion)  # 120 positions: the report keeps every one of them
@@ -238,3 +240,15 @@ def test_the_synthesis_picture_draws_the_same_links(name: str) -> None:
     assert same_points(drawn[1], expected_hinges(motion, 0))
     _same_blocks(drawn[2], expected_blocks(motion, 0))
     assert drawn[4]
+
+
+def test_the_report_merges_the_labels_of_coinciding_joints(tmp_path: Path) -> None:
+    data = yaml.safe_load((TABLES / "four_bar.yaml").read_text("utf-8"))
+    data["geometry"]["tracing"] = {"K": {"link": 2, "point": [110, 80]},  # K placed on C
+                                   "L": {"link": 2, "point": [110.4, 80.3]}}  # 0.5 mm off
+    table = tmp_path / "traced.yaml"
+    table.write_text(yaml.safe_dump(data), encoding="utf-8")
+    motion = analyse(load_model(table), points=24)
+    labels = play_data(motion)["labels"]
+    # within a hinge's radius (0.012 of the 110 mm span) at every position: one label at C
+    assert labels == {"A": ["A"], "B": ["B"], "C": ["C=K=L"], "D": ["D"], "K": [""], "L": [""]}

@@ -29,6 +29,8 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
+from assur.typing import ComplexArray, FloatArray
+
 __all__ = [
     "Criteria",
     "bounds_penalty",
@@ -49,8 +51,6 @@ __all__ = [
     "zone_residuals",
 ]
 
-FloatArray = npt.NDArray[np.float64]
-ComplexArray = npt.NDArray[np.complex128]
 Objective = Literal["lexicographic", "weighted"]
 
 

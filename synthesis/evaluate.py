@@ -39,13 +39,13 @@ from assur import KinematicModel, Motion, TableError
 from assur.errors import Issue
 from assur.kinematics.analysis import analyse
 from assur.text import Message
+from assur.typing import FloatArray
 from synthesis import criteria as C
 from synthesis.force_conditions import force_penalties
 from synthesis.problem import Problem, output_slider
 
 __all__ = ["Analysis", "Evaluator"]
 
-FloatArray = npt.NDArray[np.float64]
 
 _NEWTON_STEPS = 2
 

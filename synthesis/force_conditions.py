@@ -57,10 +57,10 @@ from assur.kinematics.analysis import Motion, analyse, values
 from assur.kinematics.model import KinematicModel
 from assur.model import LinkId, PairId
 from assur.text import Message
+from assur.typing import FloatArray
 
 __all__ = ["ForceConditions", "MassRule", "excess", "force_penalties", "read_force_conditions"]
 
-FloatArray = npt.NDArray[np.float64]
 
 _KEYS = ("omega", "gravity", "masses", "loads", "limits")
 _LIMITS = ("driving_torque", "reactions", "couples")

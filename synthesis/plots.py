@@ -10,14 +10,14 @@ from __future__ import annotations
 
 import io
 import os
+from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from assur.io.files import atomic_write_bytes
-from assur.kinematics.analysis import values
-from assur.model import LinkId
+from assur.plot.drawing import draw_scheme, scheme
 from assur.text import render
 from synthesis.evaluate import Analysis
 from synthesis.problem import Problem
@@ -111,7 +111,10 @@ def plot_output(problem: Problem, analysis: Analysis, *, axes: Axes | None = Non
 
 def plot_mechanism(problem: Problem, analysis: Analysis, *, axes: Axes | None = None,
                    lang: str = "en") -> Axes:
-    """The mechanism at the start position φ = 0 (joints and links), with the output path.
+    """The mechanism at the start position φ = 0, with the output path.
+
+    The links are drawn as in every picture of a mechanism (:mod:`assur.plot.drawing`); the
+    output point of classes 3–4 rides on its link as a tracing point.
 
     Parameters
     ----------
@@ -141,37 +144,15 @@ def plot_mechanism(problem: Problem, analysis: Analysis, *, axes: Axes | None = 
     'механизм при φ = 0'
     """
     ax = _axes(axes, (7, 6))
-    motion = analysis.motion
-    model = motion.model
-    at = 0
-
-    def start(point: Any) -> complex:
-        return complex(np.broadcast_to(values(point), (1, motion.q.size))[0, at])
-
-    points: dict[LinkId, list[complex]] = {}
-    for pid, (kind, links, _) in model.pair_links.items():
-        if kind == "R" and pid in motion.joints:
-            z = start(motion.joints[pid])
-            for link in links:
-                points.setdefault(link, []).append(z)
-    for state in motion.sliders.values():
-        z = start(state.point)
-        points.setdefault(state.slider, []).append(z)
-        points.setdefault(state.carrier, []).append(z)
-    if problem.task_class in (3, 4):
-        points.setdefault(problem.output.link, []).append(complex(analysis.output_grid[0, at]))
-    for link, pts in points.items():
-        if link == model.frame:
-            ax.plot([p.real for p in pts], [p.imag for p in pts], "k^", markersize=9)
-            continue
-        pts = pts + pts[:1] if len(pts) > 2 else pts
-        ax.plot([p.real for p in pts], [p.imag for p in pts], "o-", linewidth=2)
-        centre = np.mean(pts)
-        ax.annotate(str(link), (centre.real, centre.imag), fontsize=9)
+    point = problem.output.point if problem.task_class in (3, 4) else None
+    attached = ({point: (problem.output.link, analysis.output_grid[0])}
+                if point is not None and point not in analysis.motion.tracing else None)
+    draw_scheme(ax, scheme(analysis.motion, [0], attached=attached))
     if problem.task_class in (3, 4):
         out = analysis.output_grid[0]
-        ax.plot(out.real, out.imag, ":", label=render("plot.path_of_tracing_point", lang))
-        ax.plot(problem.control.point.real, problem.control.point.imag, "x",
+        ax.plot(out.real, out.imag, ":", color="tab:red",
+                label=render("plot.path_of_tracing_point", lang))
+        ax.plot(problem.control.point.real, problem.control.point.imag, "x", color="tab:purple",
                 label=render("plot.control_points", lang))
         ax.legend(loc="best")
     ax.set_aspect("equal", adjustable="datalim")
@@ -277,11 +258,11 @@ def save_plots(folder: str | os.PathLike[str], problem: Problem, result: SearchR
 
     folder = Path(folder)
     written = []
-    for name, draw in (("output", lambda ax: plot_output(problem, analysis, axes=ax, lang=lang)),
-                       ("mechanism", lambda ax: plot_mechanism(problem, analysis, axes=ax,
-                                                               lang=lang)),
-                       ("convergence", lambda ax: plot_convergence(result, axes=ax,
-                                                                   lang=lang))):
+    drawers: tuple[tuple[str, Callable[[Axes], Axes]], ...] = (
+        ("output", lambda ax: plot_output(problem, analysis, axes=ax, lang=lang)),
+        ("mechanism", lambda ax: plot_mechanism(problem, analysis, axes=ax, lang=lang)),
+        ("convergence", lambda ax: plot_convergence(result, axes=ax, lang=lang)))
+    for name, draw in drawers:
         fig = Figure(figsize=(7, 5))
         draw(fig.add_subplot())
         fig.tight_layout()

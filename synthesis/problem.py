@@ -68,6 +68,7 @@ import numpy.typing as npt
 from assur import KinematicModel
 from assur.io.reader import normalise_id
 from assur.model import DEFAULT_PRESSURE_ANGLE, LinkId, PairId
+from assur.typing import FloatArray
 from synthesis.criteria import Objective
 
 if TYPE_CHECKING:  # the search (scipy) is imported only when settings are made
@@ -101,7 +102,6 @@ SEARCH_FIELDS = {"budget": "budget_log2", "seed": "seed", "refine": "refine",
                  "shrink_passes": "shrink_passes", "stall": "stall",
                  "time_limit": "time_limit", "refine_evaluations": "refine_evaluations",
                  "restarts": "restarts"}
-FloatArray = npt.NDArray[np.float64]
 
 
 @dataclass(frozen=True)

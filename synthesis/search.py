@@ -54,6 +54,7 @@ from scipy.stats import qmc
 
 from assur import AssurError
 from assur.text import Message
+from assur.typing import FloatArray
 from synthesis.criteria import Criteria, Objective, margin_penalty, merit
 
 if TYPE_CHECKING:
@@ -63,7 +64,6 @@ __all__ = ["LISTENER", "STOP_REASONS", "Executor", "Improvement", "Optimum", "Se
            "SearchSettings", "SettingError", "distinct_optima", "search", "setting_problem",
            "settings_for"]
 
-FloatArray = npt.NDArray[np.float64]
 Evaluator = Callable[[FloatArray], Criteria]
 #: A source of randomness in the sense of SPEC 7: a seed, a Generator, or None (the settings' seed).
 RNG = int | np.random.Generator | None

@@ -33,6 +33,7 @@ from assur.kinematics import _fast
 from assur.kinematics import jets as J
 from assur.kinematics.jets import Jet
 from assur.text import render
+from assur.typing import Value
 
 __all__ = [
     "REASONS",
@@ -47,7 +48,6 @@ __all__ = [
     "solve_rrr",
 ]
 
-Value = Jet | np.ndarray | complex | float
 
 #: The geometric outputs of a solver: C, origin_i, angle_i, origin_j, angle_j, s_i, s_j.
 Geometry = tuple[Value, Value, Value, Value | None, Value | None, Value | None, Value | None]

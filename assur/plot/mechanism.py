@@ -1,13 +1,15 @@
 """Pictures of a mechanism: the kinematic scheme at one position, traced paths, animation.
 
 :func:`draw_mechanism` draws, on a matplotlib axes, every link at one analysed position
-(binary links as bars, links with three or more joints as shaded plates), hinges as small
-circles, frame pivots with a hatched support, sliders as blocks on their guide lines, guides
-over the whole stroke, link and joint labels, and the paths of the tracing points and of the
-moving joints over the cycle. Where the mechanism does not assemble, what does assemble is
+through the one drawing of the links, :mod:`assur.plot.drawing` (binary links as bars,
+links with three or more joints as shaded plates, hinges as small circles, frame pivots with
+a hatched support, sliders as blocks on their guide lines, guides over the whole stroke),
+link and joint labels, and the paths of the tracing points and of the moving joints over the
+cycle. Where the mechanism does not assemble, what does assemble is
 drawn and the group that fails is marked: its outer hinges circled in red and joined by a
 dashed line, with the group, the reason and the interval of the cycle where it fails.
 Joints that coincide share one label (``B=C``); paths that coincide are named in a note.
+:func:`working_space` and :func:`coinciding` are those of :mod:`assur.plot.drawing`.
 The title gives the crank angle φ from the sketch position (as the tables count it) and the
 crank's direction from the x axis.
 
@@ -23,7 +25,7 @@ import io
 import math
 import os
 import textwrap
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
@@ -31,14 +33,13 @@ import numpy as np
 from assur.io.files import atomic_write_bytes
 from assur.kinematics.analysis import Motion, values
 from assur.kinematics.dyads import DyadSolution, Reason, reason_text
-from assur.model import LinkId
+from assur.plot.drawing import coinciding, draw_paths, draw_scheme, scheme, working_space
 from assur.plot.formats import animation_format, figure_bytes, picture_format
 from assur.text import render
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
-    from matplotlib.patches import Circle
 
 __all__ = ["Failure", "coinciding", "draw_mechanism", "failing_group", "failure_text", "figure_for",
            "save_animation", "save_mechanism_picture", "working_space"]
@@ -46,22 +47,6 @@ __all__ = ["Failure", "coinciding", "draw_mechanism", "failing_group", "failure_
 
 def _at(x: Any, index: int) -> Any:
     return np.asarray(values(x)).reshape(-1)[index]
-
-
-def working_space(motion: Motion) -> tuple[float, float, float, float]:
-    """Limits ``(x0, x1, y0, y1)`` of every joint, slider base and tracing point over the
-    cycle, with a margin of 8 % (mm)."""
-    points = [np.asarray(values(z)).ravel() for z in motion.joints.values()]
-    points += [np.asarray(values(z)).ravel() for z in motion.tracing.values()]
-    points += [np.asarray(values(s.base)).ravel() for s in motion.sliders.values()]
-    allz = np.concatenate(points)
-    allz = allz[np.isfinite(allz)]
-    if allz.size == 0:
-        return -1.0, 1.0, -1.0, 1.0
-    x0, x1 = float(allz.real.min()), float(allz.real.max())
-    y0, y1 = float(allz.imag.min()), float(allz.imag.max())
-    pad = 0.08 * max(x1 - x0, y1 - y0, 1e-9)
-    return x0 - pad, x1 + pad, y0 - pad, y1 + pad
 
 
 def figure_for(motion: Motion, size: float = 7.0) -> tuple[Figure, Axes]:
@@ -195,58 +180,6 @@ def failure_text(motion: Motion, failure: Failure, lang: str) -> str:
                   reason=reason_text(failure.reason, lang))
 
 
-def coinciding(curves: Mapping[str, np.ndarray], tolerance: float) -> dict[str, str]:
-    """Which curves coincide with an earlier one over their whole length.
-
-    Parameters
-    ----------
-    curves : mapping
-        Name → values (real or complex) at the same positions; NaN where undefined.
-    tolerance : float
-        Largest difference still counted as the same value.
-
-    Returns
-    -------
-    dict
-        Name of a later curve → name of the first curve it coincides with (a curve with no
-        finite value coincides with nothing).
-
-    Examples
-    --------
-    >>> coinciding({"a": np.array([1.0, 2.0]), "b": np.array([1.0, 2.0 + 1e-12]),
-    ...             "c": np.array([1.0, 3.0])}, 1e-9)
-    {'b': 'a'}
-    """
-    same: dict[str, str] = {}
-    seen: list[tuple[str, np.ndarray]] = []
-    for name, curve in curves.items():
-        z = np.asarray(curve).ravel()
-        finite = np.isfinite(z)
-        if not finite.any():
-            continue
-        for first, other in seen:
-            if (other.shape == z.shape and np.array_equal(finite, np.isfinite(other))
-                    and np.max(np.abs(z[finite] - other[finite])) <= tolerance):
-                same[name] = first
-                break
-        else:
-            seen.append((name, z))
-    return same
-
-
-def _clusters(points: list[tuple[str, complex]], radius: float) -> list[tuple[str, complex]]:
-    """Labels of points that lie within ``radius`` of each other merged into one: ``B=C``."""
-    merged: list[tuple[list[str], complex]] = []
-    for name, z in points:
-        for names, at in merged:
-            if abs(z - at) <= radius:
-                names.append(name)
-                break
-        else:
-            merged.append(([name], z))
-    return [("=".join(names), at) for names, at in merged]
-
-
 def _title(motion: Motion, index: int, failure: Failure | None, lang: str, wrap: int) -> str:
     model = motion.model
     q = float(motion.q[index])
@@ -262,127 +195,6 @@ def _title(motion: Motion, index: int, failure: Failure | None, lang: str, wrap:
     if failure is not None:
         lines.append(failure_text(motion, failure, lang))
     return "\n".join(textwrap.fill(line, wrap) for line in lines)
-
-
-def _draw_paths(ax: Axes, motion: Motion, scale: float, lang: str) -> None:
-    """Paths of the tracing points and of the moving joints; coinciding ones named once."""
-    curves: dict[str, np.ndarray] = {name: np.asarray(values(point)).ravel()
-                                     for name, point in motion.tracing.items()}
-    for pid, point in motion.joints.items():
-        z = np.asarray(values(point)).ravel()
-        finite = z[np.isfinite(z)]
-        if finite.size and np.max(np.abs(finite - finite[0])) > 1e-9 * scale:
-            curves[str(pid)] = z
-    same = coinciding(curves, 1e-6 * scale)
-    for name, z in curves.items():
-        if name in same:
-            continue
-        tracing = name in motion.tracing
-        ax.plot(z.real, z.imag, "-" if tracing else ":", color="tab:red" if tracing else "0.6",
-                lw=1.2 if tracing else 0.7, zorder=1)
-    if same:
-        groups: dict[str, list[str]] = {}
-        for name, first in same.items():
-            groups.setdefault(first, [first]).append(name)
-        note = render("plot.same_path", lang,
-                      names="; ".join(" = ".join(names) for names in groups.values()))
-        ax.text(0.01, 0.01, note, transform=ax.transAxes, fontsize=7, color="0.3",
-                va="bottom", ha="left", zorder=7)
-
-
-def _draw_guides(ax: Axes, motion: Motion, index: int, r: float) -> None:
-    """Guides over the stroke of their sliders (a frame guide hatched)."""
-    frame = motion.model.frame
-    for slider in motion.sliders.values():
-        s_all = np.asarray(values(slider.s)).ravel()
-        base, angle = _at(slider.base, index), _at(slider.angle, index)
-        if not (np.isfinite(s_all).any() and np.isfinite(base) and np.isfinite(angle)):
-            continue
-        lo, hi = float(np.nanmin(s_all)), float(np.nanmax(s_all))
-        if slider.carrier != frame:  # a guide on a moving link starts at its base point
-            lo, hi = min(lo, 0.0), max(hi, 0.0)
-        margin = 0.15 * max(hi - lo, 4 * r)
-        u = np.exp(1j * angle)
-        line_base = base + 1j * float(np.asarray(slider.offset).ravel()[0]) * u
-        ends = line_base + np.array([lo - margin, hi + margin]) * u
-        ax.plot(ends.real, ends.imag, "-", color="0.35",
-                lw=2.2 if slider.carrier == frame else 1.4, zorder=2)
-        if slider.carrier == frame:
-            tick = -1j * u * 0.6 * r * (1 + 0.5j)
-            for t in np.linspace(0, 1, 8):
-                p = ends[0] + t * (ends[1] - ends[0])
-                ax.plot([p.real, (p + tick).real], [p.imag, (p + tick).imag], "-",
-                        color="0.5", lw=0.6, zorder=2)
-
-
-_COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:brown", "tab:olive",
-            "tab:cyan", "tab:pink")
-
-
-def _draw_links(ax: Axes, motion: Motion, index: int, r: float, labels: bool) -> None:
-    """Links as bars between their joints, plates for three or more, numbered."""
-    model = motion.model
-    points_of: dict[LinkId, list[complex]] = {}
-    for pid, (kind, links, _) in model.pair_links.items():
-        if kind == "R" and pid in motion.joints:
-            z = _at(motion.joints[pid], index)
-            for link in links:
-                points_of.setdefault(link, []).append(z)
-    for slider in motion.sliders.values():
-        points_of.setdefault(slider.slider, []).append(_at(slider.point, index))
-    for traced in model.tracing:
-        points_of.setdefault(traced.anchor.link, []).append(_at(motion.tracing[traced.name], index))
-    placed: list[complex] = []
-    for n, (link, pts) in enumerate(sorted(points_of.items(), key=lambda kv: str(kv[0]))):
-        zs = np.array([p for p in pts if np.isfinite(p)])
-        if link == model.frame or not zs.size:
-            continue
-        colour = _COLOURS[n % len(_COLOURS)]
-        if zs.size >= 3:
-            poly = zs[np.argsort(np.angle(zs - zs.mean()))]
-            ax.fill(poly.real, poly.imag, color=colour, alpha=0.25, zorder=3)
-            ax.plot(np.r_[poly.real, poly.real[0]], np.r_[poly.imag, poly.imag[0]], "-",
-                    color=colour, lw=2.5, zorder=3)
-        elif zs.size == 2:
-            ax.plot(zs.real, zs.imag, "-", color=colour, lw=3, zorder=3, solid_capstyle="round")
-        if labels:
-            at = zs.mean() + 1.8 * r * (1 + 1j)
-            while any(abs(at - other) < 2.0 * r for other in placed):
-                at += 2.2j * r  # another link's number is there: move up
-            placed.append(at)
-            ax.text(at.real, at.imag, str(link), color=colour, fontsize=9, weight="bold",
-                    zorder=6)
-
-
-def _draw_joints(ax: Axes, motion: Motion, index: int, r: float, labels: bool) -> None:
-    """Slider blocks, hinges (frame pivots on a support), tracing points; labels of
-    coinciding joints merged."""
-    model = motion.model
-    for slider in motion.sliders.values():
-        z, angle = _at(slider.point, index), _at(slider.angle, index)
-        if np.isfinite(z) and np.isfinite(angle):
-            block = z + np.array([-2 - 1j, 2 - 1j, 2 + 1j, -2 + 1j, -2 - 1j]) * 1.1 * r \
-                * np.exp(1j * angle)
-            ax.fill(block.real, block.imag, color="white", ec="black", lw=1.2, zorder=4)
-    named: list[tuple[str, complex]] = []
-    for pid, (kind, links, _) in model.pair_links.items():
-        z = _at(motion.joints[pid], index) if kind == "R" and pid in motion.joints else np.nan
-        if not np.isfinite(z):
-            continue
-        if model.frame in links:
-            tri = z + r * np.array([0, -1.6 - 1.6j, 1.6 - 1.6j, 0]) * 1.2
-            ax.fill(tri.real, tri.imag, color="0.8", ec="black", lw=0.8, zorder=4)
-        ax.add_patch(_circle(z, r))
-        named.append((str(pid), z))
-    for name, point in motion.tracing.items():
-        z = _at(point, index)
-        if np.isfinite(z):
-            ax.plot([z.real], [z.imag], "o", color="tab:red", ms=5, zorder=6)
-            named.append((name, z))
-    if labels:
-        for text, z in _clusters(named, 1.5 * r):
-            ax.text(z.real + 1.2 * r, z.imag - 2.2 * r, text, fontsize=7, color="0.2",
-                    zorder=6)
 
 
 def _mark_failure(ax: Axes, failure: Failure, r: float, lang: str) -> None:
@@ -443,28 +255,18 @@ def draw_mechanism(motion: Motion, index: int = 0, ax: Axes | None = None, *,
     """
     if ax is None:
         _, ax = figure_for(motion)
-    span = working_space(motion)
-    scale = max(span[1] - span[0], span[3] - span[2])
-    r = 0.012 * scale
+    drawn = scheme(motion, [index])
     if paths:
-        _draw_paths(ax, motion, scale, lang)
-    _draw_guides(ax, motion, index, r)
-    _draw_links(ax, motion, index, r, labels)
-    _draw_joints(ax, motion, index, r, labels)
+        draw_paths(ax, motion, lang)
+    draw_scheme(ax, drawn, labels=labels)
     failure = failing_group(motion, index)
     if failure is not None:
-        _mark_failure(ax, failure, r, lang)
+        _mark_failure(ax, failure, drawn.r, lang)
     ax.set_title(_title(motion, index, failure, lang, wrap), fontsize=10)
     ax.set_xlabel(render("plot.x_mm", lang))
     ax.set_ylabel(render("plot.y_mm", lang))
     ax.grid(True, lw=0.3, alpha=0.5)
     return ax
-
-
-def _circle(z: complex, r: float) -> Circle:
-    from matplotlib.patches import Circle
-
-    return Circle((z.real, z.imag), r, facecolor="white", edgecolor="black", lw=1.2, zorder=5)
 
 
 def save_mechanism_picture(motion: Motion, path: str | os.PathLike[str], index: int = 0, *,

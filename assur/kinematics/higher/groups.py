@@ -25,14 +25,12 @@ import numpy as np
 
 from assur.kinematics import jets as J
 from assur.text import render
+from assur.typing import Value
 
 __all__ = [
     "ClassIV", "ClassIVDrawing", "ClassIVInputs", "HigherGroup", "Leash", "Triad", "TriadInputs", "expand", "values",
 ]
 
-#: A number, an ndarray or a :class:`~assur.kinematics.jets.Jet` (points complex, angles and
-#: lengths real).
-Value = Any
 #: The unknowns: an ndarray (..., n) or a sequence of n values (jets for the analogs).
 Unknowns = Sequence[Value] | np.ndarray
 #: Leash kinds, internal pair first: a bar, a block hinged to the base on a guide of a known

@@ -1,8 +1,10 @@
 """The mechanism you can play: a crank-angle slider and a play button in the coursework page.
 
-:func:`play_data` samples an analysed cycle (every joint, slider block, guide and tracing
-point, and the group that does not assemble where it fails) into plain numbers in mm and
-degrees; :func:`play_section` embeds them as JSON in the page with an inline SVG and a small
+:func:`play_data` samples an analysed cycle into plain numbers in mm and degrees: the
+primitives of :func:`assur.plot.drawing.scheme` (links, hinges on their supports, slider
+blocks, hatched guides, tracing points, joint names), the traced paths, and the group that
+does not assemble where it fails, so the page draws the links as the static pictures do;
+:func:`play_section` embeds them as JSON in the page with an inline SVG and a small
 script that draws the mechanism at the slider's angle. Nothing is fetched from the network.
 
 The script reads ``#phi=<degrees>`` (or ``#l=<mm>`` for an actuator) from the page address
@@ -14,36 +16,67 @@ mechanism alone, for a screen in a classroom.
 from __future__ import annotations
 
 import json
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 
-from assur.kinematics.analysis import Motion, values
-from assur.model import LinkId
-from assur.plot.mechanism import failing_group, failure_text, working_space
+from assur.kinematics.analysis import Motion
+from assur.plot.drawing import Plate, paths, scheme, working_space
+from assur.plot.mechanism import failing_group, failure_text
 from assur.text import render
+from assur.typing import ComplexArray
 from synthesis.app.coursework.page import Section, esc
 
 __all__ = ["FRAMES", "play_data", "play_section"]
 
 #: Positions embedded in the page (at most; fewer when the analysis has fewer).
 FRAMES = 120
-_COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#bcbd22", "#17becf",
-            "#e377c2")
+
+XY = list[float] | None
+T = TypeVar("T")
 
 
-def _xy(z: np.ndarray) -> list[list[float] | None]:
-    """Points as ``[x, y]`` rounded to 0.001 mm, None where undefined."""
-    return [[round(float(p.real), 3), round(float(p.imag), 3)] if np.isfinite(p) else None
-            for p in z]
+def _xy(z: ComplexArray, digits: int = 3) -> list[XY]:
+    """Points as ``[x, y]`` rounded to ``digits`` decimals of a mm, None where undefined."""
+    return [[round(float(p.real), digits), round(float(p.imag), digits)] if np.isfinite(p)
+            else None for p in z]
 
 
-def _picked(x: Any, picks: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
-    return np.broadcast_to(np.asarray(values(x)), shape)[picks]
+def _shapes(z: ComplexArray, least: int) -> list[list[list[float]] | None]:
+    """Polygons, one a position (rows of ``z``): their finite vertices as ``[x, y]``
+    (0.01 mm), None where fewer than ``least`` are finite."""
+    return [[p for p in _xy(row, 2) if p is not None] if np.isfinite(row).sum() >= least else None
+            for row in z]
+
+
+def _outlines(plate: Plate) -> list[list[str] | None]:
+    """A link's outline at each position as the names of its points in drawing order, None
+    where fewer than two exist."""
+    finite = np.isfinite(plate.outline)
+    return [[plate.members[i] for i, ok in zip(order.tolist(), keep.tolist()) if ok]
+            if keep.sum() >= 2 else None for order, keep in zip(plate.order, finite)]
+
+
+def _segments(z: ComplexArray) -> list[list[list[float]] | None]:
+    """Strokes, one row of ends (shape (k, 2)) a position: ``[x0, y0, x1, y1]`` each, rounded
+    to 0.01 mm; None where one is undefined."""
+    ends = np.round(np.stack([z.real, z.imag], axis=-1), 2).reshape(z.shape[0], -1, 4)
+    whole = [bool(row.all()) for row in np.isfinite(z).reshape(z.shape[0], -1)]
+    return [row.tolist() if ok else None for row, ok in zip(ends, whole)]
+
+
+def _held(seq: list[T]) -> list[T]:
+    """A sequence over the positions, kept whole, or as its one value where every position
+    has the same (a frame pivot's support, a frame guide): the page reads a sequence of one
+    value as holding at every position."""
+    return seq[:1] if all(item == seq[0] for item in seq) else seq
 
 
 def play_data(motion: Motion, frames: int = FRAMES) -> dict[str, Any]:
     """The positions the page draws, as plain data (mm, degrees).
+
+    The geometry is that of :func:`assur.plot.drawing.scheme`, the one drawing of a
+    mechanism's links that the static pictures draw too: the page only paints it.
 
     Parameters
     ----------
@@ -57,45 +90,26 @@ def play_data(motion: Motion, frames: int = FRAMES) -> dict[str, Any]:
     -------
     dict
         ``q`` (the input: crank angle φ from the sketched position, degrees, or actuator
-        length, mm), ``crank``, ``points`` (name → ``[x, y]`` or None per position: hinges
-        by pair id, slider blocks ``"<pair>"`` of a prismatic pair, tracing points),
-        ``pivots`` (hinges on the frame), ``slides`` (the slider blocks' points), ``links`` (``id``, ``points``, ``colour``),
-        ``blocks`` (slider ``point`` and ``angle`` in degrees), ``guides`` (ends
-        ``[x0, y0, x1, y1]`` or None per position), ``paths`` (names of moving points),
-        ``fails`` (per position None or ``{"group", "hinges", "text_en", "text_ru"}``) and
-        ``bounds`` ``[x0, x1, y0, y1]``.
+        length, mm), ``crank``, ``r`` (the radius of a hinge, mm), ``points`` (name →
+        ``[x, y]`` or None per position: hinges and slider blocks by pair id, tracing
+        points), ``hinges`` (``name`` and ``support``, the triangle under a frame pivot per
+        position, or None), ``tracers`` (names), ``links`` (``id``, ``colour``, ``outline``
+        per position as names of ``points`` in drawing order, ``label`` where its number is
+        written), ``blocks`` (``name``, ``shape`` about its point along the x axis,
+        ``angle`` of its guide in degrees per position), ``guides`` (``ground``, ``ends``
+        ``[x0, y0, x1, y1]`` and ``hatch`` strokes per position), ``labels`` (name → the
+        label written beside that point per position: coinciding joints share one),
+        ``paths`` (``name``, ``tracing`` and its ``points``), ``fails`` (per position None
+        or ``{"group", "hinges", "text_en", "text_ru"}``) and ``bounds``
+        ``[x0, x1, y0, y1]``; a polygon or stroke is None where it is not drawn. A sequence
+        of the primitives (not of ``points``) that has the same value at every position
+        holds that one value.
     """
-    model = motion.model
-    shape = motion.q.shape
-    picks = np.arange(0, shape[0], -(-shape[0] // frames))  # every k-th, evenly spaced
-    crank = model.drive == "crank"
-    points: dict[str, list[list[float] | None]] = {}
-    pivots: list[str] = []
-    links_of: dict[LinkId, list[str]] = {}
-    for pid, (kind, joined, _) in model.pair_links.items():
-        if kind == "R" and pid in motion.joints:
-            points[str(pid)] = _xy(_picked(motion.joints[pid], picks, shape))
-            if model.frame in joined:
-                pivots.append(str(pid))
-            for link in joined:
-                links_of.setdefault(link, []).append(str(pid))
-    blocks, guides, slides = [], [], []
-    for pid, slider in motion.sliders.items():
-        slides.append(str(pid))
-        points[str(pid)] = _xy(_picked(slider.point, picks, shape))
-        links_of.setdefault(slider.slider, []).append(str(pid))
-        angle = _picked(slider.angle, picks, shape)
-        blocks.append({"point": str(pid), "angle": [round(float(a), 2) if np.isfinite(a)
-                                                    else None for a in np.degrees(angle)]})
-        guides.append(_guide(slider, picks, shape, slider.carrier == model.frame))
-    for traced in model.tracing:
-        points[traced.name] = _xy(_picked(motion.tracing[traced.name], picks, shape))
-        links_of.setdefault(traced.anchor.link, []).append(traced.name)
-    links = [{"id": str(link), "points": names, "colour": _COLOURS[n % len(_COLOURS)]}
-             for n, (link, names) in enumerate(sorted(links_of.items(), key=lambda kv: str(kv[0])))
-             if link != model.frame]
-    paths = [name for name, track in points.items()
-             if len({tuple(p) for p in track if p is not None}) > 1]
+    size = motion.q.size
+    picks = np.arange(0, size, -(-size // frames))  # every k-th, evenly spaced
+    crank = motion.model.drive == "crank"
+    drawn = scheme(motion, picks)
+    traced, _ = paths(motion, picks)
     fails = []
     for index in picks:
         failure = failing_group(motion, int(index))
@@ -104,28 +118,29 @@ def play_data(motion: Motion, frames: int = FRAMES) -> dict[str, Any]:
             "text_en": failure_text(motion, failure, "en"),
             "text_ru": failure_text(motion, failure, "ru")})
     q = motion.q[picks]
-    return {"q": [round(float(v), 3) for v in (np.degrees(q) if crank else q)],
-            "crank": crank, "points": points, "pivots": pivots, "slides": slides, "links": links,
-            "blocks": blocks, "guides": guides, "paths": paths, "fails": fails,
-            "bounds": [round(v, 3) for v in working_space(motion)]}
-
-
-def _guide(slider: Any, picks: np.ndarray, shape: tuple[int, ...], on_frame: bool
-           ) -> dict[str, Any]:
-    """The guide line over its slider's stroke at every kept position."""
-    s = np.asarray(values(slider.s)).ravel()
-    finite = s[np.isfinite(s)]
-    lo, hi = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 0.0)
-    if not on_frame:
-        lo, hi = min(lo, 0.0), max(hi, 0.0)
-    margin = 0.15 * max(hi - lo, 1.0)
-    base = _picked(slider.base, picks, shape)
-    u = np.exp(1j * _picked(slider.angle, picks, shape))
-    offset = float(np.asarray(slider.offset).ravel()[0])
-    start = base + 1j * offset * u + (lo - margin) * u
-    end = base + 1j * offset * u + (hi + margin) * u
-    ends = [None if a is None or b is None else a + b for a, b in zip(_xy(start), _xy(end))]
-    return {"frame": on_frame, "ends": ends}
+    return {
+        "q": [round(float(v), 3) for v in (np.degrees(q) if crank else q)], "crank": crank,
+        "r": round(drawn.r, 4),
+        "points": {**{h.name: _xy(h.at) for h in drawn.hinges},
+                   **{b.name: _xy(b.at) for b in drawn.blocks},
+                   **{t.name: _xy(t.at) for t in drawn.tracers}},
+        "hinges": [{"name": h.name, "support": None if h.support is None
+                    else _held(_shapes(h.support, 4))} for h in drawn.hinges],
+        "tracers": [t.name for t in drawn.tracers],
+        "links": [{"id": p.link, "colour": p.colour, "outline": _held(_outlines(p)),
+                   "label": _held(_xy(p.label, 2))} for p in drawn.plates],
+        "blocks": [{"name": b.name, "shape": _xy(b.shape[:4]),
+                    "angle": _held([round(float(a), 2) if np.isfinite(a) else None
+                                    for a in np.degrees(b.angle)])} for b in drawn.blocks],
+        "guides": [{"ground": g.ground,
+                    "ends": _held([None if e is None else e[0] + e[1]
+                                   for e in _shapes(g.ends, 2)]),
+                    "hatch": _held(_segments(g.hatch)) if g.ground else None}
+                   for g in drawn.guides],
+        "labels": {name: _held(list(text)) for name, text in drawn.labels.items()},
+        "paths": [{"name": p.name, "tracing": p.tracing, "points": _xy(p.curve, 2)}
+                  for p in traced],
+        "fails": fails, "bounds": [round(v, 3) for v in working_space(motion)]}
 
 
 _SCRIPT = """
@@ -136,7 +151,7 @@ _SCRIPT = """
   var svg = box.querySelector('svg'), slider = box.querySelector('input[type=range]');
   var button = box.querySelector('button'), shown = box.querySelector('output');
   var note = box.querySelector('.play-note'), NS = 'http://www.w3.org/2000/svg';
-  var b = data.bounds, span = Math.max(b[1] - b[0], b[3] - b[2]), r = 0.012 * span;
+  var b = data.bounds, r = data.r;
   svg.setAttribute('viewBox', [b[0], -b[3], b[1] - b[0], b[3] - b[2]].join(' '));
   function make(tag, attrs, parent) {
     var e = document.createElementNS(NS, tag);
@@ -144,114 +159,107 @@ _SCRIPT = """
     (parent || svg).appendChild(e);
     return e;
   }
-  function at(name, k) { var p = data.points[name][k]; return p ? [p[0], -p[1]] : null; }
-  data.paths.forEach(function (name) {
-    var d = data.points[name].map(function (p) { return p ? p[0] + ',' + (-p[1]) : null; })
-      .filter(function (p) { return p; }).join(' ');
-    make('polyline', {points: d, fill: 'none', stroke: '#999', 'stroke-width': r / 5,
-                      'stroke-dasharray': r / 2 + ' ' + r / 2, 'class': 'path'});
+  // the SVG's y points down: every y of the data is negated
+  function pts(ps) { return ps.map(function (p) { return p[0] + ',' + (-p[1]); }).join(' '); }
+  function strokes(ss) {
+    return ss.map(function (e) { return 'M' + e[0] + ',' + (-e[1]) + 'L' + e[2] + ',' + (-e[3]); })
+      .join('');
+  }
+  function of(seq, k) { return seq.length === 1 ? seq[0] : seq[k]; }  // one value: held
+  function show(e, on) { e.setAttribute('display', on ? 'inline' : 'none'); return on; }
+  data.paths.forEach(function (path) {
+    make('polyline', {points: pts(path.points.filter(function (p) { return p; })),
+                      fill: 'none', stroke: path.tracing ? '#d62728' : '#999',
+                      'stroke-width': path.tracing ? r / 3 : r / 5, 'class': 'path',
+                      'stroke-dasharray': path.tracing ? 'none' : r / 2 + ' ' + r / 2});
   });
   var guides = data.guides.map(function (g) {
-    return make('line', {stroke: '#555', 'stroke-width': g.frame ? r / 2 : r / 3});
+    return {line: make('line', {stroke: '#595959', 'stroke-width': g.ground ? r / 2 : r / 3}),
+            hatch: make('path', {stroke: '#808080', 'stroke-width': r / 8, fill: 'none'})};
   });
   var links = data.links.map(function (link) {
-    return make('polygon', {fill: link.colour, 'fill-opacity': 0.2, stroke: link.colour,
-                            'stroke-width': r * 0.7, 'stroke-linejoin': 'round',
-                            id: 'link-' + link.id});
+    return {shape: make('polygon', {fill: link.colour, 'fill-opacity': 0.25, stroke: link.colour,
+                                    'stroke-width': r * 0.7, 'stroke-linejoin': 'round',
+                                    'stroke-linecap': 'round', id: 'link-' + link.id}),
+            label: make('text', {fill: link.colour, 'font-size': 2.4 * r, 'font-weight': 'bold'})};
   });
-  var labels = data.links.map(function (link) {
-    var t = make('text', {fill: link.colour, 'font-size': 2.4 * r, 'font-weight': 'bold'});
-    t.textContent = link.id;
-    return t;
+  links.forEach(function (l, n) { l.label.textContent = data.links[n].id; });
+  var blocks = data.blocks.map(function (block) {
+    return make('polygon', {fill: 'white', stroke: 'black', 'stroke-width': r / 4,
+                            points: pts(block.shape), 'class': 'block'});
   });
-  var blocks = data.blocks.map(function () {
-    return make('rect', {width: 4.4 * r, height: 2.2 * r, x: -2.2 * r, y: -1.1 * r,
-                         fill: 'white', stroke: 'black', 'stroke-width': r / 4});
+  var supports = data.hinges.map(function (h) {
+    return h.support ? make('polygon', {fill: '#ccc', stroke: 'black', 'stroke-width': r / 6})
+                     : null;
   });
   var joints = {};
-  Object.keys(data.points).forEach(function (name) {
-    var pivot = data.pivots.indexOf(name) >= 0, slide = data.slides.indexOf(name) >= 0;
-    var g = make('g', {'class': slide ? 'slide' : 'joint'});
-    if (pivot) {
-      make('polygon', {points: [0, 0, -1.9 * r, 1.9 * r, 1.9 * r, 1.9 * r].join(' '),
-                       fill: '#ccc', stroke: 'black', 'stroke-width': r / 6}, g);
-    }
-    var c = make('circle', {r: slide ? r / 3 : r, fill: slide ? 'black' : 'white',
-                            stroke: 'black', 'stroke-width': r / 4, id: 'joint-' + name,
-                            'data-name': name}, g);
-    var t = make('text', {'font-size': 1.7 * r, fill: '#333', x: 1.2 * r, y: 2.6 * r}, g);
-    joints[name] = {g: g, c: c, t: t};
+  function joint(name, cls, attrs) {
+    var g = make('g', {'class': cls});
+    attrs.id = 'joint-' + name; attrs['data-name'] = name;
+    joints[name] = {g: g, c: make('circle', attrs, g)};
+  }
+  data.hinges.forEach(function (h) {
+    joint(h.name, 'joint', {r: r, fill: 'white', stroke: 'black', 'stroke-width': r / 4});
+  });
+  data.tracers.forEach(function (name) { joint(name, 'tracer', {r: r / 2, fill: '#d62728'}); });
+  var labels = Object.keys(data.labels).map(function () {
+    return make('text', {'font-size': 1.7 * r, fill: '#333'});
   });
   var failLine = make('polyline', {fill: 'none', stroke: '#d62728', 'stroke-width': r / 3,
                                    'stroke-dasharray': r + ' ' + r / 2, id: 'fail-line'});
   var failRings = make('g', {id: 'fail-rings'});
   function draw(k) {
-    var named = [];  // labels of coinciding joints merged: "B=C"
-    Object.keys(joints).forEach(function (name) {
-      var p = at(name, k), j = joints[name], near = null;
-      if (p) {
-        named.forEach(function (other) {
-          if (!near && Math.hypot(other.p[0] - p[0], other.p[1] - p[1]) <= 1.5 * r) { near = other; }
-        });
+    data.guides.forEach(function (g, n) {
+      var e = of(g.ends, k), line = guides[n].line, hatch = guides[n].hatch;
+      if (show(line, e)) {
+        line.setAttribute('x1', e[0]); line.setAttribute('y1', -e[1]);
+        line.setAttribute('x2', e[2]); line.setAttribute('y2', -e[3]);
       }
-      if (near) { near.names.push(name); j.t.textContent = ''; }
-      else if (p) { named.push({p: p, names: [name], t: j.t}); }
-      j.g.setAttribute('display', p ? 'inline' : 'none');
-      if (p) {
-        j.g.setAttribute('transform', 'translate(' + p[0] + ',' + p[1] + ')');
-        j.c.setAttribute('data-x', data.points[name][k][0]);
-        j.c.setAttribute('data-y', data.points[name][k][1]);
+      var h = g.hatch && of(g.hatch, k);
+      if (show(hatch, e && h)) { hatch.setAttribute('d', strokes(h)); }
+    });
+    data.links.forEach(function (link, n) {
+      var o = of(link.outline, k), at = of(link.label, k);
+      if (show(links[n].shape, o)) {
+        links[n].shape.setAttribute('points', pts(o.map(function (name) {
+          return data.points[name][k]; })));
+      }
+      if (show(links[n].label, at)) {
+        links[n].label.setAttribute('x', at[0]); links[n].label.setAttribute('y', -at[1]);
+      }
+    });
+    data.blocks.forEach(function (block, n) {
+      var p = data.points[block.name][k], a = of(block.angle, k);
+      if (show(blocks[n], p && a !== null)) {
+        blocks[n].setAttribute('transform', 'translate(' + p[0] + ',' + (-p[1]) + ') rotate(' + (-a) + ')');
+      }
+    });
+    data.hinges.forEach(function (h, n) {
+      var o = h.support && of(h.support, k);
+      if (supports[n] && show(supports[n], o)) { supports[n].setAttribute('points', pts(o)); }
+    });
+    Object.keys(joints).forEach(function (name) {
+      var p = data.points[name][k], j = joints[name];
+      if (show(j.g, p)) {
+        j.g.setAttribute('transform', 'translate(' + p[0] + ',' + (-p[1]) + ')');
+        j.c.setAttribute('data-x', p[0]);
+        j.c.setAttribute('data-y', p[1]);
       } else {
         j.c.removeAttribute('data-x');
         j.c.removeAttribute('data-y');
       }
     });
-    named.forEach(function (item) { item.t.textContent = item.names.join('='); });
-    var placed = [];
-    data.links.forEach(function (link, n) {
-      var ps = link.points.map(function (name) { return at(name, k); })
-        .filter(function (p) { return p; });
-      if (ps.length > 2) {
-        var cx = 0, cy = 0;
-        ps.forEach(function (p) { cx += p[0] / ps.length; cy += p[1] / ps.length; });
-        ps.sort(function (p, q) {
-          return Math.atan2(p[1] - cy, p[0] - cx) - Math.atan2(q[1] - cy, q[0] - cx);
-        });
-      }
-      links[n].setAttribute('points', ps.map(function (p) { return p.join(','); }).join(' '));
-      links[n].setAttribute('display', ps.length > 1 ? 'inline' : 'none');
-      labels[n].setAttribute('display', ps.length > 0 ? 'inline' : 'none');
-      if (ps.length) {
-        var mx = 0, my = 0;
-        ps.forEach(function (p) { mx += p[0] / ps.length; my += p[1] / ps.length; });
-        mx += 1.8 * r; my -= 1.8 * r;
-        while (placed.some(function (q) { return Math.hypot(q[0] - mx, q[1] - my) < 2 * r; })) {
-          my -= 2.2 * r;  // another link's number is there: move up
-        }
-        placed.push([mx, my]);
-        labels[n].setAttribute('x', mx);
-        labels[n].setAttribute('y', my);
-      }
-    });
-    data.blocks.forEach(function (block, n) {
-      var p = at(block.point, k), a = block.angle[k];
-      blocks[n].setAttribute('display', p && a !== null ? 'inline' : 'none');
-      if (p && a !== null) {
-        blocks[n].setAttribute('transform', 'translate(' + p[0] + ',' + p[1] + ') rotate(' + (-a) + ')');
-      }
-    });
-    data.guides.forEach(function (g, n) {
-      var e = g.ends[k];
-      guides[n].setAttribute('display', e ? 'inline' : 'none');
-      if (e) {
-        guides[n].setAttribute('x1', e[0]); guides[n].setAttribute('y1', -e[1]);
-        guides[n].setAttribute('x2', e[2]); guides[n].setAttribute('y2', -e[3]);
+    Object.keys(data.labels).forEach(function (name, n) {
+      var at = data.points[name][k], text = of(data.labels[name], k);
+      if (show(labels[n], at && text)) {
+        labels[n].textContent = text;
+        labels[n].setAttribute('x', at[0] + 1.2 * r);
+        labels[n].setAttribute('y', -(at[1] - 2.2 * r));
       }
     });
     var fail = data.fails[k];
     while (failRings.firstChild) { failRings.removeChild(failRings.firstChild); }
-    failLine.setAttribute('points', fail ? fail.hinges.map(function (p) {
-      return p[0] + ',' + (-p[1]); }).join(' ') : '');
+    failLine.setAttribute('points', fail ? pts(fail.hinges) : '');
     if (fail) {
       fail.hinges.forEach(function (p) {
         make('circle', {cx: p[0], cy: -p[1], r: 2 * r, fill: 'none', stroke: '#d62728',

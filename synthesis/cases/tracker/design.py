@@ -30,6 +30,7 @@ import numpy as np
 import numpy.typing as npt
 from scipy.optimize import brentq
 
+from assur.typing import FloatArray as Array
 from synthesis.cases.tracker.geometry import Proportions, check_ratios, proportions
 from synthesis.cases.tracker.patent import EXAMPLE, K2
 
@@ -45,7 +46,6 @@ __all__ = [
     "refine",
 ]
 
-Array = npt.NDArray[np.float64]
 
 _REFINE_POINTS = 2001
 _SLACK = 1e-9  # a requirement met to this margin (rad or mm) counts as met (roots of refine)

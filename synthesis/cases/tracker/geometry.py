@@ -40,6 +40,8 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from assur.typing import FloatArray as Array
+
 __all__ = [
     "Proportions",
     "actuator_ratios",
@@ -52,7 +54,6 @@ __all__ = [
 ]
 
 ArrayLike = npt.ArrayLike
-Array = npt.NDArray[np.float64]
 
 
 def check_ratios(k2: ArrayLike, k5: ArrayLike | None = None) -> None:

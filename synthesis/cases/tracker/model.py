@@ -38,14 +38,13 @@ from assur import (
 )
 from assur.io.sketch import with_sketch
 from assur.kinematics.analysis import analyse, unwrap, values
+from assur.typing import ComplexArray as Points
+from assur.typing import FloatArray as Array
 
 __all__ = ["CHAIN_TABLE", "TrackerMotion", "chain", "mechanism_model", "simulate", "sketch"]
 
 CHAIN_TABLE = Path(__file__).with_name("mechanism.yaml")
 """The chain table of the mechanism."""
-
-Array = npt.NDArray[np.float64]
-Points = npt.NDArray[np.complex128]
 
 
 @lru_cache(maxsize=1)

@@ -37,6 +37,7 @@ from assur import KinematicModel, analyse_structure, build_model
 from assur.io.sketch import with_sketch
 from assur.kinematics.analysis import analyse, values
 from assur.model import Drive
+from assur.typing import FloatArray
 from synthesis.cases.tracker.design import DesignTask
 from synthesis.cases.tracker.model import TrackerMotion, chain, simulate, sketch
 from synthesis.criteria import Criteria, bounds_penalty, existence_penalty, pressure_penalty
@@ -44,7 +45,6 @@ from synthesis.search import SearchResult, SearchSettings, search
 
 __all__ = ["NAMES", "Evaluator", "SynthesisAnswer", "bounds", "has_room", "solve"]
 
-FloatArray = npt.NDArray[np.float64]
 
 NAMES: tuple[str, ...] = ("k2", "k5", "theta0_deg")
 """The varied parameters, in the order of the design vector x."""

@@ -24,8 +24,8 @@ Examples
 --------
 >>> from pathlib import Path
 >>> import assur
->>> model = assur.load_model(Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml")
->>> drawn = scheme(assur.analyse(model, points=36), [0, 9])
+>>> table = Path(assur.__file__).parents[1] / "input_tables" / "four_bar.yaml"
+>>> drawn = scheme(assur.analyse(table, points=36).motion, [0, 9])
 >>> [(plate.link, plate.outline.shape) for plate in drawn.plates]
 [('1', (2, 2)), ('2', (2, 2)), ('3', (2, 2))]
 >>> [(hinge.name, hinge.support is not None) for hinge in drawn.hinges]

@@ -141,6 +141,7 @@ _RULES: dict[str, tuple[str, Callable[[Any], bool]]] = {
     "refine_starts": ("search.refine_starts", lambda v: _whole(v) and v >= 1),
     "restarts": ("search.restarts", lambda v: _whole(v) and 0 <= v <= MAX_RESTARTS),
     "refine_evaluations": ("search.refine_evaluations", lambda v: _whole(v) and v >= 1),
+    "polish": ("search.polish", lambda v: isinstance(v, (bool, np.bool_))),
     "progress": ("search.progress", lambda v: isinstance(v, (bool, np.bool_))),
 }
 
@@ -261,6 +262,7 @@ evaluation); got 0
     refine_starts: int = 3
     refine_evaluations: int = 200
     restarts: int = 3
+    polish: bool = True
     progress: bool = False
 
     def __post_init__(self) -> None:
@@ -622,7 +624,7 @@ class _Search:
         for x0 in starts:
             self.local_merit, self.local = np.inf, None
             self.refine_from(x0)
-            if self.local is not None:
+            if self.local is not None and s.polish:
                 self.minimax_from(self.local[0])
             self.keep_optimum("refine", self.local)
 

@@ -47,9 +47,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from synthesis import SearchSettings, load_problem, problem_from_dict
 from synthesis.evaluate import Evaluator
-from synthesis.problem import load_problem, problem_from_dict
-from synthesis.search import SearchSettings, search
+from synthesis.search import search
 
 # The runs below are one passive pass and the refinement (shrink_passes=0, restarts=0: the
 # figures quoted in docs/synthesis.md); the defaults add shrinking passes and restarts

@@ -516,6 +516,35 @@ class Criteria:
         """The criteria of a subset of the designs."""
         return Criteria(*(array[index] for array in self.arrays()))
 
+    @property
+    def feasible(self) -> npt.NDArray[np.bool_]:
+        """Which designs meet every obligatory and desirable condition (P1 = P2 = 0).
+
+        The one definition of a feasible design: the search, the result and the reports
+        all read it here.
+        """
+        return (self.p1 == 0) & (self.p2 == 0)
+
+    def favourable(self, q_required: float | None) -> npt.NDArray[np.bool_]:
+        """Which designs are favourable: feasible and Q ≤ [Q] (none without a [Q]).
+
+        Parameters
+        ----------
+        q_required : float or None
+            [Q] in the internal unit of Q (radians for an angle ψ).
+
+        Examples
+        --------
+        >>> c = Criteria(np.zeros(3), np.array([0.0, 0.0, 1.0]), np.array([0.1, 2.0, 0.1]),
+        ...              np.zeros((3, 1)), np.zeros((3, 1)))
+        >>> c.feasible.tolist(), c.favourable(0.5).tolist(), c.favourable(None).tolist()
+        ([True, True, False], [True, False, False], [False, False, False])
+        """
+        if q_required is None:
+            return np.zeros(len(self), dtype=bool)
+        with np.errstate(invalid="ignore"):
+            return self.feasible & (self.q <= q_required)
+
 
 def merit(criteria: Criteria, *, objective: Objective = "lexicographic",
           q_ref: float = 1.0, p2_weight: float = 1.0) -> FloatArray:

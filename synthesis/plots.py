@@ -65,7 +65,7 @@ def plot_output(problem: Problem, analysis: Analysis, *, axes: Axes | None = Non
     >>> from pathlib import Path
     >>> import synthesis
     >>> from synthesis.evaluate import Evaluator
-    >>> from synthesis.problem import load_problem
+    >>> from synthesis.problem_table import load_problem
     >>> tables = Path(synthesis.__file__).parents[1] / "input_tables" / "problems"
     >>> problem = load_problem(tables / "class1_fourbar_rocker.yaml")
     >>> analysis = Evaluator(problem).analyse(problem.initial[None, :])
@@ -133,7 +133,7 @@ def plot_mechanism(problem: Problem, analysis: Analysis, *, axes: Axes | None = 
     >>> from pathlib import Path
     >>> import synthesis
     >>> from synthesis.evaluate import Evaluator
-    >>> from synthesis.problem import load_problem
+    >>> from synthesis.problem_table import load_problem
     >>> tables = Path(synthesis.__file__).parents[1] / "input_tables" / "problems"
     >>> problem = load_problem(tables / "class1_fourbar_rocker.yaml")
     >>> analysis = Evaluator(problem).analyse(problem.initial[None, :])
@@ -260,10 +260,11 @@ def save_plots(folder: str | os.PathLike[str], problem: Problem, result: SearchR
     >>> from pathlib import Path
     >>> import synthesis
     >>> from synthesis.evaluate import Evaluator
-    >>> from synthesis.problem import load_problem
+    >>> from synthesis.problem_table import load_problem
     >>> tables = Path(synthesis.__file__).parents[1] / "input_tables" / "problems"
     >>> problem = load_problem(tables / "class1_fourbar_rocker.yaml")
-    >>> from synthesis.search import search, settings_for
+    >>> from synthesis.search import search
+    >>> from synthesis.search_settings import settings_for
     >>> evaluator = Evaluator(problem)
     >>> result = search(evaluator, problem.lower, problem.upper, problem.initial,
     ...                 settings_for(problem, budget_log2=4, refine=False))

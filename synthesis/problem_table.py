@@ -1,5 +1,8 @@
 """The one reader of synthesis problem tables: YAML → :class:`~synthesis.problem.Problem`.
 
+:func:`load_problem` (also ``synthesis.load_problem``) reads a file, :func:`problem_from_dict`
+already parsed data.
+
 Every table of a problem file (``docs/synthesis.md``) is read and checked here, once, and
 every problem found is collected into one :class:`~assur.errors.TableError`.  The
 varied-parameter cells ``[initial, lower, upper]`` are parsed here: the bounds belong to the
@@ -16,8 +19,7 @@ given an allowable pressure angle has one — is made when the problem is evalua
 
 Examples
 --------
->>> from synthesis.problem_table import read_problem
->>> problem = read_problem("input_tables/problems/class1_fourbar_rocker.yaml")
+>>> problem = load_problem("input_tables/problems/class1_fourbar_rocker.yaml")
 >>> problem.task_class, len(problem.parameters), problem.search["budget"]
 (1, 3, 10)
 """
@@ -65,9 +67,9 @@ from synthesis.problem import (
     row_key,
 )
 from synthesis.problem_chain import group_key, is_chain_form
-from synthesis.search import setting_problem
+from synthesis.search_settings import setting_problem
 
-__all__ = ["read_problem", "read_problem_data"]
+__all__ = ["load_problem", "problem_from_dict"]
 
 _TOP = ("schema_version", "name", "general", "mechanism", "structure_identification",
         "frame", "geometry", "group_models", "output", "parameters", "allowable",
@@ -92,14 +94,42 @@ _PARAMS_AT = re.compile(r"structure_identification \(L\d+\((?P<links>[^)]*)\)\) 
 MAX_GRID = 20_000
 
 
-def read_problem(path: str | os.PathLike[str]) -> Problem:
-    """The reader behind :func:`synthesis.problem.load_problem` (which see)."""
+def load_problem(path: str | os.PathLike[str]) -> Problem:
+    """Read and check a problem file.
+
+    Parameters
+    ----------
+    path : path-like
+        The YAML problem table.
+
+    Returns
+    -------
+    Problem
+
+    Raises
+    ------
+    TableError
+        Listing every problem of the file (and of the identification rows it gives inline);
+        an identification table in another file reports its own problems under its own name.
+    StructureError
+        When the mechanism is not one the kinematics solves (e.g. a group of class III).
+
+    Examples
+    --------
+    >>> problem = load_problem("input_tables/problems/class3_fourbar_path.yaml")
+    >>> problem.task_class, problem.names[:2]
+    (3, ('L0(1).l_1', 'L1(2,3).l_i'))
+    """
     return _read(TableReader.from_path(path, kind="problem"), Path(path).parent)
 
 
-def read_problem_data(data: Any, source: str = "<data>",
+def problem_from_dict(data: Any, source: str = "<data>",
                       base: str | os.PathLike[str] = ".") -> Problem:
-    """Read already parsed data (:func:`synthesis.problem.problem_from_dict`)."""
+    """Build a problem from already parsed data (see :func:`load_problem`).
+
+    ``source`` names the data in messages; ``base`` is the folder against which a
+    ``mechanism:`` file name is resolved.
+    """
     return _read(TableReader.from_data(data, source), Path(base))
 
 
@@ -844,7 +874,8 @@ def _check_output(reader: TableReader, model: KinematicModel, output: Output,
 
 def _read_search(top: Node) -> dict[str, Any]:
     """The ``search`` table, each value checked by the rule of its setting
-    (:func:`synthesis.search.setting_problem`, the same rule as on the command line)."""
+    (:func:`synthesis.search_settings.setting_problem`, the same rule as on the command
+    line)."""
     node = top.child("search", allowed=SEARCH_FIELDS, required=False)
     if node is None:
         return {}

@@ -27,7 +27,7 @@ from assur.text import render
 from synthesis.criteria import criterion_rms
 from synthesis.evaluate import Analysis
 from synthesis.problem import Problem
-from synthesis.search import SearchResult, distinct_optima
+from synthesis.search_result import SearchResult, distinct_optima
 
 __all__ = ["allowable_rows", "summary", "text_report", "write_result", "write_trials"]
 
@@ -93,9 +93,8 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
         "P1": float(c.p1[0]),
         "P2": _num(c.p2[0]),
         "accuracy": problem.accuracy,
-        "feasible": bool(c.p1[0] == 0 and c.p2[0] == 0),
-        "favourable": bool(c.p1[0] == 0 and c.p2[0] == 0 and problem.accuracy is not None
-                           and c.q[0] * scale <= problem.accuracy),
+        "feasible": bool(c.feasible[0]),
+        "favourable": bool(c.favourable(problem.q_required)[0]),
         "control_points": points,
         "pressure_angles": {k: {"max_deg": math.degrees(float(v[0, 0])),
                                 "allowed_deg": math.degrees(problem.pressure_angles[k])}
@@ -112,9 +111,8 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
         "binding": _binding(problem, result, analysis),
         "search": {
             "trials": int(result.trials.shape[0]),
-            "feasible_trials": int(np.sum((result.trial_criteria.p1 == 0)
-                                          & (result.trial_criteria.p2 == 0))),
-            "stop": result.stop, "message": result.message,
+            "feasible_trials": int(np.sum(result.trial_criteria.feasible)),
+            "stop": result.stop, "stopped_in": result.stopped_in, "message": result.message,
             "seconds": result.elapsed, "seed": result.seed,
             "budget_log2": result.settings.budget_log2, "refine": result.settings.refine,
             "restarts": result.settings.restarts,
@@ -195,7 +193,7 @@ def _feasible_order(result: SearchResult) -> npt.NDArray[np.intp]:
     first."""
     c = result.trial_criteria
     passive = np.array([stage != "refine" for stage in result.stage])
-    ok = np.flatnonzero((c.p1 == 0) & (c.p2 == 0) & np.isfinite(c.q) & passive)
+    ok = np.flatnonzero(c.feasible & np.isfinite(c.q) & passive)
     return ok[np.argsort(c.q[ok], kind="stable")]
 
 

@@ -23,8 +23,8 @@ import yaml
 
 import synthesis.search
 from assur.io import files
+from synthesis import SearchSettings, SettingError
 from synthesis.cli import main
-from synthesis.search import SearchSettings, SettingError
 
 ROOT = Path(__file__).resolve().parent.parent
 FOUR_BAR = str(ROOT / "input_tables" / "four_bar.yaml")

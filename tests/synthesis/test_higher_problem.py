@@ -184,7 +184,7 @@ def test_a_chain_without_its_sketch_is_named(tmp_path: Path,
 
 def test_an_inline_chain_reads_as_the_named_file(tmp_path: Path,
                                                  capsys: pytest.CaptureFixture[str]) -> None:
-    from synthesis.problem import load_problem, problem_from_dict
+    from synthesis import load_problem, problem_from_dict
 
     chain = yaml.safe_load((PROBLEM.parent / "../six_bar_triad.yaml").read_text())
     data = yaml.safe_load(PROBLEM.read_text(encoding="utf-8"))
@@ -198,8 +198,8 @@ def test_an_inline_chain_reads_as_the_named_file(tmp_path: Path,
 def test_a_fixed_cell_changes_the_sketch_it_names() -> None:
     """``x_C: 80`` (a plain number) moves the drawn hinge C of the initial design: the
     evaluator's stroke of the initial design is that of the sketch with C moved."""
+    from synthesis import problem_from_dict
     from synthesis.evaluate import Evaluator
-    from synthesis.problem import problem_from_dict
 
     data = yaml.safe_load(PROBLEM.read_text(encoding="utf-8"))
     data["parameters"][0]["x_C"] = 80

@@ -12,7 +12,7 @@ import pytest
 import yaml
 
 from assur import TableError
-from synthesis.problem import load_problem, problem_from_dict
+from synthesis import load_problem, problem_from_dict
 
 GOOD: dict[str, Any] = {
     "general": {"control_points": 3, "direction": 1, "groups": 2, "task_class": 2,

@@ -21,10 +21,10 @@ from closed_form import fourbar
 import assur
 import assur.kinematics.analysis
 from assur import TableError
+from synthesis import SearchSettings, load_problem, problem_from_dict
 from synthesis.cli import main
 from synthesis.evaluate import Evaluator
-from synthesis.problem import load_problem, problem_from_dict
-from synthesis.search import SearchSettings, search
+from synthesis.search import search
 
 FOURBAR_ROWS = [
     {"L": 0, "i": 1, "j": None, "i_minus_1": 0, "j_minus_1": None, "i_plus_1": 2},

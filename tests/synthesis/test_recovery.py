@@ -21,9 +21,9 @@ from closed_form import (
     slider_crank,
 )
 
+from synthesis import SearchSettings, problem_from_dict
 from synthesis.evaluate import Evaluator
-from synthesis.problem import problem_from_dict
-from synthesis.search import SearchSettings, search
+from synthesis.search import search
 
 TOL = 1e-6            # mm / rad; the search stops at [Q] = 1e-7 (favourable) or budget
 FOURBAR_ROWS = [

@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from synthesis import SearchSettings
 from synthesis.criteria import Criteria
-from synthesis.search import SearchSettings, search
+from synthesis.search import search
 
 OPTIMUM = np.array([0.31, 0.77, 0.12])
 

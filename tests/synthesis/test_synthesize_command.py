@@ -14,10 +14,10 @@ import yaml
 
 import assur
 import assur.kinematics.analysis
+from synthesis import load_problem
 from synthesis.cli import main
 from synthesis.cli.commands import synthesize
 from synthesis.evaluate import Evaluator
-from synthesis.problem import load_problem
 
 PROBLEMS = sorted((Path(__file__).resolve().parents[2] / "input_tables" / "problems")
                   .glob("*.yaml"))

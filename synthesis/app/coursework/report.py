@@ -341,15 +341,14 @@ def _synthesis(problem: Problem, lang: str, budget: int | None, report: Coursewo
     from matplotlib.figure import Figure
 
     from synthesis.app.coursework.synthesis_tables import synthesis_tables
+    from synthesis.outcome import synthesize
     from synthesis.plots import plot_convergence, plot_mechanism, plot_output
-    from synthesis.search import settings_for
-    from synthesis.synthesize import synthesize
 
     own = problem.search.get("budget")
     budget = budget if budget is not None else min(int(own) if own else BUDGET, BUDGET)
-    outcome = synthesize(problem, settings_for(problem, budget_log2=budget), progress=False)
-    result, analysis, data = outcome.result, outcome.analysis, dict(outcome.summary)
-    feasible = bool(data.get("feasible"))
+    outcome = synthesize(problem, budget=budget, progress=False)
+    result, analysis, data = outcome.search, outcome.analysis, outcome.to_dict()
+    feasible = outcome.feasible
     verdict = render("term.feasible", lang) if feasible else render("term.infeasible", lang)
     q = "–" if data.get("Q") is None else f"{data['Q']:.4g}"
     body = (f'<p class="{"ok" if feasible else "bad"}" id="synthesis-verdict">{esc(verdict)}, '

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, TypeVar
 
 from synthesis.distributed import executor_for
 from synthesis.evaluate import Analysis, Evaluator
@@ -23,6 +23,7 @@ from synthesis.search_settings import SearchSettings
 
 __all__ = ["SynthesisResult", "synthesize"]
 
+T = TypeVar("T")
 #: Most varied parameters :meth:`SynthesisResult.__repr__` lists one per line.
 _REPR_PARAMETERS = 10
 
@@ -108,14 +109,13 @@ class SynthesisResult:
         shown = [f"        {name!r}: {value:.9g}," for name, value in names[:_REPR_PARAMETERS]]
         if len(names) > _REPR_PARAMETERS:
             shown.append(f"        … {len(names) - _REPR_PARAMETERS} more")
-        return "\n".join([
-            f"SynthesisResult(problem={self.problem.name!r}, "
-            f"task_class={self.problem.task_class},",
-            f"    feasible={self.feasible}, favourable={self.favourable}, "
-            f"Q={self.q:.6g} {self.unit}, P1={self.p1:.6g}, P2={self.p2:.6g},",
-            f"    stop={self.stop!r} (in {self.search.stopped_in!r}), trials={self.trials}, "
-            f"seconds={self.search.elapsed:.3g},",
-            "    design={", *shown, "    })"])
+        head = (f"SynthesisResult(problem={self.problem.name!r}, "
+                f"task_class={self.problem.task_class},")
+        criteria = (f"    feasible={self.feasible}, favourable={self.favourable}, "
+                    f"Q={self.q:.6g} {self.unit}, P1={self.p1:.6g}, P2={self.p2:.6g},")
+        search = (f"    stop={self.stop!r} (in {self.search.stopped_in!r}), "
+                  f"trials={self.trials}, seconds={self.search.elapsed:.3g},")
+        return "\n".join([head, criteria, search, "    design={", *shown, "    })"])
 
 
 def _json_ready(value: object) -> object:
@@ -127,6 +127,11 @@ def _json_ready(value: object) -> object:
     if isinstance(value, float) and not math.isfinite(value):
         return None
     return value
+
+
+def _given(value: T | None, default: T) -> T:
+    """An override, or the setting's value when the override is None."""
+    return default if value is None else value
 
 
 def synthesize(problem: Problem, settings: SearchSettings | None = None, *,
@@ -190,11 +195,12 @@ def synthesize(problem: Problem, settings: SearchSettings | None = None, *,
     >>> print(repr(result).splitlines()[0])
     SynthesisResult(problem='class3_fourbar_path', task_class=3,
     """
-    settings = replace(settings if settings is not None else problem.settings, **{
-        field: value for field, value in (
-            ("budget_log2", budget), ("seed", seed), ("refine", refine),
-            ("shrink_passes", shrink), ("restarts", restarts), ("time_limit", time_limit),
-            ("progress", progress)) if value is not None})
+    base = settings if settings is not None else problem.settings
+    settings = replace(
+        base, budget_log2=_given(budget, base.budget_log2), seed=_given(seed, base.seed),
+        refine=_given(refine, base.refine), shrink_passes=_given(shrink, base.shrink_passes),
+        restarts=_given(restarts, base.restarts),
+        time_limit=_given(time_limit, base.time_limit), progress=_given(progress, base.progress))
     evaluator = Evaluator(problem)
     if scheduler is None or isinstance(scheduler, str):
         with executor_for(scheduler) as executor:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import io
 import os
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -21,7 +22,7 @@ from assur.model import LinkId
 from assur.text import render
 from synthesis.evaluate import Analysis
 from synthesis.problem import Problem
-from synthesis.search import SearchResult
+from synthesis.search_result import SearchResult
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -278,11 +279,12 @@ def save_plots(folder: str | os.PathLike[str], problem: Problem, result: SearchR
 
     folder = Path(folder)
     written = []
-    for name, draw in (("output", lambda ax: plot_output(problem, analysis, axes=ax, lang=lang)),
+    drawings: tuple[tuple[str, Callable[[Axes], Axes]], ...] = (("output", lambda ax: plot_output(problem, analysis, axes=ax, lang=lang)),
                        ("mechanism", lambda ax: plot_mechanism(problem, analysis, axes=ax,
                                                                lang=lang)),
                        ("convergence", lambda ax: plot_convergence(result, axes=ax,
-                                                                   lang=lang))):
+                                                                   lang=lang)))
+    for name, draw in drawings:
         fig = Figure(figsize=(7, 5))
         draw(fig.add_subplot())
         fig.tight_layout()

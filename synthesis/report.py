@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 import numpy.typing as npt
-import yaml  # type: ignore[import-untyped]
+import yaml
 
 from assur.io.files import atomic_write_text
 from assur.text import render
@@ -219,7 +219,9 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
         lo, hi = data["bounds"][name]
         lines.append(f"  {name:<22} {data['initial'][name]:>12.6g} {lo:>12.6g} {hi:>12.6g} "
                      f"{value:>14.9g}")
-    yes_no = lambda flag: w("yes") if flag else w("no")
+    def yes_no(flag: bool) -> str:
+        return w("yes") if flag else w("no")
+
     unit = "" if data["unit"] == "1" else w(data["unit"])  # the ratio n has no unit
     lines += ["", w("criteria"),
               f"  {w('q'):<40} {_fmt(data['Q'])} {unit}",

@@ -49,7 +49,7 @@ import sys
 import time
 from collections.abc import Callable, Iterable, Iterator
 from contextvars import ContextVar
-from typing import Any, Protocol
+from typing import Protocol
 
 import numpy as np
 import numpy.typing as npt
@@ -194,7 +194,7 @@ class _Search:
         first and the restarts; a favourable design may end them sooner)."""
         s = self.settings
         per_round = 2 ** s.budget_log2 + s.shrink_passes * 2 ** max(s.budget_log2 - 2, 4)
-        return 1 + (1 + s.restarts) * per_round
+        return int(1 + (1 + s.restarts) * per_round)
 
     def report(self, final: bool = False) -> None:
         listener = LISTENER.get()
@@ -323,7 +323,7 @@ class _Search:
                 or not np.all(np.isfinite(base.residuals[0])):
             return
         p2_start = base.p2[0]
-        worst = 10.0 * (np.abs(base.residuals[0]) + 1e-12)
+        worst: FloatArray = 10.0 * (np.abs(base.residuals[0]) + 1e-12)
         cache: dict[bytes, FloatArray] = {}
 
         def residuals(x: FloatArray) -> FloatArray:
@@ -350,7 +350,8 @@ class _Search:
             c = self.record(shifted, "refine")
             r0 = residuals(x)
             r = np.where(np.isfinite(c.residuals), c.residuals, r0[None, :])
-            return ((r - r0[None, :]) / step[:, None]).T
+            jac: FloatArray = ((r - r0[None, :]) / step[:, None]).T
+            return jac
 
         optimize.least_squares(residuals, x0, jac=jacobian, bounds=(lo, hi + ~varied * 1e-12),
                                x_scale=np.where(varied, span, 1.0), method="trf",
@@ -547,9 +548,11 @@ def _bounds(lower: npt.ArrayLike, upper: npt.ArrayLike, initial: npt.ArrayLike
     return lo, hi, x0
 
 
-def _check_rng(rng: Any) -> RNG:
-    if rng is None or isinstance(rng, np.random.Generator) or (whole(rng) and rng >= 0):
+def _check_rng(rng: object) -> RNG:
+    if rng is None or isinstance(rng, np.random.Generator):
         return rng
+    if isinstance(rng, (int, np.integer)) and whole(rng) and rng >= 0:
+        return int(rng)
     raise SettingError(Message("search.rng", {"found": rng}))
 
 

@@ -38,6 +38,10 @@ from synthesis.app.coursework.forces_section import forces_sections
 from synthesis.app.coursework.page import Section, esc, figure, figure_html, page, table
 
 if TYPE_CHECKING:  # pragma: no cover
+    from collections.abc import Callable
+
+    from matplotlib.axes import Axes
+
     from synthesis.problem import Problem
 
 __all__ = ["CourseworkReport", "build_report", "render_html", "write_report"]
@@ -353,9 +357,10 @@ def _synthesis(problem: Problem, lang: str, budget: int | None, report: Coursewo
     q = "–" if data.get("Q") is None else f"{data['Q']:.4g}"
     body = (f'<p class="{"ok" if feasible else "bad"}" id="synthesis-verdict">{esc(verdict)}, '
             f"Q = {q}</p>{synthesis_tables(data, lang)}")
-    drawings = (lambda ax: plot_output(problem, analysis, axes=ax, lang=lang),
-                lambda ax: plot_mechanism(problem, analysis, axes=ax, lang=lang),
-                lambda ax: plot_convergence(result, axes=ax, lang=lang))
+    drawings: tuple[Callable[[Axes], Axes], ...] = (
+        lambda ax: plot_output(problem, analysis, axes=ax, lang=lang),
+        lambda ax: plot_mechanism(problem, analysis, axes=ax, lang=lang),
+        lambda ax: plot_convergence(result, axes=ax, lang=lang))
     captions = (render("coursework.caption_output", lang),
                 render("coursework.caption_mechanism", lang),
                 render("coursework.caption_search", lang))

@@ -90,6 +90,11 @@ Bounds = dict[tuple[GroupKey, str], tuple[float, float, float]]
 #: Where the kinematic model puts a problem of a cell of a group's parameters.
 _PARAMS_AT = re.compile(r"structure_identification \(L\d+\((?P<links>[^)]*)\)\) 'params' "
                         r"'(?P<column>[^']+)'")
+#: Codes of the kinematic model's problems of a parameter cell that holds a number where its
+#: group wants ``'A'``, and ``'A'`` where it wants a number (:func:`_tell_swapped_cells`).
+_WANTS_A = frozenset({"model.moving_hinge_supplied"})
+_WANTS_NUMBER = frozenset({"model.frame_hinge_needs_number", "model.frame_guide_needs_number",
+                           "model.supplied_here"})
 #: Most positions of the analysis grid over a crank turn.
 MAX_GRID = 20_000
 
@@ -282,37 +287,33 @@ def _identification_form(top: Node, mechanism: _Mechanism, general: _General) ->
     model, foreign = _build_model(reader, table, mechanism.source) if structure_ok \
         else (None, None)
     if model is None and structure_ok:
-        _tell_swapped_cells(reader, table, mechanism.source, start, places)
+        _tell_swapped_cells(reader, start, places)
     return _Form(groups, model, foreign, bounds, table)
 
 
-def _tell_swapped_cells(reader: TableReader, table: dict[str, Any], source: str, start: int,
+def _tell_swapped_cells(reader: TableReader, start: int,
                         places: dict[tuple[GroupKey, str], str]) -> None:
-    """Two cells of one group that the kinematic model finds wrong, and right once swapped
-    (a number where the group's rule wants ``'A'`` and ``'A'`` where it wants a number):
-    told once, as swapped, at the row they were read from.  ``start`` is the first problem
-    of the model."""
-    wrong: dict[str, list[tuple[int, str]]] = {}
-    told: list[int] = []
+    """Two cells of one group that the kinematic model finds wrong the opposite ways — a
+    number where the group's rule wants ``'A'`` (a hinge on a moving link, supplied by its
+    group) and ``'A'`` where it wants a number — are right once swapped: told once, as
+    swapped, at the row they were read from.  The model's problems say what each cell
+    wants (their codes); ``start`` is the first of them."""
+    wrong: dict[str, list[tuple[int, str, str]]] = {}
     for n, issue in enumerate(reader.issues[start:], start):
         match = _PARAMS_AT.fullmatch(issue.location)
         if match:
-            wrong.setdefault(match["links"], []).append((n, match["column"]))
+            wrong.setdefault(match["links"], []).append((n, match["column"],
+                                                         issue.message.code))
+    told: list[int] = []
     for links, cells in wrong.items():
-        if len(cells) != 2:
+        wants = sorted("A" if code in _WANTS_A else "number" if code in _WANTS_NUMBER
+                       else "other" for _, _, code in cells)
+        if wants != ["A", "number"]:
             continue
-        (n_a, a), (n_b, b) = cells
+        (n_a, a, _), (n_b, b, _) = cells
         key = tuple(normalise_id(link) for link in links.split(","))
         where = places.get((key, a))
-        if where is None or places.get((key, b)) != where:
-            continue  # (not two cells of one row)
-        rows = [{**row, "params": {**row["params"], a: row["params"][b], b: row["params"][a]}}
-                if _has_links(row) and row_key(row) == key else row
-                for row in table["structure_identification"]]
-        trial = TableReader.from_data(None, source)
-        _build_model(trial, {**table, "structure_identification": rows}, source)
-        locations = {reader.issues[n_a].location, reader.issues[n_b].location}
-        if not any(issue.location in locations for issue in trial.issues):
+        if where is not None and places.get((key, b)) == where:  # (two cells of one row)
             reader.issues[n_a] = Issue(where, Message("table.swapped", {"a": a, "b": b}))
             told.append(n_b)
     for n in sorted(told, reverse=True):

@@ -282,7 +282,8 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
     s = data["search"]
     lines += ["", w("search"),
               f"  {w('trials')}: {s['trials']}   {w('feasible_trials')}: {s['feasible_trials']}",
-              (f"  {w('stop')}: {w(s['stop'] + '_stop')}   "
+              (f"  {w('stop')}: {w(s['stop'] + '_stop')} "
+               f"({w('stopped_in', stage=w('stage_' + s['stopped_in']))})   "
                f"{w('time')}: {s['seconds']:.2f} {w('seconds')}   "
                f"seed {'—' if s['seed'] is None else s['seed']}, 2^{s['budget_log2']} LPτ"),
               f"  {w('history')}:"]

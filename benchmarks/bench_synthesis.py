@@ -78,7 +78,8 @@ def coupler_curve(phi: np.ndarray, l1: float, li: float, lj: float, ln: float, b
     w = xhj - a
     d = np.abs(w)
     phi_i = np.angle(w) + np.arccos((li ** 2 + d ** 2 - lj ** 2) / (2 * li * d))
-    return a + ln * np.exp(1j * (phi_i + beta))
+    point: np.ndarray = a + ln * np.exp(1j * (phi_i + beta))
+    return point
 
 
 def rms_to_curve(targets: np.ndarray, design: tuple[float, ...]) -> float:
@@ -151,9 +152,14 @@ def peer_targets() -> np.ndarray:
 def run_pylinkage(targets: np.ndarray, seed: int) -> dict[str, Any] | None:
     """pylinkage 1.3: its four-bar with a fixed coupler point, its differential evolution."""
     try:
-        import pylinkage as pl
-        from pylinkage.optimization import differential_evolution_optimization
-        from pylinkage.optimization.utils import kinematic_minimization
+        # (an optional peer, not a dependency: no type information)
+        import pylinkage as pl  # type: ignore[import-not-found, unused-ignore]
+        from pylinkage.optimization import (  # type: ignore[import-not-found, unused-ignore]
+            differential_evolution_optimization,
+        )
+        from pylinkage.optimization.utils import (  # type: ignore[import-not-found, unused-ignore]
+            kinematic_minimization,
+        )
     except ImportError:
         return None
 
@@ -170,7 +176,7 @@ def run_pylinkage(targets: np.ndarray, seed: int) -> dict[str, Any] | None:
         t = np.clip((np.conj(seg)[None, :] * rel).real / np.abs(seg)[None, :] ** 2, 0, 1)
         return float(np.sqrt(np.mean(np.min(np.abs(rel - t * seg[None, :]), axis=1) ** 2)))
 
-    @kinematic_minimization
+    @kinematic_minimization  # type: ignore[untyped-decorator, unused-ignore]
     def fitness(loci: Any, **_: Any) -> float:
         return polygon_rms(np.array([complex(*frame[-1]) for frame in loci]))
 

@@ -34,7 +34,8 @@ def _torque_by_virtual_work(evaluator: Evaluator, x: np.ndarray) -> np.ndarray:
     ahead = assur.analyse(model, evaluator.grid + STEP).link_angle(3)
     behind = assur.analyse(model, evaluator.grid - STEP).link_angle(3)
     rate = np.angle(np.exp(1j * (np.asarray(ahead) - np.asarray(behind)))) / (2 * STEP)
-    return np.max(np.abs(TORQUE * rate), axis=-1)
+    peak: np.ndarray = np.max(np.abs(TORQUE * rate), axis=-1)
+    return peak
 
 
 def test_the_penalty_of_a_batch_is_the_excess_of_the_torque_by_virtual_work() -> None:
@@ -76,6 +77,7 @@ def test_a_torque_limit_moves_the_optimum_and_the_result_respects_it() -> None:
 
 def test_points_in_the_link_frames_give_what_sketch_points_give() -> None:
     model, data = load_with_forces(TABLES / "four_bar_gravity.yaml")
+    assert data is not None
     frames = assur.analyse(model, np.zeros(1), analogs=True).frames
     local = {}
     for link, mass in data.masses.items():
@@ -110,6 +112,7 @@ def test_a_reaction_limit_is_the_excess_of_the_two_force_coupler() -> None:
     # With only a torque T on the rocker, the coupler 2–3 carries a force along B–C alone,
     # |R| = |T| / (distance from the rocker pivot D to the line B–C), from the joints alone.
     problem = load_problem(PROBLEM)
+    assert problem.forces is not None
     conditions = dataclasses.replace(problem.forces, driving_torque=None,
                                      reactions={"2-3": 150.0})
     evaluator = Evaluator(problem)

@@ -98,7 +98,7 @@ def _check_result(data: dict[str, Any], result: Path) -> np.ndarray:
                                           design[f"III(2,3,4,5).y_{pair}"])) < 1e-8
     rows = data["control_points"]
     solved = stroke(points, np.array([row["phi"] for row in rows]))
-    deviation = solved - [row["target"] for row in rows]
+    deviation: np.ndarray = solved - [row["target"] for row in rows]
     assert np.abs(deviation - [row["deviation"] for row in rows]).max() < 1e-6
     assert np.abs(deviation).max() == pytest.approx(data["Q"], abs=1e-6)
     return deviation

@@ -75,7 +75,8 @@ def _closed_form_ratio(d: dict[str, float], phi: np.ndarray, h: float = 1e-3) ->
     _, _, _, psi = fourbar(stencil, d["l1"], d["li"], d["lj"], d["xhj"],
                            phi0=math.radians(d["phi0"]))
     psi = np.unwrap(psi, axis=1)
-    return (psi[:, 0] - 8 * psi[:, 1] + 8 * psi[:, 2] - psi[:, 3]) / (12 * h)
+    n: np.ndarray = (psi[:, 0] - 8 * psi[:, 1] + 8 * psi[:, 2] - psi[:, 3]) / (12 * h)
+    return n
 
 
 def test_ratio_against_central_difference_of_the_public_analysis() -> None:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import pytest
 
@@ -24,7 +26,7 @@ def quadratic(x: np.ndarray) -> Criteria:
 
 LOWER, UPPER, START = np.zeros(3), np.ones(3), np.array([0.95, 0.5, 0.5])
 #: The passive pass alone (the defaults add shrinking passes, restarts and refinement).
-PASSIVE = {"refine": False, "shrink_passes": 0, "restarts": 0}
+PASSIVE: dict[str, Any] = {"refine": False, "shrink_passes": 0, "restarts": 0}
 
 
 def test_same_seed_same_result_and_other_seed_other_trials() -> None:

@@ -18,8 +18,10 @@ from tests.synthesis.test_problem import GOOD
 def _slider_crank_stroke(l1: float, l2: float, e: float, phi: np.ndarray) -> np.ndarray:
     """S(φ) − S(0) of a slider-crank with the guide along x at offset e (closed form)."""
     def x(angle: np.ndarray) -> np.ndarray:
-        return l1 * np.cos(angle) + np.sqrt(l2 ** 2 - (l1 * np.sin(angle) - e) ** 2)
-    return x(phi) - x(np.zeros(1))
+        out: np.ndarray = l1 * np.cos(angle) + np.sqrt(l2 ** 2 - (l1 * np.sin(angle) - e) ** 2)
+        return out
+    stroke: np.ndarray = x(phi) - x(np.zeros(1))
+    return stroke
 
 
 def test_outcome_of_a_problem() -> None:

@@ -193,7 +193,7 @@ def synthesize(problem: Problem, settings: SearchSettings | None = None, *,
     >>> result.to_dict()["Q"] == result.q, result.to_dict()["feasible"] == result.feasible
     (True, True)
     >>> print(repr(result).splitlines()[0])
-    SynthesisResult(problem='class3_fourbar_path', task_class=3,
+    SynthesisResult(problem='four-bar coupler path', task_class=3,
     """
     base = settings if settings is not None else problem.settings
     settings = replace(

@@ -202,7 +202,8 @@ def plot_convergence(result: SearchResult, *, axes: Axes | None = None, lang: st
     --------
     >>> import numpy as np
     >>> from synthesis.criteria import Criteria
-    >>> from synthesis.search import SearchSettings, search
+    >>> from synthesis import SearchSettings
+    >>> from synthesis.search import search
     >>> def evaluate(x):
     ...     dev = x - np.array([0.3, 0.7])
     ...     zero = np.zeros(len(x))

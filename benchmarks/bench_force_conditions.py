@@ -25,9 +25,9 @@ import yaml
 from bench_mechanism import best_time
 
 from assur.kinematics.analysis import analyse
+from synthesis import problem_from_dict
 from synthesis.evaluate import Evaluator
 from synthesis.force_conditions import force_penalties
-from synthesis.problem import problem_from_dict
 
 PROBLEM = (Path(__file__).resolve().parent.parent / "input_tables" / "problems"
            / "class2_course_11_link.yaml")

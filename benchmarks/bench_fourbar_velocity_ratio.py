@@ -29,6 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
+from synthesis import SearchSettings, load_problem
 from synthesis.cases.fourbar_velocity_ratio.check import check_design
 from synthesis.cases.fourbar_velocity_ratio.conditions import (
     NoSolution,
@@ -44,8 +45,8 @@ from synthesis.cases.fourbar_velocity_ratio.paper_solver import solve_paper
 from synthesis.cases.fourbar_velocity_ratio.study import paper_check_tolerance
 from synthesis.criteria import Criteria
 from synthesis.evaluate import Evaluator
-from synthesis.problem import load_problem
-from synthesis.search import SearchSettings, search, settings_for
+from synthesis.search import search
+from synthesis.search_settings import settings_for
 
 DEG = math.pi / 180.0
 EXAMPLE = Request(n_star=0.5, psi1=20 * DEG, e=0.3, delta=0.05)

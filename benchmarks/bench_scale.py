@@ -53,11 +53,12 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from synthesis import SearchResult, SearchSettings, load_problem
 from synthesis.criteria import Criteria
 from synthesis.distributed import DaskExecutor, connect
 from synthesis.evaluate import Evaluator
-from synthesis.problem import Problem, load_problem
-from synthesis.search import Executor, SearchResult, SearchSettings, search
+from synthesis.problem import Problem
+from synthesis.search import Executor, search
 
 PROBLEM = ROOT / "input_tables" / "problems" / "class2_course_11_link.yaml"
 #: Workers of the model's predictions, and the budget (log2) it predicts for.

@@ -22,15 +22,23 @@ Three parts, printed as tables and drawn in one picture:
    200 000 points, polygon projection).  Times are compared at RMS 2e-5 (the peer's time is
    that of the first generation of its run whose best design is within 2e-5) and at the
    peer's converged error.
+
+``--polish SEEDS`` runs instead the synthesis benchmark suite (``docs/synthesis_suite.md``)
+both ways in one run, with the default settings and with the minimax polish turned off
+(``polish=False``: the least-squares refinement alone), SEEDS seeds per problem, and prints
+the success rate, the mean number of trials and the time of each way.
 """
 
 from __future__ import annotations
 
 import argparse
 import copy
+import importlib.util
 import math
+import multiprocessing
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -39,9 +47,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from synthesis import SearchSettings, load_problem, problem_from_dict
 from synthesis.evaluate import Evaluator
-from synthesis.problem import load_problem, problem_from_dict
-from synthesis.search import SearchSettings, search
+from synthesis.search import search
 
 # The runs below are one passive pass and the refinement (shrink_passes=0, restarts=0: the
 # figures quoted in docs/synthesis.md); the defaults add shrinking passes and restarts
@@ -70,7 +78,8 @@ def coupler_curve(phi: np.ndarray, l1: float, li: float, lj: float, ln: float, b
     w = xhj - a
     d = np.abs(w)
     phi_i = np.angle(w) + np.arccos((li ** 2 + d ** 2 - lj ** 2) / (2 * li * d))
-    return a + ln * np.exp(1j * (phi_i + beta))
+    point: np.ndarray = a + ln * np.exp(1j * (phi_i + beta))
+    return point
 
 
 def rms_to_curve(targets: np.ndarray, design: tuple[float, ...]) -> float:
@@ -143,9 +152,14 @@ def peer_targets() -> np.ndarray:
 def run_pylinkage(targets: np.ndarray, seed: int) -> dict[str, Any] | None:
     """pylinkage 1.3: its four-bar with a fixed coupler point, its differential evolution."""
     try:
-        import pylinkage as pl
-        from pylinkage.optimization import differential_evolution_optimization
-        from pylinkage.optimization.utils import kinematic_minimization
+        # (an optional peer, not a dependency: no type information)
+        import pylinkage as pl  # type: ignore[import-not-found, unused-ignore]
+        from pylinkage.optimization import (  # type: ignore[import-not-found, unused-ignore]
+            differential_evolution_optimization,
+        )
+        from pylinkage.optimization.utils import (  # type: ignore[import-not-found, unused-ignore]
+            kinematic_minimization,
+        )
     except ImportError:
         return None
 
@@ -162,7 +176,7 @@ def run_pylinkage(targets: np.ndarray, seed: int) -> dict[str, Any] | None:
         t = np.clip((np.conj(seg)[None, :] * rel).real / np.abs(seg)[None, :] ** 2, 0, 1)
         return float(np.sqrt(np.mean(np.min(np.abs(rel - t * seg[None, :]), axis=1) ** 2)))
 
-    @kinematic_minimization
+    @kinematic_minimization  # type: ignore[untyped-decorator, unused-ignore]
     def fitness(loci: Any, **_: Any) -> float:
         return polygon_rms(np.array([complex(*frame[-1]) for frame in loci]))
 
@@ -224,6 +238,60 @@ def run_ours(targets: np.ndarray, accuracy: float, seed: int) -> dict[str, Any]:
             "rms": rms_to_curve(targets, design), "trials": int(result.trials.shape[0])}
 
 
+# ------------------------------------------------------------ the second local optimiser
+
+def _suite_runner() -> Any:
+    """``benchmarks/synthesis_suite/run.py`` as a module (its problems and success rule)."""
+    spec = importlib.util.spec_from_file_location(
+        "synthesis_suite_run", ROOT / "benchmarks" / "synthesis_suite" / "run.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _suite_run(task: tuple[str, int, bool]) -> dict[str, Any]:
+    """One problem of the suite, one seed, the default settings with or without the polish."""
+    stem, seed, polish = task
+    problem = load_problem(ROOT / "benchmarks" / "synthesis_suite" / "problems" / f"{stem}.yaml")
+    settings = replace(problem.settings, seed=seed, polish=polish)
+    start = time.perf_counter()
+    result = search(Evaluator(problem), problem.lower, problem.upper, problem.initial, settings)
+    c = result.criteria
+    return {"problem": stem, "seed": seed, "polish": polish,
+            "Q": float(c.q[0]) * problem.output_scale, "P1": float(c.p1[0]),
+            "P2": float(c.p2[0]), "trials": int(result.trials.shape[0]),
+            "seconds": time.perf_counter() - start}
+
+
+def part_polish(seeds: int, jobs: int) -> list[dict[str, Any]]:
+    """The suite with and without the minimax polish, interleaved (same load on both)."""
+    suite = _suite_runner()
+    optima = suite.yaml.safe_load((ROOT / "benchmarks" / "synthesis_suite" / "optima.yaml")
+                                  .read_text(encoding="utf-8"))["optima"]
+    tasks = [(stem, seed, polish) for stem in suite.problems(None) for seed in range(seeds)
+             for polish in (True, False)]
+    with multiprocessing.Pool(jobs) as pool:
+        rows = pool.map(_suite_run, tasks)
+    for row in rows:
+        row["success"] = bool(suite.success(row, optima[row["problem"]]))
+    print(f"{'polish':>7} {'runs':>5} {'success':>8} {'mean trials':>12} {'mean s':>8} "
+          f"{'median s':>9}  failed (problem: seeds)")
+    for polish in (True, False):
+        runs = [r for r in rows if r["polish"] == polish]
+        secs = sorted(r["seconds"] for r in runs)
+        failed: dict[str, list[int]] = {}
+        for r in runs:
+            if not r["success"]:
+                failed.setdefault(r["problem"], []).append(r["seed"])
+        print(f"{('yes' if polish else 'no'):>7} {len(runs):>5} "
+              f"{100.0 * sum(r['success'] for r in runs) / len(runs):>7.1f}% "
+              f"{sum(r['trials'] for r in runs) / len(runs):>12.0f} "
+              f"{sum(secs) / len(secs):>8.2f} {secs[len(secs) // 2]:>9.2f}  "
+              + ("; ".join(f"{p}: {s}" for p, s in failed.items()) or "—"))
+    return rows
+
+
 # ----------------------------------------------------------------------------- report
 
 def main(argv: list[str] | None = None) -> int:
@@ -232,7 +300,13 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--quick", action="store_true", help="smaller budgets")
     parser.add_argument("--no-peer", action="store_true", help="skip the pylinkage run")
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--polish", type=int, metavar="SEEDS", default=None,
+                        help="the suite with and without the minimax polish, SEEDS seeds")
+    parser.add_argument("--jobs", type=int, default=1, help="processes for --polish")
     args = parser.parse_args(argv)
+    if args.polish is not None:
+        part_polish(args.polish, args.jobs)
+        return 0
 
     budget = 8 if args.quick else 10
     print(f"1. Control points against the true continuous deviation "

@@ -147,7 +147,8 @@ def zone_residuals(output: FloatArray, lower: FloatArray, upper: FloatArray,
     output = np.asarray(output)
     below = np.minimum(output - np.asarray(lower), 0.0)
     above = np.maximum(output - np.asarray(upper), 0.0)
-    return np.asarray(weights) * (below + above)
+    out: FloatArray = np.asarray(weights) * (below + above)
+    return out
 
 
 def timed_path_deviations(points: ComplexArray, targets: ComplexArray,
@@ -282,7 +283,8 @@ def criterion_q(deviations: FloatArray) -> FloatArray:
     ndarray, shape (D,)
         NaN for a design whose deviations are not all defined.
     """
-    return np.max(np.abs(np.asarray(deviations)), axis=-1)
+    out: FloatArray = np.max(np.abs(np.asarray(deviations)), axis=-1)
+    return out
 
 
 def criterion_rms(deviations: FloatArray, weights: FloatArray) -> FloatArray:
@@ -301,7 +303,8 @@ def criterion_rms(deviations: FloatArray, weights: FloatArray) -> FloatArray:
     """
     weights = np.asarray(weights, dtype=float)
     delta = np.asarray(deviations) / weights
-    return np.sqrt(np.sum(weights * delta ** 2, axis=-1) / np.sum(weights))
+    out: FloatArray = np.sqrt(np.sum(weights * delta ** 2, axis=-1) / np.sum(weights))
+    return out
 
 
 # -------------------------------------------------------------------------------- P1 (§5.4)
@@ -337,7 +340,8 @@ def existence_penalty(first_failed: npt.NDArray[np.int_], violation: FloatArray,
     v = np.maximum(np.nan_to_num(np.asarray(violation, dtype=float), nan=1.0,
                                  posinf=1e300), 0.0)
     pi = np.where(first_failed > 0, (n_groups - first_failed) + v / (1.0 + v), 0.0)
-    return np.sum(pi, axis=-1)
+    out: FloatArray = np.sum(pi, axis=-1)
+    return out
 
 
 # -------------------------------------------------------------------------------- P2 (§5.5)
@@ -359,8 +363,9 @@ def bounds_penalty(x: FloatArray, lower: FloatArray, upper: FloatArray) -> Float
     lower = np.asarray(lower, dtype=float)
     upper = np.asarray(upper, dtype=float)
     x = np.asarray(x, dtype=float)
-    out = np.maximum(lower - x, 0.0) + np.maximum(x - upper, 0.0)
-    return np.sum(out / (upper - lower), axis=-1)
+    outside = np.maximum(lower - x, 0.0) + np.maximum(x - upper, 0.0)
+    out: FloatArray = np.sum(outside / (upper - lower), axis=-1)
+    return out
 
 
 def pressure_penalty(alpha_max: FloatArray, allowed: FloatArray) -> FloatArray:
@@ -380,7 +385,8 @@ def pressure_penalty(alpha_max: FloatArray, allowed: FloatArray) -> FloatArray:
     allowed = np.asarray(allowed, dtype=float)
     if allowed.size == 0:
         return np.zeros(np.shape(alpha_max)[0])
-    return np.sum(np.maximum(np.asarray(alpha_max) - allowed, 0.0) / allowed, axis=-1)
+    out: FloatArray = np.sum(np.maximum(np.asarray(alpha_max) - allowed, 0.0) / allowed, axis=-1)
+    return out
 
 
 def rotation_penalty(rotation: FloatArray, allowed: FloatArray) -> FloatArray:
@@ -427,7 +433,8 @@ def margin_penalty(margins: FloatArray) -> FloatArray:
     >>> margin_penalty(np.array([[-0.5, 0.25], [-0.1, -0.2]])).tolist()
     [0.25, 0.0]
     """
-    return np.sum(np.maximum(np.asarray(margins, dtype=float), 0.0), axis=-1)
+    out: FloatArray = np.sum(np.maximum(np.asarray(margins, dtype=float), 0.0), axis=-1)
+    return out
 
 
 def workspace_penalty(excess: FloatArray, scale: FloatArray) -> FloatArray:
@@ -449,7 +456,8 @@ def workspace_penalty(excess: FloatArray, scale: FloatArray) -> FloatArray:
     scale = np.asarray(scale, dtype=float)
     if scale.size == 0:
         return np.zeros(np.shape(excess)[0])
-    return np.sum(np.asarray(excess) / scale, axis=-1)
+    out: FloatArray = np.sum(np.asarray(excess) / scale, axis=-1)
+    return out
 
 
 def desirable_penalty(bounds: FloatArray, pressure: FloatArray, rotation: FloatArray,
@@ -515,6 +523,36 @@ class Criteria:
     def take(self, index: Sequence[int] | npt.NDArray[np.intp]) -> Criteria:
         """The criteria of a subset of the designs."""
         return Criteria(*(array[index] for array in self.arrays()))
+
+    @property
+    def feasible(self) -> npt.NDArray[np.bool_]:
+        """Which designs meet every obligatory and desirable condition (P1 = P2 = 0).
+
+        The one definition of a feasible design: the search, the result and the reports
+        all read it here.
+        """
+        feasible: npt.NDArray[np.bool_] = (self.p1 == 0) & (self.p2 == 0)
+        return feasible
+
+    def favourable(self, q_required: float | None) -> npt.NDArray[np.bool_]:
+        """Which designs are favourable: feasible and Q ≤ [Q] (none without a [Q]).
+
+        Parameters
+        ----------
+        q_required : float or None
+            [Q] in the internal unit of Q (radians for an angle ψ).
+
+        Examples
+        --------
+        >>> c = Criteria(np.zeros(3), np.array([0.0, 0.0, 1.0]), np.array([0.1, 2.0, 0.1]),
+        ...              np.zeros((3, 1)), np.zeros((3, 1)))
+        >>> c.feasible.tolist(), c.favourable(0.5).tolist(), c.favourable(None).tolist()
+        ([True, True, False], [True, False, False], [False, False, False])
+        """
+        if q_required is None:
+            return np.zeros(len(self), dtype=bool)
+        with np.errstate(invalid="ignore"):
+            return self.feasible & (self.q <= q_required)
 
 
 def merit(criteria: Criteria, *, objective: Objective = "lexicographic",

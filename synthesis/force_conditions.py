@@ -173,8 +173,8 @@ class ForceConditions:
 
         Examples
         --------
-        >>> from synthesis.problem_table import read_problem
-        >>> problem = read_problem("input_tables/problems/class1_fourbar_inertia_limit.yaml")
+        >>> from synthesis import load_problem
+        >>> problem = load_problem("input_tables/problems/class1_fourbar_inertia_limit.yaml")
         >>> model = problem.model
         >>> motion = analyse(model, np.zeros(1), analogs=True)
         >>> data = problem.forces.data_of(motion)
@@ -205,8 +205,8 @@ def read_force_conditions(top: Node, model: KinematicModel | None) -> ForceCondi
 
     Examples
     --------
-    >>> from synthesis.problem_table import read_problem
-    >>> problem = read_problem("input_tables/problems/class1_fourbar_torque_limit.yaml")
+    >>> from synthesis import load_problem
+    >>> problem = load_problem("input_tables/problems/class1_fourbar_torque_limit.yaml")
     >>> problem.forces.driving_torque, problem.forces.omega
     (8.0, 10.0)
     """
@@ -495,4 +495,5 @@ def excess(values: FloatArray, limit: float) -> FloatArray:
     values = np.asarray(values, dtype=float)
     solved = np.isfinite(values)
     peak = np.max(np.where(solved, np.abs(values), 0.0), axis=-1)
-    return np.maximum(0.0, peak - limit) / limit + (~solved.all(axis=-1))
+    penalty: FloatArray = np.maximum(0.0, peak - limit) / limit + (~solved.all(axis=-1))
+    return penalty

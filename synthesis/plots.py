@@ -21,7 +21,7 @@ from assur.plot.drawing import draw_scheme, scheme
 from assur.text import render
 from synthesis.evaluate import Analysis
 from synthesis.problem import Problem
-from synthesis.search import SearchResult
+from synthesis.search_result import SearchResult
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -65,7 +65,7 @@ def plot_output(problem: Problem, analysis: Analysis, *, axes: Axes | None = Non
     >>> from pathlib import Path
     >>> import synthesis
     >>> from synthesis.evaluate import Evaluator
-    >>> from synthesis.problem import load_problem
+    >>> from synthesis.problem_table import load_problem
     >>> tables = Path(synthesis.__file__).parents[1] / "input_tables" / "problems"
     >>> problem = load_problem(tables / "class1_fourbar_rocker.yaml")
     >>> analysis = Evaluator(problem).analyse(problem.initial[None, :])
@@ -136,7 +136,7 @@ def plot_mechanism(problem: Problem, analysis: Analysis, *, axes: Axes | None = 
     >>> from pathlib import Path
     >>> import synthesis
     >>> from synthesis.evaluate import Evaluator
-    >>> from synthesis.problem import load_problem
+    >>> from synthesis.problem_table import load_problem
     >>> tables = Path(synthesis.__file__).parents[1] / "input_tables" / "problems"
     >>> problem = load_problem(tables / "class1_fourbar_rocker.yaml")
     >>> analysis = Evaluator(problem).analyse(problem.initial[None, :])
@@ -182,7 +182,8 @@ def plot_convergence(result: SearchResult, *, axes: Axes | None = None, lang: st
     --------
     >>> import numpy as np
     >>> from synthesis.criteria import Criteria
-    >>> from synthesis.search import SearchSettings, search
+    >>> from synthesis import SearchSettings
+    >>> from synthesis.search import search
     >>> def evaluate(x):
     ...     dev = x - np.array([0.3, 0.7])
     ...     zero = np.zeros(len(x))
@@ -241,10 +242,11 @@ def save_plots(folder: str | os.PathLike[str], problem: Problem, result: SearchR
     >>> from pathlib import Path
     >>> import synthesis
     >>> from synthesis.evaluate import Evaluator
-    >>> from synthesis.problem import load_problem
+    >>> from synthesis.problem_table import load_problem
     >>> tables = Path(synthesis.__file__).parents[1] / "input_tables" / "problems"
     >>> problem = load_problem(tables / "class1_fourbar_rocker.yaml")
-    >>> from synthesis.search import search, settings_for
+    >>> from synthesis.search import search
+    >>> from synthesis.search_settings import settings_for
     >>> evaluator = Evaluator(problem)
     >>> result = search(evaluator, problem.lower, problem.upper, problem.initial,
     ...                 settings_for(problem, budget_log2=4, refine=False))

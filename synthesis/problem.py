@@ -45,9 +45,10 @@ complete example of each task class):
     ``refine``, ``shrink_passes``, ``stall``, ``time_limit``, ``refine_evaluations``
     (evaluations per refinement start; an ill-conditioned task may need more than 200).
 
-:func:`load_problem` reads and checks everything (:mod:`synthesis.problem_table`, the one
-reader) and raises one :class:`~assur.errors.TableError` listing every problem (file, table,
-row, field).  This module holds what it returns: typed, frozen objects.  Reading builds the
+:func:`synthesis.problem_table.load_problem` (``synthesis.load_problem``) reads and checks
+everything, the one reader, and raises one :class:`~assur.errors.TableError` listing every
+problem (file, table, row, field).  This module holds what it returns: typed, frozen
+objects.  Reading builds the
 kinematic model of the initial design but runs no kinematic analysis; the one check that
 needs an analysis (that a group with an allowable pressure angle has one) is made when the
 problem is evaluated (:class:`~synthesis.evaluate.Evaluator`).
@@ -57,7 +58,6 @@ from __future__ import annotations
 
 import copy
 import math
-import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -70,9 +70,8 @@ from assur.io.reader import normalise_id
 from assur.model import DEFAULT_PRESSURE_ANGLE, LinkId, PairId
 from assur.typing import FloatArray
 from synthesis.criteria import Objective
-
-if TYPE_CHECKING:  # the search (scipy) is imported only when settings are made
-    from synthesis.search import SearchSettings
+from synthesis.problem_chain import design_table, is_chain_form, table_number
+from synthesis.search_settings import SearchSettings
 
 if TYPE_CHECKING:  # pragma: no cover
     from synthesis.force_conditions import ForceConditions
@@ -85,9 +84,7 @@ __all__ = [
     "Output",
     "Parameter",
     "Problem",
-    "load_problem",
     "output_slider",
-    "problem_from_dict",
     "row_key",
 ]
 
@@ -257,6 +254,11 @@ class Problem:
         return math.degrees(1.0) if self.output_unit == "deg" else 1.0
 
     @property
+    def q_required(self) -> float | None:
+        """[Q] in the internal unit of Q (radians for ψ), None when the problem gives none."""
+        return None if self.accuracy is None else self.accuracy / self.output_scale
+
+    @property
     def names(self) -> tuple[str, ...]:
         """Full names of the varied parameters (the coordinates of x)."""
         return tuple(p.name for p in self.parameters)
@@ -281,13 +283,11 @@ class Problem:
         """The search settings the problem asks for: its ``search`` table, [Q], the objective.
 
         Settings the table does not give keep the defaults of
-        :class:`~synthesis.search.SearchSettings` (a budget of 2**12 trials, seed 0, …).
+        :class:`~synthesis.search_settings.SearchSettings` (a budget of 2**10 trials per
+        round, seed 0, …).
         """
-        from synthesis.search import SearchSettings
-
         given = {SEARCH_FIELDS[key]: value for key, value in self.search.items()}
-        q_required = None if self.accuracy is None else self.accuracy / self.output_scale
-        return SearchSettings(**given, q_required=q_required, objective=self.objective,
+        return SearchSettings(**given, q_required=self.q_required, objective=self.objective,
                               p2_weight=self.p2_weight)
 
     def design(self, x: npt.ArrayLike) -> dict[str, float]:
@@ -301,14 +301,12 @@ class Problem:
         gets the design's pose at the reference position as its sketch
         (:func:`synthesis.problem_chain.design_table`).  ``assur analyze`` reads it back.
         """
-        from synthesis.problem_chain import design_table, is_chain_form
-
         if is_chain_form(self.mechanism):
             return design_table(self, x)
         table = copy.deepcopy(dict(self.mechanism))
         rows = {row_key(row): row for row in table.get("structure_identification", [])}
         for p, value in zip(self.parameters, np.asarray(x, dtype=float)):
-            rows[p.links]["params"][p.column] = _clean(float(value))
+            rows[p.links]["params"][p.column] = table_number(float(value))
         return table
 
 
@@ -330,51 +328,3 @@ def row_key(row: Mapping[str, Any]) -> GroupKey:
     if row.get("L") == 0 or row.get("j") is None:
         return (normalise_id(row.get("i")),)
     return (normalise_id(row.get("i")), normalise_id(row.get("j")))
-
-
-def _clean(value: float) -> float | int:
-    """A float written back to a table: whole numbers as int, others to 12 digits."""
-    rounded = float(f"{value:.12g}")
-    return int(rounded) if rounded.is_integer() and abs(rounded) < 1e15 else rounded
-
-
-def load_problem(path: str | os.PathLike[str]) -> Problem:
-    """Read and check a problem file.
-
-    Parameters
-    ----------
-    path : path-like
-        The YAML problem table.
-
-    Returns
-    -------
-    Problem
-
-    Raises
-    ------
-    TableError
-        Listing every problem of the file (and of the identification rows it gives inline);
-        an identification table in another file reports its own problems under its own name.
-    StructureError
-        When the mechanism is not one the kinematics solves (e.g. a group of class III).
-
-    Examples
-    --------
-    >>> problem = load_problem("input_tables/problems/class3_fourbar_path.yaml")
-    >>> problem.task_class, problem.names[:2]
-    (3, ('L0(1).l_1', 'L1(2,3).l_i'))
-    """
-    from synthesis.problem_table import read_problem
-
-    return read_problem(path)
-
-
-def problem_from_dict(data: Any, source: str = "<data>", base: str | os.PathLike[str] = ".",
-                      ) -> Problem:
-    """Build a problem from already parsed data (see :func:`load_problem`).
-
-    ``base`` is the folder against which a ``mechanism:`` file name is resolved.
-    """
-    from synthesis.problem_table import read_problem_data
-
-    return read_problem_data(data, source, base)

@@ -11,7 +11,7 @@ that ``assur analyze`` of the result solves exactly the design found).
 
 Examples
 --------
->>> from synthesis.problem import load_problem
+>>> from synthesis import load_problem
 >>> problem = load_problem("input_tables/problems/class2_six_bar_triad.yaml")
 >>> problem.names
 ('III(2,3,4,5).x_D', 'III(2,3,4,5).y_D', 'III(2,3,4,5).x_E', 'III(2,3,4,5).y_E')
@@ -35,12 +35,23 @@ from assur.io.reader import normalise_id
 from assur.kinematics.analysis import analyse
 from assur.kinematics.model import GroupModel, KinematicModel
 from assur.model import LinkId
-from synthesis.problem import _clean
 
 if TYPE_CHECKING:  # pragma: no cover
     from synthesis.problem import Problem
 
-__all__ = ["design_table", "group_key", "is_chain_form"]
+__all__ = ["design_table", "group_key", "is_chain_form", "table_number"]
+
+
+def table_number(value: float) -> float | int:
+    """A float written back to a table: whole numbers as int, others to 12 digits.
+
+    Examples
+    --------
+    >>> table_number(40.0), table_number(0.1 + 0.2)
+    (40, 0.3)
+    """
+    rounded = float(f"{value:.12g}")
+    return int(rounded) if rounded.is_integer() and abs(rounded) < 1e15 else rounded
 
 
 def is_chain_form(mechanism: Mapping[str, Any]) -> bool:
@@ -99,15 +110,15 @@ def design_table(problem: Problem, x: npt.ArrayLike) -> dict[str, Any]:
             point = _value(slider.base)
             angle = _value(slider.angle)
             if cmath.isfinite(angle):
-                entry["direction"] = _clean(math.degrees(angle.real))
+                entry["direction"] = table_number(math.degrees(angle.real))
         if not cmath.isfinite(point) and drawn is not None:
             point = drawn
         if cmath.isfinite(point):
-            entry["point"] = [_clean(point.real), _clean(point.imag)]
+            entry["point"] = [table_number(point.real), table_number(point.imag)]
     for name, entry in (geometry.get("tracing") or {}).items():
         point = _value(motion.tracing.get(name))
         if isinstance(entry, dict) and cmath.isfinite(point):
-            entry["point"] = [_clean(point.real), _clean(point.imag)]
+            entry["point"] = [table_number(point.real), table_number(point.imag)]
     return table
 
 

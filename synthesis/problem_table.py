@@ -1,5 +1,8 @@
 """The one reader of synthesis problem tables: YAML → :class:`~synthesis.problem.Problem`.
 
+:func:`load_problem` (also ``synthesis.load_problem``) reads a file, :func:`problem_from_dict`
+already parsed data.
+
 Every table of a problem file (``docs/synthesis.md``) is read and checked here, once, and
 every problem found is collected into one :class:`~assur.errors.TableError`.  The
 varied-parameter cells ``[initial, lower, upper]`` are parsed here: the bounds belong to the
@@ -16,8 +19,7 @@ given an allowable pressure angle has one — is made when the problem is evalua
 
 Examples
 --------
->>> from synthesis.problem_table import read_problem
->>> problem = read_problem("input_tables/problems/class1_fourbar_rocker.yaml")
+>>> problem = load_problem("input_tables/problems/class1_fourbar_rocker.yaml")
 >>> problem.task_class, len(problem.parameters), problem.search["budget"]
 (1, 3, 10)
 """
@@ -65,9 +67,9 @@ from synthesis.problem import (
     row_key,
 )
 from synthesis.problem_chain import group_key, is_chain_form
-from synthesis.search import setting_problem
+from synthesis.search_settings import setting_problem
 
-__all__ = ["read_problem", "read_problem_data"]
+__all__ = ["load_problem", "problem_from_dict"]
 
 _TOP = ("schema_version", "name", "general", "mechanism", "structure_identification",
         "frame", "geometry", "group_models", "output", "parameters", "allowable",
@@ -88,18 +90,51 @@ Bounds = dict[tuple[GroupKey, str], tuple[float, float, float]]
 #: Where the kinematic model puts a problem of a cell of a group's parameters.
 _PARAMS_AT = re.compile(r"structure_identification \(L\d+\((?P<links>[^)]*)\)\) 'params' "
                         r"'(?P<column>[^']+)'")
+#: Codes of the kinematic model's problems of a parameter cell that holds a number where its
+#: group wants ``'A'``, and ``'A'`` where it wants a number (:func:`_tell_swapped_cells`).
+_WANTS_A = frozenset({"model.moving_hinge_supplied"})
+_WANTS_NUMBER = frozenset({"model.frame_hinge_needs_number", "model.frame_guide_needs_number",
+                           "model.supplied_here"})
 #: Most positions of the analysis grid over a crank turn.
 MAX_GRID = 20_000
 
 
-def read_problem(path: str | os.PathLike[str]) -> Problem:
-    """The reader behind :func:`synthesis.problem.load_problem` (which see)."""
+def load_problem(path: str | os.PathLike[str]) -> Problem:
+    """Read and check a problem file.
+
+    Parameters
+    ----------
+    path : path-like
+        The YAML problem table.
+
+    Returns
+    -------
+    Problem
+
+    Raises
+    ------
+    TableError
+        Listing every problem of the file (and of the identification rows it gives inline);
+        an identification table in another file reports its own problems under its own name.
+    StructureError
+        When the mechanism is not one the kinematics solves (e.g. a group of class III).
+
+    Examples
+    --------
+    >>> problem = load_problem("input_tables/problems/class3_fourbar_path.yaml")
+    >>> problem.task_class, problem.names[:2]
+    (3, ('L0(1).l_1', 'L1(2,3).l_i'))
+    """
     return _read(TableReader.from_path(path, kind="problem"), Path(path).parent)
 
 
-def read_problem_data(data: Any, source: str = "<data>",
+def problem_from_dict(data: Any, source: str = "<data>",
                       base: str | os.PathLike[str] = ".") -> Problem:
-    """Read already parsed data (:func:`synthesis.problem.problem_from_dict`)."""
+    """Build a problem from already parsed data (see :func:`load_problem`).
+
+    ``source`` names the data in messages; ``base`` is the folder against which a
+    ``mechanism:`` file name is resolved.
+    """
     return _read(TableReader.from_data(data, source), Path(base))
 
 
@@ -252,37 +287,33 @@ def _identification_form(top: Node, mechanism: _Mechanism, general: _General) ->
     model, foreign = _build_model(reader, table, mechanism.source) if structure_ok \
         else (None, None)
     if model is None and structure_ok:
-        _tell_swapped_cells(reader, table, mechanism.source, start, places)
+        _tell_swapped_cells(reader, start, places)
     return _Form(groups, model, foreign, bounds, table)
 
 
-def _tell_swapped_cells(reader: TableReader, table: dict[str, Any], source: str, start: int,
+def _tell_swapped_cells(reader: TableReader, start: int,
                         places: dict[tuple[GroupKey, str], str]) -> None:
-    """Two cells of one group that the kinematic model finds wrong, and right once swapped
-    (a number where the group's rule wants ``'A'`` and ``'A'`` where it wants a number):
-    told once, as swapped, at the row they were read from.  ``start`` is the first problem
-    of the model."""
-    wrong: dict[str, list[tuple[int, str]]] = {}
-    told: list[int] = []
+    """Two cells of one group that the kinematic model finds wrong the opposite ways — a
+    number where the group's rule wants ``'A'`` (a hinge on a moving link, supplied by its
+    group) and ``'A'`` where it wants a number — are right once swapped: told once, as
+    swapped, at the row they were read from.  The model's problems say what each cell
+    wants (their codes); ``start`` is the first of them."""
+    wrong: dict[str, list[tuple[int, str, str]]] = {}
     for n, issue in enumerate(reader.issues[start:], start):
         match = _PARAMS_AT.fullmatch(issue.location)
         if match:
-            wrong.setdefault(match["links"], []).append((n, match["column"]))
+            wrong.setdefault(match["links"], []).append((n, match["column"],
+                                                         issue.message.code))
+    told: list[int] = []
     for links, cells in wrong.items():
-        if len(cells) != 2:
+        wants = sorted("A" if code in _WANTS_A else "number" if code in _WANTS_NUMBER
+                       else "other" for _, _, code in cells)
+        if wants != ["A", "number"]:
             continue
-        (n_a, a), (n_b, b) = cells
+        (n_a, a, _), (n_b, b, _) = cells
         key = tuple(normalise_id(link) for link in links.split(","))
         where = places.get((key, a))
-        if where is None or places.get((key, b)) != where:
-            continue  # (not two cells of one row)
-        rows = [{**row, "params": {**row["params"], a: row["params"][b], b: row["params"][a]}}
-                if _has_links(row) and row_key(row) == key else row
-                for row in table["structure_identification"]]
-        trial = TableReader.from_data(None, source)
-        _build_model(trial, {**table, "structure_identification": rows}, source)
-        locations = {reader.issues[n_a].location, reader.issues[n_b].location}
-        if not any(issue.location in locations for issue in trial.issues):
+        if where is not None and places.get((key, b)) == where:  # (two cells of one row)
             reader.issues[n_a] = Issue(where, Message("table.swapped", {"a": a, "b": b}))
             told.append(n_b)
     for n in sorted(told, reverse=True):
@@ -844,7 +875,8 @@ def _check_output(reader: TableReader, model: KinematicModel, output: Output,
 
 def _read_search(top: Node) -> dict[str, Any]:
     """The ``search`` table, each value checked by the rule of its setting
-    (:func:`synthesis.search.setting_problem`, the same rule as on the command line)."""
+    (:func:`synthesis.search_settings.setting_problem`, the same rule as on the command
+    line)."""
     node = top.child("search", allowed=SEARCH_FIELDS, required=False)
     if node is None:
         return {}

@@ -20,14 +20,14 @@ from typing import Any
 
 import numpy as np
 import numpy.typing as npt
-import yaml  # type: ignore[import-untyped]
+import yaml
 
 from assur.io.files import atomic_write_text
 from assur.text import render
 from synthesis.criteria import criterion_rms
 from synthesis.evaluate import Analysis
 from synthesis.problem import Problem
-from synthesis.search import SearchResult, distinct_optima
+from synthesis.search_result import SearchResult, distinct_optima
 
 __all__ = ["allowable_rows", "summary", "text_report", "write_result", "write_trials"]
 
@@ -93,9 +93,8 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
         "P1": float(c.p1[0]),
         "P2": _num(c.p2[0]),
         "accuracy": problem.accuracy,
-        "feasible": bool(c.p1[0] == 0 and c.p2[0] == 0),
-        "favourable": bool(c.p1[0] == 0 and c.p2[0] == 0 and problem.accuracy is not None
-                           and c.q[0] * scale <= problem.accuracy),
+        "feasible": bool(c.feasible[0]),
+        "favourable": bool(c.favourable(problem.q_required)[0]),
         "control_points": points,
         "pressure_angles": {k: {"max_deg": math.degrees(float(v[0, 0])),
                                 "allowed_deg": math.degrees(problem.pressure_angles[k])}
@@ -112,9 +111,8 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
         "binding": _binding(problem, result, analysis),
         "search": {
             "trials": int(result.trials.shape[0]),
-            "feasible_trials": int(np.sum((result.trial_criteria.p1 == 0)
-                                          & (result.trial_criteria.p2 == 0))),
-            "stop": result.stop, "message": result.message,
+            "feasible_trials": int(np.sum(result.trial_criteria.feasible)),
+            "stop": result.stop, "stopped_in": result.stopped_in, "message": result.message,
             "seconds": result.elapsed, "seed": result.seed,
             "budget_log2": result.settings.budget_log2, "refine": result.settings.refine,
             "restarts": result.settings.restarts,
@@ -195,7 +193,7 @@ def _feasible_order(result: SearchResult) -> npt.NDArray[np.intp]:
     first."""
     c = result.trial_criteria
     passive = np.array([stage != "refine" for stage in result.stage])
-    ok = np.flatnonzero((c.p1 == 0) & (c.p2 == 0) & np.isfinite(c.q) & passive)
+    ok = np.flatnonzero(c.feasible & np.isfinite(c.q) & passive)
     return ok[np.argsort(c.q[ok], kind="stable")]
 
 
@@ -221,7 +219,9 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
         lo, hi = data["bounds"][name]
         lines.append(f"  {name:<22} {data['initial'][name]:>12.6g} {lo:>12.6g} {hi:>12.6g} "
                      f"{value:>14.9g}")
-    yes_no = lambda flag: w("yes") if flag else w("no")
+    def yes_no(flag: bool) -> str:
+        return w("yes") if flag else w("no")
+
     unit = "" if data["unit"] == "1" else w(data["unit"])  # the ratio n has no unit
     lines += ["", w("criteria"),
               f"  {w('q'):<40} {_fmt(data['Q'])} {unit}",
@@ -282,7 +282,8 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
     s = data["search"]
     lines += ["", w("search"),
               f"  {w('trials')}: {s['trials']}   {w('feasible_trials')}: {s['feasible_trials']}",
-              (f"  {w('stop')}: {w(s['stop'] + '_stop')}   "
+              (f"  {w('stop')}: {w(s['stop'] + '_stop')} "
+               f"({w('stopped_in', stage=w('stage_' + s['stopped_in']))})   "
                f"{w('time')}: {s['seconds']:.2f} {w('seconds')}   "
                f"seed {'—' if s['seed'] is None else s['seed']}, 2^{s['budget_log2']} LPτ"),
               f"  {w('history')}:"]

@@ -32,37 +32,37 @@ reached.
 
 Stop rules: (a) a favourable mechanism (P1 = P2 = 0 and Q ≤ [Q]); (b) no improvement of
 the round's best in its last ``stall`` trials ends the round (the search when it is the
-last); (c) the trial budget or the time limit is used up.
+last); (c) the trial budget or the time limit is used up.  Every step returns how it ended
+(a stop reason, or None when it ran to its end); a stop rule that fires inside a local
+optimiser freezes its functions at a rejected value, without evaluating another design,
+so that the optimiser ends within a few cheap steps.
 Ctrl-C stops the search cleanly; the best design found so far is returned.
+
+The options are :class:`~synthesis.search_settings.SearchSettings`, the outcome a
+:class:`~synthesis.search_result.SearchResult`; this module is the engine.
 """
 
 from __future__ import annotations
 
 import itertools
-import math
 import sys
 import time
 from collections.abc import Callable, Iterable, Iterator
 from contextvars import ContextVar
-from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import Protocol
 
 import numpy as np
 import numpy.typing as npt
 from scipy import optimize
 from scipy.stats import qmc
 
-from assur import AssurError
 from assur.text import Message
 from assur.typing import FloatArray
-from synthesis.criteria import Criteria, Objective, margin_penalty, merit
+from synthesis.criteria import Criteria, margin_penalty, merit
+from synthesis.search_result import Improvement, Optimum, SearchResult
+from synthesis.search_settings import SearchSettings, SettingError, whole
 
-if TYPE_CHECKING:
-    from synthesis.problem import Problem
-
-__all__ = ["LISTENER", "STOP_REASONS", "Executor", "Improvement", "Optimum", "SearchResult",
-           "SearchSettings", "SettingError", "distinct_optima", "search", "setting_problem",
-           "settings_for"]
+__all__ = ["LISTENER", "Executor", "search"]
 
 Evaluator = Callable[[FloatArray], Criteria]
 #: A source of randomness in the sense of SPEC 7: a seed, a Generator, or None (the settings' seed).
@@ -90,16 +90,6 @@ class Executor(Protocol):
         ...
 
 
-#: Stop reason → catalogue code of its sentence.
-STOP_REASONS = {reason: f"search.stop.{reason}"
-                for reason in ("favourable", "stall", "budget", "time", "interrupted")}
-
-#: Largest budget: 2**24 LPτ trials.
-MAX_BUDGET = 24
-#: Largest number of shrinking passes.
-MAX_SHRINK_PASSES = 10
-#: Largest number of restarts.
-MAX_RESTARTS = 64
 #: The minimax polish stops when Q gains less than this fraction of [Q] (of Q at its start
 #: when the problem gives no [Q]) ...
 POLISH_GAIN = 1e-3
@@ -108,327 +98,6 @@ POLISH_GAIN_RELATIVE = 1e-6
 POLISH_PATIENCE = 3
 #: Relative clearance inside the limit at which the polish holds a desirable condition.
 _CLEARANCE = 1e-7
-
-
-def _whole(value: Any) -> bool:
-    return isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))
-
-
-def _real(value: Any) -> bool:
-    return (isinstance(value, (int, float, np.integer, np.floating))
-            and not isinstance(value, (bool, np.bool_)) and math.isfinite(value))
-
-
-def _optional(test: Callable[[Any], bool]) -> Callable[[Any], bool]:
-    return lambda value: value is None or test(value)
-
-
-#: The rule of every setting: field of :class:`SearchSettings` → (catalogue code, test).
-#: The same rules check the command-line options and the ``search:`` table of a problem.
-_RULES: dict[str, tuple[str, Callable[[Any], bool]]] = {
-    "budget_log2": ("search.budget", lambda v: _whole(v) and 0 <= v <= MAX_BUDGET),
-    "seed": ("search.seed", lambda v: _whole(v) and v >= 0),
-    "batch": ("search.batch", lambda v: _whole(v) and v >= 1 and (v & (v - 1)) == 0),
-    "stall": ("search.stall", _optional(lambda v: _whole(v) and v >= 1)),
-    "time_limit": ("search.time_limit", _optional(lambda v: _real(v) and v > 0)),
-    "q_required": ("search.accuracy", _optional(lambda v: _real(v) and v > 0)),
-    "objective": ("search.objective", lambda v: v in ("lexicographic", "weighted")),
-    "p2_weight": ("search.p2_weight", lambda v: _real(v) and v > 0),
-    "shrink_passes": ("search.shrink_passes",
-                      lambda v: _whole(v) and 0 <= v <= MAX_SHRINK_PASSES),
-    "shrink": ("search.shrink", lambda v: _real(v) and 0 < v < 1),
-    "refine": ("search.refine", lambda v: isinstance(v, (bool, np.bool_))),
-    "refine_starts": ("search.refine_starts", lambda v: _whole(v) and v >= 1),
-    "restarts": ("search.restarts", lambda v: _whole(v) and 0 <= v <= MAX_RESTARTS),
-    "refine_evaluations": ("search.refine_evaluations", lambda v: _whole(v) and v >= 1),
-    "progress": ("search.progress", lambda v: isinstance(v, (bool, np.bool_))),
-}
-
-
-def setting_problem(name: str, value: Any) -> Message | None:
-    """The broken rule of one search setting, or None when the value is allowed.
-
-    Parameters
-    ----------
-    name : str
-        A field of :class:`SearchSettings` (``'budget_log2'``, ``'batch'``, ``'shrink'``, …).
-    value : object
-        The value to check.
-
-    Returns
-    -------
-    Message or None
-        The catalogue message stating the rule and the value found.
-
-    Examples
-    --------
-    >>> setting_problem("budget_log2", -3).text("en")
-    'budget (log2 of the LPτ trials) must be a whole number from 0 to 24; got -3'
-    >>> setting_problem("shrink", 0.25) is None
-    True
-    """
-    code, test = _RULES[name]
-    if test(value):
-        return None
-    return Message(code, {"found": value})
-
-
-class SettingError(AssurError, ValueError):
-    """A search setting breaks its rule (the message states the rule and the value).
-
-    The command line reports it like a table problem, with exit code 2.
-    """
-
-    def __init__(self, message: Message) -> None:
-        self.message = message
-        super().__init__(message.text("en"))
-
-    def text(self, lang: str = "en") -> str:
-        """The sentence in ``lang``."""
-        return self.message.text(lang)
-
-
-@dataclass(frozen=True)
-class SearchSettings:
-    """Options of the search, checked when they are made.
-
-    Parameters
-    ----------
-    budget_log2 : int
-        The passive pass draws up to 2**budget_log2 LPτ trials (0 to 24).
-    seed : int
-        Seed of the scrambled Sobol' sequence (a whole number ≥ 0; same seed, same trials,
-        same result).
-    batch : int
-        Designs evaluated per call of the evaluator (a power of two, which keeps every
-        partial draw of the sequence balanced).
-    stall : int or None
-        End a round (the first pass or a restart) after this many trials without
-        improvement of its best (None: never); the search stops when the last round ends.
-    time_limit : float or None
-        Wall-time limit in seconds for the whole search (positive; None: none).
-    q_required : float or None
-        The required accuracy [Q] (positive); a feasible design with Q ≤ [Q] stops the search.
-    objective : {'lexicographic', 'weighted'}
-        How P1, P2 and Q are combined (see :func:`synthesis.criteria.merit`).
-    p2_weight : float
-        λ of the weighted objective (positive).
-    shrink_passes : int
-        Number of passive passes in boxes shrunk around the best design (0 to 10).
-    shrink : float
-        Half-width factor of each shrunk box relative to the previous one, in (0, 1).
-    refine : bool
-        Whether to refine locally from the best trials.
-    refine_starts : int
-        Number of distinct best trials the refinement starts from (≥ 1).
-    refine_evaluations : int
-        Limit of residual evaluations per refinement start (≥ 1).
-    restarts : int
-        Rounds after the first one (0 to 64), each made only while no favourable design is
-        found: a passive pass of a fresh LPτ sequence over the whole box and its own
-        shrinking passes.  The refinement runs after the first round and again after the
-        last one, from the best designs of the rounds.
-    progress : bool
-        Print progress lines on standard error.
-
-    Raises
-    ------
-    SettingError
-        For the first setting that breaks its rule; the message states the rule.
-
-    Examples
-    --------
-    >>> SearchSettings(budget_log2=8, shrink=0.5).shrink
-    0.5
-    >>> SearchSettings(batch=0)
-    Traceback (most recent call last):
-    ...
-    synthesis.search.SettingError: batch must be a power of two (1, 2, 4, …: designs per \
-evaluation); got 0
-    """
-
-    budget_log2: int = 10
-    seed: int = 0
-    batch: int = 256
-    stall: int | None = None
-    time_limit: float | None = None
-    q_required: float | None = None
-    objective: Objective = "lexicographic"
-    p2_weight: float = 1.0
-    shrink_passes: int = 3
-    shrink: float = 0.25
-    refine: bool = True
-    refine_starts: int = 3
-    refine_evaluations: int = 200
-    restarts: int = 3
-    progress: bool = False
-
-    def __post_init__(self) -> None:
-        for name in _RULES:
-            problem = setting_problem(name, getattr(self, name))
-            if problem is not None:
-                raise SettingError(problem)
-
-
-@dataclass(frozen=True)
-class Improvement:
-    """One improvement of the best design during the search.
-
-    Attributes
-    ----------
-    trial : int
-        Number of the trial that improved the best (0 = the initial design).
-    seconds : float
-        Wall time since the start of the search.
-    p1, p2, q : float
-        The criteria of the new best design.
-    merit : float
-        Its scalar objective (:func:`synthesis.criteria.merit`).
-    stage : str
-        Where the trial came from: 'initial', 'lptau', 'shrink', 'refine'.
-    """
-
-    trial: int
-    seconds: float
-    p1: float
-    p2: float
-    q: float
-    merit: float
-    stage: str
-
-    def as_dict(self) -> dict[str, float | str]:
-        """Plain data for reports and JSON (the trial number as a float, as the criteria)."""
-        return {"trial": float(self.trial), "seconds": self.seconds, "p1": self.p1,
-                "p2": self.p2, "q": self.q, "merit": self.merit, "stage": self.stage}
-
-
-@dataclass(frozen=True)
-class Optimum:
-    """The best design of one round (the first pass or a restart) or of one refinement start.
-
-    Attributes
-    ----------
-    round : int
-        0 for the first pass, r for the r-th restart.
-    stage : str
-        'round' (the best of the whole round) or 'refine' (the end of one refinement start).
-    x : ndarray, shape (q,)
-        The design.
-    p1, p2, q, merit : float
-        Its criteria and scalar objective.
-    """
-
-    round: int
-    stage: str
-    x: FloatArray
-    p1: float
-    p2: float
-    q: float
-    merit: float
-
-
-def distinct_optima(optima: tuple[Optimum, ...], lower: FloatArray, upper: FloatArray,
-                    *, tolerance: float = 1e-3) -> list[Optimum]:
-    """The optima that differ from each other, best first.
-
-    Two optima are the same when every varied parameter differs by at most ``tolerance``
-    of its range (lower to upper); of such a cluster the better one is kept.
-
-    Parameters
-    ----------
-    optima : tuple of Optimum
-        :attr:`SearchResult.optima`.
-    lower, upper : ndarray, shape (q,)
-        The search box.
-    tolerance : float
-        Relative distance below which two designs count as one.
-
-    Returns
-    -------
-    list of Optimum
-    """
-    span = np.where(upper > lower, upper - lower, 1.0)
-    kept: list[Optimum] = []
-    for item in sorted(optima, key=lambda o: o.merit):
-        if all(np.max(np.abs(item.x - other.x) / span) > tolerance for other in kept):
-            kept.append(item)
-    return kept
-
-
-@dataclass(frozen=True)
-class SearchResult:
-    """What the search found (immutable: its arrays are read-only).
-
-    Attributes
-    ----------
-    x : ndarray, shape (q,)
-        The best design (varied parameters).
-    criteria : Criteria
-        Its criteria (arrays of length 1).
-    trials : ndarray, shape (T, q)
-        Every evaluated design, in order (trial 0 = initial values).
-    trial_criteria : Criteria
-        Their criteria.
-    stage : tuple of str
-        Where each trial came from: 'initial', 'lptau', 'shrink', 'refine'.
-    history : tuple of Improvement
-        One entry per improvement of the best.
-    stop : str
-        Key of :data:`STOP_REASONS`.
-    elapsed : float
-        Wall time of the search, seconds.
-    settings : SearchSettings
-        The settings of the run.
-    seed : int or None
-        The seed of the LPτ scrambling; None when the search drew from a Generator given
-        as ``rng``.
-    optima : tuple of Optimum
-        The best design of every round and the end of every refinement start: the local
-        optima the search met, the evidence a report gives when [Q] was not reached.
-    """
-
-    x: FloatArray
-    criteria: Criteria
-    trials: FloatArray
-    trial_criteria: Criteria
-    stage: tuple[str, ...]
-    history: tuple[Improvement, ...]
-    stop: str
-    elapsed: float
-    settings: SearchSettings
-    seed: int | None
-    optima: tuple[Optimum, ...] = ()
-
-    def __post_init__(self) -> None:
-        for array in (self.x, self.trials, *self.criteria.arrays(),
-                      *self.trial_criteria.arrays()):
-            array.setflags(write=False)
-
-    @property
-    def feasible(self) -> bool:
-        """Whether the best design meets every obligatory and desirable condition."""
-        return bool(self.criteria.p1[0] == 0 and self.criteria.p2[0] == 0)
-
-    @property
-    def message(self) -> str:
-        """The stop reason as a sentence (English; :meth:`stop_message` in any language)."""
-        return self.stop_message().text("en")
-
-    def stop_message(self) -> Message:
-        """The stop reason as a catalogue message."""
-        return Message(STOP_REASONS[self.stop])
-
-
-class _Stop(Exception):
-    """Raised inside the search loop when a stop rule fires."""
-
-    def __init__(self, reason: str) -> None:
-        super().__init__(reason)
-        self.reason = reason
-
-
-class _Stall(Exception):
-    """Raised inside a round when its best has not improved for ``stall`` trials."""
 
 
 class _Search:
@@ -465,6 +134,8 @@ class _Search:
         self.local: tuple[FloatArray, Criteria] | None = None
         self.optima: list[Optimum] = []
         self.refined: list[FloatArray] = []   # the starts of the refinement so far
+        #: The stop rule that fired ('favourable', 'time'), None while none has.
+        self.stop: str | None = None
 
     # ------------------------------------------------------------------ bookkeeping
     def elapsed(self) -> float:
@@ -475,10 +146,10 @@ class _Search:
         q_ref = s.q_required if s.q_required else 1.0
         return merit(criteria, objective=s.objective, q_ref=q_ref, p2_weight=s.p2_weight)
 
-    def record(self, x: FloatArray, stage: str, *, check_stall: bool = True,
+    def record(self, x: FloatArray, stage: str, *,
                criteria: Criteria | None = None) -> Criteria:
         """Evaluate a batch (unless its criteria are given), keep it, update the best, apply
-        the stop rules."""
+        the stop rules that end the search (:attr:`stop`)."""
         if criteria is None:
             criteria = self.evaluate(x)
         self.blocks.append(np.array(x, dtype=float))
@@ -503,27 +174,28 @@ class _Search:
                 float(criteria.q[k]), self.best_merit, stage))
         self.count += len(x)
         self.report()
-        s = self.settings
-        if self.favourable():
-            raise _Stop("favourable")
-        if s.time_limit is not None and self.elapsed() >= s.time_limit:
-            raise _Stop("time")
-        if check_stall and s.stall is not None and self.count - self.last_improvement > s.stall:
-            raise _Stall()
+        time_limit = self.settings.time_limit
+        if self.best_criteria is not None \
+                and self.best_criteria.favourable(self.settings.q_required)[0]:
+            self.stop = "favourable"
+        elif time_limit is not None and self.elapsed() >= time_limit:
+            self.stop = "time"
         return criteria
 
-    def favourable(self) -> bool:
-        c = self.best_criteria
-        q_req = self.settings.q_required
-        return (c is not None and q_req is not None and c.p1[0] == 0 and c.p2[0] == 0
-                and bool(c.q[0] <= q_req))
+    def halt(self) -> str | None:
+        """Why a passive pass ends here: the search's stop rule, 'stall' when the round's
+        best has not improved in its last ``stall`` trials, or None (go on)."""
+        stall = self.settings.stall
+        if self.stop is None and stall is not None and self.count - self.last_improvement > stall:
+            return "stall"
+        return self.stop
 
     def planned(self) -> int:
         """The trials of the initial design and of the passive passes of every round (the
         first and the restarts; a favourable design may end them sooner)."""
         s = self.settings
         per_round = 2 ** s.budget_log2 + s.shrink_passes * 2 ** max(s.budget_log2 - 2, 4)
-        return 1 + (1 + s.restarts) * per_round
+        return int(1 + (1 + s.restarts) * per_round)
 
     def report(self, final: bool = False) -> None:
         listener = LISTENER.get()
@@ -558,11 +230,12 @@ class _Search:
         return self.generator if first else self.generator.spawn(1)[0]
 
     def passive(self, lower: FloatArray, upper: FloatArray, n_total: int, number: int,
-                stage: str) -> None:
-        """One passive pass of ``n_total`` Sobol' points scaled to [lower, upper]."""
+                stage: str) -> str | None:
+        """One passive pass of ``n_total`` Sobol' points scaled to [lower, upper]; returns
+        why it ended early (:meth:`halt`), None when it drew every point."""
         q = lower.size
         if q == 0:
-            return
+            return None
         engine = qmc.Sobol(d=q, scramble=True, rng=self.stream(number))
         batch = max(1, min(self.settings.batch, n_total))
 
@@ -580,8 +253,13 @@ class _Search:
         mine, theirs = itertools.tee(blocks())
         for x, criteria in zip(mine, self.map(self.evaluate, theirs)):
             self.record(x, stage, criteria=criteria)
+            ended = self.halt()
+            if ended is not None:
+                return ended
+        return None
 
-    def shrink_passes(self) -> None:
+    def shrink_passes(self) -> str | None:
+        """The shrinking passes around the round's best; returns why they ended early."""
         s = self.settings
         half = (self.upper - self.lower) / 2.0
         for k in range(s.shrink_passes):
@@ -590,7 +268,10 @@ class _Search:
             assert centre is not None  # trial 0 is always recorded first
             lower = np.maximum(centre - half, self.lower)
             upper = np.minimum(centre + half, self.upper)
-            self.passive(lower, upper, 2 ** max(s.budget_log2 - 2, 4), 1 + k, "shrink")
+            ended = self.passive(lower, upper, 2 ** max(s.budget_log2 - 2, 4), 1 + k, "shrink")
+            if ended is not None:
+                return ended
+        return None
 
     def refine(self) -> None:
         """Bounded least-squares refinement from the best few distinct designs, each followed
@@ -622,27 +303,37 @@ class _Search:
         for x0 in starts:
             self.local_merit, self.local = np.inf, None
             self.refine_from(x0)
-            if self.local is not None:
+            if self.local is not None and s.polish and self.stop is None:
                 self.minimax_from(self.local[0])
+            if self.stop is not None:
+                return
             self.keep_optimum("refine", self.local)
 
     def refine_from(self, x0: FloatArray) -> None:
+        """Bounded least squares of the residuals from x0 (trust-region reflective).
+
+        Once a stop rule fires, the residuals stay at a rejected value and the Jacobian at
+        zero, without evaluating a design: the optimiser ends within a few cheap steps.
+        """
         span = self.upper - self.lower
         lo, hi = self.lower, self.upper
         varied = span > 0
         x0 = np.clip(x0, lo, hi)
-        base = self.record(x0[None, :], "refine", check_stall=False)
-        if base.p1[0] > 0 or not np.all(np.isfinite(base.residuals[0])):
+        base = self.record(x0[None, :], "refine")
+        if self.stop is not None or base.p1[0] > 0 \
+                or not np.all(np.isfinite(base.residuals[0])):
             return
         p2_start = base.p2[0]
-        worst = 10.0 * (np.abs(base.residuals[0]) + 1e-12)
+        worst: FloatArray = 10.0 * (np.abs(base.residuals[0]) + 1e-12)
         cache: dict[bytes, FloatArray] = {}
 
         def residuals(x: FloatArray) -> FloatArray:
             x = np.clip(x, lo, hi)
             key = x.tobytes()
+            if self.stop is not None:
+                return cache.get(key, worst)
             if key not in cache:
-                c = self.record(x[None, :], "refine", check_stall=False)
+                c = self.record(x[None, :], "refine")
                 # a step may not break the chain nor worsen the desirable conditions
                 ok = (c.p1[0] == 0 and c.p2[0] <= p2_start
                       and np.all(np.isfinite(c.residuals[0])))
@@ -650,15 +341,18 @@ class _Search:
             return cache[key]
 
         def jacobian(x: FloatArray) -> FloatArray:
+            if self.stop is not None:
+                return np.zeros((worst.size, x.size))
             x = np.clip(x, lo, hi)
             step = 1e-7 * np.maximum(np.abs(x), span)
             step = np.where(x + step > hi, -step, step)
             step = np.where(varied, step, 1.0)   # a fixed parameter stays put: column 0
             shifted = x[None, :] + np.diag(np.where(varied, step, 0.0))
-            c = self.record(shifted, "refine", check_stall=False)
+            c = self.record(shifted, "refine")
             r0 = residuals(x)
             r = np.where(np.isfinite(c.residuals), c.residuals, r0[None, :])
-            return ((r - r0[None, :]) / step[:, None]).T
+            jac: FloatArray = ((r - r0[None, :]) / step[:, None]).T
+            return jac
 
         optimize.least_squares(residuals, x0, jac=jacobian, bounds=(lo, hi + ~varied * 1e-12),
                                x_scale=np.where(varied, span, 1.0), method="trf",
@@ -678,12 +372,14 @@ class _Search:
         or worsens the rest of P2 is rejected.  Variables are scaled to the unit box; the
         Jacobians come from one batched forward-difference call.  The polish ends when Q
         gains less than :data:`POLISH_GAIN` of [Q] (:data:`POLISH_GAIN_RELATIVE` of Q at x0
-        without [Q]) in :data:`POLISH_PATIENCE` iterations.
+        without [Q]) in :data:`POLISH_PATIENCE` iterations, or when a stop rule fires: from
+        then on its functions stay at a rejected value and their Jacobians at zero, without
+        evaluating a design, and SLSQP ends within a few cheap steps.
         """
         lo, span = self.lower, self.upper - self.lower
-        base = self.record(x0[None, :], "refine", check_stall=False)
+        base = self.record(x0[None, :], "refine")
         q0 = float(base.q[0])
-        if base.p1[0] > 0 or not np.isfinite(q0) or q0 == 0.0:
+        if self.stop is not None or base.p1[0] > 0 or not np.isfinite(q0) or q0 == 0.0:
             return
         held = self.settings.objective == "lexicographic"
         m0 = base.margins[0] if held else np.zeros(0)
@@ -691,6 +387,9 @@ class _Search:
         rest0 = _rest(base, held)
         fallback = (np.full(base.deviations.shape[1], 10.0 * q0), limit + 1.0)
         cache: dict[bytes, tuple[FloatArray, FloatArray]] = {}
+        q_req = self.settings.q_required
+        watch = _Gain(POLISH_GAIN * q_req if q_req else POLISH_GAIN_RELATIVE * q0,
+                      POLISH_PATIENCE)
 
         def design(u: FloatArray) -> FloatArray:
             return lo + np.clip(u, 0.0, 1.0) * span
@@ -706,16 +405,18 @@ class _Search:
 
         def at(u: FloatArray) -> tuple[FloatArray, FloatArray]:
             key = np.clip(u, 0.0, 1.0).tobytes()
+            if watch.settled or self.stop is not None:
+                return cache.get(key, fallback)
             if key not in cache:
-                cache[key] = values(self.record(design(u)[None, :], "refine",
-                                                check_stall=False))[0]
+                cache[key] = values(self.record(design(u)[None, :], "refine"))[0]
             return cache[key]
 
         def jacobians(u: FloatArray) -> tuple[FloatArray, FloatArray]:
+            if watch.settled or self.stop is not None:
+                return np.zeros((fallback[0].size, u.size)), np.zeros((limit.size, u.size))
             u = np.clip(u, 0.0, 1.0)
             step = np.where(u + 1e-7 > 1.0, -1e-7, 1e-7)
-            shifted = values(self.record(design(u[None, :] + np.diag(step)), "refine",
-                                         check_stall=False))
+            shifted = values(self.record(design(u[None, :] + np.diag(step)), "refine"))
             d0, m_at = at(u)
             d = np.array([item[0] for item in shifted])
             m = np.array([item[1] for item in shifted]).reshape(len(step), m_at.size)
@@ -731,23 +432,16 @@ class _Search:
             return np.vstack([np.hstack([-jd, ones]), np.hstack([jd, ones]),
                               np.hstack([-jm, np.zeros((jm.shape[0], 1))])])
 
-        q_req = self.settings.q_required
-        watch = _Gain(POLISH_GAIN * q_req if q_req else POLISH_GAIN_RELATIVE * q0,
-                      POLISH_PATIENCE)
         q = span.size
         objective_grad = np.zeros(q + 1)
         objective_grad[-1] = 1.0
-        try:
-            optimize.minimize(lambda z: z[-1],
-                              np.append((x0 - lo) / np.where(span > 0, span, 1.0), q0),
-                              jac=lambda z: objective_grad, method="SLSQP",
-                              bounds=[(0.0, 1.0)] * q + [(0.0, None)],
-                              constraints=[{"type": "ineq", "fun": constraints,
-                                            "jac": constraints_jac}],
-                              callback=lambda z: watch(float(z[-1])),
-                              options={"maxiter": 60, "ftol": watch.gain})
-        except _Settled:
-            pass
+        optimize.minimize(lambda z: z[-1], np.append((x0 - lo) / np.where(span > 0, span, 1.0), q0),
+                          jac=lambda z: objective_grad, method="SLSQP",
+                          bounds=[(0.0, 1.0)] * q + [(0.0, None)],
+                          constraints=[{"type": "ineq", "fun": constraints,
+                                        "jac": constraints_jac}],
+                          callback=lambda z: watch(float(z[-1])),
+                          options={"maxiter": 60, "ftol": watch.gain})
 
     # -------------------------------------------------------------------------- run
     def keep_optimum(self, stage: str, found: tuple[FloatArray, Criteria] | None) -> None:
@@ -760,18 +454,17 @@ class _Search:
 
     def run_round(self) -> str:
         """One round: the passive pass over the whole box and the shrinking passes around
-        the round's best; returns 'budget' or 'stall' (how the round ended)."""
+        the round's best; returns how it ended: 'budget', 'stall', or the search's stop
+        rule ('favourable', 'time').  The round's best is kept even when Ctrl-C ends it."""
         s = self.settings
         try:
-            self.passive(self.lower, self.upper, 2 ** s.budget_log2, 0, "lptau")
-            if s.shrink_passes:
-                self.shrink_passes()
-        except _Stall:
-            return "stall"
+            ended = self.passive(self.lower, self.upper, 2 ** s.budget_log2, 0, "lptau")
+            if ended is None and s.shrink_passes:
+                ended = self.shrink_passes()
         finally:
             if self.round_x is not None and self.round_criteria is not None:
                 self.keep_optimum("round", (self.round_x, self.round_criteria))
-        return "budget"
+        return ended or "budget"
 
     def next_round(self) -> None:
         """Forget the round's best: a restart searches the whole box afresh."""
@@ -780,30 +473,36 @@ class _Search:
         self.last_improvement = self.count
 
     def run(self, initial: FloatArray) -> SearchResult:
-        s = self.settings
-        stop = "budget"
         try:
-            self.record(initial[None, :], "initial")
-            for number in range(s.restarts + 1):
-                if number:
-                    self.next_round()
-                stop = self.run_round()
-                if s.refine and number == 0:
-                    # a task with an exact answer usually ends here, before any restart
-                    self.refine()
-            if s.refine and s.restarts:
-                self.refine()
-        except _Stop as signal:
-            stop = signal.reason
+            stop = self.steps(initial)
         except KeyboardInterrupt:
             stop = "interrupted"
         self.report(final=True)
+        s = self.settings
         assert self.best_x is not None and self.best_criteria is not None
         return SearchResult(
             x=self.best_x, criteria=self.best_criteria, trials=np.concatenate(self.blocks),
             trial_criteria=_concat(self.block_criteria), stage=tuple(self.stage),
             history=tuple(self.history), stop=stop, elapsed=self.elapsed(), settings=s,
-            seed=self.seed, optima=tuple(self.optima))
+            seed=self.seed, optima=tuple(self.optima), stopped_in=self.stage[-1])
+
+    def steps(self, initial: FloatArray) -> str:
+        """The initial design, the rounds and the refinements; returns the stop reason."""
+        s = self.settings
+        self.record(initial[None, :], "initial")
+        stop = "budget"
+        for number in range(s.restarts + 1):
+            if self.stop is not None:
+                return self.stop
+            if number:
+                self.next_round()
+            stop = self.run_round()
+            if s.refine and number == 0 and self.stop is None:
+                # a task with an exact answer usually ends here, before any restart
+                self.refine()
+        if s.refine and s.restarts and self.stop is None:
+            self.refine()
+        return self.stop or stop
 
 
 def _concat(parts: list[Criteria]) -> Criteria:
@@ -815,46 +514,20 @@ def _rest(criteria: Criteria, held: bool) -> FloatArray:
     return criteria.p2 - margin_penalty(criteria.margins) if held else criteria.p2
 
 
-class _Settled(Exception):
-    """Raised by the minimax polish's callback when Q no longer gains."""
-
-
 class _Gain:
-    """Follows the bound t on Q of a polish's iterations; raises :class:`_Settled` when it
-    has gained less than ``gain`` over the last ``patience`` iterations."""
+    """Follows the bound t on Q of a polish's iterations; :attr:`settled` once it has gained
+    less than ``gain`` over the last ``patience`` iterations."""
 
     def __init__(self, gain: float, patience: int) -> None:
         self.gain = gain
         self.patience = patience
         self.seen: list[float] = []
+        self.settled = False
 
     def __call__(self, t: float) -> None:
         self.seen.append(t)
         if len(self.seen) > self.patience and self.seen[-1 - self.patience] - t < self.gain:
-            raise _Settled()
-
-
-def settings_for(problem: Problem, **overrides: Any) -> SearchSettings:
-    """Search settings of a problem: its ``search`` table, then the given overrides.
-
-    Parameters
-    ----------
-    problem : Problem
-        Supplies :attr:`~synthesis.problem.Problem.settings` (its ``search`` table,
-        ``accuracy`` [Q], ``objective`` and ``p2_weight``).
-    **overrides
-        Fields of :class:`SearchSettings`; None leaves the problem's value.
-
-    Returns
-    -------
-    SearchSettings
-
-    Raises
-    ------
-    SettingError
-        When an override breaks its rule (the same rule as in the problem table).
-    """
-    return replace(problem.settings, **{k: v for k, v in overrides.items() if v is not None})
+            self.settled = True
 
 
 def _bounds(lower: npt.ArrayLike, upper: npt.ArrayLike, initial: npt.ArrayLike
@@ -876,9 +549,11 @@ def _bounds(lower: npt.ArrayLike, upper: npt.ArrayLike, initial: npt.ArrayLike
     return lo, hi, x0
 
 
-def _check_rng(rng: Any) -> RNG:
-    if rng is None or isinstance(rng, np.random.Generator) or (_whole(rng) and rng >= 0):
+def _check_rng(rng: object) -> RNG:
+    if rng is None or isinstance(rng, np.random.Generator):
         return rng
+    if isinstance(rng, (int, np.integer)) and whole(rng) and rng >= 0:
+        return int(rng)
     raise SettingError(Message("search.rng", {"found": rng}))
 
 

@@ -24,11 +24,12 @@ from matplotlib.axes import Axes
 import assur
 import assur.plot.mechanism
 from assur.kinematics.analysis import analyse
+from synthesis import SearchResult, SearchSettings
 from synthesis.app.coursework.diagrams import existence_figure, kinematic_figures, mechanism_figure
 from synthesis.cli import main
 from synthesis.criteria import Criteria
 from synthesis.plots import plot_convergence
-from synthesis.search import SearchResult, SearchSettings, search
+from synthesis.search import search
 
 ROOT = Path(__file__).resolve().parent.parent
 BACKEND = "svg"

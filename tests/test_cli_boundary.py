@@ -23,8 +23,8 @@ import yaml
 
 import synthesis.search
 from assur.io import files
+from synthesis import SearchSettings, SettingError
 from synthesis.cli import main
-from synthesis.search import SearchSettings, SettingError
 
 ROOT = Path(__file__).resolve().parent.parent
 FOUR_BAR = str(ROOT / "input_tables" / "four_bar.yaml")
@@ -39,7 +39,7 @@ def test_version_is_the_installed_package_version(capsys):
 
 
 def test_every_bad_search_option_at_once_by_the_rule_of_the_table(capsys, monkeypatch):
-    monkeypatch.setattr("synthesis.problem.load_problem", _must_not_run)
+    monkeypatch.setattr("synthesis.problem_table.load_problem", _must_not_run)
     code = main(["synthesize", PROBLEM, "--seed", "-5", "--budget", "99", "--time-limit", "-1",
                  "--shrink", "-3"])
     assert code == 2
@@ -75,7 +75,7 @@ def _read_only_folder(tmp_path: Path) -> Path:
 
 @pytest.mark.parametrize("case", ["folder", "under_file", "read_only", "plot_is_file"])
 def test_output_paths_refused_before_the_search(case, tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr("synthesis.synthesize.synthesize", _must_not_run)
+    monkeypatch.setattr("synthesis.outcome.synthesize", _must_not_run)
     (tmp_path / "a_file.txt").write_text("x")
     option, path, words = {
         "folder": ("--out", tmp_path, "this is a folder"),

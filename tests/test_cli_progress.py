@@ -6,12 +6,11 @@ from __future__ import annotations
 import io
 from pathlib import Path
 
+from synthesis import load_problem, synthesize
 from synthesis.app import progress
 from synthesis.app.batch import run_batch
 from synthesis.cli import main
-from synthesis.problem import load_problem
-from synthesis.search import settings_for
-from synthesis.synthesize import synthesize
+from synthesis.search_settings import settings_for
 
 ROOT = Path(__file__).resolve().parent.parent
 PROBLEM = ROOT / "input_tables" / "problems" / "class3_fourbar_path.yaml"
@@ -47,7 +46,7 @@ def test_search_bar_shows_total_best_and_time_left(monkeypatch):
         outcome = synthesize(problem, settings_for(problem, budget_log2=6, refine=False,
                                                    shrink_passes=0, restarts=0))
     drawn = screen.getvalue()
-    assert bar.done == outcome.result.trials.shape[0] == 1 + 2 ** 6
+    assert bar.done == outcome.search.trials.shape[0] == 1 + 2 ** 6
     assert set(totals) == {1 + 2 ** 6}  # from the start: trial 0 and the 2**6 LPτ trials
     assert f"/{1 + 2 ** 6} [" in drawn
     assert "best P1=" in drawn and "<" in drawn  # the best so far; elapsed<left

@@ -23,8 +23,8 @@ from test_catalogue import fresh_catalogues  # noqa: F401 - a fixture
 
 from assur import text
 from assur.io.chain_table import chain_from_dict, load_chain
+from synthesis import load_problem
 from synthesis.app.assess import assess
-from synthesis.problem import load_problem
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE = ROOT / "input_tables" / "four_bar.yaml"

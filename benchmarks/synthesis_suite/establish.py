@@ -36,10 +36,10 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 sys.path.insert(0, str(ROOT))
 
+from synthesis import SearchSettings, load_problem
 from synthesis.criteria import merit
 from synthesis.evaluate import Evaluator
-from synthesis.problem import load_problem
-from synthesis.search import SearchSettings, search
+from synthesis.search import search
 
 SEEDS = (1000,)
 

@@ -34,9 +34,10 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 sys.path.insert(0, str(ROOT))
 
+from synthesis import SearchSettings, load_problem
 from synthesis.evaluate import Evaluator
-from synthesis.problem import Problem, load_problem
-from synthesis.search import SearchSettings, search
+from synthesis.problem import Problem
+from synthesis.search import search
 
 #: Relative tolerance on Q* > 0 within which a run counts as reaching the optimum.
 RELATIVE = 5e-3

@@ -39,7 +39,7 @@ def read_table(path: str | os.PathLike[str]) -> Chain | Problem:
     reader = TableReader.from_path(path)
     data = reader.data
     if isinstance(data, dict) and any(key in data for key in _SYNTHESIS_KEYS):
-        from synthesis.problem import problem_from_dict
+        from synthesis.problem_table import problem_from_dict
 
         reader.expect("problem")
         return problem_from_dict(data, reader.source, Path(path).parent)

@@ -64,7 +64,7 @@ def check_search_options(args: argparse.Namespace, fields: Mapping[str, str]) ->
     ------
     OptionError
     """
-    from synthesis.search import setting_problem
+    from synthesis.search_settings import setting_problem
 
     problems = []
     for dest, name in fields.items():

@@ -204,10 +204,10 @@ def _problem(name: str) -> dict[str, Any]:
 
 
 def _only_problem_issue(data: dict[str, Any]) -> Issue:
-    from synthesis.problem_table import read_problem_data
+    from synthesis.problem_table import problem_from_dict
 
     with pytest.raises(TableError) as caught:
-        read_problem_data(data, "p.yaml", PROBLEMS)
+        problem_from_dict(data, "p.yaml", PROBLEMS)
     issues = caught.value.issues
     assert len(issues) == 1, "\n".join(issue.text("en") for issue in issues)
     return issues[0]
@@ -376,7 +376,7 @@ def test_a_row_left_out_names_the_groups_the_other_tables_give() -> None:
 
 
 def test_a_decimal_comma_in_a_zone_row_is_one_finding(tmp_path: Path) -> None:
-    from synthesis.problem_table import read_problem
+    from synthesis.problem_table import load_problem
 
     text = (PROBLEMS / "class1_fourbar_velocity_ratio.yaml").read_text(encoding="utf-8")
     lines = text.splitlines(keepends=True)
@@ -385,7 +385,7 @@ def test_a_decimal_comma_in_a_zone_row_is_one_finding(tmp_path: Path) -> None:
     path = tmp_path / "p.yaml"
     path.write_text("".join(lines), encoding="utf-8")
     with pytest.raises(TableError) as caught:
-        read_problem(path)
+        load_problem(path)
     assert [issue.message.code for issue in caught.value.issues] == ["table.decimal_comma_key"]
 
 

@@ -22,11 +22,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from synthesis import SearchResult, SearchSettings, load_problem
 from synthesis.app.batch import run_batch
 from synthesis.criteria import Criteria, merit
 from synthesis.evaluate import Evaluator
-from synthesis.problem import Problem, load_problem
-from synthesis.search import SearchResult, SearchSettings, search
+from synthesis.problem import Problem
+from synthesis.search import search
 
 ROOT = Path(__file__).resolve().parents[2]
 PROBLEM = ROOT / "input_tables" / "problems" / "class1_fourbar_rocker.yaml"
@@ -130,13 +131,13 @@ def serial(problem):
 @pytest.mark.distributed
 @_needs_dask
 def test_synthesize_on_the_cluster_is_the_single_process_run(problem, executor):
-    from synthesis.synthesize import synthesize
+    from synthesis import synthesize
 
     settings = replace(problem.settings, budget_log2=8, batch=BLOCK, seed=3, refine=False)
     here = synthesize(problem, settings)
-    there = synthesize(problem, settings, executor=executor)
-    _same(here.result, there.result)
-    assert here.summary["design"] == there.summary["design"]
+    there = synthesize(problem, settings, scheduler=executor)
+    _same(here.search, there.search)
+    assert here.design == there.design
 
 
 class _KillOnce:

@@ -9,8 +9,8 @@ from typing import Any
 import numpy as np
 import pytest
 
+from synthesis import problem_from_dict
 from synthesis.evaluate import Evaluator
-from synthesis.problem import problem_from_dict
 
 XHJ = 100.0
 DATA: dict[str, Any] = {

@@ -98,7 +98,7 @@ def _check_result(data: dict[str, Any], result: Path) -> np.ndarray:
                                           design[f"III(2,3,4,5).y_{pair}"])) < 1e-8
     rows = data["control_points"]
     solved = stroke(points, np.array([row["phi"] for row in rows]))
-    deviation = solved - [row["target"] for row in rows]
+    deviation: np.ndarray = solved - [row["target"] for row in rows]
     assert np.abs(deviation - [row["deviation"] for row in rows]).max() < 1e-6
     assert np.abs(deviation).max() == pytest.approx(data["Q"], abs=1e-6)
     return deviation
@@ -184,7 +184,7 @@ def test_a_chain_without_its_sketch_is_named(tmp_path: Path,
 
 def test_an_inline_chain_reads_as_the_named_file(tmp_path: Path,
                                                  capsys: pytest.CaptureFixture[str]) -> None:
-    from synthesis.problem import load_problem, problem_from_dict
+    from synthesis import load_problem, problem_from_dict
 
     chain = yaml.safe_load((PROBLEM.parent / "../six_bar_triad.yaml").read_text())
     data = yaml.safe_load(PROBLEM.read_text(encoding="utf-8"))
@@ -198,8 +198,8 @@ def test_an_inline_chain_reads_as_the_named_file(tmp_path: Path,
 def test_a_fixed_cell_changes_the_sketch_it_names() -> None:
     """``x_C: 80`` (a plain number) moves the drawn hinge C of the initial design: the
     evaluator's stroke of the initial design is that of the sketch with C moved."""
+    from synthesis import problem_from_dict
     from synthesis.evaluate import Evaluator
-    from synthesis.problem import problem_from_dict
 
     data = yaml.safe_load(PROBLEM.read_text(encoding="utf-8"))
     data["parameters"][0]["x_C"] = 80

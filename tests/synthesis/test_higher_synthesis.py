@@ -16,9 +16,10 @@ import numpy as np
 
 from assur.kinematics.analysis import analyse, unwrap
 from assur.kinematics.build import load_model
+from synthesis import SearchSettings
 from synthesis.evaluate import Evaluator
 from synthesis.problem import ControlPoints, Output, Parameter, Problem
-from synthesis.search import SearchSettings, search
+from synthesis.search import search
 
 TABLE = Path(__file__).parents[2] / "input_tables" / "eight_bar_triad.yaml"
 NAMES = ("III(4,5,6,7).x_F", "III(4,5,6,7).y_F")

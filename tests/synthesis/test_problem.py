@@ -12,7 +12,7 @@ import pytest
 import yaml
 
 from assur import TableError
-from synthesis.problem import load_problem, problem_from_dict
+from synthesis import load_problem, problem_from_dict
 
 GOOD: dict[str, Any] = {
     "general": {"control_points": 3, "direction": 1, "groups": 2, "task_class": 2,
@@ -229,3 +229,22 @@ def test_accuracy_is_read_in_the_unit_of_the_output() -> None:
     assert rocker.settings.q_required == pytest.approx(1e-4 * math.pi / 180, rel=1e-15)
     path = load_problem(folder / "class3_fourbar_path.yaml")
     assert path.output_unit == "mm" and path.settings.q_required == path.accuracy == 1e-4
+
+
+@pytest.mark.parametrize("lang, words", [
+    ("en", "expected [initial, lower, upper] with lower ≤ initial ≤ upper; found [50, 20, 40]"),
+    ("ru", ("ожидалось [начальное, нижняя, верхняя] с нижняя ≤ начальное ≤ верхняя; "
+           "найдено [50, 20, 40]"))])
+def test_an_initial_value_above_its_upper_bound_is_refused(
+        lang: str, words: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from synthesis.cli import main
+
+    data = copy.deepcopy(GOOD)
+    data["parameters"][0]["l_1"] = [50, 20, 40]   # initial 50 > upper 40
+    path = tmp_path / "above.yaml"
+    path.write_text(yaml.safe_dump(data), encoding="utf-8")
+    assert main(["synthesize", str(path), "--quiet", "--lang", lang]) == 2
+    captured = capsys.readouterr()
+    assert str(path) in captured.err and "Traceback" not in captured.err
+    assert f"parameters[0] 'l_1': {words}" in captured.err
+    assert captured.out == ""

@@ -22,10 +22,10 @@ import assur
 import assur.kinematics.analysis
 from assur import TableError
 from assur.kinematics.analysis import analyse
+from synthesis import SearchSettings, load_problem, problem_from_dict
 from synthesis.cli import main
 from synthesis.evaluate import Evaluator
-from synthesis.problem import load_problem, problem_from_dict
-from synthesis.search import SearchSettings, search
+from synthesis.search import search
 
 FOURBAR_ROWS = [
     {"L": 0, "i": 1, "j": None, "i_minus_1": 0, "j_minus_1": None, "i_plus_1": 2},
@@ -76,7 +76,8 @@ def _closed_form_ratio(d: dict[str, float], phi: np.ndarray, h: float = 1e-3) ->
     _, _, _, psi = fourbar(stencil, d["l1"], d["li"], d["lj"], d["xhj"],
                            phi0=math.radians(d["phi0"]))
     psi = np.unwrap(psi, axis=1)
-    return (psi[:, 0] - 8 * psi[:, 1] + 8 * psi[:, 2] - psi[:, 3]) / (12 * h)
+    n: np.ndarray = (psi[:, 0] - 8 * psi[:, 1] + 8 * psi[:, 2] - psi[:, 3]) / (12 * h)
+    return n
 
 
 def test_ratio_against_central_difference_of_the_public_analysis() -> None:

@@ -21,12 +21,12 @@ from closed_form import (
     slider_crank,
 )
 
+from synthesis import SearchSettings, problem_from_dict
 from synthesis.evaluate import Evaluator
-from synthesis.problem import problem_from_dict
-from synthesis.search import SearchSettings, search
+from synthesis.search import search
 
 TOL = 1e-6            # mm / rad; the search stops at [Q] = 1e-7 (favourable) or budget
-FOURBAR_ROWS = [
+FOURBAR_ROWS: list[dict[str, Any]] = [
     {"L": 0, "i": 1, "j": None, "i_minus_1": 0, "j_minus_1": None, "i_plus_1": 2},
     {"L": 1, "i": 2, "j": 3, "i_minus_1": 1, "j_minus_1": 0, "variant": 1},
 ]

@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import pytest
 
+from synthesis import SearchSettings
 from synthesis.criteria import Criteria
-from synthesis.search import SearchSettings, search
+from synthesis.search import search
 
 OPTIMUM = np.array([0.31, 0.77, 0.12])
 
@@ -23,7 +26,7 @@ def quadratic(x: np.ndarray) -> Criteria:
 
 LOWER, UPPER, START = np.zeros(3), np.ones(3), np.array([0.95, 0.5, 0.5])
 #: The passive pass alone (the defaults add shrinking passes, restarts and refinement).
-PASSIVE = {"refine": False, "shrink_passes": 0, "restarts": 0}
+PASSIVE: dict[str, Any] = {"refine": False, "shrink_passes": 0, "restarts": 0}
 
 
 def test_same_seed_same_result_and_other_seed_other_trials() -> None:
@@ -75,6 +78,26 @@ def test_time_limit_stops_the_search() -> None:
                SearchSettings(budget_log2=20, batch=64, time_limit=0.2))
     assert r.stop == "time"
     assert r.trials.shape[0] < 2 ** 20
+
+
+@pytest.mark.parametrize("limit", [5.0, 6.0])
+def test_the_time_limit_holds_in_the_refinement(limit: float,
+                                                monkeypatch: pytest.MonkeyPatch) -> None:
+    # a clock that advances one second per evaluation: the limit falls inside the least
+    # squares of the first refinement start (initial 1 s, LPτ 2 s, its start 3 s, then the
+    # residuals 4 s, the Jacobian 5 s, a step 6 s)
+    now = [0.0]
+
+    def slow(x: np.ndarray) -> Criteria:
+        now[0] += 1.0
+        return quadratic(x)
+
+    monkeypatch.setattr("synthesis.search.time.perf_counter", lambda: now[0])
+    r = search(slow, LOWER, UPPER, START, SearchSettings(
+        budget_log2=4, batch=16, time_limit=limit, shrink_passes=0, restarts=0))
+    assert r.stop == "time" and r.stopped_in == "refine"
+    assert now[0] == limit   # not one design evaluated after the limit was reached
+    assert r.trials.shape[0] == 1 + 16 + int(np.sum(np.array(r.stage) == "refine"))
 
 
 def test_ctrl_c_keeps_the_best_so_far() -> None:

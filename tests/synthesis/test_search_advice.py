@@ -6,9 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
-from synthesis.problem import load_problem
-from synthesis.search import settings_for
-from synthesis.synthesize import synthesize
+from synthesis import load_problem, synthesize
+from synthesis.search_settings import settings_for
 
 ROCKER = Path(__file__).resolve().parents[2] / "input_tables/problems/class1_fourbar_rocker.yaml"
 
@@ -18,8 +17,8 @@ def test_the_advice_counts_the_distinct_ends_of_the_rounds() -> None:
     budget, restarts = 4, 5
     outcome = synthesize(problem, settings_for(problem, budget_log2=budget, refine=False,
                                                shrink_passes=0, restarts=restarts, seed=2))
-    result, advice = outcome.result, outcome.summary["advice"]
-    assert advice is not None and not outcome.summary["favourable"]
+    result, advice = outcome.search, outcome.to_dict()["advice"]
+    assert advice is not None and not outcome.favourable
     # the rounds' bests found again from the raw trials: trial 0 and round 0's 2^m trials,
     # then 2^m trials per restart
     c = result.trial_criteria
@@ -39,7 +38,7 @@ def test_the_advice_counts_the_distinct_ends_of_the_rounds() -> None:
     scale = problem.output_scale
     assert len(distinct) > 1
     assert advice["optima"] == len(distinct) and advice["rounds"] == 1 + restarts
-    assert advice["q_min"] == distinct[0][0] * scale == outcome.summary["Q"]
+    assert advice["q_min"] == distinct[0][0] * scale == outcome.q
     assert advice["q_max"] == distinct[-1][0] * scale
     # several optima: more restarts, a larger budget, and the refinement that was off
     tries = {t["what"]: t.get("value") for t in advice["try"]}

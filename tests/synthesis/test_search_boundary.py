@@ -8,10 +8,10 @@ import math
 import numpy as np
 import pytest
 
+from synthesis import SearchSettings, problem_from_dict
 from synthesis.criteria import Criteria
 from synthesis.evaluate import Evaluator
-from synthesis.problem import problem_from_dict
-from synthesis.search import SearchSettings, search
+from synthesis.search import search
 from tests.synthesis.test_evaluate import DATA, XHJ, _cosine
 
 TARGET = np.array([0.9, 0.6])

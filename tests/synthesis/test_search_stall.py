@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from synthesis import SearchSettings
 from synthesis.criteria import Criteria
-from synthesis.search import SearchSettings, search
+from synthesis.search import search
 
 
 def plateau(x: np.ndarray) -> Criteria:

@@ -11,9 +11,11 @@ import pytest
 import yaml
 
 from assur import AssurError
+from synthesis import SearchSettings, SettingError
 from synthesis.cli import main
 from synthesis.criteria import Criteria
-from synthesis.search import SearchSettings, SettingError, search, setting_problem
+from synthesis.search import search
+from synthesis.search_settings import setting_problem
 
 PROBLEMS = Path(__file__).resolve().parents[2] / "input_tables" / "problems"
 

@@ -15,10 +15,10 @@ import yaml
 import assur
 import assur.kinematics.analysis
 from assur.kinematics.analysis import analyse
+from synthesis import load_problem
 from synthesis.cli import main
 from synthesis.cli.commands import synthesize
 from synthesis.evaluate import Evaluator
-from synthesis.problem import load_problem
 
 PROBLEMS = sorted((Path(__file__).resolve().parents[2] / "input_tables" / "problems")
                   .glob("*.yaml"))
@@ -87,8 +87,9 @@ def _tracing_point(model: Any, motion: Any, link: Any) -> np.ndarray:
     """Attachment point N of the output link: origin + l_N·exp(i(angle + beta_N))."""
     label, _ = model.links[link]
     origin, angle = (assur.kinematics.analysis.values(v) for v in motion.frames[link])
-    return origin + model.value(f"{label}.l_N") * np.exp(
+    point: np.ndarray = origin + model.value(f"{label}.l_N") * np.exp(
         1j * (angle + model.value(f"{label}.beta_N")))
+    return point
 
 
 @pytest.mark.parametrize("path", PROBLEMS, ids=[p.stem for p in PROBLEMS])

@@ -39,6 +39,10 @@ from synthesis.app.coursework.forces_section import forces_sections
 from synthesis.app.coursework.page import Section, esc, figure, figure_html, page, table
 
 if TYPE_CHECKING:  # pragma: no cover
+    from collections.abc import Callable
+
+    from matplotlib.axes import Axes
+
     from synthesis.problem import Problem
 
 __all__ = ["CourseworkReport", "build_report", "render_html", "write_report"]
@@ -342,22 +346,22 @@ def _synthesis(problem: Problem, lang: str, budget: int | None, report: Coursewo
     from matplotlib.figure import Figure
 
     from synthesis.app.coursework.synthesis_tables import synthesis_tables
+    from synthesis.outcome import synthesize
     from synthesis.plots import plot_convergence, plot_mechanism, plot_output
-    from synthesis.search import settings_for
-    from synthesis.synthesize import synthesize
 
     own = problem.search.get("budget")
     budget = budget if budget is not None else min(int(own) if own else BUDGET, BUDGET)
-    outcome = synthesize(problem, settings_for(problem, budget_log2=budget), progress=False)
-    result, analysis, data = outcome.result, outcome.analysis, dict(outcome.summary)
-    feasible = bool(data.get("feasible"))
+    outcome = synthesize(problem, budget=budget, progress=False)
+    result, analysis, data = outcome.search, outcome.analysis, outcome.to_dict()
+    feasible = outcome.feasible
     verdict = render("term.feasible", lang) if feasible else render("term.infeasible", lang)
     q = "–" if data.get("Q") is None else f"{data['Q']:.4g}"
     body = (f'<p class="{"ok" if feasible else "bad"}" id="synthesis-verdict">{esc(verdict)}, '
             f"Q = {q}</p>{synthesis_tables(data, lang)}")
-    drawings = (lambda ax: plot_output(problem, analysis, axes=ax, lang=lang),
-                lambda ax: plot_mechanism(problem, analysis, axes=ax, lang=lang),
-                lambda ax: plot_convergence(result, axes=ax, lang=lang))
+    drawings: tuple[Callable[[Axes], Axes], ...] = (
+        lambda ax: plot_output(problem, analysis, axes=ax, lang=lang),
+        lambda ax: plot_mechanism(problem, analysis, axes=ax, lang=lang),
+        lambda ax: plot_convergence(result, axes=ax, lang=lang))
     captions = (render("coursework.caption_output", lang),
                 render("coursework.caption_mechanism", lang),
                 render("coursework.caption_search", lang))

@@ -41,7 +41,9 @@ from assur.typing import FloatArray
 from synthesis.cases.tracker.design import DesignTask
 from synthesis.cases.tracker.model import TrackerMotion, chain, simulate, sketch
 from synthesis.criteria import Criteria, bounds_penalty, existence_penalty, pressure_penalty
-from synthesis.search import SearchResult, SearchSettings, search
+from synthesis.search import search
+from synthesis.search_result import SearchResult
+from synthesis.search_settings import SearchSettings
 
 __all__ = ["NAMES", "Evaluator", "SynthesisAnswer", "bounds", "has_room", "solve"]
 

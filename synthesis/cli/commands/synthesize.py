@@ -1,5 +1,10 @@
 """``assur synthesize PROBLEM.yaml``: optimisation synthesis by passive LPτ search (B1–B5).
 
+A thin caller of the library: the options are checked, :func:`synthesis.load_problem` reads
+the problem, :func:`synthesis.synthesize` searches it, and the command renders the result's
+:meth:`~synthesis.outcome.SynthesisResult.to_dict` (``--json`` prints it as it is, with the
+names of the files written) and writes the files asked for.
+
 Exit codes: 0 a feasible design (P1 = P2 = 0) was found, 1 the search ended without one,
 2 the problem file is invalid, 130 interrupted (the best design so far is still written).
 """
@@ -8,9 +13,7 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import sys
-from typing import Any
 
 from assur.text import DEFAULT, languages, render
 
@@ -51,54 +54,40 @@ def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Read the problem, synthesise it (:func:`synthesis.synthesize.synthesize`), report."""
+    """Read the problem, synthesise it (:func:`synthesis.synthesize`), report."""
     from synthesis.app.outputs import outputs_of
     from synthesis.app.progress import following_search
     from synthesis.cli.options import check_search_options
-    from synthesis.distributed import executor_for
-    from synthesis.problem import load_problem
+    from synthesis.outcome import synthesize
+    from synthesis.problem_table import load_problem
     from synthesis.report import text_report, write_result, write_trials
-    from synthesis.search import settings_for
-    from synthesis.synthesize import synthesize
 
     check_search_options(args, _SETTINGS)
     problem = load_problem(args.problem)
-    settings = settings_for(problem, **{name: getattr(args, dest)
-                                        for dest, name in _SETTINGS.items()})
-    with executor_for(args.scheduler) as executor, \
-            following_search(quiet=args.quiet, lang=args.lang):
-        outcome = synthesize(problem, settings, executor=executor)
-    result, data = outcome.result, dict(outcome.summary)
+    with following_search(quiet=args.quiet, lang=args.lang):
+        outcome = synthesize(problem, budget=args.budget, seed=args.seed, refine=args.refine,
+                             shrink=args.shrink, restarts=args.restarts,
+                             time_limit=args.time_limit, scheduler=args.scheduler)
+    data = outcome.to_dict()
     outputs = outputs_of(args)
     if args.out:
-        outputs.write(args.out, lambda path: write_result(path, problem, result, data,
+        outputs.write(args.out, lambda path: write_result(path, problem, outcome.search, data,
                                                            lang=args.lang))
         data["result_file"] = args.out
     if args.trials:
         data["trials_file"] = args.trials
         data["trials_written"] = outputs.write(
-            args.trials, lambda path: write_trials(path, problem, result))
+            args.trials, lambda path: write_trials(path, problem, outcome.search))
     if args.plot:
         from synthesis.plots import save_plots
 
         plots = outputs.write(args.plot, lambda path: save_plots(
-            path, problem, result, outcome.analysis, lang=args.lang))
+            path, problem, outcome.search, outcome.analysis, lang=args.lang))
         data["plots"] = [str(p) for p in plots or ()]
     if args.json:
-        print(json.dumps(_plain(data), indent=2, ensure_ascii=False))
+        print(json.dumps(data, indent=2, ensure_ascii=False))
     else:
         sys.stdout.write(text_report(data, args.lang))
     if outcome.interrupted:
         return 130
     return 0 if outcome.feasible else 1
-
-
-def _plain(value: Any) -> Any:
-    """JSON-safe copy: NaN and infinities become null."""
-    if isinstance(value, dict):
-        return {str(k): _plain(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value

@@ -22,10 +22,11 @@ import os
 import re
 import stat
 from collections.abc import Callable, Iterable, Iterator
+from itertools import pairwise
 from pathlib import Path
 from typing import Any
 
-import yaml  # type: ignore[import-untyped]
+import yaml
 
 from assur.errors import Issue, TableError
 from assur.text import Message
@@ -39,6 +40,7 @@ __all__ = [
     "TABLE_KINDS",
     "Node",
     "TableReader",
+    "WrittenList",
     "describe",
     "is_number",
     "latin_form",
@@ -142,7 +144,12 @@ def describe(value: Any) -> Message:
             return Message("value.text_lookalike", {"value": value, "letters": letters})
         return Message("value.text", {"value": value})
     if isinstance(value, list):
-        return Message("value.list", {"n": len(value)})
+        listed = Message("value.list", {"n": len(value)})
+        if isinstance(value, WrittenList) and value.commas:
+            written = value.commas[0]
+            return Message("value.list_decimal_comma", {"list": listed, "written": written,
+                                                        "fixed": written.replace(",", ".")})
+        return listed
     if isinstance(value, dict):
         return Message("value.mapping")
     return Message("value.other", {"type": type(value).__name__})
@@ -281,12 +288,12 @@ class TableReader:
             try:
                 message = _depth_problem(text)
                 if message is None:
-                    reader = cls(yaml.load(text, Loader=_LOADER), source)
+                    reader = cls(_load(text, source), source)
                     if kind is not None:
                         reader.expect(kind)
                     return reader
             except yaml.YAMLError as exc:
-                message = _python_problem(text) or _yaml_problem(exc)
+                message = _python_problem(text) or _yaml_problem(exc, text)
         raise TableError(source, [Issue("", message)])
 
     @classmethod
@@ -590,6 +597,116 @@ def _depth_problem(text: str, loader: Any = _LOADER) -> Message | None:
     return None
 
 
+class WrittenList(list[Any]):
+    """A list of a table as it was written: a flow list (``[0, 49,5]``) remembers the pairs of
+    numbers written with a comma and no space between them (``49,5``), which YAML reads as two
+    entries and which are most likely one number with a decimal comma.  The description of a
+    list of the wrong length names them (:func:`describe`).
+
+    >>> describe(_load("point: [0, 49,5]", "t.yaml")["point"]).text("en")
+    'a list of 3 items; decimal comma? write 49.5 for 49,5'
+    """
+
+    commas: tuple[str, ...] = ()
+
+
+class _Loader(_LOADER):  # type: ignore[misc,valid-type]
+    """The safe loader of the tables, which also notes, as it builds the data, a key written
+    twice in one mapping (YAML keeps the last in silence) and a number with a decimal comma
+    inside a flow mapping (``{l_1: 40,5}`` reads as ``l_1: 40`` and a key ``5``)."""
+
+    def __init__(self, text: str) -> None:
+        super().__init__(text)
+        self.text = text
+        self.found: list[tuple[int, int, Message]] = []
+
+    def construct_mapping(self, node: Any, deep: bool = False) -> Any:
+        """The mapping of ``node``, after noting its repeated keys and decimal commas."""
+        seen: dict[Any, Any] = {}
+        previous: Any = None
+        for key_node, value_node in node.value:
+            if key_node.tag == "tag:yaml.org,2002:merge":
+                continue
+            key = self.construct_object(key_node, deep=True)
+            if _hashable(key):
+                first = seen.setdefault(key, key_node)
+                if first is not key_node:
+                    line = first.start_mark.line
+                    self._note(key_node, "table.yaml_duplicate_key" if line <
+                               key_node.start_mark.line else "table.yaml_duplicate_key_row",
+                               key=str(key), first=line + 1)
+            if node.flow_style and previous is not None and \
+                    _comma_split(previous[1], key_node) and _implicit_null(value_node):
+                written = f"{previous[1].value},{key_node.value}"
+                self._note(previous[1], "table.yaml_decimal_comma_key",
+                           key=str(self.construct_object(previous[0], deep=True)),
+                           written=written, fixed=written.replace(",", "."))
+            previous = (key_node, value_node)
+        return super().construct_mapping(node, deep=deep)
+
+    def construct_flow_list(self, node: Any) -> Iterator[list[Any]]:
+        """A list, kept as a :class:`WrittenList` when it holds a number with a decimal
+        comma."""
+        items = node.value
+        commas = tuple(f"{a.value},{b.value}" for a, b in pairwise(items)
+                       if node.flow_style and _comma_split(a, b))
+        data: list[Any] = WrittenList() if commas else []
+        if commas:
+            data.commas = commas  # type: ignore[attr-defined]
+        yield data
+        data.extend(self.construct_sequence(node))
+
+    def _note(self, node: Any, code: str, **data: Any) -> None:
+        mark = node.start_mark
+        self.found.append((mark.line, mark.column, Message(code, {
+            "line": mark.line + 1, "column": mark.column + 1,
+            "excerpt": _excerpt(self.text, mark.line, mark.column), **data})))
+
+
+_Loader.add_constructor("tag:yaml.org,2002:seq", _Loader.construct_flow_list)
+
+_INTEGER = re.compile(r"[-+]?\d+")
+_DIGITS = re.compile(r"\d+")
+
+
+def _comma_split(a: Any, b: Any) -> bool:
+    """Whether nodes ``a`` and ``b`` are two plain integers written ``49,5``: a comma and no
+    space between them (a plain scalar's style is None, or '' from libyaml)."""
+    return (isinstance(a, yaml.ScalarNode) and isinstance(b, yaml.ScalarNode)
+            and not a.style and not b.style
+            and _INTEGER.fullmatch(a.value) is not None and _DIGITS.fullmatch(b.value) is not None
+            and a.end_mark.index + 1 == b.start_mark.index)
+
+
+def _implicit_null(node: Any) -> bool:
+    """Whether ``node`` is a value not written at all (a key without ``:``)."""
+    return isinstance(node, yaml.ScalarNode) and node.value == "" and not node.style
+
+
+def _load(text: str, source: str) -> Any:
+    """The data of a table's YAML text; a key written twice or a decimal comma inside a flow
+    mapping is refused with every place where it occurs.
+
+    >>> _load("a: 1\\nb: 2\\na: 3\\n", "t.yaml")
+    Traceback (most recent call last):
+    ...
+    assur.errors.TableError: 1 problem in t.yaml:
+      - line 3, column 1: the key 'a' is written twice, on lines 1 and 3; YAML would keep \
+the last in silence: keep one
+        a: 3
+        ^
+    """
+    loader = _Loader(text)
+    try:
+        data = loader.get_single_data()
+    finally:
+        loader.dispose()
+    if loader.found:
+        raise TableError(source, [Issue("", message)
+                                  for *_, message in sorted(loader.found, key=lambda f: f[:2])])
+    return data
+
+
 def _python_problem(text: str) -> Message | None:
     """The problem of a text that libyaml refused, in the words of PyYAML's own parser (the
     same position, a plainer sentence); its depth is checked first, so it never recurses deep.
@@ -600,14 +717,61 @@ def _python_problem(text: str) -> Message | None:
             return depth
         yaml.safe_load(text)
     except yaml.YAMLError as exc:
-        return _yaml_problem(exc)
+        return _yaml_problem(exc, text)
     return None
 
 
-def _yaml_problem(exc: yaml.YAMLError) -> Message:
+def _excerpt(text: str, line: int, column: int) -> str:
+    """The line ``line`` (from 0) of ``text`` with a caret under ``column``, indented to sit
+    under a problem of :class:`~assur.errors.TableError` (a tab is shown as a space, so that
+    the caret stays under its spot)."""
+    lines = text.splitlines()
+    if not 0 <= line < len(lines):
+        return ""
+    shown = lines[line].replace("\t", " ").rstrip()
+    return f"\n    {shown}\n    {' ' * min(column, len(shown))}^"
+
+
+#: Brackets of YAML's flow collections: opening → closing.
+_BRACKETS = {"[": "]", "{": "}"}
+
+
+def _yaml_problem(exc: yaml.YAMLError, text: str) -> Message:
+    """The problem of a text that is not YAML, in plain words: the spot (line, column, the line
+    itself with a caret under the spot) and what to do; an unclosed bracket or quote is shown
+    where it was opened."""
     mark = getattr(exc, "problem_mark", None)
-    problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
-    if mark is not None:
-        return Message("table.not_yaml_at", {"line": mark.line + 1, "column": mark.column + 1,
-                                             "problem": problem})
-    return Message("table.not_yaml", {"problem": problem})
+    if mark is None:
+        return Message("table.not_yaml")
+    problem = str(getattr(exc, "problem", None) or "")
+    context = str(getattr(exc, "context", None) or "")
+    opened = getattr(exc, "context_mark", None)
+    spot = {"line": mark.line + 1, "column": mark.column + 1,
+            "excerpt": _excerpt(text, mark.line, mark.column)}
+    if "'\\t'" in problem or (mark.index < len(text) and text[mark.index] == "\t"):
+        return Message("table.yaml_tab", spot)
+    if opened is not None and context.startswith("while parsing a flow"):
+        bracket = text[opened.index] if opened.index < len(text) else ""
+        if bracket in _BRACKETS:
+            return Message("table.yaml_unclosed", {
+                "line": opened.line + 1, "column": opened.column + 1,
+                "excerpt": _excerpt(text, opened.line, opened.column), "bracket": bracket,
+                "closing": _BRACKETS[bracket], "at_line": mark.line + 1,
+                "at_column": mark.column + 1})
+    if opened is not None and context.startswith("while scanning a quoted"):
+        return Message("table.yaml_quote", {
+            "line": opened.line + 1, "column": opened.column + 1,
+            "excerpt": _excerpt(text, opened.line, opened.column)})
+    if problem.startswith("mapping values are not allowed"):
+        return Message("table.yaml_colon", spot)
+    if problem.startswith("could not find expected ':'") and opened is not None:
+        return Message("table.yaml_no_colon", {
+            "line": opened.line + 1, "column": opened.column + 1,
+            "excerpt": _excerpt(text, opened.line, opened.column)})
+    if problem.startswith("expected <block end>") or context.startswith("while parsing a block"):
+        return Message("table.yaml_indent", spot)
+    if "that cannot start any token" in problem and mark.index < len(text):
+        return Message("table.yaml_character", {**spot, "character": text[mark.index]})
+    if "unhashable key" in problem:
+        return Message("table.yaml_key", spot)
+    return Message("table.yaml_syntax", spot)

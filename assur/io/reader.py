@@ -612,8 +612,9 @@ class WrittenList(list[Any]):
 
 class _Loader(_LOADER):  # type: ignore[misc,valid-type]
     """The safe loader of the tables, which also notes, as it builds the data, a key written
-    twice in one mapping (YAML keeps the last in silence) and a number with a decimal comma
-    inside a flow mapping (``{l_1: 40,5}`` reads as ``l_1: 40`` and a key ``5``)."""
+    twice in one mapping (YAML keeps the last in silence) and a value written with a decimal
+    comma: ``l_1: 40,5`` (read as a text) and, inside a flow mapping, ``{l_1: 40,5}`` (read as
+    ``l_1: 40`` and a key ``5``)."""
 
     def __init__(self, text: str) -> None:
         super().__init__(text)
@@ -640,7 +641,12 @@ class _Loader(_LOADER):  # type: ignore[misc,valid-type]
                 written = f"{previous[1].value},{key_node.value}"
                 self._note(previous[1], "table.yaml_decimal_comma_key",
                            key=str(self.construct_object(previous[0], deep=True)),
-                           written=written, fixed=written.replace(",", "."))
+                           written=written, fixed=written.replace(",", "."),
+                           whole=previous[1].value, part=key_node.value)
+            if _comma_number(value_node):
+                self._note(value_node, "table.yaml_decimal_comma", key=str(key),
+                           written=value_node.value,
+                           fixed=value_node.value.strip().replace(",", "."))
             previous = (key_node, value_node)
         return super().construct_mapping(node, deep=deep)
 
@@ -676,6 +682,14 @@ def _comma_split(a: Any, b: Any) -> bool:
             and not a.style and not b.style
             and _INTEGER.fullmatch(a.value) is not None and _DIGITS.fullmatch(b.value) is not None
             and a.end_mark.index + 1 == b.start_mark.index)
+
+
+def _comma_number(node: Any) -> bool:
+    """Whether ``node`` is a number with a decimal comma written without quotes
+    (``l_1: 40,5``), which YAML reads as a text."""
+    return (isinstance(node, yaml.ScalarNode) and not node.style
+            and node.tag == "tag:yaml.org,2002:str"
+            and _DECIMAL_COMMA.fullmatch(node.value) is not None)
 
 
 def _implicit_null(node: Any) -> bool:

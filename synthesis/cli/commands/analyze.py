@@ -43,8 +43,9 @@ def run(args: argparse.Namespace) -> int:
     from assur.plot.formats import animation_format, picture_format
     from synthesis.app.analysis import analyse_table
     from synthesis.app.analysis_text import analysis_text
-    from synthesis.app.outputs import outputs_of
+    from synthesis.app.outputs import outputs_of, stdout_taken
 
+    csv_alone = stdout_taken(args, "csv")
     if args.plot:  # a format that cannot be written is refused before any work
         picture_format(args.plot)
     if args.animate:
@@ -64,7 +65,7 @@ def run(args: argparse.Namespace) -> int:
             record["forces"] = forces_record(forces)
         json.dump(record, sys.stdout, ensure_ascii=False)
         sys.stdout.write("\n")
-    else:
+    elif not csv_alone:
         print(analysis_text(result, args.lang))
         if forces is not None:
             print("\n" + forces_text(result, forces, args.lang))

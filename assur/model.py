@@ -302,6 +302,9 @@ class Chain:
     forces : ForceData or None
         The table's ``masses:``, ``loads:`` and ``gravity:`` sections (``docs/forces.md``);
         None when it has neither masses nor loads.
+    warnings : tuple of Issue
+        What looks wrong in the table but does not refuse it (an angle that looks like
+        radians, a slider hinge off its guide), found as it was read.
 
     Examples
     --------
@@ -325,6 +328,7 @@ class Chain:
     identification: tuple[IdentificationRow, ...] | None = None
     claims: Mapping[str, int] = field(default_factory=dict)
     forces: ForceData | None = None
+    warnings: tuple[Issue, ...] = ()
     _index: dict[str, dict[Any, Any]] = field(default_factory=dict, init=False, repr=False,
                                               compare=False)
 

@@ -156,7 +156,7 @@ def _read(reader: TableReader) -> Chain:
             reader.problem("", "chain.no_table")
         raise TableError(reader.source, reader.issues)
     reader.raise_if_any()
-    return chain
+    return replace(chain, warnings=tuple(reader.warnings)) if reader.warnings else chain
 
 
 # ----------------------------------------------------------------------------- chain form

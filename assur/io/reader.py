@@ -251,6 +251,9 @@ class TableReader:
         self.data = data
         self.source = source
         self.issues: list[Issue] = []
+        #: Things that look wrong but may be meant (an angle that looks like radians): they
+        #: do not refuse the table and are shown beside its results.
+        self.warnings: list[Issue] = []
 
     @classmethod
     def from_path(cls, path: str | os.PathLike[str], *, kind: str | None = None
@@ -327,6 +330,16 @@ run it with: assur case tracker --table FILE
         "links[2]: no catalogue for language 'de'; the languages are en"
         """
         self.issues.append(Issue(location, Message(code, data)))
+
+    def warn(self, location: str, code: str, /, **data: Any) -> None:
+        """Record one warning: like :meth:`problem`, but the table is still read.
+
+        >>> reader = TableReader.from_data({}, source="demo.yaml")
+        >>> reader.warn("geometry 'B'", "lang.unknown", found="de", known="en")
+        >>> reader.issues, len(reader.warnings)
+        ([], 1)
+        """
+        self.warnings.append(Issue(location, Message(code, data)))
 
     def root(self, allowed: Iterable[str] | None = None, *, name: str = "") -> Node:
         """The top of the document, which must be a mapping."""

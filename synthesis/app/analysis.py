@@ -57,6 +57,8 @@ class TableAnalysis:
     omega : float or None
         Input speed (rad/s of a crank, mm/s of an actuator) for velocities and
         accelerations; None: analogs only.
+    warnings : tuple of Issue
+        What looks wrong in the table but did not refuse it (:attr:`Chain.warnings`).
     """
 
     model: KinematicModel
@@ -64,6 +66,7 @@ class TableAnalysis:
     existence: ExistenceReport
     allowed_pressure: Mapping[str, float]
     omega: float | None = None
+    warnings: tuple[Issue, ...] = ()
 
     @property
     def crank(self) -> bool:
@@ -125,7 +128,7 @@ def analyse_table(path: str | os.PathLike[str], *, points: int = 360,
     model = build_model(analyse_structure(chain))
     motion = analyse(model, points=points, analogs=True)
     return TableAnalysis(model, motion, check_existence(model, motion=motion),
-                         allowed_pressure_angles(chain.general, model), omega)
+                         allowed_pressure_angles(chain.general, model), omega, chain.warnings)
 
 
 def moving_links(model: KinematicModel) -> list[LinkId]:

@@ -44,6 +44,7 @@ def run(args: argparse.Namespace) -> int:
     from synthesis.app.analysis import analyse_table
     from synthesis.app.analysis_text import analysis_text
     from synthesis.app.outputs import outputs_of, stdout_taken
+    from synthesis.app.table_warnings import print_warnings, warning_records
 
     csv_alone = stdout_taken(args, "csv")
     if args.plot:  # a format that cannot be written is refused before any work
@@ -61,14 +62,17 @@ def run(args: argparse.Namespace) -> int:
         from synthesis.app.analysis_json import analysis_record
 
         record = analysis_record(result)
+        record["warnings"] = warning_records(result.warnings)
         if forces is not None:
             record["forces"] = forces_record(forces)
         json.dump(record, sys.stdout, ensure_ascii=False)
         sys.stdout.write("\n")
-    elif not csv_alone:
-        print(analysis_text(result, args.lang))
-        if forces is not None:
-            print("\n" + forces_text(result, forces, args.lang))
+    else:
+        print_warnings(result.warnings, args.table, args.lang)
+        if not csv_alone:
+            print(analysis_text(result, args.lang))
+            if forces is not None:
+                print("\n" + forces_text(result, forces, args.lang))
     outputs = outputs_of(args)
     if args.csv:
         from synthesis.app.analysis_csv import analysis_csv

@@ -1,0 +1,37 @@
+"""The warnings of a table (:attr:`assur.model.Chain.warnings`) as a command shows them: one
+line each on standard error in text mode, a ``warnings`` list in a JSON answer.
+
+A warning does not change the exit code: the table is read and analysed as written.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Iterable
+from typing import TextIO
+
+from assur.errors import Issue
+from assur.text import in_every_language, render
+
+__all__ = ["print_warnings", "warning_records"]
+
+
+def warning_records(warnings: Iterable[Issue]) -> list[dict[str, str]]:
+    """The warnings in the form of the JSON answers: the catalogue code, where, and the
+    sentence in every language.
+
+    >>> from assur.text import Message
+    >>> warning_records([Issue("geometry 'D' 'direction'", Message("sketch.warn_radian_pi",
+    ...     {"value": 3.1416, "pi": Message("sketch.pi_2"), "degrees": 180.0}))])[0]["message"]
+    '3.1416 looks like an angle in radians (π); directions are in degrees: did you mean 180?'
+    """
+    return [{"code": issue.message.code, "where": issue.location,
+             **in_every_language("message", issue.message)} for issue in warnings]
+
+
+def print_warnings(warnings: Iterable[Issue], source: str, lang: str,
+                   stream: TextIO | None = None) -> None:
+    """Print each warning on one line of ``stream`` (standard error by default)."""
+    for issue in warnings:
+        print(render("table.warning", lang, source=source, issue=issue.text(lang)),
+              file=stream or sys.stderr)

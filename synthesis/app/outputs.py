@@ -49,7 +49,8 @@ def stdout_taken(args: argparse.Namespace, option: str) -> bool:
     if getattr(args, option, None) != STDOUT:
         return False
     if getattr(args, "json", False):
-        raise OutputError([Message("cli.output.stdout_twice", {"option": f"--{option}"})])
+        raise OutputError([Message("cli.output.stdout_twice",
+                                   {"option": f"--{option}", "json": "--json"})])
     return True
 
 

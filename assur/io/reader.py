@@ -639,8 +639,6 @@ class _Loader(_LOADER):  # type: ignore[misc,valid-type]
         seen: dict[Any, Any] = {}
         previous: Any = None
         for key_node, value_node in node.value:
-            if key_node.tag == "tag:yaml.org,2002:merge":
-                continue
             key = self.construct_object(key_node, deep=True)
             if _hashable(key):
                 first = seen.setdefault(key, key_node)

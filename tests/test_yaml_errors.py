@@ -7,6 +7,7 @@ holds the opening bracket, the tab, the repeated key), not taken from the progra
 
 from __future__ import annotations
 
+from itertools import pairwise
 from pathlib import Path
 
 import pytest
@@ -38,7 +39,7 @@ def _spot(text: str, needle: str, occurrence: int = 1) -> tuple[int, int, str]:
 def _caret_under(err: str, source_line: str, column: int) -> bool:
     """Whether ``err`` shows ``source_line`` with a caret under ``column`` on the next line."""
     lines = err.splitlines()
-    for shown, below in zip(lines, lines[1:]):
+    for shown, below in pairwise(lines):
         if shown.strip() == source_line.strip() and below.strip() == "^":
             start = len(shown) - len(shown.lstrip())
             indent = start - (len(source_line) - len(source_line.lstrip()))
@@ -140,8 +141,8 @@ def _twice(text: str, key: str) -> tuple[str, int, int]:
 
 
 @pytest.mark.parametrize("lang, words", [
-    ("en", "the key 'masses' is written twice, on lines {a} and {b}; YAML would keep the last "
-           "in silence: keep one"),
+    ("en", ("the key 'masses' is written twice, on lines {a} and {b}; YAML would keep the "
+            "last in silence: keep one")),
     ("ru", "ключ 'masses' записан дважды, в строках {a} и {b}; YAML молча оставил бы последний")])
 def test_a_section_written_twice_is_refused_naming_both_lines(
         tmp_path: Path, capsys: pytest.CaptureFixture[str], lang: str, words: str) -> None:
@@ -190,5 +191,5 @@ def test_a_repeated_key_through_a_yaml_merge_is_not_a_repetition(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     text = FOUR_BAR.replace("geometry:\n", "base: &p {point: [0, 0]}\ngeometry:\n").replace(
         "A: {point: [0, 0]}", "A: {<<: *p, point: [0, 0]}")
-    code, err = _run(tmp_path, text, capsys)
+    _, err = _run(tmp_path, text, capsys)
     assert "written twice" not in err

@@ -49,6 +49,7 @@ __all__ = [
     "number_problem",
     "positive",
     "table_kind",
+    "with_commas",
 ]
 
 #: Largest table file read (bytes); a bigger file is refused before it is parsed.
@@ -153,6 +154,23 @@ def describe(value: Any) -> Message:
     if isinstance(value, dict):
         return Message("value.mapping")
     return Message("value.other", {"type": type(value).__name__})
+
+
+def with_commas(value: Any) -> Any:
+    """``value`` as a message shows it as written: itself, or, for a list that hides a number
+    with a decimal comma (a :class:`WrittenList`), the list with the comma named.
+
+    >>> with_commas(_load("a: [36,5, 30, 50]", "t.yaml")["a"]).text("en")
+    '[36, 5, 30, 50] (decimal comma? write 36.5 for 36,5)'
+    >>> with_commas([1, 2])
+    [1, 2]
+    """
+    if isinstance(value, WrittenList) and value.commas:
+        written = value.commas[0]
+        return Message("value.shown_decimal_comma", {"value": str(list(value)),
+                                                     "written": written,
+                                                     "fixed": written.replace(",", ".")})
+    return value
 
 
 def lookalike_letters(text: str) -> str:

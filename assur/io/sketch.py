@@ -181,7 +181,8 @@ def _suspicious_directions(reader: TableReader, raw: Mapping[Any, Any], joints: 
     if small and all(abs(v) <= 2 * math.pi for v in written.values()) and \
             any(v != 0 for v in small.values()):
         reader.warn("geometry", "sketch.warn_radian_all",
-                    joints=", ".join(repr(key) for key in small), limit=2 * math.pi)
+                    joints=", ".join(repr(key) for key, v in small.items() if v != 0),
+                    limit=2 * math.pi)
         flagged.update(small)
     for joint, hinge, distance, scale in _far_off_guides(joints, frame, points, directions):
         value = written.get(joint)

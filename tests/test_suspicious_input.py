@@ -107,11 +107,11 @@ def test_a_direction_of_a_multiple_of_half_pi_is_warned(
     code, out, err = _run(capsys, "check", str(table))
     assert code == 0 and out
     assert (f"warning: {table}: geometry 'D' 'direction': {value:g} looks like an angle in "
-            f"radians ({pi}); directions are in degrees: did you mean {degrees:g}?") in err
+            f"radians ({pi}); angles are in degrees: did you mean {degrees:g}?") in err
     code, _, err = _run(capsys, "--lang", "ru", "analyze", str(table), "--points", "12")
     assert code == 0
     assert (f"предупреждение: {table}: geometry 'D' 'direction': {value:g} похоже на угол в "
-            f"радианах ({pi}); направления задаются в градусах: может быть, {degrees:g}?") in err
+            f"радианах ({pi}); углы задаются в градусах: может быть, {degrees:g}?") in err
 
 
 def test_warnings_are_listed_in_json(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
@@ -121,7 +121,7 @@ def test_warnings_are_listed_in_json(tmp_path: Path, capsys: pytest.CaptureFixtu
         assert code == 0 and err == ""
         warnings = json.loads(out)["warnings"]
         assert [(w["code"], w["where"]) for w in warnings] == [
-            ("sketch.warn_radian_pi", "geometry 'D' 'direction'")]
+            ("table.warn_radian", "geometry 'D' 'direction'")]
         assert "180?" in warnings[0]["message"] and "180?" in warnings[0]["message_ru"]
     plain = TABLES / "slider_crank.yaml"
     code, out, _ = _run(capsys, "check", str(plain), "--json")
@@ -227,3 +227,14 @@ def test_csv_dash_is_standard_output(tmp_path: Path, capsys: pytest.CaptureFixtu
     code, out, err = _run(capsys, "analyze", str(TABLES / "four_bar.yaml"), "--csv", "-",
                           "--json")
     assert code == 2 and out == "" and "--csv -: standard output carries the --json" in err
+
+
+def test_an_angle_of_identification_params_in_radians_is_warned(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    table = _table(tmp_path, "course_11_link_table.yaml", "beta_S: 90,", "beta_S: 1.5708,")
+    code, _, err = _run(capsys, "check", str(table))
+    assert code == 0
+    assert ("'beta_S': 1.5708 looks like an angle in radians (π/2); angles are in degrees: "
+            "did you mean 90?") in err
+    table = _table(tmp_path, "course_11_link_table.yaml", "l_1: 40,", "l_1: 3.1416,", "l.yaml")
+    assert "radians" not in _run(capsys, "check", str(table))[2]  # a length, not an angle

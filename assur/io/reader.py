@@ -48,6 +48,7 @@ __all__ = [
     "normalise_id",
     "number_problem",
     "positive",
+    "radian_look",
     "table_kind",
     "with_commas",
 ]
@@ -171,6 +172,27 @@ def with_commas(value: Any) -> Any:
                                                      "written": written,
                                                      "fixed": written.replace(",", ".")})
     return value
+
+
+#: Angles in radians that an angle in degrees is seldom written as, to three decimals → the
+#: multiple of π/2 they are (π/2, π, 3π/2, 2π).
+_RADIAN_LOOKS = {round(k * math.pi / 2, 3): k for k in (1, 2, 3, 4)}
+
+
+def radian_look(value: float) -> Message | None:
+    """The warning for an angle in degrees that looks written in radians: π/2, π, 3π/2 or 2π
+    to three decimals (None when it does not).
+
+    >>> radian_look(3.1416).text("en")
+    '3.1416 looks like an angle in radians (π); angles are in degrees: did you mean 180?'
+    >>> radian_look(3.0) is None, radian_look(90) is None
+    (True, True)
+    """
+    k = _RADIAN_LOOKS.get(round(abs(value), 3))
+    if k is None:
+        return None
+    return Message("table.warn_radian", {"value": value, "pi": Message(f"value.pi_{k}"),
+                                         "degrees": round(math.degrees(value), 2)})
 
 
 def lookalike_letters(text: str) -> str:

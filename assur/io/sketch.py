@@ -31,6 +31,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import replace
 from typing import Any
 
+from assur.errors import Issue
 from assur.io.reader import (
     MISSING,
     Node,
@@ -40,6 +41,7 @@ from assur.io.reader import (
     latin_form,
     lookalike_letters,
     normalise_id,
+    radian_look,
 )
 from assur.model import Chain, Direction, LinkId, PairId, Sketch, SketchTrace, joint_key
 from assur.text import Message
@@ -147,9 +149,6 @@ def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterab
     return Sketch(points, directions, rotation, stroke, tracing, margin)
 
 
-#: Angles in radians that a direction in degrees is seldom written as (π/2, π, 3π/2, 2π), to
-#: three decimals.
-_RADIAN_LOOKS = {round(k * math.pi / 2, 3): k for k in (1, 2, 3, 4)}
 #: A hinge farther from its slider's guide than this share of the sketch's size is "far off".
 FAR_OFF_GUIDE = 0.05
 
@@ -171,12 +170,10 @@ def _suspicious_directions(reader: TableReader, raw: Mapping[Any, Any], joints: 
                if isinstance(raw.get(key), dict) and is_number(raw[key].get("direction"))}
     flagged = set()
     for key, value in written.items():
-        k = _RADIAN_LOOKS.get(round(abs(value), 3))
-        if k is not None:
+        look = radian_look(value)
+        if look is not None:
             flagged.add(key)
-            reader.warn(f"geometry {key!r} 'direction'", "sketch.warn_radian_pi",
-                        value=value, pi=Message(f"sketch.pi_{k}"),
-                        degrees=round(math.degrees(value), 2))
+            reader.warnings.append(Issue(f"geometry {key!r} 'direction'", look))
     small = {key: value for key, value in written.items() if key not in flagged}
     if small and all(abs(v) <= 2 * math.pi for v in written.values()) and \
             any(v != 0 for v in small.values()):

@@ -20,10 +20,12 @@ def warning_records(warnings: Iterable[Issue]) -> list[dict[str, str]]:
     """The warnings in the form of the JSON answers: the catalogue code, where, and the
     sentence in every language.
 
-    >>> from assur.text import Message
-    >>> warning_records([Issue("geometry 'D' 'direction'", Message("sketch.warn_radian_pi",
-    ...     {"value": 3.1416, "pi": Message("sketch.pi_2"), "degrees": 180.0}))])[0]["message"]
-    '3.1416 looks like an angle in radians (π); directions are in degrees: did you mean 180?'
+    >>> from assur.io.reader import radian_look
+    >>> record = warning_records([Issue("geometry 'D' 'direction'", radian_look(3.1416))])[0]
+    >>> record["code"], record["where"]
+    ('table.warn_radian', "geometry 'D' 'direction'")
+    >>> record["message"]
+    '3.1416 looks like an angle in radians (π); angles are in degrees: did you mean 180?'
     """
     return [{"code": issue.message.code, "where": issue.location,
              **in_every_language("message", issue.message)} for issue in warnings]

@@ -238,3 +238,15 @@ def test_an_angle_of_identification_params_in_radians_is_warned(
             "did you mean 90?") in err
     table = _table(tmp_path, "course_11_link_table.yaml", "l_1: 40,", "l_1: 3.1416,", "l.yaml")
     assert "radians" not in _run(capsys, "check", str(table))[2]  # a length, not an angle
+
+
+def test_a_decimal_comma_in_a_block_list(tmp_path: Path,
+                                         capsys: pytest.CaptureFixture[str]) -> None:
+    table = _table(tmp_path, "four_bar.yaml", "C: {point: [110, 80]}",
+                   "C:\n    point:\n      - 110\n      - 80,25")
+    text = table.read_text(encoding="utf-8")
+    line = text[:text.index("80,25")].count("\n") + 1
+    code, _, err = _run(capsys, "check", str(table))
+    assert code == 2 and f"line {line}, column 9: '80,25' has a decimal comma? write 80.25" in err
+    code, _, err = _run(capsys, "--lang", "ru", "check", str(table))
+    assert code == 2 and "в '80,25' десятичная запятая? пишите 80.25" in err

@@ -703,8 +703,12 @@ class _Loader(_LOADER):  # type: ignore[misc,valid-type]
 
     def construct_flow_list(self, node: Any) -> Iterator[list[Any]]:
         """A list, kept as a :class:`WrittenList` when it holds a number with a decimal
-        comma."""
+        comma that YAML read as two (``[0, 49,5]``); an item ``- 49,5`` is noted."""
         items = node.value
+        for item in items:
+            if _comma_number(item):
+                self._note(item, "table.yaml_decimal_comma_item", written=item.value,
+                           fixed=item.value.strip().replace(",", "."))
         commas = tuple(f"{a.value},{b.value}" for a, b in pairwise(items)
                        if node.flow_style and _comma_split(a, b))
         data: list[Any] = WrittenList() if commas else []

@@ -148,9 +148,7 @@ def describe(value: Any) -> Message:
     if isinstance(value, list):
         listed = Message("value.list", {"n": len(value)})
         if isinstance(value, WrittenList) and value.commas:
-            written = value.commas[0]
-            return Message("value.list_decimal_comma", {"list": listed, "written": written,
-                                                        "fixed": written.replace(",", ".")})
+            return Message("value.list_decimal_comma", {"list": listed, **value.comma()})
         return listed
     if isinstance(value, dict):
         return Message("value.mapping")
@@ -167,10 +165,8 @@ def with_commas(value: Any) -> Any:
     [1, 2]
     """
     if isinstance(value, WrittenList) and value.commas:
-        written = value.commas[0]
         return Message("value.shown_decimal_comma", {"value": str(list(value)),
-                                                     "written": written,
-                                                     "fixed": written.replace(",", ".")})
+                                                     **value.comma()})
     return value
 
 
@@ -661,6 +657,10 @@ class WrittenList(list[Any]):
     """
 
     commas: tuple[str, ...] = ()
+
+    def comma(self) -> dict[str, str]:
+        """The first number with a decimal comma as written, and as it should be."""
+        return {"written": self.commas[0], "fixed": self.commas[0].replace(",", ".")}
 
 
 class _Loader(_LOADER):  # type: ignore[misc,valid-type]

@@ -109,6 +109,10 @@ def test_a_tab_says_indent_with_spaces(tmp_path: Path, capsys: pytest.CaptureFix
      "значение не может начинаться с '@'"),
     ("mechanism:\n  name: \"x\n  frame: 0\n", "\"", "the quote opened here is not closed",
      "открытая здесь кавычка не закрыта"),
+    ("mechanism:\n  name: !!python/object:os.system x\n", "!!", "a tag ('!…') is not allowed",
+     "тег ('!…') в таблице не допускается"),
+    ("mechanism:\n  name: *x\n", "*x", "a reference ('*name') to no anchor",
+     "ссылка ('*имя') на якорь ('&имя'), которого выше нет"),
 ])
 def test_other_syntax_errors_in_plain_words(tmp_path: Path, capsys: pytest.CaptureFixture[str],
                                             text: str, needle: str, en: str, ru: str) -> None:

@@ -843,4 +843,8 @@ def _yaml_problem(exc: yaml.YAMLError, text: str) -> Message:
         return Message("table.yaml_character", {**spot, "character": text[mark.index]})
     if "unhashable key" in problem:
         return Message("table.yaml_key", spot)
+    if problem.startswith("could not determine a constructor"):
+        return Message("table.yaml_tag", spot)
+    if problem.startswith("found undefined alias"):
+        return Message("table.yaml_alias", spot)
     return Message("table.yaml_syntax", spot)

@@ -68,6 +68,16 @@ def test_an_unclosed_bracket_is_named_where_it_was_opened(
     assert "expected ','" not in err and "<scalar>" not in err
 
 
+def test_an_unclosed_bracket_before_a_comma_is_named_where_it_was_opened(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    text = FOUR_BAR.replace("{id: B, type: R, links: [1, 2]}", "{id: B, type: R, links: [1, 2],")
+    line, column, source = _spot(text, "{id: B")
+    code, err = _run(tmp_path, text, capsys)
+    assert code == 2
+    assert f"line {line}, column {column}: the '{{' opened here is not closed" in err
+    assert _caret_under(err, source, column)
+
+
 def test_an_unclosed_list_under_analyze_and_in_a_problem_table(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     problem = (ROOT / "input_tables" / "problems" / "class1_fourbar_rocker.yaml").read_text(

@@ -805,6 +805,36 @@ def _excerpt(text: str, line: int, column: int) -> str:
 _BRACKETS = {"[": "]", "{": "}"}
 
 
+def _open_bracket(text: str, end: int) -> int | None:
+    """Where the innermost bracket still open at ``end`` of ``text`` was opened (None when
+    none is), skipping quoted texts and comments: the place to name when the parser stops
+    inside a flow collection without saying which.
+
+    >>> _open_bracket("a: {b: [1, 2], c: 3\\n- d", 22)
+    3
+    """
+    stack: list[int] = []
+    quote = ""
+    index = 0
+    while index < min(end, len(text)):
+        ch = text[index]
+        if quote:
+            if ch == quote:
+                quote = ""
+        elif ch in "\"'" and (index == 0 or text[index - 1] in " \t[{,:\n"):
+            quote = ch
+        elif ch == "#" and (index == 0 or text[index - 1] in " \t\n"):
+            newline = text.find("\n", index)
+            index = len(text) if newline == -1 else newline
+            continue
+        elif ch in _BRACKETS:
+            stack.append(index)
+        elif ch in "]}" and stack:
+            stack.pop()
+        index += 1
+    return stack[-1] if stack else None
+
+
 def _yaml_problem(exc: yaml.YAMLError, text: str) -> Message:
     """The problem of a text that is not YAML, in plain words: the spot (line, column, the line
     itself with a caret under the spot) and what to do; an unclosed bracket or quote is shown
@@ -819,12 +849,16 @@ def _yaml_problem(exc: yaml.YAMLError, text: str) -> Message:
             "excerpt": _excerpt(text, mark.line, mark.column)}
     if "'\\t'" in problem or (mark.index < len(text) and text[mark.index] == "\t"):
         return Message("table.yaml_tab", spot)
-    if opened is not None and context.startswith("while parsing a flow"):
-        bracket = text[opened.index] if opened.index < len(text) else ""
-        if bracket in _BRACKETS:
+    if context.startswith("while parsing a flow"):
+        start = opened.index if opened is not None and opened.index < len(text) and \
+            text[opened.index] in _BRACKETS else _open_bracket(text, mark.index)
+        if start is not None:
+            line = text.count("\n", 0, start)
+            column = start - (text.rfind("\n", 0, start) + 1)
+            bracket = text[start]
             return Message("table.yaml_unclosed", {
-                "line": opened.line + 1, "column": opened.column + 1,
-                "excerpt": _excerpt(text, opened.line, opened.column), "bracket": bracket,
+                "line": line + 1, "column": column + 1,
+                "excerpt": _excerpt(text, line, column), "bracket": bracket,
                 "closing": _BRACKETS[bracket], "at_line": mark.line + 1,
                 "at_column": mark.column + 1})
     if opened is not None and context.startswith("while scanning a quoted"):

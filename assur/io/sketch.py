@@ -180,7 +180,6 @@ def _suspicious_directions(reader: TableReader, raw: Mapping[Any, Any], joints: 
         reader.warn("geometry", "sketch.warn_radian_all",
                     joints=", ".join(repr(key) for key, v in small.items() if v != 0),
                     limit=2 * math.pi)
-        flagged.update(small)
     for joint, hinge, distance, scale in _far_off_guides(joints, frame, points, directions):
         value = written.get(joint)
         if value is None or value == 0 or abs(value) > 2 * math.pi:

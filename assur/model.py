@@ -355,9 +355,10 @@ class Chain:
             If no pair has this id.
         """
         try:
-            return self._lookup("by_id")[pair_id]
+            found: Pair = self._lookup("by_id")[pair_id]
         except KeyError:
             raise KeyError(f"no pair {pair_id!r} in chain {self.name!r}") from None
+        return found
 
     def link(self, link_id: LinkId) -> Link:
         """The link with its human name, if the table gave one."""
@@ -370,4 +371,5 @@ class Chain:
 
     def pairs_of(self, link: LinkId) -> tuple[Pair, ...]:
         """The pairs that touch ``link``."""
-        return self._lookup("at").get(link, ())
+        found: tuple[Pair, ...] = self._lookup("at").get(link, ())
+        return found

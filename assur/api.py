@@ -79,6 +79,8 @@ class Analysis:
         accelerations; None: analogs only.
     forces : ForceAnalysis or None
         The kinetostatics at the same positions, when asked for.
+    warnings : tuple of Issue
+        What looks wrong in the table but did not refuse it (:attr:`Chain.warnings`).
 
     Examples
     --------
@@ -102,6 +104,7 @@ class Analysis:
     allowed_pressure: Mapping[str, float]
     omega: float | None = None
     forces: ForceAnalysis | None = None
+    warnings: tuple[Issue, ...] = ()
 
     @property
     def crank(self) -> bool:
@@ -125,6 +128,7 @@ class Analysis:
         from assur.records import analysis_record
 
         record = analysis_record(self)
+        record["warnings"] = [issue.to_dict() for issue in self.warnings]
         if self.forces is not None:
             record["forces"] = self.forces.to_dict()
         return record
@@ -267,7 +271,7 @@ def analyse(chain: ChainLike, points: int = 360, forces: bool = False,
     existence = check_existence(model, motion=motion)
     allowed = chain.general.pressure_angles(model)
     if not forces:
-        return Analysis(model, motion, existence, allowed, omega)
+        return Analysis(model, motion, existence, allowed, omega, warnings=chain.warnings)
     issues = []
     if chain.forces is None:
         issues.append(Issue("--forces", Message("force.cli.no_sections", {})))
@@ -278,4 +282,4 @@ def analyse(chain: ChainLike, points: int = 360, forces: bool = False,
     from assur.forces.solver import kinetostatics
 
     return Analysis(model, motion, existence, allowed, omega,
-                    kinetostatics(motion, chain.forces, omega))
+                    kinetostatics(motion, chain.forces, omega), chain.warnings)

@@ -169,6 +169,7 @@ class Assessment:
                                            else [row.to_dict() for row in self.table])
         payload["identification_check"] = (None if self.mismatches is None
                                            else [m.to_dict() for m in self.mismatches])
+        payload["warnings"] = [issue.to_dict() for issue in self.chain.warnings]
         return payload
 
     def __repr__(self) -> str:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from assur.text import Message, render
+from assur.text import Message, in_every_language, render
 
 __all__ = [
     "AssemblyError",
@@ -52,6 +52,20 @@ class Issue:
 
     def __str__(self) -> str:
         return self.text("en")
+
+    def to_dict(self) -> dict[str, str]:
+        """The issue in the form of the JSON answers: the catalogue code, where, and the
+        sentence in every language.
+
+        >>> from assur.io.reader import radian_look
+        >>> record = Issue("geometry 'D' 'direction'", radian_look(3.1416)).to_dict()
+        >>> record["code"], record["where"]
+        ('table.warn_radian', "geometry 'D' 'direction'")
+        >>> record["message"]
+        '3.1416 looks like an angle in radians (π); angles are in degrees: did you mean 180?'
+        """
+        return {"code": self.message.code, "where": self.location,
+                **in_every_language("message", self.message)}
 
 
 class TableError(AssurError, ValueError):

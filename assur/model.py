@@ -374,6 +374,9 @@ class Chain:
     forces : ForceData or None
         The table's ``masses:``, ``loads:`` and ``gravity:`` sections (``docs/forces.md``);
         None when it has neither masses nor loads.
+    warnings : tuple of Issue
+        What looks wrong in the table but does not refuse it (an angle that looks like
+        radians, a slider hinge off its guide), found as it was read.
 
     Examples
     --------
@@ -397,6 +400,7 @@ class Chain:
     identification: tuple[IdentificationRow, ...] | None = None
     claims: Mapping[str, int] = field(default_factory=dict)
     forces: ForceData | None = None
+    warnings: tuple[Issue, ...] = ()
     _index: dict[str, dict[Any, Any]] = field(default_factory=dict, init=False, repr=False,
                                               compare=False)
 
@@ -423,9 +427,10 @@ class Chain:
             If no pair has this id.
         """
         try:
-            return self._lookup("by_id")[pair_id]
+            found: Pair = self._lookup("by_id")[pair_id]
         except KeyError:
             raise KeyError(f"no pair {pair_id!r} in chain {self.name!r}") from None
+        return found
 
     def link(self, link_id: LinkId) -> Link:
         """The link with its human name, if the table gave one."""
@@ -438,4 +443,5 @@ class Chain:
 
     def pairs_of(self, link: LinkId) -> tuple[Pair, ...]:
         """The pairs that touch ``link``."""
-        return self._lookup("at").get(link, ())
+        found: tuple[Pair, ...] = self._lookup("at").get(link, ())
+        return found

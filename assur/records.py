@@ -249,3 +249,4 @@ def forces_record(forces: ForceAnalysis) -> Record:
                    for r in forces.reason.ravel()],
         "singular": list(forces.singular.ravel()),
     }
+

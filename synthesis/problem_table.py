@@ -51,6 +51,7 @@ from assur.io.reader import (
     is_number,
     normalise_id,
     positive,
+    with_commas,
 )
 from assur.text import Message
 from synthesis.force_conditions import read_force_conditions
@@ -584,7 +585,7 @@ def _cell(reader: TableReader, value: Any, location: str, key: GroupKey, column:
     if column == "tracing" or not isinstance(value, list):
         return value
     if len(value) != 3 or not all(map(is_number, value)):
-        reader.problem(location, "problem.cell", found=value)
+        reader.problem(location, "problem.cell", found=with_commas(value))
         return value
     initial, lower, upper = (float(v) for v in value)
     if lower > upper:

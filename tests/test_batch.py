@@ -111,7 +111,7 @@ EXPECTED = {  # file: (verdict, words of the first problem, identification, exis
     ".hidden.yaml": ("skipped", "hidden file", *SKIPPED),
     "a_good.yaml": ("correct", "", "matches", "whole cycle"),
     "b_wrong_kind.yaml": ("wrong", "kind 1", "differs", "whole cycle"),
-    "c_broken_yaml.yaml": ("unreadable", "not valid YAML", *SKIPPED),
+    "c_broken_yaml.yaml": ("unreadable", "is not closed", *SKIPPED),
     "d_typo.yaml": ("unreadable", "did you mean 'pairs'", *SKIPPED),
     "dangling.yaml": ("skipped", "link to nothing", *SKIPPED),
     "e_five_bar.yaml": ("wrong", "= 2, but", "not given", "no dimensions"),

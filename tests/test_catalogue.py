@@ -251,7 +251,7 @@ def test_a_third_language_is_one_file(tmp_path, monkeypatch, fresh_catalogues) -
 
     assert text.languages() == ("en", "ru", "xx") and text.check_lang("xx") == "xx"
     for code, (strings, _) in _entries("en").items():
-        data = dict.fromkeys(set().union(*(_fields(s) for s in strings)), 1)
+        data = {"n": 1, **dict.fromkeys(set().union(*(_fields(s) for s in strings)), 1)}
         assert text.render(code, "xx", **data) == f"«{text.render(code, 'en', **data)}»"
     error = TableError("t.yaml", [Issue("'x'", Message("value.kind.list"))] * 2)
     assert error.text("xx").splitlines() == ["«2 problems in t.yaml:»", *["  - 'x': «a list»"] * 2]

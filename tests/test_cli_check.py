@@ -58,7 +58,7 @@ def test_wrong_identification_table_is_reported_field_by_field(
     path.write_text(yaml.safe_dump(data, allow_unicode=True), encoding="utf-8")
     assert main(["check", str(path)]) == 0
     out = capsys.readouterr().out
-    assert "differs from the analysis (2 mismatch(es))" in out
+    assert "differs from the analysis (2 mismatches)" in out
     assert "structure_identification[3] (L3, i = 6, j = 7) 'i_minus_1': expected 2, found 3" in out
     assert "structure_identification[4] (L3, i = 4, j = 5) 'L': expected 4, found 3" in out
 

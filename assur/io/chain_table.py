@@ -158,7 +158,7 @@ def _read(reader: TableReader) -> Chain:
             reader.problem("", "chain.no_table")
         raise TableError(reader.source, reader.issues)
     reader.raise_if_any()
-    return chain
+    return replace(chain, warnings=tuple(reader.warnings)) if reader.warnings else chain
 
 
 # ----------------------------------------------------------------------------- chain form
@@ -530,7 +530,8 @@ def _read_rows(top: Node, *, required: bool
 def _read_params(reader: TableReader, row: dict[str, Any]) -> GroupParams:
     kind = kind_of(row["L"])
     links = f"{row['i']}" if kind.is_input else f"{row['i']},{row['j']}"
-    return read_params(reader.source, f"{kind.code}({links})", row["params"])
+    return read_params(reader.source, f"{kind.code}({links})", row["params"],
+                       reader.warnings)
 
 
 def _read_table_form(reader: TableReader) -> Chain:

@@ -22,9 +22,18 @@ earlier group); found 'long' (a text)"
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
-from assur.io.reader import Node, TableReader, describe, is_number, normalise_id
+from assur.errors import Issue
+from assur.io.reader import (
+    Node,
+    TableReader,
+    describe,
+    is_number,
+    normalise_id,
+    radian_look,
+)
 from assur.model import GroupParams
 from assur.text import Message
 
@@ -32,9 +41,12 @@ __all__ = ["SUPPLIED", "read_params"]
 
 #: The symbol of a value supplied by an earlier group (``method.md`` §4.3).
 SUPPLIED = "A"
+#: The columns that hold angles, in degrees (``phi_1_0``, ``beta_S``, ``gamma``, …).
+_ANGLE = re.compile(r"(phi|beta|gamma|alpha|theta|psi)(_|$)")
 
 
-def read_params(source: str, label: str, data: Any) -> GroupParams:
+def read_params(source: str, label: str, data: Any,
+                warnings: list[Issue] | None = None) -> GroupParams:
     """Read the ``params:`` of one identification row.
 
     Every value is checked here (a number, ``'A'``, or a range with lower ≤ initial ≤
@@ -53,6 +65,9 @@ def read_params(source: str, label: str, data: Any) -> GroupParams:
         The row's group label (``"L1(2,3)"``), used in the problems' locations.
     data : mapping
         The ``params:`` as parsed from YAML.
+    warnings : list of Issue, optional
+        Where an angle that looks written in radians (:func:`~assur.io.reader.radian_look`)
+        is warned of.
 
     Returns
     -------
@@ -73,6 +88,9 @@ def read_params(source: str, label: str, data: Any) -> GroupParams:
             reader.problem(at, "model.range_in_problem", found=str(raw))
         elif is_number(raw):
             values[str(column)] = float(raw)
+            look = radian_look(raw) if _ANGLE.match(str(column)) else None
+            if look is not None and warnings is not None:
+                warnings.append(Issue(at, look))
         else:
             reader.problem(at, "model.value", found=describe(raw))
     s = node.get("s", kind="int", required=False, default=1,

@@ -22,10 +22,11 @@ import os
 import re
 import stat
 from collections.abc import Callable, Iterable, Iterator
+from itertools import pairwise
 from pathlib import Path
 from typing import Any
 
-import yaml  # type: ignore[import-untyped]
+import yaml
 
 from assur.errors import Issue, TableError
 from assur.text import Message
@@ -39,6 +40,7 @@ __all__ = [
     "TABLE_KINDS",
     "Node",
     "TableReader",
+    "WrittenList",
     "describe",
     "is_number",
     "latin_form",
@@ -46,7 +48,9 @@ __all__ = [
     "normalise_id",
     "number_problem",
     "positive",
+    "radian_look",
     "table_kind",
+    "with_commas",
 ]
 
 #: Largest table file read (bytes); a bigger file is refused before it is parsed.
@@ -142,10 +146,49 @@ def describe(value: Any) -> Message:
             return Message("value.text_lookalike", {"value": value, "letters": letters})
         return Message("value.text", {"value": value})
     if isinstance(value, list):
-        return Message("value.list", {"n": len(value)})
+        listed = Message("value.list", {"n": len(value)})
+        if isinstance(value, WrittenList) and value.commas:
+            return Message("value.list_decimal_comma", {"list": listed, **value.comma()})
+        return listed
     if isinstance(value, dict):
         return Message("value.mapping")
     return Message("value.other", {"type": type(value).__name__})
+
+
+def with_commas(value: Any) -> Any:
+    """``value`` as a message shows it as written: itself, or, for a list that hides a number
+    with a decimal comma (a :class:`WrittenList`), the list with the comma named.
+
+    >>> with_commas(_load("a: [36,5, 30, 50]", "t.yaml")["a"]).text("en")
+    '[36, 5, 30, 50] (decimal comma? write 36.5 for 36,5)'
+    >>> with_commas([1, 2])
+    [1, 2]
+    """
+    if isinstance(value, WrittenList) and value.commas:
+        return Message("value.shown_decimal_comma", {"value": str(list(value)),
+                                                     **value.comma()})
+    return value
+
+
+#: Angles in radians that an angle in degrees is seldom written as, to three decimals → the
+#: multiple of π/2 they are (π/2, π, 3π/2, 2π).
+_RADIAN_LOOKS = {round(k * math.pi / 2, 3): k for k in (1, 2, 3, 4)}
+
+
+def radian_look(value: float) -> Message | None:
+    """The warning for an angle in degrees that looks written in radians: π/2, π, 3π/2 or 2π
+    to three decimals (None when it does not).
+
+    >>> radian_look(3.1416).text("en")
+    '3.1416 looks like an angle in radians (π); angles are in degrees: did you mean 180?'
+    >>> radian_look(3.0) is None, radian_look(90) is None
+    (True, True)
+    """
+    k = _RADIAN_LOOKS.get(round(abs(value), 3))
+    if k is None:
+        return None
+    return Message("table.warn_radian", {"value": value, "pi": Message(f"value.pi_{k}"),
+                                         "degrees": round(math.degrees(value), 2)})
 
 
 def lookalike_letters(text: str) -> str:
@@ -244,6 +287,9 @@ class TableReader:
         self.data = data
         self.source = source
         self.issues: list[Issue] = []
+        #: Things that look wrong but may be meant (an angle that looks like radians): they
+        #: do not refuse the table and are shown beside its results.
+        self.warnings: list[Issue] = []
 
     @classmethod
     def from_path(cls, path: str | os.PathLike[str], *, kind: str | None = None
@@ -281,12 +327,12 @@ class TableReader:
             try:
                 message = _depth_problem(text)
                 if message is None:
-                    reader = cls(yaml.load(text, Loader=_LOADER), source)
+                    reader = cls(_load(text, source), source)
                     if kind is not None:
                         reader.expect(kind)
                     return reader
             except yaml.YAMLError as exc:
-                message = _python_problem(text) or _yaml_problem(exc)
+                message = _python_problem(text) or _yaml_problem(exc, text)
         raise TableError(source, [Issue("", message)])
 
     @classmethod
@@ -320,6 +366,16 @@ run it with: assur case tracker --table FILE
         "links[2]: no catalogue for language 'de'; the languages are en"
         """
         self.issues.append(Issue(location, Message(code, data)))
+
+    def warn(self, location: str, code: str, /, **data: Any) -> None:
+        """Record one warning: like :meth:`problem`, but the table is still read.
+
+        >>> reader = TableReader.from_data({}, source="demo.yaml")
+        >>> reader.warn("geometry 'B'", "lang.unknown", found="de", known="en")
+        >>> reader.issues, len(reader.warnings)
+        ([], 1)
+        """
+        self.warnings.append(Issue(location, Message(code, data)))
 
     def root(self, allowed: Iterable[str] | None = None, *, name: str = "") -> Node:
         """The top of the document, which must be a mapping."""
@@ -590,6 +646,136 @@ def _depth_problem(text: str, loader: Any = _LOADER) -> Message | None:
     return None
 
 
+class WrittenList(list[Any]):
+    """A list of a table as it was written: a flow list (``[0, 49,5]``) remembers the pairs of
+    numbers written with a comma and no space between them (``49,5``), which YAML reads as two
+    entries and which are most likely one number with a decimal comma.  The description of a
+    list of the wrong length names them (:func:`describe`).
+
+    >>> describe(_load("point: [0, 49,5]", "t.yaml")["point"]).text("en")
+    'a list of 3 items; decimal comma? write 49.5 for 49,5'
+    """
+
+    commas: tuple[str, ...] = ()
+
+    def comma(self) -> dict[str, str]:
+        """The first number with a decimal comma as written, and as it should be."""
+        return {"written": self.commas[0], "fixed": self.commas[0].replace(",", ".")}
+
+
+class _Loader(_LOADER):  # type: ignore[misc,valid-type]
+    """The safe loader of the tables, which also notes, as it builds the data, a key written
+    twice in one mapping (YAML keeps the last in silence) and a value written with a decimal
+    comma: ``l_1: 40,5`` (read as a text) and, inside a flow mapping, ``{l_1: 40,5}`` (read as
+    ``l_1: 40`` and a key ``5``)."""
+
+    def __init__(self, text: str) -> None:
+        super().__init__(text)
+        self.text = text
+        self.found: list[tuple[int, int, Message]] = []
+
+    def construct_mapping(self, node: Any, deep: bool = False) -> Any:
+        """The mapping of ``node``, after noting its repeated keys and decimal commas."""
+        seen: dict[Any, Any] = {}
+        previous: Any = None
+        for key_node, value_node in node.value:
+            key = self.construct_object(key_node, deep=True)
+            if _hashable(key):
+                first = seen.setdefault(key, key_node)
+                if first is not key_node:
+                    line = first.start_mark.line
+                    self._note(key_node, "table.yaml_duplicate_key" if line <
+                               key_node.start_mark.line else "table.yaml_duplicate_key_row",
+                               key=str(key), first=line + 1)
+            if node.flow_style and previous is not None and \
+                    _comma_split(previous[1], key_node) and _implicit_null(value_node):
+                written = f"{previous[1].value},{key_node.value}"
+                self._note(previous[1], "table.yaml_decimal_comma_key",
+                           key=str(self.construct_object(previous[0], deep=True)),
+                           written=written, fixed=written.replace(",", "."),
+                           whole=previous[1].value, part=key_node.value)
+            if _comma_number(value_node):
+                self._note(value_node, "table.yaml_decimal_comma", key=str(key),
+                           written=value_node.value,
+                           fixed=value_node.value.strip().replace(",", "."))
+            previous = (key_node, value_node)
+        return super().construct_mapping(node, deep=deep)
+
+    def construct_flow_list(self, node: Any) -> Iterator[list[Any]]:
+        """A list, kept as a :class:`WrittenList` when it holds a number with a decimal
+        comma that YAML read as two (``[0, 49,5]``); an item ``- 49,5`` is noted."""
+        items = node.value
+        for item in items:
+            if _comma_number(item):
+                self._note(item, "table.yaml_decimal_comma_item", written=item.value,
+                           fixed=item.value.strip().replace(",", "."))
+        commas = tuple(f"{a.value},{b.value}" for a, b in pairwise(items)
+                       if node.flow_style and _comma_split(a, b))
+        data: list[Any] = WrittenList() if commas else []
+        if commas:
+            data.commas = commas  # type: ignore[attr-defined]
+        yield data
+        data.extend(self.construct_sequence(node))
+
+    def _note(self, node: Any, code: str, **data: Any) -> None:
+        mark = node.start_mark
+        self.found.append((mark.line, mark.column, Message(code, {
+            "line": mark.line + 1, "column": mark.column + 1,
+            "excerpt": _excerpt(self.text, mark.line, mark.column), **data})))
+
+
+_Loader.add_constructor("tag:yaml.org,2002:seq", _Loader.construct_flow_list)
+
+_INTEGER = re.compile(r"[-+]?\d+")
+_DIGITS = re.compile(r"\d+")
+
+
+def _comma_split(a: Any, b: Any) -> bool:
+    """Whether nodes ``a`` and ``b`` are two plain integers written ``49,5``: a comma and no
+    space between them (a plain scalar's style is None, or '' from libyaml)."""
+    return (isinstance(a, yaml.ScalarNode) and isinstance(b, yaml.ScalarNode)
+            and not a.style and not b.style
+            and _INTEGER.fullmatch(a.value) is not None and _DIGITS.fullmatch(b.value) is not None
+            and a.end_mark.index + 1 == b.start_mark.index)
+
+
+def _comma_number(node: Any) -> bool:
+    """Whether ``node`` is a number with a decimal comma written without quotes
+    (``l_1: 40,5``), which YAML reads as a text."""
+    return (isinstance(node, yaml.ScalarNode) and not node.style
+            and node.tag == "tag:yaml.org,2002:str"
+            and _DECIMAL_COMMA.fullmatch(node.value) is not None)
+
+
+def _implicit_null(node: Any) -> bool:
+    """Whether ``node`` is a value not written at all (a key without ``:``)."""
+    return isinstance(node, yaml.ScalarNode) and node.value == "" and not node.style
+
+
+def _load(text: str, source: str) -> Any:
+    """The data of a table's YAML text; a key written twice or a decimal comma inside a flow
+    mapping is refused with every place where it occurs.
+
+    >>> _load("a: 1\\nb: 2\\na: 3\\n", "t.yaml")
+    Traceback (most recent call last):
+    ...
+    assur.errors.TableError: 1 problem in t.yaml:
+      - line 3, column 1: the key 'a' is written twice, on lines 1 and 3; YAML would keep \
+the last in silence: keep one
+        a: 3
+        ^
+    """
+    loader = _Loader(text)
+    try:
+        data = loader.get_single_data()
+    finally:
+        loader.dispose()
+    if loader.found:
+        raise TableError(source, [Issue("", message)
+                                  for *_, message in sorted(loader.found, key=lambda f: f[:2])])
+    return data
+
+
 def _python_problem(text: str) -> Message | None:
     """The problem of a text that libyaml refused, in the words of PyYAML's own parser (the
     same position, a plainer sentence); its depth is checked first, so it never recurses deep.
@@ -600,14 +786,99 @@ def _python_problem(text: str) -> Message | None:
             return depth
         yaml.safe_load(text)
     except yaml.YAMLError as exc:
-        return _yaml_problem(exc)
+        return _yaml_problem(exc, text)
     return None
 
 
-def _yaml_problem(exc: yaml.YAMLError) -> Message:
+def _excerpt(text: str, line: int, column: int) -> str:
+    """The line ``line`` (from 0) of ``text`` with a caret under ``column``, indented to sit
+    under a problem of :class:`~assur.errors.TableError` (a tab is shown as a space, so that
+    the caret stays under its spot)."""
+    lines = text.splitlines()
+    if not 0 <= line < len(lines):
+        return ""
+    shown = lines[line].replace("\t", " ").rstrip()
+    return f"\n    {shown}\n    {' ' * min(column, len(shown))}^"
+
+
+#: Brackets of YAML's flow collections: opening → closing.
+_BRACKETS = {"[": "]", "{": "}"}
+
+
+def _open_bracket(text: str, end: int) -> int | None:
+    """Where the innermost bracket still open at ``end`` of ``text`` was opened (None when
+    none is), skipping quoted texts and comments: the place to name when the parser stops
+    inside a flow collection without saying which.
+
+    >>> _open_bracket("a: {b: [1, 2], c: 3\\n- d", 22)
+    3
+    """
+    stack: list[int] = []
+    quote = ""
+    index = 0
+    while index < min(end, len(text)):
+        ch = text[index]
+        if quote:
+            if ch == quote:
+                quote = ""
+        elif ch in "\"'" and (index == 0 or text[index - 1] in " \t[{,:\n"):
+            quote = ch
+        elif ch == "#" and (index == 0 or text[index - 1] in " \t\n"):
+            newline = text.find("\n", index)
+            index = len(text) if newline == -1 else newline
+            continue
+        elif ch in _BRACKETS:
+            stack.append(index)
+        elif ch in "]}" and stack:
+            stack.pop()
+        index += 1
+    return stack[-1] if stack else None
+
+
+def _yaml_problem(exc: yaml.YAMLError, text: str) -> Message:
+    """The problem of a text that is not YAML, in plain words: the spot (line, column, the line
+    itself with a caret under the spot) and what to do; an unclosed bracket or quote is shown
+    where it was opened."""
     mark = getattr(exc, "problem_mark", None)
-    problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
-    if mark is not None:
-        return Message("table.not_yaml_at", {"line": mark.line + 1, "column": mark.column + 1,
-                                             "problem": problem})
-    return Message("table.not_yaml", {"problem": problem})
+    if mark is None:
+        return Message("table.not_yaml")
+    problem = str(getattr(exc, "problem", None) or "")
+    context = str(getattr(exc, "context", None) or "")
+    opened = getattr(exc, "context_mark", None)
+    spot = {"line": mark.line + 1, "column": mark.column + 1,
+            "excerpt": _excerpt(text, mark.line, mark.column)}
+    if "'\\t'" in problem or (mark.index < len(text) and text[mark.index] == "\t"):
+        return Message("table.yaml_tab", spot)
+    if context.startswith("while parsing a flow"):
+        start = opened.index if opened is not None and opened.index < len(text) and \
+            text[opened.index] in _BRACKETS else _open_bracket(text, mark.index)
+        if start is not None:
+            line = text.count("\n", 0, start)
+            column = start - (text.rfind("\n", 0, start) + 1)
+            bracket = text[start]
+            return Message("table.yaml_unclosed", {
+                "line": line + 1, "column": column + 1,
+                "excerpt": _excerpt(text, line, column), "bracket": bracket,
+                "closing": _BRACKETS[bracket], "at_line": mark.line + 1,
+                "at_column": mark.column + 1})
+    if opened is not None and context.startswith("while scanning a quoted"):
+        return Message("table.yaml_quote", {
+            "line": opened.line + 1, "column": opened.column + 1,
+            "excerpt": _excerpt(text, opened.line, opened.column)})
+    if problem.startswith("mapping values are not allowed"):
+        return Message("table.yaml_colon", spot)
+    if problem.startswith("could not find expected ':'") and opened is not None:
+        return Message("table.yaml_no_colon", {
+            "line": opened.line + 1, "column": opened.column + 1,
+            "excerpt": _excerpt(text, opened.line, opened.column)})
+    if problem.startswith("expected <block end>") or context.startswith("while parsing a block"):
+        return Message("table.yaml_indent", spot)
+    if "that cannot start any token" in problem and mark.index < len(text):
+        return Message("table.yaml_character", {**spot, "character": text[mark.index]})
+    if "unhashable key" in problem:
+        return Message("table.yaml_key", spot)
+    if problem.startswith("could not determine a constructor"):
+        return Message("table.yaml_tag", spot)
+    if problem.startswith("found undefined alias"):
+        return Message("table.yaml_alias", spot)
+    return Message("table.yaml_syntax", spot)

@@ -31,6 +31,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import replace
 from typing import Any
 
+from assur.errors import Issue
 from assur.io.reader import (
     MISSING,
     Node,
@@ -40,6 +41,7 @@ from assur.io.reader import (
     latin_form,
     lookalike_letters,
     normalise_id,
+    radian_look,
 )
 from assur.model import Chain, Direction, LinkId, PairId, Sketch, SketchTrace, joint_key
 from assur.text import Message
@@ -143,7 +145,82 @@ def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterab
     margin = _margin(reader, raw.get("margin"))
     if len(reader.issues) > count:
         return None
+    _suspicious_directions(reader, raw, joints, frame, points, directions)
     return Sketch(points, directions, rotation, stroke, tracing, margin)
+
+
+#: A hinge farther from its slider's guide than this share of the sketch's size is "far off".
+FAR_OFF_GUIDE = 0.05
+
+
+def _suspicious_directions(reader: TableReader, raw: Mapping[Any, Any], joints: Joints,
+                           frame: LinkId, points: Mapping[PairId, complex],
+                           directions: Mapping[PairId, Direction]) -> None:
+    """Warn (without refusing the sketch) of directions that look written in radians and of
+    slider hinges drawn far off their guide.
+
+    A direction looks like radians when it is π/2, π, 3π/2 or 2π to three decimals, or when
+    every direction of the sketch is within 2π and some is not zero, or when the hinge of the
+    slider's block (a moving link with the slider pair and one revolute pair) is farther off
+    the guide line than :data:`FAR_OFF_GUIDE` of the sketch's size and the direction taken
+    as radians puts it on the line.  (A block's hinge off its guide alone is a valid design,
+    as in the class IV groups with a block in a slot, and is not named.)
+    """
+    written = {key: raw[key]["direction"] for key in directions
+               if isinstance(raw.get(key), dict) and is_number(raw[key].get("direction"))}
+    flagged = set()
+    for key, value in written.items():
+        look = radian_look(value)
+        if look is not None:
+            flagged.add(key)
+            reader.warnings.append(Issue(f"geometry {key!r} 'direction'", look))
+    small = {key: value for key, value in written.items() if key not in flagged}
+    if small and all(abs(v) <= 2 * math.pi for v in written.values()) and \
+            any(v != 0 for v in small.values()):
+        reader.warn("geometry", "sketch.warn_radian_all",
+                    joints=", ".join(repr(key) for key, v in small.items() if v != 0),
+                    limit=2 * math.pi)
+    for joint, hinge, distance, scale in _far_off_guides(joints, frame, points, directions):
+        value = written.get(joint)
+        if value is None or value == 0 or abs(value) > 2 * math.pi:
+            continue
+        turned = Direction(value, complex(math.cos(value), math.sin(value)))
+        if _off_line(points[hinge], points[joint], turned) <= FAR_OFF_GUIDE * scale:
+            reader.warn(f"geometry {joint!r} 'direction'", "sketch.warn_off_guide",
+                        joint=repr(joint), hinge=repr(hinge), distance=distance, value=value,
+                        degrees=round(math.degrees(value), 2))
+
+
+def _off_line(point: complex, through: complex, direction: Direction) -> float:
+    """The distance of ``point`` from the line through ``through`` along ``direction``."""
+    unit = direction.vector / abs(direction.vector)
+    return abs(((point - through) * unit.conjugate()).imag)
+
+
+def _far_off_guides(joints: Joints, frame: LinkId, points: Mapping[PairId, complex],
+                    directions: Mapping[PairId, Direction]
+                    ) -> Iterable[tuple[PairId, PairId, float, float]]:
+    """The slider joints whose block's hinge is far off the guide line: (slider joint, hinge,
+    distance, size of the sketch)."""
+    if len(points) < 2:
+        return
+    xs = [p.real for p in points.values()]
+    ys = [p.imag for p in points.values()]
+    scale = math.hypot(max(xs) - min(xs), max(ys) - min(ys))
+    at: dict[LinkId, list[PairId]] = {}
+    for key, (_, ends) in joints.items():
+        for link in ends:
+            at.setdefault(link, []).append(key)
+    for joint, (ptype, ends) in joints.items():
+        if ptype != "P" or joint not in points or joint not in directions:
+            continue
+        for link in ends:
+            others = [key for key in at.get(link, []) if key != joint and link != frame]
+            if len(others) != 1 or joints[others[0]][0] != "R" or others[0] not in points:
+                continue
+            distance = _off_line(points[others[0]], points[joint], directions[joint])
+            if distance > FAR_OFF_GUIDE * scale:
+                yield joint, others[0], distance, scale
 
 
 def _unknown_keys(reader: TableReader, raw: dict[Any, Any], joints: Joints,

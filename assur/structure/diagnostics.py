@@ -76,7 +76,7 @@ class Diagnostic:
     def message(self) -> Message:
         """The sentence, not yet rendered."""
         return Message(f"diag.{self.code.lower()}", {
-            **dict.fromkeys(NOTES, ""), **self.data, **self.notes,
+            **dict.fromkeys(NOTES, ""), "n": len(self.links), **self.data, **self.notes,
             "links": link_phrase(self.links), "names": _plain(self.links),
             "pairs": _plain(self.pairs) or "—"})
 

@@ -143,7 +143,7 @@ def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
     if mismatches is not None:
         lines.append("")
         if mismatches:
-            lines.append(render("report.structure.table_differs", lang, k=len(mismatches)))
+            lines.append(render("report.structure.table_differs", lang, n=len(mismatches)))
             lines += [f"  - {m.text(lang)}" for m in mismatches]
         else:
             lines.append(render("report.structure.table_agrees", lang, k=checked_rows))

@@ -284,7 +284,7 @@ def check_table(path: str | os.PathLike[str], *, lang: str = "en",
         found = assess(path, points=EXISTENCE_POINTS)
     except AssurError as exc:
         issues = exc.issues if isinstance(exc, TableError) else None
-        first = issues[0].text(lang) if issues else exc.text(lang)
+        first = (issues[0].text(lang) if issues else exc.text(lang)).splitlines()[0]
         return _not_checked(name, "unreadable", first, len(issues) if issues else 1,
                             time.perf_counter() - start)
     return _row(name, found, lang, time.perf_counter() - start)

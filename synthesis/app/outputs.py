@@ -26,12 +26,32 @@ from typing import TextIO, TypeVar
 from assur.errors import AssurError
 from assur.text import Message, render
 
-__all__ = ["OutputError", "Outputs", "output_problem", "outputs_of"]
+__all__ = ["STDOUT", "OutputError", "Outputs", "output_problem", "outputs_of", "stdout_taken"]
 
 T = TypeVar("T")
 
 #: What an output option names: a file, or a folder that receives files.
 FILE, FOLDER = "file", "folder"
+#: The name of a text output (``--csv -``) that goes to standard output.
+STDOUT = "-"
+
+
+def stdout_taken(args: argparse.Namespace, option: str) -> bool:
+    """Whether the text output ``option`` (a destination of ``args``) goes to standard output,
+    which then carries it alone: with ``--json`` as well, the two answers would mix, and both
+    are refused.
+
+    Raises
+    ------
+    OutputError
+        When ``--json`` is asked for too.
+    """
+    if getattr(args, option, None) != STDOUT:
+        return False
+    if getattr(args, "json", False):
+        raise OutputError([Message("cli.output.stdout_twice",
+                                   {"option": f"--{option}", "json": "--json"})])
+    return True
 
 
 class OutputError(AssurError):
@@ -92,6 +112,8 @@ def output_problem(option: str, path: str | os.PathLike[str], kind: str = FILE
     >>> print(output_problem("--out", here).text("en"))  # doctest: +ELLIPSIS
     --out ...: this is a folder; give a file name in it
     """
+    if kind == FILE and str(path) == STDOUT:
+        return None
     target = Path(path)
     data = {"option": option, "path": str(target)}
     if kind == FILE and target.is_dir():
@@ -184,9 +206,13 @@ class Outputs:
             self.announce(file)
 
     def write_text(self, path: str | os.PathLike[str], text: str) -> None:
-        """Write a text output atomically; when no file takes it, print it instead."""
+        """Write a text output atomically (to standard output when ``path`` is
+        :data:`STDOUT`); when no file takes it, print it instead."""
         from assur.io.files import atomic_write_text
 
+        if str(path) == STDOUT:
+            sys.stdout.write(text if text.endswith("\n") else text + "\n")
+            return
         before = len(self.failures)
         self.write(path, lambda target: atomic_write_text(target, text))
         if len(self.failures) > before and self.failures[-1].code == "cli.output.lost":

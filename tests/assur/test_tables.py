@@ -51,9 +51,9 @@ def test_russian_wording_of_the_same_problems() -> None:
     reader = _read({"links": 3, "framee": 0, "pairs": [{"id": 0, "type": "Q"}]})
     texts = [issue.text("ru") for issue in reader.issues]
     assert texts[0] == "неизвестный ключ 'framee'; возможно, имелось в виду 'frame'?"
-    assert texts[1] == "'links': ожидается список; найдено 3"
-    assert texts[2] == "pairs[0] (id 0) 'type': ожидается одно из: 'R', 'P'; найдено 'Q' (текст)"
-    assert texts[3] == "pairs[0] (id 0) 'id': значение id не может быть нулём; найдено 0"
+    assert texts[1] == "'links': ожидается список; найдено: 3"
+    assert texts[2] == "pairs[0] (id 0) 'type': ожидается одно из: 'R', 'P'; найдено: 'Q' (текст)"
+    assert texts[3] == "pairs[0] (id 0) 'id': значение id не может быть нулём; найдено: 0"
     error = TableError("t.yaml", reader.issues)
     assert error.text("ru").splitlines()[0] == "t.yaml: найдены 4 ошибки"
 
@@ -88,7 +88,7 @@ def test_a_found_value_is_described_in_both_languages(value, english, russian) -
     reader = TableReader.from_data({"x": value}, source="t.yaml")
     reader.root().get("x", kind="int")
     prefix_en = "'x': expected a whole number; found "
-    prefix_ru = "'x': ожидается целое число; найдено "
+    prefix_ru = "'x': ожидается целое число; найдено: "
     assert reader.issues[0].text("en") == prefix_en + english
     assert reader.issues[0].text("ru") == prefix_ru + russian
 
@@ -107,7 +107,7 @@ def test_top_of_the_file_must_be_a_mapping() -> None:
     reader = TableReader.from_data([1, 2], source="t.yaml")
     reader.root()
     assert [issue.text("ru") for issue in reader.issues] == [
-        "в начале файла ожидается словарь таблиц; найдено список из 2 элементов"]
+        "в начале файла ожидается словарь таблиц; найдено: список из 2 элементов"]
 
 
 def test_invalid_yaml_names_line_and_column(tmp_path) -> None:
@@ -116,8 +116,8 @@ def test_invalid_yaml_names_line_and_column(tmp_path) -> None:
     with pytest.raises(TableError) as caught:
         TableReader.from_path(table)
     issue = caught.value.issues[0]
-    assert issue.text("en").startswith("line 3, column 1: this is not valid YAML: expected")
-    assert issue.text("ru").startswith("строка 3, столбец 1: это некорректный YAML: expected")
+    assert issue.text("en").startswith("line 2, column 10: the '[' opened here is not closed")
+    assert issue.text("ru").startswith("строка 2, столбец 10: открытая здесь скобка '[' не")
 
 
 def test_missing_file_and_folder_are_named(tmp_path) -> None:

@@ -43,8 +43,10 @@ def run(args: argparse.Namespace) -> int:
     from assur.api import analyse
     from assur.plot.formats import animation_format, picture_format
     from synthesis.app.analysis_text import analysis_text
-    from synthesis.app.outputs import outputs_of
+    from synthesis.app.outputs import outputs_of, stdout_taken
+    from synthesis.app.table_warnings import print_warnings
 
+    csv_alone = stdout_taken(args, "csv")
     if args.plot:  # a format that cannot be written is refused before any work
         picture_format(args.plot)
     if args.animate:
@@ -55,11 +57,13 @@ def run(args: argparse.Namespace) -> int:
         json.dump(result.to_dict(), sys.stdout, ensure_ascii=False)
         sys.stdout.write("\n")
     else:
-        print(analysis_text(result, args.lang))
-        if forces is not None:
-            from synthesis.app.analysis_forces_render import forces_text
+        print_warnings(result.warnings, args.table, args.lang)
+        if not csv_alone:
+            print(analysis_text(result, args.lang))
+            if forces is not None:
+                from synthesis.app.analysis_forces_render import forces_text
 
-            print("\n" + forces_text(result, forces, args.lang))
+                print("\n" + forces_text(result, forces, args.lang))
     outputs = outputs_of(args)
     if args.csv:
         from synthesis.app.analysis_csv import analysis_csv

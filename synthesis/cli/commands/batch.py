@@ -34,9 +34,11 @@ def run(args: argparse.Namespace) -> int:
     """Check the folder; exit 0 whatever the tables contain (the rows say it)."""
     from synthesis.app.batch import run_batch
     from synthesis.app.batch_output import csv_text, summary
+    from synthesis.app.outputs import stdout_taken
     from synthesis.distributed import executor_for
 
     check_at_least(jobs=(args.jobs, 1))
+    csv_alone = stdout_taken(args, "csv")
     with executor_for(args.scheduler) as executor, \
             counting(0, "progress.batch", quiet=args.quiet, lang=args.lang) as bar:
         rows = run_batch(args.folder, jobs=args.jobs, lang=args.lang,
@@ -50,6 +52,6 @@ def run(args: argparse.Namespace) -> int:
         outputs.write_text(args.csv, csv_text(rows, bom=args.bom))
     if args.json:
         print(json.dumps([row.to_dict() for row in rows], ensure_ascii=False, indent=1))
-    else:
+    elif not csv_alone:
         print(summary(rows, args.lang))
     return 0

@@ -31,6 +31,7 @@ def run(args: argparse.Namespace) -> int:
     from synthesis.app.assess import assess
     from synthesis.app.check_report import check_text
     from synthesis.app.outputs import outputs_of
+    from synthesis.app.table_warnings import print_warnings
 
     if args.plot:  # a format that cannot be written is refused before any work
         from assur.plot.formats import picture_format
@@ -42,10 +43,12 @@ def run(args: argparse.Namespace) -> int:
 
         outputs_of(args).write(args.plot, lambda path: save_schemes(
             assessment.chain, assessment.analysis, path, lang=args.lang))
+    warnings = assessment.chain.warnings
     if args.json:
         import json
 
         print(json.dumps(assessment.to_dict(), ensure_ascii=False, indent=2))
     else:
+        print_warnings(warnings, args.table, args.lang)
         print(check_text(assessment, args.lang))
     return 0

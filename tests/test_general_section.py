@@ -56,7 +56,7 @@ def test_the_misspelt_key_and_the_angle_out_of_range_stop_the_command(
     assert code == 2 and str(path) in err
     assert "general: неизвестный ключ 'omgea'; возможно, имелось в виду 'omega'?" in err
     assert ("general.allowable[0] 'pressure_angle': значение должно лежать в (0, 90] "
-            "градусов или быть 'default'; найдено 120") in err
+            "градусов или быть 'default'; найдено: 120") in err
 
 
 @pytest.mark.parametrize(("general", "where", "rule"), [

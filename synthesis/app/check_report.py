@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from typing import Any
 
+from assur.structure.identification import Mismatch
 from assur.structure.report import structure_report
-from synthesis.app.assess import Assessment
+from synthesis.app.assess import TABLE, Assessment
 
 __all__ = ["check_record", "check_text"]
 
@@ -36,7 +37,7 @@ def check_text(assessment: Assessment, lang: str = "en") -> str:
     True
     """
     return structure_report(assessment.analysis, lang=lang, table=assessment.table,
-                            mismatches=assessment.mismatches,
+                            mismatches=_findings(assessment),
                             checked_rows=assessment.rows_given)
 
 
@@ -54,7 +55,8 @@ def check_record(assessment: Assessment) -> dict[str, Any]:
     dict
         The analysis (:meth:`StructuralAnalysis.to_dict`) with ``identification_table``
         (None when the chain is not made of DGTU groups) and ``identification_check`` (the
-        mismatches of the student's table; None when the file gives none).
+        mismatches of the student's table, then its rows whose assembly variant the
+        dimensions contradict, ``field`` ``"variant"``; None when the file gives none).
 
     Examples
     --------
@@ -66,10 +68,20 @@ def check_record(assessment: Assessment) -> dict[str, Any]:
     >>> record["W"], record["identification_check"]
     (1, [])
     """
-    mismatches = assessment.mismatches
+    mismatches = _findings(assessment)
     payload = assessment.analysis.to_dict()
     payload["identification_table"] = (None if assessment.table is None
                                        else [row.to_dict() for row in assessment.table])
     payload["identification_check"] = (None if mismatches is None
                                        else [m.to_dict() for m in mismatches])
     return payload
+
+
+def _findings(assessment: Assessment) -> tuple[Mismatch, ...] | None:
+    """The mismatches of the student's table, then its rows whose assembly variant the
+    dimensions contradict (as mismatches of the field ``variant``); None without a table."""
+    if assessment.mismatches is None:
+        return None
+    return (*assessment.mismatches, *(
+        Mismatch(v.row, f"{TABLE}[{v.row}] (L{v.kind}, i = {v.group.i}, j = {v.group.j})",
+                 "variant", v.group.sigma, v.given, v.message) for v in assessment.variants))

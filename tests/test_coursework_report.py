@@ -92,6 +92,7 @@ def course_html() -> str:
     return render_html(build_report(COURSE, points=120))
 
 
+@pytest.mark.slow
 def test_course_report_follows_the_course(course_html):
     page = _parse(course_html)
     text = "".join(page.text)
@@ -110,6 +111,7 @@ def test_course_report_follows_the_course(course_html):
     assert "assembles over the whole cycle" in text
 
 
+@pytest.mark.slow
 def test_page_is_self_contained(course_html):
     page = _parse(course_html)
     assert len(page.images) >= 6
@@ -159,6 +161,7 @@ def test_table_without_dimensions():
     assert "the table gives no dimensions" in "".join(page.text)
 
 
+@pytest.mark.slow
 def test_russian_report(tmp_path):
     out = write_report(COURSE, tmp_path / "отчёт.html", lang="ru", points=60).out
     html = out.read_text("utf-8")
@@ -175,6 +178,7 @@ def test_russian_report(tmp_path):
     assert any("уровень" in s for s in schemes)
 
 
+@pytest.mark.slow
 def test_command_line(tmp_path, capsys):
     out = tmp_path / "report.html"
     assert main(["report", str(COURSE), "--out", str(out), "--points", "36", "--json"]) == 0
@@ -191,6 +195,7 @@ def test_command_line(tmp_path, capsys):
     assert not (tmp_path / "bad.html").exists()
 
 
+@pytest.mark.slow
 def test_synthesis_problem_report(tmp_path):
     problem = ROOT / "input_tables" / "problems" / "class1_fourbar_rocker.yaml"
     report = build_report(problem, budget=6, points=36)
@@ -236,6 +241,7 @@ def _browser(tmp_path: Path, url: str, *extra: str) -> subprocess.CompletedProce
         capture_output=True, text=True, timeout=120, check=False)
 
 
+@pytest.mark.slow
 @pytest.mark.browser
 @pytest.mark.skipif(_chromium() is None, reason="headless Chromium is not installed "
                                                 "(Debian package 'chromium'); .ci/run installs it")

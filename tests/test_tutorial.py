@@ -109,6 +109,7 @@ def runs(tmp_path_factory) -> dict[str, tuple[Path, list[dict]]]:
     return results
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", TUTORIALS)
 def test_every_file_written_goes_into_the_working_folder(name, runs):
     work, results = runs[name]
@@ -129,6 +130,7 @@ def test_setup_blocks_hold_only_installation(name):
         assert line.startswith(SETUP), f"{name}: not an installation step: {line}"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", TUTORIALS)
 def test_every_command_runs(name, runs):
     text = (ROOT / "docs" / name).read_text(encoding="utf-8")
@@ -140,6 +142,7 @@ def test_every_command_runs(name, runs):
         assert result["code"] == code, (argv, result["stderr"][-2000:])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", TUTORIALS)
 def test_pictures_exist_and_are_drawn_by_the_commands(name, runs):
     text = (ROOT / "docs" / name).read_text(encoding="utf-8")
@@ -153,6 +156,7 @@ def test_pictures_exist_and_are_drawn_by_the_commands(name, runs):
             assert drawn.is_file(), f"no command draws {picture}"
 
 
+@pytest.mark.slow
 def test_russian_tutorial_prints_russian(runs):
     """Every command of the Russian tutorial answers in Russian (``--lang ru``)."""
     work, results = runs["tutorial.ru.md"]

@@ -13,6 +13,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from assur.kinematics.analysis import analyse, unwrap
 from assur.kinematics.build import load_model
@@ -53,6 +54,7 @@ def test_the_batch_criteria_are_those_of_each_design_alone() -> None:
         assert float(batch.p1[k]) == float(alone.p1[0])
 
 
+@pytest.mark.slow
 def test_a_search_recovers_the_designed_point() -> None:
     problem = _problem()
     evaluator = Evaluator(problem)

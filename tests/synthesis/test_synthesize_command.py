@@ -86,10 +86,11 @@ def _tracing_point(model: Any, motion: Any, link: Any) -> np.ndarray:
     """Attachment point N of the output link: origin + l_N·exp(i(angle + beta_N))."""
     label, _ = model.links[link]
     origin, angle = (assur.kinematics.analysis.values(v) for v in motion.frames[link])
-    return origin + model.value(f"{label}.l_N") * np.exp(
-        1j * (angle + model.value(f"{label}.beta_N")))
+    return np.asarray(origin + model.value(f"{label}.l_N") * np.exp(
+        1j * (angle + model.value(f"{label}.beta_N"))))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("path", PROBLEMS, ids=[p.stem for p in PROBLEMS])
 def test_shipped_problem_is_solved_and_confirmed(path: Path, tmp_path: Path,
                                                   capsys: pytest.CaptureFixture[str]) -> None:

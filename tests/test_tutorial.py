@@ -18,8 +18,14 @@ import shlex
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import pytest
+
+#: One command's outcome as the runner prints it: argv, code, stdout, stderr.
+Result = dict[str, Any]
+#: Each tutorial's working folder and the outcomes of its commands.
+Runs = dict[str, tuple[Path, list[Result]]]
 
 ROOT = Path(__file__).resolve().parent.parent
 TUTORIALS = ("tutorial.md", "tutorial.ru.md")
@@ -87,7 +93,7 @@ def _repository_state() -> tuple[set[str], ...]:
 
 
 @pytest.fixture(scope="module")
-def runs(tmp_path_factory) -> dict[str, tuple[Path, list[dict]]]:
+def runs(tmp_path_factory: pytest.TempPathFactory) -> Runs:
     before = _repository_state()
     base = tmp_path_factory.mktemp("tutorials")
     env = {**os.environ, "MPLBACKEND": "Agg"}
@@ -111,7 +117,7 @@ def runs(tmp_path_factory) -> dict[str, tuple[Path, list[dict]]]:
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", TUTORIALS)
-def test_every_file_written_goes_into_the_working_folder(name, runs):
+def test_every_file_written_goes_into_the_working_folder(name: str, runs: Runs) -> None:
     work, results = runs[name]
     written = _files(work) - {"input_tables", "docs/tutorial_class"}
     assert written and all(path.startswith("work/") for path in written), sorted(written)
@@ -122,7 +128,7 @@ def test_every_file_written_goes_into_the_working_folder(name, runs):
 
 
 @pytest.mark.parametrize("name", TUTORIALS)
-def test_setup_blocks_hold_only_installation(name):
+def test_setup_blocks_hold_only_installation(name: str) -> None:
     text = (ROOT / "docs" / name).read_text(encoding="utf-8")
     lines = [line for block in blocks(text, "sh") for line in block.splitlines() if line]
     assert lines, "the installation steps are missing"
@@ -132,7 +138,7 @@ def test_setup_blocks_hold_only_installation(name):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", TUTORIALS)
-def test_every_command_runs(name, runs):
+def test_every_command_runs(name: str, runs: Runs) -> None:
     text = (ROOT / "docs" / name).read_text(encoding="utf-8")
     expected = commands(text)
     assert len(expected) >= 12
@@ -144,7 +150,7 @@ def test_every_command_runs(name, runs):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", TUTORIALS)
-def test_pictures_exist_and_are_drawn_by_the_commands(name, runs):
+def test_pictures_exist_and_are_drawn_by_the_commands(name: str, runs: Runs) -> None:
     text = (ROOT / "docs" / name).read_text(encoding="utf-8")
     work, _results = runs[name]
     pictures = re.findall(r"!\[[^\]]*\]\((img/[^)]+)\)", text)
@@ -157,7 +163,7 @@ def test_pictures_exist_and_are_drawn_by_the_commands(name, runs):
 
 
 @pytest.mark.slow
-def test_russian_tutorial_prints_russian(runs):
+def test_russian_tutorial_prints_russian(runs: Runs) -> None:
     """Every command of the Russian tutorial answers in Russian (``--lang ru``)."""
     work, results = runs["tutorial.ru.md"]
     cyrillic = re.compile("[а-яё]", re.IGNORECASE)

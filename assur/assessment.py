@@ -149,6 +149,17 @@ class Assessment:
         return [(m, m.text(lang)) for m in self.mismatches or ()]
 
     @property
+    def findings(self) -> tuple[Mismatch, ...] | None:
+        """The mismatches of the student's table, then its rows whose assembly variant the
+        dimensions contradict (as mismatches of the field ``variant``); None without a
+        table."""
+        if self.mismatches is None:
+            return None
+        return (*self.mismatches, *(
+            Mismatch(v.row, f"{TABLE}[{v.row}] (L{v.kind}, i = {v.group.i}, j = {v.group.j})",
+                     "variant", v.group.sigma, v.given, v.message) for v in self.variants))
+
+    @property
     def rows_given(self) -> int:
         """Number of rows of the student's table."""
         return len(self.chain.identification or ())
@@ -162,13 +173,15 @@ class Assessment:
         dict
             The analysis (:meth:`StructuralAnalysis.to_dict`) with ``identification_table``
             (None when the chain is not made of DGTU groups) and ``identification_check``
-            (the mismatches of the student's table; None when the file gives none).
+            (the mismatches of the student's table, then its rows whose assembly variant the
+            dimensions contradict, ``field`` ``"variant"``; None when the file gives none).
         """
         payload = self.analysis.to_dict()
         payload["identification_table"] = (None if self.table is None
                                            else [row.to_dict() for row in self.table])
-        payload["identification_check"] = (None if self.mismatches is None
-                                           else [m.to_dict() for m in self.mismatches])
+        findings = self.findings
+        payload["identification_check"] = (None if findings is None
+                                           else [m.to_dict() for m in findings])
         payload["warnings"] = [issue.to_dict() for issue in self.chain.warnings]
         return payload
 

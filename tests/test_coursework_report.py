@@ -51,8 +51,8 @@ class _Page(HTMLParser):
         self._cell: list[str] | None = None
         self.text: list[str] = []
 
-    def handle_starttag(self, tag, attrs):
-        attrs = dict(attrs)
+    def handle_starttag(self, tag: str, pairs: list[tuple[str, str | None]]) -> None:
+        attrs = {key: value or "" for key, value in pairs}
         self.tags.add(tag)
         if "id" in attrs:
             self.ids.add(attrs["id"])
@@ -68,14 +68,14 @@ class _Page(HTMLParser):
         if tag == "td" and self._table is not None:
             self._cell = []
 
-    def handle_endtag(self, tag):
-        if tag == "td" and self._cell is not None:
+    def handle_endtag(self, tag: str) -> None:
+        if tag == "td" and self._cell is not None and self._table is not None:
             self.tables[self._table][-1].append("".join(self._cell))
             self._cell = None
         if tag == "table":
             self._table = None
 
-    def handle_data(self, data):
+    def handle_data(self, data: str) -> None:
         self.text.append(data)
         if self._cell is not None:
             self._cell.append(data)
@@ -92,7 +92,8 @@ def course_html() -> str:
     return render_html(build_report(COURSE, points=120))
 
 
-def test_course_report_follows_the_course(course_html):
+@pytest.mark.slow
+def test_course_report_follows_the_course(course_html: str) -> None:
     page = _parse(course_html)
     text = "".join(page.text)
     assert COURSE_FORMULA in text
@@ -110,7 +111,8 @@ def test_course_report_follows_the_course(course_html):
     assert "assembles over the whole cycle" in text
 
 
-def test_page_is_self_contained(course_html):
+@pytest.mark.slow
+def test_page_is_self_contained(course_html: str) -> None:
     page = _parse(course_html)
     assert len(page.images) >= 6
     for image in page.images:
@@ -128,7 +130,7 @@ def test_page_is_self_contained(course_html):
     assert "@media print" in course_html
 
 
-def test_student_table_and_failure_interval(tmp_path):
+def test_student_table_and_failure_interval(tmp_path: Path) -> None:
     from test_batch import FAIL_FROM, FAIL_TO, GOOD_ROWS, four_bar
 
     wrong = [dict(GOOD_ROWS[0]), dict(GOOD_ROWS[1], i_plus_1=3)]  # a slip in i+1
@@ -147,7 +149,7 @@ def test_student_table_and_failure_interval(tmp_path):
     assert math.isclose(FAIL_FROM, 49.458, abs_tol=1e-3)
 
 
-def test_table_without_dimensions():
+def test_table_without_dimensions() -> None:
     # the tutorial's slider-crank: no sketch, and kind 1 written for the RRP dyad
     report = build_report(ROOT / "docs" / "tutorial_class" / "petrova.yaml")
     assert report.facts["formula"] == "I(0,1) → II₂(2,3)"
@@ -159,8 +161,10 @@ def test_table_without_dimensions():
     assert "the table gives no dimensions" in "".join(page.text)
 
 
-def test_russian_report(tmp_path):
+@pytest.mark.slow
+def test_russian_report(tmp_path: Path) -> None:
     out = write_report(COURSE, tmp_path / "отчёт.html", lang="ru", points=60).out
+    assert out is not None
     html = out.read_text("utf-8")
     page = _parse(html)
     text = "".join(page.text)
@@ -175,7 +179,8 @@ def test_russian_report(tmp_path):
     assert any("уровень" in s for s in schemes)
 
 
-def test_command_line(tmp_path, capsys):
+@pytest.mark.slow
+def test_command_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "report.html"
     assert main(["report", str(COURSE), "--out", str(out), "--points", "36", "--json"]) == 0
     assert COURSE_FORMULA in out.read_text("utf-8")
@@ -191,7 +196,8 @@ def test_command_line(tmp_path, capsys):
     assert not (tmp_path / "bad.html").exists()
 
 
-def test_synthesis_problem_report(tmp_path):
+@pytest.mark.slow
+def test_synthesis_problem_report(tmp_path: Path) -> None:
     problem = ROOT / "input_tables" / "problems" / "class1_fourbar_rocker.yaml"
     report = build_report(problem, budget=6, points=36)
     html = render_html(report)
@@ -214,8 +220,9 @@ def test_synthesis_problem_report(tmp_path):
         assert [initial, lower, upper] == ranges[name]
         assert lower <= found <= upper
     rows = [r for r in page.tables["synthesis-deviations"] if r]
-    assert [(int(r[0]), float(r[1]), float(r[2])) for r in rows] == [
-        (p["K"], p["phi"], pytest.approx(p["psi"], abs=1e-4)) for p in spec["control_points"]]
+    points = spec["control_points"]
+    assert [(int(r[0]), float(r[1])) for r in rows] == [(p["K"], p["phi"]) for p in points]
+    assert [float(r[2]) for r in rows] == pytest.approx([p["psi"] for p in points], abs=1e-4)
     q = float(page.tables["synthesis-criteria"][1][1].split()[0])  # Q = max |Δ_K|
     assert q == pytest.approx(max(abs(float(r[4])) for r in rows), rel=1e-5)
 
@@ -224,7 +231,7 @@ def _chromium() -> str | None:
     return shutil.which("chromium") or shutil.which("chromium-browser")
 
 
-def _browser(tmp_path: Path, url: str, *extra: str) -> subprocess.CompletedProcess:
+def _browser(tmp_path: Path, url: str, *extra: str) -> subprocess.CompletedProcess[str]:
     chromium = _chromium()
     assert chromium is not None
     profile = tmp_path / "profile"
@@ -236,10 +243,11 @@ def _browser(tmp_path: Path, url: str, *extra: str) -> subprocess.CompletedProce
         capture_output=True, text=True, timeout=120, check=False)
 
 
+@pytest.mark.slow
 @pytest.mark.browser
 @pytest.mark.skipif(_chromium() is None, reason="headless Chromium is not installed "
                                                 "(Debian package 'chromium'); .ci/run installs it")
-def test_report_renders_in_chromium(tmp_path, course_html):
+def test_report_renders_in_chromium(tmp_path: Path, course_html: str) -> None:
     page_file = tmp_path / "report.html"
     page_file.write_text(course_html, encoding="utf-8")
     url = page_file.as_uri()
@@ -276,7 +284,7 @@ def test_report_renders_in_chromium(tmp_path, course_html):
     assert len(bands) >= 4
 
 
-def test_variant_against_the_sketch_in_the_report(tmp_path):
+def test_variant_against_the_sketch_in_the_report(tmp_path: Path) -> None:
     from test_batch import GOOD_ROWS, four_bar
 
     table = tmp_path / "right.yaml"  # C right of B → D: the sketch assembles variant −1
@@ -294,12 +302,13 @@ FAILS = ROOT / "input_tables" / "course_11_link_fails.yaml"
 
 
 @pytest.fixture(scope="module")
-def fails_pages(tmp_path_factory) -> dict[str, Path]:
+def fails_pages(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
     """The report of the design whose kulisa group breaks for φ ≈ 21.6°…72.6°, in Russian
     (72 positions: a frame every 5°); the page switches its language by its ``lang``
     attribute alone, so an English copy is made by changing that."""
     folder = tmp_path_factory.mktemp("play")
     ru = write_report(FAILS, folder / "report_ru.html", lang="ru", points=72).out
+    assert ru is not None
     en = folder / "report_en.html"
     en.write_text(ru.read_text("utf-8").replace('data-lang="ru"', 'data-lang="en"'), "utf-8")
     return {"en": en, "ru": ru}
@@ -312,7 +321,7 @@ def _sketch(path: Path) -> dict[str, complex]:
             if isinstance(p, dict) and "point" in p}
 
 
-def test_the_playable_mechanism_is_embedded(fails_pages):
+def test_the_playable_mechanism_is_embedded(fails_pages: dict[str, Path]) -> None:
     html = fails_pages["ru"].read_text("utf-8")
     assert "Механизм в движении" in html
     data = json.loads(html.partition('id="play-data">')[2].partition("</script>")[0])
@@ -341,8 +350,8 @@ def _dom_joints(dom: str) -> dict[str, complex]:
 @pytest.mark.browser
 @pytest.mark.skipif(_chromium() is None, reason="headless Chromium is not installed "
                                                 "(Debian package 'chromium'); .ci/run installs it")
-def test_moving_the_slider_moves_the_drawing(tmp_path, fails_pages):
-    from assur.kinematics.analysis import analyse
+def test_moving_the_slider_moves_the_drawing(tmp_path: Path, fails_pages: dict[str, Path]) -> None:
+    from assur.kinematics.analysis import analyse, values
     from assur.kinematics.build import load_model
 
     model = load_model(FAILS)
@@ -353,8 +362,8 @@ def test_moving_the_slider_moves_the_drawing(tmp_path, fails_pages):
         assert f'<output>φ = {phi:.1f}°</output>' in dom.stdout
         joints = drawn[phi] = _dom_joints(dom.stdout)
         motion = analyse(model, np.radians([phi]))
-        expected = {pid: complex(z[0]) for pid, z in motion.joints.items()
-                    if np.isfinite(z[0])}
+        expected = {str(pid): complex(values(z)[0]) for pid, z in motion.joints.items()
+                    if np.isfinite(values(z)[0])}
         assert set(joints) == set(expected)
         for pid, z in expected.items():
             assert joints[pid] == pytest.approx(z, abs=2e-3), pid

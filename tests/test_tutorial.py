@@ -18,8 +18,14 @@ import shlex
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import pytest
+
+#: One command's outcome as the runner prints it: argv, code, stdout, stderr.
+Result = dict[str, Any]
+#: Each tutorial's working folder and the outcomes of its commands.
+Runs = dict[str, tuple[Path, list[Result]]]
 
 ROOT = Path(__file__).resolve().parent.parent
 TUTORIALS = ("tutorial.md", "tutorial.ru.md")
@@ -87,7 +93,7 @@ def _repository_state() -> tuple[set[str], ...]:
 
 
 @pytest.fixture(scope="module")
-def runs(tmp_path_factory) -> dict[str, tuple[Path, list[dict]]]:
+def runs(tmp_path_factory: pytest.TempPathFactory) -> Runs:
     before = _repository_state()
     base = tmp_path_factory.mktemp("tutorials")
     env = {**os.environ, "MPLBACKEND": "Agg"}
@@ -109,8 +115,9 @@ def runs(tmp_path_factory) -> dict[str, tuple[Path, list[dict]]]:
     return results
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", TUTORIALS)
-def test_every_file_written_goes_into_the_working_folder(name, runs):
+def test_every_file_written_goes_into_the_working_folder(name: str, runs: Runs) -> None:
     work, results = runs[name]
     written = _files(work) - {"input_tables", "docs/tutorial_class"}
     assert written and all(path.startswith("work/") for path in written), sorted(written)
@@ -121,7 +128,7 @@ def test_every_file_written_goes_into_the_working_folder(name, runs):
 
 
 @pytest.mark.parametrize("name", TUTORIALS)
-def test_setup_blocks_hold_only_installation(name):
+def test_setup_blocks_hold_only_installation(name: str) -> None:
     text = (ROOT / "docs" / name).read_text(encoding="utf-8")
     lines = [line for block in blocks(text, "sh") for line in block.splitlines() if line]
     assert lines, "the installation steps are missing"
@@ -129,8 +136,9 @@ def test_setup_blocks_hold_only_installation(name):
         assert line.startswith(SETUP), f"{name}: not an installation step: {line}"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", TUTORIALS)
-def test_every_command_runs(name, runs):
+def test_every_command_runs(name: str, runs: Runs) -> None:
     text = (ROOT / "docs" / name).read_text(encoding="utf-8")
     expected = commands(text)
     assert len(expected) >= 12
@@ -140,8 +148,9 @@ def test_every_command_runs(name, runs):
         assert result["code"] == code, (argv, result["stderr"][-2000:])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", TUTORIALS)
-def test_pictures_exist_and_are_drawn_by_the_commands(name, runs):
+def test_pictures_exist_and_are_drawn_by_the_commands(name: str, runs: Runs) -> None:
     text = (ROOT / "docs" / name).read_text(encoding="utf-8")
     work, _results = runs[name]
     pictures = re.findall(r"!\[[^\]]*\]\((img/[^)]+)\)", text)
@@ -153,7 +162,8 @@ def test_pictures_exist_and_are_drawn_by_the_commands(name, runs):
             assert drawn.is_file(), f"no command draws {picture}"
 
 
-def test_russian_tutorial_prints_russian(runs):
+@pytest.mark.slow
+def test_russian_tutorial_prints_russian(runs: Runs) -> None:
     """Every command of the Russian tutorial answers in Russian (``--lang ru``)."""
     work, results = runs["tutorial.ru.md"]
     cyrillic = re.compile("[а-яё]", re.IGNORECASE)

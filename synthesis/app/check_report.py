@@ -35,6 +35,6 @@ def check_text(assessment: Assessment, lang: str = "en") -> str:
     True
     """
     return structure_report(assessment.analysis, lang=lang, table=assessment.table,
-                            mismatches=assessment.mismatches,
+                            mismatches=assessment.findings,
                             checked_rows=assessment.rows_given)
 

@@ -52,7 +52,7 @@ def test_json_lists_every_entry_within_0_1_percent(capsys: pytest.CaptureFixture
 def test_russian_report(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["case", "impact", "--lang", "ru"]) == 0
     out = capsys.readouterr().out
-    assert "Наибольшая погрешность" in out and "Неточности статьи" in out
+    assert "Наибольшая относительная погрешность" in out and "Неточности статьи" in out
 
 
 def test_overrides_leave_the_table_comparison_out(capsys: pytest.CaptureFixture[str]) -> None:

@@ -13,6 +13,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from assur.kinematics.analysis import analyse, unwrap
 from assur.kinematics.build import load_model
@@ -54,10 +55,14 @@ def test_the_batch_criteria_are_those_of_each_design_alone() -> None:
         assert float(batch.p1[k]) == float(alone.p1[0])
 
 
+@pytest.mark.slow
 def test_a_search_recovers_the_designed_point() -> None:
     problem = _problem()
     evaluator = Evaluator(problem)
-    settings = SearchSettings(budget_log2=4, batch=16, shrink_passes=3, shrink=0.35)
+    # one round refined from its best trial: the restarts and the further refinement starts
+    # (test_search.py, test_recovery.py) only repeat it here
+    settings = SearchSettings(budget_log2=4, batch=16, shrink_passes=3, shrink=0.35,
+                              restarts=0, refine_starts=1)
     result = search(evaluator, problem.lower, problem.upper,
                     [p.initial for p in problem.parameters], settings)
     assert result.feasible

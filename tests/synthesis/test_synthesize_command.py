@@ -92,6 +92,7 @@ def _tracing_point(model: Any, motion: Any, link: Any) -> np.ndarray:
     return point
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("path", PROBLEMS, ids=[p.stem for p in PROBLEMS])
 def test_shipped_problem_is_solved_and_confirmed(path: Path, tmp_path: Path,
                                                   capsys: pytest.CaptureFixture[str]) -> None:

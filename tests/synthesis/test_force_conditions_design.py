@@ -19,11 +19,10 @@ import pytest
 import yaml
 
 import assur
-from assur.forces.model import ForceData, Load, Mass
 from assur.forces.solver import ForceAnalysis, kinetostatics
 from assur.kinematics.analysis import values
 from assur.kinematics.model import KinematicModel
-from assur.model import LinkId
+from assur.model import ForceData, LinkId, Load, Mass
 from synthesis.cli import main
 from synthesis.evaluate import Evaluator
 from synthesis.force_conditions import force_penalties

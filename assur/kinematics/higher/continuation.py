@@ -152,7 +152,7 @@ def separation(group: HigherGroup, k: Any, x: np.ndarray) -> np.ndarray:
         return np.asarray(0.5 / worst)
 
 
-def _finite(k: Any) -> np.ndarray:
+def finite_inputs(k: Any) -> np.ndarray:
     """True where every input of the record is finite."""
     out: Any = True
     for f in dataclasses.fields(k):
@@ -328,7 +328,7 @@ def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.
             kv = values(inputs(s * here.t))
             with np.errstate(all="ignore"):
                 margin_here = group.margin(here.x, kv)
-            code = np.where(~_finite(kv), Reason.UNDEFINED_INPUT,
+            code = np.where(~finite_inputs(kv), Reason.UNDEFINED_INPUT,
                             np.where(margin_here <= CHANGE, HigherReason.MODE_ENDS,
                                      HigherReason.NOT_FOLLOWED))
             end = np.where(stuck, here.t, end)
@@ -744,7 +744,7 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
     columns = np.flatnonzero(~reached.all(axis=0))
     if columns.size:
         kv = values(inputs(np.broadcast_to(phi[columns, None], (columns.size, d))))
-        defined = np.broadcast_to(_finite(kv), (columns.size, d)).T
+        defined = np.broadcast_to(finite_inputs(kv), (columns.size, d)).T
         gone = ~reached[:, columns]
         margin[:, columns] = np.where(gone, np.where(defined, _gap(group, kv, gone.T).T, np.nan),
                                       margin[:, columns])
@@ -808,7 +808,7 @@ def _follow_stroke(group: HigherGroup, inputs: Inputs, q: np.ndarray, stroke: St
     columns = np.flatnonzero(~reached.all(axis=0))
     if columns.size:
         kv = values(inputs(t[columns]))
-        defined = np.broadcast_to(_finite(kv), (columns.size, d)).T
+        defined = np.broadcast_to(finite_inputs(kv), (columns.size, d)).T
         gone = ~reached[:, columns]
         margin[:, columns] = np.where(gone, np.where(defined, _gap(group, kv, gone.T).T, np.nan),
                                       margin[:, columns])

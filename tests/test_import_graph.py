@@ -237,6 +237,14 @@ def test_no_module_uses_a_private_name_of_another(package: dict[str, Module]) ->
     assert not found, "private names of other modules:\n  " + "\n  ".join(found)
 
 
+def test_the_data_of_assur_imports_no_behaviour() -> None:
+    """The chain and the kinds are data: the code that uses them imports them, never the
+    reverse (their sentences come from the text catalogue, their errors from ``errors``)."""
+    graph = import_graph(modules_of("assur"))
+    assert set(graph.successors("assur.kinds")) == {"assur.text"}
+    assert set(graph.successors("assur.model")) == {"assur.errors"}
+
+
 # ------------------------------------------------------------- the reading of the source
 
 

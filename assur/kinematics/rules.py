@@ -22,10 +22,9 @@ transmission look a kind's rules up here; none of them tests ``kind == …``.
 Examples
 --------
 >>> from assur.kinds import kind_of
->>> rules = rules_of(kind_of(1))
->>> rules.solve.__name__, rules.pressure is not None
-('_solve_rrr', True)
->>> rules_of(kind_of(0)).shortfall is None
+>>> rules_of(kind_of(1)).pressure is not None, rules_of(kind_of(3)).pressure is None
+(True, True)
+>>> rules_of(kind_of(0)).sketch is None  # the builder sketches the crank itself
 True
 """
 

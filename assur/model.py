@@ -13,12 +13,14 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import asdict, dataclass, field
 from enum import Enum
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
-import numpy.typing as npt
 
 from assur.errors import Issue
+
+if TYPE_CHECKING:  # pragma: no cover
+    import numpy.typing as npt
 
 __all__ = [
     "Chain",
@@ -279,7 +281,7 @@ Input = Drive
 # (constant beyond the ends).
 
 #: A value per design: a number, or an array broadcast against the positions (``(D, 1)``).
-PerDesign = float | npt.NDArray[np.float64]
+PerDesign: TypeAlias = "float | npt.NDArray[np.float64]"
 
 
 @dataclass(frozen=True, slots=True)

@@ -81,7 +81,20 @@ PressureRule = Callable[["GroupModel", "set[LinkId]", np.ndarray, np.ndarray],
 
 @dataclass(frozen=True, slots=True)
 class KindRules:
-    """What the kinematics does with a group of one kind (the module's docstring)."""
+    """What the kinematics does with a group of one kind.
+
+    Attributes
+    ----------
+    solve : GroupSolver
+        Solve the group over the positions.
+    sketch : SketchRule or None
+        Derive its parameters from a sketch; None for the input group (the builder sketches
+        the crank itself).
+    shortfall : ShortfallRule or None
+        The violated existence condition; None for the input group (it always assembles).
+    pressure : PressureRule or None
+        The pressure angle at C, for the dyads with a rod hinged there (L1, L2).
+    """
 
     solve: GroupSolver
     sketch: SketchRule | None = None

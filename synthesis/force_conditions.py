@@ -494,4 +494,5 @@ def excess(values: FloatArray, limit: float) -> FloatArray:
     values = np.asarray(values, dtype=float)
     solved = np.isfinite(values)
     peak = np.max(np.where(solved, np.abs(values), 0.0), axis=-1)
-    return np.maximum(0.0, peak - limit) / limit + (~solved.all(axis=-1))
+    penalty: FloatArray = np.maximum(0.0, peak - limit) / limit + (~solved.all(axis=-1))
+    return penalty

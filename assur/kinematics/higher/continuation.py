@@ -258,7 +258,8 @@ def _pick(a: np.ndarray, first: np.ndarray) -> np.ndarray:
     """``a`` at the rung ``first`` of its leading axis, for every row."""
     a = np.broadcast_to(a, a.shape[:1] + first.shape + a.shape[1 + first.ndim:])
     index = first.reshape((1,) + first.shape + (1,) * (a.ndim - 1 - first.ndim))
-    return np.take_along_axis(a, index, axis=0)[0]
+    picked: np.ndarray = np.take_along_axis(a, index, axis=0)[0]
+    return picked
 
 
 def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.ndarray,
@@ -376,7 +377,8 @@ class _Pass:
 
     @property
     def reached(self) -> np.ndarray:
-        return ~np.isnan(self.x[..., 0])
+        reached: np.ndarray = ~np.isnan(self.x[..., 0])
+        return reached
 
 
 def _anchors(log: list[tuple[_Point, np.ndarray]], targets: np.ndarray, offset: float

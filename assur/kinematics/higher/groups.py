@@ -91,7 +91,8 @@ def det_rows(rows: np.ndarray) -> np.ndarray:
 def hadamard(rows: np.ndarray) -> np.ndarray:
     """|det R| / Π‖R_k‖: 1 for orthogonal rows, 0 for dependent ones (the margin's form)."""
     norms = np.prod(np.linalg.norm(rows, axis=-1), axis=-1)
-    return np.abs(det_rows(rows)) / norms
+    margin: np.ndarray = np.abs(det_rows(rows)) / norms
+    return margin
 
 
 class HigherGroup(ABC):

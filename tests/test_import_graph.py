@@ -222,9 +222,11 @@ def knots(graph: nx.DiGraph) -> list[list[str]]:
 
 
 def test_the_package_has_no_import_cycle(package: dict[str, Module]) -> None:
-    found = knots(import_graph(package))
-    assert not found, "import cycles:\n" + "\n".join(
-        "  " + "\n    ".join(cycle) for cycle in found)
+    graph = import_graph(package)
+    found = knots(graph)
+    members = [sorted(c) for c in nx.strongly_connected_components(graph) if len(c) > 1]
+    assert not found, "import cycles, in knots of " + "; ".join(map(", ".join, members)) \
+        + ":\n" + "\n".join("  " + "\n    ".join(cycle) for cycle in found)
 
 
 def test_no_module_imports_the_project_by_a_string(package: dict[str, Module]) -> None:

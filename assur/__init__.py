@@ -4,9 +4,9 @@ The names below are what a user calls: read a table, analyse its structure, chec
 student's identification table, build the kinematic model, analyse it over the cycle, judge
 existence and transmission, solve a group directly, draw. Everything else lives in the
 submodules (`assur.io`, `assur.structure`, `assur.kinematics`, `assur.forces`, `assur.plot`,
-`assur.text`), which :mod:`synthesis` imports directly.  The names are loaded when first
-used (module ``__getattr__``), so ``import assur`` stays quick and a program that needs only
-the structure never loads the kinematics or the plotting code.
+`assur.text`), which :mod:`synthesis` imports directly. ``import assur`` stays quick because
+the modules import the heavy libraries (matplotlib, networkx, scipy) and the higher groups
+only inside the functions that need them.
 
 Examples
 --------
@@ -20,40 +20,33 @@ Examples
 
 from __future__ import annotations
 
-import ast
-import importlib
-from functools import cache
-from pathlib import Path
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from assur.api import Analysis, analyse, check, load
-    from assur.assessment import Assessment
-    from assur.errors import AssemblyError, AssurError, StructureError, TableError
-    from assur.io.chain_table import chain_from_dict, load_chain
-    from assur.kinds import KINDS, GroupKind, kind_of
-    from assur.kinematics.analysis import Motion, input_grid
-    from assur.kinematics.build import build_model, load_model
-    from assur.kinematics.dyads import (
-        solve_input,
-        solve_prp,
-        solve_rpp,
-        solve_rpr,
-        solve_rrp,
-        solve_rrr,
-    )
-    from assur.kinematics.existence import ExistenceReport, check_existence
-    from assur.kinematics.jets import Jet
-    from assur.kinematics.model import KinematicModel
-    from assur.kinematics.transmission import joint_rotations, pressure_angles
-    from assur.model import Chain, Sketch
-    from assur.plot.mechanism import draw_mechanism
-    from assur.plot.schemes import draw_structural_scheme, save_schemes
-    from assur.structure.analysis import StructuralAnalysis, analyse_structure
-    from assur.structure.classification import AssurGroup
-    from assur.structure.diagnostics import Diagnostic
-    from assur.structure.identification import check_identification, identification_table
-    from assur.structure.report import structure_report
+from assur.api import Analysis, analyse, check, load
+from assur.assessment import Assessment
+from assur.errors import AssemblyError, AssurError, StructureError, TableError
+from assur.io.chain_table import chain_from_dict, load_chain
+from assur.kinds import KINDS, GroupKind, kind_of
+from assur.kinematics.analysis import Motion, input_grid
+from assur.kinematics.build import build_model, load_model
+from assur.kinematics.dyads import (
+    solve_input,
+    solve_prp,
+    solve_rpp,
+    solve_rpr,
+    solve_rrp,
+    solve_rrr,
+)
+from assur.kinematics.existence import ExistenceReport, check_existence
+from assur.kinematics.jets import Jet
+from assur.kinematics.model import KinematicModel
+from assur.kinematics.transmission import joint_rotations, pressure_angles
+from assur.model import Chain, Sketch
+from assur.plot.mechanism import draw_mechanism
+from assur.plot.schemes import draw_structural_scheme, save_schemes
+from assur.structure.analysis import StructuralAnalysis, analyse_structure
+from assur.structure.classification import AssurGroup
+from assur.structure.diagnostics import Diagnostic
+from assur.structure.identification import check_identification, identification_table
+from assur.structure.report import structure_report
 
 __all__ = [  # noqa: RUF022 - grouped by topic, as the comments say
     # the verbs of the four tasks and their results (docs/api.md)
@@ -106,36 +99,3 @@ __all__ = [  # noqa: RUF022 - grouped by topic, as the comments say
     "draw_structural_scheme",
     "save_schemes",
 ]
-
-
-@cache
-def _homes() -> dict[str, tuple[str, str]]:
-    """Public name → (module, attribute) as the imports under ``TYPE_CHECKING`` above say.
-
-    Reading this file's own imports keeps one list of where each name lives.
-    """
-    tree = ast.parse(Path(__file__).read_text(encoding="utf-8"))
-    homes: dict[str, tuple[str, str]] = {}
-    for guard in tree.body:
-        for node in guard.body if isinstance(guard, ast.If) else ():
-            assert isinstance(node, ast.ImportFrom) and node.module is not None
-            for alias in node.names:
-                homes[alias.asname or alias.name] = (node.module, alias.name)
-    return homes
-
-
-def __getattr__(name: str) -> object:
-    """Load a public name on first use (PEP 562)."""
-    home = _homes().get(name)
-    if home is None:
-        raise AttributeError(f"module 'assur' has no attribute {name!r}")
-    module, attribute = home
-    loaded = importlib.import_module(module)
-    value = (getattr(loaded, attribute) if hasattr(loaded, attribute)
-             else importlib.import_module(f"{module}.{attribute}"))
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))

@@ -25,8 +25,8 @@ from bench_mechanism import best_time
 
 import assur
 from assur.forces import kinetostatics
-from assur.forces.table import load_with_forces
 from assur.kinematics.analysis import analyse
+from assur.kinematics.build import load_with_forces
 
 TABLE = Path(__file__).resolve().parent.parent / "input_tables" / "course_11_link_forces.yaml"
 

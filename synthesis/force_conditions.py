@@ -49,13 +49,12 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from assur.forces.model import ForceData, Mass
 from assur.forces.solver import MM, kinetostatics
 from assur.forces.table import read_sections
 from assur.io.reader import MISSING, Node, describe, normalise_id
 from assur.kinematics.analysis import Motion, analyse, values
 from assur.kinematics.model import KinematicModel
-from assur.model import LinkId, PairId
+from assur.model import ForceData, LinkId, Mass, PairId
 from assur.text import Message
 from assur.typing import FloatArray
 
@@ -114,7 +113,7 @@ class MassRule:
         return bool(self.hinges)
 
     def of(self, motion: Motion) -> Mass:
-        """The link's :class:`~assur.forces.model.Mass` for the designs of a motion.
+        """The link's :class:`~assur.model.Mass` for the designs of a motion.
 
         Parameters
         ----------

@@ -1,11 +1,11 @@
 """The closed-form equilibrium of each kind of dyad (``docs/forces.md`` §3).
 
-One function per kind, given to that kind's entry of the registry
-(``assur.kinds.KINDS[L].equilibrium``). Each takes the group and a :class:`Loads` view of the known loads of its links
-(everything later groups exert on them included) and returns a :class:`Solved`: the
-reactions of its pairs as :class:`Transfer` records (force of one link on another, its point,
-and for a prismatic pair the normal force and the couple) and the group's normalised
-determinant, whose zero is the toggle or the parallel guides of the group.
+One function per kind, looked up by the kind's code in :data:`assur.forces.solver.EQUILIBRIA`.
+Each takes the group and a :class:`Loads` view of the known loads of its links (everything
+later groups exert on them included) and returns a :class:`Solved`: the reactions of its pairs
+as :class:`Transfer` records (force of one link on another, its point, and for a prismatic
+pair the normal force and the couple) and the group's normalised determinant, whose zero is
+the toggle or the parallel guides of the group.
 
 Units: points in m (complex x + i·y), forces in N (complex), moments in N·m. Every value is an
 array over the positions (and designs); nothing loops over them.

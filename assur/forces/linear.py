@@ -6,7 +6,7 @@ normal force N along the guide's left normal n and the couple M about the slider
 The three equilibrium equations of each link (d'Alembert, its known loads included) make one
 square system per position, solved for all positions (and designs) at once with a batched
 :func:`numpy.linalg.solve`. It serves the triads and the class IV groups
-(``assur.kinds.HIGHER[...].equilibrium``); for a dyad it gives what the closed forms of
+(their entries in :data:`assur.forces.solver.EQUILIBRIA`); for a dyad it gives what the closed forms of
 :mod:`assur.forces.groups` give.
 
 Scaling: each link's moment equation is taken about the mean of its pair points and divided

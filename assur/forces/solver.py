@@ -1,10 +1,10 @@
 """Kinetostatics by Assur groups: joint reactions and the driving torque over the cycle.
 
 :func:`kinetostatics` takes a :class:`~assur.kinematics.analysis.Motion` computed with
-analogs, the masses and loads (:class:`~assur.forces.model.ForceData`) and the input speed ω,
+analogs, the masses and loads (:class:`~assur.model.ForceData`) and the input speed ω,
 and solves the groups from the last attached back to the input link (``docs/forces.md``):
-d'Alembert inertia forces and torques from the exact second analogs, the closed form of each
-dyad kind (its entry's ``equilibrium`` in :data:`assur.kinds.KINDS`), then the driving torque on the crank.
+d'Alembert inertia forces and torques from the exact second analogs, the equilibrium of each
+group's kind (:data:`EQUILIBRIA`), then the driving torque on the crank.
 Beside it, the driving torque from the power balance (Zhukovsky's lever) and the
 Newton–Euler residual of every link computed from the reported reactions.
 
@@ -15,6 +15,7 @@ group does not assemble or a reaction is indeterminate is NaN with a reason, nev
 
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
@@ -22,17 +23,45 @@ from typing import Any
 import numpy as np
 
 from assur.forces.checks import LinkResidual, Power, lever_torque, link_residuals
-from assur.forces.groups import ForceReason, Transfer, cross, dot
-from assur.forces.model import ForceData, Tabulated
+from assur.forces.groups import (
+    ForceReason,
+    Loads,
+    Solved,
+    Transfer,
+    cross,
+    dot,
+    equilibrium_prp,
+    equilibrium_rpp,
+    equilibrium_rpr,
+    equilibrium_rrp,
+    equilibrium_rrr,
+)
+from assur.forces.linear import equilibrium_linear
+from assur.kinds import KindCode
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import Motion, analyse, sketch_input, values
-from assur.kinematics.higher.kind import actuator_ends
 from assur.kinematics.jets import Jet
-from assur.kinematics.model import GroupModel
-from assur.model import LinkId, PairId
+from assur.kinematics.model import GroupModel, KinematicModel
+from assur.model import ForceData, LinkId, PairId, Tabulated
 from assur.text import Message
 
-__all__ = ["ForceAnalysis", "Reaction", "kinetostatics"]
+__all__ = ["EQUILIBRIA", "Equilibrium", "ForceAnalysis", "Reaction", "kinetostatics"]
+
+#: The kinetostatics of a group: the reactions in its pairs from the known loads of its links.
+Equilibrium = Callable[[GroupModel, Loads], Solved]
+
+#: The equilibrium of each kind of group, by kind code: the closed form of each dyad kind
+#: (:mod:`assur.forces.groups`), one linear solve per position for the triad and the class IV
+#: group (:mod:`assur.forces.linear`). The input group has none: the drive balances it last.
+EQUILIBRIA: Mapping[KindCode, Equilibrium] = {
+    "L1": equilibrium_rrr,
+    "L2": equilibrium_rrp,
+    "L3": equilibrium_rpr,
+    "L4": equilibrium_prp,
+    "L5": equilibrium_rpp,
+    "III": equilibrium_linear,
+    "IV": equilibrium_linear,
+}
 
 #: Millimetres to metres.
 MM = 1e-3
@@ -181,7 +210,7 @@ class ForceAnalysis:
         Examples
         --------
         >>> from pathlib import Path
-        >>> from assur.forces.table import load_with_forces
+        >>> from assur.kinematics.build import load_with_forces
         >>> from assur.kinematics.analysis import analyse
         >>> table = Path(__file__).parents[2] / "input_tables" / "four_bar_gravity.yaml"
         >>> model, data = load_with_forces(table)
@@ -300,6 +329,8 @@ def _frames(motion: Motion) -> dict[LinkId, tuple[Jet, Jet]]:
               if link != model.frame}
     group = _driven(model)
     if group is not None:
+        from assur.kinematics.higher.kind import actuator_ends  # only for an actuator
+
         point = actuator_ends(group)[0]
         member = _member(model, group, point)
         frames[member] = (_jet(motion.joints[point]), frames[member][1])
@@ -338,7 +369,7 @@ class _Welded:
                       self.bar if second in self.members else second)
 
 
-def _member(model: Any, group: GroupModel, pair: PairId) -> LinkId:
+def _member(model: KinematicModel, group: GroupModel, pair: PairId) -> LinkId:
     """The member of an actuator's composite link that a pair touches."""
     return next(link for link in model.pair_links[pair][1] if link in group.composite)
 
@@ -355,8 +386,9 @@ class _Bodies:
         self.shape = shape
         moving = list(frames)
         self.origins = {link: np.broadcast_to(frames[link][0].v * MM, shape) for link in moving}
-        self.forces = {link: np.zeros(shape, complex) for link in moving}
-        self.moments = {link: np.zeros(shape) for link in moving}
+        self.forces: dict[LinkId, np.ndarray] = {link: np.zeros(shape, complex)
+                                                 for link in moving}
+        self.moments: dict[LinkId, np.ndarray] = {link: np.zeros(shape) for link in moving}
         self._points: dict[PairId, np.ndarray] = {}
         self._normals: dict[PairId, np.ndarray] = {}
 
@@ -380,7 +412,9 @@ class _Bodies:
         return self.forces[link]
 
     def moment(self, link: LinkId, point: np.ndarray) -> np.ndarray:
-        return self.moments[link] - cross(point - self.origins[link], self.forces[link])
+        moment: np.ndarray = self.moments[link] - cross(point - self.origins[link],
+                                                        self.forces[link])
+        return moment
 
     def add(self, link: LinkId, force: np.ndarray, point: np.ndarray,
             couple: np.ndarray | None = None) -> None:
@@ -520,7 +554,7 @@ def _groups(bodies: _Bodies, motion: Motion
     blocked = np.zeros(shape, bool)
     actuator = None
     for group in reversed(model.groups):
-        equilibrium = group.group_kind.equilibrium
+        equilibrium = EQUILIBRIA.get(group.group_kind.code)
         if equilibrium is None:      # the input group: solved last, by the drive
             continue
         members = _merge(bodies, group) if group.driven is not None else None
@@ -580,6 +614,8 @@ def _split(bodies: _Bodies, motion: Motion, group: GroupModel,
            reactions: dict[PairId, Reaction]) -> tuple[np.ndarray, DriveLoad]:
     """The actuator's force and the reaction in its driven pair from the equilibrium of the
     member hinged at the bar's far end (the dyad's C)."""
+    from assur.kinematics.higher.kind import actuator_ends  # only for an actuator
+
     model = motion.model
     pair_c, hinge = actuator_ends(group)
     member = _member(model, group, pair_c)

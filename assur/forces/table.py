@@ -25,17 +25,12 @@ from __future__ import annotations
 
 import itertools
 import math
-import os
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-from assur.forces.model import ForceData, Load, Mass, Tabulated
 from assur.io.reader import MISSING, Node, describe, normalise_id
-from assur.model import Chain, LinkId, PairType
+from assur.model import Chain, ForceData, LinkId, Load, Mass, PairType, Tabulated
 
-if TYPE_CHECKING:  # pragma: no cover
-    from assur.kinematics.model import KinematicModel
-
-__all__ = ["SECTIONS", "load_with_forces", "read_forces", "read_sections"]
+__all__ = ["SECTIONS", "read_forces", "read_sections"]
 
 #: The top-level keys this reader owns.
 SECTIONS = ("masses", "loads", "gravity")
@@ -108,33 +103,6 @@ def read_sections(root: Node, moving: tuple[LinkId, ...], actuated: bool
     return ForceData(masses, loads, gravity)
 
 
-def load_with_forces(path: str | os.PathLike[str]
-                     ) -> tuple[KinematicModel, ForceData | None]:
-    """The kinematic model of a chain table and its force sections (``Chain.forces``).
-
-    Raises
-    ------
-    TableError
-        For every problem of the table at once.
-    StructureError
-        When the chain is not a class II mechanism with one input.
-
-    Examples
-    --------
-    >>> from pathlib import Path; import assur
-    >>> TABLES = Path(assur.__file__).parents[1] / "input_tables"
-    >>> model, data = load_with_forces(TABLES / "four_bar_gravity.yaml")
-    >>> model.groups[1].label, data.gravity
-    ('L1(2,3)', -9.81j)
-    """
-    from assur.io.chain_table import load_chain
-    from assur.kinematics.build import build_model
-    from assur.structure.analysis import analyse_structure
-
-    chain = load_chain(path)
-    return build_model(analyse_structure(chain)), chain.forces
-
-
 def _actuated(chain: Chain) -> bool:
     """Whether the input is a driven prismatic pair (an actuator)."""
     for drive in chain.inputs:
@@ -146,7 +114,7 @@ def _actuated(chain: Chain) -> bool:
 def _link(node: Node, moving: tuple[LinkId, ...], where: str, value: Any) -> LinkId | None:
     """The moving link ``value`` names; none is judged when no moving link is known (the
     chain could not be read, which is reported)."""
-    link = normalise_id(value)
+    link: LinkId = normalise_id(value)
     if moving and link not in moving:
         node.reader.problem(where, "force.link.not_moving", found=describe(value),
                             known=", ".join(map(str, moving)))

@@ -23,7 +23,7 @@ from __future__ import annotations
 import os
 from collections.abc import Collection
 from dataclasses import replace
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from assur.errors import TableError
 from assur.io.general import read_general
@@ -34,6 +34,7 @@ from assur.kinds import KINDS, kind_of
 from assur.model import (
     Chain,
     Drive,
+    ForceData,
     GroupParams,
     IdentificationRow,
     LinkId,
@@ -44,9 +45,6 @@ from assur.model import (
     id_key,
 )
 from assur.text import Message
-
-if TYPE_CHECKING:  # pragma: no cover
-    from assur.forces.model import ForceData
 
 __all__ = [
     "IDENTIFICATION_FIELDS",

@@ -19,26 +19,30 @@ import math
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, replace
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 
-from assur.kinds import given
 from assur.kinematics import jets as J
-from assur.kinematics.dyads import DyadSolution, Value
-from assur.kinematics.higher.kind import HigherGroupSolution, actuator_ends
+from assur.kinematics.dyads import Value
 from assur.kinematics.jets import Jet
 from assur.kinematics.model import Anchor, GroupModel, Guide, KinematicModel
+from assur.kinematics.rules import given, rules_of
 from assur.model import LinkId, PairId
+
+if TYPE_CHECKING:  # pragma: no cover
+    from assur.kinematics.dyads import DyadSolution
+    from assur.kinematics.higher.kind import HigherGroupSolution
 
 #: What the analysis keeps of a group: a dyad's closed-form solution, or the followed mode
 #: of a triad or class IV group.
-GroupSolution = DyadSolution | HigherGroupSolution
+GroupSolution: TypeAlias = "DyadSolution | HigherGroupSolution"
 
 __all__ = [
     "GroupSolution",
     "Motion",
     "SliderState",
+    "State",
     "acceleration",
     "analyse",
     "input_grid",
@@ -204,7 +208,7 @@ def analyse(model: KinematicModel, q: np.ndarray | None = None, *, points: int =
     """
     q = input_grid(model, points) if q is None else np.asarray(q, dtype=float)
     coordinate: Value = Jet(q, 1.0, 0.0) if analogs else q
-    state = _State(model)
+    state = State(model)
     with np.errstate(all="ignore"):
         for group in model.groups:
             state.solve(group, coordinate)
@@ -230,7 +234,7 @@ def sketch_input(model: KinematicModel) -> Any:
         return 0.0
     if group.layout is None:
         return model.params[group.column("l_j" if group.driven == "j" else "l_i")]
-    state = _State(model)
+    state = State(model)
     for earlier in model.groups[:model.groups.index(group)]:
         state.solve(earlier, 0.0)
     anchors = dict(zip(group.layout.external, group.layout.anchors, strict=True))
@@ -241,6 +245,8 @@ def sketch_input(model: KinematicModel) -> Any:
             return state.point(anchor)
         return model.params[group.column(f"x_{pair}")] \
             + 1j * model.params[group.column(f"y_{pair}")]
+
+    from assur.kinematics.higher.kind import actuator_ends  # only for an actuator
 
     point, origin = actuator_ends(group)
     return np.abs(drawn(point) - drawn(origin))
@@ -257,8 +263,12 @@ def full(x: Any, shape: tuple[int, ...], jet: bool = False) -> Any:
     return np.broadcast_to(x, shape)
 
 
-class _State:
-    """Poses known so far while the groups are solved one after another."""
+class State:
+    """Poses known so far while the groups are solved one after another.
+
+    Each group's solver (:attr:`assur.kinematics.rules.KindRules.solve`) reads the poses of
+    the earlier groups here and writes its own: joints, sliders, link frames.
+    """
 
     def __init__(self, model: KinematicModel) -> None:
         self.model = model
@@ -278,7 +288,9 @@ class _State:
         """Position of a point fixed on a link."""
         p = self.p
         if anchor.link == self.model.frame:
-            return p(f"{anchor.owner}.{anchor.first}") + 1j * p(f"{anchor.owner}.{anchor.second}")
+            fixed: Value = p(f"{anchor.owner}.{anchor.first}") \
+                + 1j * p(f"{anchor.owner}.{anchor.second}")
+            return fixed
         first = p(f"{anchor.owner}.{anchor.first}")
         if anchor.second is None:
             local = first
@@ -289,7 +301,8 @@ class _State:
         origin = self.frames[anchor.link][0]
         if np.ndim(local) == 0 and local == 0:
             return origin
-        return origin + local * self.rotor(anchor.link)
+        moved: Value = origin + local * self.rotor(anchor.link)
+        return moved
 
     def guide(self, guide: Guide) -> tuple[Value, Value, Any]:
         """Base point, absolute direction and offset of a guide."""
@@ -316,13 +329,13 @@ class _State:
         """() for one design, (D,) for D designs."""
         return self._flat.design_shape
 
-    def earlier(self, group: GroupModel) -> Callable[[Value], _State]:
+    def earlier(self, group: GroupModel) -> Callable[[Value], State]:
         """The groups before ``group`` solved at any input positions, one per design
         (shape (D,) or a jet of it): how a triad or class IV group reads its known links."""
         flat = replace(self._flat, groups=self.model.groups[:self.model.groups.index(group)])
 
-        def at(q: Value) -> _State:
-            state = _State(flat)
+        def at(q: Value) -> State:
+            state = State(flat)
             for earlier in flat.groups:
                 state.solve(earlier, q)
             return state
@@ -335,9 +348,7 @@ class _State:
 
     def solve(self, group: GroupModel, q: Value) -> None:
         """Solve one group (its kind's solver) and record its links' frames."""
-        solve = group.group_kind.solve
-        assert solve is not None  # a model holds solvable kinds only
-        sol = solve(self, group, q)
+        sol = rules_of(group.group_kind).solve(self, group, q)
         self.solutions[group.label] = sol
         self.frames[group.i] = (sol.origin_i, sol.angle_i)
         if group.j is not None:

@@ -4,12 +4,13 @@
   coordinates at one reference position, as a student sketches the mechanism); lengths,
   attachment points, guide directions relative to their carriers and every assembly variant
   are derived from the sketch (``docs/kinematics.md``), by each kind's sketch rule
-  (:attr:`assur.kinds.GroupKind.sketch`);
+  (:attr:`assur.kinematics.rules.KindRules.sketch`), which works on a :class:`Builder`;
 * :func:`model_from_params` — from the ``params:`` of the rows of an identification table
   (the parameter columns of ``method.md`` §4.3; each kind declares its hinge and guide
   columns in :mod:`assur.kinds`).
 
-:func:`build_model` picks the right one; :func:`load_model` reads a table file.
+:func:`build_model` picks the right one; :func:`load_model` reads a table file, and
+:func:`load_with_forces` its force sections too.
 
 Examples
 --------
@@ -37,6 +38,7 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 from assur.errors import Issue, StructureError, TableError
+from assur.io.chain_table import load_chain
 from assur.io.reader import Node, TableReader, describe, latin_form, lookalike_letters
 from assur.kinds import GroupKind, GuideColumns, HingeColumns, kind_of, kind_of_class
 from assur.kinematics.model import (
@@ -47,15 +49,26 @@ from assur.kinematics.model import (
     KinematicModel,
     TracePoint,
 )
-from assur.model import GroupParams, LinkId, Pair, PairId, PairType, Sketch, joint_key
-from assur.structure.analysis import StructuralAnalysis
+from assur.kinematics.rules import rules_of
+from assur.model import (
+    ForceData,
+    GroupParams,
+    LinkId,
+    Pair,
+    PairId,
+    PairType,
+    Sketch,
+    joint_key,
+)
+from assur.structure.analysis import StructuralAnalysis, analyse_structure
 from assur.structure.classification import AssurGroup
 from assur.text import Message, joined
 
 if TYPE_CHECKING:  # pragma: no cover
     from assur.kinematics.higher.kind import Layout
 
-__all__ = ["build_model", "load_model", "model_from_params", "model_from_sketch"]
+__all__ = ["Builder", "Topology", "build_model", "load_model", "load_with_forces",
+           "model_from_params", "model_from_sketch"]
 
 
 def load_model(path: str | os.PathLike[str]) -> KinematicModel:
@@ -86,10 +99,43 @@ def load_model(path: str | os.PathLike[str]) -> KinematicModel:
     >>> [group.label for group in model.groups]
     ['L0(1)', 'L1(2,3)']
     """
-    from assur.io.chain_table import load_chain
-    from assur.structure.analysis import analyse_structure
-
     return build_model(analyse_structure(load_chain(path)))
+
+
+def load_with_forces(path: str | os.PathLike[str]
+                     ) -> tuple[KinematicModel, ForceData | None]:
+    """The kinematic model of a chain table and its force sections (``Chain.forces``).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A chain table with a ``geometry:`` sketch and, for the force analysis, ``masses:``,
+        ``loads:`` or ``gravity:`` (``docs/forces.md`` §1).
+
+    Returns
+    -------
+    model : KinematicModel
+        As :func:`load_model` gives it.
+    forces : ForceData or None
+        None for a table with neither masses nor loads.
+
+    Raises
+    ------
+    TableError
+        For every problem of the table at once.
+    StructureError
+        When the chain is not a class II mechanism with one input.
+
+    Examples
+    --------
+    >>> from pathlib import Path; import assur
+    >>> TABLES = Path(assur.__file__).parents[1] / "input_tables"
+    >>> model, data = load_with_forces(TABLES / "four_bar_gravity.yaml")
+    >>> model.groups[1].label, data.gravity
+    ('L1(2,3)', -9.81j)
+    """
+    chain = load_chain(path)
+    return build_model(analyse_structure(chain)), chain.forces
 
 
 def build_model(analysis: StructuralAnalysis) -> KinematicModel:
@@ -128,7 +174,7 @@ def build_model(analysis: StructuralAnalysis) -> KinematicModel:
     raise TableError(chain.source, [Issue("geometry", Message("model.no_dimensions", {}))])
 
 
-class _Topology:
+class Topology:
     """Roles of the pairs of an analysed chain, common to both builders."""
 
     def __init__(self, analysis: StructuralAnalysis) -> None:
@@ -213,14 +259,16 @@ def _link_text(link: Any) -> str:
     return str(link)
 
 
-class _Builder:
+class Builder:
     """Collects groups, parameters and link frames while a model is built.
 
     Problems found while building (they depend on the structure, not only on the table) are
-    recorded in ``reader`` and raised together at the end.
+    recorded in ``reader`` and raised together at the end. Each kind's sketch rule
+    (:mod:`assur.kinematics.rules`) reads the sketch and enters the group's parameters,
+    anchors and guides through it.
     """
 
-    def __init__(self, topo: _Topology, sketch: Sketch | None = None) -> None:
+    def __init__(self, topo: Topology, sketch: Sketch | None = None) -> None:
         self.topo = topo
         self.sketch = sketch
         self.reader = TableReader.from_data({}, source=topo.chain.source)
@@ -398,10 +446,10 @@ def model_from_sketch(analysis: StructuralAnalysis) -> KinematicModel:
     StructureError
         For a chain that is not a class II mechanism with one input.
     """
-    topo = _Topology(analysis)
+    topo = Topology(analysis)
     sketch = topo.chain.geometry
     assert sketch is not None
-    build = _Builder(topo, sketch)
+    build = Builder(topo, sketch)
     actuator = topo.composite_group is not None
     if not actuator:
         _sketch_crank(topo, build)
@@ -425,7 +473,7 @@ def model_from_sketch(analysis: StructuralAnalysis) -> KinematicModel:
     return build.model(direction=1, drive="actuator", input_range=span, tracing=tracing)
 
 
-def _margins(build: _Builder, value: float | Mapping[str, float] | None) -> dict[str, float]:
+def _margins(build: Builder, value: float | Mapping[str, float] | None) -> dict[str, float]:
     labels = [g.label for g in build.groups if not g.group_kind.is_input]
     if value is None:
         return {}
@@ -435,7 +483,7 @@ def _margins(build: _Builder, value: float | Mapping[str, float] | None) -> dict
     return {label: value[label] for label in labels if label in value}
 
 
-def _sketch_crank(topo: _Topology, build: _Builder) -> None:
+def _sketch_crank(topo: Topology, build: Builder) -> None:
     group = topo.input_group()
     crank, driven, label = group.i, group.pairs["H_i"], group.label
     pivot = build.point(topo.pairs[driven])
@@ -454,13 +502,14 @@ def _sketch_crank(topo: _Topology, build: _Builder) -> None:
     build.put(label, "phi_1_0", math.degrees(angle))
 
 
-def _sketch_group(topo: _Topology, build: _Builder, group: AssurGroup, seq: int) -> None:
+def _sketch_group(topo: Topology, build: Builder, group: AssurGroup, seq: int) -> None:
     if any(known not in build.frames for _, _, known in group.external):
         return  # an earlier group could not be built; its problem is already recorded
     kind = topo.kind(group)
     label = topo.label(group)
-    assert kind.sketch is not None
-    made = kind.sketch(build, group, label)
+    sketch = rules_of(kind).sketch
+    assert sketch is not None  # every kind but the input group has a sketch rule
+    made = sketch(build, group, label)
     if made is None:
         return
     layout = made.layout
@@ -475,7 +524,7 @@ def _sketch_group(topo: _Topology, build: _Builder, group: AssurGroup, seq: int)
     build.add(model, made.frame_i, None if layout else made.frame_j, made.frames)
 
 
-def _roles(topo: _Topology, group: AssurGroup, layout: Layout | None) -> dict[str, PairId]:
+def _roles(topo: Topology, group: AssurGroup, layout: Layout | None) -> dict[str, PairId]:
     """Role → pair id: a dyad's roles of its kind; a higher group's internal joints
     ``C1``…/``C``–``F`` and external hinges ``H1``…/``H_a``, ``H_c``, its slider pairs
     ``P1``… (roles of sliders start with ``P``)."""
@@ -525,9 +574,9 @@ def model_from_params(analysis: StructuralAnalysis) -> KinematicModel:
     StructureError
         For a chain that is not a class II mechanism with one crank input.
     """
-    topo = _Topology(analysis)
+    topo = Topology(analysis)
     chain = topo.chain
-    build = _Builder(topo)
+    build = Builder(topo)
     reader = build.reader
     rows = chain.group_params
     variants: dict[tuple[LinkId | None, ...], int | None] = {
@@ -551,7 +600,7 @@ def model_from_params(analysis: StructuralAnalysis) -> KinematicModel:
     return build.model(direction=direction, drive="crank", tracing=tuple(tracing))
 
 
-def _params(build: _Builder, rows: Mapping[tuple[LinkId, ...], GroupParams],
+def _params(build: Builder, rows: Mapping[tuple[LinkId, ...], GroupParams],
             group: AssurGroup | GroupModel, label: str, kind: GroupKind
             ) -> GroupParams | None:
     """The row's parameters of one group, checked against the group's kind and entered in
@@ -624,7 +673,7 @@ def _coordinate_rules(frame: LinkId, group: AssurGroup | GroupModel, kind: Group
     return out
 
 
-def _param_anchor(topo: _Topology, build: _Builder, link: LinkId | None, label: str,
+def _param_anchor(topo: Topology, build: Builder, link: LinkId | None, label: str,
                   cols: HingeColumns) -> Anchor:
     """An external hinge: absolute columns on the frame, supplied N/M on a moving link."""
     assert link is not None
@@ -639,7 +688,7 @@ def _param_anchor(topo: _Topology, build: _Builder, link: LinkId | None, label: 
     return Anchor(link, owner.label, f"l_{letter}", f"beta_{letter}", True)
 
 
-def _param_guide(build: _Builder, pair: Pair, carrier: LinkId | None, label: str,
+def _param_guide(build: Builder, pair: Pair, carrier: LinkId | None, label: str,
                  cols: GuideColumns) -> Guide:
     x, y, beta, offset = cols
     assert carrier is not None
@@ -649,7 +698,7 @@ def _param_guide(build: _Builder, pair: Pair, carrier: LinkId | None, label: str
     return Guide(pair.id, carrier, Anchor(carrier, label, x, y, False), beta, offset)
 
 
-def _param_group(topo: _Topology, build: _Builder, group: AssurGroup, label: str, seq: int,
+def _param_group(topo: Topology, build: Builder, group: AssurGroup, label: str, seq: int,
                  variant: int | None) -> GroupModel:
     """The group's hinges and guides, as its kind declares their columns."""
     kind = topo.kind(group)

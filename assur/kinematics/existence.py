@@ -14,18 +14,20 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from assur.kinds import HIGHER, KINDS, _Shortfall
+from assur.kinds import HIGHER, KINDS
 from assur.kinematics import jets as J
-from assur.kinematics.analysis import Motion, analyse
-from assur.kinematics.dyads import reason_text
-from assur.kinematics.higher.continuation import REASON_CODES
-from assur.kinematics.higher.kind import HigherGroupSolution
+from assur.kinematics.analysis import GroupSolution, Motion, analyse
+from assur.kinematics.dyads import Reason, reason_text
 from assur.kinematics.model import GroupModel, KinematicModel
+from assur.kinematics.rules import ShortfallAt, rules_of
 from assur.text import render
+
+if TYPE_CHECKING:  # pragma: no cover
+    from assur.kinematics.higher.kind import HigherGroupSolution
 
 __all__ = [
     "CONDITIONS",
@@ -42,6 +44,8 @@ __all__ = [
 CONDITIONS: dict[int | str, str] = {
     **{number: kind.condition for number, kind in KINDS.items()},
     **{code: kind.condition for code, kind in HIGHER.items()}}
+#: The reasons of the closed-form solvers (0–7); the higher groups add theirs.
+_DYAD_REASONS = frozenset(Reason)
 
 
 def reason_sentence(code: int, lang: str = "en") -> str:
@@ -64,7 +68,12 @@ def reason_sentence(code: int, lang: str = "en") -> str:
     >>> reason_sentence(8)
     'the assembly mode ends: it merges with another one (dead-centre position of the group)'
     """
-    return render(REASON_CODES[code], lang) if code in REASON_CODES else reason_text(code, lang)
+    if code not in _DYAD_REASONS:
+        from assur.kinematics.higher.continuation import REASON_CODES  # of a higher group
+
+        if code in REASON_CODES:
+            return render(REASON_CODES[code], lang)
+    return reason_text(code, lang)
 
 
 @dataclass(frozen=True)
@@ -313,14 +322,24 @@ def _interval(model: KinematicModel, motion: Motion, group: GroupModel, index: i
                            float(q[worst]), shortfall, unit)
 
 
-def _boundary(model: KinematicModel, group: GroupModel, index: int, sol: object, good: float,
-              bad: float, tol: float) -> float:
+def _boundary(model: KinematicModel, group: GroupModel, index: int, sol: GroupSolution,
+              good: float, bad: float, tol: float) -> float:
     """The end of a failure interval between ``good`` and ``bad``: bisection for a dyad; for
     a triad or class IV group the change point where its followed mode ended, if it lies
     there (no re-solving: each solve follows the mode from the sketch), else ``bad``; a
     higher group solved in closed form is bisected like a dyad."""
-    if not isinstance(sol, HigherGroupSolution) or not sol.followed:
-        return _bisect(model, group, index, good, bad, tol)
+    if group.layout is not None:
+        from assur.kinematics.higher.kind import HigherGroupSolution  # loaded with the group
+
+        assert isinstance(sol, HigherGroupSolution)
+        if sol.followed:
+            return _change_point(sol, good, bad)
+    return _bisect(model, group, index, good, bad, tol)
+
+
+def _change_point(sol: HigherGroupSolution, good: float, bad: float) -> float:
+    """Where the followed mode of a higher group ended between ``good`` and ``bad``, else
+    ``bad``."""
     lo, hi = sorted((good, bad))
     for end in np.asarray(sol.follow.ends, dtype=float).ravel():
         if not math.isfinite(end):
@@ -328,7 +347,7 @@ def _boundary(model: KinematicModel, group: GroupModel, index: int, sol: object,
         turns = math.floor((hi - end) / (2 * math.pi)) if sol.follow.periodic else 0
         shifted = end + 2 * math.pi * turns
         if lo <= shifted <= hi:
-            return shifted
+            return float(shifted)
     return bad
 
 
@@ -358,9 +377,9 @@ def _shortfall(model: KinematicModel, motion: Motion, group: GroupModel, at: int
         return complex(np.broadcast_to(J.value(motion.joints[group.pairs[role]]),
                                        motion.q.shape)[at])
 
-    rule = group.group_kind.shortfall
-    assert rule is not None  # every dyad kind has one
-    return rule(group, _Shortfall(
+    rule = rules_of(group.group_kind).shortfall
+    assert rule is not None  # every kind but the input group has one
+    return rule(group, ShortfallAt(
         q=float(motion.q[at]), margin=float(np.broadcast_to(sol.margin, motion.q.shape)[at]),
         delta=float(np.max(model.params.get(group.column("delta"), 0.0))), value=model.value,
         hinge=hinge))

@@ -34,6 +34,7 @@ __all__ = [
     "GroupModel",
     "Guide",
     "KinematicModel",
+    "Sketched",
     "TracePoint",
     "is_angle",
 ]
@@ -44,8 +45,6 @@ __all__ = [
 KIND_COLUMNS: Mapping[int | str, tuple[str, ...]] = {
     **{number: kind.columns for number, kind in KINDS.items()},
     **{code: kind.columns for code, kind in HIGHER.items()}}
-
-
 
 
 def is_angle(column: str) -> bool:
@@ -91,6 +90,28 @@ class TracePoint:
 
     name: str
     anchor: Anchor
+
+
+@dataclass(frozen=True, slots=True)
+class Sketched:
+    """What a kind's sketch rule (:mod:`assur.kinematics.rules`) derives from the joints of
+    a sketch, for the builder to enter as a :class:`GroupModel`.
+
+    ``frame_i``/``frame_j`` are the link frames (origin, angle) at the reference position.
+    A triad or class IV group gives its :class:`~assur.kinematics.higher.kind.Layout` and the
+    frames of all its links in ``frames``.
+    """
+
+    sigma: int
+    frame_i: tuple[complex, float]
+    frame_j: tuple[complex, float]
+    hinge_i: Anchor | None = None
+    hinge_j: Anchor | None = None
+    guide_i: Guide | None = None
+    guide_j: Guide | None = None
+    driven: str | None = None
+    layout: Layout | None = None
+    frames: Mapping[LinkId, tuple[complex, float]] = field(default_factory=dict)
 
 
 @dataclass(frozen=True, slots=True)

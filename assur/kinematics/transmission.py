@@ -20,10 +20,10 @@ from typing import Any
 
 import numpy as np
 
-from assur.kinds import given
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import Motion, unwrap
 from assur.kinematics.model import KinematicModel
+from assur.kinematics.rules import given, rules_of
 from assur.model import LinkId, PairId
 
 __all__ = [
@@ -126,7 +126,7 @@ def pressure_angles(motion: Motion) -> list[PressureAngle]:
     binary = binary_links(model)
     out = []
     for group in model.groups:
-        rule = group.group_kind.pressure
+        rule = rules_of(group.group_kind).pressure
         if rule is None:
             continue
         sol = motion.solutions[group.label]

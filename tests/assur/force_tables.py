@@ -6,7 +6,7 @@ from pathlib import Path
 
 import assur
 from assur.forces import ForceData
-from assur.forces.table import load_with_forces
+from assur.kinematics.build import load_with_forces
 
 ROOT = Path(__file__).resolve().parents[2]
 TABLES = ROOT / "input_tables"

@@ -36,9 +36,9 @@ from test_forces_higher import _loads
 
 import assur
 from assur.forces import kinetostatics
-from assur.forces.table import load_with_forces
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import analyse, sketch_input, values
+from assur.kinematics.build import load_with_forces
 from assur.kinematics.higher.kind import HigherGroupSolution
 from synthesis.cli.main import main
 

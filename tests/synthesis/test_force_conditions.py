@@ -17,8 +17,8 @@ import yaml
 
 import assur
 from assur.forces import ForceData, Mass, kinetostatics
-from assur.forces.table import load_with_forces
 from assur.kinematics.analysis import analyse, values
+from assur.kinematics.build import load_with_forces
 from synthesis import load_problem, problem_from_dict, synthesize
 from synthesis.evaluate import Evaluator
 from synthesis.force_conditions import force_penalties

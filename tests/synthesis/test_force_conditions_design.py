@@ -18,11 +18,10 @@ import numpy as np
 import pytest
 import yaml
 
-from assur.forces.model import ForceData, Load, Mass
 from assur.forces.solver import ForceAnalysis, kinetostatics
 from assur.kinematics.analysis import analyse, values
 from assur.kinematics.model import KinematicModel
-from assur.model import LinkId
+from assur.model import ForceData, LinkId, Load, Mass
 from synthesis import load_problem, problem_from_dict, synthesize
 from synthesis.cli import main
 from synthesis.evaluate import Evaluator

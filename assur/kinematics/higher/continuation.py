@@ -152,7 +152,7 @@ def separation(group: HigherGroup, k: Any, x: np.ndarray) -> np.ndarray:
         return np.asarray(0.5 / worst)
 
 
-def _finite(k: Any) -> np.ndarray:
+def finite_inputs(k: Any) -> np.ndarray:
     """True where every input of the record is finite."""
     out: Any = True
     for f in dataclasses.fields(k):
@@ -258,7 +258,8 @@ def _pick(a: np.ndarray, first: np.ndarray) -> np.ndarray:
     """``a`` at the rung ``first`` of its leading axis, for every row."""
     a = np.broadcast_to(a, a.shape[:1] + first.shape + a.shape[1 + first.ndim:])
     index = first.reshape((1,) + first.shape + (1,) * (a.ndim - 1 - first.ndim))
-    return np.take_along_axis(a, index, axis=0)[0]
+    picked: np.ndarray = np.take_along_axis(a, index, axis=0)[0]
+    return picked
 
 
 def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.ndarray,
@@ -328,7 +329,7 @@ def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.
             kv = values(inputs(s * here.t))
             with np.errstate(all="ignore"):
                 margin_here = group.margin(here.x, kv)
-            code = np.where(~_finite(kv), Reason.UNDEFINED_INPUT,
+            code = np.where(~finite_inputs(kv), Reason.UNDEFINED_INPUT,
                             np.where(margin_here <= CHANGE, HigherReason.MODE_ENDS,
                                      HigherReason.NOT_FOLLOWED))
             end = np.where(stuck, here.t, end)
@@ -376,7 +377,8 @@ class _Pass:
 
     @property
     def reached(self) -> np.ndarray:
-        return ~np.isnan(self.x[..., 0])
+        reached: np.ndarray = ~np.isnan(self.x[..., 0])
+        return reached
 
 
 def _anchors(log: list[tuple[_Point, np.ndarray]], targets: np.ndarray, offset: float
@@ -744,7 +746,7 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
     columns = np.flatnonzero(~reached.all(axis=0))
     if columns.size:
         kv = values(inputs(np.broadcast_to(phi[columns, None], (columns.size, d))))
-        defined = np.broadcast_to(_finite(kv), (columns.size, d)).T
+        defined = np.broadcast_to(finite_inputs(kv), (columns.size, d)).T
         gone = ~reached[:, columns]
         margin[:, columns] = np.where(gone, np.where(defined, _gap(group, kv, gone.T).T, np.nan),
                                       margin[:, columns])
@@ -808,7 +810,7 @@ def _follow_stroke(group: HigherGroup, inputs: Inputs, q: np.ndarray, stroke: St
     columns = np.flatnonzero(~reached.all(axis=0))
     if columns.size:
         kv = values(inputs(t[columns]))
-        defined = np.broadcast_to(_finite(kv), (columns.size, d)).T
+        defined = np.broadcast_to(finite_inputs(kv), (columns.size, d)).T
         gone = ~reached[:, columns]
         margin[:, columns] = np.where(gone, np.where(defined, _gap(group, kv, gone.T).T, np.nan),
                                       margin[:, columns])

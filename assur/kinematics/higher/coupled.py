@@ -29,10 +29,10 @@ from assur.kinematics.higher.groups import (
     ClassIVInputs,
     Unknowns,
     Value,
-    _columns,
-    _cross,
-    _dot,
     expand,
+    plain_cross,
+    plain_dot,
+    unknown_columns,
 )
 from assur.text import render
 
@@ -148,7 +148,7 @@ class ClassIVCoupled(ClassIVDrawing):
         if kind == "PP":
             return False
         u = (self.u_a, self.u_c)[link]
-        return not any(w is not None and bool(np.any(np.abs(_cross(w, u)) <= PARALLEL))
+        return not any(w is not None and bool(np.any(np.abs(plain_cross(w, u)) <= PARALLEL))
                        for w in self._guides(j))
 
     @cached_property
@@ -174,7 +174,7 @@ class ClassIVCoupled(ClassIVDrawing):
     def determinate(self) -> bool:
         """Whether the drawn form fixes the group: an elimination exists, no PP coupler
         slides along parallel guides."""
-        parallel = any(kind == "PP" and bool(np.any(np.abs(_cross(*self._guides(j)))
+        parallel = any(kind == "PP" and bool(np.any(np.abs(plain_cross(*self._guides(j)))
                                                      <= PARALLEL))
                        for j, kind in enumerate(self.kinds))
         return self._choice is not None and not parallel
@@ -257,7 +257,7 @@ class ClassIVCoupled(ClassIVDrawing):
                 out.append((J.cross(a.turn, c.turn), 1.0, self.size))
             else:
                 turn, w = (a.turn, wa) if kind == "PR" else (c.turn, wc)
-                offset = _cross(w, drawn)
+                offset = plain_cross(w, drawn)
                 out.append((a.weight * c.weight * J.cross(turn * w, gap) - offset * both,
                             both, 1.0))
         return out
@@ -265,7 +265,7 @@ class ClassIVCoupled(ClassIVDrawing):
     def residual(self, x: Unknowns, k: ClassIVInputs) -> list[Value]:
         """g_b, g_d: RR (|C − D|² − l²)/(2l), PR/RP the offset of the hinge from the guide
         minus its drawn value, PP L·sin(θ_a − θ_c) (rotations of a sliding link its guide's)."""
-        return [value * scale / lift for value, lift, scale in self._lifted(_columns(x), k)]
+        return [value * scale / lift for value, lift, scale in self._lifted(unknown_columns(x), k)]
 
     def lines(self, x: np.ndarray, k: ClassIVInputs) -> tuple[np.ndarray, np.ndarray]:
         """The Jacobian in (y_a, y_c) and the margin rows in physical columns.
@@ -273,7 +273,7 @@ class ClassIVCoupled(ClassIVDrawing):
         A rotation's column is divided by the RMS radius of the link's internal pairs about
         its external pair, a slide's is ∂/∂s = ∂/∂t·2L/(L² + s²) (as :class:`ClassIV`).
         """
-        cols = _columns(x)
+        cols = unknown_columns(x)
         seeds = [[J.Jet(v, float(i == j)) for i, v in enumerate(cols)] for j in range(2)]
         jac = np.stack([np.stack(np.broadcast_arrays(
             *(J.as_jet(g).d1 for g in self.residual(seed, k))), axis=-1) for seed in seeds],
@@ -316,8 +316,8 @@ class ClassIVCoupled(ClassIVDrawing):
         """
         (ab, pb), (ad, pd) = self._linear(e, k)
         if self._linear_kept:
-            return np.asarray(_cross(ab, ad))
-        return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - _cross(ab, ad) ** 2)
+            return np.asarray(plain_cross(ab, ad))
+        return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - plain_cross(ab, ad) ** 2)
 
     @staticmethod
     def _series(wide: ClassIVCoupled, k: ClassIVInputs) -> np.ndarray:
@@ -351,18 +351,18 @@ class ClassIVCoupled(ClassIVDrawing):
             alpha = np.where(np.abs(ab) >= np.abs(ad), ab, ad)
             other = np.angle(-alpha / np.conj(alpha))
         else:
-            other = np.angle(-1j * (pb * ad - pd * ab) / _cross(ab, ad))
+            other = np.angle(-1j * (pb * ad - pd * ab) / plain_cross(ab, ad))
         pair = [np.angle(e), other] if self.eliminated == 0 else [other, np.angle(e)]
         x = np.stack(np.broadcast_arrays(*pair), axis=-1)
         if "PP" in self.kinds:
-            a, c = self._links(_columns(x), k)
-            x = np.where((_dot(a.turn, c.turn) > 0.0)[..., None], x, np.nan)
+            a, c = self._links(unknown_columns(x), k)
+            x = np.where((plain_dot(a.turn, c.turn) > 0.0)[..., None], x, np.nan)
         return x
 
     # --- results --------------------------------------------------------------------------
 
     def _points(self, x: Unknowns, k: ClassIVInputs) -> dict[str, Value]:
-        a, c = self._links(_columns(x), k)
+        a, c = self._links(unknown_columns(x), k)
         out = {"Ha": a.origin / a.weight, "Hc": c.origin / c.weight}
         for j, ((p, q), (on_a, on_c)) in enumerate(zip((("C", "D"), ("F", "E")),
                                                        (("Ca", "Dc"), ("Fa", "Ec")), strict=True)):
@@ -379,7 +379,7 @@ class ClassIVCoupled(ClassIVDrawing):
                 ends = (pa, pa + c.turn * drawn)
             else:
                 rest = J.conj(a.turn) * (pc - pa) - drawn
-                start = pa + J.cross(rest, wc) / _cross(wa, wc) * a.turn * wa
+                start = pa + J.cross(rest, wc) / plain_cross(wa, wc) * a.turn * wa
                 ends = (start, start + a.turn * drawn)
             out.update({p: ends[0], q: ends[1], on_a: pa, on_c: pc})
         return out
@@ -392,7 +392,7 @@ class ClassIVCoupled(ClassIVDrawing):
     def rotations(self, x: Unknowns, k: ClassIVInputs) -> dict[str, Value]:
         """a, c: θ (of a sliding link its guide's turn); b, d: of the coupler (a prismatic
         coupler turns with the link carrying its guide pair); all from the sketch."""
-        cols = _columns(x)
+        cols = unknown_columns(x)
         a, c = self._links(cols, k)
         p = self._points(cols, k)
         turn_a, turn_c = (J.arg(link.turn) if slides else y

@@ -89,7 +89,8 @@ def det_rows(rows: np.ndarray) -> np.ndarray:
 def hadamard(rows: np.ndarray) -> np.ndarray:
     """|det R| / Π‖R_k‖: 1 for orthogonal rows, 0 for dependent ones (the margin's form)."""
     norms = np.prod(np.linalg.norm(rows, axis=-1), axis=-1)
-    return np.abs(det_rows(rows)) / norms
+    margin: np.ndarray = np.abs(det_rows(rows)) / norms
+    return margin
 
 
 class HigherGroup(ABC):
@@ -154,13 +155,13 @@ class HigherGroup(ABC):
         return hadamard(self.lines(x, k)[1])
 
 
-def _columns(x: Unknowns) -> list[Value]:
+def unknown_columns(x: Unknowns) -> list[Value]:
     if isinstance(x, np.ndarray):
         return [x[..., i] for i in range(x.shape[-1])]
     return list(x)
 
 
-def _cross(a: Any, b: Any) -> np.ndarray:
+def plain_cross(a: Any, b: Any) -> np.ndarray:
     """cross(a, b) = Im(ā b) of plain complex arrays."""
     return np.asarray((np.conj(a) * b).imag)
 
@@ -347,7 +348,7 @@ class Triad(HigherGroup):
     def residual(self, x: Unknowns, k: TriadInputs) -> list[Value]:
         """f_k: (|P_k − A_k|² − r_k²)/(2r_k), n_k·(P_k − Q_k), n_k·(P₁ + s_kE − A_k) or,
         for a P–P leash, L·sin(θ − θ_K)."""
-        p1, e = self._pose(_columns(x), k)
+        p1, e = self._pose(unknown_columns(x), k)
         out: list[Value] = []
         for i, kind in enumerate(self.leashes):
             point = p1 + self._offset(i) * e
@@ -366,7 +367,7 @@ class Triad(HigherGroup):
     def _constraints(self, x: np.ndarray, k: TriadInputs
                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Line directions ν_k, line points X_k, base points and P₁, stacked over k."""
-        p1, e = self._pose(_columns(x), k)
+        p1, e = self._pose(unknown_columns(x), k)
         nu, at, base = [], [], []
         for i, kind in enumerate(self.leashes):
             point = p1 + self._offset(i) * e
@@ -435,7 +436,7 @@ class Triad(HigherGroup):
         P–P leash the second leash's equation at ρ = r₁, θ = θ_K; with a P–P leash and no
         bar the P–P leash's own equation L·sin(θ − θ_K)."""
         if self.unique:
-            return np.asarray(self.size * _cross(self._turn(k), e))
+            return np.asarray(self.size * plain_cross(self._turn(k), e))
         if self.pinned:
             return np.asarray(self.residual(self.recover(e, k), k)[1])
         coef, rhs = self._linear(e, k)
@@ -465,7 +466,7 @@ class Triad(HigherGroup):
         pairs = ((1, 2), (2, 0), (0, 1)) if len(coef) == 3 else ((0, 1),)
         best, w = None, None
         for i, j in pairs:
-            det = _cross(coef[i], coef[j])
+            det = plain_cross(coef[i], coef[j])
             here = -1j * (rhs[i] * coef[j] - rhs[j] * coef[i]) / det
             if best is None or w is None:
                 best, w = np.abs(det), here
@@ -479,7 +480,7 @@ class Triad(HigherGroup):
         """P1, P2, P3: the internal pairs (for a P–R leash, the slider at its hinge A_k); O:
         the base's point drawn at P₁⁰ carried by the base, the origin of its frame (P1 itself
         unless the first leash slides on the base, where P1 is the hinge A₁ on the leash)."""
-        p1, e = self._pose(_columns(x), k)
+        p1, e = self._pose(unknown_columns(x), k)
         out = {f"P{i + 1}": (k.a[i] if kind == "PR" else p1 + self._offset(i) * e)
                for i, kind in enumerate(self.leashes)}
         out["O"] = p1
@@ -487,7 +488,7 @@ class Triad(HigherGroup):
 
     def rotations(self, x: Unknowns, k: TriadInputs) -> dict[str, Value]:
         """base: θ; leash1–3: the rotation of each leash (a P–R leash turns with the base)."""
-        cols = _columns(x)
+        cols = unknown_columns(x)
         p1, e = self._pose(cols, k)
         out: dict[str, Value] = {"base": cols[2]}
         for i, kind in enumerate(self.leashes):
@@ -660,7 +661,7 @@ class ClassIV(ClassIVDrawing):
 
     def _points(self, x: Unknowns, k: ClassIVInputs) -> tuple[Value, ...]:
         """C, F, D, E and the origins O_a, O_c."""
-        cols = _columns(x)
+        cols = unknown_columns(x)
         g_c, g_f, d_d, d_e, _, _ = self._arms(k)
         turns = self._turns(cols, k)
         oa, oc = self._origins(cols, k, turns)
@@ -729,7 +730,7 @@ class ClassIV(ClassIVDrawing):
         vb, vd, u = self._slider(e, k)
         *_, lb, ld = self._arms(k)
         n = (np.abs(vd) ** 2 - ld ** 2) - (np.abs(vb) ** 2 - lb ** 2)
-        sigma = 2.0 * _dot(u, vd - vb)
+        sigma = 2.0 * plain_dot(u, vd - vb)
         return n / sigma, n, sigma
 
     def eliminant(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
@@ -747,10 +748,10 @@ class ClassIV(ClassIVDrawing):
             vb, _, u = self._slider(e, k)
             _, n, sigma = self._slide(e, k)
             lb = self._arms(k)[4]
-            return np.asarray(n * n - 2.0 * n * sigma * _dot(u, vb)
+            return np.asarray(n * n - 2.0 * n * sigma * plain_dot(u, vb)
                               + sigma * sigma * (np.abs(vb) ** 2 - lb ** 2))
         ab, pb, ad, pd = self._linear(e, k)
-        return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - _cross(ab, ad) ** 2)
+        return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - plain_cross(ab, ad) ** 2)
 
     def recover(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
         """θ_a = arg E_a, θ_c = arg E_c with E_c = −i(π_bα_d − π_dα_b)/cross(α_b, α_d); one
@@ -763,7 +764,7 @@ class ClassIV(ClassIVDrawing):
             pair = (s, np.angle(e)) if a_slides else (np.angle(e), s)
             return np.stack(np.broadcast_arrays(*pair), axis=-1)
         ab, pb, ad, pd = self._linear(e, k)
-        ec = -1j * (pb * ad - pd * ab) / _cross(ab, ad)
+        ec = -1j * (pb * ad - pd * ab) / plain_cross(ab, ad)
         return np.stack(np.broadcast_arrays(np.angle(e), np.angle(ec)), axis=-1)
 
     def joints(self, x: Unknowns, k: ClassIVInputs) -> dict[str, Value]:
@@ -775,7 +776,7 @@ class ClassIV(ClassIVDrawing):
     def rotations(self, x: Unknowns, k: ClassIVInputs) -> dict[str, Value]:
         """a, c: θ_a, θ_c (of a sliding link, the known link's rotation u/u⁰); b: of C→D; d:
         of F→E; all from the sketch."""
-        cols = _columns(x)
+        cols = unknown_columns(x)
         c, f, d, e, _, _ = self._points(cols, k)
         a_slides, c_slides = self.slides
         return {"a": J.arg(k.u_a / self.u_a) if a_slides else cols[0],
@@ -784,7 +785,7 @@ class ClassIV(ClassIVDrawing):
                 "d": J.arg((e - f) / (np.asarray(self.e) - self.f))}
 
 
-def _dot(a: Any, b: Any) -> np.ndarray:
+def plain_dot(a: Any, b: Any) -> np.ndarray:
     """a·b = Re(ā b) of plain complex arrays."""
     return np.asarray((np.conj(a) * b).real)
 
@@ -792,6 +793,6 @@ def _dot(a: Any, b: Any) -> np.ndarray:
 def _tangent_rows(nb: np.ndarray, nd: np.ndarray, columns: list[tuple[Any, Any]]
                   ) -> np.ndarray:
     """The 2×2 matrix [[ν_b·t_bj], [ν_d·t_dj]] of the columns j = (t_bj, t_dj)."""
-    return np.stack([np.stack(np.broadcast_arrays(*(_dot(nb, tb) for tb, _ in columns)), axis=-1),
-                     np.stack(np.broadcast_arrays(*(_dot(nd, td) for _, td in columns)), axis=-1)],
+    return np.stack([np.stack(np.broadcast_arrays(*(plain_dot(nb, tb) for tb, _ in columns)), axis=-1),
+                     np.stack(np.broadcast_arrays(*(plain_dot(nd, td) for _, td in columns)), axis=-1)],
                     axis=-2)

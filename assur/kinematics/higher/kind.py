@@ -1,4 +1,4 @@
-"""The triad and the class IV group as kinds of the group registry (:mod:`assur.kinds`).
+"""The kinematics of the triad and the class IV group, the higher kinds of :mod:`assur.kinds`.
 
 A sketched triad or class IV group enters the kinematic model like a dyad: its sketch rule
 (:func:`sketch_triad`, :func:`sketch_class_iv`) records the drawn points of its internal
@@ -7,7 +7,8 @@ known links, and the frames of its four links at the reference position. Its sol
 (:func:`solve_triad`, :func:`solve_class_iv`) follows the drawn assembly mode over the
 positions (:func:`~assur.kinematics.higher.continuation.follow_mode`), the external hinges
 and guides coming from the earlier groups evaluated at any crank angle, and writes the
-joints, sliders and link frames into the analysis state.
+joints, sliders and link frames into the analysis state. :func:`assur.kinematics.rules.rules_of`
+gives these functions as the rules of the kinds ``III`` and ``IV``.
 
 Parameters of a group labelled ``III(4,5,6,7)``: ``x_<pair>``, ``y_<pair>`` — the drawn
 point of each internal pair (mm, at the reference position; for a block sliding on the
@@ -43,12 +44,13 @@ from assur.kinematics.higher.groups import (
 )
 from assur.kinematics.higher.pinned import place
 from assur.kinematics.jets import Jet
+from assur.kinematics.model import Sketched
 
 if TYPE_CHECKING:  # pragma: no cover
-    from assur.kinds import Sketched
-    from assur.kinematics.analysis import _State
-    from assur.kinematics.build import _Builder
+    from assur.kinematics.analysis import State
+    from assur.kinematics.build import Builder
     from assur.kinematics.model import Anchor, GroupModel, Guide
+    from assur.kinematics.rules import ShortfallAt
     from assur.model import LinkId, PairId
     from assur.structure.classification import AssurGroup
 
@@ -185,7 +187,7 @@ class SketchMode:
 # ------------------------------------------------------------------------- sketch rules
 
 
-def _problem(build: _Builder, label: str, code: str, **data: str) -> None:
+def _problem(build: Builder, label: str, code: str, **data: str) -> None:
     build.problem(f"geometry ({label})", f"higher.sketch.{code}", group=label, **data)
 
 
@@ -195,8 +197,6 @@ def _column(label: str, name: str) -> str:
 
 def _sketched(layout: Layout, frames: dict[LinkId, tuple[complex, float]],
               driven: str | None = None) -> Sketched:
-    from assur.kinds import Sketched
-
     first = layout.links[0]
     return Sketched(1, frames[first], frames[first], layout=layout, frames=frames,
                     driven=driven)
@@ -209,18 +209,18 @@ def _bodies(group: AssurGroup) -> Callable[[LinkId], LinkId]:
     return lambda link: members[0] if link in members else link
 
 
-def _actuator_refused(build: _Builder, group: AssurGroup, label: str, code: str,
+def _actuator_refused(build: Builder, group: AssurGroup, label: str, code: str,
                       **data: str) -> None:
     members = ", ".join(map(str, group.composite or ()))
     _problem(build, label, code, members=members, **data)
 
 
-def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | None:
+def sketch_triad(build: Builder, group: AssurGroup, label: str) -> Sketched | None:
     """The sketch rule of a triad: drawn internal points, external anchors, block guides.
 
     Parameters
     ----------
-    build : _Builder
+    build : Builder
         The model being built from the sketch (parameters, frames, problems).
     group : AssurGroup
         The triad as structure found it (a bar, if any, is solved first).
@@ -311,13 +311,13 @@ def sketch_triad(build: _Builder, group: AssurGroup, label: str) -> Sketched | N
     return _sketched(layout, frames, None if driven is None else TRIAD_LINKS[driven + 1])
 
 
-def sketch_class_iv(build: _Builder, group: AssurGroup, label: str) -> Sketched | None:
+def sketch_class_iv(build: Builder, group: AssurGroup, label: str) -> Sketched | None:
     """The sketch rule of the class IV group: drawn C, D, E, F, the guides of its prismatic
     internal pairs, the anchors of hinged external pairs and the guides of prismatic ones.
 
     Parameters
     ----------
-    build : _Builder
+    build : Builder
         The model being built from the sketch.
     group : AssurGroup
         The group as structure found it.
@@ -423,7 +423,7 @@ def actuator_ends(group: GroupModel) -> tuple[PairId, PairId]:
     return layout.internal[k], layout.external[k]
 
 
-def _class_iv_refusals(build: _Builder, internal: dict[str, PairId],
+def _class_iv_refusals(build: Builder, internal: dict[str, PairId],
                        external: tuple[PairId, PairId], links: tuple[LinkId, ...]
                        ) -> list[tuple[str, dict[str, str]]]:
     """The reasons a class IV group with prismatic pairs is not kinematically determinate.
@@ -480,10 +480,10 @@ def _class_iv_refusals(build: _Builder, internal: dict[str, PairId],
 # ------------------------------------------------------------------------------ solvers
 
 #: The known links evaluated at any crank angle: the analysis state of the earlier groups.
-Known = Callable[[Any], "_State"]
+Known = Callable[[Any], "State"]
 
 
-def _drawn(state: _State, group: GroupModel, pid: PairId) -> Any:
+def _drawn(state: State, group: GroupModel, pid: PairId) -> Any:
     p = state.flat_value
     return p(_column(group.label, f"x_{pid}")) + 1j * p(_column(group.label, f"y_{pid}"))
 
@@ -497,8 +497,8 @@ class _Actuator:
     put: Callable[[Any, Any], Any]
 
 
-def _follow(state: _State, group: GroupModel, q: Any, make: Callable[[Any], HigherGroup],
-            inputs: Callable[[_State], Any], actuator: _Actuator | None = None
+def _follow(state: State, group: GroupModel, q: Any, make: Callable[[Any], HigherGroup],
+            inputs: Callable[[State], Any], actuator: _Actuator | None = None
             ) -> tuple[HigherSolution, Any, HigherGroup]:
     """Follow the group's drawn mode over q; also its inputs at the reference position and
     the group as solved. A triad with a P–P leash and no bar has one mode, placed at every
@@ -523,7 +523,7 @@ def _follow(state: _State, group: GroupModel, q: Any, make: Callable[[Any], High
     return follow, k0, solved
 
 
-def _record(state: _State, group: GroupModel, follow: HigherSolution, solved: HigherGroup,
+def _record(state: State, group: GroupModel, follow: HigherSolution, solved: HigherGroup,
             joints: dict[str, PairId], frames: dict[str, tuple[Any, float]]
             ) -> HigherGroupSolution:
     """Write the link frames into the state (origin, angle at the sketch + rotation)."""
@@ -536,11 +536,11 @@ def _record(state: _State, group: GroupModel, follow: HigherSolution, solved: Hi
     return HigherGroupSolution(follow, solved, joints, first[0], first[1])
 
 
-def _triad_inputs(group: GroupModel) -> Callable[[_State], TriadInputs]:
+def _triad_inputs(group: GroupModel) -> Callable[[State], TriadInputs]:
     layout = group.layout
     assert layout is not None
 
-    def inputs(known: _State) -> TriadInputs:
+    def inputs(known: State) -> TriadInputs:
         a: list[Any] = []
         u: list[Any] = []
         for anchor, guide in zip(layout.anchors, layout.guides, strict=True):
@@ -557,12 +557,12 @@ def _triad_inputs(group: GroupModel) -> Callable[[_State], TriadInputs]:
     return inputs
 
 
-def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution:
-    """Follow a triad's drawn mode over the positions q (the registry's solver).
+def solve_triad(state: State, group: GroupModel, q: Any) -> HigherGroupSolution:
+    """Follow a triad's drawn mode over the positions q (its kind's solver).
 
     Parameters
     ----------
-    state : _State
+    state : State
         The analysis so far: the earlier groups solved at q; the triad's joints, sliders and
         link frames are written into it.
     group : GroupModel
@@ -639,7 +639,7 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
     return solution
 
 
-def _pp_sliders(state: _State, group: GroupModel, i: int, follow: HigherSolution,
+def _pp_sliders(state: State, group: GroupModel, i: int, follow: HigherSolution,
                 drawn: tuple[Any, Any, Any], guide_k: Guide) -> tuple[Any, float]:
     """Write the two sliders of a P–P leash; its frame (origin, drawn angle).
 
@@ -669,7 +669,7 @@ def _pp_sliders(state: _State, group: GroupModel, i: int, follow: HigherSolution
     return point, _phase(drawn[2])
 
 
-def _slide(state: _State, pair: PairId, pin: tuple[LinkId, Any], slot: tuple[LinkId, Any],
+def _slide(state: State, pair: PairId, pin: tuple[LinkId, Any], slot: tuple[LinkId, Any],
            angle: Any, offset: Any) -> Any:
     """Write the slider of a prismatic pair from its two links and their coincident points;
     return the slider's point (on the link that does not carry the guide).
@@ -688,12 +688,12 @@ def _slide(state: _State, pair: PairId, pin: tuple[LinkId, Any], slot: tuple[Lin
     return point
 
 
-def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution:
-    """Follow a class IV group's drawn mode over the positions q (the registry's solver).
+def solve_class_iv(state: State, group: GroupModel, q: Any) -> HigherGroupSolution:
+    """Follow a class IV group's drawn mode over the positions q (its kind's solver).
 
     Parameters
     ----------
-    state : _State
+    state : State
         The analysis so far; the group's joints, the sliders of its prismatic pairs and its
         link frames are written into it.
     group : GroupModel
@@ -723,7 +723,7 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
              for name, pid in zip(CLASS_IV_JOINTS, layout.internal, strict=True)
              if state.model.pair_links[pid][0] == "P"}
 
-    def external(known: _State, side: int) -> tuple[Any, Any]:
+    def external(known: State, side: int) -> tuple[Any, Any]:
         """The hinge, or the guide's point and direction, of one external pair."""
         anchor, guide = layout.anchors[side], layout.guides[side]
         if guide is not None:
@@ -732,7 +732,7 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
         assert anchor is not None
         return known.point(anchor), None
 
-    def inputs(known: _State) -> ClassIVInputs:
+    def inputs(known: State) -> ClassIVInputs:
         (h_a, u_a), (h_c, u_c) = external(known, 0), external(known, 1)
         return ClassIVInputs(h_a, h_c, u_a, u_c)
 
@@ -784,7 +784,7 @@ def solve_class_iv(state: _State, group: GroupModel, q: Any) -> HigherGroupSolut
     return solution
 
 
-def _drive(state: _State, group: GroupModel, q: Any) -> None:
+def _drive(state: State, group: GroupModel, q: Any) -> None:
     """The frames of an actuator's members and its driven pair, once the group's own frames
     are written (nothing for a group without an actuator)."""
     if group.driven is None:
@@ -809,7 +809,7 @@ def _phase(z: Any) -> Any:
 # ---------------------------------------------------------------------------- shortfall
 
 
-def shortfall_higher(group: GroupModel, at: Any) -> tuple[float, str]:
+def shortfall_higher(group: GroupModel, at: ShortfallAt) -> tuple[float, str]:
     """How far the group is from assembling at the worst position of a failure interval.
 
     In a gap (margin < 0) the margin is −|Im θ| of the nearest complex root: that angle in
@@ -819,7 +819,7 @@ def shortfall_higher(group: GroupModel, at: Any) -> tuple[float, str]:
     ----------
     group : GroupModel
         The group (unused: the rule is the same for both kinds).
-    at : _Shortfall
+    at : ShortfallAt
         What the existence check reads at the worst position.
 
     Returns

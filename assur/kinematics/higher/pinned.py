@@ -20,8 +20,8 @@ from assur.kinematics.dyads import Reason
 from assur.kinematics.higher.continuation import (
     HigherReason,
     HigherSolution,
-    _finite,
     analogs,
+    finite_inputs,
 )
 from assur.kinematics.higher.groups import Triad, TriadInputs, expand, hadamard, values
 from assur.kinematics.higher.modes import assembly_modes, select_mode
@@ -73,7 +73,7 @@ def place(group: Triad, k0: TriadInputs, k: TriadInputs, *, delta: float | np.nd
     modes = assembly_modes(group, k0)
     _, found = select_mode(group, k0, modes)
     wide, kv = expand(group), values(k)
-    defined = _finite(kv)
+    defined = finite_inputs(kv)
     with np.errstate(all="ignore"):
         x = wide.recover(np.ones(np.shape(kv.a[0])), kv)
         margin = np.where(defined, hadamard(wide.lines(x, kv)[1]), np.nan)

@@ -20,7 +20,6 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
-from assur.forces.groups import ForceReason
 from assur.kinematics.analysis import acceleration, unwrap, values, velocity
 from assur.kinematics.existence import CONDITIONS
 from assur.kinematics.higher.kind import HigherGroupSolution
@@ -31,9 +30,8 @@ from assur.model import LinkId
 
 if TYPE_CHECKING:  # pragma: no cover
     from assur.api import Analysis
-    from assur.forces.solver import ForceAnalysis
 
-__all__ = ["analysis_record", "forces_record", "higher_item", "moving_links", "number"]
+__all__ = ["analysis_record", "floats", "higher_item", "moving_links", "number"]
 
 #: A JSON value of the record.
 Record = dict[str, Any]
@@ -74,13 +72,13 @@ def number(value: float) -> float | None:
     return float(value) if math.isfinite(value) else None
 
 
-def _floats(data: npt.ArrayLike) -> list[float | None]:
+def floats(data: npt.ArrayLike) -> list[float | None]:
     return [number(v) for v in np.asarray(data, dtype=float).ravel()]
 
 
 def _xy(z: npt.ArrayLike) -> Record:
     z = np.asarray(z)
-    return {"x": _floats(z.real), "y": _floats(z.imag)}
+    return {"x": floats(z.real), "y": floats(z.imag)}
 
 
 def _derivatives(jet: Jet, omega: float | None, out: Record,
@@ -100,7 +98,7 @@ def _point(jet: Jet, omega: float | None) -> Record:
 
 
 def _scalar(jet: Jet, omega: float | None) -> Record:
-    return _derivatives(jet, omega, {"value": _floats(jet.v)}, _floats)
+    return _derivatives(jet, omega, {"value": floats(jet.v)}, floats)
 
 
 def moving_links(model: KinematicModel) -> list[LinkId]:
@@ -138,7 +136,7 @@ def analysis_record(result: Analysis) -> Record:
         "direction": model.direction,
         "input": {"name": "phi" if crank else "actuator_length",
                   "unit": "deg" if crank else "mm",
-                  "values": _floats(np.degrees(motion.q) if crank else motion.q)},
+                  "values": floats(np.degrees(motion.q) if crank else motion.q)},
         "parameters": {name: float(np.asarray(v)) for name, v in model.params.items()},
         "groups": [], "links": {}, "joints": {}, "sliders": {}, "tracing": {},
         "all_exist": report.all_exist,
@@ -160,14 +158,14 @@ def analysis_record(result: Analysis) -> Record:
                 "evaluated": [bool(v) for v in ex.evaluated],
                 "exists": [bool(v) for v in np.asarray(sol.exists).ravel()],
                 "first_failing": [bool(v) for v in ex.fails],
-                "margin": _floats(sol.margin),
+                "margin": floats(sol.margin),
                 "reason": [int(v) for v in np.asarray(sol.reason).ravel()]}
         item.update(higher_item(sol))
         out["groups"].append(item)
     for link in moving_links(model):
         origin, angle = motion.frames[link]
         entry = _scalar(as_jet(angle), omega)
-        entry["value"] = _floats(np.degrees(unwrap(values(angle))))
+        entry["value"] = floats(np.degrees(unwrap(values(angle))))
         out["links"][str(link)] = {"angle_deg": entry, "origin": _xy(values(origin)),
                                    "group": model.links[link][0]}
     for pid, z in motion.joints.items():
@@ -179,7 +177,7 @@ def analysis_record(result: Analysis) -> Record:
             "carrier": slider.carrier, "slider": slider.slider,
             "s": _scalar(as_jet(slider.s), omega), "point": _xy(values(slider.point)),
             "base": _xy(values(slider.base)),
-            "angle_deg": _floats(np.degrees(values(slider.angle))),
+            "angle_deg": floats(np.degrees(values(slider.angle))),
             "offset": float(np.asarray(slider.offset))}
     for name, point in motion.tracing.items():
         entry = _point(as_jet(point), omega)
@@ -187,66 +185,12 @@ def analysis_record(result: Analysis) -> Record:
         out["tracing"][name] = entry
     out["pressure_angles"] = [
         {"group": p.label, "pair": p.pair, "binary_links": list(p.binary),
-         "alpha_deg": _floats(np.degrees(p.alpha)), "max_deg": number(math.degrees(p.maximum)),
+         "alpha_deg": floats(np.degrees(p.alpha)), "max_deg": number(math.degrees(p.maximum)),
          "allowed_deg": result.allowed_pressure[p.label]}
         for p in pressure_angles(motion)]
     out["joint_rotations"] = [
         {"pair": r.pair, "links": list(r.links), "group": r.group, "full_turn": r.full_turn,
-         "swing_deg": number(math.degrees(r.swing)), "theta_deg": _floats(np.degrees(r.theta))}
+         "swing_deg": number(math.degrees(r.swing)), "theta_deg": floats(np.degrees(r.theta))}
         for r in joint_rotations(motion)]
     return out
-
-
-def forces_record(forces: ForceAnalysis) -> Record:
-    """The ``forces`` object of ``assur analyze --json``.
-
-    Parameters
-    ----------
-    forces : ForceAnalysis
-
-    Returns
-    -------
-    dict
-        ``omega``, ``gravity`` ([gx, gy] m/s²), the drive (``driving_torque`` N·m, or
-        ``driving_force`` N for an actuator) and the same from the lever
-        (``driving_torque_lever``), ``power_balance`` (their difference), ``reactions``
-        (pair → ``links``, ``x``, ``y``; prismatic pairs also ``normal`` and ``moment``),
-        ``residual`` (the largest relative Newton–Euler residual of the links per position:
-        ``force``, ``moment``), ``reason`` (null where solved, else ``not_assembled``,
-        ``toggle``, ``parallel_guides`` or ``indeterminate``) and ``singular`` (the group).
-
-    Examples
-    --------
-    >>> from pathlib import Path
-    >>> import assur
-    >>> table = Path(assur.__file__).parents[1] / "input_tables" / "slider_crank_press.yaml"
-    >>> record = forces_record(assur.analyse(table, points=36, forces=True, omega=10.0).forces)
-    >>> sorted(record["reactions"]["3-0"]), record["reactions"]["3-0"]["links"]
-    (['links', 'moment', 'normal', 'x', 'y'], [3, 0])
-    """
-    drive = forces.drive
-    reactions: Record = {}
-    for pair, reaction in forces.reactions.items():
-        entry: Record = {"links": list(reaction.links), "x": _floats(reaction.x),
-                         "y": _floats(reaction.y)}
-        if reaction.normal is not None and reaction.moment is not None:
-            entry["normal"] = _floats(reaction.normal)
-            entry["moment"] = _floats(reaction.moment)
-        reactions[str(pair)] = entry
-    with np.errstate(all="ignore"):
-        residuals = list(forces.residuals.values())
-        worst_force = np.max([r.force for r in residuals], axis=0)
-        worst_moment = np.max([r.moment for r in residuals], axis=0)
-    return {
-        "omega": forces.omega,
-        "gravity": [forces.gravity.real, forces.gravity.imag],
-        drive: _floats(forces.driving),
-        f"{drive}_lever": _floats(forces.driving_lever),
-        "power_balance": _floats(forces.power_balance),
-        "reactions": reactions,
-        "residual": {"force": _floats(worst_force), "moment": _floats(worst_moment)},
-        "reason": [None if r == 0 else ForceReason(int(r)).name.lower()
-                   for r in forces.reason.ravel()],
-        "singular": list(forces.singular.ravel()),
-    }
 

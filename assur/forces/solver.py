@@ -186,11 +186,57 @@ class ForceAnalysis:
                 f"  reactions in pairs: {', '.join(map(str, self.reactions))})")
 
     def to_dict(self) -> dict[str, Any]:
-        """The ``forces`` object of ``assur analyze --json``
-        (:func:`assur.records.forces_record`)."""
-        from assur.records import forces_record
+        """The ``forces`` object of ``assur analyze --json``.
 
-        return forces_record(self)
+        Returns
+        -------
+        dict
+            ``omega``, ``gravity`` ([gx, gy] m/s²), the drive (``driving_torque`` N·m, or
+            ``driving_force`` N for an actuator) and the same from the lever
+            (``driving_torque_lever``), ``power_balance`` (their difference), ``reactions``
+            (pair → ``links``, ``x``, ``y``; prismatic pairs also ``normal`` and ``moment``),
+            ``residual`` (the largest relative Newton–Euler residual of the links per
+            position: ``force``, ``moment``), ``reason`` (null where solved, else
+            ``not_assembled``, ``toggle``, ``parallel_guides`` or ``indeterminate``) and
+            ``singular`` (the group).
+
+        Examples
+        --------
+        >>> from pathlib import Path
+        >>> import assur
+        >>> table = Path(assur.__file__).parents[1] / "input_tables" / "slider_crank_press.yaml"
+        >>> record = assur.analyse(table, points=36, forces=True, omega=10.0).forces.to_dict()
+        >>> sorted(record["reactions"]["3-0"]), record["reactions"]["3-0"]["links"]
+        (['links', 'moment', 'normal', 'x', 'y'], [3, 0])
+        """
+        from assur.records import floats
+
+        forces = self
+        drive = forces.drive
+        reactions: dict[str, Any] = {}
+        for pair, reaction in forces.reactions.items():
+            entry: dict[str, Any] = {"links": list(reaction.links), "x": floats(reaction.x),
+                                     "y": floats(reaction.y)}
+            if reaction.normal is not None and reaction.moment is not None:
+                entry["normal"] = floats(reaction.normal)
+                entry["moment"] = floats(reaction.moment)
+            reactions[str(pair)] = entry
+        with np.errstate(all="ignore"):
+            residuals = list(forces.residuals.values())
+            worst_force = np.max([r.force for r in residuals], axis=0)
+            worst_moment = np.max([r.moment for r in residuals], axis=0)
+        return {
+            "omega": forces.omega,
+            "gravity": [forces.gravity.real, forces.gravity.imag],
+            drive: floats(forces.driving),
+            f"{drive}_lever": floats(forces.driving_lever),
+            "power_balance": floats(forces.power_balance),
+            "reactions": reactions,
+            "residual": {"force": floats(worst_force), "moment": floats(worst_moment)},
+            "reason": [None if r == 0 else ForceReason(int(r)).name.lower()
+                       for r in forces.reason.ravel()],
+            "singular": list(forces.singular.ravel()),
+        }
 
     @cached_property
     def residuals(self) -> dict[LinkId, LinkResidual]:

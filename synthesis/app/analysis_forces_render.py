@@ -1,5 +1,5 @@
 """A force analysis as CSV columns and text (``assur analyze --forces``); its JSON is
-:func:`assur.records.forces_record`.
+:meth:`assur.forces.solver.ForceAnalysis.to_dict`.
 
 Forces are in N (global axes, the force of a pair's first listed link on its second), torques
 in N·m (counter-clockwise positive).

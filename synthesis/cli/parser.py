@@ -3,9 +3,9 @@
 Each subcommand is a module of :mod:`synthesis.cli.commands` named after the word typed after
 ``assur``; it defines ``add_args(parser, lang)`` and ``run(args) -> int``, and may define
 ``OUTPUTS`` (option → ``'file'`` or ``'folder'``: the paths checked before the run).  The
-modules are found without importing them, and only the chosen one is imported, so
-``assur check`` does not load what ``assur synthesize`` needs.  The one-line help of every
-command is the catalogue entry ``cli.<name>.help``.
+commands are listed in :data:`ORDER` and only the chosen one is imported
+(:func:`command_module`), so ``assur check`` does not load what ``assur synthesize`` needs.
+The one-line help of every command is the catalogue entry ``cli.<name>.help``.
 
 The help is written in the language the command line asks for with ``--lang`` (before or
 after the command, before or after ``--help``), English by default, like every report; the
@@ -16,8 +16,6 @@ from the catalogue too (``help.*``).
 from __future__ import annotations
 
 import argparse
-import importlib
-import pkgutil
 import sys
 from collections.abc import Sequence
 from types import ModuleType
@@ -28,7 +26,8 @@ from assur.text import DEFAULT, languages, render
 __all__ = ["ORDER", "HelpFormatter", "Parser", "build_parser", "command_module", "command_names",
            "help_lang"]
 
-#: The commands in the order of the help (a new module is listed after them).
+#: The commands in the order of the help; a new command is a module of
+#: :mod:`synthesis.cli.commands`, a name here and a branch of :func:`command_module`.
 ORDER = ("check", "analyze", "synthesize", "case", "report", "batch")
 
 
@@ -98,18 +97,38 @@ class _Version(argparse.Action):
 
 
 def command_names() -> list[str]:
-    """The subcommands, found as modules of :mod:`synthesis.cli.commands` (not imported)."""
-    import synthesis.cli.commands as package
-
-    found = [info.name for info in pkgutil.iter_modules(package.__path__)
-             if not info.name.startswith("_")]
-    return sorted(found, key=lambda name: (ORDER.index(name) if name in ORDER else len(ORDER),
-                                           name))
+    """The subcommands, in the order of the help (none of them imported)."""
+    return list(ORDER)
 
 
 def command_module(name: str) -> ModuleType:
-    """The module of the subcommand ``name``."""
-    return importlib.import_module(f"synthesis.cli.commands.{name}")
+    """The module of the subcommand ``name``: only the chosen command is imported.
+
+    Raises
+    ------
+    KeyError
+        When ``name`` is not one of :data:`ORDER`.
+    """
+    match name:
+        case "check":
+            from synthesis.cli.commands import check
+            return check
+        case "analyze":
+            from synthesis.cli.commands import analyze
+            return analyze
+        case "synthesize":
+            from synthesis.cli.commands import synthesize
+            return synthesize
+        case "case":
+            from synthesis.cli.commands import case
+            return case
+        case "report":
+            from synthesis.cli.commands import report
+            return report
+        case "batch":
+            from synthesis.cli.commands import batch
+            return batch
+    raise KeyError(name)
 
 
 def help_lang(argv: Sequence[str]) -> str:

@@ -2,35 +2,34 @@
 
 Each case is a subpackage of :mod:`synthesis.cases` whose ``cli`` module is a
 :class:`~synthesis.cases.command.Case` (``NAME``, ``HELP``, ``add_args(parser, lang)``,
-``run(args) -> int``); they are found automatically.
+``run(args) -> int``), listed in :func:`cases`.
 """
 
 from __future__ import annotations
 
 import argparse
-import importlib
-import importlib.util
-import pkgutil
 from typing import cast
 
 from assur.text import DEFAULT, render
 from synthesis.cases.command import Case
-from synthesis.cli.parser import Parser
+
+
+def cases() -> tuple[Case, ...]:
+    """The built-in cases, in the order of the help."""
+    from synthesis.cases.fourbar_velocity_ratio import cli as fourbar_velocity_ratio
+    from synthesis.cases.impact import cli as impact
+    from synthesis.cases.tracker import cli as tracker
+
+    return tuple(cast(Case, module) for module in (fourbar_velocity_ratio, impact, tracker))
 
 
 def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
     """Add one sub-subcommand per built-in case, the help in ``lang``."""
-    import synthesis.cases as package
-
-    cases = parser.add_subparsers(dest="case", metavar="CASE", parser_class=Parser)
-    cases.required = True
-    for info in sorted(pkgutil.iter_modules(package.__path__), key=lambda i: i.name):
-        name = f"{package.__name__}.{info.name}.cli"
-        if not info.ispkg or info.name.startswith("_") or importlib.util.find_spec(name) is None:
-            continue
-        module = cast(Case, importlib.import_module(name))
+    subparsers = parser.add_subparsers(dest="case", metavar="CASE")  # of the parser's class
+    subparsers.required = True
+    for module in cases():
         text = module.HELP.text(lang)
-        sub = cases.add_parser(module.NAME, help=text, description=text, lang=lang)
+        sub = subparsers.add_parser(module.NAME, help=text, description=text, lang=lang)
         module.add_args(sub, lang)
         sub.add_argument("--quiet", action="store_true", help=render("cli.quiet", lang))
         sub.set_defaults(case_handler=module.run)

@@ -21,11 +21,9 @@ import numpy as np
 from assur.kinds import HIGHER, KINDS, _Shortfall
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import Motion, analyse
-from assur.kinematics.dyads import reason_text
-from assur.kinematics.higher.continuation import REASON_CODES
 from assur.kinematics.higher.kind import HigherGroupSolution
 from assur.kinematics.model import GroupModel, KinematicModel
-from assur.text import render
+from assur.kinematics.reasons import reason_text
 
 __all__ = [
     "CONDITIONS",
@@ -34,7 +32,6 @@ __all__ = [
     "GroupExistence",
     "check_existence",
     "first_failure",
-    "reason_sentence",
 ]
 
 #: Existence inequality of each kind, as printed in reports (``method.md`` §2.1–2.5; the
@@ -42,29 +39,6 @@ __all__ = [
 CONDITIONS: dict[int | str, str] = {
     **{number: kind.condition for number, kind in KINDS.items()},
     **{code: kind.condition for code, kind in HIGHER.items()}}
-
-
-def reason_sentence(code: int, lang: str = "en") -> str:
-    """Why a group does not assemble: the dyads' reasons 0–7 and the higher groups' 8, 9.
-
-    Parameters
-    ----------
-    code : int
-        The reason code of a solution.
-    lang : str
-        A catalogue language.
-
-    Returns
-    -------
-    str
-        The sentence.
-
-    Examples
-    --------
-    >>> reason_sentence(8)
-    'the assembly mode ends: it merges with another one (dead-centre position of the group)'
-    """
-    return render(REASON_CODES[code], lang) if code in REASON_CODES else reason_text(code, lang)
 
 
 @dataclass(frozen=True)
@@ -78,8 +52,7 @@ class FailureInterval:
         between grid positions. For a full-turn crank an interval may wrap past 2π (then
         ``end < start``).
     reason : int
-        Solver reason code at the worst position (:data:`assur.kinematics.dyads.REASONS`, and
-        8, 9 of a triad or class IV group: :func:`reason_sentence`).
+        Solver reason code at the worst position (:class:`assur.kinematics.reasons.Reason`).
     worst_margin : float
         The smallest normalised margin inside the interval (to compare with δ).
     worst_at : float
@@ -104,7 +77,7 @@ class FailureInterval:
         """JSON-ready record (crank positions in degrees when ``degrees``)."""
         conv = math.degrees if degrees else float
         return {"start": conv(self.start), "end": conv(self.end), "reason": int(self.reason),
-                "condition": reason_sentence(self.reason), "worst_margin": self.worst_margin,
+                "condition": reason_text(self.reason), "worst_margin": self.worst_margin,
                 "worst_at": conv(self.worst_at), "shortfall": self.shortfall,
                 "unit": self.unit}
 

@@ -100,8 +100,8 @@ class Layout:
 class HigherGroupSolution:
     """A triad or class IV group over the positions, as the analysis keeps a group's result.
 
-    ``exists``, ``margin`` and ``reason`` are those of :attr:`follow` (the reasons 8 and 9 of
-    :class:`~assur.kinematics.higher.continuation.HigherReason` join the dyads' 0–7);
+    ``exists``, ``margin`` and ``reason`` are those of :attr:`follow` (with the reasons 8 and 9
+    of :class:`~assur.kinematics.reasons.Reason`);
     ``origin_i``, ``angle_i`` the frame of the group's first link (triad base, class IV a).
     """
 

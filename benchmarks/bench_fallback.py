@@ -19,9 +19,21 @@ sweep (a mode the sweep missed) and fewer (a mode Newton missed).
 from __future__ import annotations
 
 import argparse
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "assur"))
+
+from higher_fallback import (  # type: ignore[import-not-found]
+    Joint,
+    Motion,
+    PoseSystem,
+    newton_modes,
+    sweep_modes,
+)
 
 from assur.kinematics.higher import (
     AssemblyModes,
@@ -31,13 +43,6 @@ from assur.kinematics.higher import (
     Triad,
     TriadInputs,
     assembly_modes,
-)
-from assur.kinematics.higher.fallback import (
-    Joint,
-    Motion,
-    PoseSystem,
-    newton_modes,
-    sweep_modes,
 )
 
 FORMS = ("RR", "RP", "PR", "PP")

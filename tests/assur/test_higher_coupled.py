@@ -21,12 +21,7 @@ from typing import Any
 import numpy as np
 import pytest
 from higher_checks import check_analogs_against_central_differences, check_class_iv_rigid
-from test_higher_properties import walk_through
-
-from assur.kinematics import jets as J
-from assur.kinematics.higher import ClassIV, ClassIVInputs, assembly_modes, follow_mode
-from assur.kinematics.higher.coupled import ClassIVCoupled
-from assur.kinematics.higher.fallback import (
+from higher_fallback import (
     Joint,
     Motion,
     PoseModes,
@@ -34,6 +29,11 @@ from assur.kinematics.higher.fallback import (
     newton_modes,
     sweep_modes,
 )
+from test_higher_properties import walk_through
+
+from assur.kinematics import jets as J
+from assur.kinematics.higher import ClassIV, ClassIVInputs, assembly_modes, follow_mode
+from assur.kinematics.higher.coupled import ClassIVCoupled
 from assur.kinematics.higher.groups import expand
 from assur.kinematics.higher.modes import AssemblyModes
 

@@ -15,11 +15,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from test_higher_properties import _polar, random_class_iv, random_triads
-from test_higher_vectors import V1, V1_MODES, V2, V2_MODES, V3, V3_MODES
-
-from assur.kinematics.higher import HigherGroup, Triad, TriadInputs, assembly_modes
-from assur.kinematics.higher.fallback import (
+from higher_fallback import (
     Joint,
     Motion,
     PoseModes,
@@ -28,6 +24,10 @@ from assur.kinematics.higher.fallback import (
     sweep_modes,
     sweep_plans,
 )
+from test_higher_properties import _polar, random_class_iv, random_triads
+from test_higher_vectors import V1, V1_MODES, V2, V2_MODES, V3, V3_MODES
+
+from assur.kinematics.higher import HigherGroup, Triad, TriadInputs, assembly_modes
 
 FULL = os.environ.get("ASSUR_HIGHER_FULL") == "1"
 COUNTED = 1000 if FULL else 40

@@ -289,7 +289,7 @@ def _boundary(model: KinematicModel, group: GroupModel, index: int, sol: object,
     if not isinstance(sol, HigherGroupSolution) or not sol.followed:
         return _bisect(model, group, index, good, bad, tol)
     lo, hi = sorted((good, bad))
-    for end in np.asarray(sol.follow.ends, dtype=float).ravel():
+    for end in map(float, np.asarray(sol.follow.ends, dtype=float).ravel()):
         if not math.isfinite(end):
             continue
         turns = math.floor((hi - end) / (2 * math.pi)) if sol.follow.periodic else 0

@@ -243,7 +243,7 @@ def _pick(a: np.ndarray, first: np.ndarray) -> np.ndarray:
     """``a`` at the rung ``first`` of its leading axis, for every row."""
     a = np.broadcast_to(a, a.shape[:1] + first.shape + a.shape[1 + first.ndim:])
     index = first.reshape((1,) + first.shape + (1,) * (a.ndim - 1 - first.ndim))
-    return np.take_along_axis(a, index, axis=0)[0]
+    return np.asarray(np.take_along_axis(a, index, axis=0)[0])
 
 
 def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.ndarray,
@@ -361,7 +361,7 @@ class _Pass:
 
     @property
     def reached(self) -> np.ndarray:
-        return ~np.isnan(self.x[..., 0])
+        return np.asarray(~np.isnan(self.x[..., 0]))
 
 
 def _anchors(log: list[tuple[_Point, np.ndarray]], targets: np.ndarray, offset: float

@@ -18,7 +18,7 @@ import dataclasses
 from abc import ABC, abstractmethod
 from collections.abc import Sequence
 from dataclasses import dataclass
-from enum import StrEnum
+from enum import Enum
 from functools import cached_property
 from typing import Any, TypeVar
 
@@ -38,7 +38,7 @@ Value = Any
 Unknowns = Sequence[Value] | np.ndarray
 
 
-class Leash(StrEnum):
+class Leash(str, Enum):
     """The form of a triad's leash or of a class IV group's coupler, by its two pairs.
 
     A triad's leash names its internal pair (on the base) first: RR a bar, RP a block hinged
@@ -134,7 +134,7 @@ def det_rows(rows: np.ndarray) -> np.ndarray:
 def hadamard(rows: np.ndarray) -> np.ndarray:
     """|det R| / Π‖R_k‖: 1 for orthogonal rows, 0 for dependent ones (the margin's form)."""
     norms = np.prod(np.linalg.norm(rows, axis=-1), axis=-1)
-    return np.abs(det_rows(rows)) / norms
+    return np.asarray(np.abs(det_rows(rows)) / norms)
 
 
 class HigherGroup(ABC):

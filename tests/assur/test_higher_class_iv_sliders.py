@@ -38,7 +38,7 @@ TWO_PI = 2 * np.pi
 
 
 def _polar(rng: np.random.Generator, d: int, low: float, high: float) -> np.ndarray:
-    return rng.uniform(low, high, d) * np.exp(2j * np.pi * rng.uniform(size=d))
+    return np.asarray(rng.uniform(low, high, d) * np.exp(2j * np.pi * rng.uniform(size=d)))
 
 
 @dataclass

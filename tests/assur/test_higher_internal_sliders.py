@@ -52,7 +52,7 @@ TOL = 1e-9 * SCALE
 def _table(name: str, carried: dict[str, int] | None = None) -> dict[str, Any]:
     """A shipped example as a dict, the guide of each pair in ``carried`` moved to the link
     given."""
-    table = yaml.safe_load((TABLES / name).read_text(encoding="utf-8"))
+    table: dict[str, Any] = yaml.safe_load((TABLES / name).read_text(encoding="utf-8"))
     for pair in table["mechanism"]["pairs"]:
         if pair["id"] in (carried or {}):
             pair["guide"] = carried[pair["id"]]  # type: ignore[index]

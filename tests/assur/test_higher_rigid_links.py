@@ -19,6 +19,7 @@ import yaml
 
 from assur.kinematics.analysis import analyse
 from assur.kinematics.build import load_model
+from assur.model import LinkId
 
 TABLES = Path(__file__).resolve().parents[2] / "input_tables"
 #: The shipped tables with a triad or a class IV group, each its whole cycle.
@@ -42,13 +43,14 @@ def test_every_link_is_rigid(table: str) -> None:
     assert ok.any()
     actuators = {link for group in model.groups for link in group.composite}
     frames = {link: (np.asarray(o)[ok], np.asarray(a)[ok]) for link, (o, a) in
-              motion.frames.items() if np.ndim(o) and np.ndim(a) and link not in actuators}
+              motion.frames.items()
+              if np.ndim(np.asarray(o)) and np.ndim(np.asarray(a)) and link not in actuators}
     joints = {pid: np.asarray(z)[ok] for pid, z in motion.joints.items()}
     scale = max(float(np.nanmax(np.abs(z))) for z in joints.values())
 
-    def local(link: object, point: np.ndarray) -> np.ndarray:
-        origin, angle = frames[link]  # type: ignore[index]
-        return (point - origin) * np.exp(-1j * angle)
+    def local(link: LinkId, point: np.ndarray) -> np.ndarray:
+        origin, angle = frames[link]
+        return np.asarray((point - origin) * np.exp(-1j * angle))
 
     checked = 0
     for pid, (kind, links, _) in model.pair_links.items():

@@ -273,10 +273,12 @@ class ClassIVCoupled(ClassIVDrawing):
         its external pair, a slide's is ∂/∂s = ∂/∂t·2L/(L² + s²) (as :class:`ClassIV`).
         """
         cols = _columns(x)
-        seeds = [[J.Jet(v, float(i == j)) for i, v in enumerate(cols)] for j in range(2)]
-        jac = np.stack([np.stack(np.broadcast_arrays(
-            *(J.as_jet(g).d1 for g in self.residual(seed, k))), axis=-1) for seed in seeds],
-            axis=-1)
+        shape = (2, *np.shape(cols[0]))
+        # both columns in one pass: the derivative along y_a, y_c on a leading axis
+        seed = np.eye(2).reshape((2, 2) + (1,) * (len(shape) - 1))
+        slopes = [np.broadcast_to(J.as_jet(g).d1, shape) for g in
+                  self.residual([J.Jet(v, seed[i]) for i, v in enumerate(cols)], k)]
+        jac = np.moveaxis(np.stack(slopes, axis=-1), 0, -1)
         scales = []
         for y, slides, (p, q), h in zip(cols, self.slides, ((self.c, self.f), (self.d, self.e)),
                                         (self.h_a, self.h_c), strict=True):

@@ -107,6 +107,15 @@ class _Leg(NamedTuple):
     known: LinkId
 
 
+class _DrawnPP(NamedTuple):
+    """A P–P leash at the sketch: X⁰, its point drawn at the internal pair; Y⁰, at the
+    external pair (the known link's guide point); u_K⁰, the known link's guide."""
+
+    inner: Any
+    outer: Any
+    guide: Any
+
+
 @dataclass(frozen=True, eq=False)
 class HigherGroupSolution:
     """A triad or class IV group over the positions, as the analysis keeps a group's result.
@@ -620,7 +629,8 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
         anchor, guide_k = layout.anchors[i], layout.guides[i]
         if kind is Leash.PP:
             assert guide_k is not None
-            frames[name] = _pp_sliders(state, group, i, follow, (base[i], k0.a[i], k0.u[i]),
+            frames[name] = _pp_sliders(state, group, i, follow,
+                                       _DrawnPP(base[i], k0.a[i], k0.u[i]),
                                        guide_k)
             continue
         if guide_k is not None:  # R–P: a block hinged to the base on a known link's guide
@@ -651,13 +661,13 @@ def solve_triad(state: _State, group: GroupModel, q: Any) -> HigherGroupSolution
 
 
 def _pp_sliders(state: _State, group: GroupModel, i: int, follow: HigherSolution,
-                drawn: tuple[Any, Any, Any], guide_k: Guide) -> tuple[Any, float]:
+                drawn: _DrawnPP, guide_k: Guide) -> tuple[Any, float]:
     """Write the two sliders of a P–P leash; its frame (origin, drawn angle).
 
     The leash turns with the base (θ); its point drawn at the internal pair, X⁰, runs on the
     base's guide, X = P_k + t·u_bE, and its point drawn at the external pair, Y⁰ (the known
     link's guide point at the reference position), on the known link's guide (Q, u_K):
-    cross(u_K, X + (Y⁰ − X⁰)E − Q) = 0 gives t. ``drawn`` holds X⁰, Y⁰ and u_K⁰.
+    cross(u_K, X + (Y⁰ − X⁰)E − Q) = 0 gives t.
     """
     layout = group.layout
     assert layout is not None
@@ -669,7 +679,7 @@ def _pp_sliders(state: _State, group: GroupModel, i: int, follow: HigherSolution
     along = J.expi(theta + own)
     line, angle, offset = state.guide(guide_k)
     known = J.expi(angle)
-    arm = _col(drawn[1] - drawn[0]) * turn
+    arm = _col(drawn.outer - drawn.inner) * turn
     start = follow.joints[f"P{i + 1}"]
     t = -J.cross(known, start + arm - line) / J.cross(known, along)
     point = start + t * along
@@ -677,7 +687,7 @@ def _pp_sliders(state: _State, group: GroupModel, i: int, follow: HigherSolution
     state.joints[inner], state.joints[ext] = point, outer
     _slide(state, inner, (leash, point), (layout.links[0], start), theta + own, 0.0)
     _slide(state, ext, (leash, outer), (guide_k.carrier, line), angle, offset)
-    return point, _phase(drawn[2])
+    return point, _phase(drawn.guide)
 
 
 def _slide(state: _State, pair: PairId, pin: tuple[LinkId, Any], slot: tuple[LinkId, Any],

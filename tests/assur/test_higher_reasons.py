@@ -29,10 +29,16 @@ FAILING = {"six_bar_triad_fails.yaml": (Reason.MODE_ENDS, 200.0),
            "course_11_link_fails.yaml": (Reason.OFFSET_TOO_LARGE, 40.0)}
 
 
+_CATALOGUES: dict[str, dict[str, str]] = {}
+
+
 def _po(lang: str) -> dict[str, str]:
-    """msgid → msgstr of the one-line entries of a PO file."""
-    text = (LOCALE / f"{lang}.po").read_text(encoding="utf-8")
-    return dict(re.findall(r'^msgid "(.+)"\nmsgstr "(.*)"$', text, flags=re.MULTILINE))
+    """msgid → msgstr of the one-line entries of a PO file (read once)."""
+    if lang not in _CATALOGUES:
+        text = (LOCALE / f"{lang}.po").read_text(encoding="utf-8")
+        _CATALOGUES[lang] = dict(re.findall(r'^msgid "(.+)"\nmsgstr "(.*)"$', text,
+                                            flags=re.MULTILINE))
+    return _CATALOGUES[lang]
 
 
 @pytest.mark.parametrize("reason", list(Reason), ids=lambda r: r.name)
@@ -76,7 +82,7 @@ def test_a_failing_table_through_every_consumer(name: str, lang: str, tmp_path: 
     the reason's sentence where the output is text."""
     table = TABLES / name
     reason, at = FAILING[name]
-    why = reason_text(reason, lang)
+    why = _po(lang)[reason.code]
 
     out, _ = _run(capsys, "analyze", table, "--points", 72, "--lang", lang)
     assert why in out
@@ -85,7 +91,7 @@ def test_a_failing_table_through_every_consumer(name: str, lang: str, tmp_path: 
     record = json.loads(out)
     existence = [group["existence"] for group in record["groups"] if "existence" in group]
     assert int(reason) in {code for group in existence for code in group["reason"]}
-    assert reason_text(reason) in json.dumps(record, ensure_ascii=False)
+    assert _po("en")[reason.code] in json.dumps(record, ensure_ascii=False)
 
     csv = tmp_path / "run.csv"
     _run(capsys, "analyze", table, "--points", 72, "--csv", csv)
@@ -124,7 +130,7 @@ def test_forces_of_a_failing_triad(tmp_path: Path,
     assert pin in source
     table = tmp_path / "forces_fails.yaml"
     table.write_text(source.replace(pin, "B: {point: [-50, -1.5]}"), encoding="utf-8")
-    why = reason_text(Reason.MODE_ENDS)
+    why = _po("en")[Reason.MODE_ENDS.code]
     csv, picture = tmp_path / "forces.csv", tmp_path / "forces.svg"
     out, _ = _run(capsys, "analyze", table, "--points", 72, "--forces", "--omega", 10,
                   "--csv", csv, "--plot", picture, "--at", 200)
@@ -150,3 +156,22 @@ def test_no_csv_left_after_a_failure_while_drawing(tmp_path: Path,
     capsys.readouterr()
     assert code == 3
     assert not csv.exists()
+
+
+@pytest.mark.parametrize("reason", list(Reason)[1:], ids=lambda r: r.name)
+def test_every_code_through_the_sentence_builders(reason: Reason) -> None:
+    """Each failing code in the picture's caption and in an existence interval's record (the
+    JSON, the text, batch and the report take the interval's sentence), in both languages."""
+    from assur.kinematics.analysis import analyse
+    from assur.kinematics.build import load_model
+    from assur.kinematics.existence import FailureInterval
+    from assur.plot.mechanism import Failure, failure_text
+
+    motion = analyse(load_model(TABLES / "six_bar_triad.yaml"), points=12)
+    for lang in ("en", "ru"):
+        caption = failure_text(motion, Failure("III(2,3,4,5)", int(reason), (), ((3, 5),)),
+                               lang)
+        assert _po(lang)[reason.code] in caption
+    record = FailureInterval(0.5, 1.0, int(reason), -0.1, 0.7, 1.0, "mm").to_dict(False)
+    assert record["reason"] == int(reason)
+    assert record["condition"] == _po("en")[reason.code]

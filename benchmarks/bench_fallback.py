@@ -19,9 +19,21 @@ sweep (a mode the sweep missed) and fewer (a mode Newton missed).
 from __future__ import annotations
 
 import argparse
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "assur"))
+
+from higher_fallback import (
+    Joint,
+    Motion,
+    PoseSystem,
+    newton_modes,
+    sweep_modes,
+)
 
 from assur.kinematics.higher import (
     AssemblyModes,
@@ -32,13 +44,6 @@ from assur.kinematics.higher import (
     TriadInputs,
     assembly_modes,
 )
-from assur.kinematics.higher.fallback import (
-    Joint,
-    Motion,
-    PoseSystem,
-    newton_modes,
-    sweep_modes,
-)
 
 FORMS = ("RR", "RP", "PR", "PP")
 TRIADS = ("PR-PR-PR", "RP-PR-PR")
@@ -47,7 +52,7 @@ Case = tuple[HigherGroup, ClassIVInputs | TriadInputs, PoseSystem, dict[str, Mot
 
 
 def _polar(rng: np.random.Generator, d: int, low: float, high: float) -> np.ndarray:
-    return rng.uniform(low, high, d) * np.exp(2j * np.pi * rng.uniform(size=d))
+    return np.asarray(rng.uniform(low, high, d) * np.exp(2j * np.pi * rng.uniform(size=d)))
 
 
 def _case(form: str, d: int, seed: int) -> Case:
@@ -126,7 +131,7 @@ def _aside(modes: AssemblyModes) -> np.ndarray:
     size = np.abs(np.log(np.abs(modes.roots)))
     near = ((size > 1e-6) & (size < 1e-3)).any(axis=1)
     thin = (np.nan_to_num(modes.margin, nan=1.0) < 1e-3).any(axis=1)
-    return near | thin
+    return np.asarray(near | thin)
 
 
 def _row(form: str, designs: int, aside: int, wrong: int, other: float, swept: float) -> None:

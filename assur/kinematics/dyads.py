@@ -22,8 +22,7 @@ paths of :mod:`assur.kinematics._fast`, which compute the same numbers.
 from __future__ import annotations
 
 import cmath
-from collections.abc import Callable, Iterator, Mapping
-from enum import IntEnum
+from collections.abc import Callable
 from functools import lru_cache
 from typing import Any, NamedTuple, cast
 
@@ -32,7 +31,7 @@ import numpy as np
 from assur.kinematics import _fast
 from assur.kinematics import jets as J
 from assur.kinematics.jets import Jet
-from assur.text import render
+from assur.kinematics.reasons import REASONS, Reason, reason_text
 from assur.typing import Value
 
 __all__ = [
@@ -58,50 +57,6 @@ Geometry = tuple[Value, Value, Value, Value | None, Value | None, Value | None, 
 ROUNDOFF = 64.0 * np.finfo(float).eps
 
 _NUMBERS, _REALS = _fast.NUMBERS, _fast.REALS
-
-
-class Reason(IntEnum):
-    """Why a group does not assemble at a position (``DyadSolution.reason``)."""
-
-    ASSEMBLES = 0
-    STRETCHED = 1
-    FOLDED = 2
-    ROD_TOO_SHORT = 3
-    OFFSET_TOO_LARGE = 4
-    GUIDES_PARALLEL = 5
-    COINCIDENT_HINGES = 6
-    UNDEFINED_INPUT = 7
-
-
-def reason_text(code: int, lang: str = "en") -> str:
-    """Why a group does not assemble, as a sentence in ``lang``.
-
-    The sentence of :class:`Reason` ``R`` is the catalogue entry ``reason.<r>``
-    (``Reason.FOLDED`` → ``reason.folded``, :mod:`assur.text`).
-
-    >>> reason_text(Reason.FOLDED), reason_text(Reason.FOLDED, "ru")
-    ('hinges too close (folded)', 'шарниры слишком близко (цепь сложена)')
-    """
-    return render(f"reason.{Reason(code).name.lower()}", lang)
-
-
-class _Reasons(Mapping[int, tuple[str, str]]):
-    """Reason code → (English sentence, Russian sentence), read from the catalogue."""
-
-    def __getitem__(self, code: int) -> tuple[str, str]:
-        if code not in set(Reason):
-            raise KeyError(code)
-        return reason_text(code, "en"), reason_text(code, "ru")
-
-    def __iter__(self) -> Iterator[int]:
-        return iter(int(r) for r in Reason)
-
-    def __len__(self) -> int:
-        return len(Reason)
-
-
-#: Reason code → (English sentence, Russian sentence); :func:`reason_text` gives any language.
-REASONS: Mapping[int, tuple[str, str]] = _Reasons()
 
 
 class DyadSolution(NamedTuple):

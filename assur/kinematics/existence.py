@@ -21,10 +21,9 @@ import numpy as np
 from assur.kinds import HIGHER, KINDS
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import GroupSolution, Motion, analyse
-from assur.kinematics.dyads import Reason, reason_text
 from assur.kinematics.model import GroupModel, KinematicModel
+from assur.kinematics.reasons import reason_text
 from assur.kinematics.rules import ShortfallAt, rules_of
-from assur.text import render
 
 if TYPE_CHECKING:  # pragma: no cover
     from assur.kinematics.higher.kind import HigherGroupSolution
@@ -36,7 +35,6 @@ __all__ = [
     "GroupExistence",
     "check_existence",
     "first_failure",
-    "reason_sentence",
 ]
 
 #: Existence inequality of each kind, as printed in reports (``method.md`` §2.1–2.5; the
@@ -44,36 +42,6 @@ __all__ = [
 CONDITIONS: dict[int | str, str] = {
     **{number: kind.condition for number, kind in KINDS.items()},
     **{code: kind.condition for code, kind in HIGHER.items()}}
-#: The reasons of the closed-form solvers (0–7); the higher groups add theirs.
-_DYAD_REASONS = frozenset(Reason)
-
-
-def reason_sentence(code: int, lang: str = "en") -> str:
-    """Why a group does not assemble: the dyads' reasons 0–7 and the higher groups' 8, 9.
-
-    Parameters
-    ----------
-    code : int
-        The reason code of a solution.
-    lang : str
-        A catalogue language.
-
-    Returns
-    -------
-    str
-        The sentence.
-
-    Examples
-    --------
-    >>> reason_sentence(8)
-    'the assembly mode ends: it merges with another one (dead-centre position of the group)'
-    """
-    if code not in _DYAD_REASONS:
-        from assur.kinematics.higher.continuation import REASON_CODES  # of a higher group
-
-        if code in REASON_CODES:
-            return render(REASON_CODES[code], lang)
-    return reason_text(code, lang)
 
 
 @dataclass(frozen=True)
@@ -87,8 +55,7 @@ class FailureInterval:
         between grid positions. For a full-turn crank an interval may wrap past 2π (then
         ``end < start``).
     reason : int
-        Solver reason code at the worst position (:data:`assur.kinematics.dyads.REASONS`, and
-        8, 9 of a triad or class IV group: :func:`reason_sentence`).
+        Solver reason code at the worst position (:class:`assur.kinematics.reasons.Reason`).
     worst_margin : float
         The smallest normalised margin inside the interval (to compare with δ).
     worst_at : float
@@ -113,7 +80,7 @@ class FailureInterval:
         """JSON-ready record (crank positions in degrees when ``degrees``)."""
         conv = math.degrees if degrees else float
         return {"start": conv(self.start), "end": conv(self.end), "reason": int(self.reason),
-                "condition": reason_sentence(self.reason), "worst_margin": self.worst_margin,
+                "condition": reason_text(self.reason), "worst_margin": self.worst_margin,
                 "worst_at": conv(self.worst_at), "shortfall": self.shortfall,
                 "unit": self.unit}
 
@@ -341,7 +308,7 @@ def _change_point(sol: HigherGroupSolution, good: float, bad: float) -> float:
     """Where the followed mode of a higher group ended between ``good`` and ``bad``, else
     ``bad``."""
     lo, hi = sorted((good, bad))
-    for end in np.asarray(sol.follow.ends, dtype=float).ravel():
+    for end in map(float, np.asarray(sol.follow.ends, dtype=float).ravel()):
         if not math.isfinite(end):
             continue
         turns = math.floor((hi - end) / (2 * math.pi)) if sol.follow.periodic else 0

@@ -13,8 +13,9 @@ import numpy as np
 from assur import joint_rotations, pressure_angles
 from assur.api import Analysis
 from assur.kinematics.analysis import unwrap, values
-from assur.kinematics.existence import CONDITIONS, reason_sentence
+from assur.kinematics.existence import CONDITIONS
 from assur.kinematics.higher.kind import HigherGroupSolution
+from assur.kinematics.reasons import reason_text
 from assur.records import moving_links
 from assur.text import render
 
@@ -77,7 +78,7 @@ def analysis_text(result: Analysis, lang: str = "en") -> str:
             lines.append("    " + render("analyze.interval", lang,
                                          a=position_text(result, item.start),
                                          b=position_text(result, item.end),
-                                         why=reason_sentence(item.reason, lang),
+                                         why=reason_text(item.reason, lang),
                                          v=item.shortfall, unit=units[item.unit],
                                          w=position_text(result, item.worst_at)))
         skipped = int((~group.evaluated).sum())

@@ -40,7 +40,7 @@ from typing import TYPE_CHECKING, Any
 
 from assur import AssurError, ExistenceReport, KinematicModel, TableError
 from assur.assessment import Assessment
-from assur.kinematics.existence import reason_sentence
+from assur.kinematics.reasons import reason_text
 from assur.text import Message, check_lang, render
 from synthesis.app.assess import assess
 
@@ -245,7 +245,7 @@ def _failures(report: ExistenceReport, model: KinematicModel, lang: str) -> list
             where = (f"{math.degrees(interval.start):.1f}°…{math.degrees(interval.end):.1f}°"
                      if crank else f"{interval.start:.2f}…{interval.end:.2f} mm")
             found.append(render("batch.group_fails", lang, group=group.label, where=where,
-                                reason=reason_sentence(interval.reason, lang)))
+                                reason=reason_text(interval.reason, lang)))
     return found
 
 

@@ -4,7 +4,7 @@ Three forms: c slides on a guide of the frame (``RP``: a hinged to a crank), a s
 guide carried by the crank (``PR``: c hinged to the frame), both slide (``PP``: a on a guide
 carried by a link in circular translation, c on a frame guide). Each check compares with a
 computation made another way: the mode count with the general fallback's sweep of the full
-pose system (:mod:`assur.kinematics.higher.fallback`), rigidity and the guides with distances
+pose system (``tests/assur/higher_fallback.py``), rigidity and the guides with distances
 and cross products of the joints, the analogs with central differences, the followed mode and
 its interval with a walk through all modes on a fine grid, the reactions with the global
 solve of all links.
@@ -22,13 +22,13 @@ from typing import Any
 import numpy as np
 import pytest
 from higher_checks import check_analogs_against_central_differences, check_class_iv_rigid
+from higher_fallback import Joint, Motion, PoseSystem, sweep_modes
 from test_higher_properties import walk_through
 
 import assur
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import analyse
 from assur.kinematics.higher import ClassIV, ClassIVInputs, assembly_modes, follow_mode
-from assur.kinematics.higher.fallback import Joint, Motion, PoseSystem, sweep_modes
 from assur.kinematics.higher.groups import expand
 from assur.kinematics.higher.kind import HigherGroupSolution
 
@@ -39,7 +39,7 @@ TWO_PI = 2 * np.pi
 
 
 def _polar(rng: np.random.Generator, d: int, low: float, high: float) -> np.ndarray:
-    return rng.uniform(low, high, d) * np.exp(2j * np.pi * rng.uniform(size=d))
+    return np.asarray(rng.uniform(low, high, d) * np.exp(2j * np.pi * rng.uniform(size=d)))
 
 
 @dataclass

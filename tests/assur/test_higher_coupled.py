@@ -21,12 +21,7 @@ from typing import Any
 import numpy as np
 import pytest
 from higher_checks import check_analogs_against_central_differences, check_class_iv_rigid
-from test_higher_properties import walk_through
-
-from assur.kinematics import jets as J
-from assur.kinematics.higher import ClassIV, ClassIVInputs, assembly_modes, follow_mode
-from assur.kinematics.higher.coupled import ClassIVCoupled
-from assur.kinematics.higher.fallback import (
+from higher_fallback import (
     Joint,
     Motion,
     PoseModes,
@@ -34,6 +29,11 @@ from assur.kinematics.higher.fallback import (
     newton_modes,
     sweep_modes,
 )
+from test_higher_properties import walk_through
+
+from assur.kinematics import jets as J
+from assur.kinematics.higher import ClassIV, ClassIVInputs, assembly_modes, follow_mode
+from assur.kinematics.higher.coupled import ClassIVCoupled
 from assur.kinematics.higher.groups import expand
 from assur.kinematics.higher.modes import AssemblyModes
 
@@ -48,7 +48,7 @@ TWO_PI = 2 * np.pi
 
 
 def _polar(rng: np.random.Generator, d: int, low: float, high: float) -> np.ndarray:
-    return rng.uniform(low, high, d) * np.exp(2j * np.pi * rng.uniform(size=d))
+    return np.asarray(rng.uniform(low, high, d) * np.exp(2j * np.pi * rng.uniform(size=d)))
 
 
 def _col(v: Any) -> np.ndarray:
@@ -113,7 +113,7 @@ def clear(modes: AssemblyModes) -> np.ndarray:
     size = np.abs(np.log(np.abs(modes.roots)))
     near = ((size > 1e-6) & (size < 1e-3)).any(axis=-1)
     thin = (np.nan_to_num(modes.margin, nan=1.0) < 1e-3).any(axis=-1)
-    return ~near & ~thin
+    return np.asarray(~near & ~thin)
 
 
 def _match(mine: np.ndarray, theirs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -192,7 +192,7 @@ def test_mode_count_agrees_with_the_fallback(form: str) -> None:
 
 def _on_guide(turn: np.ndarray, guide: Any, moving: np.ndarray, fixed: np.ndarray) -> np.ndarray:
     """|cross(E·w, moving − fixed)|: the distance of ``moving`` from the turned guide line."""
-    return np.abs((np.conj(turn * _col(guide)) * (moving - fixed)).imag)
+    return np.asarray(np.abs((np.conj(turn * _col(guide)) * (moving - fixed)).imag))
 
 
 @pytest.mark.parametrize("form", COUPLED + ["PR RR/PR"])

@@ -15,11 +15,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from test_higher_properties import _polar, random_class_iv, random_triads
-from test_higher_vectors import V1, V1_MODES, V2, V2_MODES, V3, V3_MODES
-
-from assur.kinematics.higher import HigherGroup, Triad, TriadInputs, assembly_modes
-from assur.kinematics.higher.fallback import (
+from higher_fallback import (
     Joint,
     Motion,
     PoseModes,
@@ -28,6 +24,10 @@ from assur.kinematics.higher.fallback import (
     sweep_modes,
     sweep_plans,
 )
+from test_higher_properties import _polar, random_class_iv, random_triads
+from test_higher_vectors import V1, V1_MODES, V2, V2_MODES, V3, V3_MODES
+
+from assur.kinematics.higher import HigherGroup, Triad, TriadInputs, assembly_modes
 
 FULL = os.environ.get("ASSUR_HIGHER_FULL") == "1"
 COUNTED = 1000 if FULL else 40
@@ -86,7 +86,7 @@ def _robust(modes: Any) -> np.ndarray:
     size = np.abs(np.log(np.abs(modes.roots)))
     near = ((size > 1e-6) & (size < 1e-3)).any(axis=1)
     thin = (np.nan_to_num(modes.margin, nan=1.0) < 1e-3).any(axis=1)
-    return ~near & ~thin
+    return np.asarray(~near & ~thin)
 
 
 def _leashed(kinds: str, seed: int, d: int) -> tuple[Triad, TriadInputs, PoseSystem,
@@ -211,7 +211,7 @@ def _matched(found: PoseModes, expected: np.ndarray, links: list[int], size: np.
     apart = np.abs(expected[..., :, None, :] - turns[..., None, :, :]).max(axis=-1)
     nearest = np.nan_to_num(apart, nan=np.inf).min(axis=-1)
     missing = ~np.isnan(expected[..., 0]) & (nearest > 1e-7)
-    return ~missing.any(axis=-1) & np.isfinite(size)
+    return np.asarray(~missing.any(axis=-1) & np.isfinite(size))
 
 
 def _satisfied(system: PoseSystem, known: dict[str, Motion], found: PoseModes) -> bool:

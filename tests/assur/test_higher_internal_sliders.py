@@ -25,14 +25,14 @@ import numpy as np
 import pytest
 import yaml
 from higher_checks import TABLES, refused
+from higher_fallback import Joint, PoseSystem, sweep_modes
+from higher_fallback import Motion as Known
 from test_forces_higher import _agrees, _loads
 
 from assur.io.chain_table import chain_from_dict
 from assur.kinematics.analysis import Motion, analyse, values
 from assur.kinematics.build import build_model, load_model
 from assur.kinematics.existence import check_existence
-from assur.kinematics.higher.fallback import Joint, PoseSystem, sweep_modes
-from assur.kinematics.higher.fallback import Motion as Known
 from assur.kinematics.higher.kind import HigherGroupSolution
 from assur.kinematics.model import KinematicModel
 from synthesis.evaluate import Evaluator
@@ -52,7 +52,7 @@ TOL = 1e-9 * SCALE
 def _table(name: str, carried: dict[str, int] | None = None) -> dict[str, Any]:
     """A shipped example as a dict, the guide of each pair in ``carried`` moved to the link
     given."""
-    table = yaml.safe_load((TABLES / name).read_text(encoding="utf-8"))
+    table: dict[str, Any] = yaml.safe_load((TABLES / name).read_text(encoding="utf-8"))
     for pair in table["mechanism"]["pairs"]:
         if pair["id"] in (carried or {}):
             pair["guide"] = carried[pair["id"]]  # type: ignore[index]

@@ -7,8 +7,6 @@ differentiation (:func:`analogs`).
 """
 
 from assur.kinematics.higher.continuation import (
-    REASON_CODES,
-    HigherReason,
     HigherSolution,
     analogs,
     follow_mode,
@@ -25,13 +23,11 @@ from assur.kinematics.higher.groups import (
 from assur.kinematics.higher.modes import AssemblyModes, assembly_modes, select_mode
 
 __all__ = [
-    "REASON_CODES",
     "AssemblyModes",
     "ClassIV",
     "ClassIVCoupled",
     "ClassIVInputs",
     "HigherGroup",
-    "HigherReason",
     "HigherSolution",
     "Leash",
     "Triad",

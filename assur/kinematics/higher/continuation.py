@@ -15,13 +15,11 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass
-from enum import IntEnum
 from typing import Any
 
 import numpy as np
 
 from assur.kinematics import jets as J
-from assur.kinematics.dyads import Reason
 from assur.kinematics.higher.groups import ClassIV, HigherGroup, det_rows, hadamard, values
 from assur.kinematics.higher.modes import (
     TAU,
@@ -35,9 +33,10 @@ from assur.kinematics.higher.modes import (
     weights,
 )
 from assur.kinematics.jets import Jet
+from assur.kinematics.reasons import Reason
 from assur.text import Message
 
-__all__ = ["REASON_CODES", "HigherReason", "HigherSolution", "Stroke", "analogs", "follow_mode"]
+__all__ = ["HigherSolution", "Stroke", "analogs", "follow_mode"]
 
 TWO_PI = 2.0 * np.pi
 #: Largest crank step of the continuation (rad).
@@ -65,20 +64,6 @@ FOLD_RESIDUAL = 1e-12
 FOLD_DIFFERENCE = 1e-6
 
 Inputs = Callable[[Any], Any]
-
-
-class HigherReason(IntEnum):
-    """Why the followed mode is missing at a position (codes after the dyads' 0–7)."""
-
-    MODE_ENDS = 8
-    NOT_FOLLOWED = 9
-
-
-#: Reason code → catalogue code of its sentence.
-REASON_CODES: dict[int, str] = {
-    HigherReason.MODE_ENDS: "higher.reason.mode_ends",
-    HigherReason.NOT_FOLLOWED: "higher.reason.not_followed",
-}
 
 
 def _part(v: Any, name: str) -> np.ndarray:
@@ -258,8 +243,7 @@ def _pick(a: np.ndarray, first: np.ndarray) -> np.ndarray:
     """``a`` at the rung ``first`` of its leading axis, for every row."""
     a = np.broadcast_to(a, a.shape[:1] + first.shape + a.shape[1 + first.ndim:])
     index = first.reshape((1,) + first.shape + (1,) * (a.ndim - 1 - first.ndim))
-    picked: np.ndarray = np.take_along_axis(a, index, axis=0)[0]
-    return picked
+    return np.asarray(np.take_along_axis(a, index, axis=0)[0])
 
 
 def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.ndarray,
@@ -322,7 +306,7 @@ def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.
             if log is not None:
                 log.append((here, stop))
             end = np.where(stop, here.t, end)
-            why = np.where(stop, HigherReason.MODE_ENDS, why).astype(np.int8)
+            why = np.where(stop, Reason.MODE_ENDS, why).astype(np.int8)
             done = done | stop
         stuck = moving & ~done & ~taken & (h < H_MIN)
         if stuck.any():
@@ -330,8 +314,8 @@ def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.
             with np.errstate(all="ignore"):
                 margin_here = group.margin(here.x, kv)
             code = np.where(~finite_inputs(kv), Reason.UNDEFINED_INPUT,
-                            np.where(margin_here <= CHANGE, HigherReason.MODE_ENDS,
-                                     HigherReason.NOT_FOLLOWED))
+                            np.where(margin_here <= CHANGE, Reason.MODE_ENDS,
+                                     Reason.NOT_FOLLOWED))
             end = np.where(stuck, here.t, end)
             why = np.where(stuck, code, why).astype(np.int8)
         done = done | stuck | hit
@@ -377,8 +361,7 @@ class _Pass:
 
     @property
     def reached(self) -> np.ndarray:
-        reached: np.ndarray = ~np.isnan(self.x[..., 0])
-        return reached
+        return np.asarray(~np.isnan(self.x[..., 0]))
 
 
 def _anchors(log: list[tuple[_Point, np.ndarray]], targets: np.ndarray, offset: float
@@ -509,8 +492,8 @@ class HigherSolution:
     exists : ndarray, bool, shape (..., N)
         The mode is followed there and ``margin >= delta``.
     reason : ndarray, int8, shape (..., N)
-        0, 7 (an earlier group fails), 8 (:attr:`HigherReason.MODE_ENDS`) or 9
-        (:attr:`HigherReason.NOT_FOLLOWED`).
+        0, 7 (an earlier group fails), 8 (:attr:`~assur.kinematics.reasons.Reason.MODE_ENDS`) or 9
+        (:attr:`~assur.kinematics.reasons.Reason.NOT_FOLLOWED`).
     ends : ndarray, shape (..., 2)
         The crank angles φ_f, φ_b in (0, 2π) where the forward and the backward pass from the
         sketch stop; NaN where the mode assembles over the whole turn.
@@ -548,7 +531,7 @@ class HigherSolution:
         the forward end φ_f: every angle has a position, but the crank cannot make a full turn,
         and the positions after φ_f are those reached turning backward from the sketch (another
         assembly at the same angles, so the motion jumps at φ_f)."""
-        both = (self.end_reasons == HigherReason.MODE_ENDS).all(axis=-1) & self.periodic
+        both = (self.end_reasons == Reason.MODE_ENDS).all(axis=-1) & self.periodic
         with np.errstate(invalid="ignore"):
             return np.asarray(both & (self.ends[..., 1] < self.ends[..., 0]))
 
@@ -568,8 +551,8 @@ class HigherSolution:
         if not self.found[index]:
             out.append(Message("higher.sketch.no_mode"))
         codes: dict[int, str] = {Reason.UNDEFINED_INPUT: "higher.end.input",
-                 HigherReason.MODE_ENDS: "higher.end.change_point",
-                 HigherReason.NOT_FOLLOWED: "higher.end.lost"}
+                 Reason.MODE_ENDS: "higher.end.change_point",
+                 Reason.NOT_FOLLOWED: "higher.end.lost"}
         if not self.periodic:
             codes = {code: f"higher.sketch.actuator_end.{name.rsplit('.', 1)[1]}"
                      for code, name in codes.items()}
@@ -742,7 +725,7 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
     x = np.stack([merge(ahead.x[..., i], behind.x[..., i]) for i in range(group.n)], axis=-1)
     margin = merge(ahead.margin, behind.margin)
     reason = np.zeros((d, n), dtype=np.int8)
-    merged_ends = (ahead.why == HigherReason.MODE_ENDS) & (behind.why == HigherReason.MODE_ENDS)
+    merged_ends = (ahead.why == Reason.MODE_ENDS) & (behind.why == Reason.MODE_ENDS)
     columns = np.flatnonzero(~reached.all(axis=0))
     if columns.size:
         kv = values(inputs(np.broadcast_to(phi[columns, None], (columns.size, d))))
@@ -752,11 +735,11 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
                                       margin[:, columns])
         reason[:, columns] = np.where(
             gone, np.where(defined, np.where((found & merged_ends)[:, None],
-                                             HigherReason.MODE_ENDS, HigherReason.NOT_FOLLOWED),
+                                             Reason.MODE_ENDS, Reason.NOT_FOLLOWED),
                            Reason.UNDEFINED_INPUT), 0)
     with np.errstate(invalid="ignore"):
         exists = reached & (margin >= np.asarray(delta)[..., None])
-    reason = np.where(reached & ~exists, HigherReason.MODE_ENDS, reason).astype(np.int8)
+    reason = np.where(reached & ~exists, Reason.MODE_ENDS, reason).astype(np.int8)
 
     def final(name: str) -> Any:
         parts = [np.where(exists, merge(a, b), np.nan)
@@ -814,14 +797,14 @@ def _follow_stroke(group: HigherGroup, inputs: Inputs, q: np.ndarray, stroke: St
         gone = ~reached[:, columns]
         margin[:, columns] = np.where(gone, np.where(defined, _gap(group, kv, gone.T).T, np.nan),
                                       margin[:, columns])
-        ends_here = found[:, None] & (why[:, columns] == HigherReason.MODE_ENDS)
+        ends_here = found[:, None] & (why[:, columns] == Reason.MODE_ENDS)
         reason[:, columns] = np.where(
-            gone, np.where(defined, np.where(ends_here, HigherReason.MODE_ENDS,
-                                             HigherReason.NOT_FOLLOWED),
+            gone, np.where(defined, np.where(ends_here, Reason.MODE_ENDS,
+                                             Reason.NOT_FOLLOWED),
                            Reason.UNDEFINED_INPUT), 0)
     with np.errstate(invalid="ignore"):
         exists = reached & (margin >= np.asarray(delta)[..., None])
-    reason = np.where(reached & ~exists, HigherReason.MODE_ENDS, reason).astype(np.int8)
+    reason = np.where(reached & ~exists, Reason.MODE_ENDS, reason).astype(np.int8)
     per = scale[:, None]
 
     def final(name: str) -> Any:

@@ -27,6 +27,7 @@ from assur.kinematics import jets as J
 from assur.kinematics.higher.groups import (
     ClassIVDrawing,
     ClassIVInputs,
+    Leash,
     Unknowns,
     Value,
     expand,
@@ -50,7 +51,7 @@ VANISH = 1e-10
 
 
 #: (p, m) of each form (couplers' kinds, slides, ε) once read (see ClassIVCoupled._form).
-_FORMS: dict[tuple[tuple[str, str], tuple[bool, bool], int], tuple[int, int]] = {}
+_FORMS: dict[tuple[tuple[Leash, Leash], tuple[bool, bool], int], tuple[int, int]] = {}
 
 
 def _everywhere(holds: np.ndarray, values: np.ndarray) -> bool:
@@ -107,7 +108,7 @@ class ClassIVCoupled(ClassIVDrawing):
     --------
     >>> g = ClassIVCoupled(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j, w_c=1)
     >>> g.kinds, g.degree, g.determinate, g.eliminated
-    (('PR', 'RR'), 3, True, 0)
+    ((<Leash.PR: 'PR'>, <Leash.RR: 'RR'>), 3, True, 0)
     """
 
     w_c: Value = None
@@ -119,7 +120,7 @@ class ClassIVCoupled(ClassIVDrawing):
     lengths = (False, False)
 
     def __post_init__(self) -> None:
-        if self.kinds == ("PP", "PP"):
+        if self.kinds == (Leash.PP, Leash.PP):
             raise ValueError(render("higher.coupled.two_pp"))
 
     # --- form -----------------------------------------------------------------------------
@@ -130,11 +131,10 @@ class ClassIVCoupled(ClassIVDrawing):
         return self.u_a is not None, self.u_c is not None
 
     @property
-    def kinds(self) -> tuple[str, str]:
-        """The kinds of b (pairs C, D) and d (pairs F, E): RR, PR, RP or PP."""
-        def kind(first: Value, second: Value) -> str:
-            return ("R" if first is None else "P") + ("R" if second is None else "P")
-        return kind(self.w_c, self.w_d), kind(self.w_f, self.w_e)
+    def kinds(self) -> tuple[Leash, Leash]:
+        """The forms of b (pairs C, D) and d (pairs F, E), the pair on a first."""
+        return (Leash.of(self.w_c is not None, self.w_d is not None),
+                Leash.of(self.w_f is not None, self.w_e is not None))
 
     def _guides(self, j: int) -> tuple[Value, Value]:
         """The guides of coupler j (0: b, 1: d), the pair on a first."""
@@ -145,7 +145,7 @@ class ClassIVCoupled(ClassIVDrawing):
         kind = self.kinds[j]
         if not self.slides[link]:
             return True
-        if kind == "PP":
+        if kind is Leash.PP:
             return False
         u = (self.u_a, self.u_c)[link]
         return not any(w is not None and bool(np.any(np.abs(plain_cross(w, u)) <= PARALLEL))
@@ -167,14 +167,13 @@ class ClassIVCoupled(ClassIVDrawing):
         """Whether both equations are linear in the kept unknown, a slide (both couplers PR
         or RP): lifted, both then vanish at y_o = π (s = ∞) for every ε, so Φ ≡ 0, and the
         eliminant is the resultant of the two lines instead (:meth:`_full`)."""
-        return self.slides[1 - self.eliminated] and all(kind in ("PR", "RP")
-                                                         for kind in self.kinds)
+        return self.slides[1 - self.eliminated] and all(kind.block for kind in self.kinds)
 
     @property
     def determinate(self) -> bool:
         """Whether the drawn form fixes the group: an elimination exists, no PP coupler
         slides along parallel guides."""
-        parallel = any(kind == "PP" and bool(np.any(np.abs(plain_cross(*self._guides(j)))
+        parallel = any(kind is Leash.PP and bool(np.any(np.abs(plain_cross(*self._guides(j)))
                                                      <= PARALLEL))
                        for j, kind in enumerate(self.kinds))
         return self._choice is not None and not parallel
@@ -249,14 +248,14 @@ class ClassIVCoupled(ClassIVDrawing):
             pc = c.at(second, self.h_c)    # κ_c·(the point of c at the pair on c)
             gap = c.weight * pa - a.weight * pc   # κ_aκ_c·(that on a − that on c)
             drawn = np.asarray(first) - second
-            if kind == "RR":  # a bar: its drawn length, or an actuator's from the inputs
+            if kind is Leash.RR:  # a bar: its drawn length, or an actuator's from the inputs
                 given = k.l_b if j == 0 else k.l_d
                 length = np.abs(drawn) if given is None else given
                 out.append((J.dot(gap, gap) - length * length * both, both, 0.5 / length))
-            elif kind == "PP":
+            elif kind is Leash.PP:
                 out.append((J.cross(a.turn, c.turn), 1.0, self.size))
             else:
-                turn, w = (a.turn, wa) if kind == "PR" else (c.turn, wc)
+                turn, w = (a.turn, wa) if kind is Leash.PR else (c.turn, wc)
                 offset = plain_cross(w, drawn)
                 out.append((a.weight * c.weight * J.cross(turn * w, gap) - offset * both,
                             both, 1.0))
@@ -274,10 +273,12 @@ class ClassIVCoupled(ClassIVDrawing):
         its external pair, a slide's is ∂/∂s = ∂/∂t·2L/(L² + s²) (as :class:`ClassIV`).
         """
         cols = unknown_columns(x)
-        seeds = [[J.Jet(v, float(i == j)) for i, v in enumerate(cols)] for j in range(2)]
-        jac = np.stack([np.stack(np.broadcast_arrays(
-            *(J.as_jet(g).d1 for g in self.residual(seed, k))), axis=-1) for seed in seeds],
-            axis=-1)
+        shape = (2, *np.shape(cols[0]))
+        # both columns in one pass: the derivative along y_a, y_c on a leading axis
+        seed = np.eye(2).reshape((2, 2) + (1,) * (len(shape) - 1))
+        slopes = [np.broadcast_to(J.as_jet(g).d1, shape) for g in
+                  self.residual([J.Jet(v, seed[i]) for i, v in enumerate(cols)], k)]
+        jac = np.moveaxis(np.stack(slopes, axis=-1), 0, -1)
         scales = []
         for y, slides, (p, q), h in zip(cols, self.slides, ((self.c, self.f), (self.d, self.e)),
                                         (self.h_a, self.h_c), strict=True):
@@ -354,7 +355,7 @@ class ClassIVCoupled(ClassIVDrawing):
             other = np.angle(-1j * (pb * ad - pd * ab) / plain_cross(ab, ad))
         pair = [np.angle(e), other] if self.eliminated == 0 else [other, np.angle(e)]
         x = np.stack(np.broadcast_arrays(*pair), axis=-1)
-        if "PP" in self.kinds:
+        if Leash.PP in self.kinds:
             a, c = self._links(unknown_columns(x), k)
             x = np.where((plain_dot(a.turn, c.turn) > 0.0)[..., None], x, np.nan)
         return x
@@ -371,11 +372,11 @@ class ClassIVCoupled(ClassIVDrawing):
             drawn = np.asarray(second) - first
             kind = self.kinds[j]
             wa, wc = self._guides(j)
-            if kind == "RR":
+            if kind is Leash.RR:
                 ends = (pa, pc)
-            elif kind == "PR":
+            elif kind is Leash.PR:
                 ends = (pc - a.turn * drawn, pc)
-            elif kind == "RP":
+            elif kind is Leash.RP:
                 ends = (pa, pa + c.turn * drawn)
             else:
                 rest = J.conj(a.turn) * (pc - pa) - drawn

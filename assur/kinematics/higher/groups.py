@@ -18,8 +18,9 @@ import dataclasses
 from abc import ABC, abstractmethod
 from collections.abc import Sequence
 from dataclasses import dataclass
+from enum import Enum
 from functools import cached_property
-from typing import Any, Literal, TypeVar
+from typing import Any, TypeVar
 
 import numpy as np
 
@@ -33,10 +34,52 @@ __all__ = [
 
 #: The unknowns: an ndarray (..., n) or a sequence of n values (jets for the analogs).
 Unknowns = Sequence[Value] | np.ndarray
-#: Leash kinds, internal pair first: a bar, a block hinged to the base on a guide of a known
-#: link, a leash hinged to a known link sliding along a guide of the base, a leash sliding on
-#: both (its guides fix the base's rotation to the known link's).
-Leash = Literal["RR", "RP", "PR", "PP"]
+
+
+class Leash(str, Enum):
+    """The form of a triad's leash or of a class IV group's coupler, by its two pairs.
+
+    A triad's leash names its internal pair (on the base) first: RR a bar, RP a block hinged
+    to the base on a guide of a known link, PR a leash hinged to a known link sliding along a
+    guide of the base, PP a leash sliding on both (its guides fix the base's rotation to the
+    known link's). A class IV coupler names its pair on a first (C or F), then on c (D or E).
+
+    Examples
+    --------
+    >>> Leash.of(False, True), Leash.RP.bar, Leash.RP.slides
+    (<Leash.RP: 'RP'>, False, (False, True))
+    """
+
+    RR = "RR"
+    RP = "RP"
+    PR = "PR"
+    PP = "PP"
+
+    @classmethod
+    def of(cls, first: bool, second: bool) -> Leash:
+        """The form whose first (second) pair is prismatic where ``first`` (``second``)."""
+        return cls(("P" if first else "R") + ("P" if second else "R"))
+
+    @property
+    def slides(self) -> tuple[bool, bool]:
+        """Whether its first, its second pair is prismatic."""
+        return self.value[0] == "P", self.value[1] == "P"
+
+    @property
+    def bar(self) -> bool:
+        """Both pairs revolute: a bar of fixed (or actuated) length."""
+        return self is Leash.RR
+
+    @property
+    def block(self) -> bool:
+        """Exactly one pair prismatic (RP or PR): one line constraint, no length."""
+        return self.slides[0] != self.slides[1]
+
+    @property
+    def text(self) -> str:
+        """As messages write it: ``R–P``."""
+        return "–".join(self.value)
+
 T = TypeVar("T")
 
 
@@ -89,8 +132,7 @@ def det_rows(rows: np.ndarray) -> np.ndarray:
 def hadamard(rows: np.ndarray) -> np.ndarray:
     """|det R| / Π‖R_k‖: 1 for orthogonal rows, 0 for dependent ones (the margin's form)."""
     norms = np.prod(np.linalg.norm(rows, axis=-1), axis=-1)
-    margin: np.ndarray = np.abs(det_rows(rows)) / norms
-    return margin
+    return np.asarray(np.abs(det_rows(rows)) / norms)
 
 
 class HigherGroup(ABC):
@@ -202,7 +244,7 @@ class Triad(HigherGroup):
 
     Parameters
     ----------
-    leashes : tuple of 3 of {"RR", "RP", "PR", "PP"}
+    leashes : tuple of 3 Leash (or their names)
         Leash kinds, internal pair first. A bar, if there is one, must come first; a triad
         without a bar has all three equations linear in W (§2.2). A P–P leash comes last
         (at most one): it fixes the base's rotation θ to the known link's. After a bar the
@@ -234,16 +276,19 @@ class Triad(HigherGroup):
     n = 3
 
     def __post_init__(self) -> None:
-        if "RR" in self.leashes and self.leashes[0] != "RR":
-            raise ValueError(render("higher.error.first_leash", found="–".join(self.leashes[0])))
-        if "PP" in self.leashes[:2]:
-            raise ValueError(render("higher.error.pp_leash",
-                                    found=", ".join("–".join(k) for k in self.leashes)))
-        for kind, u in zip(self.leashes, self.guide, strict=True):
-            if kind not in ("RR", "RP", "PR", "PP"):
+        for kind in self.leashes:
+            if kind not in set(Leash):
                 raise ValueError(render("higher.error.leash_kind", found=kind))
-            if kind != "RR" and u is None:
-                raise ValueError(render("higher.error.guide_missing", found=kind))
+        leashes = tuple(Leash(kind) for kind in self.leashes)
+        object.__setattr__(self, "leashes", leashes)
+        if any(kind.bar for kind in leashes) and not leashes[0].bar:
+            raise ValueError(render("higher.error.first_leash", found=leashes[0].text))
+        if Leash.PP in leashes[:2]:
+            raise ValueError(render("higher.error.pp_leash",
+                                    found=", ".join(k.text for k in leashes)))
+        for kind, u in zip(leashes, self.guide, strict=True):
+            if not kind.bar and u is None:
+                raise ValueError(render("higher.error.guide_missing", found=kind.value))
 
     # --- drawn dimensions -----------------------------------------------------------------
 
@@ -269,7 +314,7 @@ class Triad(HigherGroup):
     @property
     def pinned(self) -> bool:
         """The last leash slides on both its pairs: θ is the known link's rotation."""
-        return self.leashes[2] == "PP"
+        return self.leashes[2] is Leash.PP
 
     @property
     def unique(self) -> bool:
@@ -295,7 +340,7 @@ class Triad(HigherGroup):
     @property
     def barless(self) -> bool:
         """No leash is a bar: every equation is linear in W at a fixed θ."""
-        return "RR" not in self.leashes
+        return not any(kind.bar for kind in self.leashes)
 
     @property
     def degree(self) -> int:
@@ -306,7 +351,7 @@ class Triad(HigherGroup):
             return 1
         if self.barless:
             return 1 if len(set(self.leashes)) == 1 else 2
-        return 2 if self.leashes[1] == self.leashes[2] != "RR" else 3
+        return 2 if self.leashes[1] is self.leashes[2] and self.leashes[1].block else 3
 
     @cached_property
     def size(self) -> np.ndarray:
@@ -325,7 +370,7 @@ class Triad(HigherGroup):
     @property
     def sketch(self) -> dict[str, Value]:
         """P1, P2, P3 as drawn."""
-        return {f"P{i + 1}": (self.external[i] if kind == "PR" else self.base[i])
+        return {f"P{i + 1}": (self.external[i] if kind is Leash.PR else self.base[i])
                 for i, kind in enumerate(self.leashes)}
 
     # --- equations ------------------------------------------------------------------------
@@ -352,13 +397,13 @@ class Triad(HigherGroup):
         out: list[Value] = []
         for i, kind in enumerate(self.leashes):
             point = p1 + self._offset(i) * e
-            if kind == "RR":
+            if kind is Leash.RR:
                 r = self._length(i, k)
                 arm = point - k.a[i]
                 out.append((J.dot(arm, arm) - r * r) / (2.0 * r))
-            elif kind == "RP":
+            elif kind is Leash.RP:
                 out.append(J.dot(1j * k.u[i], point - k.a[i]))
-            elif kind == "PP":
+            elif kind is Leash.PP:
                 out.append(self.size * J.cross(self._turn(k), e))
             else:
                 out.append(J.dot(1j * self.guide[i] * e, point - k.a[i]))
@@ -372,10 +417,10 @@ class Triad(HigherGroup):
         for i, kind in enumerate(self.leashes):
             point = p1 + self._offset(i) * e
             base.append(point)
-            if kind == "RR":
+            if kind is Leash.RR:
                 nu.append((point - k.a[i]) / self._length(i, k))
                 at.append(point)
-            elif kind in ("RP", "PP"):  # a P–P row is replaced in lines()
+            elif kind.slides[1]:  # on a known link's guide; a P–P row is replaced in lines()
                 nu.append(1j * np.asarray(k.u[i]))
                 at.append(point)
             else:
@@ -420,12 +465,13 @@ class Triad(HigherGroup):
             kind = self.leashes[i]
             ai = np.asarray(k.a[i])
             offset = self._offset(i) * e
-            if kind == "RR":
+            if kind is Leash.RR:
                 v = offset - (ai - a1)
                 coef.append(v)
                 rhs.append((self._length(i, k) ** 2 - r1 ** 2 - np.abs(v) ** 2) / 2.0)
             else:
-                normal = 1j * np.asarray(k.u[i]) if kind == "RP" else 1j * self.guide[i] * e
+                normal = (1j * np.asarray(k.u[i]) if kind is Leash.RP
+                          else 1j * self.guide[i] * e)
                 coef.append(normal)
                 rhs.append(J.dot(normal, ai - a1 - offset))
         return coef, rhs
@@ -481,7 +527,7 @@ class Triad(HigherGroup):
         the base's point drawn at P₁⁰ carried by the base, the origin of its frame (P1 itself
         unless the first leash slides on the base, where P1 is the hinge A₁ on the leash)."""
         p1, e = self._pose(unknown_columns(x), k)
-        out = {f"P{i + 1}": (k.a[i] if kind == "PR" else p1 + self._offset(i) * e)
+        out = {f"P{i + 1}": (k.a[i] if kind is Leash.PR else p1 + self._offset(i) * e)
                for i, kind in enumerate(self.leashes)}
         out["O"] = p1
         return out
@@ -492,10 +538,10 @@ class Triad(HigherGroup):
         p1, e = self._pose(cols, k)
         out: dict[str, Value] = {"base": cols[2]}
         for i, kind in enumerate(self.leashes):
-            if kind == "RR":
+            if kind is Leash.RR:
                 drawn = np.asarray(self.base[i]) - np.asarray(self.external[i])
                 out[f"leash{i + 1}"] = J.arg((p1 + self._offset(i) * e - k.a[i]) / drawn)
-            elif kind in ("RP", "PP"):
+            elif kind.slides[1]:
                 out[f"leash{i + 1}"] = J.arg(k.u[i] / np.asarray(self.guide[i]))
             else:
                 out[f"leash{i + 1}"] = cols[2]

@@ -27,7 +27,7 @@ import math
 from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
@@ -38,6 +38,7 @@ from assur.kinematics.higher.groups import (
     ClassIV,
     ClassIVInputs,
     HigherGroup,
+    Leash,
     Triad,
     TriadInputs,
     values,
@@ -80,9 +81,8 @@ class Layout:
         F (d–a).
     external : tuple of pair ids
         Triad: the external pair of each leash; class IV: H_a, H_c.
-    leashes : tuple of str
-        Triad: ``"RR"``, ``"RP"``, ``"PR"`` or ``"PP"`` per leash (internal pair first);
-        empty for IV.
+    leashes : tuple of Leash
+        Triad: the form of each leash (internal pair first); empty for IV.
     anchors : tuple
         Per external pair: the :class:`Anchor` of its hinge on the known link, or None.
     guides : tuple
@@ -93,17 +93,37 @@ class Layout:
     names: tuple[str, ...]
     internal: tuple[PairId, ...]
     external: tuple[PairId, ...]
-    leashes: tuple[str, ...] = ()
+    leashes: tuple[Leash, ...] = ()
     anchors: tuple[Anchor | None, ...] = ()
     guides: tuple[Guide | None, ...] = ()
+
+
+class _Leg(NamedTuple):
+    """One leash of a triad as the sketch rule finds it: its form, its link, its internal
+    and external pairs and the known link of the external pair."""
+
+    kind: Leash
+    leash: LinkId
+    inner: PairId
+    external: PairId
+    known: LinkId
+
+
+class _DrawnPP(NamedTuple):
+    """A P–P leash at the sketch: X⁰, its point drawn at the internal pair; Y⁰, at the
+    external pair (the known link's guide point); u_K⁰, the known link's guide."""
+
+    inner: Any
+    outer: Any
+    guide: Any
 
 
 @dataclass(frozen=True, eq=False)
 class HigherGroupSolution:
     """A triad or class IV group over the positions, as the analysis keeps a group's result.
 
-    ``exists``, ``margin`` and ``reason`` are those of :attr:`follow` (the reasons 8 and 9 of
-    :class:`~assur.kinematics.higher.continuation.HigherReason` join the dyads' 0–7);
+    ``exists``, ``margin`` and ``reason`` are those of :attr:`follow` (with the reasons 8 and 9
+    of :class:`~assur.kinematics.reasons.Reason`);
     ``origin_i``, ``angle_i`` the frame of the group's first link (triad base, class IV a).
     """
 
@@ -258,25 +278,25 @@ def sketch_triad(build: Builder, group: AssurGroup, label: str) -> Sketched | No
     for ext, leash, known in group.external:
         inner = next(p for p in group.internal
                      if body(leash) in {body(link) for link in pairs[p].links})
-        kind = pairs[inner].type.value + pairs[ext].type.value
-        if leash in (group.composite or ()) and kind != "RR":
-            _actuator_refused(build, group, label, "actuator_slider", kind="–".join(kind))
+        kind = Leash.of(pairs[inner].type.value == "P", pairs[ext].type.value == "P")
+        if leash in (group.composite or ()) and not kind.bar:
+            _actuator_refused(build, group, label, "actuator_slider", kind=kind.text)
             return None
-        rows.append((kind != "RR", kind, leash, inner, ext, known))
-    rows.sort(key=lambda row: (row[0], row[1] == "PP"))
-    kinds = [row[1] for row in rows]
-    if kinds.count("PP") > 1:
-        _problem(build, label, "leashes", found=", ".join("–".join(k) for k in kinds))
+        rows.append(_Leg(kind, leash, inner, ext, known))
+    rows.sort(key=lambda row: (not row.kind.bar, row.kind is Leash.PP))
+    kinds = [row.kind for row in rows]
+    if kinds.count(Leash.PP) > 1:
+        _problem(build, label, "leashes", found=", ".join(k.text for k in kinds))
         return None
     frames: dict[LinkId, tuple[complex, float]] = {}
     anchors: list[Anchor | None] = []
     guides: list[Guide | None] = []
     drawn: list[complex] = []
-    for _, kind, leash, inner, ext, known in rows:
-        if kind in ("RP", "PP"):
+    for kind, leash, inner, ext, known in rows:
+        if kind.slides[1]:  # on a guide of the known link
             point, theta = build.point(pairs[inner]), build.direction(pairs[ext])
-            line = build.point(pairs[ext]) if kind == "PP" else point
-            if kind == "PP":
+            line = build.point(pairs[ext]) if kind is Leash.PP else point
+            if kind is Leash.PP:
                 own = build.direction(pairs[inner])
                 if abs(math.sin(own - theta)) < 1e-6:
                     _problem(build, label, "pp_parallel", pair=str(ext))
@@ -290,7 +310,7 @@ def sketch_triad(build: Builder, group: AssurGroup, label: str) -> Sketched | No
             hinge = build.point(pairs[ext])
             anchors.append(build.attachment(known, hinge, label, (f"x_{ext}", f"y_{ext}")))
             guides.append(None)
-            if kind == "RR":
+            if kind is Leash.RR:
                 point = build.point(pairs[inner])
                 frames[leash] = (hinge, cmath.phase(point - hinge))
             else:
@@ -301,13 +321,13 @@ def sketch_triad(build: Builder, group: AssurGroup, label: str) -> Sketched | No
         build.put(label, f"y_{inner}", point.imag)
         drawn.append(point)
     frames[base] = (drawn[0], cmath.phase(drawn[1] - drawn[0]))
-    layout = Layout((base, *(row[2] for row in rows)), TRIAD_LINKS,
-                    tuple(row[3] for row in rows), tuple(row[4] for row in rows),
+    layout = Layout((base, *(row.leash for row in rows)), TRIAD_LINKS,
+                    tuple(row.inner for row in rows), tuple(row.external for row in rows),
                     tuple(kinds), tuple(anchors), tuple(guides))
-    driven = next((k for k, row in enumerate(rows) if row[2] in (group.composite or ())),
+    driven = next((k for k, row in enumerate(rows) if row.leash in (group.composite or ())),
                   None)
     if driven is not None:
-        frames.update({member: frames[rows[driven][2]] for member in group.composite or ()})
+        frames.update({member: frames[rows[driven].leash] for member in group.composite or ()})
     return _sketched(layout, frames, None if driven is None else TRIAD_LINKS[driven + 1])
 
 
@@ -581,15 +601,15 @@ def solve_triad(state: State, group: GroupModel, q: Any) -> HigherGroupSolution:
     base = [_drawn(state, group, pid) for pid in layout.internal]
     p = state.flat_value
 
-    def guide(k0: TriadInputs, i: int, kind: str) -> Any:
-        if kind in ("RP", "PP"):
+    def guide(k0: TriadInputs, i: int, kind: Leash) -> Any:
+        if kind.slides[1]:
             return k0.u[i]
-        if kind == "PR":
+        if kind is Leash.PR:
             return J.expi(p(_column(group.label, f"beta_{layout.internal[i]}")))
         return None
 
     def make(k0: TriadInputs) -> Triad:
-        return Triad((layout.leashes[0], layout.leashes[1], layout.leashes[2]),  # type: ignore[arg-type]
+        return Triad((layout.leashes[0], layout.leashes[1], layout.leashes[2]),
                      (base[0], base[1], base[2]), k0.a,
                      (guide(k0, 0, layout.leashes[0]), guide(k0, 1, layout.leashes[1]),
                       guide(k0, 2, layout.leashes[2])))
@@ -607,9 +627,10 @@ def solve_triad(state: State, group: GroupModel, q: Any) -> HigherGroupSolution:
                                                strict=True)):
         name = TRIAD_LINKS[i + 1]
         anchor, guide_k = layout.anchors[i], layout.guides[i]
-        if kind == "PP":
+        if kind is Leash.PP:
             assert guide_k is not None
-            frames[name] = _pp_sliders(state, group, i, follow, (base[i], k0.a[i], k0.u[i]),
+            frames[name] = _pp_sliders(state, group, i, follow,
+                                       _DrawnPP(base[i], k0.a[i], k0.u[i]),
                                        guide_k)
             continue
         if guide_k is not None:  # R–P: a block hinged to the base on a known link's guide
@@ -623,7 +644,7 @@ def solve_triad(state: State, group: GroupModel, q: Any) -> HigherGroupSolution:
         assert anchor is not None
         hinge = state.point(anchor)
         state.joints[ext] = hinge
-        if kind == "RR":
+        if kind is Leash.RR:
             state.joints[inner] = follow.joints[f"P{i + 1}"]
             frames[name] = (hinge, _phase(base[i] - k0.a[i]))
         else:  # P–R: a leash hinged to a known link, sliding along the base's guide
@@ -632,7 +653,7 @@ def solve_triad(state: State, group: GroupModel, q: Any) -> HigherGroupSolution:
             _slide(state, inner, (layout.links[i + 1], hinge), (layout.links[0], line),
                    theta + angle0, 0.0)
             frames[name] = (hinge, angle0)
-    joints = {f"P{i + 1}": (ext if kind == "PR" else inner) for i, (kind, inner, ext) in
+    joints = {f"P{i + 1}": (ext if kind is Leash.PR else inner) for i, (kind, inner, ext) in
               enumerate(zip(layout.leashes, layout.internal, layout.external, strict=True))}
     solution = _record(state, group, follow, solved, joints, frames)
     _drive(state, group, q)
@@ -640,13 +661,13 @@ def solve_triad(state: State, group: GroupModel, q: Any) -> HigherGroupSolution:
 
 
 def _pp_sliders(state: State, group: GroupModel, i: int, follow: HigherSolution,
-                drawn: tuple[Any, Any, Any], guide_k: Guide) -> tuple[Any, float]:
+                drawn: _DrawnPP, guide_k: Guide) -> tuple[Any, float]:
     """Write the two sliders of a P–P leash; its frame (origin, drawn angle).
 
     The leash turns with the base (θ); its point drawn at the internal pair, X⁰, runs on the
     base's guide, X = P_k + t·u_bE, and its point drawn at the external pair, Y⁰ (the known
     link's guide point at the reference position), on the known link's guide (Q, u_K):
-    cross(u_K, X + (Y⁰ − X⁰)E − Q) = 0 gives t. ``drawn`` holds X⁰, Y⁰ and u_K⁰.
+    cross(u_K, X + (Y⁰ − X⁰)E − Q) = 0 gives t.
     """
     layout = group.layout
     assert layout is not None
@@ -658,7 +679,7 @@ def _pp_sliders(state: State, group: GroupModel, i: int, follow: HigherSolution,
     along = J.expi(theta + own)
     line, angle, offset = state.guide(guide_k)
     known = J.expi(angle)
-    arm = _col(drawn[1] - drawn[0]) * turn
+    arm = _col(drawn.outer - drawn.inner) * turn
     start = follow.joints[f"P{i + 1}"]
     t = -J.cross(known, start + arm - line) / J.cross(known, along)
     point = start + t * along
@@ -666,7 +687,7 @@ def _pp_sliders(state: State, group: GroupModel, i: int, follow: HigherSolution,
     state.joints[inner], state.joints[ext] = point, outer
     _slide(state, inner, (leash, point), (layout.links[0], start), theta + own, 0.0)
     _slide(state, ext, (leash, outer), (guide_k.carrier, line), angle, offset)
-    return point, _phase(drawn[2])
+    return point, _phase(drawn.guide)
 
 
 def _slide(state: State, pair: PairId, pin: tuple[LinkId, Any], slot: tuple[LinkId, Any],

@@ -16,9 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from assur.kinematics import jets as J
-from assur.kinematics.dyads import Reason
 from assur.kinematics.higher.continuation import (
-    HigherReason,
     HigherSolution,
     analogs,
     finite_inputs,
@@ -26,6 +24,7 @@ from assur.kinematics.higher.continuation import (
 from assur.kinematics.higher.groups import Triad, TriadInputs, expand, hadamard, values
 from assur.kinematics.higher.modes import assembly_modes, select_mode
 from assur.kinematics.jets import Jet
+from assur.kinematics.reasons import Reason
 
 __all__ = ["place"]
 
@@ -79,7 +78,7 @@ def place(group: Triad, k0: TriadInputs, k: TriadInputs, *, delta: float | np.nd
         margin = np.where(defined, hadamard(wide.lines(x, kv)[1]), np.nan)
     exists = np.asarray(found)[..., None] & defined & (margin >= np.asarray(delta)[..., None])
     reason = np.where(~defined, Reason.UNDEFINED_INPUT,
-                      np.where(~np.asarray(found)[..., None], HigherReason.NOT_FOLLOWED,
+                      np.where(~np.asarray(found)[..., None], Reason.NOT_FOLLOWED,
                                np.where(exists, 0, Reason.GUIDES_PARALLEL))).astype(np.int8)
     jets = any(isinstance(v, Jet) for v in (*k.a, *k.u))
     cols: list[Jet | np.ndarray] = [x[..., i] for i in range(3)]

@@ -65,12 +65,12 @@ def run(args: argparse.Namespace) -> int:
 
                 print("\n" + forces_text(result, forces, args.lang))
     outputs = outputs_of(args)
+    table = None  # the CSV is written last: a run that fails while drawing leaves none
     if args.csv:
         from synthesis.app.analysis_csv import analysis_csv
         from synthesis.app.analysis_forces_render import forces_columns
 
-        extra = forces_columns(forces) if forces is not None else []
-        outputs.write_text(args.csv, analysis_csv(result, extra))
+        table = analysis_csv(result, forces_columns(forces) if forces is not None else [])
     if args.plot:
         from assur.plot.mechanism import save_mechanism_picture
         from synthesis.app.analysis_forces_plot import save_forces_png
@@ -89,4 +89,6 @@ def run(args: argparse.Namespace) -> int:
 
         outputs.write(args.modes_plot, lambda path: save_modes_png(
             result.motion, path, index=result.index_at(0.0), lang=args.lang))
+    if table is not None:
+        outputs.write_text(args.csv, table)
     return 0

@@ -605,7 +605,7 @@ def _bisect(system: PoseSystem, roles: Plan, known: dict[str, Motion], lo: np.nd
         left = np.sign(f_mid) != np.sign(f_lo)
         lo, hi = np.where(left, lo, mid), np.where(left, mid, hi)
         f_lo = np.where(left, f_lo, f_mid)
-    return 0.5 * (lo + hi)
+    return np.asarray(0.5 * (lo + hi))
 
 
 def _assemble(system: PoseSystem, roles: Plan, known: dict[str, Motion], alpha: np.ndarray,

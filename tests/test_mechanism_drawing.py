@@ -27,7 +27,7 @@ from assur.typing import Value
 from synthesis.app.coursework.play import play_data
 from synthesis.evaluate import Evaluator
 from synthesis.plots import plot_mechanism
-from synthesis.problem import load_problem
+from synthesis import load_problem
 
 ROOT = Path(__file__).resolve().parent.parent
 TABLES = ROOT / "input_tables"

@@ -386,7 +386,7 @@ def test_a_decimal_comma_in_a_zone_row_is_one_finding(tmp_path: Path) -> None:
     path.write_text("".join(lines), encoding="utf-8")
     with pytest.raises(TableError) as caught:
         load_problem(path)
-    assert [issue.message.code for issue in caught.value.issues] == ["table.decimal_comma_key"]
+    assert [issue.message.code for issue in caught.value.issues] == ["table.yaml_decimal_comma_key"]
 
 
 def _identification_rows() -> list[dict[str, Any]]:

@@ -234,7 +234,7 @@ def test_accuracy_is_read_in_the_unit_of_the_output() -> None:
 @pytest.mark.parametrize("lang, words", [
     ("en", "expected [initial, lower, upper] with lower ≤ initial ≤ upper; found [50, 20, 40]"),
     ("ru", ("ожидалось [начальное, нижняя, верхняя] с нижняя ≤ начальное ≤ верхняя; "
-           "найдено [50, 20, 40]"))])
+           "найдено: [50, 20, 40]"))])
 def test_an_initial_value_above_its_upper_bound_is_refused(
         lang: str, words: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     from synthesis.cli import main

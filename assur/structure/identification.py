@@ -358,7 +358,7 @@ def _known_end(group: AssurGroup, link: LinkId | None) -> LinkId | None:
 def _same(found: Any, expected: Any) -> bool:
     if isinstance(expected, list):
         return isinstance(found, list) and sorted(found, key=id_key) == expected
-    return found == expected
+    return bool(found == expected)
 
 
 def _text(value: Any) -> str:

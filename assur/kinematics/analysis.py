@@ -24,11 +24,11 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 import numpy as np
 
 from assur.kinematics import jets as J
-from assur.kinematics.dyads import Value
 from assur.kinematics.jets import Jet
 from assur.kinematics.model import Anchor, GroupModel, Guide, KinematicModel
 from assur.kinematics.rules import given, rules_of
 from assur.model import LinkId, PairId
+from assur.typing import Value
 
 if TYPE_CHECKING:  # pragma: no cover
     from assur.kinematics.dyads import DyadSolution

@@ -37,8 +37,10 @@ def kinetic_energy(data: ImpactData, position: ImpactPosition, omega2: NDArray[n
     """
     v3 = (1j * data.r2 * omega2 * np.exp(1j * position.theta2)
           + 1j * (data.r3 / 2.0) * omega3 * np.exp(1j * position.theta3))
-    return 0.5 * (data.inertia_o2 * omega2 ** 2 + data.m3 * np.abs(v3) ** 2
-                  + data.inertia3 * omega3 ** 2 + data.inertia_o4 * omega4 ** 2)
+    energy: NDArray[np.float64] = 0.5 * (data.inertia_o2 * omega2 ** 2 + data.m3 * np.abs(v3) ** 2
+                                         + data.inertia3 * omega3 ** 2
+                                         + data.inertia_o4 * omega4 ** 2)
+    return energy
 
 
 @dataclass(frozen=True, slots=True)

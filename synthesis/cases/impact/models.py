@@ -189,8 +189,10 @@ def _normal(data: ImpactData, omega2: NDArray[np.float64], omega3: NDArray[np.fl
 def _coupler_velocity(data: ImpactData, position: ImpactPosition, omega2: NDArray[np.float64],
                       omega3: NDArray[np.float64]) -> NDArray[np.complex128]:
     """Velocity of the coupler's centre of mass, equations (1)–(2)."""
-    return (1j * data.r2 * omega2 * np.exp(1j * position.theta2)
-            + 1j * (data.r3 / 2.0) * omega3 * np.exp(1j * position.theta3))
+    velocity: NDArray[np.complex128] = (1j * data.r2 * omega2 * np.exp(1j * position.theta2)
+                                        + 1j * (data.r3 / 2.0) * omega3
+                                        * np.exp(1j * position.theta3))
+    return velocity
 
 
 def _batched_solve(rows: list[list[NDArray[np.float64]]], rhs: list[NDArray[np.float64]],

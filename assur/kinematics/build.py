@@ -237,15 +237,15 @@ class Topology:
 
     def dyad_pairs(self, group: AssurGroup) -> tuple[Pair, Pair, Pair]:
         """The external pair of i, the external pair of j and the internal pair."""
-        assert None not in (group.pair_i, group.pair_j, group.pair_c)
-        return (self.pairs[group.pair_i], self.pairs[group.pair_j],  # type: ignore[index]
-                self.pairs[group.pair_c])  # type: ignore[index]
+        i, j, c = group.pair_i, group.pair_j, group.pair_c
+        assert i is not None and j is not None and c is not None
+        return self.pairs[i], self.pairs[j], self.pairs[c]
 
     def pair_roles(self, group: AssurGroup) -> dict[str, PairId]:
         """Role → pair id of a dyad's external pairs i, j and its internal pair C."""
         ids = {"i": group.pair_i, "j": group.pair_j, "c": group.pair_c}
-        return {role: ids[side] for role, side in self.kind(group).roles  # type: ignore[misc]
-                if ids[side] is not None}
+        return {role: pair for role, side in self.kind(group).roles
+                if (pair := ids[side]) is not None}
 
 
 def _links(group: AssurGroup) -> tuple[Any, ...]:
@@ -606,8 +606,9 @@ def _params(build: Builder, rows: Mapping[tuple[LinkId, ...], GroupParams],
     """The row's parameters of one group, checked against the group's kind and entered in
     the model (None when the row has none)."""
     where = f"structure_identification ({label}) 'params'"
-    key: tuple[LinkId, ...] = (group.i,) if kind.is_input else (group.i, group.j)  # type: ignore
-    params = rows.get(key)
+    ends = (group.i,) if kind.is_input else (group.i, group.j)
+    key = tuple(link for link in ends if link is not None)  # a row names every end
+    params = rows.get(key) if len(key) == len(ends) else None
     if params is None:
         build.problem(where, "model.no_params", group=label, columns=", ".join(kind.columns))
         return None

@@ -17,11 +17,12 @@ from dataclasses import dataclass, field
 from typing import cast
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
 from assur import solve_rrr
 from assur.kinematics.dyads import DyadSolution
+from assur.typing import ComplexArray, FloatArray
 from synthesis.cases.fourbar_velocity_ratio.conditions import Design
 
 __all__ = ["CheckResult", "check_design", "grashof_type", "ratio_by_construction"]
@@ -80,29 +81,29 @@ def _rocker_end(e: float, c: float, r: float, theta: ArrayLike) -> DyadSolution:
     return solve_rrr(crank_pin, 1.0 + 0.0j, c, r, _BRANCH)
 
 
-def _points(dyad: DyadSolution) -> NDArray[np.complex128]:
+def _points(dyad: DyadSolution) -> ComplexArray:
     """The rocker ends of :func:`_rocker_end`: an array, since its arguments are arrays."""
-    return cast(NDArray[np.complex128], dyad.c)
+    return cast(ComplexArray, dyad.c)
 
 
-def _rocker_angle(end: NDArray[np.complex128]) -> NDArray[np.float64]:
+def _rocker_angle(end: ComplexArray) -> FloatArray:
     """φ from the rocker end: the rocker points along (−sin φ, cos φ) = i·u(φ)."""
     return np.angle((end - 1.0) / 1j)
 
 
-def _difference(phi: NDArray[np.float64], step: float, axis: int = -1) -> NDArray[np.float64]:
+def _difference(phi: FloatArray, step: float, axis: int = -1) -> FloatArray:
     """Fourth-order central difference of an angle on a periodic grid (wrap-safe)."""
-    def shift(k: int) -> NDArray[np.float64]:
-        turn: NDArray[np.float64] = np.angle(np.exp(1j * (np.roll(phi, -k, axis=axis) - phi)))
+    def shift(k: int) -> FloatArray:
+        turn: FloatArray = np.angle(np.exp(1j * (np.roll(phi, -k, axis=axis) - phi)))
         return turn
 
-    derivative: NDArray[np.float64] = (8.0 * (shift(1) - shift(-1))
+    derivative: FloatArray = (8.0 * (shift(1) - shift(-1))
                                        - (shift(2) - shift(-2))) / (12.0 * step)
     return derivative
 
 
 def ratio_by_construction(e: float, c: float, r: float, theta: ArrayLike,
-                          step: float = _STENCIL) -> NDArray[np.float64]:
+                          step: float = _STENCIL) -> FloatArray:
     """n(θ) at given crank angles from the construction, by a five-point stencil.
 
     NaN where the dyad does not assemble at a stencil point.

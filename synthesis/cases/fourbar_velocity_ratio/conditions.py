@@ -28,6 +28,7 @@ from scipy.optimize import brentq
 
 from assur import AssurError
 from assur.text import Message
+from assur.typing import FloatArray
 from synthesis.cases.fourbar_velocity_ratio.kinematics import (
     as_real,
     grashof_margin,
@@ -265,7 +266,7 @@ def condition_residuals(design: Design) -> dict[str, float]:
     }
 
 
-def form_residuals(request: Request, x: ArrayLike) -> NDArray[np.float64]:
+def form_residuals(request: Request, x: ArrayLike) -> FloatArray:
     """The conditions of the request's form at unknowns ``x``, in ratio form scaled by |n*|.
 
     ``x`` is ``(c, r, θ2)`` for the paper's form, ``(c, r, θ2, δ)`` for ``delta`` and

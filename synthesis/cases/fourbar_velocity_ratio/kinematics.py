@@ -15,6 +15,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from assur.typing import BoolArray
+
 __all__ = [
     "coupler_bounds",
     "grashof_margin",
@@ -33,7 +35,7 @@ def as_real(value: ArrayLike) -> NDArray[np.floating]:
 
 
 def rocker_angle(e: ArrayLike, c: ArrayLike, r: ArrayLike,
-                 theta: ArrayLike) -> tuple[NDArray[np.floating], NDArray[np.bool_]]:
+                 theta: ArrayLike) -> tuple[NDArray[np.floating], BoolArray]:
     """Rocker angle φ(θ) on the paper's branch, equation (5).
 
     Parameters
@@ -96,7 +98,7 @@ def ratio_derivative(e: ArrayLike, r: ArrayLike, theta: ArrayLike, phi: ArrayLik
 
 def ratio_and_derivative(e: ArrayLike, c: ArrayLike, r: ArrayLike, theta: ArrayLike
                          ) -> tuple[NDArray[np.floating], NDArray[np.floating],
-                                    NDArray[np.floating], NDArray[np.bool_]]:
+                                    NDArray[np.floating], BoolArray]:
     """n(θ), dn/dθ, φ(θ) and the closure mask for the given designs and crank angles."""
     phi, exists = rocker_angle(e, c, r, theta)
     n = velocity_ratio(e, r, theta, phi)

@@ -253,7 +253,7 @@ def _links(group: AssurGroup) -> tuple[Any, ...]:
     return (group.i, group.j) if group.kind is not None else group.links
 
 
-def _link_text(link: Any) -> str:
+def _link_text(link: object) -> str:
     if isinstance(link, (tuple, frozenset, list, set)):
         return "+".join(str(x) for x in link)
     return str(link)
@@ -342,7 +342,7 @@ class Builder:
     def driven_side(self, group: AssurGroup) -> str:
         """The side (``'i'`` or ``'j'``) of a dyad that is the actuator's composite link."""
         members = set(group.composite or ())
-        link_i: Any = group.i
+        link_i = group.i
         if isinstance(link_i, (tuple, frozenset)):
             return "i" if set(link_i) & members else "j"
         return "i" if link_i in members or _link_text(group.i) == "+".join(map(str, members)) \

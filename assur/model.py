@@ -23,6 +23,7 @@ if TYPE_CHECKING:  # pragma: no cover
     import numpy.typing as npt
 
     from assur.kinematics.model import KinematicModel
+    from assur.typing import ComplexArray, FloatArray
 
 __all__ = [
     "DEFAULT_PRESSURE_ANGLE",
@@ -352,7 +353,7 @@ class General:
 # (constant beyond the ends).
 
 #: A value per design: a number, or an array broadcast against the positions (``(D, 1)``).
-PerDesign: TypeAlias = "float | npt.NDArray[np.float64]"
+PerDesign: TypeAlias = "float | FloatArray"
 
 
 @dataclass(frozen=True, slots=True)
@@ -429,7 +430,7 @@ class Mass:
     """
 
     mass: PerDesign
-    centre: complex | npt.NDArray[np.complex128] | None = None
+    centre: complex | ComplexArray | None = None
     inertia: PerDesign = 0.0
 
 

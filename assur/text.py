@@ -118,6 +118,7 @@ def _compile(source: bytes) -> bytes:
 def _lookup(code: str, lang: str, count: int | None) -> str | None:
     translations = catalogue(lang)
     missing = object()
+    # GNUTranslations sets _catalog and plural while parsing; typeshed declares neither
     if count is None:
         found = translations._catalog.get(code, missing)  # type: ignore[attr-defined]
     else:

@@ -26,8 +26,9 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")  # one core: no threaded BLAS anyw
 import numpy as np
 
 from assur.kinematics import jets as J
-from assur.kinematics.dyads import Value, solve_input, solve_rrr
+from assur.kinematics.dyads import solve_input, solve_rrr
 from assur.kinematics.higher import Triad, TriadInputs, follow_mode
+from assur.typing import Value
 
 PIN = -17 - 0.5j
 BASE = (77.5 + 30.5j, 112 + 7.5j, 114 + 52j)

@@ -24,10 +24,10 @@ import numpy as np
 from bench_higher import dyad, inputs, rate, triad
 
 from assur.kinematics import jets as J
-from assur.kinematics.dyads import Value
 from assur.kinematics.higher import Triad, TriadInputs, follow_mode
 from assur.kinematics.higher.pinned import place
 from assur.kinematics.jets import Jet
+from assur.typing import Value
 
 BASE = (42 + 30j, 70 - 10j, 20 + 60j)
 EXTERNAL = (42 + 30j, 70 - 10j, 30 + 70j)

@@ -29,7 +29,7 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
-from assur.typing import ComplexArray, FloatArray
+from assur.typing import BoolArray, ComplexArray, FloatArray, IntArray
 
 __all__ = [
     "Criteria",
@@ -309,7 +309,7 @@ def criterion_rms(deviations: FloatArray, weights: FloatArray) -> FloatArray:
 
 # -------------------------------------------------------------------------------- P1 (§5.4)
 
-def existence_penalty(first_failed: npt.NDArray[np.int_], violation: FloatArray,
+def existence_penalty(first_failed: IntArray, violation: FloatArray,
                       n_groups: int) -> FloatArray:
     """Criterion P1: how badly the chain fails to close over the analysis grid.
 
@@ -525,16 +525,16 @@ class Criteria:
         return Criteria(*(array[index] for array in self.arrays()))
 
     @property
-    def feasible(self) -> npt.NDArray[np.bool_]:
+    def feasible(self) -> BoolArray:
         """Which designs meet every obligatory and desirable condition (P1 = P2 = 0).
 
         The one definition of a feasible design: the search, the result and the reports
         all read it here.
         """
-        feasible: npt.NDArray[np.bool_] = (self.p1 == 0) & (self.p2 == 0)
+        feasible: BoolArray = (self.p1 == 0) & (self.p2 == 0)
         return feasible
 
-    def favourable(self, q_required: float | None) -> npt.NDArray[np.bool_]:
+    def favourable(self, q_required: float | None) -> BoolArray:
         """Which designs are favourable: feasible and Q ≤ [Q] (none without a [Q]).
 
         Parameters

@@ -147,7 +147,7 @@ class DaskExecutor:
         run = uuid.uuid4().hex
         keys = (f"assur-{run}-{k}" for k in itertools.count())
         chunks = _chunks(items, max(1, chunk))
-        pending: deque[Future] = deque()
+        pending: deque[Future[list[R]]] = deque()
 
         def submit() -> bool:
             part = next(chunks, None)

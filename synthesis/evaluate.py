@@ -39,7 +39,7 @@ from assur import KinematicModel, Motion, TableError
 from assur.errors import Issue
 from assur.kinematics.analysis import analyse
 from assur.text import Message
-from assur.typing import FloatArray
+from assur.typing import FloatArray, Value
 from synthesis import criteria as C
 from synthesis.force_conditions import force_penalties
 from synthesis.problem import Problem, output_slider
@@ -145,7 +145,7 @@ class Evaluator:
         return self.problem.model.with_params(
             {name: x[:, k:k + 1] for k, name in enumerate(self.problem.names)})
 
-    def _point(self, motion: Motion, model: KinematicModel) -> Any:
+    def _point(self, motion: Motion, model: KinematicModel) -> Value:
         """The tracing point Ж of the output link over the analysed positions."""
         name = self.problem.output.point
         if name in motion.tracing:
@@ -153,8 +153,9 @@ class Evaluator:
         origin, angle = motion.frames[self.output_link]
         length = model.value(f"{self.label}.l_{name}")
         beta = model.value(f"{self.label}.beta_{name}")
-        return origin + length * assur.kinematics.jets.expi(angle + beta) if isinstance(
+        point: Value = origin + length * assur.kinematics.jets.expi(angle + beta) if isinstance(
             angle, assur.Jet) else origin + length * np.exp(1j * (angle + beta))
+        return point
 
     # ------------------------------------------------------------------------ criteria
     def __call__(self, x: npt.ArrayLike) -> C.Criteria:
@@ -299,6 +300,7 @@ class Evaluator:
         point = None
         for _ in range(_NEWTON_STEPS):
             jet = self._point(analyse(model, phi, analogs=True), model)
+            assert isinstance(jet, assur.Jet), "a motion with analogs"
             gap = jet.v - targets
             f1 = 2 * (np.conj(gap) * jet.d1).real
             f2 = 2 * (np.abs(jet.d1) ** 2 + (np.conj(gap) * jet.d2).real)

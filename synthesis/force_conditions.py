@@ -47,7 +47,6 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
-import numpy.typing as npt
 
 from assur.forces.solver import MM, kinetostatics
 from assur.forces.table import read_sections
@@ -56,7 +55,7 @@ from assur.kinematics.analysis import Motion, analyse, values
 from assur.kinematics.model import KinematicModel
 from assur.model import ForceData, LinkId, Mass, PairId
 from assur.text import Message
-from assur.typing import FloatArray
+from assur.typing import BoolArray, ComplexArray, FloatArray
 
 __all__ = ["ForceConditions", "MassRule", "excess", "force_penalties", "read_force_conditions"]
 
@@ -385,7 +384,7 @@ def _two_hinges(node: Node, link: LinkId, hinges: list[PairId], word: str
     return None
 
 
-def _in_frame(motion: Motion, link: LinkId, pair: PairId) -> npt.NDArray[np.complex128]:
+def _in_frame(motion: Motion, link: LinkId, pair: PairId) -> ComplexArray:
     """A hinge of a link in the link's frame (mm), per design: at each design's first
     assembled position, shape ``(D, 1)`` (``(1,)`` for one design)."""
     origin, angle = motion.frames[link]
@@ -436,7 +435,7 @@ def _pair_limits(node: Node, key: str, pairs: tuple[PairId, ...], unknown: str,
 
 def force_penalties(conditions: ForceConditions | None,
                     model_of: Callable[[FloatArray], KinematicModel], x: FloatArray,
-                    feasible: npt.NDArray[np.bool_], grid: FloatArray) -> FloatArray:
+                    feasible: BoolArray, grid: FloatArray) -> FloatArray:
     """P2_F of a batch of designs, shape (D,); 0 for the designs with P1 > 0.
 
     Parameters

@@ -68,7 +68,7 @@ import numpy.typing as npt
 from assur import KinematicModel
 from assur.io.reader import normalise_id
 from assur.model import DEFAULT_PRESSURE_ANGLE, LinkId, PairId
-from assur.typing import FloatArray
+from assur.typing import ComplexArray, FloatArray
 from synthesis.criteria import Objective
 from synthesis.problem_chain import design_table, is_chain_form, table_number
 from synthesis.search_settings import SearchSettings
@@ -153,7 +153,7 @@ class ControlPoints:
 
     phi: FloatArray
     value: FloatArray
-    point: npt.NDArray[np.complex128]
+    point: ComplexArray
     weight: FloatArray
     lower: FloatArray | None = None
     upper: FloatArray | None = None

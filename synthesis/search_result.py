@@ -11,7 +11,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from assur.text import Message
-from synthesis.criteria import Criteria, FloatArray
+from assur.typing import FloatArray
+from synthesis.criteria import Criteria
 from synthesis.search_settings import SearchSettings
 
 __all__ = ["STOP_REASONS", "Improvement", "Optimum", "SearchResult", "distinct_optima"]

@@ -18,7 +18,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 
@@ -44,8 +44,12 @@ from assur.kinematics.jets import Jet
 from assur.kinematics.model import GroupModel, KinematicModel
 from assur.model import ForceData, LinkId, PairId, Tabulated
 from assur.text import Message
+from assur.typing import Value
 
 __all__ = ["EQUILIBRIA", "Equilibrium", "ForceAnalysis", "Reaction", "kinetostatics"]
+
+#: A load's constant value: a force (complex, N) or a torque (float, N·m).
+_Number = TypeVar("_Number", complex, float)
 
 #: The kinetostatics of a group: the reactions in its pairs from the known loads of its links.
 Equilibrium = Callable[[GroupModel, Loads], Solved]
@@ -176,7 +180,7 @@ class ForceAnalysis:
     ill_conditioned: np.ndarray
     known: dict[LinkId, tuple[np.ndarray, np.ndarray]] = field(repr=False)
     origins: dict[LinkId, np.ndarray] = field(repr=False)
-    drive_load: Any = field(repr=False)
+    drive_load: DriveLoad = field(repr=False)
 
     def __repr__(self) -> str:
         solved = int(np.count_nonzero(self.reason == 0))
@@ -250,7 +254,7 @@ class ForceAnalysis:
                 [*((r.links, r.x + 1j * r.y, r.point, r.moment)
                    for r in self.reactions.values()), self.drive_load])
 
-    def message(self, index: Any) -> Message | None:
+    def message(self, index: int | tuple[int, ...]) -> Message | None:
         """Why the forces at one position are not given (None where they are).
 
         Examples
@@ -383,7 +387,7 @@ def _frames(motion: Motion) -> dict[LinkId, tuple[Jet, Jet]]:
     return frames
 
 
-def _driven(model: Any) -> GroupModel | None:
+def _driven(model: KinematicModel) -> GroupModel | None:
     """The group holding a linear actuator (an RRR dyad, a triad, a class IV group), if the
     input is one."""
     return next((group for group in model.groups if group.driven is not None), None)
@@ -477,7 +481,7 @@ class _Bodies:
                                                    moment + couple)
         return moment
 
-    def turn(self, link: LinkId, couple: np.ndarray) -> None:
+    def turn(self, link: LinkId, couple: float | np.ndarray) -> None:
         """A couple on the link."""
         self.moments[link] = self.moments[link] + couple
 
@@ -509,7 +513,7 @@ def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet
         return np.asarray(dot(force, origin.d1 * MM) + angle.d1 * moment)
 
     periodic = model.drive == "crank"
-    terms: list[Any] = []
+    terms: list[np.ndarray] = []
     for link, mass in data.masses.items():
         origin, angle = frames[link]
         spin = -mass.inertia * w2 * angle.d2
@@ -568,7 +572,7 @@ def _expi(angle: np.ndarray) -> np.ndarray:
     return np.asarray(J.expi(angle))
 
 
-def _sketched(model: Any) -> np.ndarray:
+def _sketched(model: KinematicModel) -> np.ndarray:
     """The input coordinate of the sketched position: φ = 0, or the actuator's length."""
     group = _driven(model)
     if group is None:
@@ -576,12 +580,12 @@ def _sketched(model: Any) -> np.ndarray:
     return np.atleast_1d(np.asarray(sketch_input(model), dtype=float))
 
 
-def _jet(x: Any) -> Jet:
+def _jet(x: Value) -> Jet:
     assert isinstance(x, Jet), "a motion with analogs"
     return x
 
 
-def _value(value: complex | Tabulated, q: np.ndarray, periodic: bool) -> Any:
+def _value(value: _Number | Tabulated, q: np.ndarray, periodic: bool) -> _Number | np.ndarray:
     return value.at(q, periodic=periodic) if isinstance(value, Tabulated) else value
 
 
@@ -643,7 +647,7 @@ def _merge(bodies: _Bodies, group: GroupModel) -> dict[LinkId, tuple[np.ndarray,
     return own
 
 
-def _to_member(model: Any, group: GroupModel, transfer: Transfer) -> Transfer:
+def _to_member(model: KinematicModel, group: GroupModel, transfer: Transfer) -> Transfer:
     """A transfer of an actuator's group with the composite replaced by the member that the
     pair actually touches."""
     source, target = transfer.source, transfer.target

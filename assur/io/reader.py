@@ -24,7 +24,7 @@ import stat
 from collections.abc import Callable, Iterable, Iterator
 from itertools import pairwise
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import yaml
 
@@ -628,7 +628,10 @@ _CLOSING = (yaml.BlockEndToken, yaml.FlowMappingEndToken, yaml.FlowSequenceEndTo
 
 #: PyYAML's safe loader, through libyaml where PyYAML was built with it (the same tokens, nodes
 #: and types, several times faster than the pure-Python scanner).
-_LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+if TYPE_CHECKING:  # the two loaders have one interface
+    _LOADER = yaml.SafeLoader
+else:
+    _LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
 
 def _depth_problem(text: str, loader: Any = _LOADER) -> Message | None:
@@ -663,7 +666,7 @@ class WrittenList(list[Any]):
         return {"written": self.commas[0], "fixed": self.commas[0].replace(",", ".")}
 
 
-class _Loader(_LOADER):  # type: ignore[misc,valid-type]
+class _Loader(_LOADER):
     """The safe loader of the tables, which also notes, as it builds the data, a key written
     twice in one mapping (YAML keeps the last in silence) and a value written with a decimal
     comma: ``l_1: 40,5`` (read as a text) and, inside a flow mapping, ``{l_1: 40,5}`` (read as
@@ -711,9 +714,10 @@ class _Loader(_LOADER):  # type: ignore[misc,valid-type]
                            fixed=item.value.strip().replace(",", "."))
         commas = tuple(f"{a.value},{b.value}" for a, b in pairwise(items)
                        if node.flow_style and _comma_split(a, b))
-        data: list[Any] = WrittenList() if commas else []
+        data: list[Any] = []
         if commas:
-            data.commas = commas  # type: ignore[attr-defined]
+            data = written = WrittenList()
+            written.commas = commas
         yield data
         data.extend(self.construct_sequence(node))
 

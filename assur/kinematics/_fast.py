@@ -30,6 +30,10 @@ REALS = frozenset({int, float, np.float64})
 #: → margin settled, toggle mask, ``x`` at the toggles (``dyads._rrr_limits``).
 Limits = Callable[..., tuple[np.ndarray, np.ndarray, np.ndarray]]
 
+#: What the RRR kernel gives: C, φ_i, φ_j, the margin, the hinge distance d (arrays of the
+#: call's shape) and the smallest margin.
+Rrr = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]
+
 
 def finite(x: np.ndarray) -> bool:
     """Whether every element of the array ``x`` is finite.
@@ -77,7 +81,7 @@ def _blocks(shape: tuple[int, ...]) -> list[slice]:
 
 
 def rrr(h_i: Any, h_j: Any, l_i: Any, l_j: Any, s: Any, shape: tuple[int, ...],
-        limits: Limits) -> tuple:
+        limits: Limits) -> Rrr:
     """``dyads._rrr_readable`` for plain numbers and arrays, over blocks of ``BLOCK`` positions.
 
     Returns C, φ_i, φ_j, the margin, the hinge distance d and the smallest margin. ``limits``
@@ -89,7 +93,8 @@ def rrr(h_i: Any, h_j: Any, l_i: Any, l_j: Any, s: Any, shape: tuple[int, ...],
         return _rrr_block(h_i, h_j, l_i, l_j, s, shape, limits)
     args = [x if getattr(x, "ndim", 0) == 0 else np.broadcast_to(x, shape)
             for x in (h_i, h_j, l_i, l_j, s)]
-    outputs = (np.empty(shape, complex), *(np.empty(shape) for _ in range(4)))
+    outputs = (np.empty(shape, complex), np.empty(shape), np.empty(shape), np.empty(shape),
+               np.empty(shape))
     lowest = np.inf
     for rows in _blocks(shape):
         h_i, h_j, l_i, l_j, s = (x if getattr(x, "ndim", 0) == 0 else x[rows] for x in args)
@@ -99,7 +104,7 @@ def rrr(h_i: Any, h_j: Any, l_i: Any, l_j: Any, s: Any, shape: tuple[int, ...],
     return (*outputs, lowest)  # the minimum keeps a NaN
 
 
-def _zero_dim(*values: object) -> tuple:
+def _zero_dim(*values: Any) -> tuple[Any, ...]:
     """Real Python numbers as 0-d float64 arrays, other values unchanged.
 
     With a float64 array, numpy applies a 0-d array sooner than a Python number, with the
@@ -117,7 +122,7 @@ def positive(x: Any) -> bool:
 def _rrr_block(
     h_i: Any, h_j: Any, l_i: Any, l_j: Any, s: Any, shape: tuple[int, ...], limits: Limits,
     out: tuple[np.ndarray, ...] | None = None,
-) -> tuple:
+) -> Rrr:
     """``dyads._rrr_readable`` for plain arrays of ``shape``, in real arithmetic.
 
     ``out`` optionally gives the arrays for C, φ_i, φ_j, the margin and d. Every buffer is

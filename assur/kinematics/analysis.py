@@ -24,11 +24,11 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 import numpy as np
 
 from assur.kinematics import jets as J
-from assur.kinematics.dyads import Value
 from assur.kinematics.jets import Jet
 from assur.kinematics.model import Anchor, GroupModel, Guide, KinematicModel
 from assur.kinematics.rules import given, rules_of
 from assur.model import LinkId, PairId
+from assur.typing import Value
 
 if TYPE_CHECKING:  # pragma: no cover
     from assur.kinematics.dyads import DyadSolution
@@ -68,7 +68,7 @@ class SliderState:
     s: Value
     base: Value
     angle: Value
-    offset: Any
+    offset: Value
 
 
 @dataclass(frozen=True)
@@ -304,7 +304,7 @@ class State:
         moved: Value = origin + local * self.rotor(anchor.link)
         return moved
 
-    def guide(self, guide: Guide) -> tuple[Value, Value, Any]:
+    def guide(self, guide: Guide) -> tuple[Value, Value, Value]:
         """Base point, absolute direction and offset of a guide."""
         beta = self.p(f"{guide.base.owner}.{guide.beta}")
         angle = beta if guide.carrier == self.model.frame else self.frames[guide.carrier][1] + beta
@@ -343,7 +343,7 @@ class State:
         return at
 
     def slider(self, pair: PairId, carrier: LinkId, slider: LinkId, point: Value, s: Value,
-               base: Value, angle: Value, offset: Any) -> None:
+               base: Value, angle: Value, offset: Value) -> None:
         self.sliders[pair] = SliderState(pair, carrier, slider, point, s, base, angle, offset)
 
     def solve(self, group: GroupModel, q: Value) -> None:
@@ -377,12 +377,13 @@ class State:
         return {point.name: self.point(point.anchor) for point in self.model.tracing}
 
 
-def velocity(x: Jet, omega: float | np.ndarray) -> Any:
+def velocity(x: Jet, omega: float | np.ndarray) -> np.ndarray:
     """Time derivative of a quantity for an input speed ω = dq/dt (rad/s or mm/s)."""
     return x.d1 * omega
 
 
-def acceleration(x: Jet, omega: float | np.ndarray, epsilon: float | np.ndarray = 0.0) -> Any:
+def acceleration(x: Jet, omega: float | np.ndarray, epsilon: float | np.ndarray = 0.0
+                 ) -> np.ndarray:
     """Second time derivative for input speed ω and input acceleration ε = d²q/dt²."""
     return x.d2 * omega * omega + x.d1 * epsilon
 

@@ -237,15 +237,15 @@ class Topology:
 
     def dyad_pairs(self, group: AssurGroup) -> tuple[Pair, Pair, Pair]:
         """The external pair of i, the external pair of j and the internal pair."""
-        assert None not in (group.pair_i, group.pair_j, group.pair_c)
-        return (self.pairs[group.pair_i], self.pairs[group.pair_j],  # type: ignore[index]
-                self.pairs[group.pair_c])  # type: ignore[index]
+        i, j, c = group.pair_i, group.pair_j, group.pair_c
+        assert i is not None and j is not None and c is not None
+        return self.pairs[i], self.pairs[j], self.pairs[c]
 
     def pair_roles(self, group: AssurGroup) -> dict[str, PairId]:
         """Role → pair id of a dyad's external pairs i, j and its internal pair C."""
         ids = {"i": group.pair_i, "j": group.pair_j, "c": group.pair_c}
-        return {role: ids[side] for role, side in self.kind(group).roles  # type: ignore[misc]
-                if ids[side] is not None}
+        return {role: pair for role, side in self.kind(group).roles
+                if (pair := ids[side]) is not None}
 
 
 def _links(group: AssurGroup) -> tuple[Any, ...]:
@@ -253,7 +253,7 @@ def _links(group: AssurGroup) -> tuple[Any, ...]:
     return (group.i, group.j) if group.kind is not None else group.links
 
 
-def _link_text(link: Any) -> str:
+def _link_text(link: object) -> str:
     if isinstance(link, (tuple, frozenset, list, set)):
         return "+".join(str(x) for x in link)
     return str(link)
@@ -342,7 +342,7 @@ class Builder:
     def driven_side(self, group: AssurGroup) -> str:
         """The side (``'i'`` or ``'j'``) of a dyad that is the actuator's composite link."""
         members = set(group.composite or ())
-        link_i: Any = group.i
+        link_i = group.i
         if isinstance(link_i, (tuple, frozenset)):
             return "i" if set(link_i) & members else "j"
         return "i" if link_i in members or _link_text(group.i) == "+".join(map(str, members)) \
@@ -606,8 +606,9 @@ def _params(build: Builder, rows: Mapping[tuple[LinkId, ...], GroupParams],
     """The row's parameters of one group, checked against the group's kind and entered in
     the model (None when the row has none)."""
     where = f"structure_identification ({label}) 'params'"
-    key: tuple[LinkId, ...] = (group.i,) if kind.is_input else (group.i, group.j)  # type: ignore
-    params = rows.get(key)
+    ends = (group.i,) if kind.is_input else (group.i, group.j)
+    key = tuple(link for link in ends if link is not None)  # a row names every end
+    params = rows.get(key) if len(key) == len(ends) else None
     if params is None:
         build.problem(where, "model.no_params", group=label, columns=", ".join(kind.columns))
         return None

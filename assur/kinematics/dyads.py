@@ -144,7 +144,8 @@ def _constant(x: object, shape: tuple[int, ...]) -> np.ndarray:
     """
     base = np.array([x])
     base.flags.writeable = False
-    return np.ndarray(shape, base.dtype, base, 0, (0,) * len(shape))
+    view: np.ndarray = np.ndarray(shape, base.dtype, base, 0, (0,) * len(shape))
+    return view
 
 
 @lru_cache(maxsize=64)
@@ -154,7 +155,7 @@ def _assembled(shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarr
             _constant(np.int8(Reason.ASSEMBLES), shape))
 
 
-def _spread(x: Any, shape: tuple[int, ...]) -> Value:
+def _spread(x: Value, shape: tuple[int, ...]) -> Value:
     """``x`` with its value broadcast to ``shape``: ``x`` itself, or a read-only view."""
     if type(x) is Jet:
         return x if x.v.shape == shape else Jet(np.broadcast_to(x.v, shape), x.d1, x.d2)
@@ -163,7 +164,7 @@ def _spread(x: Any, shape: tuple[int, ...]) -> Value:
     if getattr(x, "ndim", 0) == 0:
         number: Any = x[()] if type(x) is np.ndarray else x
         return _constant(number, shape)
-    return np.broadcast_to(x, shape)
+    return np.broadcast_to(cast(np.ndarray, x), shape)  # neither a jet nor a number
 
 
 def _lowest(margin: Any) -> float:
@@ -394,7 +395,7 @@ def solve_rrr(
 
 @np.errstate(all="ignore")
 def _rrr_readable(h_i: Value, h_j: Value, l_i: Value, l_j: Value, s: float | np.ndarray,
-                  ) -> tuple:
+                  ) -> tuple[Value, Value, Value, np.ndarray, Value, float]:
     """RRR dyad for any arguments (jets too): the formulas of :func:`solve_rrr`.
 
     Returns C, φ_i, φ_j, the margin, the hinge distance d (value) and the smallest margin.
@@ -505,7 +506,7 @@ def solve_rrp(
 @np.errstate(all="ignore")
 def _rrp_geometry(
     h_j: Value, a: Value, theta: Value, e: Value, l_j: Value, s: float | np.ndarray,
-) -> tuple:
+) -> tuple[Value, Value, Value, np.ndarray, float]:
     """RRP dyad: C, φ_j, S, the margin and the smallest margin."""
     u = J.expi(theta)
     reach = h_j - a
@@ -582,7 +583,8 @@ def solve_rpr(
 
 
 @np.errstate(all="ignore")
-def _rpr_geometry(h_i: Value, h_j: Value, h: Value, s: float | np.ndarray) -> tuple:
+def _rpr_geometry(h_i: Value, h_j: Value, h: Value, s: float | np.ndarray,
+                  ) -> tuple[Value, Value, Value, np.ndarray, Value, float]:
     """RPR dyad: H_i + T·u(φ_i), φ_i, T, the margin, ρ (value) and the smallest margin."""
     r = h_j - h_i
     rho = J.abs(r)
@@ -648,7 +650,7 @@ def solve_prp(
 @np.errstate(all="ignore")
 def _prp_geometry(
     a: Value, theta_i: Value, e_i: Value, b: Value, theta_j: Value, e_j: Value,
-) -> tuple:
+) -> tuple[Value, Value, Value, np.ndarray]:
     """PRP dyad: C, S_i, S_j and the margin (NaN where C is undefined)."""
     u_i, u_j = J.expi(theta_i), J.expi(theta_j)
     sin_ij = J.imag(J.expi(theta_j - theta_i))
@@ -705,7 +707,8 @@ def solve_rpp(
 
 
 @np.errstate(all="ignore")
-def _rpp_geometry(h_j: Value, gamma: Value, a: Value, theta_s: Value, e: Value) -> tuple:
+def _rpp_geometry(h_j: Value, gamma: Value, a: Value, theta_s: Value, e: Value,
+                  ) -> tuple[Value, Value, Value, Value, np.ndarray]:
     """RPP dyad: C, θ_T, S, T and the margin (NaN where C is undefined)."""
     theta_t = theta_s + gamma
     u_s, u_t = J.expi(theta_s), J.expi(theta_t)

@@ -18,7 +18,7 @@ Chain rule used throughout, for ``y = f(x)``::
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, overload
 
 import numpy as np
 
@@ -143,6 +143,14 @@ def _chain(x: Jet, f: np.ndarray, df: np.ndarray, ddf: np.ndarray) -> Jet:
 def as_jet(x: Jet | ArrayLike) -> Jet:
     """``x`` as a jet: a plain value has zero derivatives."""
     return x if isinstance(x, Jet) else Jet(x, 0.0, 0.0)
+
+
+@overload
+def value(x: Jet | np.ndarray) -> np.ndarray: ...
+
+
+@overload
+def value(x: Jet | ArrayLike) -> np.ndarray | complex | float: ...
 
 
 def value(x: Jet | ArrayLike) -> np.ndarray | complex | float:

@@ -42,9 +42,10 @@ import numpy as np
 from assur.kinds import KINDS, GroupKind, KindCode
 from assur.kinematics import dyads
 from assur.kinematics import jets as J
-from assur.kinematics.dyads import DyadSolution, Value
+from assur.kinematics.dyads import DyadSolution
 from assur.kinematics.model import Sketched
 from assur.model import joint_key
+from assur.typing import Value
 
 if TYPE_CHECKING:  # pragma: no cover
     from assur.kinematics.analysis import GroupSolution, State

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
@@ -25,6 +24,7 @@ from assur.kinematics.analysis import Motion, unwrap
 from assur.kinematics.model import KinematicModel
 from assur.kinematics.rules import given, rules_of
 from assur.model import LinkId, PairId
+from assur.typing import FloatArray
 
 __all__ = [
     "JointRotation",
@@ -184,7 +184,7 @@ def joint_rotations(motion: Motion) -> list[JointRotation]:
     return out
 
 
-def _angle(motion: Motion, link: LinkId) -> Any:
+def _angle(motion: Motion, link: LinkId) -> FloatArray:
     if link == motion.model.frame:
         return np.zeros(np.shape(motion.q))
     return np.asarray(J.value(motion.frames[link][1]))

@@ -39,6 +39,7 @@ from assur.text import render
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
 __all__ = ["Failure", "coinciding", "draw_mechanism", "failing_group", "failure_text", "figure_for",
@@ -314,14 +315,15 @@ def save_mechanism_picture(motion: Motion, path: str | os.PathLike[str], index: 
     atomic_write_bytes(path, figure_bytes(fig, fmt, dpi=dpi))
 
 
-def _frames(motion: Motion, frames: int, lang: str, dpi: int) -> Iterator[Figure]:
-    """The figure redrawn at evenly chosen positions of the cycle (one figure, reused)."""
+def _frames(motion: Motion, frames: int, lang: str, dpi: int) -> Iterator[FigureCanvasAgg]:
+    """The figure redrawn at evenly chosen positions of the cycle (one figure, reused), on its
+    raster canvas."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
     n = motion.q.size
     picks = np.unique(np.linspace(0, n - 1, min(frames, n)).round().astype(int))
     fig, ax = figure_for(motion, size=6.0)
-    FigureCanvasAgg(fig)
+    canvas = FigureCanvasAgg(fig)
     fig.set_dpi(dpi)
     limits = ax.get_xlim(), ax.get_ylim()
     for index in picks:
@@ -330,7 +332,7 @@ def _frames(motion: Motion, frames: int, lang: str, dpi: int) -> Iterator[Figure
         ax.set_ylim(*limits[1])
         ax.set_aspect("equal")
         draw_mechanism(motion, int(index), ax, lang=lang)
-        yield fig
+        yield canvas
 
 
 def save_animation(motion: Motion, path: str | os.PathLike[str], *, frames: int = 72,
@@ -383,9 +385,9 @@ def save_animation(motion: Motion, path: str | os.PathLike[str], *, frames: int 
     from PIL import Image
 
     images = []
-    for fig in _frames(motion, frames, lang, dpi):
-        fig.canvas.draw()
-        rgba = np.asarray(fig.canvas.buffer_rgba())  # type: ignore[attr-defined]
+    for canvas in _frames(motion, frames, lang, dpi):
+        canvas.draw()
+        rgba = np.asarray(canvas.buffer_rgba())
         images.append(Image.fromarray(rgba[..., :3].copy()).convert(
             "P", palette=Image.Palette.ADAPTIVE))
     buffer = io.BytesIO()
@@ -407,8 +409,8 @@ def _write_mp4(motion: Motion, path: str | os.PathLike[str], frames: int, durati
         scratch = Path(folder, "animation.mp4")
         drawn = _frames(motion, frames, lang, dpi)
         first = next(drawn)
-        with writer.saving(first, str(scratch), dpi):
+        with writer.saving(first.figure, str(scratch), dpi):
             writer.grab_frame()
-            for _fig in drawn:
+            for _canvas in drawn:
                 writer.grab_frame()
         atomic_write_bytes(path, scratch.read_bytes())

@@ -12,6 +12,7 @@ uses it; no module of :mod:`assur.structure` imports networkx at its top.
 from __future__ import annotations
 
 from types import ModuleType
+from typing import cast
 
 __all__ = ["networkx"]
 
@@ -24,6 +25,6 @@ def networkx() -> ModuleType:
     module
         ``networkx``.
     """
-    import networkx as nx  # type: ignore[import-untyped]
+    import networkx as nx
 
-    return nx
+    return cast(ModuleType, nx)

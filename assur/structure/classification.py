@@ -18,7 +18,7 @@ from assur.structure.diagnostics import Diagnostic, diagnostic
 from assur.structure.peeling import BodyGraph, RawGroup
 
 if TYPE_CHECKING:  # pragma: no cover
-    from networkx import MultiGraph  # type: ignore[import-untyped]
+    from networkx import MultiGraph
 
 __all__ = ["AssurGroup", "classify", "input_group", "roman", "subscript"]
 

@@ -138,7 +138,8 @@ def _variant(number: int, sigma: int | None) -> int | None:
     return kind.default_variant if sigma > 0 else int(sigma)
 
 
-def _successor(analysis: StructuralAnalysis, group: AssurGroup, link: LinkId | None) -> Any:
+def _successor(analysis: StructuralAnalysis, group: AssurGroup, link: LinkId | None
+               ) -> LinkId | list[LinkId] | None:
     """Links of later groups hinged (R pair) to ``link``: one id, a list, or None."""
     if link is None:
         return None
@@ -302,10 +303,10 @@ def _neighbours(analysis: StructuralAnalysis, group: AssurGroup, i: LinkId | Non
                    if expected is not None else None)
             out.append(_mismatch(index, label, field, expected, row[field], why))
     for field, link in (("i_plus_1", i), ("j_plus_1", j)):
-        expected = _successor(analysis, group, link)
-        if field in row and link is not None and not _same(row[field], expected):
-            out.append(_mismatch(index, label, field, expected, row[field],
-                                 _successor_why(analysis, link, row[field], expected, rows_of)))
+        later = _successor(analysis, group, link)
+        if field in row and link is not None and not _same(row[field], later):
+            out.append(_mismatch(index, label, field, later, row[field],
+                                 _successor_why(analysis, link, row[field], later, rows_of)))
     return _swaps(out)
 
 
@@ -358,7 +359,7 @@ def _known_end(group: AssurGroup, link: LinkId | None) -> LinkId | None:
 def _same(found: Any, expected: Any) -> bool:
     if isinstance(expected, list):
         return isinstance(found, list) and sorted(found, key=id_key) == expected
-    return found == expected
+    return bool(found == expected)
 
 
 def _text(value: Any) -> str:

@@ -172,9 +172,11 @@ class _Peeler:
 
     # -- bookkeeping -------------------------------------------------------------------
 
-    def _pairs(self, bodies: set[LinkId]) -> tuple[list, list]:
+    def _pairs(self, bodies: set[LinkId]
+               ) -> tuple[list[tuple[PairId, LinkId, LinkId]], list[PairId]]:
         """External (pair, body, known body) and internal pairs of a set of unknown bodies."""
-        external, internal = [], []
+        external: list[tuple[PairId, LinkId, LinkId]] = []
+        internal: list[PairId] = []
         key = self.key
         for body in sorted(bodies, key=key.__getitem__):
             for pid, other in self.adj[body]:
@@ -184,7 +186,8 @@ class _Peeler:
                     internal.append(pid)
         return external, internal
 
-    def _mark_known(self, bodies: set[LinkId], external: list) -> int:
+    def _mark_known(self, bodies: set[LinkId],
+                    external: list[tuple[PairId, LinkId, LinkId]]) -> int:
         level = 1 + max((self.level[k] for _, _, k in external), default=-1)
         for body in bodies:
             self.level[body] = level
@@ -256,8 +259,9 @@ class _Peeler:
                     return True
         return False
 
-    def _overconstrained(self, subset: set[LinkId], external: list, internal: list, d: int,
-                         p: int) -> Diagnostic:
+    def _overconstrained(self, subset: set[LinkId],
+                         external: list[tuple[PairId, LinkId, LinkId]],
+                         internal: list[PairId], d: int, p: int) -> Diagnostic:
         inputs = sorted({k for _, _, k in external if k in self.g.input_bodies}, key=id_key)
         notes = {}
         if len(inputs) >= 2:

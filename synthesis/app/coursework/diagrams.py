@@ -12,12 +12,13 @@
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from assur import ExistenceReport, KinematicModel, Motion
+from assur import ExistenceReport, Jet, KinematicModel, Motion
 from assur.text import render
+from assur.typing import FloatArray, Value
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -26,11 +27,12 @@ if TYPE_CHECKING:
 __all__ = ["existence_figure", "kinematic_figures", "mechanism_figure"]
 
 
-def _parts(x: Any, shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _parts(x: Value, shape: tuple[int, ...]) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Value, first and second analog of a jet (a plain array has zero analogs)."""
-    v, d1, d2 = (x.v, x.d1, x.d2) if hasattr(x, "d1") else (x, 0.0, 0.0)
-    return tuple(np.broadcast_to(np.asarray(part, dtype=float), shape)  # type: ignore[return-value]
-                 for part in (v, d1, d2))
+    v, d1, d2 = (x.v, x.d1, x.d2) if isinstance(x, Jet) else (x, 0.0, 0.0)
+    value, first, second = (np.broadcast_to(np.asarray(part, dtype=float), shape)
+                            for part in (v, d1, d2))
+    return value, first, second
 
 
 def _new_figure(size: tuple[float, float]) -> Figure:

@@ -14,12 +14,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import cast
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
 from assur import solve_rrr
+from assur.kinematics.dyads import DyadSolution
+from assur.typing import ComplexArray, FloatArray
 from synthesis.cases.fourbar_velocity_ratio.conditions import Design
 
 __all__ = ["CheckResult", "check_design", "grashof_type", "ratio_by_construction"]
@@ -72,34 +75,42 @@ class CheckResult:
                 "angle_tol_deg": math.degrees(self.angle_tol)}
 
 
-def _rocker_end(e: float, c: float, r: float, theta: ArrayLike):
+def _rocker_end(e: float, c: float, r: float, theta: ArrayLike) -> DyadSolution:
     """The dyad solution (rocker end and existence) at crank angles θ."""
     crank_pin = e * np.exp(1j * np.asarray(theta, dtype=float))
     return solve_rrr(crank_pin, 1.0 + 0.0j, c, r, _BRANCH)
 
 
-def _rocker_angle(end: NDArray[np.complex128]) -> NDArray[np.float64]:
+def _points(dyad: DyadSolution) -> ComplexArray:
+    """The rocker ends of :func:`_rocker_end`: an array, since its arguments are arrays."""
+    return cast(ComplexArray, dyad.c)
+
+
+def _rocker_angle(end: ComplexArray) -> FloatArray:
     """φ from the rocker end: the rocker points along (−sin φ, cos φ) = i·u(φ)."""
     return np.angle((end - 1.0) / 1j)
 
 
-def _difference(phi: NDArray[np.float64], step: float, axis: int = -1) -> NDArray[np.float64]:
+def _difference(phi: FloatArray, step: float, axis: int = -1) -> FloatArray:
     """Fourth-order central difference of an angle on a periodic grid (wrap-safe)."""
-    def shift(k: int) -> NDArray[np.float64]:
-        return np.angle(np.exp(1j * (np.roll(phi, -k, axis=axis) - phi)))
+    def shift(k: int) -> FloatArray:
+        turn: FloatArray = np.angle(np.exp(1j * (np.roll(phi, -k, axis=axis) - phi)))
+        return turn
 
-    return (8.0 * (shift(1) - shift(-1)) - (shift(2) - shift(-2))) / (12.0 * step)
+    derivative: FloatArray = (8.0 * (shift(1) - shift(-1))
+                                       - (shift(2) - shift(-2))) / (12.0 * step)
+    return derivative
 
 
 def ratio_by_construction(e: float, c: float, r: float, theta: ArrayLike,
-                          step: float = _STENCIL) -> NDArray[np.float64]:
+                          step: float = _STENCIL) -> FloatArray:
     """n(θ) at given crank angles from the construction, by a five-point stencil.
 
     NaN where the dyad does not assemble at a stencil point.
     """
     theta = np.asarray(theta, dtype=float)
     offsets = np.array([-2.0, -1.0, 0.0, 1.0, 2.0]) * step
-    end = _rocker_end(e, c, r, theta[..., None] + offsets).c
+    end = _points(_rocker_end(e, c, r, theta[..., None] + offsets))
     return _difference(_rocker_angle(end), step)[..., 2]
 
 
@@ -165,7 +176,7 @@ def check_design(design: Design, *, samples: int = 4096, value_tol: float = 1e-7
                                           "reason_code": int(dyad.reason[first])}))
         return out
 
-    end = dyad.c
+    end = _points(dyad)
     crank_pin = d.e * np.exp(1j * theta)
     coupler, rocker = end - crank_pin, end - 1.0
     sine = np.abs((np.conj(coupler) * rocker).imag) / (np.abs(coupler) * np.abs(rocker))

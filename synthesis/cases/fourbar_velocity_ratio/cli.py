@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import math
+from collections.abc import Callable
 from typing import Any
 
 from assur.io.reader import TableReader
@@ -46,7 +47,7 @@ def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
     add_output_args(parser, plot=Message("cli.case.fourbar.plot"), lang=lang)
 
 
-def _open_interval(low: float, high: float, what: str):
+def _open_interval(low: float, high: float, what: str) -> Callable[[float], Message | None]:
     def rule(value: float) -> Message | None:
         return None if low < value < high else Message("rule.between",
                                                        {"name": what, "low": low, "high": high})

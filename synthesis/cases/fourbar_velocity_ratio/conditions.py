@@ -28,6 +28,7 @@ from scipy.optimize import brentq
 
 from assur import AssurError
 from assur.text import Message
+from assur.typing import FloatArray
 from synthesis.cases.fourbar_velocity_ratio.kinematics import (
     as_real,
     grashof_margin,
@@ -181,8 +182,9 @@ def stationarity_function(e: ArrayLike, r: ArrayLike, n: ArrayLike, theta: Array
     ``F1 = e·r·(1 − n)²·sin(θ − φ) + e·cos θ + r·n²·sin φ``.
     """
     e, r, n, theta, phi = (as_real(v) for v in (e, r, n, theta, phi))
-    return (e * r * (1.0 - n) ** 2 * np.sin(np.subtract(theta, phi)) + e * np.cos(theta)
-            + r * np.square(n) * np.sin(phi))
+    f1: NDArray[np.floating] = (e * r * (1.0 - n) ** 2 * np.sin(np.subtract(theta, phi))
+                                + e * np.cos(theta) + r * np.square(n) * np.sin(phi))
+    return f1
 
 
 def ratio_function(e: ArrayLike, r: ArrayLike, n: ArrayLike, theta: ArrayLike,
@@ -193,8 +195,9 @@ def ratio_function(e: ArrayLike, r: ArrayLike, n: ArrayLike, theta: ArrayLike,
     ``r·[e·cos(θ − φ) − cos φ]·(n(θ) − n)``.
     """
     e, r, n, theta, phi = (as_real(v) for v in (e, r, n, theta, phi))
-    return (e * r * (1.0 - n) * np.cos(np.subtract(theta, phi)) - e * np.sin(theta)
-            + r * n * np.cos(phi))
+    f: NDArray[np.floating] = (e * r * (1.0 - n) * np.cos(np.subtract(theta, phi))
+                               - e * np.sin(theta) + r * n * np.cos(phi))
+    return f
 
 
 def paper_functions(e: ArrayLike, n_star: float, delta: float, psi1: float, c: ArrayLike,
@@ -233,7 +236,7 @@ def zone_end(e: float, c: float, r: float, theta2: float, level: float, sign: fl
         return float(velocity_ratio(e, r, theta, angle) - level)
 
     ends = sorted((float(steps[below[0] - 1]), float(steps[below[0]])))
-    return brentq(gap, *ends, xtol=1e-15, rtol=4 * np.finfo(float).eps)
+    return float(brentq(gap, *ends, xtol=1e-15, rtol=4 * np.finfo(float).eps))
 
 
 def condition_residuals(design: Design) -> dict[str, float]:
@@ -263,7 +266,7 @@ def condition_residuals(design: Design) -> dict[str, float]:
     }
 
 
-def form_residuals(request: Request, x: ArrayLike) -> NDArray[np.float64]:
+def form_residuals(request: Request, x: ArrayLike) -> FloatArray:
     """The conditions of the request's form at unknowns ``x``, in ratio form scaled by |n*|.
 
     ``x`` is ``(c, r, θ2)`` for the paper's form, ``(c, r, θ2, δ)`` for ``delta`` and

@@ -15,6 +15,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from assur.typing import BoolArray
+
 __all__ = [
     "coupler_bounds",
     "grashof_margin",
@@ -33,7 +35,7 @@ def as_real(value: ArrayLike) -> NDArray[np.floating]:
 
 
 def rocker_angle(e: ArrayLike, c: ArrayLike, r: ArrayLike,
-                 theta: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+                 theta: ArrayLike) -> tuple[NDArray[np.floating], BoolArray]:
     """Rocker angle φ(θ) on the paper's branch, equation (5).
 
     Parameters
@@ -64,18 +66,19 @@ def rocker_angle(e: ArrayLike, c: ArrayLike, r: ArrayLike,
 
 
 def velocity_ratio(e: ArrayLike, r: ArrayLike, theta: ArrayLike,
-                   phi: ArrayLike) -> NDArray[np.float64]:
+                   phi: ArrayLike) -> NDArray[np.floating]:
     """Velocity ratio n = dφ/dθ, equation (7).
 
     ``n = (e/r)·[r·cos(θ − φ) − sin θ] / [e·cos(θ − φ) − cos φ]``.
     """
     e, r, theta, phi = (as_real(v) for v in (e, r, theta, phi))
-    return e / r * (r * np.cos(theta - phi) - np.sin(theta)) / (e * np.cos(theta - phi)
-                                                                  - np.cos(phi))
+    ratio: NDArray[np.floating] = e / r * (r * np.cos(theta - phi) - np.sin(theta)) / (
+        e * np.cos(theta - phi) - np.cos(phi))
+    return ratio
 
 
 def ratio_derivative(e: ArrayLike, r: ArrayLike, theta: ArrayLike, phi: ArrayLike,
-                     n: ArrayLike) -> NDArray[np.float64]:
+                     n: ArrayLike) -> NDArray[np.floating]:
     """dn/dθ from the quotient rule applied to (7); its numerator set to zero is (8).
 
     With ``N = r·cos(θ−φ) − sin θ`` and ``D = e·cos(θ−φ) − cos φ``,
@@ -89,19 +92,20 @@ def ratio_derivative(e: ArrayLike, r: ArrayLike, theta: ArrayLike, phi: ArrayLik
     den = e * k - np.cos(phi)
     dnum = -r * (1.0 - n) * s - np.cos(theta)
     dden = -e * (1.0 - n) * s + n * np.sin(phi)
-    return e / r * (dnum * den - num * dden) / (den * den)
+    derivative: NDArray[np.floating] = e / r * (dnum * den - num * dden) / (den * den)
+    return derivative
 
 
 def ratio_and_derivative(e: ArrayLike, c: ArrayLike, r: ArrayLike, theta: ArrayLike
-                         ) -> tuple[NDArray[np.float64], NDArray[np.float64],
-                                    NDArray[np.float64], NDArray[np.bool_]]:
+                         ) -> tuple[NDArray[np.floating], NDArray[np.floating],
+                                    NDArray[np.floating], BoolArray]:
     """n(θ), dn/dθ, φ(θ) and the closure mask for the given designs and crank angles."""
     phi, exists = rocker_angle(e, c, r, theta)
     n = velocity_ratio(e, r, theta, phi)
     return n, ratio_derivative(e, r, theta, phi, n), phi, exists
 
 
-def grashof_margin(e: ArrayLike, c: ArrayLike, r: ArrayLike) -> NDArray[np.float64]:
+def grashof_margin(e: ArrayLike, c: ArrayLike, r: ArrayLike) -> NDArray[np.floating]:
     """How far the design is inside the Grashof crank-rocker domain (frame = 1, crank e).
 
     The design is a crank-rocker iff the three sums ``c + r − 1 − e``, ``1 + r − e − c`` and
@@ -109,17 +113,19 @@ def grashof_margin(e: ArrayLike, c: ArrayLike, r: ArrayLike) -> NDArray[np.float
     margin is the smallest of them (zero on a change-point linkage).
     """
     e, c, r = (as_real(v) for v in (e, c, r))
-    return np.minimum(np.minimum(c + r - 1.0 - e, 1.0 + r - e - c), 1.0 + c - e - r)
+    margin: NDArray[np.floating] = np.minimum(np.minimum(c + r - 1.0 - e, 1.0 + r - e - c),
+                                              1.0 + c - e - r)
+    return margin
 
 
-def coupler_bounds(e: ArrayLike, r: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def coupler_bounds(e: ArrayLike, r: ArrayLike) -> tuple[NDArray[np.floating], NDArray[np.floating]]:
     """The open interval of coupler lengths c that make (e, c, r) a Grashof crank-rocker."""
     e, r = as_real(e), as_real(r)
     return np.maximum(1.0 + e - r, r + e - 1.0), 1.0 - e + r
 
 
 def transmission_angle(e: ArrayLike, r: ArrayLike, theta: ArrayLike,
-                       phi: ArrayLike) -> NDArray[np.float64]:
+                       phi: ArrayLike) -> NDArray[np.floating]:
     """Transmission angle μ ∈ [0°, 90°] between coupler and rocker (radians).
 
     The angle between the coupler line (crank end to rocker end) and the rocker, folded into
@@ -130,4 +136,5 @@ def transmission_angle(e: ArrayLike, r: ArrayLike, theta: ArrayLike,
     rocker = r * 1j * np.exp(1j * phi)
     coupler = 1.0 + rocker - crank_end
     sine = np.abs((np.conj(coupler) * rocker).imag) / (np.abs(coupler) * r)
-    return np.arcsin(np.clip(sine, 0.0, 1.0))
+    angle: NDArray[np.floating] = np.arcsin(np.clip(sine, 0.0, 1.0))
+    return angle

@@ -24,6 +24,7 @@ from numpy.typing import NDArray
 from scipy.optimize import brentq, root
 
 from assur.text import Message
+from assur.typing import FloatArray
 from synthesis.cases.fourbar_velocity_ratio.conditions import (
     Design,
     Request,
@@ -86,7 +87,7 @@ def min_transmission_angle(design: Design, samples: int = 1440) -> float:
     return float(np.min(transmission_angle(design.e, design.r, theta, phi)))
 
 
-def _grid(request: Request) -> dict[str, NDArray[np.float64]]:
+def _grid(request: Request) -> dict[str, FloatArray]:
     """Grid designs covering the crank-rocker domain, axes (e, u, t)."""
     count_e, count_u, count_t = _GRID[request.form]
     u = np.linspace(0.0, 1.0, count_u + 2)[1:-1]
@@ -99,8 +100,8 @@ def _grid(request: Request) -> dict[str, NDArray[np.float64]]:
     return {"e": ee, "c": lo + tt * (hi - lo), "r": r}
 
 
-def _crossing(excess: NDArray[np.float64], peak: NDArray[np.intp], offset: NDArray[np.intp],
-              direction: int) -> NDArray[np.float64]:
+def _crossing(excess: FloatArray, peak: NDArray[np.intp], offset: NDArray[np.intp],
+              direction: int) -> FloatArray:
     """Fractional number of samples from the peak to where ``excess`` first reaches zero
     (NaN where the sampled peak itself is below the level)."""
     count = excess.shape[-1]
@@ -115,8 +116,8 @@ def _crossing(excess: NDArray[np.float64], peak: NDArray[np.intp], offset: NDArr
     return np.where(first > 0, first - 1 + part, np.nan)
 
 
-def _sample(request: Request, e: NDArray[np.float64], c: NDArray[np.float64],
-            r: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+def _sample(request: Request, e: FloatArray, c: FloatArray,
+            r: FloatArray) -> tuple[FloatArray, ...]:
     """Mismatch with the request at grid designs (flat arrays), the peak angle, the start
     value of the extra unknown, and the peak height."""
     samples = _SAMPLES
@@ -155,11 +156,11 @@ def _sample(request: Request, e: NDArray[np.float64], c: NDArray[np.float64],
 class _Scan:
     """The sampled grid: designs (axes e, u, t), mismatch fields, peak angle and height."""
 
-    grid: dict[str, NDArray[np.float64]]
-    fields: NDArray[np.float64]
-    theta_peak: NDArray[np.float64]
-    extra: NDArray[np.float64]
-    height: NDArray[np.float64]
+    grid: dict[str, FloatArray]
+    fields: FloatArray
+    theta_peak: FloatArray
+    extra: FloatArray
+    height: FloatArray
 
 
 def _scan(request: Request) -> _Scan:
@@ -174,7 +175,7 @@ def _scan(request: Request) -> _Scan:
                  extra.reshape(shape), height.reshape(shape))
 
 
-def _cell_starts(request: Request, scan: _Scan) -> list[NDArray[np.float64]]:
+def _cell_starts(request: Request, scan: _Scan) -> list[FloatArray]:
     """Centres of the grid cells in which every mismatch changes sign (``crank`` form)."""
     fields, shape = scan.fields, scan.grid["e"].shape
     lows, highs = np.full(fields.shape, np.inf), np.full(fields.shape, -np.inf)
@@ -203,7 +204,7 @@ def _cell_starts(request: Request, scan: _Scan) -> list[NDArray[np.float64]]:
 
 
 def _curve_seeds(request: Request, scan: _Scan
-                 ) -> list[tuple[NDArray[np.float64], float, int]]:
+                 ) -> list[tuple[FloatArray, float, int]]:
     """Segments of the design curve (peak = n*) along which the reduced equation is
     followed: a point on each grid row of constant r with the r of the next row (axis 1),
     and the cap at the least rocker from one branch to the other in c (axis 0)."""
@@ -263,7 +264,7 @@ class _Reduced:
     follows from n(θ1)).
     """
 
-    def __init__(self, request: Request, start: NDArray[np.float64], axis: int) -> None:
+    def __init__(self, request: Request, start: FloatArray, axis: int) -> None:
         self.request = request
         self.x = start.copy()
         self.free = [1 - axis, 2]
@@ -274,7 +275,7 @@ class _Reduced:
         x = self.x.copy()
         x[self.axis] = value
 
-        def peak_conditions(y: NDArray[np.float64]) -> NDArray[np.float64]:
+        def peak_conditions(y: FloatArray) -> FloatArray:
             x[self.free] = y
             return form_residuals(self.request, x)[:2]
 
@@ -294,9 +295,9 @@ class _Reduced:
         return float(residual[2])
 
 
-def _roots_on_segment(request: Request, seed: NDArray[np.float64], end: float, xtol: float,
+def _roots_on_segment(request: Request, seed: FloatArray, end: float, xtol: float,
                       axis: int = 1, max_step: float = 0.03
-                      ) -> tuple[list[NDArray[np.float64]], int]:
+                      ) -> tuple[list[FloatArray], int]:
     """Follow the design curve from a seed until r (``axis = 1``) or c (``axis = 0``) reaches
     ``end``, in relative steps of at most ``max_step``, and bisect (``brentq``) every sign
     change of the reduced equation."""
@@ -324,8 +325,8 @@ def _roots_on_segment(request: Request, seed: NDArray[np.float64], end: float, x
     return roots, reduced.evaluations
 
 
-def _polish(request: Request, x0: NDArray[np.float64], xtol: float
-            ) -> tuple[NDArray[np.float64], int]:
+def _polish(request: Request, x0: FloatArray, xtol: float
+            ) -> tuple[FloatArray, int]:
     """Newton-type polish (``hybr``) of all the unknowns together."""
     solution = root(lambda x: form_residuals(request, x), x0, method="hybr",
                     options={"xtol": xtol})
@@ -391,7 +392,7 @@ def solve_modern(request: Request, *, xtol: float = 1e-13) -> ModernResult:
     scan = _scan(request)
     evaluations = scan.height.size
     result = ModernResult(request)
-    found: list[NDArray[np.float64]] = []
+    found: list[FloatArray] = []
     if request.form == "crank":
         candidates = _cell_starts(request, scan)
     else:

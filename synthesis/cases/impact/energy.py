@@ -12,8 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
 
+from assur.typing import FloatArray
 from synthesis.cases.impact.data import ImpactData
 from synthesis.cases.impact.models import (
     ImpactResult,
@@ -27,9 +27,9 @@ from synthesis.cases.impact.position import ImpactPosition
 __all__ = ["AlphaSlip", "EnergyBalance", "alpha_slip", "energy_balance", "kinetic_energy"]
 
 
-def kinetic_energy(data: ImpactData, position: ImpactPosition, omega2: NDArray[np.float64],
-                   omega3: NDArray[np.float64],
-                   omega4: NDArray[np.float64]) -> NDArray[np.float64]:
+def kinetic_energy(data: ImpactData, position: ImpactPosition, omega2: FloatArray,
+                   omega3: FloatArray,
+                   omega4: FloatArray) -> FloatArray:
     """Kinetic energy of crank, coupler and rocker, J.
 
     The crank turns about O2 (inertia I_O2), the rocker about O4 (I_O4 by parallel axes);
@@ -37,8 +37,10 @@ def kinetic_energy(data: ImpactData, position: ImpactPosition, omega2: NDArray[n
     """
     v3 = (1j * data.r2 * omega2 * np.exp(1j * position.theta2)
           + 1j * (data.r3 / 2.0) * omega3 * np.exp(1j * position.theta3))
-    return 0.5 * (data.inertia_o2 * omega2 ** 2 + data.m3 * np.abs(v3) ** 2
-                  + data.inertia3 * omega3 ** 2 + data.inertia_o4 * omega4 ** 2)
+    energy: FloatArray = 0.5 * (data.inertia_o2 * omega2 ** 2 + data.m3 * np.abs(v3) ** 2
+                                         + data.inertia3 * omega3 ** 2
+                                         + data.inertia_o4 * omega4 ** 2)
+    return energy
 
 
 @dataclass(frozen=True, slots=True)
@@ -55,13 +57,13 @@ class EnergyBalance:
         ``before + drive_work − after``: energy dissipated by the impact (≥ 0 physically).
     """
 
-    before: NDArray[np.float64]
-    after: NDArray[np.float64]
-    drive_work: NDArray[np.float64]
-    loss: NDArray[np.float64]
+    before: FloatArray
+    after: FloatArray
+    drive_work: FloatArray
+    loss: FloatArray
 
     @property
-    def relative_loss(self) -> NDArray[np.float64]:
+    def relative_loss(self) -> FloatArray:
         """The loss as a fraction of the energy supplied (before + drive work)."""
         return self.loss / (self.before + self.drive_work)
 
@@ -97,19 +99,19 @@ class AlphaSlip:
         over before) that the printed lever gives for k = 1.
     """
 
-    alpha: NDArray[np.float64]
-    lever_error: NDArray[np.float64]
-    energy_error: dict[str, NDArray[np.float64]]
-    exact_energy_error: dict[str, NDArray[np.float64]]
-    restitution: dict[str, NDArray[np.float64]]
+    alpha: FloatArray
+    lever_error: FloatArray
+    energy_error: dict[str, FloatArray]
+    exact_energy_error: dict[str, FloatArray]
+    restitution: dict[str, FloatArray]
 
 
 def alpha_slip(data: ImpactData, position: ImpactPosition) -> AlphaSlip:
     """Quantify the α-sign slip of the source's restitution law at the given positions."""
     _, alpha = pin_offset(data, position)
-    energy: dict[str, NDArray[np.float64]] = {}
-    exact: dict[str, NDArray[np.float64]] = {}
-    restitution: dict[str, NDArray[np.float64]] = {}
+    energy: dict[str, FloatArray] = {}
+    exact: dict[str, FloatArray] = {}
+    restitution: dict[str, FloatArray] = {}
     for solve in (solve_townsend_mansour, solve_paper):
         printed = solve(data, position, k=1.0, mu=0.0, lever="paper")
         right = solve(data, position, k=1.0, mu=0.0, lever="exact")

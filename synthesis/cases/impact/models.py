@@ -17,8 +17,8 @@ from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
-from numpy.typing import NDArray
 
+from assur.typing import BoolArray, ComplexArray, FloatArray
 from synthesis.cases.impact.data import PAPER_IMPULSE_UNIT, ImpactData
 from synthesis.cases.impact.position import ImpactPosition
 
@@ -74,27 +74,27 @@ class ImpactResult:
     model: str
     k: float
     mu: float
-    omega2: NDArray[np.float64]
-    omega3: NDArray[np.float64]
-    omega4: NDArray[np.float64]
-    v3: NDArray[np.complex128]
-    normal: NDArray[np.float64]
-    friction: NDArray[np.float64]
-    r_a: NDArray[np.complex128]
-    r_o2: NDArray[np.complex128]
-    drive: NDArray[np.float64]
-    slip_before: NDArray[np.float64]
-    slip_after: NDArray[np.float64]
-    approach_before: NDArray[np.float64]
-    approach_after: NDArray[np.float64]
-    exists: NDArray[np.bool_]
+    omega2: FloatArray
+    omega3: FloatArray
+    omega4: FloatArray
+    v3: ComplexArray
+    normal: FloatArray
+    friction: FloatArray
+    r_a: ComplexArray
+    r_o2: ComplexArray
+    drive: FloatArray
+    slip_before: FloatArray
+    slip_after: FloatArray
+    approach_before: FloatArray
+    approach_after: FloatArray
+    exists: BoolArray
 
     @property
-    def full_slip(self) -> NDArray[np.bool_]:
+    def full_slip(self) -> BoolArray:
         """Whether full slip is consistent: no friction, or the slip kept its direction."""
         return (self.mu == 0.0) | (self.slip_before * self.slip_after >= 0.0)
 
-    def paper_units(self) -> dict[str, NDArray[np.float64]]:
+    def paper_units(self) -> dict[str, FloatArray]:
         """The columns of Table 1: velocities in rad/s, impulse magnitudes in 1e-4 N·s."""
         return {
             "omega2": self.omega2,
@@ -106,7 +106,7 @@ class ImpactResult:
 
 
 def pin_offset(data: ImpactData, position: ImpactPosition
-               ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+               ) -> tuple[FloatArray, FloatArray]:
     """ρ and α of (8): the distance from O4 to the pin centre and its angle to the rocker.
 
     Returns
@@ -121,7 +121,7 @@ def pin_offset(data: ImpactData, position: ImpactPosition
 
 
 def restitution_lever(data: ImpactData, position: ImpactPosition,
-                      lever: Lever = "paper") -> NDArray[np.float64]:
+                      lever: Lever = "paper") -> FloatArray:
     """The rocker's lever in the restitution law: v_B4n = lever · θ4'.
 
     Parameters
@@ -146,16 +146,16 @@ def restitution_lever(data: ImpactData, position: ImpactPosition,
 class _Terms:
     """Trigonometric terms shared by both models, at the positions with an impact."""
 
-    s2: NDArray[np.float64]        # sin(ψ − θ2)
-    s3: NDArray[np.float64]        # sin(ψ − θ3)
-    c2: NDArray[np.float64]        # cos(ψ − θ2)
-    c3: NDArray[np.float64]        # cos(ψ − θ3)
-    s4: NDArray[np.float64]        # sin(ψ − θ4)
-    arm_f4: NDArray[np.float64]    # r4·cos(ψ − θ4) + ξ: friction arm about O4
-    lever4: NDArray[np.float64]    # rocker lever of the restitution law
-    sign: NDArray[np.float64]      # direction of the friction impulse on the rocker, ±1
-    slip: NDArray[np.float64]      # tangential slip before impact
-    approach: NDArray[np.float64]  # approach before impact with the restitution lever
+    s2: FloatArray        # sin(ψ − θ2)
+    s3: FloatArray        # sin(ψ − θ3)
+    c2: FloatArray        # cos(ψ − θ2)
+    c3: FloatArray        # cos(ψ − θ3)
+    s4: FloatArray        # sin(ψ − θ4)
+    arm_f4: FloatArray    # r4·cos(ψ − θ4) + ξ: friction arm about O4
+    lever4: FloatArray    # rocker lever of the restitution law
+    sign: FloatArray      # direction of the friction impulse on the rocker, ±1
+    slip: FloatArray      # tangential slip before impact
+    approach: FloatArray  # approach before impact with the restitution lever
 
 
 def _terms(data: ImpactData, position: ImpactPosition, lever: Lever) -> _Terms:
@@ -172,29 +172,31 @@ def _terms(data: ImpactData, position: ImpactPosition, lever: Lever) -> _Terms:
                   sign=np.where(slip >= 0.0, 1.0, -1.0), slip=slip, approach=approach)
 
 
-def _tangential(data: ImpactData, omega2: NDArray[np.float64], omega3: NDArray[np.float64],
-                omega4: NDArray[np.float64], c2: NDArray[np.float64], c3: NDArray[np.float64],
-                arm_f4: NDArray[np.float64]) -> NDArray[np.float64]:
+def _tangential(data: ImpactData, omega2: FloatArray, omega3: FloatArray,
+                omega4: FloatArray, c2: FloatArray, c3: FloatArray,
+                arm_f4: FloatArray) -> FloatArray:
     """Slip of the pin on the bearing along n(ψ)."""
     return data.r2 * omega2 * c2 + data.r3 * omega3 * c3 - arm_f4 * omega4
 
 
-def _normal(data: ImpactData, omega2: NDArray[np.float64], omega3: NDArray[np.float64],
-            omega4: NDArray[np.float64], terms: _Terms) -> NDArray[np.float64]:
+def _normal(data: ImpactData, omega2: FloatArray, omega3: FloatArray,
+            omega4: FloatArray, terms: _Terms) -> FloatArray:
     """Approach of the pin to the wall along u(ψ) (exact rocker lever)."""
     return (data.r2 * omega2 * terms.s2 + data.r3 * omega3 * terms.s3
             - data.r4 * terms.s4 * omega4)
 
 
-def _coupler_velocity(data: ImpactData, position: ImpactPosition, omega2: NDArray[np.float64],
-                      omega3: NDArray[np.float64]) -> NDArray[np.complex128]:
+def _coupler_velocity(data: ImpactData, position: ImpactPosition, omega2: FloatArray,
+                      omega3: FloatArray) -> ComplexArray:
     """Velocity of the coupler's centre of mass, equations (1)–(2)."""
-    return (1j * data.r2 * omega2 * np.exp(1j * position.theta2)
-            + 1j * (data.r3 / 2.0) * omega3 * np.exp(1j * position.theta3))
+    velocity: ComplexArray = (1j * data.r2 * omega2 * np.exp(1j * position.theta2)
+                                        + 1j * (data.r3 / 2.0) * omega3
+                                        * np.exp(1j * position.theta3))
+    return velocity
 
 
-def _batched_solve(rows: list[list[NDArray[np.float64]]], rhs: list[NDArray[np.float64]],
-                   exists: NDArray[np.bool_]) -> NDArray[np.float64]:
+def _batched_solve(rows: list[list[FloatArray]], rhs: list[FloatArray],
+                   exists: BoolArray) -> FloatArray:
     """Solve the systems given row by row where there is an impact; NaN elsewhere.
 
     The solution's last axis holds the unknowns in the order of the columns.
@@ -309,10 +311,10 @@ def solve_townsend_mansour(data: ImpactData, position: ImpactPosition, *,
 
 
 def _result(model: str, k: float, mu: float, data: ImpactData, position: ImpactPosition, t: _Terms,
-            w2p: NDArray[np.float64], w3p: NDArray[np.float64], w4p: NDArray[np.float64],
-            v3p: NDArray[np.complex128], normal: NDArray[np.float64],
-            friction: NDArray[np.float64], r_a: NDArray[np.complex128],
-            r_o2: NDArray[np.complex128], drive: NDArray[np.float64]) -> ImpactResult:
+            w2p: FloatArray, w3p: FloatArray, w4p: FloatArray,
+            v3p: ComplexArray, normal: FloatArray,
+            friction: FloatArray, r_a: ComplexArray,
+            r_o2: ComplexArray, drive: FloatArray) -> ImpactResult:
     nan = np.where(position.exists, 0.0, np.nan)
     return ImpactResult(
         model=model, k=k, mu=mu, omega2=w2p, omega3=w3p, omega4=w4p, v3=v3p, normal=normal,

@@ -4,7 +4,7 @@ chart comparing the two models."""
 from __future__ import annotations
 
 import os
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -12,6 +12,10 @@ from assur.text import render
 from synthesis.cases.figures import write_figure
 from synthesis.cases.impact.data import PAPER_IMPULSE_UNIT
 from synthesis.cases.impact.study import ImpactStudy
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 __all__ = ["plot_case", "save_plot"]
 
@@ -23,7 +27,7 @@ def _label(key: str, lang: Lang, **data: float) -> str:
     return render(f"case.impact.plot.{key}", lang, **data)
 
 
-def plot_case(study: ImpactStudy, lang: Lang = "en", row: int | None = None) -> Any:
+def plot_case(study: ImpactStudy, lang: Lang = "en", row: int | None = None) -> Figure:
     """Draw the case; returns a :class:`matplotlib.figure.Figure` (not shown).
 
     Parameters
@@ -56,7 +60,7 @@ def _xy(point: complex) -> tuple[float, float]:
     return point.real * 1e3, point.imag * 1e3
 
 
-def _draw_mechanism(ax: Any, study: ImpactStudy, lang: Lang, row: int) -> None:
+def _draw_mechanism(ax: Axes, study: ImpactStudy, lang: Lang, row: int) -> None:
     p, d = study.position, study.data
     ax.set_title(_label("mechanism", lang, w4=float(p.omega4[row])), fontsize=10)
     ax.set_aspect("equal")
@@ -97,13 +101,13 @@ def _draw_mechanism(ax: Any, study: ImpactStudy, lang: Lang, row: int) -> None:
     _draw_bearing(ax, study, lang, row)
 
 
-def _draw_bearing(ax: Any, study: ImpactStudy, lang: Lang, row: int) -> None:
+def _draw_bearing(ax: Axes, study: ImpactStudy, lang: Lang, row: int) -> None:
     """Inset: the bearing and the pin touching along ψ, the clearance drawn to scale of its
     own (bearing radius 4ξ)."""
     from matplotlib.patches import Circle
 
     p, xi = study.position, study.data.clearance
-    inset = ax.inset_axes([0.74, 0.66, 0.25, 0.33])
+    inset = ax.inset_axes((0.74, 0.66, 0.25, 0.33))
     radius = 4.0 * xi
     centre = 0j
     pin = centre + xi * np.exp(1j * float(p.psi[row]))
@@ -121,7 +125,7 @@ def _draw_bearing(ax: Any, study: ImpactStudy, lang: Lang, row: int) -> None:
     inset.set_xlabel(_label("zoom", lang), fontsize=7)
 
 
-def _draw_comparison(jumps: Any, impulses: Any, study: ImpactStudy, lang: Lang) -> None:
+def _draw_comparison(jumps: Axes, impulses: Axes, study: ImpactStudy, lang: Lang) -> None:
     p = study.position
     rows = [i for i in range(len(p.omega4)) if p.exists[i]]
     names_w = ["Δθ2'", "Δθ3'", "Δθ4'"]

@@ -16,10 +16,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
 from assur import Jet, solve_rrr
 from assur.kinematics.jets import as_jet
+from assur.typing import BoolArray, ComplexArray, FloatArray, IntArray
 from synthesis.cases.impact.data import ImpactData
 
 __all__ = ["REASONS", "ImpactPosition", "impact_position"]
@@ -60,22 +61,22 @@ class ImpactPosition:
         Assembly margin of the RRR group (see :func:`assur.solve_rrr`).
     """
 
-    theta2: NDArray[np.float64]
-    theta3: NDArray[np.float64]
-    theta4_rigid: NDArray[np.float64]
-    theta4: NDArray[np.float64]
-    omega2: NDArray[np.float64]
-    omega3: NDArray[np.float64]
-    omega4_rigid: NDArray[np.float64]
-    omega4: NDArray[np.float64]
-    a: NDArray[np.complex128]
-    pin: NDArray[np.complex128]
-    bearing: NDArray[np.complex128]
-    o4: NDArray[np.complex128]
-    psi: NDArray[np.float64]
-    exists: NDArray[np.bool_]
-    reason: NDArray[np.int_]
-    margin: NDArray[np.float64]
+    theta2: FloatArray
+    theta3: FloatArray
+    theta4_rigid: FloatArray
+    theta4: FloatArray
+    omega2: FloatArray
+    omega3: FloatArray
+    omega4_rigid: FloatArray
+    omega4: FloatArray
+    a: ComplexArray
+    pin: ComplexArray
+    bearing: ComplexArray
+    o4: ComplexArray
+    psi: FloatArray
+    exists: BoolArray
+    reason: IntArray
+    margin: FloatArray
 
     @property
     def shape(self) -> tuple[int, ...]:

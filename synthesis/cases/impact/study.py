@@ -5,8 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
 
+from assur.typing import FloatArray
 from synthesis.cases.impact.data import PAPER, TABLE_1, ImpactData
 from synthesis.cases.impact.energy import AlphaSlip, EnergyBalance, alpha_slip, energy_balance
 from synthesis.cases.impact.models import (
@@ -31,9 +31,9 @@ class TableCheck:
         relative differences ``computed / printed − 1``.
     """
 
-    printed: dict[tuple[str, str], NDArray[np.float64]]
-    computed: dict[tuple[str, str], NDArray[np.float64]]
-    relative: dict[tuple[str, str], NDArray[np.float64]]
+    printed: dict[tuple[str, str], FloatArray]
+    computed: dict[tuple[str, str], FloatArray]
+    relative: dict[tuple[str, str], FloatArray]
 
     def worst(self) -> dict[tuple[str, str], float]:
         """The largest absolute relative difference of each column."""
@@ -80,8 +80,8 @@ def run_study(data: ImpactData = PAPER, *, lever: Lever = "paper") -> ImpactStud
 
 
 def _check_table(results: dict[str, ImpactResult]) -> TableCheck:
-    printed: dict[tuple[str, str], NDArray[np.float64]] = {}
-    computed: dict[tuple[str, str], NDArray[np.float64]] = {}
+    printed: dict[tuple[str, str], FloatArray] = {}
+    computed: dict[tuple[str, str], FloatArray] = {}
     for column, models in TABLE_1.items():
         for model, values in models.items():
             printed[column, model] = np.asarray(values, dtype=float)

@@ -27,10 +27,9 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 import numpy as np
-import numpy.typing as npt
 from scipy.optimize import brentq
 
-from assur.typing import FloatArray as Array
+from assur.typing import BoolArray, FloatArray
 from synthesis.cases.tracker.geometry import Proportions, check_ratios, proportions
 from synthesis.cases.tracker.patent import EXAMPLE, K2
 
@@ -215,12 +214,12 @@ class DesignTable:
 
     task: DesignTask
     values: Proportions
-    transmission_ok: npt.NDArray[np.bool_]
-    clearance_ok: npt.NDArray[np.bool_]
-    stroke_ok: npt.NDArray[np.bool_]
+    transmission_ok: BoolArray
+    clearance_ok: BoolArray
+    stroke_ok: BoolArray
 
     @property
-    def admissible(self) -> npt.NDArray[np.bool_]:
+    def admissible(self) -> BoolArray:
         """Rows that satisfy every requirement."""
         return self.transmission_ok & self.clearance_ok & self.stroke_ok
 
@@ -235,7 +234,7 @@ class DesignTable:
         return _design(self.task, self.values, (row, column))
 
 
-def _violations(task: DesignTask, values: Proportions) -> tuple[Array, Array, Array]:
+def _violations(task: DesignTask, values: Proportions) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Margins (≥ 0 when met) of the three requirements, arrays like ``values.k2``."""
     return (values.b_min - task.min_transmission,
             values.k_g * task.l1 - task.min_clearance,
@@ -282,7 +281,7 @@ def design_at(task: DesignTask, k2: float, k5: float) -> Design:
     return _design(task, proportions(task.stroke, k2, k5), ())
 
 
-def _smallest(l_d: Array, b_min: Array, admissible: npt.NDArray[np.bool_]) -> tuple[int, ...]:
+def _smallest(l_d: FloatArray, b_min: FloatArray, admissible: BoolArray) -> tuple[int, ...]:
     """Index of the admissible cell with the shortest ``l_d`` (then the largest ``b_min``)."""
     order = np.lexsort((-b_min[admissible], l_d[admissible]))
     return tuple(int(i[order[0]]) for i in np.nonzero(admissible))

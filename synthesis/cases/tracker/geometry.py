@@ -40,7 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from assur.typing import FloatArray as Array
+from assur.typing import FloatArray
 
 __all__ = [
     "Proportions",
@@ -68,7 +68,7 @@ def check_ratios(k2: ArrayLike, k5: ArrayLike | None = None) -> None:
         raise ValueError(f"the ratio k5 = l5/l1 must be greater than 1; got {k5!r}")
 
 
-def half_angles(b_min: ArrayLike, k2: ArrayLike) -> tuple[Array, Array]:
+def half_angles(b_min: ArrayLike, k2: ArrayLike) -> tuple[FloatArray, FloatArray]:
     """The patent's angles ``c`` and ``d`` (radians) for a smallest transmission angle.
 
     Parameters
@@ -87,13 +87,13 @@ def half_angles(b_min: ArrayLike, k2: ArrayLike) -> tuple[Array, Array]:
     return np.angle(point - 1.0), np.angle(point + 1.0)
 
 
-def stroke(b_min: ArrayLike, k2: ArrayLike) -> Array:
+def stroke(b_min: ArrayLike, k2: ArrayLike) -> FloatArray:
     """The platform's angular stroke ``a = 2·(π − (c + d))`` (radians)."""
     c, d = half_angles(b_min, k2)
     return 2.0 * (np.pi - (c + d))
 
 
-def transmission_for_stroke(a: ArrayLike, k2: ArrayLike) -> Array:
+def transmission_for_stroke(a: ArrayLike, k2: ArrayLike) -> FloatArray:
     """Smallest transmission angle ``b_min`` that gives the stroke ``a`` (closed form).
 
     Parameters
@@ -120,11 +120,11 @@ def transmission_for_stroke(a: ArrayLike, k2: ArrayLike) -> Array:
     s = np.pi - 0.5 * a
     k4 = np.asarray(k2, dtype=float) ** 4
     t = -np.cos(s) + np.sqrt(np.cos(s) ** 2 + k4 - 1.0)
-    half: Array = 0.5 * np.angle(1.0 + t * np.exp(1j * s))
+    half: FloatArray = 0.5 * np.angle(1.0 + t * np.exp(1j * s))
     return half
 
 
-def actuator_ratios(b_min: ArrayLike, k2: ArrayLike, k5: ArrayLike) -> tuple[Array, Array]:
+def actuator_ratios(b_min: ArrayLike, k2: ArrayLike, k5: ArrayLike) -> tuple[FloatArray, FloatArray]:
     """Extended and retracted actuator lengths over ``l1``: ``(k_d, k_i)``.
 
     The actuator length ``|EC|`` grows monotonically with the angle ``ADC``; it is shortest
@@ -135,7 +135,7 @@ def actuator_ratios(b_min: ArrayLike, k2: ArrayLike, k5: ArrayLike) -> tuple[Arr
     return np.abs(point + k5), np.abs(point - k5)
 
 
-def post_clearance_ratio(b_min: ArrayLike, k2: ArrayLike, k5: ArrayLike) -> Array:
+def post_clearance_ratio(b_min: ArrayLike, k2: ArrayLike, k5: ArrayLike) -> FloatArray:
     """``k_g = l_g / l1``: distance from the post at ``A`` to the extended actuator's axis."""
     k_d, _ = actuator_ratios(b_min, k2, k5)
     k2 = np.asarray(k2, dtype=float)
@@ -158,16 +158,16 @@ class Proportions:
         Actuator extended, retracted, stroke; post clearance.
     """
 
-    a: Array
-    k2: Array
-    k5: Array
-    b_min: Array
-    c: Array
-    d: Array
-    k_d: Array
-    k_i: Array
-    k_s: Array
-    k_g: Array
+    a: FloatArray
+    k2: FloatArray
+    k5: FloatArray
+    b_min: FloatArray
+    c: FloatArray
+    d: FloatArray
+    k_d: FloatArray
+    k_i: FloatArray
+    k_s: FloatArray
+    k_g: FloatArray
 
 
 def proportions(a: ArrayLike, k2: ArrayLike, k5: ArrayLike) -> Proportions:

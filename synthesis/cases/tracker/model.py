@@ -24,7 +24,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import numpy.typing as npt
 
 from assur import (
     Chain,
@@ -38,8 +37,7 @@ from assur import (
 )
 from assur.io.sketch import with_sketch
 from assur.kinematics.analysis import analyse, unwrap, values
-from assur.typing import ComplexArray as Points
-from assur.typing import FloatArray as Array
+from assur.typing import BoolArray, ComplexArray, FloatArray
 
 __all__ = ["CHAIN_TABLE", "TrackerMotion", "chain", "mechanism_model", "simulate", "sketch"]
 
@@ -121,20 +119,20 @@ class TrackerMotion:
     """
 
     formula: str
-    s: Array
-    a: Points
-    b: Points
-    c: Points
-    d: Points
-    e: Points
-    platform: Array
-    angle_b: Array
-    angle_c: Array
-    angle_adc: Array
-    post_distance: Array
-    lever_arm: Array
-    exists: npt.NDArray[np.bool_]
-    margin: Array
+    s: FloatArray
+    a: ComplexArray
+    b: ComplexArray
+    c: ComplexArray
+    d: ComplexArray
+    e: ComplexArray
+    platform: FloatArray
+    angle_b: FloatArray
+    angle_c: FloatArray
+    angle_adc: FloatArray
+    post_distance: FloatArray
+    lever_arm: FloatArray
+    exists: BoolArray
+    margin: FloatArray
 
     @property
     def stroke(self) -> float:
@@ -142,7 +140,7 @@ class TrackerMotion:
         return float(np.ptp(self.platform))
 
     @property
-    def transmission(self) -> Array:
+    def transmission(self) -> FloatArray:
         """Transmission angles at B and C folded into [0, π/2]: shape ``(2, N)``."""
         both = np.stack([self.angle_b, self.angle_c])
         return np.minimum(both, np.pi - both)
@@ -153,7 +151,7 @@ class TrackerMotion:
         return float(np.abs(self.post_distance).min())
 
 
-def _angle(p: Points, q: Points, r: Points) -> Array:
+def _angle(p: ComplexArray, q: ComplexArray, r: ComplexArray) -> FloatArray:
     """Angle at q between q→p and q→r, in [0, π]."""
     return np.abs(np.angle((r - q) / (p - q)))
 

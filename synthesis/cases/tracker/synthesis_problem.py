@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from assur import KinematicModel, analyse_structure, build_model
+from assur import KinematicModel, Motion, analyse_structure, build_model
 from assur.io.sketch import with_sketch
 from assur.kinematics.analysis import analyse, values
 from assur.model import Drive
@@ -155,7 +155,7 @@ class Evaluator:
                          l_d=np.max(s, axis=1), clearance=np.min(post, axis=1))
 
     @staticmethod
-    def _existence(motion: Any, model: KinematicModel, shape: tuple[int, int]) -> FloatArray:
+    def _existence(motion: Motion, model: KinematicModel, shape: tuple[int, int]) -> FloatArray:
         first = np.zeros(shape, dtype=int)
         violation = np.zeros(shape)
         for ordinal, group in enumerate(model.groups, start=1):

@@ -54,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
     """Read the problem, synthesise it (:func:`synthesis.synthesize.synthesize`), report."""
     from synthesis.app.outputs import outputs_of
     from synthesis.app.progress import following_search
-    from synthesis.cli.options import check_search_options
+    from synthesis.cli.options import check_scheduler, check_search_options
     from synthesis.distributed import executor_for
     from synthesis.problem import load_problem
     from synthesis.report import text_report, write_result, write_trials
@@ -62,6 +62,7 @@ def run(args: argparse.Namespace) -> int:
     from synthesis.synthesize import synthesize
 
     check_search_options(args, _SETTINGS)
+    check_scheduler(args.scheduler)
     problem = load_problem(args.problem)
     settings = settings_for(problem, **{name: getattr(args, dest)
                                         for dest, name in _SETTINGS.items()})

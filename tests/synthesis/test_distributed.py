@@ -18,9 +18,11 @@ import sys
 import textwrap
 import time
 from collections.abc import Callable, Iterable, Iterator
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import replace
 from importlib.util import find_spec
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -28,6 +30,7 @@ import yaml
 
 from synthesis.app.batch import run_batch
 from synthesis.criteria import Criteria, merit
+from synthesis.distributed import DaskExecutor
 from synthesis.evaluate import Evaluator
 from synthesis.problem import Problem, load_problem
 from synthesis.search import SearchResult, SearchSettings, search
@@ -38,7 +41,7 @@ PROBLEM = ROOT / "input_tables" / "problems" / "class1_fourbar_rocker.yaml"
 BLOCK = 64
 
 
-def test_default_path_imports_no_dask(tmp_path):
+def test_default_path_imports_no_dask(tmp_path: Path) -> None:
     quick = tmp_path / "problem.yaml"  # the shipped problem without its refinement
     quick.write_text(PROBLEM.read_text(encoding="utf-8").replace("refine: true", "refine: false"),
                      encoding="utf-8")
@@ -55,7 +58,7 @@ def test_default_path_imports_no_dask(tmp_path):
 
 
 @pytest.mark.parametrize("command", ["synthesize", "batch"])
-def test_scheduler_without_dask_names_the_extra(command, monkeypatch, capsys):
+def test_scheduler_without_dask_names_the_extra(command: str, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
     from synthesis.cli import main
 
     monkeypatch.setitem(sys.modules, "distributed", None)  # as if Dask were not installed
@@ -83,7 +86,7 @@ _MISNAMED = [("local:0", "'0'"), ("local:two", "'two'"), ("local:-1", "'-1'"),
 
 @pytest.mark.parametrize("command", ["synthesize", "batch"])
 @pytest.mark.parametrize(("spec", "found"), _MISNAMED)
-def test_misnamed_scheduler_is_refused_before_the_run(command, spec, found, tmp_path, capsys):
+def test_misnamed_scheduler_is_refused_before_the_run(command: str, spec: str, found: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     from synthesis.cli import main
 
     shutil.copy(PROBLEM, tmp_path / PROBLEM.name)
@@ -98,7 +101,7 @@ def test_misnamed_scheduler_is_refused_before_the_run(command, spec, found, tmp_
     assert printed.out == "" and not out.exists()  # refused before anything ran
 
 
-def test_the_local_maximum_is_the_cores(capsys):
+def test_the_local_maximum_is_the_cores(capsys: pytest.CaptureFixture[str]) -> None:
     from synthesis.cli import main
     from synthesis.distributed import parse_scheduler
 
@@ -110,7 +113,7 @@ def test_the_local_maximum_is_the_cores(capsys):
 
 @pytest.mark.parametrize("lang", ["en", "ru"])
 @pytest.mark.parametrize("command", ["synthesize", "batch"])
-def test_an_unreachable_scheduler_is_refused(command, lang, capsys):
+def test_an_unreachable_scheduler_is_refused(command: str, lang: str, capsys: pytest.CaptureFixture[str]) -> None:
     from synthesis.cli import main
     from synthesis.distributed import CONNECT_SECONDS
 
@@ -125,7 +128,7 @@ def test_an_unreachable_scheduler_is_refused(command, lang, capsys):
 
 
 @pytest.mark.parametrize("command", ["synthesize", "batch"])
-def test_tls_without_its_settings_is_refused(command, monkeypatch, capsys):
+def test_tls_without_its_settings_is_refused(command: str, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
     from synthesis.cli import main
 
     for name in ("CA_FILE", "CLIENT__CERT"):  # the test's own environment must not give them
@@ -137,18 +140,17 @@ def test_tls_without_its_settings_is_refused(command, monkeypatch, capsys):
     assert "Traceback" not in err
 
 
-def test_jobs_above_the_cores_are_lowered_with_a_warning(tmp_path, capsys, monkeypatch):
-    from synthesis.app import batch
+def test_jobs_above_the_cores_are_lowered_with_a_warning(tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
     from synthesis.cli import main
 
     started: list[int] = []
-    real = batch.ProcessPoolExecutor
 
-    def counting(max_workers: int, **kwargs: object) -> object:
-        started.append(max_workers)
-        return real(max_workers=max_workers, **kwargs)
+    class Counting(ProcessPoolExecutor):
+        def __init__(self, max_workers: int, **kwargs: Any) -> None:
+            started.append(max_workers)
+            super().__init__(max_workers=max_workers, **kwargs)
 
-    monkeypatch.setattr(batch, "ProcessPoolExecutor", counting)
+    monkeypatch.setattr("synthesis.app.batch.ProcessPoolExecutor", Counting)
     for name in ("a.yaml", "b.yaml", "c.yaml"):
         shutil.copy(ROOT / "input_tables" / "course_11_link_table.yaml", tmp_path / name)
     cores = len(os.sched_getaffinity(0))
@@ -165,7 +167,7 @@ _needs_dask = pytest.mark.skipif(find_spec("distributed") is None,
 
 
 @pytest.fixture(scope="module")
-def executor():
+def executor() -> Iterator[DaskExecutor]:
     from synthesis.distributed import connect
 
     with connect("local:2") as found:
@@ -184,8 +186,7 @@ def _settings(problem: Problem, stall: int | None = None) -> SearchSettings:
                    q_required=None, seed=5, stall=stall)
 
 
-def _search(problem: Problem, settings: SearchSettings, evaluate: Callable[..., Criteria],
-            executor: object = None) -> SearchResult:
+def _search(problem: Problem, settings: SearchSettings, evaluate: Callable[..., Criteria], executor: object = None) -> SearchResult:
     return search(evaluate, problem.lower, problem.upper, problem.initial, settings,
                   executor=executor)  # type: ignore[arg-type]
 
@@ -201,26 +202,26 @@ def _same(a: SearchResult, b: SearchResult) -> None:
         [(h.trial, h.q, h.stage) for h in b.history]
 
 
-def _tasks_left(executor) -> int:
+def _tasks_left(executor: DaskExecutor) -> int:
     """Tasks of the runs the scheduler still holds."""
     client = executor.client
     # a barrier: the messages sent before this task's have reached the scheduler
     client.submit(int, 0, pure=False).result()
 
-    def count(dask_scheduler) -> int:
+    def count(dask_scheduler: Any) -> int:
         return sum(str(key).startswith("assur-") for key in dask_scheduler.tasks)
 
-    return int(client.run_on_scheduler(count))
+    return int(client.run_on_scheduler(count))  # type: ignore[no-untyped-call]
 
 
 @pytest.fixture(scope="module")
-def serial(problem):
+def serial(problem: Problem) -> SearchResult:
     return _search(problem, _settings(problem), Evaluator(problem))
 
 
 @pytest.mark.distributed
 @_needs_dask
-def test_synthesize_on_the_cluster_is_the_single_process_run(problem, executor):
+def test_synthesize_on_the_cluster_is_the_single_process_run(problem: Problem, executor: DaskExecutor) -> None:
     from synthesis.synthesize import synthesize
 
     settings = replace(problem.settings, budget_log2=8, batch=BLOCK, seed=3, refine=False)
@@ -249,7 +250,7 @@ class _KillOnce:
 
 @pytest.mark.distributed
 @_needs_dask
-def test_a_lost_worker_does_not_change_the_result(problem, serial, executor, tmp_path):
+def test_a_lost_worker_does_not_change_the_result(problem: Problem, serial: SearchResult, executor: DaskExecutor, tmp_path: Path) -> None:
     settings = _settings(problem)
     third = serial.trials[1 + 2 * BLOCK:1 + 3 * BLOCK]  # trial 0 is the initial design
     marker = tmp_path / "killed"
@@ -260,7 +261,7 @@ def test_a_lost_worker_does_not_change_the_result(problem, serial, executor, tmp
 
 @pytest.mark.distributed
 @_needs_dask
-def test_several_blocks_per_task_give_the_same_run(problem, serial, executor):
+def test_several_blocks_per_task_give_the_same_run(problem: Problem, serial: SearchResult, executor: DaskExecutor) -> None:
     from synthesis.distributed import DaskExecutor
 
     chunked = DaskExecutor(executor.client, chunk=3)  # 16 blocks: 5 tasks of 3 and one of 1
@@ -269,7 +270,7 @@ def test_several_blocks_per_task_give_the_same_run(problem, serial, executor):
 
 @pytest.mark.distributed
 @_needs_dask
-def test_a_stop_rule_cancels_the_pending_tasks(problem, serial, executor):
+def test_a_stop_rule_cancels_the_pending_tasks(problem: Problem, serial: SearchResult, executor: DaskExecutor) -> None:
     stall = 3 * BLOCK
     settings = _settings(problem, stall=stall)
     here = _search(problem, settings, Evaluator(problem))
@@ -282,11 +283,10 @@ def test_a_stop_rule_cancels_the_pending_tasks(problem, serial, executor):
 class _CtrlCAfter:
     """An executor whose user presses Ctrl-C after ``blocks`` results have come back."""
 
-    def __init__(self, inner, blocks: int) -> None:
+    def __init__(self, inner: DaskExecutor, blocks: int) -> None:
         self.inner, self.blocks = inner, blocks
 
-    def map(self, fn: Callable[..., Criteria], items: Iterable[np.ndarray]
-            ) -> Iterator[Criteria]:
+    def map(self, fn: Callable[..., Criteria], items: Iterable[np.ndarray]) -> Iterator[Criteria]:
         for k, result in enumerate(self.inner.map(fn, items)):
             if k == self.blocks:
                 raise KeyboardInterrupt
@@ -295,7 +295,7 @@ class _CtrlCAfter:
 
 @pytest.mark.distributed
 @_needs_dask
-def test_ctrl_c_keeps_the_best_so_far_and_cancels(problem, serial, executor):
+def test_ctrl_c_keeps_the_best_so_far_and_cancels(problem: Problem, serial: SearchResult, executor: DaskExecutor) -> None:
     settings = _settings(problem)
     there = _search(problem, settings, Evaluator(problem), _CtrlCAfter(executor, 5))
     assert there.stop == "interrupted"
@@ -309,7 +309,7 @@ def test_ctrl_c_keeps_the_best_so_far_and_cancels(problem, serial, executor):
 
 @pytest.mark.distributed
 @_needs_dask
-def test_ctrl_c_while_drawing_cancels_the_tasks(executor):
+def test_ctrl_c_while_drawing_cancels_the_tasks(executor: DaskExecutor) -> None:
     def blocks() -> Iterator[float]:
         yield from (1.0, -2.0, 3.0)
         raise KeyboardInterrupt  # pressed while the next block is drawn
@@ -325,7 +325,7 @@ def test_ctrl_c_while_drawing_cancels_the_tasks(executor):
 
 @pytest.mark.distributed
 @_needs_dask
-def test_batch_on_the_cluster_is_the_single_process_batch(executor, tmp_path):
+def test_batch_on_the_cluster_is_the_single_process_batch(executor: DaskExecutor, tmp_path: Path) -> None:
     for path in [PROBLEM, ROOT / "input_tables" / "course_11_link_table.yaml"]:
         shutil.copy(path, tmp_path / path.name)
     (tmp_path / "broken.yaml").write_text("mechanism: [links, 0, 1\n", encoding="utf-8")
@@ -336,7 +336,7 @@ def test_batch_on_the_cluster_is_the_single_process_batch(executor, tmp_path):
 
 
 @pytest.fixture
-def lonely():
+def lonely() -> Iterator[DaskExecutor]:
     """A cluster of one worker, of this test alone."""
     from synthesis.distributed import connect
 
@@ -346,7 +346,7 @@ def lonely():
 
 @pytest.mark.distributed
 @_needs_dask
-def test_the_only_worker_lost_mid_run_changes_nothing(problem, serial, lonely, tmp_path):
+def test_the_only_worker_lost_mid_run_changes_nothing(problem: Problem, serial: SearchResult, lonely: DaskExecutor, tmp_path: Path) -> None:
     # the one worker holds the function and dies; the restarted worker must get it back
     settings = _settings(problem)
     third = serial.trials[1 + 2 * BLOCK:1 + 3 * BLOCK]
@@ -370,15 +370,16 @@ class _Witness:
 class _JoinAfter:
     """An executor whose cluster gains a worker once ``blocks`` results have come back."""
 
-    def __init__(self, inner, blocks: int) -> None:
-        self.inner, self.blocks, self.joined = inner, blocks, set()
+    def __init__(self, inner: DaskExecutor, blocks: int) -> None:
+        self.inner, self.blocks = inner, blocks
+        self.joined: set[int] = set()
 
-    def map(self, fn: Callable[..., Criteria], items: Iterable[np.ndarray]
-            ) -> Iterator[Criteria]:
+    def map(self, fn: Callable[..., Criteria], items: Iterable[np.ndarray]) -> Iterator[Criteria]:
         client = self.inner.client
         for k, result in enumerate(self.inner.map(fn, items)):
             if k == self.blocks and not self.joined:  # once, in the first stage
                 before = set(client.run(os.getpid).values())
+                assert client.cluster is not None  # the local cluster of the fixture
                 client.cluster.scale(2)
                 client.wait_for_workers(2, timeout=120)
                 self.joined = set(client.run(os.getpid).values()) - before
@@ -387,8 +388,7 @@ class _JoinAfter:
 
 @pytest.mark.distributed
 @_needs_dask
-def test_a_worker_joining_late_takes_tasks_and_changes_nothing(problem, serial, lonely,
-                                                               tmp_path):
+def test_a_worker_joining_late_takes_tasks_and_changes_nothing(problem: Problem, serial: SearchResult, lonely: DaskExecutor, tmp_path: Path) -> None:
     joining = _JoinAfter(lonely, 2)
     there = _search(problem, _settings(problem), _Witness(Evaluator(problem), tmp_path),
                     joining)
@@ -399,7 +399,7 @@ def test_a_worker_joining_late_takes_tasks_and_changes_nothing(problem, serial, 
 
 def _children(pid: int) -> list[int]:
     """The processes started by ``pid`` (none once it is gone)."""
-    found = []
+    found: list[int] = []
     for task in Path(f"/proc/{pid}/task").glob("*"):
         try:
             found += map(int, (task / "children").read_text().split())
@@ -452,7 +452,7 @@ def _cmdline(pid: int) -> bytes:
 
 @pytest.mark.distributed
 @_needs_dask
-def test_ctrl_c_of_synthesize_on_a_cluster_keeps_the_best_and_exits_130(tmp_path):
+def test_ctrl_c_of_synthesize_on_a_cluster_keeps_the_best_and_exits_130(tmp_path: Path) -> None:
     best = tmp_path / "best.yaml"
     done, workers = _interrupt_when_working(
         ["synthesize", str(PROBLEM), "--budget", "20", "--scheduler", "local:1", "--quiet",
@@ -467,7 +467,7 @@ def test_ctrl_c_of_synthesize_on_a_cluster_keeps_the_best_and_exits_130(tmp_path
 
 @pytest.mark.distributed
 @_needs_dask
-def test_ctrl_c_of_batch_on_a_cluster_exits_130(tmp_path):
+def test_ctrl_c_of_batch_on_a_cluster_exits_130(tmp_path: Path) -> None:
     table = ROOT / "input_tables" / "course_11_link_table.yaml"
     for k in range(400):
         shutil.copy(table, tmp_path / f"student{k:03}.yaml")

@@ -28,8 +28,8 @@ gives the same design, bit for bit, as the run in one process.
 The function reaches the workers as a task of its own, not as scattered data: Dask keeps a
 task's recipe and computes its result again when every worker that held it is lost, whereas
 scattered data lost with its last holder cancels every task that needs it. A worker that
-joins late fetches the function from a peer with its first task, and the window of tasks
-ahead grows with the cluster's threads. The block tasks are pure: a task lost with its
+joins late fetches the function from a peer with the first task the scheduler gives it, and
+the window of tasks ahead grows with the cluster's threads. The block tasks are pure: a task lost with its
 worker is run again (Dask's rescheduling; ``retries`` more times if it raises), and the
 result does not change. When the consumer stops early (a stop rule, Ctrl-C) the tasks
 still pending are cancelled.

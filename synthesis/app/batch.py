@@ -43,6 +43,7 @@ from assur.assessment import Assessment
 from assur.kinematics.reasons import reason_text
 from assur.text import Message, check_lang, render
 from synthesis.app.assess import assess
+from synthesis.distributed import usable_cores
 
 if TYPE_CHECKING:
     from synthesis.distributed import DaskExecutor
@@ -335,7 +336,8 @@ def run_batch(folder: str | os.PathLike[str], *, jobs: int | None = None, lang: 
     ----------
     folder : path-like
     jobs : int, optional
-        Worker processes; default all local cores. ``1`` checks in this process.
+        Worker processes; default, and at most, the cores of this machine
+        (:func:`synthesis.distributed.usable_cores`). ``1`` checks in this process.
     lang : str
         A catalogue language.
     progress : callable, optional
@@ -356,7 +358,7 @@ def run_batch(folder: str | os.PathLike[str], *, jobs: int | None = None, lang: 
     entries = folder_entries(root)
     target = None if reports is None else str(reports)
     work = [(str(e.path), lang, str(root), target) for e in entries if e.skip is None]
-    jobs = jobs or os.cpu_count() or 1
+    jobs = min(jobs or usable_cores(), usable_cores())  # more processes only share the cores
     checked: list[BatchRow] = []
     if executor is not None:
         checked = _collect(executor.map(_check_one, work), len(work), progress)

@@ -1,5 +1,6 @@
 """Checks of command-line options that the argument parser cannot state: every bad option
-at once, each message naming the option, exit code 2.
+at once, each message naming the option, exit code 2; and the bounds of the machine
+(``--scheduler local:N`` and ``--jobs`` at most its cores).
 
 The search options are checked by the very rules of the problem table's ``search:`` section
 (:func:`synthesis.search.setting_problem`), so an option and a table entry can never disagree.
@@ -8,12 +9,14 @@ The search options are checked by the very rules of the problem table's ``search
 from __future__ import annotations
 
 import argparse
+import sys
 from collections.abc import Mapping
 
 from assur.errors import AssurError
-from assur.text import Message
+from assur.text import Message, render
 
-__all__ = ["OptionError", "check_at_least", "check_search_options"]
+__all__ = ["OptionError", "bounded_jobs", "check_at_least", "check_scheduler",
+           "check_search_options"]
 
 
 class OptionError(AssurError):
@@ -74,3 +77,60 @@ def check_search_options(args: argparse.Namespace, fields: Mapping[str, str]) ->
             problems.append((f"--{dest.replace('_', '-')}", message))
     if problems:
         raise OptionError(problems)
+
+
+def check_scheduler(spec: str | None) -> None:
+    """Refuse a misnamed ``--scheduler`` before anything starts (Dask is not imported).
+
+    Raises
+    ------
+    synthesis.distributed.DistributedError
+        Naming ``--scheduler``, what is expected and what was found (exit code 2).
+
+    Examples
+    --------
+    >>> check_scheduler(None), check_scheduler("local:1"), check_scheduler("tcp://[::1]:8786")
+    (None, None, None)
+    >>> check_scheduler("tcp://:::")
+    Traceback (most recent call last):
+    ...
+    synthesis.distributed.DistributedError: --scheduler 'tcp://:::': expected a host name, \
+an IPv4 address or an IPv6 address in brackets ([::1]); found '::'
+    """
+    if spec is not None:
+        from synthesis.distributed import parse_scheduler
+
+        parse_scheduler(spec)
+
+
+def bounded_jobs(jobs: int | None, lang: str = "en") -> int | None:
+    """``--jobs`` lowered to the cores of this machine, with a warning when it was above.
+
+    Parameters
+    ----------
+    jobs : int or None
+        The option (None: the default, all the cores).
+    lang : str
+        The language of the warning, printed on standard error.
+
+    Returns
+    -------
+    int or None
+        ``jobs``, or the number of cores when ``jobs`` exceeds it.
+
+    Examples
+    --------
+    >>> from synthesis.distributed import usable_cores
+    >>> bounded_jobs(None), bounded_jobs(1)
+    (None, 1)
+    >>> bounded_jobs(100_000) == usable_cores()
+    True
+    """
+    from synthesis.distributed import usable_cores
+
+    most = usable_cores()
+    if jobs is None or jobs <= most:
+        return jobs
+    print(render("cli.option.clamped", lang, option="--jobs", found=jobs, most=most),
+          file=sys.stderr)
+    return most

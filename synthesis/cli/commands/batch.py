@@ -8,7 +8,7 @@ import json
 from assur.text import DEFAULT, languages, render
 from synthesis.app.outputs import outputs_of
 from synthesis.app.progress import counting
-from synthesis.cli.options import check_at_least
+from synthesis.cli.options import bounded_jobs, check_at_least, check_scheduler
 
 #: The output options, checked before the run.
 OUTPUTS = {"csv": "file", "reports": "folder"}
@@ -39,9 +39,11 @@ def run(args: argparse.Namespace) -> int:
 
     check_at_least(jobs=(args.jobs, 1))
     csv_alone = stdout_taken(args, "csv")
+    check_scheduler(args.scheduler)
+    jobs = bounded_jobs(args.jobs, args.lang)
     with executor_for(args.scheduler) as executor, \
             counting(0, "progress.batch", quiet=args.quiet, lang=args.lang) as bar:
-        rows = run_batch(args.folder, jobs=args.jobs, lang=args.lang,
+        rows = run_batch(args.folder, jobs=jobs, lang=args.lang,
                          progress=lambda done, total: bar.move_to(done, total),
                          reports=args.reports, executor=executor)
     outputs = outputs_of(args)

@@ -57,12 +57,13 @@ def run(args: argparse.Namespace) -> int:
     """Read the problem, synthesise it (:func:`synthesis.synthesize`), report."""
     from synthesis.app.outputs import outputs_of
     from synthesis.app.progress import following_search
-    from synthesis.cli.options import check_search_options
+    from synthesis.cli.options import check_scheduler, check_search_options
     from synthesis.outcome import synthesize
     from synthesis.problem_table import load_problem
     from synthesis.report import text_report, write_result, write_trials
 
     check_search_options(args, _SETTINGS)
+    check_scheduler(args.scheduler)
     problem = load_problem(args.problem)
     with following_search(quiet=args.quiet, lang=args.lang):
         outcome = synthesize(problem, budget=args.budget, seed=args.seed, refine=args.refine,

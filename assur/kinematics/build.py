@@ -38,7 +38,7 @@ from typing import TYPE_CHECKING, Any
 
 from assur.errors import Issue, StructureError, TableError
 from assur.io.reader import Node, TableReader, describe, latin_form, lookalike_letters
-from assur.kinds import GroupKind, GuideColumns, HingeColumns, kind_of, kind_of_class
+from assur.kinds import KINDS, GroupKind, GuideColumns, HingeColumns, kind_of, kind_of_class
 from assur.kinematics.model import (
     KIND_COLUMNS,
     Anchor,
@@ -566,6 +566,11 @@ def _params(build: _Builder, rows: Mapping[tuple[LinkId, ...], GroupParams],
     allowed = set(kind.columns) | {"delta", "tracing"} | ({"s"} if kind.is_input else set())
     extra = [column for column in params.keys if column not in allowed
              and column.startswith(("l_", "beta_"))]
+    other = _kind_of_columns(params, kind, allowed)
+    if other is not None:  # the columns of another kind: the row's L is the mistake
+        build.problem(where, "model.params_of_kind", found=other.code, pattern=other.pairs,
+                      kind=kind.code, number=other.number)
+        return params
     meant = set()  # columns written misspelt: reported so, not also as missing
     for column in params.keys:
         if column not in allowed and column not in extra:
@@ -605,6 +610,17 @@ def _params(build: _Builder, rows: Mapping[tuple[LinkId, ...], GroupParams],
             build.problem(f"{where} 'tracing'", "model.tracing_point", name=repr(name),
                           i=group.i, j=group.j, l=f"l_{name}", beta=f"beta_{name}")
     return params
+
+
+def _kind_of_columns(params: GroupParams, kind: GroupKind, allowed: set[str]
+                     ) -> GroupKind | None:
+    """The dyad kind other than ``kind`` whose columns the row gives exactly, when the row
+    gives a column that ``kind`` does not have (None otherwise)."""
+    given = {column for column in params.keys if column not in allowed - set(kind.columns)}
+    if kind.is_input or given <= set(kind.columns):
+        return None
+    return next((other for number, other in KINDS.items() if number not in (0, kind.number)
+                 and set(other.columns) == given), None)
 
 
 def _coordinate_rules(frame: LinkId, group: AssurGroup | GroupModel, kind: GroupKind

@@ -21,11 +21,11 @@ import numpy as np
 from assur.kinds import HIGHER, KINDS, _Shortfall
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import Motion, analyse
-from assur.kinematics.dyads import reason_text
+from assur.kinematics.dyads import Reason
 from assur.kinematics.higher.continuation import REASON_CODES
 from assur.kinematics.higher.kind import HigherGroupSolution
 from assur.kinematics.model import GroupModel, KinematicModel
-from assur.text import render
+from assur.text import Message
 
 __all__ = [
     "CONDITIONS",
@@ -34,6 +34,7 @@ __all__ = [
     "GroupExistence",
     "check_existence",
     "first_failure",
+    "reason_message",
     "reason_sentence",
 ]
 
@@ -64,7 +65,17 @@ def reason_sentence(code: int, lang: str = "en") -> str:
     >>> reason_sentence(8)
     'the assembly mode ends: it merges with another one (dead-centre position of the group)'
     """
-    return render(REASON_CODES[code], lang) if code in REASON_CODES else reason_text(code, lang)
+    return reason_message(code).text(lang)
+
+
+def reason_message(code: int) -> Message:
+    """Why a group does not assemble, as a catalogue message (see :func:`reason_sentence`).
+
+    >>> reason_message(8).code
+    'higher.reason.mode_ends'
+    """
+    return Message(REASON_CODES[code] if code in REASON_CODES
+                   else f"reason.{Reason(code).name.lower()}")
 
 
 @dataclass(frozen=True)

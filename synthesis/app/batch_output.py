@@ -14,6 +14,7 @@ from collections.abc import Iterable, Sequence
 
 from assur.text import render
 from synthesis.app.batch import VERDICTS, BatchRow
+from synthesis.app.check_report import verdict_words as verdict_words_of
 
 __all__ = ["BOM", "csv_text", "rows_to_csv", "summary", "verdict_words"]
 
@@ -24,7 +25,8 @@ BOM = "\ufeff"
 
 
 def verdict_words(row: BatchRow, lang: str = "en") -> str:
-    """The verdict as the terminal shows it; a wrong table with its count of problems.
+    """The verdict as the terminal shows it, as ``assur check`` does: with its count of
+    problems, unless the table is correct, unreadable or skipped.
 
     Examples
     --------
@@ -33,8 +35,9 @@ def verdict_words(row: BatchRow, lang: str = "en") -> str:
     >>> verdict_words(row), verdict_words(row, "ru")
     ('wrong (3)', 'неверно (3)')
     """
-    words = render("batch.verdict." + row.verdict.replace(" ", "_"), lang)
-    return f"{words} ({row.problems})" if row.verdict == "wrong" else words
+    if row.verdict in ("unreadable", "skipped"):
+        return render("batch.verdict." + row.verdict, lang)
+    return verdict_words_of(row.verdict, row.problems, lang)
 
 
 def rows_to_csv(rows: Iterable[BatchRow]) -> str:

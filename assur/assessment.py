@@ -317,8 +317,10 @@ def assess(chain: Chain, *, points: int | None = 360) -> Assessment:
 
 def _findings(found: Assessment) -> tuple[Finding, ...]:
     """Every finding of an assessment, wrong first, then not verified, then outside."""
-    wrong = [Finding("wrong", d.message) for d in found.analysis.issues
-             if d.severity == "error"]
+    # the mobility that differs from the inputs is explained by the local findings: after them
+    errors = sorted((d for d in found.analysis.issues if d.severity == "error"),
+                    key=lambda d: d.code == "E_MOBILITY_MISMATCH")
+    wrong = [Finding("wrong", d.message) for d in errors]
     wrong += [Finding("wrong", m.message) for m in found.mismatches or ()]
     wrong += [Finding("wrong", v.message) for v in found.variants]
     why = found.why_no_model
@@ -330,6 +332,9 @@ def _findings(found: Assessment) -> tuple[Finding, ...]:
         wrong.append(Finding("wrong", Message("check.finding_text", {"text": str(why)})))
     if found.existence is not None and found.model is not None:
         wrong += _failures(found.existence, found.model.drive == "crank")
+    # a row's kind contradicted by its own parameters explains the other differences: the
+    # chain was built from that kind
+    wrong.sort(key=lambda finding: finding.message.code != "model.params_of_kind")
     unverified = [Finding("not verified", message) for message in _unverified(found)]
     outside = [Finding("outside program", message) for message in found.analysis.applicability]
     return (*wrong, *unverified, *outside)

@@ -24,7 +24,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
-from assur.errors import AssurError, StructureError, TableError
+from assur.errors import AssurError, Issue, StructureError, TableError
 from assur.kinematics.build import build_model
 from assur.kinematics.model import GroupModel, KinematicModel
 from assur.model import Chain
@@ -200,6 +200,14 @@ class Assessment:
     def first(self) -> Finding | None:
         """The finding the verdict leads with (None for a correct table)."""
         return self.findings[0] if self.findings else None
+
+    def with_problems(self, issues: Iterable[Issue]) -> Assessment:
+        """The assessment with problems found outside it (such as those of a sketch that
+        had to be left out) added at the level ``wrong``, after the assessment's own: a
+        mistake of the structure explains a sketch that does not fit it."""
+        at = sum(finding.level == "wrong" for finding in self.findings)
+        added = tuple(Finding("wrong", issue.message, issue.location) for issue in issues)
+        return replace(self, findings=self.findings[:at] + added + self.findings[at:])
 
     @property
     def identification(self) -> str:

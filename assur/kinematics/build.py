@@ -142,7 +142,7 @@ class _Topology:
             raise StructureError(Message("structure.no_model",
                                          {"source": chain.source, "found": found}))
         if len(chain.inputs) != 1:
-            raise StructureError(Message("structure.one_input",
+            raise StructureError(Message("structure.inputs_not_analysed",
                                          {"source": chain.source, "n": len(chain.inputs)}))
         for group in analysis.groups:
             if group.kind is None and kind_of_class(group.group_class) is None:
@@ -568,8 +568,8 @@ def _params(build: _Builder, rows: Mapping[tuple[LinkId, ...], GroupParams],
              and column.startswith(("l_", "beta_"))]
     other = _kind_of_columns(params, kind, allowed)
     if other is not None:  # the columns of another kind: the row's L is the mistake
-        build.problem(where, "model.params_of_kind", found=other.code, pattern=other.pairs,
-                      kind=kind.code, number=other.number)
+        build.problem(where, "model.params_of_kind", found=other.code, kind=kind.code,
+                      number=other.number)
         return params
     meant = set()  # columns written misspelt: reported so, not also as missing
     for column in params.keys:

@@ -209,6 +209,12 @@ class Assessment:
         added = tuple(Finding("wrong", issue.message, issue.location) for issue in issues)
         return replace(self, findings=self.findings[:at] + added + self.findings[at:])
 
+    def with_variants_given(self) -> Assessment:
+        """The assessment of a design whose assembly variants are givens, not answers to
+        verify (a synthesis problem's mechanism): without the ``not verified`` findings."""
+        return replace(self, findings=tuple(finding for finding in self.findings
+                                            if finding.level != "not verified"))
+
     @property
     def identification(self) -> str:
         """The verdict on the student's table: ``matches``, ``differs`` or ``not given``."""

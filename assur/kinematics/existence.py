@@ -339,7 +339,7 @@ def _boundary(model: KinematicModel, group: GroupModel, index: int, sol: object,
         turns = math.floor((hi - end) / (2 * math.pi)) if sol.follow.periodic else 0
         shifted = end + 2 * math.pi * turns
         if lo <= shifted <= hi:
-            return shifted
+            return float(shifted)
     return bad
 
 

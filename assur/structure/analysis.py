@@ -24,7 +24,7 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 from assur.io.chain_table import recentre_hinge
-from assur.model import Chain, Drive, LinkId, PairId, PairType, id_key
+from assur.model import Chain, Drive, LinkId, Pair, PairId, PairType, id_key
 from assur.structure._fast import closed_by_dyads, no_prismatic_loop
 from assur.structure._nx import networkx
 from assur.structure.classification import AssurGroup, classify, input_group, roman
@@ -253,16 +253,16 @@ def _mismatch(n: int, p5: int, p4: int, w: int, w_star: int, m: int,
 
 def _recentre_compound_hinges(chain: Chain, graph: BodyGraph, peeling: Peeling) -> Chain | None:
     """Put the centre of each compound hinge on its link known first (§2.2)."""
-    star: dict[Any, list] = {}
+    star: dict[PairId, list[Pair]] = {}
     for pair in chain.pairs:
-        if pair.origin != pair.id:
+        if pair.origin is not None and pair.origin != pair.id:
             star.setdefault(pair.origin, []).append(pair)
     if not star:
         return None
     inputs = {d.link for d in chain.inputs}
     huge = len(chain.links) + 1
 
-    def rank(link: LinkId) -> tuple:
+    def rank(link: LinkId) -> tuple[int, int, Any]:
         level = peeling.level.get(graph.body_of[link], huge)
         return (level, 0 if link == chain.frame else 1 if link in inputs else 2, id_key(link))
 
@@ -284,7 +284,7 @@ def _recentre_compound_hinges(chain: Chain, graph: BodyGraph, peeling: Peeling) 
 
 
 def _duplicates(chain: Chain) -> list[Diagnostic]:
-    seen: dict[frozenset, list] = {}
+    seen: dict[frozenset[LinkId], list[PairId]] = {}
     for pair in chain.pairs:
         seen.setdefault(frozenset(pair.links), []).append(pair.id)
     out = []
@@ -406,7 +406,7 @@ def _with_suggestions(chain: Chain, found: list[Diagnostic]) -> list[Diagnostic]
 
 
 def _rank(chain: Chain, graph: BodyGraph, groups: list[AssurGroup],
-          pose: dict) -> RankResult:
+          pose: dict[PairId, tuple[complex, complex | None]]) -> RankResult:
     fixed = {link for body in graph.input_bodies for link in graph.members[body]}
     fixed |= {link for members in graph.members.values() if len(members) > 1 for link in members}
     blocks = []

@@ -57,9 +57,12 @@ def load_table_chain(path: str | os.PathLike[str]) -> Chain:
         When the file cannot be read as a table (every problem listed).
     """
     table = read_table(path)
-    if isinstance(table, Chain):
-        return table
-    return chain_from_dict(table.mechanism_table(table.initial), source=str(path))
+    return table if isinstance(table, Chain) else _design(table, path)
+
+
+def _design(problem: Problem, path: str | os.PathLike[str]) -> Chain:
+    """The mechanism of a synthesis problem at its initial design."""
+    return chain_from_dict(problem.mechanism_table(problem.initial), source=str(path))
 
 
 def assess(table: str | os.PathLike[str] | Chain, *, points: int | None = 360) -> Assessment:
@@ -96,11 +99,16 @@ def assess(table: str | os.PathLike[str] | Chain, *, points: int | None = 360) -
     if isinstance(table, Chain):
         return check(table, points=points)
     try:
-        return check(load_table_chain(table), points=points)
+        read = read_table(table)
     except TableError as exc:
         if not exc.issues or not all(_in_sketch(issue) for issue in exc.issues):
             raise
         sketch_problems = exc.issues
+    else:
+        if isinstance(read, Chain):
+            return check(read, points=points)
+        # a synthesis problem's assembly variants are its givens: nothing to verify
+        return check(_design(read, table), points=points).with_variants_given()
     # only the sketch is inconsistent: the structure does not need it
     found = check(_chain_without_sketch(table), points=points)
     return found.with_problems(sketch_problems)

@@ -257,9 +257,12 @@ def check_table(path: str | os.PathLike[str], *, lang: str = "en",
     >>> from pathlib import Path
     >>> import synthesis
     >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
-    >>> row = check_table(tables / "course_11_link_table.yaml")
+    >>> row = check_table(tables / "four_bar.yaml")
     >>> row.verdict, row.W, row.identification, row.existence
-    ('correct', 1, 'matches', 'whole cycle')
+    ('correct', 1, 'not given', 'whole cycle')
+    >>> row = check_table(tables / "course_11_link_table.yaml")  # no sketch: variants unchecked
+    >>> row.verdict, row.problems, row.identification, row.existence
+    ('not verified', 2, 'matches', 'whole cycle')
     >>> check_table(tables / "hydraulic_boom.yaml").verdict
     'outside program'
     """

@@ -58,9 +58,9 @@ def rows_to_csv(rows: Iterable[BatchRow]) -> str:
     >>> import synthesis
     >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
     >>> from synthesis.app.batch import check_table
-    >>> text = rows_to_csv([check_table(tables / "course_11_link_table.yaml", root=tables)])
+    >>> text = rows_to_csv([check_table(tables / "four_bar.yaml", root=tables)])
     >>> text.splitlines()[1].split(",")[:2]
-    ['course_11_link_table.yaml', 'correct']
+    ['four_bar.yaml', 'correct']
     """
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
@@ -92,10 +92,10 @@ def summary(rows: Sequence[BatchRow], lang: str = "en") -> str:
     >>> import synthesis
     >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
     >>> from synthesis.app.batch import check_table
-    >>> print(summary([check_table(tables / "course_11_link_table.yaml", root=tables)], "ru"))
-    course_11_link_table.yaml  верно
+    >>> print(summary([check_table(tables / "four_bar.yaml", root=tables)], "ru"))
+    four_bar.yaml  верно
     <BLANKLINE>
-    верно: 1, вне программы: 0, неверно: 0, не читается: 0, пропущено: 0; всего: 1
+    верно: 1, вне программы: 0, не проверено: 0, неверно: 0, не читается: 0, пропущено: 0; всего: 1
     """
     width = max((len(r.file) for r in rows), default=4)
     words = [verdict_words(row, lang) for row in rows]

@@ -66,6 +66,7 @@ def _run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str,
     return code, captured.out, captured.err
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("path", TABLES, ids=[p.stem for p in TABLES])
 def test_check_batch_and_report_agree(path: Path, batch_rows: dict[str, dict[str, Any]],
                                       capsys: pytest.CaptureFixture[str],

@@ -166,7 +166,8 @@ class Assessment:
       structure: W=1, I(0,1) → II₁(2,3), class 2, applicable=True
       identification: not given (0 rows given, 0 mismatches, 0 variants)
       model: 2 groups
-      existence: every group assembles)
+      existence: every group assembles
+      verdict: correct (0 findings))
     >>> found.to_dict()["identification_check"] is None
     True
     """
@@ -275,7 +276,8 @@ class Assessment:
                 f"applicable={self.analysis.applicable}\n"
                 f"  identification: {self.identification} ({self.rows_given} rows given, "
                 f"{len(self.mismatches or ())} mismatches, {len(self.variants)} variants)\n"
-                f"  model: {model}\n  existence: {existence})")
+                f"  model: {model}\n  existence: {existence}\n"
+                f"  verdict: {self.verdict} ({self.problems} findings))")
 
 
 def assess(chain: Chain, *, points: int | None = 360) -> Assessment:

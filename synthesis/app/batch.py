@@ -273,7 +273,8 @@ def check_table(path: str | os.PathLike[str], *, lang: str = "en",
         found = assess(path, points=POINTS)
     except AssurError as exc:
         issues = exc.issues if isinstance(exc, TableError) else None
-        first = issues[0].text(lang) if issues else exc.text(lang)
+        # the sentence; the lines under it (the spot in the file) are for the terminal
+        first = (issues[0].text(lang) if issues else exc.text(lang)).splitlines()[0]
         return _not_checked(name, "unreadable", _short(first, path, name),
                             len(issues) if issues else 1, time.perf_counter() - start)
     return _row(name, path, found, lang, time.perf_counter() - start)

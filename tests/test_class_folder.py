@@ -95,3 +95,18 @@ def test_check_batch_and_report_agree(path: Path, batch_rows: dict[str, dict[str
     first = found["findings"][0]
     text = f"{first['where']}: {first['message']}" if first["where"] else first["message"]
     assert row["problem"].rstrip("…") == text[:len(row["problem"].rstrip("…"))]
+
+
+@pytest.mark.slow
+def test_a_synthesis_problem_has_no_unverified_variants(capsys: pytest.CaptureFixture[str],
+                                                        tmp_path: Path) -> None:
+    """A problem's assembly variants are its givens, not a student's answers: the check of
+    its initial design and the report of its designed mechanism do not call them unverified
+    (the problem table has no sketch, so a student's table like it would be)."""
+    problem = FOLDER.parent.parent / "input_tables" / "problems" / "class1_fourbar_rocker.yaml"
+    assert "geometry" not in problem.read_text(encoding="utf-8")
+    code, out, _ = _run(["check", str(problem), "--json"], capsys)
+    assert code == 0 and json.loads(out)["verdict"] == "correct"
+    code, out, _ = _run(["report", str(problem), "--json", "--out", str(tmp_path / "r.html")],
+                        capsys)
+    assert code == 0 and json.loads(out)["verdict"] == "correct"

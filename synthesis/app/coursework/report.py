@@ -123,6 +123,8 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
     if not isinstance(table, Chain):
         table, synthesis_sections = _synthesis(table, lang, budget, report)
     found = assess(table, points=points)
+    if synthesis_sections:  # a designed mechanism: its assembly variants are givens
+        found = found.with_variants_given()
     chain, analysis = found.chain, found.analysis
     name = chain.name or path.stem
     report.title = f"{_cap(render('term.report', lang))}: {name}"

@@ -19,11 +19,12 @@ public verb.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
-from assur.errors import AssurError, StructureError
+from assur.errors import AssurError, Issue, StructureError, TableError
 from assur.kinematics.build import build_model
 from assur.kinematics.model import GroupModel, KinematicModel
 from assur.model import Chain
@@ -34,15 +35,57 @@ from assur.structure.identification import (
     check_identification,
     identification_table,
 )
-from assur.text import Message
+from assur.text import Message, in_every_language
 
 if TYPE_CHECKING:  # pragma: no cover
     from assur.kinematics.existence import ExistenceReport
 
-__all__ = ["Assessment", "VariantFinding", "assess"]
+__all__ = ["POINTS", "VERDICTS", "Assessment", "Finding", "VariantFinding", "assess"]
 
 #: The table name used in the labels of the student's rows.
 TABLE = "structure_identification"
+
+#: Crank positions of the existence check behind the verdict (every 1°; the interval ends
+#: are refined anyway): ``assur check``, ``assur batch`` and ``assur report`` use the same.
+POINTS = 360
+
+#: The verdicts on a table, best first. The first four are an assessment's
+#: (:attr:`Assessment.verdict`); ``unreadable`` (the file cannot be read as a table) and
+#: ``skipped`` (not a table) are the batch's for files that give no assessment. Each is also
+#: the catalogue code ``batch.verdict.<word>`` (the space as an underscore).
+VERDICTS = ("correct", "outside program", "not verified", "wrong", "unreadable", "skipped")
+
+
+@dataclass(frozen=True)
+class Finding:
+    """One finding of an assessment, at the level of the verdict it leads to.
+
+    Attributes
+    ----------
+    level : str
+        ``wrong`` (something to correct), ``not verified`` (something the table does not
+        let the program check) or ``outside program`` (a condition of the course's method
+        that a correct mechanism fails).
+    message : Message
+        The sentence.
+    where : str
+        The table, row and field, when the finding is about one (the same in every
+        language), else empty.
+    """
+
+    level: str
+    message: Message
+    where: str = ""
+
+    def text(self, lang: str = "en") -> str:
+        """The place and the sentence in ``lang``."""
+        text = self.message.text(lang)
+        return f"{self.where}: {text}" if self.where else text
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready form: the sentence in every language."""
+        return {"level": self.level, "code": self.message.code, "where": self.where,
+                **in_every_language("message", self.message)}
 
 
 @dataclass(frozen=True)
@@ -106,6 +149,11 @@ class Assessment:
         are wrong (the error, which lists every problem). None when there is a model.
     existence : ExistenceReport or None
         Existence of every group over the cycle; None without a model or when not asked for.
+    findings : tuple of Finding
+        Everything found, in the order a student corrects it: what is wrong (the structure's
+        errors, the student's table against the chain, the assembly variants, the
+        dimensions, the existence over the cycle), what could not be verified, the
+        conditions of the course's method that the mechanism fails.
 
     Examples
     --------
@@ -118,7 +166,8 @@ class Assessment:
       structure: W=1, I(0,1) → II₁(2,3), class 2, applicable=True
       identification: not given (0 rows given, 0 mismatches, 0 variants)
       model: 2 groups
-      existence: every group assembles)
+      existence: every group assembles
+      verdict: correct (0 findings))
     >>> found.to_dict()["identification_check"] is None
     True
     """
@@ -132,6 +181,40 @@ class Assessment:
     model: KinematicModel | None
     why_no_model: Message | AssurError | None
     existence: ExistenceReport | None
+    findings: tuple[Finding, ...] = ()
+
+    @property
+    def verdict(self) -> str:
+        """The verdict, one of the first four :data:`VERDICTS`: ``wrong`` when something is
+        to be corrected, else ``not verified`` when something could not be checked, else
+        ``outside program`` when the method's conditions fail, else ``correct``."""
+        levels = {finding.level for finding in self.findings}
+        return next((level for level in ("wrong", "not verified", "outside program")
+                     if level in levels), "correct")
+
+    @property
+    def problems(self) -> int:
+        """How many findings there are in all."""
+        return len(self.findings)
+
+    @property
+    def first(self) -> Finding | None:
+        """The finding the verdict leads with (None for a correct table)."""
+        return self.findings[0] if self.findings else None
+
+    def with_problems(self, issues: Iterable[Issue]) -> Assessment:
+        """The assessment with problems found outside it (such as those of a sketch that
+        had to be left out) added at the level ``wrong``, after the assessment's own: a
+        mistake of the structure explains a sketch that does not fit it."""
+        at = sum(finding.level == "wrong" for finding in self.findings)
+        added = tuple(Finding("wrong", issue.message, issue.location) for issue in issues)
+        return replace(self, findings=self.findings[:at] + added + self.findings[at:])
+
+    def with_variants_given(self) -> Assessment:
+        """The assessment of a design whose assembly variants are givens, not answers to
+        verify (a synthesis problem's mechanism): without the ``not verified`` findings."""
+        return replace(self, findings=tuple(finding for finding in self.findings
+                                            if finding.level != "not verified"))
 
     @property
     def identification(self) -> str:
@@ -149,7 +232,7 @@ class Assessment:
         return [(m, m.text(lang)) for m in self.mismatches or ()]
 
     @property
-    def findings(self) -> tuple[Mismatch, ...] | None:
+    def table_findings(self) -> tuple[Mismatch, ...] | None:
         """The mismatches of the student's table, then its rows whose assembly variant the
         dimensions contradict (as mismatches of the field ``variant``); None without a
         table."""
@@ -174,15 +257,20 @@ class Assessment:
             The analysis (:meth:`StructuralAnalysis.to_dict`) with ``identification_table``
             (None when the chain is not made of DGTU groups) and ``identification_check``
             (the mismatches of the student's table, then its rows whose assembly variant the
-            dimensions contradict, ``field`` ``"variant"``; None when the file gives none).
+            dimensions contradict, ``field`` ``"variant"``; None when the file gives none),
+            ``warnings``, and the verdict: ``verdict`` and ``problems`` (the same fields as
+            a row of ``assur batch``) with every finding in ``findings``, the first first.
         """
         payload = self.analysis.to_dict()
         payload["identification_table"] = (None if self.table is None
                                            else [row.to_dict() for row in self.table])
-        findings = self.findings
-        payload["identification_check"] = (None if findings is None
-                                           else [m.to_dict() for m in findings])
+        table_findings = self.table_findings
+        payload["identification_check"] = (None if table_findings is None
+                                           else [m.to_dict() for m in table_findings])
         payload["warnings"] = [issue.to_dict() for issue in self.chain.warnings]
+        payload["verdict"] = self.verdict
+        payload["problems"] = self.problems
+        payload["findings"] = [finding.to_dict() for finding in self.findings]
         return payload
 
     def __repr__(self) -> str:
@@ -201,7 +289,8 @@ class Assessment:
                 f"applicable={self.analysis.applicable}\n"
                 f"  identification: {self.identification} ({self.rows_given} rows given, "
                 f"{len(self.mismatches or ())} mismatches, {len(self.variants)} variants)\n"
-                f"  model: {model}\n  existence: {existence})")
+                f"  model: {model}\n  existence: {existence}\n"
+                f"  verdict: {self.verdict} ({self.problems} findings))")
 
 
 def assess(chain: Chain, *, points: int | None = 360) -> Assessment:
@@ -250,8 +339,62 @@ def assess(chain: Chain, *, points: int | None = 360) -> Assessment:
         from assur.kinematics.existence import check_existence
 
         existence = check_existence(model, points=points)
-    return Assessment(chain, analysis, rows, table_error, mismatches, variants, model,
-                      why_not, existence)
+    found = Assessment(chain, analysis, rows, table_error, mismatches, variants, model,
+                       why_not, existence)
+    return replace(found, findings=_findings(found))
+
+
+def _findings(found: Assessment) -> tuple[Finding, ...]:
+    """Every finding of an assessment, wrong first, then not verified, then outside."""
+    # the mobility that differs from the inputs is explained by the local findings: after them
+    errors = sorted((d for d in found.analysis.issues if d.severity == "error"),
+                    key=lambda d: d.code == "E_MOBILITY_MISMATCH")
+    wrong = [Finding("wrong", d.message) for d in errors]
+    wrong += [Finding("wrong", m.message) for m in found.mismatches or ()]
+    wrong += [Finding("wrong", v.message) for v in found.variants]
+    why = found.why_no_model
+    if isinstance(why, TableError):
+        wrong += [Finding("wrong", issue.message, issue.location) for issue in why.issues]
+    elif isinstance(why, StructureError) and isinstance(why.message, Message):
+        wrong.append(Finding("wrong", why.message))
+    elif isinstance(why, AssurError):
+        wrong.append(Finding("wrong", Message("check.finding_text", {"text": str(why)})))
+    if found.existence is not None and found.model is not None:
+        wrong += _failures(found.existence, found.model.drive == "crank")
+    # a row's kind contradicted by its own parameters explains the other differences: the
+    # chain was built from that kind
+    wrong.sort(key=lambda finding: finding.message.code != "model.params_of_kind")
+    unverified = [Finding("not verified", message) for message in _unverified(found)]
+    outside = [Finding("outside program", message) for message in found.analysis.applicability]
+    return (*wrong, *unverified, *outside)
+
+
+def _failures(report: ExistenceReport, crank: bool) -> list[Finding]:
+    """Every interval where a group does not assemble."""
+    from assur.kinematics.reasons import reason_message
+
+    found = []
+    for group in report.groups:
+        for interval in group.intervals:
+            where = (f"{math.degrees(interval.start):.1f}°…{math.degrees(interval.end):.1f}°"
+                     if crank else f"{interval.start:.2f}…{interval.end:.2f} mm")
+            found.append(Finding("wrong", Message("batch.group_fails", {
+                "group": group.label, "where": where,
+                "reason": reason_message(interval.reason)})))
+    return found
+
+
+def _unverified(found: Assessment) -> list[Message]:
+    """The student's assembly variants that nothing in the table can confirm: without a
+    sketch the dimensions are assembled in the variant the row gives, so a wrong ±1 cannot
+    be told from a right one."""
+    chain = found.chain
+    if chain.geometry is not None or found.mismatches is None:
+        return []
+    return [Message("check.variant_not_verified", {
+        "table": TABLE, "row": index, "L": row.L, "i": row.i, "j": row.j, "given": row.variant})
+        for index, row in enumerate(chain.identification or ())
+        if row.L in (1, 2) and row.variant in (1, -1)]
 
 
 def _model(analysis: StructuralAnalysis) -> tuple[KinematicModel | None,

@@ -77,9 +77,11 @@ def test_why_there_is_no_kinematic_model(tmp_path: Path) -> None:
     assert sketchless.why_no_model.code == "term.no_geometry"
     assert [m.field for m in sketchless.mismatches] == ["L"]  # kind 1 written for an RRP
     data = four_bar(30, 90, 80, 100)
-    del data["geometry"]["D"]  # the rocker pivot is not drawn: refused when the table is read
-    with pytest.raises(TableError, match="the R pair 'D' .* needs 'point"):
-        assess(_write(tmp_path / "no_d.yaml", data))
+    del data["geometry"]["D"]  # the rocker pivot is not drawn: the sketch cannot be read,
+    undrawn = assess(_write(tmp_path / "no_d.yaml", data))  # the structure needs none
+    assert undrawn.analysis.formula == "I(0,1) → II₁(2,3)" and undrawn.model is None
+    assert undrawn.verdict == "wrong" and undrawn.problems == 1
+    assert "the R pair 'D'" in undrawn.first.text() and "needs 'point" in undrawn.first.text()
     five = {"mechanism": {"pairs": [{"id": i, "type": "R", "links": links} for i, links in
                                     enumerate(([0, 1], [1, 2], [2, 3], [3, 4], [4, 0]))],
                           "inputs": [1]}}

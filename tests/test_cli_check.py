@@ -84,20 +84,24 @@ def test_console_entry_point() -> None:
 
 
 @pytest.mark.parametrize("table", ["four_bar.yaml", "course_11_link.yaml"])
-def test_a_sketch_typo_is_refused_alike_by_check_and_analyze(
+def test_a_sketch_typo_is_refused_by_analyze_and_reported_beside_the_structure_by_check(
         table: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    """A misspelt key of one joint of the sketch: both commands exit 2 with the same lines."""
+    """A misspelt key of one joint of the sketch: ``analyze`` needs the sketch and exits 2;
+    ``check`` does not need it for the structure: it prints the structure and reports the
+    sketch's problem beside it, in its verdict."""
     path = tmp_path / table
     text = (ROOT / "input_tables" / table).read_text(encoding="utf-8")
     head, _, sketch = text.partition("geometry:")
     path.write_text(head + "geometry:" + sketch.replace("point:", "pont:", 1), encoding="utf-8")
     joint = yaml.safe_load(path.read_text(encoding="utf-8"))["geometry"]
     typo = next(key for key, row in joint.items() if isinstance(row, dict) and "pont" in row)
-    errors = []
-    for command in ("check", "analyze"):
-        assert main([command, str(path)]) == 2
-        errors.append(capsys.readouterr().err)
-    assert errors[0] == errors[1]
-    lines = errors[0].splitlines()
-    assert lines == [f"1 problem in {path}:",  # the misspelt point is not also missing
-                     f"  - geometry {typo!r}: unknown key 'pont'; did you mean 'point'?"]
+    assert main(["analyze", str(path)]) == 2
+    lines = capsys.readouterr().err.splitlines()
+    problem = f"  - geometry {typo!r}: unknown key 'pont'; did you mean 'point'?"
+    assert lines == [f"1 problem in {path}:", problem]  # the misspelt point is not also missing
+    assert main(["check", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "Structure formula: I(0,1) → II₁(2,3)" in out and problem in out.splitlines()
+    assert main(["check", str(path), "--json"]) == 0
+    found = json.loads(capsys.readouterr().out)
+    assert found["verdict"] == "wrong" and found["findings"][0]["where"] == f"geometry {typo!r}"

@@ -24,10 +24,10 @@ from assur.kinematics.build import load_model
 from assur.model import LinkId
 from assur.plot.mechanism import draw_mechanism
 from assur.typing import Value
+from synthesis import load_problem
 from synthesis.app.coursework.play import play_data
 from synthesis.evaluate import Evaluator
 from synthesis.plots import plot_mechanism
-from synthesis import load_problem
 
 ROOT = Path(__file__).resolve().parent.parent
 TABLES = ROOT / "input_tables"

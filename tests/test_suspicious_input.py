@@ -48,10 +48,14 @@ def _run(capsys: pytest.CaptureFixture[str], *words: str) -> tuple[int, str, str
 def test_a_decimal_comma_in_a_point(tmp_path: Path, capsys: pytest.CaptureFixture[str],
                                     lang: str, words: str) -> None:
     table = _table(tmp_path, "four_bar.yaml", "C: {point: [110, 80]}", "C: {point: [110, 80,5]}")
-    code, _, err = _run(capsys, "--lang", lang, "check", str(table))
+    code, _, err = _run(capsys, "--lang", lang, "analyze", str(table))
     assert code == 2
     assert "geometry 'C' 'point'" in err
     assert words.format(fixed=80.5, written="80,5") in err
+    # check does not need the sketch: it prints the structure and the sketch's problem
+    code, out, _ = _run(capsys, "--lang", lang, "check", str(table))
+    assert code == 0 and "I(0,1) → II₁(2,3)" in out
+    assert "geometry 'C' 'point'" in out and words.format(fixed=80.5, written="80,5") in out
 
 
 @pytest.mark.parametrize("command", ["check", "analyze"])

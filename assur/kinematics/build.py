@@ -40,7 +40,7 @@ from typing import TYPE_CHECKING, Any
 from assur.errors import Issue, StructureError, TableError
 from assur.io.chain_table import load_chain
 from assur.io.reader import Node, TableReader, describe, latin_form, lookalike_letters
-from assur.kinds import GroupKind, GuideColumns, HingeColumns, kind_of, kind_of_class
+from assur.kinds import KINDS, GroupKind, GuideColumns, HingeColumns, kind_of, kind_of_class
 from assur.kinematics.model import (
     KIND_COLUMNS,
     Anchor,
@@ -188,7 +188,7 @@ class Topology:
             raise StructureError(Message("structure.no_model",
                                          {"source": chain.source, "found": found}))
         if len(chain.inputs) != 1:
-            raise StructureError(Message("structure.one_input",
+            raise StructureError(Message("structure.inputs_not_analysed",
                                          {"source": chain.source, "n": len(chain.inputs)}))
         for group in analysis.groups:
             if group.kind is None and kind_of_class(group.group_class) is None:
@@ -616,6 +616,11 @@ def _params(build: Builder, rows: Mapping[tuple[LinkId, ...], GroupParams],
     allowed = set(kind.columns) | {"delta", "tracing"} | ({"s"} if kind.is_input else set())
     extra = [column for column in params.keys if column not in allowed
              and column.startswith(("l_", "beta_"))]
+    other = _kind_of_columns(params, kind, allowed)
+    if other is not None:  # the columns of another kind: the row's L is the mistake
+        build.problem(where, "model.params_of_kind", found=other.code, kind=kind.code,
+                      number=other.number)
+        return params
     meant = set()  # columns written misspelt: reported so, not also as missing
     for column in params.keys:
         if column not in allowed and column not in extra:
@@ -655,6 +660,17 @@ def _params(build: Builder, rows: Mapping[tuple[LinkId, ...], GroupParams],
             build.problem(f"{where} 'tracing'", "model.tracing_point", name=repr(name),
                           i=group.i, j=group.j, l=f"l_{name}", beta=f"beta_{name}")
     return params
+
+
+def _kind_of_columns(params: GroupParams, kind: GroupKind, allowed: set[str]
+                     ) -> GroupKind | None:
+    """The dyad kind other than ``kind`` whose columns the row gives exactly, when the row
+    gives a column that ``kind`` does not have (None otherwise)."""
+    given = {column for column in params.keys if column not in allowed - set(kind.columns)}
+    if kind.is_input or given <= set(kind.columns):
+        return None
+    return next((other for number, other in KINDS.items() if number not in (0, kind.number)
+                 and set(other.columns) == given), None)
 
 
 def _coordinate_rules(frame: LinkId, group: AssurGroup | GroupModel, kind: GroupKind

@@ -11,9 +11,9 @@ from __future__ import annotations
 from collections.abc import Iterator, Mapping
 from enum import IntEnum
 
-from assur.text import render
+from assur.text import Message, render
 
-__all__ = ["REASONS", "Reason", "reason_text"]
+__all__ = ["REASONS", "Reason", "reason_message", "reason_text"]
 
 
 class Reason(IntEnum):
@@ -61,6 +61,16 @@ def reason_text(code: int, lang: str = "en") -> str:
     'the assembly mode ends: it merges with another one (dead-centre position of the group)'
     """
     return render(Reason(code).code, lang)
+
+
+
+def reason_message(code: int) -> Message:
+    """Why a group does not assemble, as a catalogue message (rendered where it is shown).
+
+    >>> reason_message(8).code
+    'reason.mode_ends'
+    """
+    return Message(Reason(code).code)
 
 
 class _Reasons(Mapping[int, tuple[str, str]]):

@@ -28,7 +28,7 @@ from assur.model import Chain, Drive, LinkId, Pair, PairId, PairType, id_key
 from assur.structure._fast import closed_by_dyads, no_prismatic_loop
 from assur.structure._nx import networkx
 from assur.structure.classification import AssurGroup, classify, input_group, roman
-from assur.structure.diagnostics import Diagnostic, diagnostic
+from assur.structure.diagnostics import Diagnostic, diagnostic, with_fixes
 from assur.structure.peeling import BodyGraph, Peeling, body_graph, peel
 from assur.structure.rank_test import RankResult, pose_from_geometry, rank_test
 from assur.text import Message, joined, language_key, languages
@@ -213,6 +213,7 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
                           k=len(chain.pairs_of(link)))
                for link in chain.moving_links if len(chain.pairs_of(link)) > 3]
 
+    issues = with_fixes(chain, issues)
     formula, formula_levels = _formula(inputs, groups)
     analysis = StructuralAnalysis(
         chain=chain, n=n, p5=p5, p4=p4, W=w, W_star=w_star, m=m, input_groups=inputs,

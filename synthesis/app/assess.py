@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 
 from assur.api import check
 from assur.assessment import Assessment
+from assur.errors import Issue, TableError
 from assur.io.chain_table import chain_from_dict
 from assur.io.reader import TableReader
 from assur.model import Chain
@@ -56,9 +57,12 @@ def load_table_chain(path: str | os.PathLike[str]) -> Chain:
         When the file cannot be read as a table (every problem listed).
     """
     table = read_table(path)
-    if isinstance(table, Chain):
-        return table
-    return chain_from_dict(table.mechanism_table(table.initial), source=str(path))
+    return table if isinstance(table, Chain) else _design(table, path)
+
+
+def _design(problem: Problem, path: str | os.PathLike[str]) -> Chain:
+    """The mechanism of a synthesis problem at its initial design."""
+    return chain_from_dict(problem.mechanism_table(problem.initial), source=str(path))
 
 
 def assess(table: str | os.PathLike[str] | Chain, *, points: int | None = 360) -> Assessment:
@@ -75,6 +79,8 @@ def assess(table: str | os.PathLike[str] | Chain, *, points: int | None = 360) -
     Returns
     -------
     Assessment
+        When only the table's sketch is inconsistent, the assessment of its structure, read
+        without the sketch, with the sketch's problems as its first findings.
 
     Raises
     ------
@@ -90,4 +96,36 @@ def assess(table: str | os.PathLike[str] | Chain, *, points: int | None = 360) -
     >>> found.analysis.W, found.identification
     (1, 'matches')
     """
-    return check(table if isinstance(table, Chain) else load_table_chain(table), points=points)
+    if isinstance(table, Chain):
+        return check(table, points=points)
+    try:
+        read = read_table(table)
+    except TableError as exc:
+        if not exc.issues or not all(_in_sketch(issue) for issue in exc.issues):
+            raise
+        sketch_problems = exc.issues
+    else:
+        if isinstance(read, Chain):
+            return check(read, points=points)
+        # a synthesis problem's assembly variants are its givens: nothing to verify
+        return check(_design(read, table), points=points).with_variants_given()
+    # only the sketch is inconsistent: the structure does not need it
+    found = check(_chain_without_sketch(table), points=points)
+    return found.with_problems(sketch_problems)
+
+
+def _in_sketch(issue: Issue) -> bool:
+    """Whether a problem of a table is one of its sketch (the ``geometry:`` section)."""
+    return issue.location.startswith(("geometry", "mechanism 'geometry'"))
+
+
+def _chain_without_sketch(path: str | os.PathLike[str]) -> Chain:
+    """The chain of a chain table read without its sketch."""
+    reader = TableReader.from_path(path)
+    data = reader.data
+    if isinstance(data, dict):
+        data = {key: value for key, value in data.items() if key != "geometry"}
+        if isinstance(data.get("mechanism"), dict):
+            data["mechanism"] = {key: value for key, value in data["mechanism"].items()
+                                 if key != "geometry"}
+    return chain_from_dict(data, source=reader.source)

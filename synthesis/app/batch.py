@@ -9,11 +9,16 @@ Each table (one per student) is checked the way the course checks a coursework:
 
 A synthesis problem is checked as its mechanism at the problem's initial design.
 
-The verdicts, the same words in the terminal table, the CSV and the JSON:
+The verdict, the count and the first problem are the :class:`~assur.assessment.Assessment`'s
+(the same as ``assur check`` and ``assur report`` show); the verdicts
+(:data:`~assur.assessment.VERDICTS`), the same words in the terminal table, the CSV and the
+JSON:
 
 * ``correct`` — nothing to correct;
 * ``outside program`` — a correct mechanism that the DGTU course does not cover (its only
   findings are the method's applicability conditions: two inputs, an actuator input, …);
+* ``not verified`` — nothing found wrong, but something the table does not let the program
+  check (an assembly variant of a table without a sketch); the row states it;
 * ``wrong`` — something to correct; the row counts the problems and states the first;
 * ``unreadable`` — the file cannot be read as a table (the row says why);
 * ``skipped`` — not a table: another file, a folder, a hidden file, a link that leads
@@ -27,7 +32,6 @@ A broken file is a row, never a stop. The tables are checked in parallel on all 
 from __future__ import annotations
 
 import errno
-import math
 import os
 import signal
 import stat
@@ -38,9 +42,8 @@ from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from assur import AssurError, ExistenceReport, KinematicModel, TableError
-from assur.assessment import Assessment
-from assur.kinematics.reasons import reason_text
+from assur import AssurError, TableError
+from assur.assessment import POINTS, VERDICTS, Assessment
 from assur.text import Message, check_lang, render
 from synthesis.app.assess import assess
 from synthesis.distributed import usable_cores
@@ -54,12 +57,9 @@ __all__ = ["TABLE_SUFFIXES", "VERDICTS", "BatchRow", "Entry", "check_table", "fo
 #: File name endings of the tables a batch takes.
 TABLE_SUFFIXES = (".yaml", ".yml")
 
-#: Crank positions of the existence check (every 2°); the interval ends are refined anyway.
-EXISTENCE_POINTS = 180
-
-#: The verdicts, best first; each is also the catalogue code ``batch.verdict.<word>``
-#: (with the space as an underscore) of its words in the terminal.
-VERDICTS = ("correct", "outside program", "wrong", "unreadable", "skipped")
+#: The longest first problem a row shows; the full list is in ``assur check --json`` and in
+#: the table's report.
+PROBLEM_WIDTH = 160
 
 
 @dataclass(frozen=True)
@@ -208,26 +208,25 @@ def folder_entries(folder: str | os.PathLike[str]) -> list[Entry]:
     return sorted(found, key=lambda e: e.path.parts)
 
 
-def _row(name: str, found: Assessment, lang: str, seconds: float) -> BatchRow:
-    """The row of a table that could be read."""
+def _row(name: str, path: Path, found: Assessment, lang: str, seconds: float) -> BatchRow:
+    """The row of a table that could be read: the assessment's verdict, count and first
+    finding (with the table's path shown relative to the checked folder)."""
     analysis = found.analysis
-    problems = [d.text(lang) for d in analysis.issues if d.severity == "error"]
-    problems += [text for _mismatch, text in found.mismatch_texts(lang)]
-    problems += [v.message.text(lang) for v in found.variants]
     if found.existence is not None and found.model is not None:
         existence = "whole cycle" if found.existence.all_exist else "fails"
-        problems += _failures(found.existence, found.model, lang)
     elif isinstance(found.why_no_model, AssurError):
         existence = "not checked"
-        problems.append(found.why_no_model.text(lang).replace("\n", " "))
     else:
         existence = "no dimensions"
-    outside = list(found.failed_conditions(lang))
-    verdict = "wrong" if problems else "outside program" if outside else "correct"
-    problems += outside
-    return BatchRow(name, verdict, problems[0] if problems else "", len(problems),
-                    analysis.formula, analysis.n, analysis.p5, analysis.W,
-                    found.identification, existence, seconds)
+    first = "" if found.first is None else _short(found.first.text(lang), path, name)
+    return BatchRow(name, found.verdict, first, found.problems, analysis.formula, analysis.n,
+                    analysis.p5, analysis.W, found.identification, existence, seconds)
+
+
+def _short(text: str, path: Path, name: str) -> str:
+    """One line of at most :data:`PROBLEM_WIDTH` characters, the table named as in the row."""
+    line = " ".join(text.replace(str(path), name).split())
+    return line if len(line) <= PROBLEM_WIDTH else line[:PROBLEM_WIDTH - 1].rstrip() + "…"
 
 
 def _not_checked(name: str, verdict: str, problem: str, problems: int = 1,
@@ -235,19 +234,6 @@ def _not_checked(name: str, verdict: str, problem: str, problems: int = 1,
     """The row of an entry whose structure was not analysed."""
     return BatchRow(name, verdict, problem, problems, "", None, None, None, "not checked",
                     "not checked", seconds)
-
-
-def _failures(report: ExistenceReport, model: KinematicModel, lang: str) -> list[str]:
-    """Every interval where a group does not assemble, as a sentence."""
-    crank = model.drive == "crank"
-    found = []
-    for group in report.groups:
-        for interval in group.intervals:
-            where = (f"{math.degrees(interval.start):.1f}°…{math.degrees(interval.end):.1f}°"
-                     if crank else f"{interval.start:.2f}…{interval.end:.2f} mm")
-            found.append(render("batch.group_fails", lang, group=group.label, where=where,
-                                reason=reason_text(interval.reason, lang)))
-    return found
 
 
 def check_table(path: str | os.PathLike[str], *, lang: str = "en",
@@ -272,9 +258,12 @@ def check_table(path: str | os.PathLike[str], *, lang: str = "en",
     >>> from pathlib import Path
     >>> import synthesis
     >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
-    >>> row = check_table(tables / "course_11_link_table.yaml")
+    >>> row = check_table(tables / "four_bar.yaml")
     >>> row.verdict, row.W, row.identification, row.existence
-    ('correct', 1, 'matches', 'whole cycle')
+    ('correct', 1, 'not given', 'whole cycle')
+    >>> row = check_table(tables / "course_11_link_table.yaml")  # no sketch: variants unchecked
+    >>> row.verdict, row.problems, row.identification, row.existence
+    ('not verified', 2, 'matches', 'whole cycle')
     >>> check_table(tables / "hydraulic_boom.yaml").verdict
     'outside program'
     """
@@ -282,13 +271,14 @@ def check_table(path: str | os.PathLike[str], *, lang: str = "en",
     path = Path(path)
     name = str(path.relative_to(root)) if root is not None else str(path)
     try:
-        found = assess(path, points=EXISTENCE_POINTS)
+        found = assess(path, points=POINTS)
     except AssurError as exc:
         issues = exc.issues if isinstance(exc, TableError) else None
+        # the sentence; the lines under it (the spot in the file) are for the terminal
         first = (issues[0].text(lang) if issues else exc.text(lang)).splitlines()[0]
-        return _not_checked(name, "unreadable", first, len(issues) if issues else 1,
-                            time.perf_counter() - start)
-    return _row(name, found, lang, time.perf_counter() - start)
+        return _not_checked(name, "unreadable", _short(first, path, name),
+                            len(issues) if issues else 1, time.perf_counter() - start)
+    return _row(name, path, found, lang, time.perf_counter() - start)
 
 
 def _write_report(path: str, target: Path, lang: str) -> str:

@@ -14,6 +14,7 @@ from collections.abc import Iterable, Sequence
 
 from assur.text import render
 from synthesis.app.batch import VERDICTS, BatchRow
+from synthesis.app.check_report import verdict_words as verdict_words_of
 
 __all__ = ["BOM", "csv_text", "rows_to_csv", "summary", "verdict_words"]
 
@@ -24,7 +25,8 @@ BOM = "\ufeff"
 
 
 def verdict_words(row: BatchRow, lang: str = "en") -> str:
-    """The verdict as the terminal shows it; a wrong table with its count of problems.
+    """The verdict as the terminal shows it, as ``assur check`` does: with its count of
+    problems, unless the table is correct, unreadable or skipped.
 
     Examples
     --------
@@ -33,8 +35,9 @@ def verdict_words(row: BatchRow, lang: str = "en") -> str:
     >>> verdict_words(row), verdict_words(row, "ru")
     ('wrong (3)', 'неверно (3)')
     """
-    words = render("batch.verdict." + row.verdict.replace(" ", "_"), lang)
-    return f"{words} ({row.problems})" if row.verdict == "wrong" else words
+    if row.verdict in ("unreadable", "skipped"):
+        return render("batch.verdict." + row.verdict, lang)
+    return verdict_words_of(row.verdict, row.problems, lang)
 
 
 def rows_to_csv(rows: Iterable[BatchRow]) -> str:
@@ -55,9 +58,9 @@ def rows_to_csv(rows: Iterable[BatchRow]) -> str:
     >>> import synthesis
     >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
     >>> from synthesis.app.batch import check_table
-    >>> text = rows_to_csv([check_table(tables / "course_11_link_table.yaml", root=tables)])
+    >>> text = rows_to_csv([check_table(tables / "four_bar.yaml", root=tables)])
     >>> text.splitlines()[1].split(",")[:2]
-    ['course_11_link_table.yaml', 'correct']
+    ['four_bar.yaml', 'correct']
     """
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
@@ -89,10 +92,10 @@ def summary(rows: Sequence[BatchRow], lang: str = "en") -> str:
     >>> import synthesis
     >>> tables = Path(synthesis.__file__).parents[1] / "input_tables"
     >>> from synthesis.app.batch import check_table
-    >>> print(summary([check_table(tables / "course_11_link_table.yaml", root=tables)], "ru"))
-    course_11_link_table.yaml  верно
+    >>> print(summary([check_table(tables / "four_bar.yaml", root=tables)], "ru"))
+    four_bar.yaml  верно
     <BLANKLINE>
-    верно: 1, вне программы: 0, неверно: 0, не читается: 0, пропущено: 0; всего: 1
+    верно: 1, вне программы: 0, не проверено: 0, неверно: 0, не читается: 0, пропущено: 0; всего: 1
     """
     width = max((len(r.file) for r in rows), default=4)
     words = [verdict_words(row, lang) for row in rows]

@@ -98,7 +98,8 @@ def test_stephenson_chain_gives_class_ii_iii_or_iv_by_frame_and_input() -> None:
 def test_input_link_off_the_frame_is_reported() -> None:
     four_bar = [("A", 0, 1), ("B", 1, 2), ("C", 2, 3), ("D", 3, 0)]
     analysis = analyse_structure(_revolute_chain(four_bar, [2]))
-    assert "E_INPUT_NOT_ON_FRAME" in {d.code for d in analysis.issues}
+    # link 2 has no pair with the frame; its neighbour 1 is hinged to it: named as the fix
+    assert [(d.code, d.data) for d in analysis.issues] == [("E_INPUT_NOT_HINGED", {"other": 1})]
     by_pair = analyse_structure(_revolute_chain(four_bar, [{"pair": "A"}]))
     assert by_pair.formula == "I(0,1) → II₁(2,3)" and by_pair.applicable
 

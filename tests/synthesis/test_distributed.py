@@ -334,7 +334,8 @@ def test_batch_on_the_cluster_is_the_single_process_batch(executor: DaskExecutor
     here = run_batch(tmp_path, jobs=1)
     there = run_batch(tmp_path, executor=executor)
     assert [replace(r, seconds=0.0) for r in there] == [replace(r, seconds=0.0) for r in here]
-    assert [r.verdict for r in there] == ["unreadable", "correct", "correct"]
+    # the course table has no sketch: its assembly variants are not verified
+    assert [r.verdict for r in there] == ["unreadable", "correct", "not verified"]
 
 
 @pytest.fixture

@@ -25,6 +25,7 @@ from assur import (
     StructuralAnalysis,
     chain_from_dict,
 )
+from assur.assessment import POINTS as VERDICT_POINTS
 from assur.assessment import Assessment
 from assur.io.files import atomic_write_text
 from assur.kinematics.analysis import analyse
@@ -35,6 +36,7 @@ from assur.plot.schemes import roman, scheme_bytes
 from assur.structure.report import group_description
 from assur.text import check_lang, render
 from synthesis.app.assess import assess, read_table
+from synthesis.app.check_report import verdict_words
 from synthesis.app.coursework.forces_section import forces_sections
 from synthesis.app.coursework.page import Section, esc, figure, figure_html, page, table
 
@@ -48,7 +50,7 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = ["CourseworkReport", "build_report", "render_html", "write_report"]
 
 #: Positions of the kinematic analysis over one crank turn.
-POINTS = 360
+POINTS = VERDICT_POINTS
 #: Default search budget (log2 of the trials) of a synthesis problem in a report.
 BUDGET = 10
 
@@ -121,6 +123,8 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
     if not isinstance(table, Chain):
         table, synthesis_sections = _synthesis(table, lang, budget, report)
     found = assess(table, points=points)
+    if synthesis_sections:  # a designed mechanism: its assembly variants are givens
+        found = found.with_variants_given()
     chain, analysis = found.chain, found.analysis
     name = chain.name or path.stem
     report.title = f"{_cap(render('term.report', lang))}: {name}"
@@ -132,6 +136,7 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
     report.sections += [_data_section(chain, lang), _counts_section(analysis, lang),
                         _groups_section(analysis, lang), _formula_section(found, lang)]
     report.sections.append(_identification_section(found, lang, report))
+    report.sections.append(_verdict_section(found, lang, report))
     report.sections.append(_schemes_section(chain, analysis, lang))
     report.sections += _kinematic_sections(found, lang, points, report)
     report.sections += forces_sections(found, lang, points)
@@ -255,6 +260,22 @@ def _identification_section(found: Assessment, lang: str, report: CourseworkRepo
                  f"{esc(render('term.differs', lang))} ({len(problems)})</p>"
                  f'<ul class="findings">{items}</ul>')
     return Section("identification", title, body)
+
+
+def _verdict_section(found: Assessment, lang: str, report: CourseworkReport) -> Section:
+    """The assessment's verdict, as ``assur check`` and ``assur batch`` show it, and every
+    finding behind it, the first first."""
+    words = verdict_words(found.verdict, found.problems, lang)
+    report.summary[_cap(render("term.verdict", lang))] = words
+    report.facts.update(verdict=found.verdict, problems=found.problems,
+                        findings=[finding.to_dict() for finding in found.findings])
+    css = {"correct": "ok", "wrong": "bad"}.get(found.verdict, "note")
+    body = (f'<p class="{css}" id="verdict-line" data-verdict="{esc(found.verdict)}" '
+            f'data-problems="{found.problems}">{esc(words)}</p>')
+    if found.findings:
+        items = "".join(f"<li>{esc(finding.text(lang))}</li>" for finding in found.findings)
+        body += f'<ul class="findings" id="verdict-findings">{items}</ul>'
+    return Section("verdict", _cap(render("term.verdict", lang)), body)
 
 
 def _cell(value: Any) -> str:

@@ -28,6 +28,7 @@ def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Analyse the table and print the report."""
+    from assur.assessment import POINTS
     from synthesis.app.assess import assess
     from synthesis.app.check_report import check_text
     from synthesis.app.outputs import outputs_of
@@ -37,7 +38,7 @@ def run(args: argparse.Namespace) -> int:
         from assur.plot.formats import picture_format
 
         picture_format(args.plot)
-    assessment = assess(args.table, points=None)
+    assessment = assess(args.table, points=POINTS)
     if args.plot:
         from assur.plot.schemes import save_schemes
 

@@ -28,7 +28,8 @@ from assur.model import Chain, Drive, LinkId, Pair, PairId, PairType, id_key
 from assur.structure._fast import closed_by_dyads, no_prismatic_loop
 from assur.structure._nx import networkx
 from assur.structure.classification import AssurGroup, classify, input_group, roman
-from assur.structure.diagnostics import Diagnostic, diagnostic, with_fixes
+from assur.structure.diagnostics import Diagnostic, diagnostic
+from assur.structure.fixes import with_fixes
 from assur.structure.peeling import BodyGraph, Peeling, body_graph, peel
 from assur.structure.rank_test import RankResult, pose_from_geometry, rank_test
 from assur.text import Message, joined, language_key, languages

@@ -149,7 +149,8 @@ def _mobility(analysis: StructuralAnalysis) -> str:
 
 def _data_section(chain: Chain, lang: str) -> Section:
     frame = render("term.frame", lang)
-    links = [(link, chain.names.get(link, frame if link == chain.frame else ""),
+    names = chain.link_names(lang)
+    links = [(link, names.get(link, frame if link == chain.frame else ""),
               len(chain.pairs_of(link))) for link in chain.links]
     pairs = [(pair.origin if pair.origin is not None else pair.id,
               render("term.revolute", lang) if pair.type is PairType.R

@@ -59,10 +59,10 @@ __all__ = [
 #: The sections of the force analysis (:data:`assur.forces.table.SECTIONS`).
 _FORCES = ("masses", "loads", "gravity")
 _TOP_CHAIN = ("schema_version", "mechanism", "general", "geometry", "structure_identification",
-              "n_moving_links", "p5", "p4", "W", "N_Q", "layering_order", *_FORCES)
+              "n_moving_links", "p5", "p4", "W", "N_Q", "layering_order", "student", *_FORCES)
 _TOP_TABLE = ("schema_version", "mechanism", "name", "frame", "general", "geometry",
               "structure_identification", "n_moving_links", "p5", "p4", "W", "N_Q",
-              "layering_order")
+              "layering_order", "student")
 _MECHANISM = ("name", "frame", "links", "pairs", "inputs", "geometry")
 _PAIR = ("id", "type", "links", "guide", "name")
 _LINK = ("id", "name")

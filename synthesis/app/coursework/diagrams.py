@@ -75,7 +75,7 @@ def existence_figure(report: ExistenceReport, model: KinematicModel, *,
     ax = fig.add_subplot()
     x, xlabel = _axis(model, report.q, lang)
     for group in report.groups:
-        line = ax.plot(x, group.margin, lw=1.5, label=f"{group.label} {group.name}")[0]
+        line = ax.plot(x, group.margin, lw=1.5, label=model.group(group.label).title(lang))[0]
         if np.isfinite(group.delta) and group.delta > 0:
             ax.axhline(group.delta, color=line.get_color(), lw=0.7, ls=":")
         if group.fails.any():

@@ -40,6 +40,10 @@ td.num { text-align: right; font-variant-numeric: tabular-nums; }
            background: var(--band); padding: .8rem 1rem; border-radius: 6px; }
 .summary dt { font-weight: 600; }
 .summary dd { margin: 0; }
+.student { display: grid; grid-template-columns: max-content minmax(12rem, 1fr); gap: .3rem 1rem;
+           margin: 0 0 1rem; max-width: 30rem; }
+.student dt { font-weight: 600; }
+.student dd { margin: 0; border-bottom: 1px solid var(--ink); min-height: 1.3em; }
 .formula { font-size: 1.15rem; font-family: "DejaVu Sans", sans-serif; padding: .4rem .7rem;
            background: var(--band); display: inline-block; border-radius: 4px; }
 .ok { color: var(--ok); font-weight: 600; }

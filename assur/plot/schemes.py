@@ -69,7 +69,7 @@ SCHEME_SIZE = {"structural": (7.0, 5.2), "formalised": (7.0, 3.4), "both": (7.0,
 _SHIFTS = ((0, 0), (20, 0), (-20, 0), (0, 24), (0, -24), (20, 24), (-20, 24), (20, -24),
            (-20, -24), (34, 0), (-34, 0), (0, 36), (0, -36))
 #: The labels :func:`separate_labels` moves, in the order they are placed.
-_MOVABLE = ("link-label", "group-label", "pair-label")
+_MOVABLE = ("link-label", "group-label", "pair-label", "edge-label")
 
 _GROUP_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b",
                   "#e377c2", "#7f7f7f", "#bcbd22")
@@ -652,8 +652,9 @@ def draw_formalised_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
         arrow.set_gid(f"edge-{source}-{target}")
         ax.add_patch(arrow)
         mid = (a + b) / 2
-        ax.text(mid.real, mid.imag + 0.08, ", ".join(map(str, pairs)), ha="center",
-                va="bottom", fontsize=LABEL_PT, color="#444444", zorder=4)
+        ax.annotate(", ".join(map(str, pairs)), (mid.real, mid.imag + 0.08), xytext=(0, 0),
+                    textcoords="offset points", ha="center", va="bottom", fontsize=LABEL_PT,
+                    color="#444444", zorder=4, gid="edge-label")
     top = 1.2 * tallest + 0.6
     for level in sorted(by_level):
         ax.text(2.4 * level, top, render("scheme.level", lang, level=level), ha="center",
@@ -699,14 +700,13 @@ def scheme_figure(chain: Chain, analysis: StructuralAnalysis, *, lang: str = "en
         ax = fig.add_subplot()
         draw = draw_structural_scheme if which == "structural" else draw_formalised_scheme
         draw(chain, analysis, ax=ax, lang=lang)
-    if which != "formalised":
-        separate_labels(fig)
+    separate_labels(fig)
     return fig
 
 
 def separate_labels(fig: Figure) -> list[Annotation]:
-    """Move the labels of the structural schemes of ``fig`` (links, groups, pairs, in that
-    order) apart: each goes to the first place of :data:`_SHIFTS` where it covers no label
+    """Move the labels of the schemes of ``fig`` (links, groups, pairs, the pairs on the
+    arrows of the formalised scheme, in that order) apart: each goes to the first place of :data:`_SHIFTS` where it covers no label
     placed before it and no joint; a label that fits nowhere takes the place where it
     overlaps least.  The layout is fixed first, and kept, so the places found are the
     places drawn.

@@ -269,11 +269,14 @@ def mechanism_figure(motion: Motion, *, lang: str = "en", positions: int = 4) ->
     rows = math.ceil(positions / 2)
     x0, x1, y0, y1 = working_space(motion)
     height = min(max(3.9 * (y1 - y0) / max(x1 - x0, 1e-12), 1.8), 5.5) + 1.4  # plot + title
-    fig = _new_figure((8.0, height * rows))
+    fig = _new_figure((WIDTH, height * rows))
     axes = fig.subplots(rows, 2, squeeze=False).ravel()
     for ax, index in zip(axes, picks):
-        draw_mechanism(motion, index, ax, lang=lang, wrap=46)
-        ax.title.set_fontsize(8.5)
+        draw_mechanism(motion, index, ax, lang=lang, wrap=38)
+        ax.title.set_fontsize(TYPE_PT)
+        ax.tick_params(labelsize=TYPE_PT)
+        ax.xaxis.label.set_fontsize(TYPE_PT)
+        ax.yaxis.label.set_fontsize(TYPE_PT)
         ax.set_aspect("equal")
         ax.autoscale_view()
     for ax in axes[len(picks):]:

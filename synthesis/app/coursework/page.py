@@ -68,7 +68,7 @@ body.play-only header, body.play-only section:not(#play) { display: none; }
   h3 { break-after: avoid; page-break-after: avoid; }
   figure, table, .summary, .formula, li { break-inside: avoid; page-break-inside: avoid; }
   figure { margin: .4rem 0 .6rem; }
-  figure img { max-height: 14cm; width: auto; max-width: 100%; border: none; }
+  figure img { max-height: 24cm; width: auto; max-width: 100%; border: none; }
   figure.small img { max-height: 8.5cm; }
   section { break-inside: auto; }
   table { font-size: 8.5pt; }

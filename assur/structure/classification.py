@@ -20,7 +20,7 @@ from assur.structure.peeling import BodyGraph, RawGroup
 from assur.text import Message, joined
 
 if TYPE_CHECKING:  # pragma: no cover
-    from networkx import MultiGraph  # type: ignore[import-untyped]
+    from networkx import MultiGraph  # type: ignore[import-untyped, unused-ignore]
 
 __all__ = ["AssurGroup", "classify", "input_group", "roman", "signature", "subscript"]
 

@@ -69,7 +69,7 @@ SCHEME_SIZE = {"structural": (7.0, 5.2), "formalised": (7.0, 3.4), "both": (7.0,
 _SHIFTS = ((0, 0), (20, 0), (-20, 0), (0, 24), (0, -24), (20, 24), (-20, 24), (20, -24),
            (-20, -24), (34, 0), (-34, 0), (0, 36), (0, -36))
 #: The labels :func:`separate_labels` moves, in the order they are placed.
-_MOVABLE = ("link-label", "group-label", "pair-label", "edge-label")
+_MOVABLE = ("label-link", "label-group", "label-pair", "label-edge")
 
 _GROUP_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b",
                   "#e377c2", "#7f7f7f", "#bcbd22")
@@ -536,7 +536,7 @@ def draw_structural_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
                     textcoords="offset points", fontsize=11, fontweight="bold",
                     ha="center", va="center", color=colour_of.get(link, "dimgray"), zorder=8,
                     bbox={"boxstyle": "round,pad=0.12", "fc": "white", "ec": "none",
-                          "alpha": 0.85}, gid="link-label")
+                          "alpha": 0.85}, gid="label-link")
     for pair in chain.pairs:
         at = layout.pairs[pair.id]
         if pair.type is PairType.R:
@@ -545,7 +545,7 @@ def draw_structural_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
             _draw_prismatic(ax, pair, at, size, chain, layout.directions[pair.id])
         ax.annotate(str(pair.origin if pair.origin is not None else pair.id),
                     (at.real, at.imag), xytext=(-9, -12), textcoords="offset points",
-                    fontsize=LABEL_PT, color="#444444", zorder=8, gid="pair-label",
+                    fontsize=LABEL_PT, color="#444444", zorder=8, gid="label-pair",
                     bbox={"boxstyle": "round,pad=0.05", "fc": "white", "ec": "none",
                           "alpha": 0.8})
     _draw_group_outlines(ax, chain, groups, layout, size, lang)
@@ -582,7 +582,7 @@ def _draw_group_outlines(ax: Axes, chain: Chain, groups: Sequence[_Group],
         top = max(outline, key=lambda p: p.imag)
         ax.annotate(group.name, (top.real, top.imag), xytext=(0, 2),
                     textcoords="offset points", ha="center", va="bottom", fontsize=LABEL_PT,
-                    color=colour, zorder=9, gid="group-label",
+                    color=colour, zorder=9, gid="label-group",
                     bbox={"boxstyle": "round,pad=0.05", "fc": "white", "ec": "none",
                           "alpha": 0.8})
         handles.append(Line2D([], [], color=colour, ls="--", lw=1.1,
@@ -654,7 +654,7 @@ def draw_formalised_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
         mid = (a + b) / 2
         ax.annotate(", ".join(map(str, pairs)), (mid.real, mid.imag + 0.08), xytext=(0, 0),
                     textcoords="offset points", ha="center", va="bottom", fontsize=LABEL_PT,
-                    color="#444444", zorder=4, gid="edge-label")
+                    color="#444444", zorder=4, gid="label-edge")
     top = 1.2 * tallest + 0.6
     for level in sorted(by_level):
         ax.text(2.4 * level, top, render("scheme.level", lang, level=level), ha="center",
@@ -732,7 +732,7 @@ def separate_labels(fig: Figure) -> list[Annotation]:
         placed += [t.get_window_extent(renderer) for t in ax.texts if t not in labels]
         placed += [Bbox.from_extents(x - joint, y - joint, x + joint, y + joint)
                    for x, y in (ax.transData.transform(t.xy) for t in labels
-                                if t.get_gid() == "pair-label")]
+                                if t.get_gid() == "label-pair")]
     for label in movable:
         start = label.xyann
         best: tuple[float, tuple[float, float]] | None = None

@@ -260,7 +260,7 @@ def mechanism_figure(motion: Motion, *, lang: str = "en", positions: int = 4) ->
     >>> from assur.kinematics.analysis import analyse
     >>> fig = mechanism_figure(analyse(model, points=36), positions=2)
     >>> [ax.get_title().splitlines()[1] for ax in fig.axes]
-    ['crank angle φ = 0.0° from the sketched', 'crank angle φ = 180.0° from the sketched']
+    ['crank angle φ = 0.0° from the sketched', 'crank angle φ = 180.0° from the']
     """
     from assur.plot.mechanism import draw_mechanism, working_space
 

@@ -523,6 +523,9 @@ class Chain:
         identification table.
     names : dict
         Optional human names of links.
+    local_names : dict
+        Language → link → its name in that language, for the links whose name the table gives
+        in several languages (``name: {en: crank, ru: кривошип}``); see :meth:`link_names`.
     identification : tuple of IdentificationRow or None
         The rows of an identification table given with the chain (to be checked).
     claims : dict
@@ -554,6 +557,7 @@ class Chain:
     source: str = "<data>"
     group_params: Mapping[tuple[LinkId, ...], GroupParams] = field(default_factory=dict)
     names: Mapping[LinkId, str] = field(default_factory=dict)
+    local_names: Mapping[str, Mapping[LinkId, str]] = field(default_factory=dict)
     identification: tuple[IdentificationRow, ...] | None = None
     claims: Mapping[str, int] = field(default_factory=dict)
     forces: ForceData | None = None
@@ -588,6 +592,11 @@ class Chain:
         except KeyError:
             raise KeyError(f"no pair {pair_id!r} in chain {self.name!r}") from None
         return found
+
+    def link_names(self, lang: str) -> dict[LinkId, str]:
+        """The human names of links in ``lang``: a name given in that language, else the one
+        name the table gives."""
+        return {**self.names, **self.local_names.get(lang, {})}
 
     def link(self, link_id: LinkId) -> Link:
         """The link with its human name, if the table gave one."""

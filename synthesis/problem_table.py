@@ -74,7 +74,7 @@ __all__ = ["load_problem", "problem_from_dict"]
 
 _TOP = ("schema_version", "name", "general", "mechanism", "structure_identification",
         "frame", "geometry", "group_models", "output", "parameters", "allowable",
-        "control_points", "search", "forces")
+        "control_points", "search", "forces", "student")
 _GENERAL = ("control_points", "direction", "groups", "task_class", "grid", "accuracy",
             "objective", "p2_weight", "output")
 #: Control-point columns of the target value and of the zone limits, per class-1 output.

@@ -1,4 +1,5 @@
-"""Every command of the tutorials (English and Russian) runs, so they cannot go stale.
+"""Every command of the tutorials (English and Russian) runs and prints what they show, so they
+cannot go stale.
 
 The commands are taken from the ```console blocks of ``docs/tutorial.md`` and
 ``docs/tutorial.ru.md`` (lines starting with ``$ ``; a trailing ``# exit N`` states the
@@ -7,10 +8,18 @@ cannot run inside a test; the test makes sure nothing else hides there. Each tut
 in its own process, the two in parallel, in a scratch folder laid out like the repository
 (its input tables are links to the repository's); every file the commands write must land
 in ``work/``, and the repository must be left as it was.
+
+A ```text block shows output of the last ``$ `` command above it. Its lines must be printed by
+that command (standard output, then standard error) in the same order, each run of shown lines
+as consecutive lines of the output; a line ``…`` alone marks an elision (any number of lines),
+and a block may show an excerpt (an elision is implied before its first and after its last
+line). Trailing spaces do not count. When the program's wording changes, re-syncing is editing
+the shown lines of the document: the test prints the command's whole output on a mismatch.
 """
 
 from __future__ import annotations
 
+import ast
 import json
 import os
 import re
@@ -71,6 +80,57 @@ def commands(text: str) -> list[tuple[list[str], int]]:
             assert argv[0] == "assur", f"only assur commands belong in console blocks: {line}"
             found.append((argv[1:], int(code.group(1)) if code else 0))
     return found
+
+
+def shown_outputs(text: str) -> list[tuple[int, list[str]]]:
+    """Each ```text block with the index (among the ``$ `` commands) of the command it shows."""
+    shown, count = [], 0
+    for language, body in re.findall(r"^```(\w*)\n(.*?)^```", text,
+                                     flags=re.MULTILINE | re.DOTALL):
+        if language == "console":
+            count += sum(line.startswith("$ ") for line in body.splitlines())
+        elif language == "text":
+            assert count, "an output block before any command"
+            shown.append((count - 1, [line.rstrip() for line in body.splitlines()]))
+    return shown
+
+
+def printed(shown: list[str], output: list[str]) -> bool:
+    """Whether ``output`` holds the ``shown`` lines in order, each run between elisions
+    (``…`` alone on a line) as consecutive lines; a shown line ending in ``…`` stands for
+    every line that starts with the rest (the last digits of a number that depends on the
+    platform's floating point, the end of a long line).
+
+    >>> printed(["b", "…", "d"], ["a", "b", "c", "d", "e"])
+    True
+    >>> printed(["b", "d"], ["a", "b", "c", "d"])
+    False
+    >>> printed(["d", "…", "b"], ["b", "d"])
+    False
+    >>> printed(["Q = 9.85…"], ["Q = 9.85471e-05"])
+    True
+    """
+    runs: list[list[str]] = [[]]
+    for line in shown:
+        if line.strip() in ("…", "..."):
+            runs.append([])
+        else:
+            runs[-1].append(line)
+    start = 0
+    for run in (run for run in runs if run):
+        found = next((i for i in range(start, len(output) - len(run) + 1)
+                      if all(_same(a, b) for a, b in zip(run, output[i:i + len(run)]))), None)
+        if found is None:
+            return False
+        start = found + len(run)
+    return True
+
+
+def _same(shown: str, line: str) -> bool:
+    """A shown line against a printed one: equal, or its prefix when it ends in ``…``."""
+    if shown.endswith("…") and shown.strip() != "…":
+        return line.startswith(shown[:-1])
+    return shown == line
 
 
 def _workspace(root: Path) -> Path:
@@ -150,6 +210,23 @@ def test_every_command_runs(name: str, runs: Runs) -> None:
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", TUTORIALS)
+def test_shown_outputs_are_what_the_commands_print(name: str, runs: Runs) -> None:
+    text = (ROOT / "docs" / name).read_text(encoding="utf-8")
+    _work, results = runs[name]
+    shown = shown_outputs(text)
+    assert len(shown) >= 5
+    stale = []
+    for index, lines in shown:
+        result = results[index]
+        output = [line.rstrip() for line in (result["stdout"] + result["stderr"]).splitlines()]
+        if not printed(lines, output):
+            stale.append(f"`assur {shlex.join(result['argv'])}` shows\n" + "\n".join(lines)
+                         + "\n--- but prints:\n" + "\n".join(output))
+    assert not stale, f"{name}: output shown is not what the command prints:\n\n" + (
+        "\n\n".join(stale))
+
+
+@pytest.mark.parametrize("name", TUTORIALS)
 def test_pictures_exist_and_are_drawn_by_the_commands(name: str, runs: Runs) -> None:
     text = (ROOT / "docs" / name).read_text(encoding="utf-8")
     work, _results = runs[name]
@@ -179,3 +256,26 @@ def test_russian_tutorial_prints_russian(runs: Runs) -> None:
             assert '<html lang="ru">' in page.read_text(encoding="utf-8")
         else:
             assert cyrillic.search(result["stdout"]), argv
+
+
+def test_readme_python_block_gives_the_values_it_shows(monkeypatch):
+    """A line of the README's Python block whose comment is a Python value shows what the
+    expression before the comment gives; the block runs as written."""
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    (block,) = blocks(text, "python")
+    monkeypatch.chdir(ROOT)
+    namespace: dict[str, object] = {}
+    lines, checked = block.splitlines(), 0
+    for statement in ast.parse(block).body:
+        comment = lines[statement.end_lineno - 1].partition("#")[2].strip()
+        try:
+            shown = ast.literal_eval(comment)
+        except (ValueError, SyntaxError):
+            shown = None
+        if shown is not None and isinstance(statement, ast.Expr):
+            assert eval(compile(ast.Expression(statement.value), "README", "eval"),
+                        namespace) == shown, ast.unparse(statement)
+            checked += 1
+        else:
+            exec(compile(ast.Module([statement], []), "README", "exec"), namespace)  # noqa: S102 (the README's own code)
+    assert checked >= 1

@@ -44,7 +44,7 @@ from assur.model import (
     Sketch,
     id_key,
 )
-from assur.text import Message
+from assur.text import DEFAULT, Message, languages
 
 __all__ = [
     "IDENTIFICATION_FIELDS",
@@ -57,10 +57,10 @@ __all__ = [
 #: The sections of the force analysis (:data:`assur.forces.table.SECTIONS`).
 _FORCES = ("masses", "loads", "gravity")
 _TOP_CHAIN = ("schema_version", "mechanism", "general", "geometry", "structure_identification",
-              "n_moving_links", "p5", "p4", "W", "N_Q", "layering_order", *_FORCES)
+              "n_moving_links", "p5", "p4", "W", "N_Q", "layering_order", "student", *_FORCES)
 _TOP_TABLE = ("schema_version", "mechanism", "name", "frame", "general", "geometry",
               "structure_identification", "n_moving_links", "p5", "p4", "W", "N_Q",
-              "layering_order")
+              "layering_order", "student")
 _MECHANISM = ("name", "frame", "links", "pairs", "inputs", "geometry")
 _PAIR = ("id", "type", "links", "guide", "name")
 _LINK = ("id", "name")
@@ -162,6 +162,18 @@ def _read(reader: TableReader) -> Chain:
 # ----------------------------------------------------------------------------- chain form
 
 
+def _local_name(row: Node, link: LinkId, local: dict[str, dict[LinkId, str]]) -> str | None:
+    """A link name given per language (``{en: crank, ru: кривошип}``): each form checked and
+    kept in ``local``; the default language's form (else the first) returned."""
+    node = row.child("name", allowed=languages())
+    forms = {lang: node.get(lang, kind="str") for lang in node.mapping} if node else {}
+    forms = {lang: text for lang, text in forms.items() if isinstance(text, str) and text}
+    if link is not MISSING:
+        for lang, text in forms.items():
+            local.setdefault(lang, {})[link] = text
+    return forms.get(DEFAULT, next(iter(forms.values()), None))
+
+
 def _read_chain_form(reader: TableReader) -> Chain:
     top = reader.root(allowed=_TOP_CHAIN)
     mech = top.child("mechanism", allowed=_MECHANISM)
@@ -169,7 +181,8 @@ def _read_chain_form(reader: TableReader) -> Chain:
     name = mech.get("name", kind="str", required=False, default=None)
     frame = mech.get("frame", kind="id", required=False, default=0)
     names: dict[LinkId, str] = {}
-    links = _read_links(mech, names)
+    local: dict[str, dict[LinkId, str]] = {}
+    links = _read_links(mech, names, local)
     raw_pairs, mentioned = _read_pairs(mech)
     if mech.mapping.get("pairs") == []:
         reader.problem("mechanism 'pairs'", "chain.no_pairs")
@@ -202,7 +215,7 @@ def _read_chain_form(reader: TableReader) -> Chain:
     return Chain(name=name or _stem(reader.source), frame=frame, links=tuple(links),
                  pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,
                  source=reader.source, group_params=_group_params(rows), names=names,
-                 identification=tuple(rows) if rows else None, claims=claims, forces=forces)
+                 local_names=local, identification=tuple(rows) if rows else None, claims=claims, forces=forces)
 
 
 def _read_forces(top: Node, links: list[LinkId], frame: LinkId, inputs: list[Drive],
@@ -221,9 +234,12 @@ def _read_forces(top: Node, links: list[LinkId], frame: LinkId, inputs: list[Dri
     return read_sections(top, tuple(link for link in links if link != frame), actuated)
 
 
-def _read_links(mech: Node, names: dict[LinkId, str]) -> list[LinkId] | None:
+def _read_links(mech: Node, names: dict[LinkId, str],
+                local: dict[str, dict[LinkId, str]]) -> list[LinkId] | None:
     """The links table; None when there is none, or when it could not be read whole (the
-    problem is recorded, and the pairs are not checked against what is left of it)."""
+    problem is recorded, and the pairs are not checked against what is left of it).  A name
+    given in several languages (``name: {en: crank, ru: кривошип}``) goes into ``local``,
+    its default-language form into ``names``."""
     if not mech.has("links"):
         return None
     count = len(mech.reader.issues)
@@ -236,9 +252,12 @@ def _read_links(mech: Node, names: dict[LinkId, str]) -> list[LinkId] | None:
         where = f"mechanism.links[{index}]"
         if isinstance(item, dict):
             row = Node(mech.reader, where, item, _LINK)
-            row.swapped({"id": _is_id, "name": lambda v: isinstance(v, str)})
+            row.swapped({"id": _is_id, "name": lambda v: isinstance(v, (str, dict))})
             link = row.get("id", kind="id")
-            name = row.get("name", kind="str", required=False, default=None)
+            if isinstance(row.mapping.get("name"), dict):
+                name = _local_name(row, link, local)
+            else:
+                name = row.get("name", kind="str", required=False, default=None)
             if link is not MISSING and name:
                 names[link] = name
         elif _is_id(item):

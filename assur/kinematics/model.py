@@ -173,10 +173,14 @@ class GroupModel:
     @property
     def name(self) -> str:
         """Kind and links for reports, e.g. ``'L1 RRR (2, 3)'``, ``'L0 input group (1)'``."""
+        return self.title("en")
+
+    def title(self, lang: str) -> str:
+        """Kind and links in ``lang``: ``'L1 RRR (2, 3)'``, ``'L1 ВВВ (2, 3)'``."""
         members = list(self.members)
         links = ", ".join(map(str, members if self.layout is None else sorted(members, key=str)))
         kind = self.group_kind
-        title = kind.pairs or (kind.title("en") if kind.is_input else "")
+        title = kind.pair_text(lang) or (kind.title(lang) if kind.is_input else "")
         return f"{kind.code} {title} ({links})" if title else f"{kind.code} ({links})"
 
     def column(self, name: str) -> str:

@@ -40,6 +40,8 @@ from assur.text import render
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
+    from matplotlib.text import Annotation
+    from matplotlib.transforms import Bbox
 
     from assur.structure.analysis import StructuralAnalysis
     from assur.structure.classification import AssurGroup
@@ -56,6 +58,18 @@ __all__ = [
     "scheme_figure",
     "scheme_layout",
 ]
+
+#: The smallest type size of a scheme, in points: a scheme is drawn at its print size (it fits
+#: the width of an A4 page, see :data:`SCHEME_SIZE`), so every label reads at 9 pt or more.
+LABEL_PT = 9.0
+#: Figure sizes in inches (width within the 18 cm of an A4 page's text).
+SCHEME_SIZE = {"structural": (7.0, 5.2), "formalised": (7.0, 3.4), "both": (7.0, 9.0)}
+#: Where a label may go, as shifts (points) from the place it is drawn at, the first tried
+#: first (:func:`separate_labels`).
+_SHIFTS = ((0, 0), (20, 0), (-20, 0), (0, 24), (0, -24), (20, 24), (-20, 24), (20, -24),
+           (-20, -24), (34, 0), (-34, 0), (0, 36), (0, -36))
+#: The labels :func:`separate_labels` moves, in the order they are placed.
+_MOVABLE = ("label-link", "label-group", "label-pair", "label-edge")
 
 _GROUP_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b",
                   "#e377c2", "#7f7f7f", "#bcbd22")
@@ -502,7 +516,7 @@ def draw_structural_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
     >>> assur.draw_structural_scheme(analysis.chain, analysis, ax=ax) is ax
     True
     """
-    ax = ax if ax is not None else _new_axes((7.5, 6.0))
+    ax = ax if ax is not None else _new_axes(SCHEME_SIZE["structural"])
     layout = layout or scheme_layout(chain, analysis)
     size = _scale(layout)
     groups = _groups(analysis, chain)
@@ -522,7 +536,7 @@ def draw_structural_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
                     textcoords="offset points", fontsize=11, fontweight="bold",
                     ha="center", va="center", color=colour_of.get(link, "dimgray"), zorder=8,
                     bbox={"boxstyle": "round,pad=0.12", "fc": "white", "ec": "none",
-                          "alpha": 0.85})
+                          "alpha": 0.85}, gid="label-link")
     for pair in chain.pairs:
         at = layout.pairs[pair.id]
         if pair.type is PairType.R:
@@ -531,7 +545,9 @@ def draw_structural_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
             _draw_prismatic(ax, pair, at, size, chain, layout.directions[pair.id])
         ax.annotate(str(pair.origin if pair.origin is not None else pair.id),
                     (at.real, at.imag), xytext=(-9, -12), textcoords="offset points",
-                    fontsize=7, color="#444444", zorder=8)
+                    fontsize=LABEL_PT, color="#444444", zorder=8, gid="label-pair",
+                    bbox={"boxstyle": "round,pad=0.05", "fc": "white", "ec": "none",
+                          "alpha": 0.8})
     _draw_group_outlines(ax, chain, groups, layout, size, lang)
     ax.set_aspect("equal")
     ax.autoscale_view()
@@ -565,13 +581,16 @@ def _draw_group_outlines(ax: Axes, chain: Chain, groups: Sequence[_Group],
         ax.add_patch(patch)
         top = max(outline, key=lambda p: p.imag)
         ax.annotate(group.name, (top.real, top.imag), xytext=(0, 2),
-                    textcoords="offset points", ha="center", va="bottom", fontsize=8,
-                    color=colour, zorder=9)
+                    textcoords="offset points", ha="center", va="bottom", fontsize=LABEL_PT,
+                    color=colour, zorder=9, gid="label-group",
+                    bbox={"boxstyle": "round,pad=0.05", "fc": "white", "ec": "none",
+                          "alpha": 0.8})
         handles.append(Line2D([], [], color=colour, ls="--", lw=1.1,
                               label=_group_caption(group, lang).replace("\n", ": ")))
     if handles:
         ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.01),
-                  fontsize=8, frameon=False, ncol=1 if len(handles) > 3 else len(handles))
+                  fontsize=LABEL_PT, frameon=False,
+                  ncol=1 if len(handles) > 3 else len(handles))
 
 
 def draw_formalised_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Axes | None = None,
@@ -595,7 +614,7 @@ def draw_formalised_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
     """
     from matplotlib.patches import FancyArrowPatch, Rectangle
 
-    ax = ax if ax is not None else _new_axes((7.5, 4.0))
+    ax = ax if ax is not None else _new_axes(SCHEME_SIZE["formalised"])
     groups = _groups(analysis, chain)
     by_level: dict[int, list[_Group]] = {}
     for group in groups:
@@ -611,7 +630,8 @@ def draw_formalised_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
     left, right = -1.1, 2.4 * max(by_level, default=0) + 1.1
     ax.add_patch(Rectangle((left, -0.25), right - left, 0.25, facecolor="#eeeeee",
                            edgecolor="black", hatch="///", lw=1.0, zorder=1))
-    ax.text(left + 0.05, -0.5, render("scheme.frame", lang), ha="left", va="top", fontsize=8)
+    ax.text(left + 0.05, -0.5, render("scheme.frame", lang), ha="left", va="top",
+            fontsize=LABEL_PT)
     for group in groups:
         at = where[group.name]
         label = group.name if group.is_input else (
@@ -632,12 +652,13 @@ def draw_formalised_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
         arrow.set_gid(f"edge-{source}-{target}")
         ax.add_patch(arrow)
         mid = (a + b) / 2
-        ax.text(mid.real, mid.imag + 0.08, ", ".join(map(str, pairs)), ha="center",
-                va="bottom", fontsize=7, color="#444444", zorder=4)
+        ax.annotate(", ".join(map(str, pairs)), (mid.real, mid.imag + 0.08), xytext=(0, 0),
+                    textcoords="offset points", ha="center", va="bottom", fontsize=LABEL_PT,
+                    color="#444444", zorder=4, gid="label-edge")
     top = 1.2 * tallest + 0.6
     for level in sorted(by_level):
         ax.text(2.4 * level, top, render("scheme.level", lang, level=level), ha="center",
-                fontsize=8, color="#666666")
+                fontsize=LABEL_PT, color="#666666")
     ax.set_xlim(left - 0.1, right + 0.1)
     ax.set_ylim(-0.9, top + 0.4)
     ax.set_axis_off()
@@ -670,17 +691,70 @@ def scheme_figure(chain: Chain, analysis: StructuralAnalysis, *, lang: str = "en
 
     if which not in ("both", "structural", "formalised"):
         raise ValueError(f"which must be 'both', 'structural' or 'formalised'; got {which!r}")
+    fig = Figure(figsize=SCHEME_SIZE[which], layout="constrained")
     if which == "both":
-        fig = Figure(figsize=(8.0, 10.0), layout="constrained")
         top, bottom = fig.subplots(2, 1, height_ratios=[2.2, 1])
         draw_structural_scheme(chain, analysis, ax=top, lang=lang)
         draw_formalised_scheme(chain, analysis, ax=bottom, lang=lang)
-        return fig
-    fig = Figure(figsize=(8.0, 6.0 if which == "structural" else 4.0), layout="constrained")
-    ax = fig.add_subplot()
-    draw = draw_structural_scheme if which == "structural" else draw_formalised_scheme
-    draw(chain, analysis, ax=ax, lang=lang)
+    else:
+        ax = fig.add_subplot()
+        draw = draw_structural_scheme if which == "structural" else draw_formalised_scheme
+        draw(chain, analysis, ax=ax, lang=lang)
+    separate_labels(fig)
     return fig
+
+
+def separate_labels(fig: Figure) -> list[Annotation]:
+    """Move the labels of the schemes of ``fig`` (links, groups, pairs, the pairs on the
+    arrows of the formalised scheme, in that order) apart: each goes to the first place of :data:`_SHIFTS` where it covers no label
+    placed before it and no joint; a label that fits nowhere takes the place where it
+    overlaps least.  The layout is fixed first, and kept, so the places found are the
+    places drawn.
+
+    Returns
+    -------
+    list of Annotation
+        The labels moved, placed.
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.text import Annotation
+    from matplotlib.transforms import Bbox
+
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    fig.draw_without_rendering()
+    fig.set_layout_engine("none")
+    placed = []
+    movable: list[Annotation] = []
+    joint = 5.0 * fig.dpi / 72.0  # half the size of a joint's circle, in pixels
+    for ax in fig.axes:
+        labels = [t for t in ax.texts if isinstance(t, Annotation) and t.get_gid() in _MOVABLE]
+        movable += sorted(labels, key=lambda t: _MOVABLE.index(str(t.get_gid())))
+        placed += [t.get_window_extent(renderer) for t in ax.texts if t not in labels]
+        placed += [Bbox.from_extents(x - joint, y - joint, x + joint, y + joint)
+                   for x, y in (ax.transData.transform(t.xy) for t in labels
+                                if t.get_gid() == "label-pair")]
+    for label in movable:
+        start = label.xyann
+        best: tuple[float, tuple[float, float]] | None = None
+        for dx, dy in _SHIFTS:
+            label.xyann = (start[0] + dx, start[1] + dy)
+            box = label.get_window_extent(renderer)
+            overlap = sum(_overlap(box, other) for other in placed)
+            if best is None or overlap < best[0]:
+                best = (overlap, label.xyann)
+            if overlap == 0:
+                break
+        assert best is not None
+        label.xyann = best[1]
+        placed.append(label.get_window_extent(renderer))
+    return movable
+
+
+def _overlap(a: Bbox, b: Bbox) -> float:
+    """The area two display boxes share (0 when apart)."""
+    width = min(a.x1, b.x1) - max(a.x0, b.x0)
+    height = min(a.y1, b.y1) - max(a.y0, b.y0)
+    return float(max(width, 0.0) * max(height, 0.0))
 
 
 def scheme_bytes(chain: Chain, analysis: StructuralAnalysis, fmt: str = "svg", *, lang: str = "en",

@@ -7,6 +7,7 @@ a four-sided contour, higher groups reported as unsupported) and of §5.4 / ``me
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from itertools import combinations
 from typing import TYPE_CHECKING, Any
@@ -16,11 +17,12 @@ from assur.model import LinkId, PairId, id_key
 from assur.structure._nx import networkx
 from assur.structure.diagnostics import Diagnostic, diagnostic
 from assur.structure.peeling import BodyGraph, RawGroup
+from assur.text import Message, joined
 
 if TYPE_CHECKING:  # pragma: no cover
     from networkx import MultiGraph
 
-__all__ = ["AssurGroup", "classify", "input_group", "roman", "subscript"]
+__all__ = ["AssurGroup", "classify", "input_group", "roman", "signature", "subscript"]
 
 _SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 #: The dyad kind of every (internal, external, external) pair-type triple, looked up in the
@@ -246,6 +248,50 @@ def _dyad(raw: RawGroup, graph: BodyGraph, common: dict[str, Any],
                       j_minus_1=ext_j[2], issues=tuple(issues), **common)
 
 
+#: The signatures of a triad and of a class IV group (:attr:`AssurGroup.name`); they read
+#: back into words of the catalogue by :func:`signature`.
+_TRIAD = "III(base {base}; leashes {leashes})"
+_CLASS_IV = "IV(contour {contour}; external {external})"
+
+
+def _pattern(form: str) -> re.Pattern[str]:
+    fields = re.escape(form).replace(r"\{", "{").replace(r"\}", "}")
+    return re.compile(re.sub(r"{(\w+)}", r"(?P<\1>.+?)", fields) + "$")
+
+
+def _letters(pairs: str, code: str) -> Message:
+    """Pair letters (``"R–P"``, ``"R, R"``) as the course writes them in each language."""
+    parts = [Message(f"term.pair_letter.{letter.lower()}")
+             for letter in re.split(r"–|, ", pairs)]
+    return joined(parts, code)
+
+
+def signature(name: str) -> Message | str:
+    """A group's :attr:`~AssurGroup.name` in the words and pair letters of each language.
+
+    >>> signature("III(base 4; leashes R–R, R–P, R–R)").text("ru")
+    'III(базовое звено 4; поводки В–В, В–П, В–В)'
+    >>> signature("IV(contour R–R–P–R; external R, R)").text("ru")
+    'IV(контур В–В–П–В; внешние: В, В)'
+    >>> signature("RRP").text("ru"), signature("L0")
+    ('ВВП', 'L0')
+    """
+    triad = _pattern(_TRIAD).match(name)
+    if triad:
+        leashes = [_letters(leash, "term.dash_joined")
+                   for leash in triad["leashes"].split(", ")]
+        return Message("group.signature.iii", {"base": triad["base"],
+                                               "leashes": joined(leashes)})
+    four = _pattern(_CLASS_IV).match(name)
+    if four:
+        return Message("group.signature.iv", {
+            "contour": _letters(four["contour"], "term.dash_joined"),
+            "external": _letters(four["external"], "term.list")})
+    if re.fullmatch("[RP]+", name):
+        return _letters(name.replace("", "–").strip("–"), "term.concat")
+    return name
+
+
 def _four(raw: RawGroup, graph: BodyGraph, internal: MultiGraph,
           ext_count: dict[LinkId, int]) -> tuple[int, str] | None:
     degree = dict(internal.degree())
@@ -258,7 +304,7 @@ def _four(raw: RawGroup, graph: BodyGraph, internal: MultiGraph,
             if degree[leash] != 1 or ext_count[leash] != 1:
                 return None
             leashes.append(f"{_type(graph, pid)}–{ext_type[leash]}")
-        return 3, f"III(base {base}; leashes {', '.join(leashes)})"
+        return 3, _TRIAD.format(base=base, leashes=", ".join(leashes))
     nx = networkx()
     simple = nx.Graph(internal)
     if (len(raw.external) == 2 and internal.number_of_edges() == 4
@@ -275,7 +321,7 @@ def _four(raw: RawGroup, graph: BodyGraph, internal: MultiGraph,
             contour = [_type(graph, next(iter(internal[a][b])))
                        for a, b in zip(cycle, cycle[1:] + cycle[:1], strict=True)]
             external = ", ".join(ext_type[b] for b in sorted(ternary, key=id_key))
-            return 4, f"IV(contour {'–'.join(contour)}; external {external})"
+            return 4, _CLASS_IV.format(contour="–".join(contour), external=external)
     return None
 
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from assur.structure.analysis import StructuralAnalysis
-from assur.structure.classification import AssurGroup, roman
+from assur.structure.classification import AssurGroup, roman, signature
 from assur.structure.identification import COLUMNS, IdentificationRow, Mismatch
 from assur.text import Message, joined, render
 
@@ -30,7 +30,7 @@ def _external(group: AssurGroup) -> Message | str:
 
 def _group_head(group: AssurGroup) -> Message:
     values = {"level": group.level, "cls": group.group_class, "order": group.order,
-              "name": group.name}
+              "name": signature(group.name)}
     if group.name == "PPP":
         return Message("report.group.ppp", values)
     if group.is_dyad:
@@ -110,7 +110,7 @@ def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
     items = []
     for drive in chain.inputs:
         if drive.link is not None:
-            name = chain.link(drive.link).name
+            name = chain.link_names(lang).get(drive.link)
             items.append(str(drive.link) + (f" ({name})" if name else ""))
         elif drive.pair is not None:
             pair = chain.pair(drive.pair)

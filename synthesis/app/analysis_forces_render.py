@@ -61,7 +61,7 @@ def summary_lines(result: Analysis, forces: ForceAnalysis, summary: ForceSummary
     """The lines of the force section (shared by the text and the coursework reports)."""
 
     def at(extreme: Extreme) -> str:
-        return position_text(result, extreme.at) if math.isfinite(extreme.at) else "—"
+        return position_text(result, extreme.at, lang) if math.isfinite(extreme.at) else "—"
 
     crank = result.crank
     gravity = forces.gravity
@@ -90,7 +90,8 @@ def summary_lines(result: Analysis, forces: ForceAnalysis, summary: ForceSummary
         why = render(f"force.reason.{reason.name.lower()}", lang, group=group or "")
         lines.append("  " + render("force.report.unsolved", lang,
                                    n=int(np.count_nonzero(forces.reason == reason)),
-                                   total=summary.total, at=position_text(result, q), why=why))
+                                   total=summary.total, at=position_text(result, q, lang),
+                                   why=why))
     return lines
 
 

@@ -22,11 +22,12 @@ from assur.text import render
 __all__ = ["analysis_text", "modes_lines", "position_text"]
 
 
-def position_text(result: Analysis, value: float) -> str:
-    """An input position as the report writes it: ``φ = 12.50°`` or ``l = 40.000 mm``."""
+def position_text(result: Analysis, value: float, lang: str = "en") -> str:
+    """An input position as the report writes it: ``φ = 12.50°`` or ``l = 40.000 mm``
+    (``мм`` in Russian)."""
     if result.crank:
         return f"φ = {math.degrees(value):.2f}°"
-    return f"l = {value:.3f} mm"
+    return f"l = {value:.3f} {render('analyze.unit_mm', lang)}"
 
 
 def analysis_text(result: Analysis, lang: str = "en") -> str:
@@ -71,16 +72,17 @@ def analysis_text(result: Analysis, lang: str = "en") -> str:
                 "not evaluated": render("analyze.not_evaluated", lang)}
     for group in report.groups:
         reached = group.verdict == "assembles" and not group.evaluated.all()
-        lines.append(f"  {group.name:<20} {verdicts['reached' if reached else group.verdict]}; "
+        title = model.group(group.label).title(lang)
+        lines.append(f"  {title:<20} {verdicts['reached' if reached else group.verdict]}; "
                      + render("analyze.margin", lang, m=group.min_margin, d=group.delta))
         lines.append(f"  {'':<20} {CONDITIONS[group.kind]}")
         for item in group.intervals:
             lines.append("    " + render("analyze.interval", lang,
-                                         a=position_text(result, item.start),
-                                         b=position_text(result, item.end),
+                                         a=position_text(result, item.start, lang),
+                                         b=position_text(result, item.end, lang),
                                          why=reason_text(item.reason, lang),
                                          v=item.shortfall, unit=units[item.unit],
-                                         w=position_text(result, item.worst_at)))
+                                         w=position_text(result, item.worst_at, lang)))
         skipped = int((~group.evaluated).sum())
         if skipped and group.evaluated.any():
             lines.append("    " + render("analyze.skipped", lang, n=skipped))
@@ -89,17 +91,18 @@ def analysis_text(result: Analysis, lang: str = "en") -> str:
                  render("analyze.verdict_bad", lang, n=broken, total=n))
     lines += modes_lines(result, lang)
     lines += ["", render("analyze.outputs", lang)]
+    mm = render("analyze.unit_mm", lang)
     for link in moving_links(model):
         angle = np.degrees(unwrap(values(motion.link_angle(link))))
         lines.append(f"  {render('analyze.link', lang, link=link):<34} {_range(angle, '°')}")
     for pid, slider in motion.sliders.items():
         label = render("analyze.slider", lang, slider=slider.slider, carrier=slider.carrier,
                        pair=pid)
-        lines.append(f"  {label:<34} {_range(values(slider.s), ' mm')}")
+        lines.append(f"  {label:<34} {_range(values(slider.s), ' ' + mm)}")
     for name, point in motion.tracing.items():
         z = values(point)
         lines.append(f"  {render('analyze.trace', lang, name=name):<34} "
-                     f"x {_range(z.real, ' mm')}, y {_range(z.imag, ' mm')}")
+                     f"x {_range(z.real, ' ' + mm)}, y {_range(z.imag, ' ' + mm)}")
     lines += ["", *_pressure_lines(result, lang)]
     lines += ["", render("analyze.rotations", lang)]
     for turn in joint_rotations(motion):
@@ -152,7 +155,7 @@ def _pressure_lines(result: Analysis, lang: str) -> list[str]:
         over = math.degrees(item.maximum) > allowed
         lines.append("  " + render("analyze.alpha", lang, label=item.label, pair=item.pair,
                                    a=math.degrees(item.maximum),
-                                   at=position_text(result, float(result.motion.q[at])),
+                                   at=position_text(result, float(result.motion.q[at]), lang),
                                    allowed=allowed,
                                    verdict=render("analyze.alpha_over" if over
                                                   else "analyze.alpha_within", lang)))

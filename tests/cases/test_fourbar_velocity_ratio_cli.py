@@ -85,7 +85,31 @@ def test_registered_as_a_built_in_case(capsys):
     assert "no such mechanism" in capsys.readouterr().out
     assert main(["case", "fourbar-velocity-ratio", "--e", "0.3", "--n-star", "0.5",
                  "--delta", "-1", "--psi1", "20"]) == 2
-    assert "'delta'" in capsys.readouterr().err
+    assert "--delta:" in capsys.readouterr().err
+
+
+def test_without_options_the_published_example_is_run(tables_dir, capsys):
+    # the shipped table holds the published example; run without a table, the case must
+    # request the same values and find the same designs
+    assert run(["--json"]) == 0
+    default = json.loads(capsys.readouterr().out)
+    assert run(["--table", str(tables_dir / "case_fourbar_velocity_ratio.yaml"),
+                "--method", "modern", "--json"]) == 0
+    shipped = json.loads(capsys.readouterr().out)
+    assert default["request"] == shipped["request"]
+    assert default["modern"]["designs"] == shipped["modern"]["designs"]
+
+
+@pytest.mark.parametrize(("argv", "flags"), [
+    (["--n-star", "5000", "--delta", "2"], ["--n-star:", "--delta:"]),
+    (["--e", "0.3", "--delta", "0.05", "--psi2", "20"], ["--e, --delta and --psi2"]),
+])
+def test_problems_of_typed_values_name_the_flags(argv, flags):
+    with pytest.raises(TableError) as info:
+        run(argv)
+    text = str(info.value)
+    assert all(flag in text for flag in flags)
+    assert "n_star" not in text and "psi2_deg" not in text and "fourbar_velocity_ratio" not in text
 
 
 def test_no_solution_answer_in_russian(capsys):

@@ -35,10 +35,34 @@ def _parts(x: Value, shape: tuple[int, ...]) -> tuple[FloatArray, FloatArray, Fl
     return value, first, second
 
 
+#: Width of a diagram, inches: the text width of an A4 page, so that it prints at its size.
+WIDTH = 7.0
+#: Type size of legends and axis labels, points (≥ 9 on paper, the figure not scaled down).
+TYPE_PT = 9.0
+
+
 def _new_figure(size: tuple[float, float]) -> Figure:
     from matplotlib.figure import Figure
 
     return Figure(figsize=size, layout="constrained")
+
+
+def _legend_outside(ax: Axes) -> None:
+    """The legend to the right of the axes, off the curves."""
+    ax.legend(fontsize=TYPE_PT, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
+              frameon=False)
+
+
+def _styles(curves: dict[str, np.ndarray], lang: str) -> dict[str, tuple[str, str]]:
+    """Legend label and line style of each curve: a curve that coincides with an earlier one
+    is dashed and its label says so ("same curve as …"), instead of vanishing under it."""
+    from assur.plot.mechanism import coinciding
+
+    span = max((float(np.nanmax(np.abs(v))) for v in curves.values() if np.isfinite(v).any()),
+               default=1.0)
+    same = coinciding(curves, 1e-6 * max(span, 1.0))
+    return {name: (render("plot.same_curve", lang, label=name, other=same[name]), "--")
+            if name in same else (name, "-") for name in curves}
 
 
 def _axis(model: KinematicModel, q: np.ndarray, lang: str) -> tuple[np.ndarray, str]:
@@ -73,11 +97,13 @@ def existence_figure(report: ExistenceReport, model: KinematicModel, *,
     >>> fig.axes[0].get_title()
     'Existence of the groups over the cycle'
     """
-    fig = _new_figure((8.0, 3.8))
+    fig = _new_figure((WIDTH, 3.4))
     ax = fig.add_subplot()
     x, xlabel = _axis(model, report.q, lang)
-    for group in report.groups:
-        line = ax.plot(x, group.margin, lw=1.5, label=f"{group.label} {group.name}")[0]
+    margins = {model.group(group.label).title(lang): group.margin for group in report.groups}
+    styles = _styles(margins, lang)
+    for group, (label, ls) in zip(report.groups, styles.values(), strict=True):
+        line = ax.plot(x, group.margin, lw=1.5, label=label, ls=ls)[0]
         if np.isfinite(group.delta) and group.delta > 0:
             ax.axhline(group.delta, color=line.get_color(), lw=0.7, ls=":")
         if group.fails.any():
@@ -93,14 +119,14 @@ def existence_figure(report: ExistenceReport, model: KinematicModel, *,
     if model.drive == "crank":
         ax.set_xticks(np.arange(0, 361, 45))
         ax.set_xlim(0, 360)
-    ax.legend(fontsize=7.5, ncol=2, loc="best")
+    _legend_outside(ax)
     return fig
 
 
 def _analog_axes(fig: Figure, xlabel: str, ylabels: tuple[str, str, str]) -> list[Axes]:
     axes = fig.subplots(3, 1, sharex=True)
     for ax, label in zip(axes, ylabels):
-        ax.set_ylabel(label, fontsize=9)
+        ax.set_ylabel(label, fontsize=TYPE_PT)
         ax.grid(alpha=0.3)
     axes[-1].set_xlabel(xlabel)
     return list(axes)
@@ -108,18 +134,11 @@ def _analog_axes(fig: Figure, xlabel: str, ylabels: tuple[str, str, str]) -> lis
 
 def _draw_analogs(axes: list[Axes], x: np.ndarray,
                   curves: dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]], lang: str) -> None:
-    """Value and analogs of each curve; a curve that coincides with an earlier one is dashed
-    and its legend entry says so, instead of vanishing under it."""
-    from assur.plot.mechanism import coinciding
-
+    """Value and analogs of each curve, styled by :func:`_styles`."""
     first = {name: parts[0] for name, parts in curves.items()}
-    span = max((float(np.nanmax(np.abs(v))) for v in first.values() if np.isfinite(v).any()),
-               default=1.0)
-    same = coinciding(first, 1e-6 * max(span, 1.0))
+    styles = _styles(first, lang)
     for name, parts in curves.items():
-        ls = "--" if name in same else "-"
-        label = (render("plot.same_curve", lang, label=name, other=same[name]) if name in same
-                 else name)
+        label, ls = styles[name]
         axes[0].plot(x, first[name], label=label, lw=1.3, ls=ls)
         axes[1].plot(x, np.broadcast_to(parts[1], x.shape), lw=1.3, ls=ls)
         axes[2].plot(x, np.broadcast_to(parts[2], x.shape), lw=1.3, ls=ls)
@@ -168,12 +187,12 @@ def kinematic_figures(motion: Motion, *, lang: str = "en") -> list[tuple[str, Fi
         if np.isfinite(psi).any() and np.nanmax(psi) - np.nanmin(psi) > 1e-9:
             rotating.append((link, psi, first, second))
     if rotating:
-        fig = _new_figure((8.0, 7.0))
+        fig = _new_figure((WIDTH, 7.0))
         axes = _analog_axes(fig, xlabel, ("ψ, °", "dψ/dφ", "d²ψ/dφ²"))
         labels = {render("plot.link", lang, link=link): (np.degrees(psi), first, second)
                   for link, psi, first, second in rotating}
         _draw_analogs(axes, x, labels, lang)
-        axes[0].legend(fontsize=7.5, ncol=3)
+        _legend_outside(axes[0])
         title = render("plot.link_angles", lang)
         axes[0].set_title(title, fontsize=11)
         figures.append((f"{title}: {analogs}", fig))
@@ -183,30 +202,32 @@ def kinematic_figures(motion: Motion, *, lang: str = "en") -> list[tuple[str, Fi
         if np.isfinite(value).any() and np.nanmax(value) - np.nanmin(value) > 1e-9:
             sliders.append((pid, state.slider, value, first, second))
     if sliders:
-        fig = _new_figure((8.0, 7.0))
+        fig = _new_figure((WIDTH, 7.0))
         axes = _analog_axes(fig, xlabel, (render("plot.s_mm", lang), render("plot.ds_mm", lang),
                                           render("plot.d2s_mm", lang)))
         labels = {render("plot.slider_of_pair", lang, pair=pid, link=slider): (v, d1, d2)
                   for pid, slider, v, d1, d2 in sliders}
         _draw_analogs(axes, x, labels, lang)
-        axes[0].legend(fontsize=7.5, ncol=2)
+        _legend_outside(axes[0])
         title = render("plot.slider_displacements", lang)
         axes[0].set_title(title, fontsize=11)
         figures.append((f"{title}: {analogs}", fig))
     angles = pressure_angles(motion)
     if angles:
-        fig = _new_figure((8.0, 3.2))
+        fig = _new_figure((WIDTH, 3.2))
         ax = fig.add_subplot()
-        for item in angles:
-            ax.plot(x, np.degrees(np.broadcast_to(item.alpha, x.shape)), lw=1.4,
-                    label=render("plot.pressure_angle_of_pair", lang, group=item.label,
-                                 pair=item.pair, maximum=math.degrees(item.maximum)))
+        alphas = {render("plot.pressure_angle_of_pair", lang, group=item.label, pair=item.pair,
+                         maximum=math.degrees(item.maximum)):
+                  np.degrees(np.broadcast_to(item.alpha, x.shape)) for item in angles}
+        for (label, ls), alpha in zip(_styles(alphas, lang).values(), alphas.values(),
+                                      strict=True):
+            ax.plot(x, alpha, lw=1.4, label=label, ls=ls)
         ax.set_xlabel(xlabel)
         title = render("plot.pressure_angles", lang)
         ax.set_ylabel(render("plot.pressure_angle_deg", lang))
         ax.set_title(title, fontsize=11)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7.5)
+        _legend_outside(ax)
         figures.append((title, fig))
     if model.drive == "crank":
         for _caption, fig in figures:
@@ -241,7 +262,7 @@ def mechanism_figure(motion: Motion, *, lang: str = "en", positions: int = 4) ->
     >>> from assur.kinematics.analysis import analyse
     >>> fig = mechanism_figure(analyse(model, points=36), positions=2)
     >>> [ax.get_title().splitlines()[1] for ax in fig.axes]
-    ['crank angle φ = 0.0° from the sketched', 'crank angle φ = 180.0° from the sketched']
+    ['crank angle φ = 0.0° from the sketched', 'crank angle φ = 180.0° from the']
     """
     from assur.plot.mechanism import draw_mechanism, working_space
 
@@ -250,11 +271,14 @@ def mechanism_figure(motion: Motion, *, lang: str = "en", positions: int = 4) ->
     rows = math.ceil(positions / 2)
     x0, x1, y0, y1 = working_space(motion)
     height = min(max(3.9 * (y1 - y0) / max(x1 - x0, 1e-12), 1.8), 5.5) + 1.4  # plot + title
-    fig = _new_figure((8.0, height * rows))
+    fig = _new_figure((WIDTH, height * rows))
     axes = fig.subplots(rows, 2, squeeze=False).ravel()
     for ax, index in zip(axes, picks):
-        draw_mechanism(motion, index, ax, lang=lang, wrap=46)
-        ax.title.set_fontsize(8.5)
+        draw_mechanism(motion, index, ax, lang=lang, wrap=38)
+        ax.title.set_fontsize(TYPE_PT)
+        ax.tick_params(labelsize=TYPE_PT)
+        ax.xaxis.label.set_fontsize(TYPE_PT)
+        ax.yaxis.label.set_fontsize(TYPE_PT)
         ax.set_aspect("equal")
         ax.autoscale_view()
     for ax in axes[len(picks):]:

@@ -68,9 +68,9 @@ def forces_sections(found: Assessment, lang: str, points: int) -> list[Section]:
               render("force.report.max_r_column", lang), at,
               render("force.report.max_m_column", lang), at)
     rows = [(peak.pair, f"{peak.links[0]} → {peak.links[1]}", _fixed(peak.force.value),
-             _where(result, peak.force.at),
+             _where(result, peak.force.at, lang),
              None if peak.moment is None else _fixed(peak.moment.value, 4),
-             None if peak.moment is None else _where(result, peak.moment.at))
+             None if peak.moment is None else _where(result, peak.moment.at, lang))
             for peak in summary.pairs]
     fig = Figure(figsize=(7.0, 5.6))
     torque, pairs = fig.subplots(2, 1, sharex=True)
@@ -89,5 +89,5 @@ def _fixed(value: float, digits: int = 3) -> str:
     return f"{value:.{digits}f}" if math.isfinite(value) else "–"
 
 
-def _where(result: Analysis, at: float) -> str:
-    return position_text(result, at) if math.isfinite(at) else "–"
+def _where(result: Analysis, at: float, lang: str) -> str:
+    return position_text(result, at, lang) if math.isfinite(at) else "–"

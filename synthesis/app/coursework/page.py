@@ -40,6 +40,10 @@ td.num { text-align: right; font-variant-numeric: tabular-nums; }
            background: var(--band); padding: .8rem 1rem; border-radius: 6px; }
 .summary dt { font-weight: 600; }
 .summary dd { margin: 0; }
+.student { display: grid; grid-template-columns: max-content minmax(12rem, 1fr); gap: .3rem 1rem;
+           margin: 0 0 1rem; max-width: 30rem; }
+.student dt { font-weight: 600; }
+.student dd { margin: 0; border-bottom: 1px solid var(--ink); min-height: 1.3em; }
 .formula { font-size: 1.15rem; font-family: "DejaVu Sans", sans-serif; padding: .4rem .7rem;
            background: var(--band); display: inline-block; border-radius: 4px; }
 .ok { color: var(--ok); font-weight: 600; }
@@ -64,7 +68,7 @@ body.play-only header, body.play-only section:not(#play) { display: none; }
   h3 { break-after: avoid; page-break-after: avoid; }
   figure, table, .summary, .formula, li { break-inside: avoid; page-break-inside: avoid; }
   figure { margin: .4rem 0 .6rem; }
-  figure img { max-height: 11.5cm; width: auto; max-width: 100%; border: none; }
+  figure img { max-height: 24cm; width: auto; max-width: 100%; border: none; }
   figure.small img { max-height: 8.5cm; }
   section { break-inside: auto; }
   table { font-size: 8.5pt; }
@@ -86,16 +90,18 @@ def esc(value: Any) -> str:
 
 def table(header: Sequence[str], rows: Iterable[Sequence[Any]], *, numeric: Sequence[int] = (),
           table_id: str | None = None) -> str:
-    """An HTML table; cells are escaped, columns listed in ``numeric`` are right-aligned."""
+    """An HTML table; cells are escaped, columns listed in ``numeric`` are right-aligned; a
+    header of empty cells is left out (a table of labelled values)."""
     ident = f' id="{esc(table_id)}"' if table_id else ""
-    head = "".join(f"<th>{esc(h)}</th>" for h in header)
+    head = "".join(f"<th>{esc(h)}</th>" for h in header) if any(header) else ""
     body = []
     for row in rows:
         cells = "".join(
             f'<td class="num">{esc(c)}</td>' if k in numeric else f"<td>{esc(c)}</td>"
             for k, c in enumerate(row))
         body.append(f"<tr>{cells}</tr>")
-    return f"<table{ident}><thead><tr>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>"
+    thead = f"<thead><tr>{head}</tr></thead>" if head else ""
+    return f"<table{ident}>{thead}<tbody>{''.join(body)}</tbody></table>"
 
 
 def figure_html(data: bytes, fmt: str, caption: str, *, ident: str) -> str:

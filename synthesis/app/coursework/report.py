@@ -39,6 +39,7 @@ from synthesis.app.assess import assess, read_table
 from synthesis.app.check_report import verdict_words
 from synthesis.app.coursework.forces_section import forces_sections
 from synthesis.app.coursework.page import Section, esc, figure, figure_html, page, table
+from synthesis.app.coursework.student import Student, read_student
 
 if TYPE_CHECKING:  # pragma: no cover
     from collections.abc import Callable
@@ -72,6 +73,8 @@ class CourseworkReport:
         ``mismatches``, ``existence`` (``whole cycle``, ``fails``, ``not available``), and
         for a synthesis problem ``feasible`` and ``Q``.
     sections : list of Section
+    student : Student
+        The title block: who hands the report in, group, variant, date.
     out : Path or None
         Where the page was written (set by :func:`write_report`).
     """
@@ -82,6 +85,7 @@ class CourseworkReport:
     summary: dict[str, str] = field(default_factory=dict)
     facts: dict[str, Any] = field(default_factory=dict)
     sections: list[Section] = field(default_factory=list)
+    student: Student = field(default_factory=Student)
     out: Path | None = None
 
 
@@ -91,7 +95,8 @@ def _cap(text: str) -> str:
 
 
 def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int = POINTS,
-                 budget: int | None = None) -> CourseworkReport:
+                 budget: int | None = None, student: dict[str, str | None] | None = None
+                 ) -> CourseworkReport:
     """Analyse a table and collect the report.
 
     Parameters
@@ -105,6 +110,9 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
     budget : int, optional
         For a synthesis problem: log2 of the search trials (default: the problem's own, at
         most :data:`BUDGET`).
+    student : dict, optional
+        Title-block values typed as options (``name``, ``group``, ``variant``, ``date``),
+        each replacing the one of the table's ``student:`` section.
 
     Returns
     -------
@@ -120,6 +128,7 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
     synthesis_sections: list[Section] = []
     report = CourseworkReport(title="", source=str(path), lang=lang)
     table = read_table(path)
+    report.student = read_student(path).merged(**(student or {}))
     if not isinstance(table, Chain):
         table, synthesis_sections = _synthesis(table, lang, budget, report)
     found = assess(table, points=points)
@@ -154,7 +163,8 @@ def _mobility(analysis: StructuralAnalysis) -> str:
 
 def _data_section(chain: Chain, lang: str) -> Section:
     frame = render("term.frame", lang)
-    links = [(link, chain.names.get(link, frame if link == chain.frame else ""),
+    names = chain.link_names(lang)
+    links = [(link, names.get(link, frame if link == chain.frame else ""),
               len(chain.pairs_of(link))) for link in chain.links]
     pairs = [(pair.origin if pair.origin is not None else pair.id,
               render("term.revolute", lang) if pair.type is PairType.R
@@ -231,7 +241,8 @@ def _identification_section(found: Assessment, lang: str, report: CourseworkRepo
     are any) and the verdict on the table given in the file."""
     header = ("L", "seq", "i−1", "j−1", "i", "j", "i+1", "j+1", "variant", "out_code")
     if found.table is None:
-        body = f'<p class="bad">{esc(found.table_error)}</p>'
+        why = found.table_error.text(lang) if found.table_error is not None else ""
+        body = f'<p class="note" id="no-dgtu-table">{esc(why)}</p>'
     else:
         body = table(header, ([_cell(v) for v in r.to_dict().values()] for r in found.table),
                      table_id="identification")
@@ -240,9 +251,8 @@ def _identification_section(found: Assessment, lang: str, report: CourseworkRepo
     report.facts["identification"] = found.identification
     title = _cap(render("term.identification", lang))
     if found.mismatches is None:
-        summary[verdict_key] = render("term.none_given", lang)
-        body += (f'<p class="note" id="student-table">{esc(verdict_key)}: '
-                 f'{esc(render("term.none_given", lang))}</p>')
+        body += (f'<p class="note" id="student-table">'
+                 f'{esc(render("report.no_student_table", lang))}</p>')
         return Section("identification", title, body)
     problems = [f"{m.label} {m.field}: {text}" for m, text in found.mismatch_texts(lang)]
     problems += [v.message.text(lang) for v in found.variants]
@@ -331,10 +341,10 @@ def _existence_section(existence: ExistenceReport, model: KinematicModel, lang: 
              else f"{i.start:.3f}…{i.end:.3f}") + f" ({reason_text(i.reason, lang)})"
             for i in group.intervals) or "–"
         condition = CONDITIONS.get(group.kind, "").split("  (")[0]  # the inequality alone
-        rows.append((group.name, condition, group.delta, group.min_margin,
+        rows.append((model.group(group.label).title(lang), condition, group.delta, group.min_margin,
                      _verdict(group.assembles, lang), where))
     header = (render("term.group", lang), render("term.condition", lang), "δ",
-              f"min {render('term.margin', lang)}", render("term.verdict", lang),
+              render("term.min_margin", lang), render("term.verdict", lang),
               render("term.fails", lang))
     verdict = _verdict(existence.all_exist, lang)
     report.summary[render("term.existence", lang)] = verdict
@@ -403,12 +413,17 @@ def render_html(report: CourseworkReport) -> str:
     """The report as one self-contained HTML page."""
     items = "".join(f"<dt>{esc(k)}</dt><dd>{esc(v)}</dd>" for k, v in report.summary.items())
     summary = f'<dl class="summary" id="summary">{items}</dl>'
-    return page(report.title, report.source, summary, report.sections, report.lang)
+    block = "".join(f"<dt>{esc(label)}</dt>"
+                    + (f"<dd>{esc(value)}</dd>" if value else '<dd class="blank"></dd>')
+                    for label, value in report.student.rows(report.lang))
+    title_block = f'<dl class="student" id="student">{block}</dl>'
+    return page(report.title, report.source, title_block + summary, report.sections,
+                report.lang)
 
 
 def write_report(path: str | os.PathLike[str], out: str | os.PathLike[str] | None = None, *,
-                 lang: str = "en", points: int = POINTS, budget: int | None = None
-                 ) -> CourseworkReport:
+                 lang: str = "en", points: int = POINTS, budget: int | None = None,
+                 student: dict[str, str | None] | None = None) -> CourseworkReport:
     """Build the report of a table and write it as HTML (atomically).
 
     Parameters
@@ -417,7 +432,7 @@ def write_report(path: str | os.PathLike[str], out: str | os.PathLike[str] | Non
         The table.
     out : path-like, optional
         The HTML file; default: the table's name with ``.html`` next to it.
-    lang, points, budget
+    lang, points, budget, student
         As for :func:`build_report`.
 
     Returns
@@ -426,7 +441,7 @@ def write_report(path: str | os.PathLike[str], out: str | os.PathLike[str] | Non
         With :attr:`~CourseworkReport.out` set to the written page.
     """
     target = Path(out) if out is not None else Path(path).with_suffix(".html")
-    report = build_report(path, lang=lang, points=points, budget=budget)
+    report = build_report(path, lang=lang, points=points, budget=budget, student=student)
     atomic_write_text(target, render_html(report))
     report.out = target
     return report

@@ -5,9 +5,10 @@ from __future__ import annotations
 
 import argparse
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any
 
+from assur.errors import Issue, TableError
 from assur.io.reader import TableReader
 from assur.text import DEFAULT, Message, render
 from synthesis.app.outputs import outputs_of
@@ -34,6 +35,12 @@ _FIELDS = (
     ("--psi1", "psi1_deg", Message("cli.case.fourbar.psi1")),
     ("--psi2", "psi2_deg", Message("cli.case.fourbar.psi2")),
 )
+_FLAG = {dest: flag for flag, dest, _ in _FIELDS}
+_ZONE = ("e", "delta", "psi2_deg")  # two of them are given, the third is found
+
+#: The published example (the source's own form: e and δ given), run when no table is given;
+#: an option overrides its value, and e then δ fill the zone until two of ``_ZONE`` are given.
+EXAMPLE: dict[str, float] = {"e": 0.3, "n_star": 0.5, "delta": 0.05, "psi1_deg": 20.0}
 
 
 def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
@@ -54,14 +61,20 @@ def _open_interval(low: float, high: float, what: str) -> Callable[[float], Mess
     return rule
 
 
-def read_request(data: dict[str, Any], source: str) -> tuple[Request, str]:
+def read_request(data: dict[str, Any], source: str,
+                 names: Mapping[str, str] | None = None) -> tuple[Request, str]:
     """A request (and the method) from table data; every bad value is reported at once.
+
+    ``names`` maps a field to the word a message uses for it (the command-line flag when the
+    value came from the command line); by default the field's own name.
 
     Raises
     ------
     TableError
         Naming the file, table and field of each problem.
     """
+    named = {key: (names or {}).get(key, key) for key in _ZONE}
+    zone = {"e": named["e"], "delta": named["delta"], "psi2": named["psi2_deg"]}
     reader = TableReader.from_data({TABLE: data}, source=source)
     root = reader.root(allowed=[TABLE])
     node = root.child(TABLE, allowed=[dest for _, dest, _ in _FIELDS] + ["method"])
@@ -78,13 +91,13 @@ def read_request(data: dict[str, Any], source: str) -> tuple[Request, str]:
             values[dest] = node.get(dest, kind="number", check=rules[dest], required=needed,
                                     default=None, nullable=not needed)
         method = node.choice("method", METHODS, required=False, default="modern")
-        optional = [values[k] for k in ("e", "delta", "psi2_deg")]
-        given = [k for k, v in zip(("e", "delta", "psi2_deg"), optional)
-                 if isinstance(v, (int, float))]
+        optional = [values[k] for k in _ZONE]
+        given = [named[k] for k, v in zip(_ZONE, optional) if isinstance(v, (int, float))]
         if len(given) == 3:
-            reader.problem(TABLE, "case.fourbar.overdetermined")
+            reader.problem(TABLE, "case.fourbar.overdetermined", **zone)
         elif len(given) < 2 and all(v is None or isinstance(v, (int, float)) for v in optional):
-            reader.problem(TABLE, "case.fourbar.underdetermined", given=", ".join(given) or "—")
+            reader.problem(TABLE, "case.fourbar.underdetermined", given=", ".join(given) or "—",
+                           **zone)
     reader.raise_if_any()
 
     def angle(key: str) -> float | None:
@@ -96,27 +109,45 @@ def read_request(data: dict[str, Any], source: str) -> tuple[Request, str]:
 
 
 def _gather(args: argparse.Namespace) -> tuple[dict[str, Any], str]:
-    data: dict[str, Any] = {}
-    source = render("cli.case.source.command_line", args.lang)
+    """The request's data: the table (or the published example) overridden by the options."""
+    typed = {dest: getattr(args, dest) for _, dest, _ in _FIELDS
+             if getattr(args, dest) is not None}
     if args.table:
         reader = TableReader.from_path(args.table, kind="fourbar_velocity_ratio")
         top = reader.root(allowed=[TABLE])
         table = top.get(TABLE, kind="mapping")
         reader.raise_if_any()
-        data.update(table)
+        data: dict[str, Any] = {**table, **typed}
         source = args.table
-    for _, dest, _ in _FIELDS:
-        if getattr(args, dest) is not None:
-            data[dest] = getattr(args, dest)
+    else:
+        data = {key: value for key, value in EXAMPLE.items() if key not in _ZONE} | typed
+        for key in ("e", "delta"):
+            if sum(k in data for k in _ZONE) < 2:
+                data[key] = EXAMPLE[key]
+        source = render("cli.case.source.command_line", args.lang)
     if args.method is not None:
         data["method"] = args.method
     return data, source
 
 
+def _as_flags(error: TableError) -> TableError:
+    """The problems of values typed on the command line, each located at its flag."""
+    where = {f"{TABLE} '{dest}'": flag for dest, flag in _FLAG.items()} | {
+        f"{TABLE} 'method'": "--method", TABLE: ""}
+    return TableError(error.source, [Issue(where.get(issue.location, issue.location),
+                                           issue.message) for issue in error.issues])
+
+
 def run(args: argparse.Namespace) -> int:
     """Run the case; 0 when a design is found and confirmed, 1 when there is none."""
     data, source = _gather(args)
-    request, method = read_request(data, source)
+    if args.table:
+        request, method = read_request(data, source)
+    else:
+        try:
+            request, method = read_request(data, source, names=_FLAG)
+        except TableError as error:
+            raise _as_flags(error) from None
     try:
         study = run_study(request, method)
     except NoSolution as exc:

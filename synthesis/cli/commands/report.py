@@ -3,10 +3,13 @@
 from __future__ import annotations
 
 import argparse
+import datetime
 import json
 from pathlib import Path
 
-from assur.text import DEFAULT, languages, render
+from assur.errors import Issue, TableError
+from assur.io.reader import describe
+from assur.text import DEFAULT, Message, languages, render
 from synthesis.app.outputs import outputs_of
 from synthesis.app.progress import following_search
 from synthesis.cli.options import check_at_least, check_search_options
@@ -30,6 +33,24 @@ def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
     parser.add_argument("--budget", type=int, default=None, metavar="M",
                         help=render("cli.report.budget", lang))
     parser.add_argument("--quiet", action="store_true", help=render("cli.quiet", lang))
+    parser.add_argument("--student", metavar="NAME", help=render("cli.report.student", lang))
+    parser.add_argument("--group", metavar="GROUP", help=render("cli.report.group", lang))
+    parser.add_argument("--variant", metavar="N", help=render("cli.report.variant", lang))
+    parser.add_argument("--date", metavar="YYYY-MM-DD", help=render("cli.report.date", lang))
+
+
+def _typed_student(args: argparse.Namespace) -> dict[str, str | None]:
+    """The title-block values typed as options; a date that is not one is refused."""
+    if args.date is not None:
+        try:
+            datetime.date.fromisoformat(args.date)
+        except ValueError:
+            raise TableError(render("cli.case.source.command_line", args.lang), [Issue(
+                "--date", Message("table.rule_broken", {
+                    "rule": Message("rule.iso_date"), "found": describe(args.date)}))]
+                             ) from None
+    return {"name": args.student, "group": args.group, "variant": args.variant,
+            "date": args.date}
 
 
 def run(args: argparse.Namespace) -> int:
@@ -40,7 +61,7 @@ def run(args: argparse.Namespace) -> int:
     check_search_options(args, {"budget": "budget_log2"})
     with following_search(quiet=args.quiet, lang=args.lang):
         report = build_report(args.table, lang=args.lang, points=args.points,
-                              budget=args.budget)
+                              budget=args.budget, student=_typed_student(args))
     out = Path(args.out) if args.out else Path(args.table).with_suffix(".html")
     outputs = outputs_of(args)
     outputs.write_text(out, render_html(report))

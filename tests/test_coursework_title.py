@@ -1,0 +1,76 @@
+"""The report a student hands in: the title block (student, group, variant, date) from the
+options or the table's ``student:`` section, and no error style for a valid mechanism."""
+
+from __future__ import annotations
+
+import datetime
+import re
+from pathlib import Path
+
+import pytest
+
+from assur import TableError
+from synthesis.app.coursework import build_report, render_html
+from synthesis.app.coursework.student import read_student
+from synthesis.cli import main
+
+TABLES = Path(__file__).resolve().parent.parent / "input_tables"
+
+
+def _title_block(page: str) -> dict[str, str]:
+    block = re.search(r'<dl class="student" id="student">(.*?)</dl>', page).group(1)
+    return dict(re.findall(r"<dt>(.*?)</dt><dd[^>]*>(.*?)</dd>", block))
+
+
+def _with_student(tmp_path: Path, section: str) -> Path:
+    table = tmp_path / "four_bar.yaml"
+    table.write_text((TABLES / "four_bar.yaml").read_text(encoding="utf-8") + section,
+                     encoding="utf-8")
+    return table
+
+
+def test_title_block_from_the_table_and_the_options(tmp_path, capsys):
+    table = _with_student(tmp_path, "student:\n  name: Ivanova A. A.\n  group: MT-21\n"
+                                    "  variant: 7\n")
+    out = tmp_path / "r.html"
+    assert main(["report", str(table), "--points", "12", "--out", str(out), "--quiet",
+                 "--variant", "12", "--date", "2026-05-12"]) == 0
+    shown = _title_block(out.read_text(encoding="utf-8"))
+    assert shown == {"Student": "Ivanova A. A.", "Group": "MT-21", "Variant": "12",
+                     "Date": "2026-05-12"}
+    # the chain itself is read as before: check and batch accept the section
+    assert main(["check", str(table)]) == 0
+
+
+def test_title_block_blank_lines_and_today_by_default(tmp_path):
+    report = build_report(TABLES / "four_bar.yaml", points=12, lang="ru")
+    shown = _title_block(render_html(report))
+    assert shown == {"Студент": "", "Группа": "", "Вариант": "",
+                     "Дата": datetime.date.today().isoformat()}
+
+
+@pytest.mark.parametrize(("section", "field"), [
+    ("student: {name: [Ivanova]}\n", "student 'name'"),
+    ("student: {date: 12.05.2026}\n", "student 'date'"),
+    ("student: {nmae: Ivanova}\n", "did you mean 'name'"),
+])
+def test_a_bad_student_section_is_reported_by_field(tmp_path, section, field):
+    with pytest.raises(TableError) as info:
+        read_student(_with_student(tmp_path, section))
+    assert field in str(info.value)
+
+
+def test_a_date_option_that_is_not_a_date_exits_2(tmp_path, capsys):
+    assert main(["report", str(TABLES / "four_bar.yaml"), "--out", str(tmp_path / "r.html"),
+                 "--date", "12.05.2026"]) == 2
+    assert "--date" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("name", ["six_bar_triad.yaml", "class_iv_group.yaml"])
+@pytest.mark.parametrize("lang", ["en", "ru"])
+def test_a_valid_higher_group_mechanism_has_no_error_style(name, lang):
+    page = render_html(build_report(TABLES / name, points=12, lang=lang))
+    section = re.search(r'<section id="identification">(.*?)</section>', page).group(1)
+    assert 'class="bad"' not in section
+    assert '<p class="note" id="no-dgtu-table">' in section
+    assert "<th></th>" not in page  # no empty header row anywhere

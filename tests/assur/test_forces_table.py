@@ -90,11 +90,11 @@ BAD = {
 PROBLEMS = [
     ("masses.0", "force.link.not_moving"),
     ("masses.2", None),                          # unknown key 'mas'; did you mean 'mass'?
-    ("masses.3 'mass'", "force.negative"),
-    ("masses.3 'inertia'", "force.negative"),
+    ("masses.3 'mass'", "table.rule_broken"),
+    ("masses.3 'inertia'", "table.rule_broken"),
     ("masses.4", "force.mass.centre_missing"),
     ("masses.5", "force.mass.expected"),
-    ("masses.6 'centre'", "force.vector.expected"),
+    ("masses.6 'centre'[1]", "table.wrong_kind"),
     ("loads[0] 'link'", "force.link.not_moving"),
     ("loads[1]", "force.load.force_or_torque"),
     ("loads[2]", "force.load.force_or_torque"),
@@ -105,7 +105,7 @@ PROBLEMS = [
     ("loads[7] 'torque' 'phi'", "force.table.outside"),
     ("loads[8] 'torque' 'phi'", "force.table.ends"),
     ("loads[9] 'torque' 'phi'", "force.table.too_short"),
-    ("loads[10] 'force' 'x'", "force.table.numbers"),
+    ("loads[10] 'force' 'x'[1]", "table.wrong_kind"),
     ("loads[11] 'torque'", "force.table.expected"),
     ("'gravity'", "force.vector.expected"),
 ]
@@ -127,7 +127,7 @@ def test_every_problem_reads_as_a_sentence(lang: str) -> None:
         text = issue.text(lang)
         assert "force." not in text and "(found=" not in text, text
     assert "did you mean 'mass'" in issues[1].text("en")
-    assert issues[2].text("en") == "masses.3 'mass': must be zero or positive; found -0.5"
+    assert issues[2].text("en") == "masses.3 'mass': must be positive and at most 1e+06; found -0.5"
 
 
 def test_the_chain_reader_carries_the_sections_and_lists_their_problems_with_the_rest() -> None:
@@ -145,5 +145,5 @@ def test_the_chain_reader_carries_the_sections_and_lists_their_problems_with_the
         assur.chain_from_dict(table, "t.yaml")
     text = caught.value.text("en")
     assert "unknown key 'gravty'; did you mean 'gravity'?" in text
-    assert "masses.2 'inertia': must be zero or positive; found -1" in text
+    assert "masses.2 'inertia': must be zero or positive and at most 1e+06; found -1" in text
     assert "mechanism.pairs[0] (id 'A') 'type'" in text

@@ -351,7 +351,10 @@ class _Search:
             jac: FloatArray = ((r - r0[None, :]) / step[:, None]).T
             return jac
 
-        optimize.least_squares(residuals, x0, jac=jacobian, bounds=(lo, hi + ~varied * 1e-12),
+        # a fixed parameter gets the next float above it as its upper bound (lower < upper
+        # for least squares; 1e-12 added to 2e6 would leave it equal)
+        optimize.least_squares(residuals, x0, jac=jacobian,
+                               bounds=(lo, np.where(varied, hi, np.nextafter(hi, np.inf))),
                                x_scale=np.where(varied, span, 1.0), method="trf",
                                max_nfev=self.settings.refine_evaluations, xtol=1e-15,
                                ftol=1e-15, gtol=1e-15)

@@ -139,6 +139,10 @@ PROBLEM_CASES: dict[str, tuple[Callable[[dict[str, Any]], None], str]] = {
         "masses", {True: {"mass": 1, "centre": "middle"}}), "forces.masses.True"),
     "torque 1e300": (lambda f: f["loads"][0].__setitem__("torque", 1e300),
                      "forces.loads[0] 'torque'"),
+    # the longest link of the initial design is l_i = 110 mm: a point in a link's frame may
+    # lie within x, y = −100·110√2 … 110 + 100·110√2 ≈ −15556 … 15666 mm
+    "centre beyond the reach": (lambda f: f.__setitem__(
+        "masses", {2: {"mass": 1, "centre": {"l": 16000, "beta": 0}}}), "forces.masses.2 'centre'"),
 }
 
 

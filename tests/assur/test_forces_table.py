@@ -2,19 +2,23 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import pytest
 from force_tables import TABLES, load
 
 import assur
 import assur.io.reader
+from assur.errors import Issue
 from assur.forces import ForceData, Load, Mass, Tabulated, read_forces
 
 COURSE = assur.load_chain(TABLES / "course_11_link.yaml")
 BOOM = assur.load_chain(TABLES / "hydraulic_boom.yaml")
 
 
-def _read(sections: dict, chain: assur.Chain = COURSE) -> tuple[ForceData | None, list]:
+def _read(sections: dict[str, Any], chain: assur.Chain = COURSE
+          ) -> tuple[ForceData | None, list[Issue]]:
     reader = assur.io.reader.TableReader.from_data(sections, "t.yaml")
     return read_forces(reader.root(), chain), reader.issues
 
@@ -52,8 +56,10 @@ def test_without_masses_and_loads_there_is_no_force_analysis() -> None:
 def test_an_actuator_table_runs_over_the_length() -> None:
     data, issues = _read({"loads": [{"link": 1, "torque": {"length": [300, 400],
                                                               "value": [0, 10]}}]}, BOOM)
-    assert issues == []
-    assert data.loads[0].torque.at(np.array([250.0, 350.0, 450.0]), periodic=False).tolist() \
+    assert issues == [] and data is not None
+    torque = data.loads[0].torque
+    assert isinstance(torque, Tabulated)
+    assert torque.at(np.array([250.0, 350.0, 450.0]), periodic=False).tolist() \
         == [0.0, 5.0, 10.0]
     _, issues = _read({"loads": [{"link": 1, "torque": {"phi": [0, 360], "value": [0, 0]}}]},
                       BOOM)

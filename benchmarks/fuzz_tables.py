@@ -6,12 +6,24 @@ a value replaced (NaN, ±inf, 1e308, 5e-324, null, a list, a mapping, a decimal 
 Cyrillic look-alike), a list item duplicated, a value nested thousands deep, or the bytes cut,
 flipped, duplicated, re-encoded in Windows-1251 or joined with random bytes.  The matching
 command runs in-process (``synthesis.cli.main.main``) with small budgets and short grids; any
-exit code other than 0, 1 or 2, any exception that escapes it, or a run longer than the
-per-mutant time limit is a failure.  Now and then a table goes to the wrong command.
+exit code other than 0, 1 or 2, any exception that escapes it, an exit 2 that does not name
+the mutated file, or a run longer than the hang limit is a failure.  Now and then a table
+goes to the wrong command.
+
+``--focus new`` mutates only the newer features: the force sections (``masses:``,
+``loads:``, ``gravity:``) and a problem's ``forces:``, the higher-group tables (triads,
+class IV groups), and the options ``--omega``, ``--points``, ``--frames``, ``--at`` (and
+``--scheduler`` with ``--scheduler-options``) given odd values on an unchanged table.
+
+The hang limit is load-proof: at the start of every chunk of mutants the worker times a
+known run (:data:`BASELINE`, the shipped torque-limited problem, budget 2) and a mutant hangs
+when it runs longer than ``--hang-factor`` times that baseline (never less than
+:data:`MIN_LIMIT`): a machine loaded by other jobs slows the baseline as much as the mutant.
 
 Run (the counts by outcome are printed at the end; failures with their mutants are kept)::
 
     PYTHONPATH=. python benchmarks/fuzz_tables.py --mutants 10000 --workers 2
+    PYTHONPATH=. python benchmarks/fuzz_tables.py --mutants 2000 --focus new --seed 7
 
 The quick profile of the test suite (``tests/test_fuzz_tables.py``) runs the same engine.
 """
@@ -37,7 +49,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import yaml  # type: ignore[import-untyped]
+import yaml
 
 ROOT = Path(__file__).resolve().parent.parent
 TABLES = ROOT / "input_tables"
@@ -53,6 +65,26 @@ ODD_VALUES: tuple[Any, ...] = (
 
 #: Kinds whose solved tables take longer than the others: their time-limit factor.
 SLOW = {"fourbar_velocity_ratio": 5.0}
+#: Commands that do more than the baseline's kind of run: their time-limit factor (a report
+#: analyses, draws and searches the whole coursework).
+SLOW_COMMANDS = {"report": 5.0}
+#: The known run timed at the start of every chunk: the unit of the hang limit.
+BASELINE = ("problems/class1_fourbar_torque_limit.yaml", "problem")
+#: The hang limit is never less than this (seconds): a very fast baseline still leaves time
+#: for a mutant that imports a module on first use.
+MIN_LIMIT = 10.0
+#: The top-level sections of the newer features that ``--focus new`` mutates.
+NEW_SECTIONS = ("masses", "loads", "gravity", "forces", "general")
+#: Odd values of the command-line options ``--focus new`` gives.
+ODD_OPTIONS: dict[str, tuple[str, ...]] = {
+    "--omega": ("nan", "inf", "-inf", "1e300", "0", "-10", "ten", "1e-300", "5e-324", "10",
+                "1e9", "1e10", ""),
+    "--points": ("0", "1", "2", "-5", "100000000000", "100001", "1e3", "x", "12", "36"),
+    "--frames": ("0", "-1", "1", "2", "3601", "1e9", "nan", "x"),
+    "--at": ("inf", "-inf", "nan", "1e300", "-1e9", "720", "x", "45"),
+    "--scheduler": ("tls://127.0.0.1:1", "tcp://127.0.0.1:abc", "tcp://:::", "local:0",
+                    "local:100000", "local:-1", "ftp://x", "", "local:x", "tcp://127.0.0.1:1"),
+}
 
 
 @dataclass(frozen=True)
@@ -96,6 +128,43 @@ def command(kind: str, path: str, rng: random.Random) -> list[str]:
     return ["case", kind.replace("_", "-"), "--table", path, "--json", "--method", "modern"]
 
 
+def newer_tables() -> dict[str, str]:
+    """The shipped tables of the newer features: with force sections or a problem's
+    ``forces:``, and the higher-group tables (triads, class IV groups)."""
+    out = {}
+    for name, kind in shipped_tables().items():
+        text = (TABLES / name).read_text(encoding="utf-8")
+        higher = "triad" in name or Path(name).name.startswith("class_iv_")
+        forces = any(f"\n{key}:" in "\n" + text for key in ("masses", "loads", "forces"))
+        if higher or forces:
+            out[name] = kind
+    return out
+
+
+def option_command(kind: str, path: str, rng: random.Random, folder: Path,
+                   scheduler: bool) -> list[str] | None:
+    """A command on an unchanged table with one odd option value (None when ``kind`` takes
+    none of the options)."""
+    def odd(option: str) -> str:
+        return rng.choice(ODD_OPTIONS[option])
+
+    if kind == "chain":
+        return rng.choice([
+            ["analyze", path, "--points", odd("--points"), "--forces", "--omega", odd("--omega")],
+            ["analyze", path, "--points", "12", "--forces", "--json", "--omega", odd("--omega")],
+            ["analyze", path, "--points", "12", "--plot", str(folder / "fuzz.png"),
+             "--at", odd("--at")],
+            ["analyze", path, "--points", "12", "--animate", str(folder / "fuzz.gif"),
+             "--frames", odd("--frames")],
+            ["report", path, "--points", odd("--points"), "--budget", "2",
+             "--out", str(folder / "fuzz.html"), "--quiet"],
+        ])
+    if kind == "problem" and scheduler:
+        return ["synthesize", path, "--budget", "2", "--quiet", "--json", "--time-limit", "5",
+                "--scheduler", odd("--scheduler")]
+    return None
+
+
 # ------------------------------------------------------------------------------ mutations
 
 
@@ -127,8 +196,12 @@ def _odd_value(rng: random.Random, old: Any) -> Any:
     return rng.choice(ODD_VALUES)
 
 
-def _tree_mutation(rng: random.Random, tree: Any) -> tuple[str, Any]:
+def _tree_mutation(rng: random.Random, tree: Any,
+                   within: tuple[str, ...] = ()) -> tuple[str, Any]:
     paths = list(tree_paths(tree))
+    inside = [path for path in paths if path[0] in within]
+    if inside:
+        paths = inside
     if not paths:
         return "replace root", _odd_value(rng, tree)
     path = rng.choice(paths)
@@ -183,11 +256,13 @@ def _byte_mutation(rng: random.Random, data: bytes) -> tuple[str, bytes]:
         else data[:at] + b",27" + data[at:]
 
 
-def mutate(rng: random.Random, origin: str, data: bytes) -> Mutant:
-    """One mutant of a shipped table's bytes: a change of its parsed tree or of its bytes."""
-    if rng.random() < 0.65:
+def mutate(rng: random.Random, origin: str, data: bytes,
+           within: tuple[str, ...] = ()) -> Mutant:
+    """One mutant of a shipped table's bytes: a change of its parsed tree (of the sections
+    ``within`` when the table has them) or of its bytes."""
+    if rng.random() < (0.9 if within else 0.65):
         tree = yaml.safe_load(data)
-        operation, tree = _tree_mutation(rng, tree)
+        operation, tree = _tree_mutation(rng, tree, within)
         try:
             text = yaml.safe_dump(tree, allow_unicode=True, sort_keys=False)
         except RecursionError:  # pragma: no cover - the dumper's own limit
@@ -208,12 +283,15 @@ def _alarm(signum: int, frame: Any) -> None:
     raise Hang
 
 
-def run_command(argv: list[str], timeout: float) -> tuple[str, str]:
+def run_command(argv: list[str], timeout: float, named: str | None = None
+                ) -> tuple[str, str]:
     """Run ``assur ARGV`` in-process; returns (outcome, detail).
 
     The outcome is ``exit 0``/``exit 1``/``exit 2`` (allowed), ``exit N`` for another code,
-    ``traceback`` (the exception's traceback in the detail), ``hang``, or ``blames a file of
-    the program`` (a refusal naming one of the program's own files instead of the user's).
+    ``traceback`` (the exception's traceback in the detail), ``hang``, ``blames a file of
+    the program`` (a refusal naming one of the program's own files instead of the user's),
+    or ``exit 2 naming no file`` (a refusal that names neither ``named``, the mutated file,
+    nor an option: the user cannot tell what to fix).
     """
     from synthesis.cli.main import main
 
@@ -235,7 +313,31 @@ def run_command(argv: list[str], timeout: float) -> tuple[str, str]:
     text = out.getvalue()
     if code == 2 and any(str(ROOT / package) in text for package in ("assur", "synthesis")):
         return "blames a file of the program", text[-2000:]
+    if code == 2 and named is not None and not _names(text, named, argv):
+        return "exit 2 naming no file", text[-2000:]
     return f"exit {code}", text[-2000:]
+
+
+def _names(text: str, named: str, argv: list[str]) -> bool:
+    """Whether a refusal names the file (or a file it names, such as a problem's mechanism
+    table, a path given in an option) or one of the options given."""
+    words = [named, Path(named).name, *(a for a in argv[1:] if a.startswith("--")),
+             *(a for a in argv if "/" in a)]
+    return any(word and word in text for word in words) or "usage:" in text
+
+
+def baseline(folder: Path) -> float:
+    """Seconds of the known run :data:`BASELINE` on this machine, now (the unit of the hang
+    limit; timed again at the start of every chunk, so that it follows the machine's load)."""
+    name, kind = BASELINE
+    start = time.perf_counter()
+    run_command(command(kind, str(folder / name), random.Random(0)), timeout=3600.0)
+    return time.perf_counter() - start
+
+
+def hang_limit(folder: Path, factor: float) -> float:
+    """The hang limit: ``factor`` times the :func:`baseline`, at least :data:`MIN_LIMIT`."""
+    return max(MIN_LIMIT, factor * baseline(folder))
 
 
 def copy_tables(folder: Path) -> None:
@@ -257,32 +359,48 @@ def warm_up(folder: Path) -> None:
 
 def fuzz(n: int, seed: int, timeout: float, folder: Path,
          report: Callable[[int, str, Mutant, list[str], str], None] | None = None,
-         skip: frozenset[str] = frozenset()) -> Counter[str]:
+         skip: frozenset[str] = frozenset(), focus: str = "all",
+         scheduler: bool = False) -> Counter[str]:
     """Run ``n`` mutants drawn from ``seed``; returns the count of each outcome.
 
     Every mutant is written to ``folder`` beside the copies of the shipped tables (so that a
     problem still finds its mechanism table) and read by its command; a wrong command is
-    given one time in ten.  ``report(index, outcome, mutant, argv, detail)`` is called for
-    every outcome that is not an allowed exit code.  Tables of the kinds in ``skip`` are not
-    mutated (the quick profile leaves out the slowest case).
+    given one time in ten.  ``timeout`` is the hang limit in seconds (:func:`hang_limit`).
+    ``report(index, outcome, mutant, argv, detail)`` is called for every outcome that is not
+    an allowed exit code.  Tables of the kinds in ``skip`` are not mutated (the quick profile
+    leaves out the slowest case).  ``focus='new'`` mutates the newer features only (the
+    module's description); ``scheduler`` adds odd ``--scheduler`` values to them.
     """
     if not (folder / "four_bar.yaml").exists():
         copy_tables(folder)
-    tables = {name: kind for name, kind in shipped_tables().items() if kind not in skip}
+    chosen = newer_tables() if focus == "new" else shipped_tables()
+    tables = {name: kind for name, kind in chosen.items() if kind not in skip}
     originals = {name: (TABLES / name).read_bytes() for name in tables}
     names = sorted(tables)
     kinds = sorted(set(tables.values()))
+    within = NEW_SECTIONS if focus == "new" else ()
     rng = random.Random(seed)
     counts: Counter[str] = Counter()
     for index in range(n):
         origin = rng.choice(names)
-        mutant = mutate(rng, origin, originals[origin])
-        target = folder / Path(origin).parent / f"mutant_{seed}_{index}.yaml"
-        target.write_bytes(mutant.data)
-        kind = tables[origin] if rng.random() < 0.9 else rng.choice(kinds)
-        argv = command(kind, str(target), rng)
-        outcome, detail = run_command(argv, timeout * SLOW.get(kind, 1.0))
-        target.unlink()
+        kind = tables[origin]
+        argv = (option_command(kind, str(folder / origin), rng, folder, scheduler)
+                if focus == "new" and rng.random() < 0.3 else None)
+        if argv is None:
+            mutant = mutate(rng, origin, originals[origin], within)
+            target = folder / Path(origin).parent / f"mutant_{seed}_{index}.yaml"
+            target.write_bytes(mutant.data)
+            kind = kind if rng.random() < 0.9 else rng.choice(kinds)
+            argv = command(kind, str(target), rng)
+        else:
+            mutant, target = Mutant(origin, "options " + " ".join(argv[2:]), originals[origin]), \
+                folder / origin
+        limit = timeout * SLOW.get(kind, 1.0) * SLOW_COMMANDS.get(argv[0], 1.0)
+        outcome, detail = run_command(argv, limit, str(target))
+        if target.name.startswith("mutant_"):
+            target.unlink()
+        for written in ("fuzz.png", "fuzz.gif", "fuzz.html"):
+            (folder / written).unlink(missing_ok=True)
         counts[outcome] += 1
         if outcome not in ("exit 0", "exit 1", "exit 2") and report is not None:
             report(index, outcome, mutant, argv, detail)
@@ -292,8 +410,12 @@ def fuzz(n: int, seed: int, timeout: float, folder: Path,
 _WARM: list[bool] = []  # whether this worker process has run every command once
 
 
-def _worker(job: tuple[int, int, float, str]) -> tuple[Counter[str], list[dict[str, Any]]]:
-    n, seed, timeout, keep = job
+#: One chunk of a run: mutants, seed, hang factor, folder for failures, focus, scheduler.
+Job = tuple[int, int, float, str, str, bool]
+
+
+def _worker(job: Job) -> tuple[Counter[str], list[dict[str, Any]], float]:
+    n, seed, factor, keep, focus, scheduler = job
     failures: list[dict[str, Any]] = []
 
     def report(index: int, outcome: str, mutant: Mutant, argv: list[str], detail: str) -> None:
@@ -310,8 +432,9 @@ def _worker(job: tuple[int, int, float, str]) -> tuple[Counter[str], list[dict[s
         if not _WARM:
             warm_up(Path(folder))
             _WARM.append(True)
-        counts = fuzz(n, seed, timeout, Path(folder), report)
-    return counts, failures
+        limit = hang_limit(Path(folder), factor)
+        counts = fuzz(n, seed, limit, Path(folder), report, focus=focus, scheduler=scheduler)
+    return counts, failures, limit
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -320,22 +443,28 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--mutants", type=int, default=10_000)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--workers", type=int, default=2)
-    parser.add_argument("--timeout", type=float, default=30.0, help="seconds per mutant")
+    parser.add_argument("--hang-factor", type=float, default=30.0,
+                        help="a mutant hangs past this many times the baseline run")
+    parser.add_argument("--focus", choices=("all", "new"), default="all",
+                        help="'new': the force sections, higher groups and options only")
+    parser.add_argument("--scheduler-options", action="store_true",
+                        help="with --focus new: odd --scheduler values too")
     parser.add_argument("--keep", default="fuzz_failures", help="folder for failing mutants")
     args = parser.parse_args(argv)
     Path(args.keep).mkdir(exist_ok=True)
     chunk = 100
-    jobs = [(min(chunk, args.mutants - start), args.seed * 1_000_003 + start // chunk,
-             args.timeout, args.keep) for start in range(0, args.mutants, chunk)]
+    jobs: list[Job] = [(min(chunk, args.mutants - start), args.seed * 1_000_003 + start // chunk,
+                        args.hang_factor, args.keep, args.focus, args.scheduler_options)
+                       for start in range(0, args.mutants, chunk)]
     counts: Counter[str] = Counter()
     failures: list[dict[str, Any]] = []
     begin = time.perf_counter()
     with multiprocessing.get_context("fork").Pool(args.workers) as pool:
-        for done, (part, found) in enumerate(pool.imap_unordered(_worker, jobs), start=1):
+        for done, (part, found, limit) in enumerate(pool.imap_unordered(_worker, jobs), start=1):
             counts.update(part)
             failures.extend(found)
-            print(f"{done * chunk} mutants, {sum(part.values())} in this chunk: "
-                  f"{dict(sorted(counts.items()))}", file=sys.stderr, flush=True)
+            print(f"{done * chunk} mutants, {sum(part.values())} in this chunk (hang limit "
+                  f"{limit:.1f} s): {dict(sorted(counts.items()))}", file=sys.stderr, flush=True)
     Path(args.keep, "failures.json").write_text(json.dumps(failures, indent=1,
                                                            ensure_ascii=False))
     print(f"{sum(counts.values())} mutants in {time.perf_counter() - begin:.0f} s")

@@ -49,12 +49,18 @@ from typing import Any
 import numpy as np
 
 from assur.forces.solver import MM, kinetostatics
-from assur.forces.table import read_sections
-from assur.io.reader import MISSING, Node, describe, normalise_id
+from assur.forces.table import (
+    REACH,
+    Reach,
+    inertia_problem,
+    link_key_problem,
+    mass_problem,
+    read_sections,
+)
+from assur.io.reader import MISSING, Node, describe, is_number, normalise_id, positive
 from assur.kinematics.analysis import Motion, analyse, values
 from assur.kinematics.model import KinematicModel
 from assur.model import ForceData, LinkId, Mass, PairId
-from assur.text import Message
 from assur.typing import BoolArray, ComplexArray, FloatArray
 
 __all__ = ["ForceConditions", "MassRule", "excess", "force_penalties", "read_force_conditions"]
@@ -213,11 +219,11 @@ def read_force_conditions(top: Node, model: KinematicModel | None) -> ForceCondi
         return None
     reader = node.reader
     before = len(reader.issues)
-    omega = node.get("omega", kind="number",
-                     check=lambda v: None if v >= 0 else Message("rule.non_negative"))
-    rules = _mass_rules(node, model)
+    omega = node.get("omega", kind="number", check=positive)
+    reach = _reach(model)
+    rules = _mass_rules(node, model, reach)
     local = Node(reader, node.location, _localised(node.mapping), None)
-    data = read_sections(local, tuple(model.links), model.drive != "crank")
+    data = read_sections(local, tuple(model.links), model.drive != "crank", reach)
     if not (node.given("masses") or node.given("loads")):
         reader.problem(node.location, "force.condition.no_loads")
     limits = node.child("limits", allowed=_LIMITS)
@@ -230,6 +236,15 @@ def read_force_conditions(top: Node, model: KinematicModel | None) -> ForceCondi
     fixed = {rule.link: rule.fixed for rule in rules if not rule.follows}
     return ForceConditions(replace(data, masses=fixed, local=True), float(omega), torque,
                            reactions, couples, tuple(rule for rule in rules if rule.follows))
+
+
+def _reach(model: KinematicModel) -> Reach | None:
+    """Where a point in a link's frame may lie: :data:`~assur.forces.table.REACH` times the
+    longest link length of the initial design around the link's origin."""
+    lengths = [abs(value) for name, value in model.params.items()
+               if name.rpartition(".")[2].startswith("l_")]
+    size = max(lengths, default=0.0)
+    return Reach.around((0j, complex(size, size))) if size > 0 else None
 
 
 def _localised(mapping: Mapping[str, Any]) -> dict[str, Any]:
@@ -254,20 +269,15 @@ def _with_point(row: Any) -> Any:
 def _polar(value: Any) -> complex | None:
     """A point ``{l: mm, beta: degrees}`` as x + i·y, or None when it is not one."""
     if (isinstance(value, dict) and set(value) == {"l", "beta"}
-            and all(_number(v) for v in value.values())):
+            and all(is_number(v) for v in value.values())):
         return complex(value["l"] * complex(math.cos(math.radians(value["beta"])),
                                             math.sin(math.radians(value["beta"]))))
     return None
 
 
-def _number(value: Any) -> bool:
-    return (isinstance(value, (int, float)) and not isinstance(value, bool)
-            and math.isfinite(value))
-
-
 def _point(value: Any) -> complex | None:
     """``{l, beta}`` or ``[x, y]`` in the link's frame, mm; None when it is neither."""
-    if isinstance(value, list) and len(value) == 2 and all(_number(v) for v in value):
+    if isinstance(value, list) and len(value) == 2 and all(is_number(v) for v in value):
         return complex(value[0], value[1])
     return _polar(value)
 
@@ -278,7 +288,7 @@ def _hinges(model: KinematicModel, link: LinkId) -> list[PairId]:
             if kind == "R" and link in links]
 
 
-def _mass_rules(node: Node, model: KinematicModel) -> list[MassRule]:
+def _mass_rules(node: Node, model: KinematicModel, reach: Reach | None) -> list[MassRule]:
     """Every row of ``masses:``, each problem recorded."""
     section = node.child("masses", required=False)
     if section is None:
@@ -287,6 +297,8 @@ def _mass_rules(node: Node, model: KinematicModel) -> list[MassRule]:
     for raw, row in section.mapping.items():
         where = f"{section.location}.{raw}"
         link = normalise_id(raw)
+        if link_key_problem(section, where, raw):
+            continue
         if link not in model.links:
             section.reader.problem(where, "force.link.not_moving", found=describe(raw),
                                    known=", ".join(map(str, model.links)))
@@ -294,26 +306,23 @@ def _mass_rules(node: Node, model: KinematicModel) -> list[MassRule]:
             section.reader.problem(where, "force.mass.expected", found=describe(row))
             continue
         rule = _mass_rule(Node(section.reader, where, row, _MASS), link,
-                          _hinges(model, link) if link in model.links else None)
+                          _hinges(model, link) if link in model.links else None, reach)
         if rule is not None:
             rules.append(rule)
     return rules
 
 
-def _mass_rule(node: Node, link: LinkId, hinges: list[PairId] | None) -> MassRule | None:
+def _mass_rule(node: Node, link: LinkId, hinges: list[PairId] | None,
+               reach: Reach | None) -> MassRule | None:
     """One row of ``masses:``; None when it has a problem (recorded) or the link is wrong."""
     reader = node.reader
     before = len(reader.issues)
-
-    def non_negative(value: float) -> Message | None:
-        return None if value >= 0 else Message("rule.non_negative")
-
     if node.given("mass") == node.given("per_mm"):
         reader.problem(node.location, "force.condition.mass_or_per_mm")
     per_mm = node.given("per_mm")
     mass = node.get("per_mm" if per_mm else "mass", kind="number", required=False,
-                    default=0.0, check=non_negative)
-    centre, inertia = _centre(node), _inertia(node)
+                    default=0.0, check=mass_problem)
+    centre, inertia = _centre(node, reach), _inertia(node)
     words = [word for word, used in (("per_mm", per_mm), (MIDDLE, centre == MIDDLE),
                                      (ROD, inertia == ROD)) if used]
     named = _between(node, link, hinges) if node.has("between") else None
@@ -334,12 +343,18 @@ def _mass_rule(node: Node, link: LinkId, hinges: list[PairId] | None) -> MassRul
                     None if inertia == ROD else float(inertia), named or ())
 
 
-def _centre(node: Node) -> complex | str | None:
-    """``centre:``: a point in the link's frame, ``middle``, or None when absent."""
+def _centre(node: Node, reach: Reach | None) -> complex | str | None:
+    """``centre:``: a point in the link's frame within ``reach``, ``middle``, or None when
+    absent."""
     if not node.has("centre"):
         return None
     value = node.mapping["centre"]
     point = _point(value)
+    if point is not None and reach is not None and not reach.holds(point):
+        node.reader.problem(f"{node.location} 'centre'", "force.point.outside",
+                            found=f"[{point.real:g}, {point.imag:g}]", reach=REACH,
+                            size=reach.size, box=reach.box())
+        return None
     if point is not None or value == MIDDLE:
         return point if point is not None else MIDDLE
     node.reader.problem(f"{node.location} 'centre'", "force.condition.centre",
@@ -350,7 +365,7 @@ def _centre(node: Node) -> complex | str | None:
 def _inertia(node: Node) -> float | str:
     """``inertia:``: kg·m² (≥ 0, default 0) or ``rod``."""
     value = node.mapping.get("inertia", 0.0)
-    if value == ROD or (_number(value) and value >= 0):
+    if value == ROD or (is_number(value) and inertia_problem(value) is None):
         return value if value == ROD else float(value)
     node.reader.problem(f"{node.location} 'inertia'", "force.condition.inertia",
                         found=describe(value))
@@ -400,9 +415,6 @@ def _in_frame(motion: Motion, link: LinkId, pair: PairId) -> ComplexArray:
 
 def _limits(node: Node, model: KinematicModel
             ) -> tuple[float | None, dict[PairId, float], dict[PairId, float]]:
-    def positive(value: float) -> Message | None:
-        return None if value > 0 else Message("rule.positive")
-
     torque = node.get("driving_torque", kind="number", required=False, default=None,
                       check=positive)
     reactions = _pair_limits(node, "reactions", tuple(model.pair_links),
@@ -426,7 +438,7 @@ def _pair_limits(node: Node, key: str, pairs: tuple[PairId, ...], unknown: str,
         if pair not in pairs:
             node.reader.problem(where, unknown, found=describe(raw),
                                 known=", ".join(map(str, pairs)) or "—")
-        elif not _number(value) or not value > 0:
+        elif not is_number(value) or not value > 0:
             node.reader.problem(where, wrong, found=describe(value))
         else:
             out[pair] = float(value)

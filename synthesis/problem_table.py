@@ -91,6 +91,10 @@ Bounds = dict[tuple[GroupKey, str], tuple[float, float, float]]
 #: Where the kinematic model puts a problem of a cell of a group's parameters.
 _PARAMS_AT = re.compile(r"structure_identification \(L\d+\((?P<links>[^)]*)\)\) 'params' "
                         r"'(?P<column>[^']+)'")
+#: The same with the column optional: a problem of a row's ``params`` that names its column
+#: in the message (an unknown column).
+_PARAMS_OF = re.compile(r"structure_identification \(L\d+\((?P<links>[^)]*)\)\) 'params'"
+                        r"(?: '(?P<column>[^']+)')?")
 #: Codes of the kinematic model's problems of a parameter cell that holds a number where its
 #: group wants ``'A'``, and ``'A'`` where it wants a number (:func:`_tell_swapped_cells`).
 _WANTS_A = frozenset({"model.moving_hinge_supplied"})
@@ -289,7 +293,34 @@ def _identification_form(top: Node, mechanism: _Mechanism, general: _General) ->
         else (None, None)
     if model is None and structure_ok:
         _tell_swapped_cells(reader, start, places)
+        foreign = _own_cells(reader, start, foreign, places)
     return _Form(groups, model, foreign, bounds, table)
+
+
+def _own_cells(reader: TableReader, start: int, foreign: AssurError | None,
+               places: dict[tuple[GroupKey, str], str]) -> AssurError | None:
+    """The kinematic model's problems of cells that a row of ``parameters`` gave, told at
+    that row of this file (``parameters[2] 'y_Hj'``), not at the identification row they
+    were merged into (which may be in the mechanism's own file); returns what is left of
+    ``foreign`` (None when every problem was this file's)."""
+    def own(issue: Issue) -> Issue | None:
+        match = _PARAMS_OF.fullmatch(issue.location)
+        if match is None:
+            return None
+        column = match["column"] or str(issue.message.data.get("column", "")).strip("'")
+        key = tuple(normalise_id(link) for link in match["links"].split(","))
+        where = places.get((key, column), "")
+        if not where.startswith("parameters"):
+            return None
+        return Issue(f"{where} {column!r}" if match["column"] else where, issue.message)
+
+    reader.issues[start:] = [own(issue) or issue for issue in reader.issues[start:]]
+    if not isinstance(foreign, TableError):
+        return foreign
+    moved = [(issue, own(issue)) for issue in foreign.issues]
+    reader.issues.extend(mine for _, mine in moved if mine is not None)
+    left = [issue for issue, mine in moved if mine is None]
+    return TableError(foreign.source, left) if left else None
 
 
 def _tell_swapped_cells(reader: TableReader, start: int,

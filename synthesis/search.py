@@ -32,7 +32,9 @@ reached.
 
 Stop rules: (a) a favourable mechanism (P1 = P2 = 0 and Q ≤ [Q]); (b) no improvement of
 the round's best in its last ``stall`` trials ends the round (the search when it is the
-last); (c) the trial budget or the time limit is used up.  Every step returns how it ended
+last); (c) the budget or the time limit is used up: the budget counts every evaluated design,
+the refinement's included (:attr:`SearchSettings.evaluations`, twice the trials the passive
+passes plan), so that a target the search cannot reach does not make the refinement run on.  Every step returns how it ended
 (a stop reason, or None when it ran to its end); a stop rule that fires inside a local
 optimiser freezes its functions at a rejected value, without evaluating another design,
 so that the optimiser ends within a few cheap steps.
@@ -180,6 +182,8 @@ class _Search:
             self.stop = "favourable"
         elif time_limit is not None and self.elapsed() >= time_limit:
             self.stop = "time"
+        elif self.count >= self.settings.evaluations:
+            self.stop = "budget"
         return criteria
 
     def halt(self) -> str | None:
@@ -190,17 +194,10 @@ class _Search:
             return "stall"
         return self.stop
 
-    def planned(self) -> int:
-        """The trials of the initial design and of the passive passes of every round (the
-        first and the restarts; a favourable design may end them sooner)."""
-        s = self.settings
-        per_round = 2 ** s.budget_log2 + s.shrink_passes * 2 ** max(s.budget_log2 - 2, 4)
-        return int(1 + (1 + s.restarts) * per_round)
-
     def report(self, final: bool = False) -> None:
         listener = LISTENER.get()
         if listener is not None:
-            listener(self.count, self.planned(), self.best_criteria, self.elapsed())
+            listener(self.count, self.settings.planned, self.best_criteria, self.elapsed())
             return
         if not self.settings.progress:
             return
@@ -354,7 +351,10 @@ class _Search:
             jac: FloatArray = ((r - r0[None, :]) / step[:, None]).T
             return jac
 
-        optimize.least_squares(residuals, x0, jac=jacobian, bounds=(lo, hi + ~varied * 1e-12),
+        # a fixed parameter gets the next float above it as its upper bound (lower < upper
+        # for least squares; 1e-12 added to 2e6 would leave it equal)
+        optimize.least_squares(residuals, x0, jac=jacobian,
+                               bounds=(lo, np.where(varied, hi, np.nextafter(hi, np.inf))),
                                x_scale=np.where(varied, span, 1.0), method="trf",
                                max_nfev=self.settings.refine_evaluations, xtol=1e-15,
                                ftol=1e-15, gtol=1e-15)

@@ -22,7 +22,8 @@ from synthesis.criteria import Objective
 if TYPE_CHECKING:
     from synthesis.problem import Problem
 
-__all__ = ["MAX_BUDGET", "MAX_RESTARTS", "MAX_SHRINK_PASSES", "SearchSettings", "SettingError",
+__all__ = ["MAX_BUDGET", "MAX_RESTARTS", "MAX_SHRINK_PASSES", "REFINE_SHARE", "SearchSettings",
+           "SettingError",
            "setting_problem", "settings_for", "whole"]
 
 #: Largest budget: 2**24 LPτ trials.
@@ -31,6 +32,9 @@ MAX_BUDGET = 24
 MAX_SHRINK_PASSES = 10
 #: Largest number of restarts.
 MAX_RESTARTS = 64
+#: The refinement may evaluate this many times the designs the passive passes plan (and at
+#: least ``refine_starts × refine_evaluations``): :attr:`SearchSettings.evaluations`.
+REFINE_SHARE = 1.0
 def whole(value: Any) -> bool:
     """Whether ``value`` is a whole number (an int, not a bool)."""
     return isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))
@@ -196,6 +200,39 @@ evaluation); got 0
             problem = setting_problem(name, getattr(self, name))
             if problem is not None:
                 raise SettingError(problem)
+
+    @property
+    def planned(self) -> int:
+        """The trials of the initial design and of the passive passes of every round (the
+        first and the restarts; a favourable design may end them sooner).
+
+        >>> SearchSettings(budget_log2=7, shrink_passes=3, restarts=3).planned
+        897
+        """
+        per_round = 2 ** self.budget_log2 + self.shrink_passes * 2 ** max(self.budget_log2 - 2,
+                                                                           4)
+        return int(1 + (1 + self.restarts) * per_round)
+
+    @property
+    def evaluations(self) -> int:
+        """The most designs the whole search evaluates, refinement included: the passive
+        passes' :attr:`planned` trials and, with the refinement, :data:`REFINE_SHARE` times
+        as many again, at least ``refine_starts × refine_evaluations`` (every design its
+        least squares, Jacobians and polish evaluate counts).  The search stops with the
+        reason ``'budget'`` at the batch that reaches it (a Jacobian's batch of at most one
+        design per varied parameter may end past it).
+
+        >>> SearchSettings(budget_log2=7, shrink_passes=3, restarts=3).evaluations
+        1794
+        >>> SearchSettings(budget_log2=2, shrink_passes=0, restarts=0).evaluations
+        605
+        >>> SearchSettings(budget_log2=2, shrink_passes=0, restarts=0, refine=False).evaluations
+        5
+        """
+        if not self.refine:
+            return self.planned
+        share = max(REFINE_SHARE * self.planned, self.refine_starts * self.refine_evaluations)
+        return int(self.planned + share)
 
 
 def settings_for(problem: Problem, **overrides: Any) -> SearchSettings:

@@ -10,6 +10,7 @@ import random
 import sys
 import time
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -38,17 +39,18 @@ def test_every_shipped_table_has_a_command() -> None:
         assert name in argv
 
 
-def test_the_runner_tells_a_traceback_and_a_hang(monkeypatch) -> None:
+def test_the_runner_tells_a_traceback_and_a_hang(monkeypatch: pytest.MonkeyPatch) -> None:
     cli = importlib.import_module("synthesis.cli.main")
 
-    def crash(argv):
-        return {}["missing"]
+    def crash(argv: list[str]) -> int:
+        missing: dict[str, int] = {}
+        return missing["missing"]
 
     monkeypatch.setattr(cli, "main", crash)
     outcome, detail = fuzz_tables.run_command(["check", "x"], 5)
     assert outcome == "traceback" and "KeyError" in detail
 
-    def loop(argv):
+    def loop(argv: list[str]) -> int:
         while True:
             time.sleep(0.01)
 
@@ -56,11 +58,11 @@ def test_the_runner_tells_a_traceback_and_a_hang(monkeypatch) -> None:
     assert fuzz_tables.run_command(["check", "x"], 0.2)[0] == "hang"
 
 
-def test_mutants_of_the_shipped_tables_end_cleanly(tmp_path) -> None:
+def test_mutants_of_the_shipped_tables_end_cleanly(tmp_path: Path) -> None:
     """A fixed set of mutants (seeded), each with a time limit."""
     failures: list[str] = []
 
-    def report(index, outcome, mutant, argv, detail):
+    def report(index: int, outcome: str, mutant: Any, argv: list[str], detail: str) -> None:
         failures.append(f"{outcome}: {mutant.origin} {mutant.operation} {argv}\n{detail}")
 
     fuzz_tables.copy_tables(tmp_path)
@@ -69,8 +71,67 @@ def test_mutants_of_the_shipped_tables_end_cleanly(tmp_path) -> None:
     assert sum(counts.values()) == MUTANTS
 
 
+def test_mutants_of_the_newer_features_end_cleanly(tmp_path: Path) -> None:
+    """Mutants of the force sections, higher-group tables and force conditions, and odd
+    option values, under the load-proof hang limit."""
+    failures: list[str] = []
+
+    def report(index: int, outcome: str, mutant: Any, argv: list[str], detail: str) -> None:
+        failures.append(f"{outcome}: {mutant.origin} {mutant.operation} {argv}\n{detail}")
+
+    fuzz_tables.copy_tables(tmp_path)
+    limit = max(TIMEOUT, fuzz_tables.hang_limit(tmp_path, 30.0))
+    counts = fuzz_tables.fuzz(MUTANTS, 1, limit, tmp_path, report, SKIP, focus="new")
+    assert not failures, "\n\n".join(failures)
+    assert sum(counts.values()) == MUTANTS
+
+
+def test_the_newer_tables_are_the_force_and_higher_group_ones() -> None:
+    tables = fuzz_tables.newer_tables()
+    for name in ("four_bar_gravity.yaml", "six_bar_triad.yaml", "class_iv_group.yaml",
+                 "problems/class1_fourbar_torque_limit.yaml"):
+        assert name in tables
+    assert "four_bar.yaml" not in tables and "problems/class1_fourbar_rocker.yaml" not in tables
+
+
+def test_the_hang_limit_follows_the_baseline(monkeypatch: pytest.MonkeyPatch,
+                                             tmp_path: Path) -> None:
+    """A machine twice as slow (the known run takes twice as long) doubles the limit."""
+    limits = []
+    monkeypatch.setattr(fuzz_tables, "MIN_LIMIT", 0.0)
+    for delay in (0.05, 0.1):
+        def slow(argv: list[str], timeout: float, named: str | None = None,
+                 seconds: float = delay) -> tuple[str, str]:
+            time.sleep(seconds)
+            return "exit 0", ""
+
+        monkeypatch.setattr(fuzz_tables, "run_command", slow)
+        limits.append(fuzz_tables.hang_limit(tmp_path, 100.0))
+    assert limits[0] >= 5.0 and limits[1] >= 10.0
+    assert limits[1] / limits[0] == pytest.approx(2.0, rel=0.4)
+
+
+def test_a_refusal_that_names_no_file_is_a_finding(monkeypatch: pytest.MonkeyPatch) -> None:
+    cli = importlib.import_module("synthesis.cli.main")
+
+    def refuse(argv: list[str]) -> int:
+        print("something is wrong")
+        return 2
+
+    monkeypatch.setattr(cli, "main", refuse)
+    assert fuzz_tables.run_command(["check", "/tmp/x.yaml"], 5, "/tmp/x.yaml")[0] == \
+        "exit 2 naming no file"
+
+    def named(argv: list[str]) -> int:
+        print("1 problem in /tmp/x.yaml: masses.2 'mass': must be positive")
+        return 2
+
+    monkeypatch.setattr(cli, "main", named)
+    assert fuzz_tables.run_command(["check", "/tmp/x.yaml"], 5, "/tmp/x.yaml")[0] == "exit 2"
+
+
 @pytest.mark.parametrize("seed", range(3))
-def test_a_mutation_changes_the_table(seed) -> None:
+def test_a_mutation_changes_the_table(seed: int) -> None:
     rng = random.Random(seed)
     tables = fuzz_tables.shipped_tables()
     for name in sorted(tables)[:6]:

@@ -17,26 +17,116 @@ Examples
 >>> read_forces(reader.root(), chain) is None
 True
 >>> [issue.text() for issue in reader.issues]  # doctest: +NORMALIZE_WHITESPACE
-["masses.2 'mass': must be zero or positive; found -1",
+["masses.2 'mass': must be positive and at most 1e+06; found -1",
  "loads[0] 'link': expected a moving link (1, 2, 3); found 0"]
+
+Every value has a physical range (``docs/forces.md`` §1.1): a mass in (0, :data:`MAX_MASS`],
+an inertia in [0, :data:`MAX_INERTIA`], gravity at most :data:`MAX_GRAVITY`, every force,
+torque and tabulated value finite and at most ``LARGEST`` in size, and a centre or a load
+point within :data:`REACH` times the size of the mechanism around its sketch.
 """
 
 from __future__ import annotations
 
 import itertools
-import math
+from collections.abc import Iterable
+from dataclasses import dataclass
 from typing import Any
 
-from assur.io.reader import MISSING, Node, describe, normalise_id
+from assur.io.reader import MISSING, Node, describe, normalise_id, number_problem
 from assur.model import Chain, ForceData, LinkId, Load, Mass, PairType, Tabulated
+from assur.text import Message
 
-__all__ = ["SECTIONS", "read_forces", "read_sections"]
+__all__ = ["MAX_GRAVITY", "MAX_INERTIA", "MAX_MASS", "REACH", "SECTIONS", "Reach",
+           "inertia_problem", "link_key_problem", "mass_problem", "read_forces",
+           "read_sections"]
 
 #: The top-level keys this reader owns.
 SECTIONS = ("masses", "loads", "gravity")
 
 _MASS = ("mass", "centre", "inertia")
 _LOAD = ("link", "force", "point", "torque")
+
+#: The largest mass of one link, kg.
+MAX_MASS = 1e6
+#: The largest moment of inertia of one link about its centre of mass, kg·m².
+MAX_INERTIA = 1e6
+#: The largest gravity, m/s² (a hundred times the Earth's).
+MAX_GRAVITY = 1e3
+#: How far a centre of mass or the point of a force may lie from the mechanism: this many
+#: times its size (the diagonal of the box around its sketch) beyond that box.
+REACH = 100.0
+
+
+@dataclass(frozen=True, slots=True)
+class Reach:
+    """Where a centre of mass or the point of a force may lie: the box around the
+    mechanism's sketch grown by :data:`REACH` times its diagonal on every side.
+
+    Examples
+    --------
+    >>> box = Reach.around([0j, 100 + 0j, 100 + 80j])
+    >>> box.holds(50 + 40j), box.holds(20000 + 0j)
+    (True, False)
+    """
+
+    low: complex
+    high: complex
+    size: float
+
+    @classmethod
+    def around(cls, points: Iterable[complex]) -> Reach | None:
+        """The reach around ``points`` (None when there are fewer than two distinct ones)."""
+        xs = [z.real for z in points]
+        ys = [z.imag for z in points]
+        if not xs:
+            return None
+        low, high = complex(min(xs), min(ys)), complex(max(xs), max(ys))
+        size = abs(high - low)
+        if size == 0:
+            return None
+        grow = REACH * size * (1 + 1j)
+        return cls(low - grow, high + grow, size)
+
+    def box(self) -> str:
+        """The reach as text: ``x low…high, y low…high`` (mm)."""
+        return (f"x {self.low.real:g}…{self.high.real:g}, "
+                f"y {self.low.imag:g}…{self.high.imag:g}")
+
+    def holds(self, z: complex) -> bool:
+        """Whether ``z`` lies inside the reach."""
+        return (self.low.real <= z.real <= self.high.real
+                and self.low.imag <= z.imag <= self.high.imag)
+
+
+def mass_problem(value: float) -> Message | None:
+    """The rule of a mass (kg): positive and at most :data:`MAX_MASS`.
+
+    >>> mass_problem(0.5) is None, mass_problem(0).text("en")
+    (True, 'must be positive and at most 1e+06')
+    """
+    return None if 0 < value <= MAX_MASS else Message("rule.positive_at_most",
+                                                      {"high": MAX_MASS})
+
+
+def inertia_problem(value: float) -> Message | None:
+    """The rule of a moment of inertia (kg·m²): zero (a point mass) to :data:`MAX_INERTIA`.
+
+    >>> inertia_problem(0) is None, inertia_problem(1e7).text("en")
+    (True, 'must be zero or positive and at most 1e+06')
+    """
+    return None if 0 <= value <= MAX_INERTIA else Message("rule.non_negative_at_most",
+                                                          {"high": MAX_INERTIA})
+
+
+def link_key_problem(node: Node, where: str, raw: Any) -> bool:
+    """Record a key of a table over links that is not a link id (a boolean, a fraction:
+    ``{2.0: …}`` or ``{true: …}`` would silently name link 2 or 1); True when recorded."""
+    if isinstance(raw, int | str) and not isinstance(raw, bool):
+        return False
+    node.reader.problem(where, "table.wrong_kind", expected=Message("value.kind.id"),
+                        found=describe(raw))
+    return True
 
 
 def read_forces(root: Node, chain: Chain) -> ForceData | None:
@@ -67,11 +157,12 @@ def read_forces(root: Node, chain: Chain) -> ForceData | None:
     >>> read_forces(reader.root(), chain).gravity
     -9.81j
     """
-    return read_sections(root, chain.moving_links, _actuated(chain))
+    sketch = chain.geometry.points.values() if chain.geometry is not None else ()
+    return read_sections(root, chain.moving_links, _actuated(chain), Reach.around(sketch))
 
 
-def read_sections(root: Node, moving: tuple[LinkId, ...], actuated: bool
-                  ) -> ForceData | None:
+def read_sections(root: Node, moving: tuple[LinkId, ...], actuated: bool,
+                  reach: Reach | None = None) -> ForceData | None:
     """The force-analysis sections given the moving links and the kind of input.
 
     The chain reader calls this while it reads the rest of the table, so that the problems
@@ -85,6 +176,8 @@ def read_sections(root: Node, moving: tuple[LinkId, ...], actuated: bool
         The links that may carry masses and loads.
     actuated : bool
         Whether the input is a linear actuator (tables over ``length``, else ``phi``).
+    reach : Reach, optional
+        Where centres and load points may lie (unbounded but for ``LARGEST`` when None).
 
     Returns
     -------
@@ -95,8 +188,8 @@ def read_sections(root: Node, moving: tuple[LinkId, ...], actuated: bool
     reader = root.reader
     before = len(reader.issues)
     key = "length" if actuated else "phi"
-    masses = _masses(root, moving)
-    loads = _loads(root, moving, key)
+    masses = _masses(root, moving, reach)
+    loads = _loads(root, moving, key, reach)
     gravity = _gravity(root)
     if len(reader.issues) > before or not (root.has("masses") or root.has("loads")):
         return None
@@ -122,55 +215,76 @@ def _link(node: Node, moving: tuple[LinkId, ...], where: str, value: Any) -> Lin
     return link
 
 
-def _nonnegative(node: Node, key: str, default: Any) -> Any:
-    value = node.get(key, kind="number", required=default is MISSING, default=default)
-    if value is not MISSING and value < 0:
-        node.reader.problem(f"{node.location} {key!r}", "force.negative", found=describe(value))
-        return MISSING
+def _numeric(value: Any) -> Any:
+    """A number written as text (``1e300``, which YAML reads as text) as the number."""
+    if isinstance(value, str):
+        try:
+            return float(value)
+        except ValueError:
+            return value
     return value
 
 
-def _point(node: Node, key: str) -> complex | None:
-    """An optional [x, y] pair of numbers (None when absent or wrong, the latter recorded)."""
+def _bad_number(node: Node, where: str, value: Any) -> bool:
+    """Record ``value`` when it is not a finite number of at most ``LARGEST`` in size."""
+    rule = number_problem(_numeric(value))
+    if rule is None:
+        return False
+    if rule.code == "value.kind.number":
+        node.reader.problem(where, "table.wrong_kind", expected=rule, found=describe(value))
+    else:
+        node.reader.problem(where, "table.rule_broken", rule=rule, found=describe(value))
+    return True
+
+
+def _point(node: Node, key: str, reach: Reach | None = None) -> complex | None:
+    """An optional [x, y] pair of numbers, inside ``reach`` when given (None when absent or
+    wrong, the latter recorded)."""
     if not node.has(key):
         return None
     value = node.mapping[key]
-    if (isinstance(value, list) and len(value) == 2
-            and all(_number(v) for v in value)):
-        return complex(value[0], value[1])
-    node.reader.problem(f"{node.location} {key!r}".strip(), "force.vector.expected",
-                        found=describe(value))
-    return None
+    where = f"{node.location} {key!r}".strip()
+    if not (isinstance(value, list) and len(value) == 2):
+        node.reader.problem(where, "force.vector.expected", found=describe(value))
+        return None
+    bad = [_bad_number(node, f"{where}[{i}]", v) for i, v in enumerate(value)]
+    if any(bad):
+        return None
+    z = complex(_numeric(value[0]), _numeric(value[1]))
+    if reach is not None and not reach.holds(z):
+        node.reader.problem(where, "force.point.outside", found=f"[{z.real:g}, {z.imag:g}]",
+                            reach=REACH, size=reach.size, box=reach.box())
+        return None
+    return z
 
 
-def _number(value: Any) -> bool:
-    return (isinstance(value, (int, float)) and not isinstance(value, bool)
-            and math.isfinite(value))
-
-
-def _masses(root: Node, moving: tuple[LinkId, ...]) -> dict[LinkId, Mass]:
+def _masses(root: Node, moving: tuple[LinkId, ...], reach: Reach | None
+            ) -> dict[LinkId, Mass]:
     section = root.child("masses", required=False)
     out: dict[LinkId, Mass] = {}
     if section is None:
         return out
     for raw, row in section.mapping.items():
         where = f"{section.location}.{raw}"
-        link = _link(section, moving, where, raw)
+        link = None if link_key_problem(section, where, raw) else \
+            _link(section, moving, where, raw)
         if not isinstance(row, dict):
             section.reader.problem(where, "force.mass.expected", found=describe(row))
             continue
         node = Node(section.reader, where, row, _MASS)
-        mass = _nonnegative(node, "mass", MISSING)
-        inertia = _nonnegative(node, "inertia", 0.0)
-        centre = _point(node, "centre")
-        if mass is not MISSING and mass > 0 and not node.given("centre"):
+        mass = node.get("mass", kind="number", check=mass_problem)
+        inertia = node.get("inertia", kind="number", required=False, default=0.0,
+                           check=inertia_problem)
+        centre = _point(node, "centre", reach)
+        if mass is not MISSING and not node.given("centre"):
             section.reader.problem(where, "force.mass.centre_missing", link=str(raw))
         if link is not None and MISSING not in (mass, inertia):
             out[link] = Mass(float(mass), centre, float(inertia))
     return out
 
 
-def _loads(root: Node, moving: tuple[LinkId, ...], key: str) -> tuple[Load, ...]:
+def _loads(root: Node, moving: tuple[LinkId, ...], key: str, reach: Reach | None
+           ) -> tuple[Load, ...]:
     out = []
     for node in root.rows("loads", _LOAD, required=False):
         node.swapped({"link": lambda v: isinstance(v, (int, str)) and not isinstance(v, bool),
@@ -183,7 +297,7 @@ def _loads(root: Node, moving: tuple[LinkId, ...], key: str) -> tuple[Load, ...]
         if has_force == has_torque:
             node.reader.problem(node.location, "force.load.force_or_torque")
             continue
-        point = _point(node, "point")
+        point = _point(node, "point", reach)
         if has_force:
             force = _tabulated(node, "force", key, ("x", "y"))
             if not node.given("point"):
@@ -207,8 +321,9 @@ def _tabulated(node: Node, field: str, key: str, parts: tuple[str, ...]
     value = node.mapping[field]
     where = f"{node.location} {field!r}"
     if not isinstance(value, dict):
-        if parts == ("value",) and _number(value):
-            return complex(value)
+        if parts == ("value",) and isinstance(_numeric(value), int | float) \
+                and not isinstance(value, bool):
+            return None if _bad_number(node, where, value) else complex(_numeric(value))
         if parts == ("x", "y"):
             return _point(node, field)
         node.reader.problem(where, "force.table.expected", found=describe(value),
@@ -220,11 +335,10 @@ def _tabulated(node: Node, field: str, key: str, parts: tuple[str, ...]
         column = table.get(name, kind="list")
         if column is MISSING:
             continue
-        if not all(_number(v) for v in column):
-            node.reader.problem(f"{where} {name!r}", "force.table.numbers",
-                                found=describe(column))
+        bad = [_bad_number(node, f"{where} {name!r}[{i}]", v) for i, v in enumerate(column)]
+        if any(bad):  # (every bad value listed)
             continue
-        columns[name] = [float(v) for v in column]
+        columns[name] = [float(_numeric(v)) for v in column]
     if len(columns) < 1 + len(parts):
         return None
     lengths = {len(c) for c in columns.values()}
@@ -267,4 +381,10 @@ def _list(numbers: list[float]) -> str:
 def _gravity(root: Node) -> complex:
     if not root.has("gravity"):
         return 0j
-    return _point(root, "gravity") or 0j
+    gravity = _point(root, "gravity") or 0j
+    if abs(gravity) > MAX_GRAVITY:
+        root.reader.problem("'gravity'", "table.rule_broken",
+                            rule=Message("rule.number_size", {"high": MAX_GRAVITY}),
+                            found=f"|g| = {abs(gravity):g}")
+        return 0j
+    return gravity

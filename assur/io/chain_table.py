@@ -207,7 +207,8 @@ def _read_chain_form(reader: TableReader) -> Chain:
     rows, _ = _read_rows(top, required=False)
     claims = _read_claims(top)
     every = [*links, *(link for link in dict.fromkeys(mentioned) if link not in links)]
-    forces = _read_forces(top, every, frame, inputs, joints)  # (a link not in links: reported)
+    forces = _read_forces(top, every, frame, inputs, joints,  # (a link not in links: reported)
+                          geometry)
     if reader.issues:
         return _empty(reader.source)
     input_links = [d.link for d in inputs if d.link is not None]
@@ -219,19 +220,21 @@ def _read_chain_form(reader: TableReader) -> Chain:
 
 
 def _read_forces(top: Node, links: list[LinkId], frame: LinkId, inputs: list[Drive],
-                 joints: Joints) -> ForceData | None:
-    """The ``masses:``, ``loads:`` and ``gravity:`` sections (``docs/forces.md`` §1).
+                 joints: Joints, geometry: Sketch | None) -> ForceData | None:
+    """The ``masses:``, ``loads:`` and ``gravity:`` sections (``docs/forces.md`` §1), their
+    points within reach of the sketch.
 
     The force analysis is loaded only for a table that has one of them.
     """
     if not any(top.has(section) for section in _FORCES):
         return None
-    from assur.forces.table import read_sections
+    from assur.forces.table import Reach, read_sections
 
     driven = [joints.get(drive.pair) for drive in inputs
               if drive.link is None and drive.pair is not None]
     actuated = any(pair is not None and pair[0] == "P" for pair in driven)
-    return read_sections(top, tuple(link for link in links if link != frame), actuated)
+    reach = Reach.around(geometry.points.values()) if geometry is not None else None
+    return read_sections(top, tuple(link for link in links if link != frame), actuated, reach)
 
 
 def _read_links(mech: Node, names: dict[LinkId, str],

@@ -42,6 +42,7 @@ from assur.io.reader import (
     lookalike_letters,
     normalise_id,
     radian_look,
+    with_commas,
 )
 from assur.model import Chain, Direction, LinkId, PairId, Sketch, SketchTrace, joint_key
 from assur.text import Message
@@ -305,7 +306,8 @@ def _input(reader: TableReader, value: Any) -> tuple[int, tuple[float, float] | 
     if stroke not in (None, MISSING):
         vec = _vector(stroke)
         if vec is None or not 0 < vec.real < vec.imag:
-            reader.problem("geometry 'input' 'stroke'", "sketch.stroke", found=describe(stroke))
+            reader.problem("geometry 'input' 'stroke'", "sketch.stroke",
+                           found=with_commas(stroke) if vec is not None else describe(stroke))
         else:
             span = (vec.real, vec.imag)
     return (-1 if rotation == "cw" else 1), span

@@ -491,6 +491,10 @@ def _sketch_crank(topo: Topology, build: Builder) -> None:
     if not pins:
         return  # a crank that carries nothing: no group is hinged to it
     pin = build.point(pins[0])
+    if pin == pivot and pins[0].type == PairType.P:
+        # a slot of the crank drawn through its pivot: any point of the slot line serves,
+        # so the crank's frame takes the one a unit along the slot
+        pin = pivot + cmath.rect(1.0, build.direction(pins[0]))
     if pin == pivot:
         build.problem(f"geometry {joint_key(pins[0])!r}", "sketch.crank_length")
         return

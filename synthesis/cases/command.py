@@ -12,7 +12,6 @@ for a design found none, 2 invalid input.
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from collections.abc import Callable, Mapping
 from typing import Any, Protocol, runtime_checkable
@@ -65,6 +64,8 @@ def emit(args: argparse.Namespace, as_json: Callable[[], Mapping[str, Any]],
     }
     """
     if args.json:
-        print(json.dumps(as_json(), indent=2, ensure_ascii=False))
+        from synthesis.app.strict_json import strict_json
+
+        print(strict_json(as_json(), indent=2))
     else:
         sys.stdout.write(as_text(args.lang))

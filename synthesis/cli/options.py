@@ -9,14 +9,24 @@ The search options are checked by the very rules of the problem table's ``search
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from collections.abc import Mapping
+from dataclasses import dataclass
 
 from assur.errors import AssurError
+from assur.io.reader import LARGEST, SMALLEST
 from assur.text import Message, render
 
-__all__ = ["OptionError", "bounded_jobs", "check_at_least", "check_scheduler",
-           "check_search_options"]
+__all__ = ["AT", "FRAMES", "MAX_FRAMES", "MAX_POINTS", "OMEGA", "OptionError", "Range",
+           "bounded_jobs", "check_at_least", "check_ranges", "check_scheduler",
+           "check_search_options", "points_range"]
+
+#: The most positions of the input cycle a command analyses (about 10 MB of results for a
+#: six-bar; 10⁸ would not fit in memory).
+MAX_POINTS = 100_000
+#: The most frames of an animation.
+MAX_FRAMES = 3_600
 
 
 class OptionError(AssurError):
@@ -29,6 +39,72 @@ class OptionError(AssurError):
     def text(self, lang: str = "en") -> str:
         """One line per option, in ``lang``."""
         return "\n".join(f"{option}: {message.text(lang)}" for option, message in self.problems)
+
+
+@dataclass(frozen=True, slots=True)
+class Range:
+    """The range of a numeric option: ``low ≤ value ≤ high``, finite, whole when ``whole``.
+
+    Examples
+    --------
+    >>> OMEGA.problem(float("nan")).text("en")
+    'expected a finite number from 1e-12 to 1e+09; found nan'
+    >>> Range(1, 10, whole=True).problem(0).text("en")
+    'expected a whole number from 1 to 10; found 0'
+    >>> OMEGA.problem(10.0) is None
+    True
+    """
+
+    low: float
+    high: float
+    whole: bool = False
+
+    def problem(self, value: float) -> Message | None:
+        """What is wrong with ``value`` (None when it is in range)."""
+        if math.isfinite(value) and self.low <= value <= self.high:
+            return None
+        code = "cli.option.whole_range" if self.whole else "cli.option.number_range"
+        return Message(code, {"low": self.low, "high": self.high, "found": value})
+
+
+#: ``--omega``: the input speed, rad/s of a crank or mm/s of an actuator (the rule of a size
+#: of a table, as for ``general: omega``).
+OMEGA = Range(SMALLEST, LARGEST)
+#: ``--at``: the crank angle (degrees) or actuator length (mm) of the drawn position.
+AT = Range(-LARGEST, LARGEST)
+#: ``--frames``: the frames of an animation.
+FRAMES = Range(1, MAX_FRAMES, whole=True)
+
+
+def points_range(lowest: int) -> Range:
+    """``--points``: from ``lowest`` to :data:`MAX_POINTS` positions."""
+    return Range(lowest, MAX_POINTS, whole=True)
+
+
+def check_ranges(args: argparse.Namespace, ranges: Mapping[str, Range]) -> None:
+    """Refuse every option (destination → range) that is given and outside its range.
+
+    Raises
+    ------
+    OptionError
+
+    Examples
+    --------
+    >>> args = argparse.Namespace(omega=float("inf"), points=10**11, at=None)
+    >>> check_ranges(args, {"omega": OMEGA, "points": points_range(2), "at": AT})
+    Traceback (most recent call last):
+    ...
+    synthesis.cli.options.OptionError: --omega: expected a finite number from 1e-12 to 1e+09; found inf
+    --points: expected a whole number from 2 to 100000; found 100000000000
+    """
+    problems = []
+    for dest, rule in ranges.items():
+        value = getattr(args, dest, None)
+        message = None if value is None else rule.problem(value)
+        if message is not None:
+            problems.append((f"--{dest.replace('_', '-')}", message))
+    if problems:
+        raise OptionError(problems)
 
 
 def check_at_least(**options: tuple[int | None, int]) -> None:

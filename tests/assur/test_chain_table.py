@@ -119,7 +119,7 @@ def test_every_problem_of_the_sketch_is_reported_when_the_chain_is_read() -> Non
         ("  - geometry 'D' 'direction': expected an angle in degrees or a vector [dx, dy]; "
          "found a list of 2 items"),
         ("  - geometry 'input' 'stroke': expected [min, max] actuator lengths (mm), "
-         "0 < min < max; found a list of 2 items"),
+         "0 < min < max; found [5, 1]"),
         "  - geometry 'margin' 'L1(2,3)': δ must lie in [0, 1); found 2",
         "  - geometry.tracing 'K' 'link': expected a moving link of the mechanism; found 0"}
 

@@ -36,6 +36,10 @@ OPTIONS: dict[str, str] = {
 }
 """The command-line option that overrides each field."""
 
+#: The largest proportion ``l2/l1`` or ``l5/l1`` (the patent's are 1.4 to 2.2): beyond it the
+#: kite or the actuator's base is a hundred times the rocker, not a tracker.
+MAX_RATIO = 100.0
+
 _RANGES: dict[str, tuple[float, float, Message]] = {
     "stroke_deg": (1.0, 360.0, Message("rule.strictly_between", {"low": 1, "high": 360})),
     "min_transmission_deg": (0.0, 90.0, Message("rule.in_range", {"range": "[0, 90)"})),
@@ -68,8 +72,10 @@ def _ratios(value: list[Any]) -> Message | None:
         return Message("rule.list_not_empty")
     if not all(is_number(v) for v in value):
         return Message("rule.list_numbers")
-    if any(v <= 1.0 for v in value):
-        return Message("rule.list_greater", {"low": 1})
+    outside = [f"{v:g}" for v in value if not 1.0 < v <= MAX_RATIO]
+    if outside:
+        return Message("rule.list_within", {"low": 1, "high": MAX_RATIO,
+                                            "values": ", ".join(outside)})
     return None
 
 

@@ -12,8 +12,6 @@ ranges of the outputs, the largest pressure angle and the swing of every revolut
 from __future__ import annotations
 
 import argparse
-import json
-import sys
 
 from assur.text import DEFAULT, languages, render
 
@@ -40,12 +38,16 @@ def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Analyse the table and report (what a run does not ask for is never imported)."""
-    from assur.api import analyse
+    from assur.api import MIN_POINTS, analyse
     from assur.plot.formats import animation_format, picture_format
     from synthesis.app.analysis_text import analysis_text
     from synthesis.app.outputs import outputs_of, stdout_taken
+    from synthesis.app.strict_json import strict_json
     from synthesis.app.table_warnings import print_warnings
+    from synthesis.cli.options import AT, FRAMES, OMEGA, check_ranges, points_range
 
+    check_ranges(args, {"points": points_range(MIN_POINTS), "omega": OMEGA, "at": AT,
+                        "frames": FRAMES})
     csv_alone = stdout_taken(args, "csv")
     if args.plot:  # a format that cannot be written is refused before any work
         picture_format(args.plot)
@@ -54,8 +56,7 @@ def run(args: argparse.Namespace) -> int:
     result = analyse(args.table, points=args.points, forces=args.forces, omega=args.omega)
     forces = result.forces
     if args.json:
-        json.dump(result.to_dict(), sys.stdout, ensure_ascii=False)
-        sys.stdout.write("\n")
+        print(strict_json(result.to_dict()))
     else:
         print_warnings(result.warnings, args.table, args.lang)
         if not csv_alone:

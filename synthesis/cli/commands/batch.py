@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 
 from assur.text import DEFAULT, languages, render
 from synthesis.app.outputs import outputs_of
@@ -53,7 +52,9 @@ def run(args: argparse.Namespace) -> int:
     if args.csv:
         outputs.write_text(args.csv, csv_text(rows, bom=args.bom))
     if args.json:
-        print(json.dumps([row.to_dict() for row in rows], ensure_ascii=False, indent=1))
+        from synthesis.app.strict_json import strict_json
+
+        print(strict_json([row.to_dict() for row in rows], indent=1))
     elif not csv_alone:
         print(summary(rows, args.lang))
     return 0

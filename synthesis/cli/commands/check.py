@@ -46,9 +46,9 @@ def run(args: argparse.Namespace) -> int:
             assessment.chain, assessment.analysis, path, lang=args.lang))
     warnings = assessment.chain.warnings
     if args.json:
-        import json
+        from synthesis.app.strict_json import strict_json
 
-        print(json.dumps(assessment.to_dict(), ensure_ascii=False, indent=2))
+        print(strict_json(assessment.to_dict(), indent=2))
     else:
         print_warnings(warnings, args.table, args.lang)
         print(check_text(assessment, args.lang))

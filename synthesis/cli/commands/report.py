@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import datetime
-import json
 from pathlib import Path
 
 from assur.errors import Issue, TableError
@@ -12,7 +11,8 @@ from assur.io.reader import describe
 from assur.text import DEFAULT, Message, languages, render
 from synthesis.app.outputs import outputs_of
 from synthesis.app.progress import following_search
-from synthesis.cli.options import check_at_least, check_search_options
+from synthesis.app.strict_json import strict_json
+from synthesis.cli.options import check_ranges, check_search_options, points_range
 
 #: The output options, checked before the run.
 OUTPUTS = {"out": "file"}
@@ -57,7 +57,7 @@ def run(args: argparse.Namespace) -> int:
     """Build and write the report; print where it went (or the key values as JSON)."""
     from synthesis.app.coursework import build_report, render_html
 
-    check_at_least(points=(args.points, MIN_POINTS))
+    check_ranges(args, {"points": points_range(MIN_POINTS)})
     check_search_options(args, {"budget": "budget_log2"})
     with following_search(quiet=args.quiet, lang=args.lang):
         report = build_report(args.table, lang=args.lang, points=args.points,
@@ -67,7 +67,6 @@ def run(args: argparse.Namespace) -> int:
     outputs.write_text(out, render_html(report))
     report.out = outputs.written[-1] if outputs.written else None
     if args.json:
-        print(json.dumps({"out": None if report.out is None else str(report.out),
-                          "title": report.title, **report.facts},
-                         ensure_ascii=False, indent=1, default=str))
+        print(strict_json({"out": None if report.out is None else str(report.out),
+                           "title": report.title, **report.facts}, indent=1))
     return 0

@@ -12,7 +12,6 @@ Exit codes: 0 a feasible design (P1 = P2 = 0) was found, 1 the search ended with
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 
 from assur.text import DEFAULT, languages, render
@@ -86,7 +85,9 @@ def run(args: argparse.Namespace) -> int:
             path, problem, outcome.search, outcome.analysis, lang=args.lang))
         data["plots"] = [str(p) for p in plots or ()]
     if args.json:
-        print(json.dumps(data, indent=2, ensure_ascii=False))
+        from synthesis.app.strict_json import strict_json
+
+        print(strict_json(data, indent=2))
     else:
         sys.stdout.write(text_report(data, args.lang))
     if outcome.interrupted:

@@ -152,7 +152,7 @@ def test_the_double_parallelogram_names_its_redundant_link(
 @pytest.mark.parametrize("lang, words", [
     ("en", ("the kinematic analysis of a mechanism with more than one input is not available "
            "yet; 'assur check' gives its structure; to see the motion, keep one input")),
-    ("ru", ("кинематический анализ механизма с несколькими входами пока не выполняется; его "
+    ("ru", ("кинематический анализ механизма с более чем одним входом пока не выполняется; его "
            "строение покажет 'assur check'; чтобы увидеть движение, оставьте один вход"))])
 def test_two_inputs_say_what_to_do(lang: str, words: str,
                                    capsys: pytest.CaptureFixture[str]) -> None:

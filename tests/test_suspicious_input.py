@@ -198,14 +198,14 @@ def test_the_count_of_mismatches_agrees_with_its_noun(n: int) -> None:
 
 
 def test_one_loose_link_is_one_link(tmp_path: Path) -> None:
-    table = _table(tmp_path, "four_bar.yaml", "    - {id: 3, name: rocker}\n",
-                   "    - {id: 3, name: rocker}\n    - {id: 4, name: loose}\n")
+    rocker = "    - {id: 3, name: {en: rocker, ru: коромысло}}\n"
+    table = _table(tmp_path, "four_bar.yaml", rocker, rocker + "    - {id: 4, name: loose}\n")
     found = [d for d in analyse_structure(load_chain(table)).issues
              if d.code == "E_DISCONNECTED"]
     assert [d.text("en") for d in found] == ["link 4 is not connected to the frame"]
     assert [d.text("ru") for d in found] == ["звено 4 не связано со стойкой"]
-    two = _table(tmp_path, "four_bar.yaml", "    - {id: 3, name: rocker}\n",
-                 "    - {id: 3, name: rocker}\n    - {id: 4}\n    - {id: 5}\n", "two.yaml")
+    two = _table(tmp_path, "four_bar.yaml", rocker, rocker + "    - {id: 4}\n    - {id: 5}\n",
+                 "two.yaml")
     found = [d for d in analyse_structure(load_chain(two)).issues if d.code == "E_DISCONNECTED"]
     assert [d.text("en") for d in found] == ["links {4, 5} are not connected to the frame"]
     assert [d.text("ru") for d in found] == ["звенья {4, 5} не связаны со стойкой"]

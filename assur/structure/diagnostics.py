@@ -75,9 +75,19 @@ class Diagnostic:
 
     @property
     def message(self) -> Message:
-        """The sentence, not yet rendered."""
+        """The sentence, not yet rendered.
+
+        Its subject is the phrase naming the links ("links {2, 3, …}"), not a numeral, so the
+        plural form follows one link or several (``n`` is 1 or 2), never the count: in Russian
+        21 links named in a list are still "звенья … держатся".
+
+        >>> from assur.text import render
+        >>> many = diagnostic("E_MISSING_PAIR", range(2, 23)).message
+        >>> "22} держатся каждое на одной паре" in render(many.code, "ru", **many.data)
+        True
+        """
         return Message(f"diag.{self.code.lower()}", {
-            **dict.fromkeys(NOTES, ""), "n": len(self.links), **self.data, **self.notes,
+            **dict.fromkeys(NOTES, ""), "n": min(len(self.links), 2), **self.data, **self.notes,
             "links": link_phrase(self.links), "names": _plain(self.links),
             "pairs": _plain(self.pairs) or "—"})
 

@@ -18,8 +18,9 @@ IV form Φ = |π_bα_d − π_dα_b|² − cross(α_b, α_d)², of degree at mos
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from functools import cached_property
+from weakref import WeakKeyDictionary
 
 import numpy as np
 
@@ -50,6 +51,13 @@ SPLIT = GRID[None, :] ** -np.arange(-FULL_DEGREE, FULL_DEGREE + 1)[:, None] / GR
 VANISH = 1e-10
 
 
+#: The unknown's samples 0, π/2, π, and the map from a loop equation's values there to its
+#: coefficients of w(y) = (κ², κσ, σ²), κ = cos(y/2), σ = sin(y/2): F(0), 2F(π/2) − F(0) − F(π),
+#: F(π). Half angles keep the lifting factor κ² exact near y = π (a slide far out).
+SAMPLES = np.array([0.0, 0.5 * np.pi, np.pi])
+FROM_SAMPLES = np.array([[1.0, 0.0, 0.0], [-1.0, 2.0, -1.0], [0.0, 0.0, 1.0]])
+
+
 #: (p, m) of each form (couplers' kinds, slides, ε) once read (see ClassIVCoupled._form).
 _FORMS: dict[tuple[tuple[Leash, Leash], tuple[bool, bool], int], tuple[int, int]] = {}
 
@@ -68,6 +76,44 @@ def _deflate(series: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         quotient[..., i] = carry
         carry = series[..., i] - carry
     return quotient, carry
+
+
+def _halves(y: Value) -> Value:
+    """w(y) = (κ², κσ, σ²) on a last axis (κ = cos(y/2), σ = sin(y/2)); a jet of y gives a
+    jet, w′ = (−κσ, (κ² − σ²)/2, κσ), w″ = ((σ² − κ²)/2, −κσ, (κ² − σ²)/2)."""
+    t = np.asarray(J.value(y), dtype=float)
+    k, s = np.cos(0.5 * t), np.sin(0.5 * t)
+    w = np.stack([k * k, k * s, s * s], axis=-1)
+    if not isinstance(y, J.Jet):
+        return w
+    half = 0.5 * (k * k - s * s)
+    d1 = np.stack([-k * s, half, k * s], axis=-1)
+    d2 = np.stack([-half, -k * s, half], axis=-1)
+    y1, y2 = np.asarray(y.d1)[..., None], np.asarray(y.d2)[..., None]
+    return J.Jet(w, d1 * y1, d2 * y1 * y1 + d1 * y2)
+
+
+def _turn_halves(y: np.ndarray) -> np.ndarray:
+    """w′(y) = (−κσ, (κ² − σ²)/2, κσ) of plain angles."""
+    k, s = np.cos(0.5 * y), np.sin(0.5 * y)
+    return np.stack([-k * s, 0.5 * (k * k - s * s), k * s], axis=-1)
+
+
+_FORM = "...p,...jpq,...q->...j"
+
+
+def _contract(va: Value, m: Value, vc: Value) -> Value:
+    """F̂_j = Σ_pq w(y_a)_p·M_jpq·w(y_c)_q, with jets by the product rule (plain arrays: one einsum)."""
+    if not any(isinstance(t, J.Jet) for t in (va, m, vc)):
+        return np.asarray(np.einsum(_FORM, va, m, vc))
+    a, b, c = (np.broadcast_arrays(j.v, j.d1, j.d2) for j in map(J.as_jet, (va, m, vc)))
+
+    def f(i: int, j: int, k: int) -> np.ndarray:
+        return np.asarray(np.einsum(_FORM, a[i], b[j], c[k]))
+
+    return J.Jet(f(0, 0, 0), f(1, 0, 0) + f(0, 1, 0) + f(0, 0, 1),
+                 f(2, 0, 0) + f(0, 2, 0) + f(0, 0, 2)
+                 + 2.0 * (f(1, 1, 0) + f(1, 0, 1) + f(0, 1, 1)))
 
 
 @dataclass(frozen=True)
@@ -236,11 +282,11 @@ class ClassIVCoupled(ClassIVDrawing):
             return _Link(u / drawn, weight, weight * h + self.size * J.imag(half) * u)
         return (link(y[0], k.h_a, k.u_a, self.u_a), link(y[1], k.h_c, k.u_c, self.u_c))
 
-    def _lifted(self, y: Sequence[Value], k: ClassIVInputs) -> list[tuple[Value, Value, Value]]:
-        """Per coupler: F̂_j, its lifting factor and the scale of the natural residual."""
+    def _lifted(self, y: Sequence[Value], k: ClassIVInputs) -> list[Value]:
+        """F̂_b, F̂_d at the unknowns y (the loop equations times their lifting factors)."""
         a, c = self._links(y, k)
         both = a.weight * a.weight * c.weight * c.weight
-        out = []
+        out: list[Value] = []
         for j, ((first, second), kind, (wa, wc)) in enumerate(zip(
                 ((self.c, self.d), (self.f, self.e)), self.kinds,
                 (self._guides(0), self._guides(1)), strict=True)):
@@ -249,41 +295,108 @@ class ClassIVCoupled(ClassIVDrawing):
             gap = c.weight * pa - a.weight * pc   # κ_aκ_c·(that on a − that on c)
             drawn = np.asarray(first) - second
             if kind is Leash.RR:  # a bar: its drawn length, or an actuator's from the inputs
-                given = k.l_b if j == 0 else k.l_d
-                length = np.abs(drawn) if given is None else given
-                out.append((J.dot(gap, gap) - length * length * both, both, 0.5 / length))
+                length = self._length(j, k)
+                out.append(J.dot(gap, gap) - length * length * both)
             elif kind is Leash.PP:
-                out.append((J.cross(a.turn, c.turn), 1.0, self.size))
+                out.append(J.cross(a.turn, c.turn))
             else:
                 turn, w = (a.turn, wa) if kind is Leash.PR else (c.turn, wc)
                 offset = plain_cross(w, drawn)
-                out.append((a.weight * c.weight * J.cross(turn * w, gap) - offset * both,
-                            both, 1.0))
+                out.append(a.weight * c.weight * J.cross(turn * w, gap) - offset * both)
         return out
+
+    def _length(self, j: int, k: ClassIVInputs) -> Value:
+        """The length of bar j (0: b, 1: d): drawn, or an actuator's from the inputs."""
+        given = k.l_b if j == 0 else k.l_d
+        drawn = (self.c, self.f)[j] - np.asarray((self.d, self.e)[j])
+        return np.abs(drawn) if given is None else given
+
+    @cached_property
+    def _memo(self) -> WeakKeyDictionary[ClassIVInputs, Value]:
+        """The matrices of :meth:`_matrices` of the inputs records at hand."""
+        return WeakKeyDictionary()
+
+    def _matrices(self, k: ClassIVInputs) -> Value:
+        """M_j, shape (..., 2, 3, 3): F̂_j = Σ_pq w(y_a)_p·M_jpq·w(y_c)_q (:func:`_halves`).
+
+        F̂_j is trigonometrically linear in y_a and in y_c separately (a quadratic form in
+        (κ, σ) of each), so its values at
+        y_a, y_c ∈ {0, π/2, π} give M_j, once per inputs record; the residual, the Jacobian,
+        the eliminant and the recovery are contractions of M. Jet inputs give a jet M.
+        """
+        memo = self._memo
+        if k not in memo:
+            depth = max(np.ndim(J.value(getattr(record, f.name)))
+                        for record in (self, k) for f in fields(record)
+                        if getattr(record, f.name) is not None)
+            grid = np.ones((3, 3) + (1,) * depth)
+            lifted = self._lifted([SAMPLES.reshape((3, 1) + (1,) * depth),
+                                   SAMPLES.reshape((1, 3) + (1,) * depth)], k)
+            parts = [J.as_jet(f) for f in lifted]
+
+            def fit(name: str) -> np.ndarray:
+                samples = np.stack(np.broadcast_arrays(*(getattr(f, name) * grid for f in parts)))
+                return np.asarray(np.einsum("pa,jab...,qb->...jpq", FROM_SAMPLES, samples,
+                                            FROM_SAMPLES))
+
+            jets = any(isinstance(f, J.Jet) for f in lifted)
+            memo[k] = J.Jet(fit("v"), fit("d1"), fit("d2")) if jets else fit("v")
+        return memo[k]
+
+    def _scales(self, k: ClassIVInputs) -> list[Value]:
+        """Per coupler, the natural residual's scale: 1/(2l) of a bar, L of a PP coupler, 1."""
+        return [0.5 / self._length(j, k) if kind is Leash.RR else self.size
+                if kind is Leash.PP else 1.0 for j, kind in enumerate(self.kinds)]
+
+    def _lifts(self, wa: np.ndarray | J.Jet, wc: np.ndarray | J.Jet, slopes: bool = False
+               ) -> tuple[list[Value], list[Value], list[Value]]:
+        """Per coupler, the lifting factor κ_a²κ_c² (1 of a PP coupler; κ = 1 of a hinged
+        link) from w(y_a), w(y_c), and with ``slopes`` its derivatives along y_a, y_c."""
+        square = [w[..., 0] if slides else 1.0 for w, slides in zip((wa, wc), self.slides,
+                                                                     strict=True)]
+        slope = [-w[..., 1] if slides and slopes else 0.0
+                 for w, slides in zip((wa, wc), self.slides, strict=True)]
+        (qa, qc), (da, dc) = square, slope
+        lifts = [(1.0, 0.0, 0.0) if kind is Leash.PP else (qa * qc, da * qc, qa * dc)
+                 for kind in self.kinds]
+        return ([lift[0] for lift in lifts], [lift[1] for lift in lifts],
+                [lift[2] for lift in lifts])
 
     def residual(self, x: Unknowns, k: ClassIVInputs) -> list[Value]:
         """g_b, g_d: RR (|C − D|² − l²)/(2l), PR/RP the offset of the hinge from the guide
         minus its drawn value, PP L·sin(θ_a − θ_c) (rotations of a sliding link its guide's)."""
-        return [value * scale / lift for value, lift, scale in self._lifted(unknown_columns(x), k)]
+        cols = unknown_columns(x)
+        wa, wc = _halves(cols[0]), _halves(cols[1])
+        f = _contract(wa, self._matrices(k), wc)
+        lifts = self._lifts(wa, wc)[0]
+        return [f[..., j] * scale / lift
+                for j, (scale, lift) in enumerate(zip(self._scales(k), lifts, strict=True))]
 
     def lines(self, x: np.ndarray, k: ClassIVInputs) -> tuple[np.ndarray, np.ndarray]:
         """The Jacobian in (y_a, y_c) and the margin rows in physical columns.
 
-        A rotation's column is divided by the RMS radius of the link's internal pairs about
-        its external pair, a slide's is ∂/∂s = ∂/∂t·2L/(L² + s²) (as :class:`ClassIV`).
+        ∂g_j/∂y = scale_j·(∂F̂_j/∂y − F̂_j·∂lift_j/∂y/lift_j)/lift_j, ∂F̂_j/∂y from M and
+        w′(y). A rotation's column is divided by the RMS radius of the
+        link's internal pairs about its external pair, a slide's is ∂/∂s = ∂/∂t·2L/(L² + s²).
         """
-        cols = unknown_columns(x)
-        shape = (2, *np.shape(cols[0]))
-        # both columns in one pass: the derivative along y_a, y_c on a leading axis
-        seed = np.eye(2).reshape((2, 2) + (1,) * (len(shape) - 1))
-        slopes = [np.broadcast_to(J.as_jet(g).d1, shape) for g in
-                  self.residual([J.Jet(v, seed[i]) for i, v in enumerate(cols)], k)]
-        jac = np.moveaxis(np.stack(slopes, axis=-1), 0, -1)
+        ya, yc = (np.asarray(col, dtype=float) for col in unknown_columns(x))
+        m = np.asarray(J.value(self._matrices(k)))
+        wa, wc = np.asarray(_halves(ya)), np.asarray(_halves(yc))
+        f = np.asarray(_contract(wa, m, wc))
+        along = (np.asarray(_contract(_turn_halves(ya), m, wc)),
+                 np.asarray(_contract(wa, m, _turn_halves(yc))))
+        lift, lift_a, lift_c = (np.stack(np.broadcast_arrays(*part), axis=-1)
+                                for part in self._lifts(wa, wc, slopes=True))
+        scale = np.stack(np.broadcast_arrays(*(np.asarray(J.value(s))
+                                               for s in self._scales(k))), axis=-1)
+        jac = np.stack([scale * (df - f * dl / lift) / lift
+                        for df, dl in zip(along, (lift_a, lift_c), strict=True)], axis=-1)
         scales = []
-        for y, slides, (p, q), h in zip(cols, self.slides, ((self.c, self.f), (self.d, self.e)),
+        for y, slides, (p, q), h in zip((ya, yc), self.slides,
+                                        ((self.c, self.f), (self.d, self.e)),
                                         (self.h_a, self.h_c), strict=True):
             if slides:
-                s = self.size * np.tan(0.5 * np.asarray(y))
+                s = self.size * np.tan(0.5 * y)
                 scales.append(2.0 * self.size / (self.size ** 2 + s * s))
             else:
                 scales.append(1.0 / np.sqrt((np.abs(np.asarray(p) - h) ** 2
@@ -294,18 +407,17 @@ class ClassIVCoupled(ClassIVDrawing):
     # --- elimination ----------------------------------------------------------------------
 
     def _linear(self, e: np.ndarray, k: ClassIVInputs) -> list[tuple[np.ndarray, np.ndarray]]:
-        """α_j, π_j of Re(ᾱ_j E_o) = π_j at y_ε = arg e."""
-        eps = self.eliminated
-        samples = []
-        for y_o in (0.0, 0.5 * np.pi, np.pi):
-            y = [np.angle(e), np.full(np.shape(e), y_o)]
-            samples.append([value for value, _, _ in self._lifted(y if eps == 0 else y[::-1],
-                                                                   k)])
-        out = []
-        for f0, f1, f2 in zip(*samples, strict=True):
-            mean = (np.asarray(f0) + f2) / 2.0
-            out.append(((np.asarray(f0) - f2) / 2.0 + 1j * (np.asarray(f1) - mean), -mean))
-        return out
+        """α_j, π_j of Re(ᾱ_j E_o) = π_j at y_ε = arg e: the coefficients (d₀, d₁, d₂) of
+        F̂_j in w(y_o) are M_j contracted with w(y_ε) = ((1 + cos)/2, sin/2, (1 − cos)/2);
+        with κ² = (1 + cos)/2, κσ = sin/2, σ² = (1 − cos)/2, α_j = (d₀ − d₂ + i·d₁)/2 and
+        π_j = −(d₀ + d₂)/2."""
+        unit = e / np.abs(e)
+        w = np.stack(np.broadcast_arrays(0.5 + 0.5 * unit.real, 0.5 * unit.imag,
+                                         0.5 - 0.5 * unit.real), axis=-1)
+        spec = "...p,...jpq->...jq" if self.eliminated == 0 else "...q,...jpq->...jp"
+        d = np.einsum(spec, w, np.asarray(J.value(self._matrices(k))))
+        return [(0.5 * (d[..., j, 0] - d[..., j, 2] + 1j * d[..., j, 1]),
+                 -0.5 * (d[..., j, 0] + d[..., j, 2])) for j in (0, 1)]
 
     def _full(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
         """Φ(y_ε) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² at y_ε = arg e.

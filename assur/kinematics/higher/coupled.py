@@ -83,7 +83,10 @@ def _halves(y: Value) -> Value:
     jet, w′ = (−κσ, (κ² − σ²)/2, κσ), w″ = ((σ² − κ²)/2, −κσ, (κ² − σ²)/2)."""
     t = np.asarray(J.value(y), dtype=float)
     k, s = np.cos(0.5 * t), np.sin(0.5 * t)
-    w = np.stack([k * k, k * s, s * s], axis=-1)
+    w = np.empty(t.shape + (3,))
+    np.multiply(k, k, out=w[..., 0])
+    np.multiply(k, s, out=w[..., 1])
+    np.multiply(s, s, out=w[..., 2])
     if not isinstance(y, J.Jet):
         return w
     half = 0.5 * (k * k - s * s)
@@ -96,7 +99,11 @@ def _halves(y: Value) -> Value:
 def _turn_halves(y: np.ndarray) -> np.ndarray:
     """w′(y) = (−κσ, (κ² − σ²)/2, κσ) of plain angles."""
     k, s = np.cos(0.5 * y), np.sin(0.5 * y)
-    return np.stack([-k * s, 0.5 * (k * k - s * s), k * s], axis=-1)
+    out = np.empty(np.shape(y) + (3,))
+    np.multiply(k, s, out=out[..., 2])
+    np.negative(out[..., 2], out=out[..., 0])
+    out[..., 1] = 0.5 * (k * k - s * s)
+    return out
 
 
 _FORM = "...p,...jpq,...q->...j"
@@ -171,12 +178,12 @@ class ClassIVCoupled(ClassIVDrawing):
 
     # --- form -----------------------------------------------------------------------------
 
-    @property
+    @cached_property
     def slides(self) -> tuple[bool, bool]:
         """Whether the external pair of a, of c, is prismatic."""
         return self.u_a is not None, self.u_c is not None
 
-    @property
+    @cached_property
     def kinds(self) -> tuple[Leash, Leash]:
         """The forms of b (pairs C, D) and d (pairs F, E), the pair on a first."""
         return (Leash.of(self.w_c is not None, self.w_d is not None),

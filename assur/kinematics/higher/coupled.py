@@ -30,13 +30,13 @@ from assur.kinematics.higher.groups import (
     ClassIVInputs,
     Leash,
     Unknowns,
-    Value,
     expand,
     plain_cross,
     plain_dot,
     unknown_columns,
 )
 from assur.text import render
+from assur.typing import Value
 
 __all__ = ["ClassIVCoupled"]
 
@@ -112,7 +112,7 @@ _FORM = "...p,...jpq,...q->...j"
 def _contract(va: Value, m: Value, vc: Value) -> Value:
     """F̂_j = Σ_pq w(y_a)_p·M_jpq·w(y_c)_q, with jets by the product rule (plain arrays: one einsum)."""
     if not any(isinstance(t, J.Jet) for t in (va, m, vc)):
-        return np.asarray(np.einsum(_FORM, va, m, vc))
+        return np.asarray(np.einsum(_FORM, *(np.asarray(J.value(t)) for t in (va, m, vc))))
     a, b, c = (np.broadcast_arrays(j.v, j.d1, j.d2) for j in map(J.as_jet, (va, m, vc)))
 
     def f(i: int, j: int, k: int) -> np.ndarray:
@@ -164,10 +164,10 @@ class ClassIVCoupled(ClassIVDrawing):
     ((<Leash.PR: 'PR'>, <Leash.RR: 'RR'>), 3, True, 0)
     """
 
-    w_c: Value = None
-    w_d: Value = None
-    w_e: Value = None
-    w_f: Value = None
+    w_c: Value | None = None
+    w_d: Value | None = None
+    w_e: Value | None = None
+    w_f: Value | None = None
 
     n = 2
     lengths = (False, False)
@@ -189,7 +189,7 @@ class ClassIVCoupled(ClassIVDrawing):
         return (Leash.of(self.w_c is not None, self.w_d is not None),
                 Leash.of(self.w_f is not None, self.w_e is not None))
 
-    def _guides(self, j: int) -> tuple[Value, Value]:
+    def _guides(self, j: int) -> tuple[Value | None, Value | None]:
         """The guides of coupler j (0: b, 1: d), the pair on a first."""
         return (self.w_c, self.w_d) if j == 0 else (self.w_f, self.w_e)
 
@@ -281,8 +281,8 @@ class ClassIVCoupled(ClassIVDrawing):
 
     def _links(self, y: Sequence[Value], k: ClassIVInputs) -> tuple[_Link, _Link]:
         """a and c at the unknowns y (angles; plain arrays or jets)."""
-        def link(angle: Value, h: Value, u: Value, drawn: Value) -> _Link:
-            if drawn is None:
+        def link(angle: Value, h: Value, u: Value | None, drawn: Value | None) -> _Link:
+            if drawn is None or u is None:
                 return _Link(J.expi(angle), 1.0, h)
             half = J.expi(0.5 * angle)
             weight = J.real(half)
@@ -315,7 +315,7 @@ class ClassIVCoupled(ClassIVDrawing):
     def _length(self, j: int, k: ClassIVInputs) -> Value:
         """The length of bar j (0: b, 1: d): drawn, or an actuator's from the inputs."""
         given = k.l_b if j == 0 else k.l_d
-        drawn = (self.c, self.f)[j] - np.asarray((self.d, self.e)[j])
+        drawn = np.asarray(J.value((self.c, self.f)[j])) - J.value((self.d, self.e)[j])
         return np.abs(drawn) if given is None else given
 
     @cached_property
@@ -355,14 +355,17 @@ class ClassIVCoupled(ClassIVDrawing):
         return [0.5 / self._length(j, k) if kind is Leash.RR else self.size
                 if kind is Leash.PP else 1.0 for j, kind in enumerate(self.kinds)]
 
-    def _lifts(self, wa: np.ndarray | J.Jet, wc: np.ndarray | J.Jet, slopes: bool = False
+    def _lifts(self, wa: Value, wc: Value, slopes: bool = False
                ) -> tuple[list[Value], list[Value], list[Value]]:
         """Per coupler, the lifting factor κ_a²κ_c² (1 of a PP coupler; κ = 1 of a hinged
         link) from w(y_a), w(y_c), and with ``slopes`` its derivatives along y_a, y_c."""
-        square = [w[..., 0] if slides else 1.0 for w, slides in zip((wa, wc), self.slides,
-                                                                     strict=True)]
-        slope = [-w[..., 1] if slides and slopes else 0.0
-                 for w, slides in zip((wa, wc), self.slides, strict=True)]
+        square: list[Value] = []
+        slope: list[Value] = []
+        for w, slides in zip((wa, wc), self.slides, strict=True):
+            jet = J.as_jet(w) if isinstance(w, J.Jet) else None
+            column = np.asarray(J.value(w))
+            square.append((jet[..., 0] if jet is not None else column[..., 0]) if slides else 1.0)
+            slope.append(-column[..., 1] if slides and slopes else 0.0)
         (qa, qc), (da, dc) = square, slope
         lifts = [(1.0, 0.0, 0.0) if kind is Leash.PP else (qa * qc, da * qc, qa * dc)
                  for kind in self.kinds]

@@ -234,8 +234,8 @@ class TriadInputs:
     """
 
     a: tuple[Value, Value, Value]
-    u: tuple[Value, Value, Value] = (None, None, None)
-    lengths: tuple[Value, Value, Value] = (None, None, None)
+    u: tuple[Value | None, Value | None, Value | None] = (None, None, None)
+    lengths: tuple[Value | None, Value | None, Value | None] = (None, None, None)
 
 
 @dataclass(frozen=True, eq=False)
@@ -271,7 +271,7 @@ class Triad(HigherGroup):
     leashes: tuple[Leash, Leash, Leash]
     base: tuple[Value, Value, Value]
     external: tuple[Value, Value, Value]
-    guide: tuple[Value, Value, Value] = (None, None, None)
+    guide: tuple[Value | None, Value | None, Value | None] = (None, None, None)
 
     n = 3
 
@@ -568,10 +568,10 @@ class ClassIVInputs:
 
     h_a: Value
     h_c: Value
-    u_a: Value = None
-    u_c: Value = None
-    l_b: Value = None
-    l_d: Value = None
+    u_a: Value | None = None
+    u_c: Value | None = None
+    l_b: Value | None = None
+    l_d: Value | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -598,8 +598,8 @@ class ClassIVDrawing(HigherGroup):
     h_c: Value
     d: Value
     e: Value
-    u_a: Value = None
-    u_c: Value = None
+    u_a: Value | None = None
+    u_c: Value | None = None
 
     @cached_property
     def size(self) -> np.ndarray:

@@ -20,7 +20,14 @@ from typing import Any
 import numpy as np
 
 from assur.kinematics import jets as J
-from assur.kinematics.higher.groups import ClassIV, HigherGroup, det_rows, hadamard, values
+from assur.kinematics.higher.groups import (
+    ClassIV,
+    HigherGroup,
+    det_rows,
+    hadamard,
+    plain,
+    values,
+)
 from assur.kinematics.higher.modes import (
     TAU,
     AssemblyModes,
@@ -707,7 +714,7 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
     around = ahead.reached[:, -1]
     size = np.broadcast_to(group.size, (d,))
     with np.errstate(all="ignore"):
-        home = np.max([np.abs(ahead.out["p." + a][0][:, -1] - np.broadcast_to(v, (d,)))
+        home = np.max([np.abs(ahead.out["p." + a][0][:, -1] - np.broadcast_to(plain(v), (d,)))
                        for a, v in group.joints(x0, k0).items()], axis=0)
     closed = ~around | (home <= CLOSED * size)
     back_targets = np.append(TWO_PI - grid[grid > 0][::-1], TWO_PI)

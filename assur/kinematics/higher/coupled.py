@@ -30,9 +30,10 @@ from assur.kinematics.higher.groups import (
     ClassIVInputs,
     Leash,
     Unknowns,
-    expand,
+    plain,
     plain_cross,
     plain_dot,
+    present,
     unknown_columns,
 )
 from assur.text import render
@@ -96,27 +97,33 @@ def _halves(y: Value) -> Value:
     return J.Jet(w, d1 * y1, d2 * y1 * y1 + d1 * y2)
 
 
-def _turn_halves(y: np.ndarray) -> np.ndarray:
-    """w′(y) = (−κσ, (κ² − σ²)/2, κσ) of plain angles."""
+def _halves_turning(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """w(y) and w′(y) = (−κσ, (κ² − σ²)/2, κσ) of plain angles."""
     k, s = np.cos(0.5 * y), np.sin(0.5 * y)
-    out = np.empty(np.shape(y) + (3,))
-    np.multiply(k, s, out=out[..., 2])
-    np.negative(out[..., 2], out=out[..., 0])
-    out[..., 1] = 0.5 * (k * k - s * s)
-    return out
+    w, turning = np.empty(np.shape(y) + (3,)), np.empty(np.shape(y) + (3,))
+    np.multiply(k, k, out=w[..., 0])
+    np.multiply(k, s, out=w[..., 1])
+    np.multiply(s, s, out=w[..., 2])
+    np.negative(w[..., 1], out=turning[..., 0])
+    turning[..., 2] = w[..., 1]
+    np.subtract(w[..., 0], w[..., 2], out=turning[..., 1])
+    turning[..., 1] *= 0.5
+    return w, turning
 
 
-_FORM = "...p,...jpq,...q->...j"
+def _form(va: np.ndarray, m: np.ndarray, vc: np.ndarray) -> np.ndarray:
+    """Σ_pq va_p·m_jpq·vc_q of plain arrays (..., 3), (..., 2, 3, 3), (..., 3)."""
+    return np.asarray((va[..., None, :, None] * m * vc[..., None, None, :]).sum(axis=(-2, -1)))
 
 
-def _contract(va: Value, m: Value, vc: Value) -> Value:
+def _contract(va: Value, m: Value, vc: Value) -> J.Jet | np.ndarray:
     """F̂_j = Σ_pq w(y_a)_p·M_jpq·w(y_c)_q, with jets by the product rule (plain arrays: one einsum)."""
     if not any(isinstance(t, J.Jet) for t in (va, m, vc)):
-        return np.asarray(np.einsum(_FORM, *(np.asarray(J.value(t)) for t in (va, m, vc))))
+        return _form(*(np.asarray(J.value(t)) for t in (va, m, vc)))
     a, b, c = (np.broadcast_arrays(j.v, j.d1, j.d2) for j in map(J.as_jet, (va, m, vc)))
 
     def f(i: int, j: int, k: int) -> np.ndarray:
-        return np.asarray(np.einsum(_FORM, a[i], b[j], c[k]))
+        return _form(a[i], b[j], c[k])
 
     return J.Jet(f(0, 0, 0), f(1, 0, 0) + f(0, 1, 0) + f(0, 0, 1),
                  f(2, 0, 0) + f(0, 2, 0) + f(0, 0, 2)
@@ -259,7 +266,7 @@ class ClassIVCoupled(ClassIVDrawing):
                               None if self.u_a is None else self.u_a * turn,
                               None if self.u_c is None else self.u_c / turn)
         with np.errstate(all="ignore"):
-            series = self._series(expand(self), expand(probe))
+            series = self._series(probe, True)
         p = 0
         while p < FULL_DEGREE * 2:
             quotient, rest = _deflate(series)
@@ -309,7 +316,8 @@ class ClassIVCoupled(ClassIVDrawing):
             else:
                 turn, w = (a.turn, wa) if kind is Leash.PR else (c.turn, wc)
                 offset = plain_cross(w, drawn)
-                out.append(a.weight * c.weight * J.cross(turn * w, gap) - offset * both)
+                out.append(a.weight * c.weight * J.cross(turn * present(w), gap)
+                           - offset * both)
         return out
 
     def _length(self, j: int, k: ClassIVInputs) -> Value:
@@ -324,12 +332,13 @@ class ClassIVCoupled(ClassIVDrawing):
         return WeakKeyDictionary()
 
     def _matrices(self, k: ClassIVInputs) -> Value:
-        """M_j, shape (..., 2, 3, 3): F̂_j = Σ_pq w(y_a)_p·M_jpq·w(y_c)_q (:func:`_halves`).
+        """M_j, shape (..., 2, 3, 3): scale_j·F̂_j = Σ_pq w(y_a)_p·M_jpq·w(y_c)_q
+        (:func:`_halves`), scale_j that of the natural residual (:meth:`_scales`).
 
         F̂_j is trigonometrically linear in y_a and in y_c separately (a quadratic form in
-        (κ, σ) of each), so its values at
-        y_a, y_c ∈ {0, π/2, π} give M_j, once per inputs record; the residual, the Jacobian,
-        the eliminant and the recovery are contractions of M. Jet inputs give a jet M.
+        (κ, σ) of each), so its values at y_a, y_c ∈ {0, π/2, π} give M_j, once per inputs
+        record; the residual, the Jacobian, the eliminant and the recovery are contractions
+        of M (a positive factor per equation moves no root of Φ). Jet inputs give a jet M.
         """
         memo = self._memo
         if k not in memo:
@@ -337,8 +346,10 @@ class ClassIVCoupled(ClassIVDrawing):
                         for record in (self, k) for f in fields(record)
                         if getattr(record, f.name) is not None)
             grid = np.ones((3, 3) + (1,) * depth)
-            lifted = self._lifted([SAMPLES.reshape((3, 1) + (1,) * depth),
-                                   SAMPLES.reshape((1, 3) + (1,) * depth)], k)
+            lifted = [f * scale for f, scale in zip(
+                self._lifted([SAMPLES.reshape((3, 1) + (1,) * depth),
+                              SAMPLES.reshape((1, 3) + (1,) * depth)], k),
+                self._scales(k), strict=True)]
             parts = [J.as_jet(f) for f in lifted]
 
             def fit(name: str) -> np.ndarray:
@@ -355,22 +366,12 @@ class ClassIVCoupled(ClassIVDrawing):
         return [0.5 / self._length(j, k) if kind is Leash.RR else self.size
                 if kind is Leash.PP else 1.0 for j, kind in enumerate(self.kinds)]
 
-    def _lifts(self, wa: Value, wc: Value, slopes: bool = False
-               ) -> tuple[list[Value], list[Value], list[Value]]:
-        """Per coupler, the lifting factor κ_a²κ_c² (1 of a PP coupler; κ = 1 of a hinged
-        link) from w(y_a), w(y_c), and with ``slopes`` its derivatives along y_a, y_c."""
-        square: list[Value] = []
-        slope: list[Value] = []
-        for w, slides in zip((wa, wc), self.slides, strict=True):
-            jet = J.as_jet(w) if isinstance(w, J.Jet) else None
-            column = np.asarray(J.value(w))
-            square.append((jet[..., 0] if jet is not None else column[..., 0]) if slides else 1.0)
-            slope.append(-column[..., 1] if slides and slopes else 0.0)
-        (qa, qc), (da, dc) = square, slope
-        lifts = [(1.0, 0.0, 0.0) if kind is Leash.PP else (qa * qc, da * qc, qa * dc)
-                 for kind in self.kinds]
-        return ([lift[0] for lift in lifts], [lift[1] for lift in lifts],
-                [lift[2] for lift in lifts])
+    def _lifts(self, wa: Value, wc: Value) -> list[Value]:
+        """Per coupler, the lifting factor κ_a²κ_c² from w(y_a), w(y_c) (1 of a PP coupler;
+        κ = 1 of a hinged link)."""
+        qa, qc = ((w[..., 0] if isinstance(w, J.Jet) else plain(w)[..., 0]) if slides else 1.0
+                  for w, slides in zip((wa, wc), self.slides, strict=True))
+        return [1.0 if kind is Leash.PP else qa * qc for kind in self.kinds]
 
     def residual(self, x: Unknowns, k: ClassIVInputs) -> list[Value]:
         """g_b, g_d: RR (|C − D|² − l²)/(2l), PR/RP the offset of the hinge from the guide
@@ -378,9 +379,7 @@ class ClassIVCoupled(ClassIVDrawing):
         cols = unknown_columns(x)
         wa, wc = _halves(cols[0]), _halves(cols[1])
         f = _contract(wa, self._matrices(k), wc)
-        lifts = self._lifts(wa, wc)[0]
-        return [f[..., j] * scale / lift
-                for j, (scale, lift) in enumerate(zip(self._scales(k), lifts, strict=True))]
+        return [f[..., j] / lift for j, lift in enumerate(self._lifts(wa, wc))]
 
     def lines(self, x: np.ndarray, k: ClassIVInputs) -> tuple[np.ndarray, np.ndarray]:
         """The Jacobian in (y_a, y_c) and the margin rows in physical columns.
@@ -389,47 +388,69 @@ class ClassIVCoupled(ClassIVDrawing):
         w′(y). A rotation's column is divided by the RMS radius of the
         link's internal pairs about its external pair, a slide's is ∂/∂s = ∂/∂t·2L/(L² + s²).
         """
-        ya, yc = (np.asarray(col, dtype=float) for col in unknown_columns(x))
-        m = np.asarray(J.value(self._matrices(k)))
-        wa, wc = np.asarray(_halves(ya)), np.asarray(_halves(yc))
-        f = np.asarray(_contract(wa, m, wc))
-        along = (np.asarray(_contract(_turn_halves(ya), m, wc)),
-                 np.asarray(_contract(wa, m, _turn_halves(yc))))
-        lift, lift_a, lift_c = (np.stack(np.broadcast_arrays(*part), axis=-1)
-                                for part in self._lifts(wa, wc, slopes=True))
-        scale = np.stack(np.broadcast_arrays(*(np.asarray(J.value(s))
-                                               for s in self._scales(k))), axis=-1)
-        jac = np.stack([scale * (df - f * dl / lift) / lift
-                        for df, dl in zip(along, (lift_a, lift_c), strict=True)], axis=-1)
+        ya, yc = unknown_columns(x)
+        jac = self.equations(x, k)[1]
         scales = []
-        for y, slides, (p, q), h in zip((ya, yc), self.slides,
-                                        ((self.c, self.f), (self.d, self.e)),
-                                        (self.h_a, self.h_c), strict=True):
+        for y, slides, radius in zip((ya, yc), self.slides, self._radii, strict=True):
             if slides:
-                s = self.size * np.tan(0.5 * y)
+                s = self.size * np.tan(0.5 * plain(y))
                 scales.append(2.0 * self.size / (self.size ** 2 + s * s))
             else:
-                scales.append(1.0 / np.sqrt((np.abs(np.asarray(p) - h) ** 2
-                                             + np.abs(np.asarray(q) - h) ** 2) / 2.0))
+                scales.append(1.0 / radius)
         rows = jac * np.stack(np.broadcast_arrays(*scales), axis=-1)[..., None, :]
         return jac, rows
 
+    @cached_property
+    def _radii(self) -> tuple[np.ndarray, np.ndarray]:
+        """The RMS radius of the internal pairs of a, of c, about its external pair."""
+        return tuple(np.sqrt((np.abs(np.asarray(p) - h) ** 2 + np.abs(np.asarray(q) - h) ** 2)
+                             / 2.0) for (p, q), h in zip(((self.c, self.f), (self.d, self.e)),
+                                                         (self.h_a, self.h_c), strict=True))
+
+    def equations(self, x: np.ndarray, k: ClassIVInputs) -> tuple[np.ndarray, np.ndarray]:
+        """g (..., 2) and the Jacobian in (y_a, y_c), from one evaluation of w(y_a), w(y_c):
+        ∂g_j/∂y = (∂(scale_j·F̂_j)/∂y − g_j·∂lift_j/∂y)/lift_j, the first from M and w′(y)."""
+        ya, yc = (np.asarray(col, dtype=float) for col in unknown_columns(x))
+        m = plain(self._matrices(k))
+        (wa, ta), (wc, tc) = _halves_turning(ya), _halves_turning(yc)
+        g = _form(wa, m, wc)
+        jac = np.stack([_form(ta, m, wc), _form(wa, m, tc)], axis=-1)
+        if not any(self.slides):
+            return g, jac
+        (qa, da), (qc, dc) = ((w[..., 0], -w[..., 1]) if slides else (1.0, 0.0)
+                              for w, slides in zip((wa, wc), self.slides, strict=True))
+        pp = self._pp
+        lift = np.where(pp, 1.0, np.asarray(qa * qc)[..., None])
+        slopes = np.stack(np.broadcast_arrays(np.where(pp, 0.0, np.asarray(da * qc)[..., None]),
+                                              np.where(pp, 0.0, np.asarray(qa * dc)[..., None])),
+                          axis=-1)
+        g = g / lift
+        return g, (jac - g[..., None] * slopes) / lift[..., None]
+
+    @cached_property
+    def _pp(self) -> np.ndarray:
+        """Which coupler is PP (its equation has no lifting factor)."""
+        return np.array([kind is Leash.PP for kind in self.kinds])
+
     # --- elimination ----------------------------------------------------------------------
 
-    def _linear(self, e: np.ndarray, k: ClassIVInputs) -> list[tuple[np.ndarray, np.ndarray]]:
+    def _linear(self, e: np.ndarray, k: ClassIVInputs, spread: bool = False
+                ) -> list[tuple[np.ndarray, np.ndarray]]:
         """α_j, π_j of Re(ᾱ_j E_o) = π_j at y_ε = arg e: the coefficients (d₀, d₁, d₂) of
         F̂_j in w(y_o) are M_j contracted with w(y_ε) = ((1 + cos)/2, sin/2, (1 − cos)/2);
         with κ² = (1 + cos)/2, κσ = sin/2, σ² = (1 − cos)/2, α_j = (d₀ − d₂ + i·d₁)/2 and
-        π_j = −(d₀ + d₂)/2."""
+        π_j = −(d₀ + d₂)/2. With ``spread`` the samples ``e`` lie on a new last axis (group
+        and inputs not expanded)."""
         unit = e / np.abs(e)
         w = np.stack(np.broadcast_arrays(0.5 + 0.5 * unit.real, 0.5 * unit.imag,
                                          0.5 - 0.5 * unit.real), axis=-1)
         spec = "...p,...jpq->...jq" if self.eliminated == 0 else "...q,...jpq->...jp"
-        d = np.einsum(spec, w, np.asarray(J.value(self._matrices(k))))
+        m = plain(self._matrices(k))
+        d = np.einsum(spec, w, m[..., None, :, :, :] if spread else m)
         return [(0.5 * (d[..., j, 0] - d[..., j, 2] + 1j * d[..., j, 1]),
                  -0.5 * (d[..., j, 0] + d[..., j, 2])) for j in (0, 1)]
 
-    def _full(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
+    def _full(self, e: np.ndarray, k: ClassIVInputs, spread: bool = False) -> np.ndarray:
         """Φ(y_ε) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² at y_ε = arg e.
 
         Where both equations are linear in the kept slide s_o (:attr:`_linear_kept`), each
@@ -437,16 +458,28 @@ class ClassIVCoupled(ClassIVDrawing):
         (the common root y_o = π), and Φ is the resultant A_b·B_d − A_d·B_b ∝ cross(α_b, α_d)
         instead, of degree at most 2.
         """
-        (ab, pb), (ad, pd) = self._linear(e, k)
+        (ab, pb), (ad, pd) = self._linear(e, k, spread)
         if self._linear_kept:
             return np.asarray(plain_cross(ab, ad))
         return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - plain_cross(ab, ad) ** 2)
 
-    @staticmethod
-    def _series(wide: ClassIVCoupled, k: ClassIVInputs) -> np.ndarray:
+    def _series(self, k: ClassIVInputs, spread: bool) -> np.ndarray:
         """Coefficients of E⁴Φ (increasing powers, shape (..., 9)) from Φ sampled off −1
-        (group and inputs expanded)."""
-        return np.asarray(np.einsum("...k,nk->...n", wide._full(GRID, k), SPLIT))
+        (with ``spread`` on group and inputs as given, else on both expanded)."""
+        return np.asarray(np.einsum("...k,nk->...n", self._full(GRID, k, spread), SPLIT))
+
+    def _kept(self, series: np.ndarray) -> np.ndarray:
+        """The coefficients φ₋ₘ … φₘ of Φ̃ from those of E⁴Φ (see :meth:`eliminant`)."""
+        p, m = self._form
+        for _ in range(p):
+            series = _deflate(series)[0]
+        half = FULL_DEGREE - p // 2
+        return np.asarray(series[..., half - m:half + m + 1] * 2.0 ** p)
+
+    def coefficients(self, k: ClassIVInputs) -> np.ndarray:
+        """The coefficients of p(E) = E^m·Φ̃ straight from the fitted matrices (no samples of
+        :meth:`eliminant`)."""
+        return self._kept(self._series(k, True))
 
     def eliminant(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
         """Φ̃ = Φ/((1 + cos y_ε)/2)^{p/2} at e (group and inputs expanded).
@@ -455,13 +488,9 @@ class ClassIVCoupled(ClassIVDrawing):
         input (all α_j vanish there, or both lines coincide); that root is no pose, and
         divided out, as are the top coefficients that vanish for the form.
         """
-        p, m = self._form
-        series = self._series(self, k)
-        for _ in range(p):
-            series = _deflate(series)[0]
-        half = FULL_DEGREE - p // 2
+        m = self._form[1]
         powers = np.arange(-m, m + 1)
-        kept = series[..., half - m:half + m + 1] * 2.0 ** p
+        kept = self._kept(self._series(k, False))
         return np.asarray(np.einsum("...n,...kn->...k", kept,
                                     np.asarray(e)[..., None] ** powers).real)
 
@@ -502,7 +531,7 @@ class ClassIVCoupled(ClassIVDrawing):
                 ends = (pa, pa + c.turn * drawn)
             else:
                 rest = J.conj(a.turn) * (pc - pa) - drawn
-                start = pa + J.cross(rest, wc) / plain_cross(wa, wc) * a.turn * wa
+                start = pa + J.cross(rest, present(wc)) / plain_cross(wa, wc) * a.turn * present(wa)
                 ends = (start, start + a.turn * drawn)
             out.update({p: ends[0], q: ends[1], on_a: pa, on_c: pc})
         return out

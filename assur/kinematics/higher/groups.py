@@ -29,7 +29,8 @@ from assur.text import render
 from assur.typing import Value
 
 __all__ = [
-    "ClassIV", "ClassIVDrawing", "ClassIVInputs", "HigherGroup", "Leash", "Triad", "TriadInputs", "expand", "values",
+    "ClassIV", "ClassIVDrawing", "ClassIVInputs", "HigherGroup", "Leash", "Triad", "TriadInputs",
+    "Value", "expand", "plain", "present", "values",
 ]
 
 #: The unknowns: an ndarray (..., n) or a sequence of n values (jets for the analogs).
@@ -106,6 +107,20 @@ def values(record: T) -> T:
                         if isinstance(item := getattr(record, f.name), tuple) else J.value(item))
                for f in dataclasses.fields(record)}  # type: ignore[arg-type]
     return dataclasses.replace(record, **changes)  # type: ignore[type-var]
+
+
+def present(v: Value | None) -> Value:
+    """``v``, which the group's form requires to be given (a guide, a prismatic pair's
+    direction): the record's checks have made sure of it."""
+    assert v is not None
+    return v
+
+
+def plain(v: Value) -> np.ndarray:
+    """``v`` as an ndarray where it holds no jet: a drawn value, or an input on the paths that
+    take plain arrays (the Jacobian, the lines, the eliminant, the recovery)."""
+    assert not isinstance(v, J.Jet)
+    return np.asarray(v)
 
 
 def cofactors(m: np.ndarray) -> tuple[list[list[np.ndarray]], np.ndarray]:
@@ -187,6 +202,23 @@ class HigherGroup(ABC):
     @abstractmethod
     def rotations(self, x: Unknowns, k: Any) -> dict[str, Value]:
         """The rotation of each link of the group from the sketch, by name."""
+
+    def coefficients(self, k: Any) -> np.ndarray:
+        """Coefficients p_0 … p_2m of p(E) = E^m·Φ (increasing powers), read off the FFT of
+        Φ at 2m + 2 points of the unit circle (see :func:`~assur.kinematics.higher.modes.
+        coefficients`)."""
+        m = self.degree
+        samples = 2 * m + 2
+        e = np.exp(2j * np.pi * np.arange(samples) / samples)
+        with np.errstate(all="ignore"):
+            phi = expand(self).eliminant(e, expand(k))
+        bins = np.fft.fft(phi, axis=-1) / samples
+        return np.asarray(bins[..., np.arange(-m, m + 1) % samples])
+
+    def equations(self, x: np.ndarray, k: Any) -> tuple[np.ndarray, np.ndarray]:
+        """F(x), shape (..., n), and the Jacobian: the data of one Newton step."""
+        f = np.stack(np.broadcast_arrays(*map(plain, self.residual(x, k))), axis=-1)
+        return f, self.jacobian(x, k)
 
     def jacobian(self, x: np.ndarray, k: Any) -> np.ndarray:
         """∂F/∂x, shape (..., n, n)."""
@@ -388,7 +420,7 @@ class Triad(HigherGroup):
 
     def _turn(self, k: TriadInputs) -> Value:
         """E_K = u_K/u_K⁰: the rotation of the known link carrying a P–P leash's guide."""
-        return k.u[2] / self.guide[2]
+        return present(k.u[2]) / present(self.guide[2])
 
     def residual(self, x: Unknowns, k: TriadInputs) -> list[Value]:
         """f_k: (|P_k − A_k|² − r_k²)/(2r_k), n_k·(P_k − Q_k), n_k·(P₁ + s_kE − A_k) or,
@@ -402,11 +434,11 @@ class Triad(HigherGroup):
                 arm = point - k.a[i]
                 out.append((J.dot(arm, arm) - r * r) / (2.0 * r))
             elif kind is Leash.RP:
-                out.append(J.dot(1j * k.u[i], point - k.a[i]))
+                out.append(J.dot(1j * present(k.u[i]), point - k.a[i]))
             elif kind is Leash.PP:
                 out.append(self.size * J.cross(self._turn(k), e))
             else:
-                out.append(J.dot(1j * self.guide[i] * e, point - k.a[i]))
+                out.append(J.dot(1j * present(self.guide[i]) * e, point - k.a[i]))
         return out
 
     def _constraints(self, x: np.ndarray, k: TriadInputs
@@ -444,7 +476,7 @@ class Triad(HigherGroup):
         jac = _line_rows(nu, at, p1[..., None], 1.0)
         if not self.pinned:
             return jac, rows
-        turn = np.asarray(np.cos(x[..., 2] - np.angle(self._turn(k))) * self.size)
+        turn = np.asarray(np.cos(x[..., 2] - np.angle(plain(self._turn(k)))) * self.size)
         jac, rows = jac.copy(), rows.copy()
         jac[..., 2, :] = np.stack(np.broadcast_arrays(0.0 * turn, 0.0 * turn, turn), axis=-1)
         rows[..., 2, :] = (0.0, 0.0, 1.0)
@@ -471,7 +503,7 @@ class Triad(HigherGroup):
                 rhs.append((self._length(i, k) ** 2 - r1 ** 2 - np.abs(v) ** 2) / 2.0)
             else:
                 normal = (1j * np.asarray(k.u[i]) if kind is Leash.RP
-                          else 1j * self.guide[i] * e)
+                          else 1j * plain(present(self.guide[i])) * e)
                 coef.append(normal)
                 rhs.append(J.dot(normal, ai - a1 - offset))
         return coef, rhs
@@ -504,10 +536,11 @@ class Triad(HigherGroup):
         deduplication of :func:`~assur.kinematics.higher.modes.assembly_modes` keeps one mode.
         """
         if self.unique:
-            e = self._turn(k) * np.ones(np.shape(e))
+            e = plain(self._turn(k)) * np.ones(np.shape(e))
         elif self.pinned:
-            theta = np.angle(self._turn(k))
-            return np.stack(np.broadcast_arrays(np.angle(e), self._length(0, k), theta), axis=-1)
+            theta = np.angle(plain(self._turn(k)))
+            return np.stack(np.broadcast_arrays(np.angle(e), plain(self._length(0, k)), theta),
+                            axis=-1)
         coef, rhs = self._linear(e, k)
         pairs = ((1, 2), (2, 0), (0, 1)) if len(coef) == 3 else ((0, 1),)
         best, w = None, None
@@ -665,7 +698,7 @@ class ClassIV(ClassIVDrawing):
     def drawn(self) -> np.ndarray:
         """Zero rotations and slides; (0, l_b) when both slide."""
         zero = np.zeros(np.shape(self.size))
-        second = self._arms()[4] + zero if all(self.slides) else zero
+        second = plain(self._arms()[4]) + zero if all(self.slides) else zero
         return np.stack(np.broadcast_arrays(zero, second), axis=-1)
 
     def _arms(self, k: ClassIVInputs | None = None
@@ -680,19 +713,21 @@ class ClassIV(ClassIVDrawing):
     def _turns(self, x: Sequence[Value], k: ClassIVInputs) -> tuple[Value, Value]:
         """E_a, E_c: e^{iθ} of a hinged link, u/u⁰ of a sliding one."""
         a, c = self.slides
-        return (k.u_a / self.u_a if a else J.expi(x[0]),
-                k.u_c / self.u_c if c else J.expi(x[1]))
+        return (present(k.u_a) / present(self.u_a) if a else J.expi(x[0]),
+                present(k.u_c) / present(self.u_c) if c else J.expi(x[1]))
 
     def _origins(self, x: Sequence[Value], k: ClassIVInputs, turns: tuple[Value, Value]
                  ) -> tuple[Value, Value]:
         """The points O_a, O_c of a and c drawn at H_a⁰, H_c⁰: H + s·u of a sliding link."""
         a, c = self.slides
         if not (a and c):
-            return (k.h_a + x[0] * k.u_a if a else k.h_a, k.h_c + x[1] * k.u_c if c else k.h_c)
+            return (k.h_a + x[0] * present(k.u_a) if a else k.h_a,
+                    k.h_c + x[1] * present(k.u_c) if c else k.h_c)
+        u_a, u_c = present(k.u_a), present(k.u_c)
         w = self._coupler(x) - self._rest(k, turns)[0]
-        t = J.cross(k.u_c, w) / J.cross(k.u_c, k.u_a)
-        s = J.cross(k.u_a, w) / J.cross(k.u_c, k.u_a)
-        return k.h_a + t * k.u_a, k.h_c + s * k.u_c
+        t = J.cross(u_c, w) / J.cross(u_c, u_a)
+        s = J.cross(u_a, w) / J.cross(u_c, u_a)
+        return k.h_a + t * u_a, k.h_c + s * u_c
 
     def _coupler(self, x: Sequence[Value]) -> Value:
         """C − D = ρ·e^{iψ}·(C⁰ − D⁰)/l_b (both external pairs sliding)."""
@@ -731,14 +766,15 @@ class ClassIV(ClassIVDrawing):
         pairs sliding the Jacobian's columns are those of ψ and ρ, ∂(C − D)/∂ψ = i(C − D),
         ∂(C − D)/∂ρ = (C − D)/ρ, the same for F − E.
         """
-        c, f, d, e, oa, oc = (np.asarray(p) for p in self._points(x, k))
-        g_c, g_f, d_d, d_e, lb, ld = self._arms(k)
+        c, f, d, e, oa, oc = (plain(p) for p in self._points(x, k))
+        g_c, g_f, d_d, d_e, lb, ld = (plain(v) for v in self._arms(k))
         nb, nd = (c - d) / lb, (f - e) / ld
         a_slides, c_slides = self.slides
         radius_a = np.sqrt((np.abs(g_c) ** 2 + np.abs(g_f) ** 2) / 2.0)
         radius_c = np.sqrt((np.abs(d_d) ** 2 + np.abs(d_e) ** 2) / 2.0)
-        columns = [((k.u_a, k.u_a) if a_slides else (1j * (c - oa), 1j * (f - oa)), radius_a),
-                   ((-k.u_c, -k.u_c) if c_slides else (-1j * (d - oc), -1j * (e - oc)),
+        columns = [((plain(present(k.u_a)),) * 2 if a_slides else (1j * (c - oa), 1j * (f - oa)),
+                    radius_a),
+                   ((-plain(present(k.u_c)),) * 2 if c_slides else (-1j * (d - oc), -1j * (e - oc)),
                     radius_c)]
         physical = _tangent_rows(nb, nd, [pair for pair, _ in columns])
         rows = _tangent_rows(nb, nd, [(pb / (1.0 if slide else r), pd / (1.0 if slide else r))
@@ -752,7 +788,7 @@ class ClassIV(ClassIVDrawing):
 
     def _linear(self, e: np.ndarray, k: ClassIVInputs) -> tuple[Any, Any, Any, Any]:
         """α_b·E_c = π_b, α_d·E_c = π_d at E_a = e (§3.2)."""
-        g_c, g_f, d_d, d_e, lb, ld = self._arms(k)
+        g_c, g_f, d_d, d_e, lb, ld = (plain(v) for v in self._arms(k))
         c = np.asarray(k.h_a) + g_c * e - k.h_c
         f = np.asarray(k.h_a) + g_f * e - k.h_c
         return (c * np.conj(d_d), (np.abs(c) ** 2 + np.abs(d_d) ** 2 - lb ** 2) / 2.0,
@@ -774,7 +810,7 @@ class ClassIV(ClassIVDrawing):
         """s = N/Σ from the difference of the two circle equations, and N, Σ, with
         N = (|X_d − Y_d|² − l_d²) − (|X_b − Y_b|² − l_b²), Σ = 2u·((X_d − Y_d) − (X_b − Y_b))."""
         vb, vd, u = self._slider(e, k)
-        *_, lb, ld = self._arms(k)
+        lb, ld = (plain(v) for v in self._arms(k)[4:])
         n = (np.abs(vd) ** 2 - ld ** 2) - (np.abs(vb) ** 2 - lb ** 2)
         sigma = 2.0 * plain_dot(u, vd - vb)
         return n / sigma, n, sigma
@@ -785,15 +821,15 @@ class ClassIV(ClassIVDrawing):
         both sliding |(F̃ − Ẽ) − (C̃ − D̃) + (C − D)|² − l_d² in ψ, C − D at ρ = l_b."""
         a_slides, c_slides = self.slides
         if a_slides and c_slides:
-            *_, lb, ld = self._arms(k)
-            b_rest, d_rest = self._rest(k, (np.asarray(k.u_a) / self.u_a,
-                                            np.asarray(k.u_c) / self.u_c))
-            gap = d_rest - b_rest + self._coupler([np.angle(e), lb])
+            lb, ld = (plain(v) for v in self._arms(k)[4:])
+            b_rest, d_rest = self._rest(k, (plain(present(k.u_a)) / plain(present(self.u_a)),
+                                            plain(present(k.u_c)) / plain(present(self.u_c))))
+            gap = plain(d_rest - b_rest + self._coupler([np.angle(e), lb]))
             return np.asarray(np.abs(gap) ** 2 - ld ** 2)
         if a_slides or c_slides:
             vb, _, u = self._slider(e, k)
             _, n, sigma = self._slide(e, k)
-            lb = self._arms(k)[4]
+            lb = plain(self._arms(k)[4])
             return np.asarray(n * n - 2.0 * n * sigma * plain_dot(u, vb)
                               + sigma * sigma * (np.abs(vb) ** 2 - lb ** 2))
         ab, pb, ad, pd = self._linear(e, k)
@@ -804,7 +840,7 @@ class ClassIV(ClassIVDrawing):
         pair sliding the turning link's arg e and s = N/Σ; both (ψ, ρ) = (arg e, l_b)."""
         a_slides, c_slides = self.slides
         if a_slides and c_slides:
-            return np.stack(np.broadcast_arrays(np.angle(e), self._arms(k)[4]), axis=-1)
+            return np.stack(np.broadcast_arrays(np.angle(e), plain(self._arms(k)[4])), axis=-1)
         if a_slides or c_slides:
             s = self._slide(e, k)[0]
             pair = (s, np.angle(e)) if a_slides else (np.angle(e), s)
@@ -825,9 +861,9 @@ class ClassIV(ClassIVDrawing):
         cols = unknown_columns(x)
         c, f, d, e, _, _ = self._points(cols, k)
         a_slides, c_slides = self.slides
-        return {"a": J.arg(k.u_a / self.u_a) if a_slides else cols[0],
+        return {"a": J.arg(present(k.u_a) / present(self.u_a)) if a_slides else cols[0],
                 "b": J.arg((d - c) / (np.asarray(self.d) - self.c)),
-                "c": J.arg(k.u_c / self.u_c) if c_slides else cols[1],
+                "c": J.arg(present(k.u_c) / present(self.u_c)) if c_slides else cols[1],
                 "d": J.arg((e - f) / (np.asarray(self.e) - self.f))}
 
 

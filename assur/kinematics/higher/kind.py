@@ -41,6 +41,7 @@ from assur.kinematics.higher.groups import (
     Leash,
     Triad,
     TriadInputs,
+    plain,
     values,
 )
 from assur.kinematics.higher.pinned import place
@@ -159,7 +160,7 @@ class HigherGroupSolution:
         modes = self.follow.modes
         index = (design,) if np.ndim(modes.count) else ()
         count = int(modes.count[index])
-        sketch = {name: complex(np.reshape(np.asarray(z), -1)[design if np.ndim(z) else 0])
+        sketch = {name: complex(np.reshape(plain(z), -1)[design if np.ndim(plain(z)) else 0])
                   for name, z in self.group.sketch.items()}
         rows = []
         for k in range(count):

@@ -14,7 +14,14 @@ from typing import Any
 
 import numpy as np
 
-from assur.kinematics.higher.groups import HigherGroup, cofactors, det_rows, expand, hadamard
+from assur.kinematics.higher.groups import (
+    HigherGroup,
+    cofactors,
+    det_rows,
+    expand,
+    hadamard,
+    plain,
+)
 
 __all__ = ["AssemblyModes", "assembly_modes", "coefficients", "newton", "select_mode"]
 
@@ -52,13 +59,7 @@ def coefficients(group: HigherGroup, k: Any) -> np.ndarray:
     >>> p.shape, bool(np.allclose(p, np.conj(p[::-1])))
     ((7,), True)
     """
-    m = group.degree
-    samples = 2 * m + 2
-    e = np.exp(2j * np.pi * np.arange(samples) / samples)
-    with np.errstate(all="ignore"):
-        phi = expand(group).eliminant(e, expand(k))
-    bins = np.fft.fft(phi, axis=-1) / samples
-    return np.asarray(bins[..., np.arange(-m, m + 1) % samples])
+    return group.coefficients(k)
 
 
 def roots(coef: np.ndarray) -> np.ndarray:
@@ -107,8 +108,8 @@ def newton(group: HigherGroup, k: Any, x: np.ndarray, iterations: int,
     step = np.full(x.shape[:-1], np.inf)
     with np.errstate(all="ignore"):
         for _ in range(iterations):
-            f = np.stack(np.broadcast_arrays(*group.residual(x, k)), axis=-1)
-            dx = solve(group.jacobian(x, k), -f)
+            f, jac = group.equations(x, k)
+            dx = solve(jac, -f)
             x = x + dx
             step = np.abs(dx * scale).sum(axis=-1)
             if not (step > tol).any():
@@ -175,10 +176,10 @@ def assembly_modes(group: HigherGroup, k: Any) -> AssemblyModes:
         near = np.abs(np.log(np.abs(found))) <= TAU
         x = wide.recover(found / np.abs(found), kk)
         x, _ = newton(wide, kk, x, 3)
-        f = np.stack(np.broadcast_arrays(*wide.residual(x, kk)), axis=-1)
+        f = np.stack(np.broadcast_arrays(*map(plain, wide.residual(x, kk))), axis=-1)
         size = np.asarray(group.size)[..., None]
         valid = near & (np.abs(f).max(axis=-1) <= ACCEPT * size)
-        points = wide.joints(x, kk)
+        points = {name: plain(p) for name, p in wide.joints(x, kk).items()}
         # the joints and the eliminated rotation (as a point at the distance L): a triad
         # whose leashes all slide on the base has the same joints in two modes
         turn = size * np.exp(1j * x[..., group.eliminated])

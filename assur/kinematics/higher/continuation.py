@@ -23,6 +23,7 @@ from assur.kinematics import jets as J
 from assur.kinematics.higher.groups import (
     ClassIV,
     HigherGroup,
+    K,
     det_rows,
     hadamard,
     plain,
@@ -70,7 +71,7 @@ FOLD_RESIDUAL = 1e-12
 #: Central-difference step of g's derivatives (rad for angles and φ, times L for lengths).
 FOLD_DIFFERENCE = 1e-6
 
-Inputs = Callable[[Any], Any]
+Inputs = Callable[[Any], K]
 
 
 def _part(v: Any, name: str) -> np.ndarray:
@@ -83,7 +84,7 @@ def _stacked(f: list[Any], name: str) -> np.ndarray:
     return np.stack(np.broadcast_arrays(*parts), axis=-1)
 
 
-def analogs(group: HigherGroup, k: Any, x: np.ndarray, jac: np.ndarray | None = None
+def analogs(group: HigherGroup[K], k: K, x: np.ndarray, jac: np.ndarray | None = None
             ) -> tuple[np.ndarray, np.ndarray]:
     """Velocity and acceleration analogs x′, x″ of the unknowns by implicit differentiation.
 
@@ -123,7 +124,7 @@ def analogs(group: HigherGroup, k: Any, x: np.ndarray, jac: np.ndarray | None = 
     return x1, x2
 
 
-def separation(group: HigherGroup, k: Any, x: np.ndarray) -> np.ndarray:
+def separation(group: HigherGroup[K], k: K, x: np.ndarray) -> np.ndarray:
     """A lower bound on the distance from the root E* of x to every other root of p.
 
     The Taylor shift q_j = p⁽ʲ⁺¹⁾(E*)/(j+1)! and Fujiwara's bound on the deflated polynomial
@@ -175,7 +176,7 @@ class _Point:
                       np.where(wide, self.x1, other.x1), np.where(wide, self.x2, other.x2))
 
 
-def _correct(group: HigherGroup, kv: Any, guess: np.ndarray, sign: np.ndarray
+def _correct(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarray
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Newton from the predictor ``guess`` and the acceptance tests (a)–(c) of §1.6.
 
@@ -192,14 +193,14 @@ def _correct(group: HigherGroup, kv: Any, guess: np.ndarray, sign: np.ndarray
     return xn, jac, rows, ok
 
 
-def _singularity(group: HigherGroup, x: np.ndarray, kv: Any) -> np.ndarray:
+def _singularity(group: HigherGroup[K], x: np.ndarray, kv: Any) -> np.ndarray:
     """g = det J / Π‖J_k‖ with the columns of lengths times L: 0 exactly where J is singular,
     dimensionless, in [−1, 1]."""
     jac = group.jacobian(x, kv) / weights(group)[..., None, :]
     return np.asarray(det_rows(jac) / np.prod(np.linalg.norm(jac, axis=-1), axis=-1))
 
 
-def _fold(group: HigherGroup, inputs: Inputs, s: float, start: _Point, active: np.ndarray
+def _fold(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, active: np.ndarray
           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The change point nearest ``start`` by Newton's method on the extended system.
 
@@ -253,7 +254,7 @@ def _pick(a: np.ndarray, first: np.ndarray) -> np.ndarray:
     return np.asarray(np.take_along_axis(a, index, axis=0)[0])
 
 
-def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.ndarray,
+def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goal: np.ndarray,
           active: np.ndarray, sign: np.ndarray, log: list[tuple[_Point, np.ndarray]] | None
           ) -> tuple[_Point, np.ndarray, np.ndarray]:
     """Step every active row from ``start.t`` to its ``goal`` (arrays (R, D)) under step control.
@@ -329,7 +330,7 @@ def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.
     return here, end, why
 
 
-def _ending(group: HigherGroup, inputs: Inputs, s: float, here: _Point, beyond: np.ndarray,
+def _ending(group: HigherGroup[K], inputs: Inputs[K], s: float, here: _Point, beyond: np.ndarray,
             goal: np.ndarray, rows: np.ndarray) -> tuple[_Point, np.ndarray]:
     """The change point where the mode of the ``rows`` ends, if it lies near ``beyond``.
 
@@ -401,7 +402,7 @@ def _anchors(log: list[tuple[_Point, np.ndarray]], targets: np.ndarray, offset: 
     return states, nearest, before, inside | on_last
 
 
-def _follow(group: HigherGroup, inputs: Inputs, x0: np.ndarray, targets: np.ndarray,
+def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: np.ndarray,
             s: float, done: np.ndarray, jets: bool, span: Any = TWO_PI) -> _Pass:
     """Follow x0 from φ = 0 through φ = s·t for the targets 0 ≤ t ≤ span (§1.6).
 
@@ -577,7 +578,7 @@ class HigherSolution:
         return out
 
 
-def _gap(group: HigherGroup, k: Any, rows: np.ndarray) -> np.ndarray:
+def _gap(group: HigherGroup[K], k: K, rows: np.ndarray) -> np.ndarray:
     """The margin where a mode is gone, where the mask ``rows`` holds (NaN elsewhere).
 
     −min|ln|E|| over the roots of p off the unit circle. A class IV group with both external
@@ -607,7 +608,7 @@ def _spread(k: Any, d: int) -> Any:
                                      for f in dataclasses.fields(k)})
 
 
-def _designs(group: HigherGroup, inputs: Inputs) -> tuple[int, ...]:
+def _designs(group: HigherGroup[K], inputs: Inputs[K]) -> tuple[int, ...]:
     """The design shape: () for one design, (D,) for many."""
     first = values(inputs(np.zeros(1)))
     shapes = [np.shape(group.size)]
@@ -636,7 +637,7 @@ class Stroke:
     start: Any
 
 
-def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool = False,
+def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: bool = False,
                 delta: float | np.ndarray = 0.0, stroke: Stroke | None = None
                 ) -> HigherSolution:
     """Positions of the sketched assembly mode over the crank cycle, for one or many designs.
@@ -764,7 +765,7 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
     return _squeeze(solution) if shape == () else solution
 
 
-def _follow_stroke(group: HigherGroup, inputs: Inputs, q: np.ndarray, stroke: Stroke,
+def _follow_stroke(group: HigherGroup[K], inputs: Inputs[K], q: np.ndarray, stroke: Stroke,
                    x0: np.ndarray, sketch: tuple[AssemblyModes, np.ndarray], jets: bool,
                    delta: float | np.ndarray) -> HigherSolution:
     """The drawn mode along an actuator's stroke, one row per design.

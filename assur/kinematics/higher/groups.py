@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import Enum
 from functools import cached_property
-from typing import Any, TypeVar
+from typing import Any, Generic, TypeVar
 
 import numpy as np
 
@@ -29,8 +29,8 @@ from assur.text import render
 from assur.typing import Value
 
 __all__ = [
-    "ClassIV", "ClassIVDrawing", "ClassIVInputs", "HigherGroup", "Leash", "Triad", "TriadInputs",
-    "Value", "expand", "plain", "present", "values",
+    "AnyGroup", "ClassIV", "ClassIVDrawing", "ClassIVInputs", "HigherGroup", "K", "Leash", "Triad",
+    "TriadInputs", "Value", "expand", "plain", "present", "values",
 ]
 
 #: The unknowns: an ndarray (..., n) or a sequence of n values (jets for the analogs).
@@ -150,7 +150,11 @@ def hadamard(rows: np.ndarray) -> np.ndarray:
     return np.asarray(np.abs(det_rows(rows)) / norms)
 
 
-class HigherGroup(ABC):
+#: The inputs record of a group: :class:`TriadInputs` or :class:`ClassIVInputs`.
+K = TypeVar("K", "TriadInputs", "ClassIVInputs")
+
+
+class HigherGroup(ABC, Generic[K]):
     """What the mode finder and the continuation need from a four-link group."""
 
     #: Number of unknowns (3 for a triad, 2 for the class IV group).
@@ -180,30 +184,30 @@ class HigherGroup(ABC):
         """The drawn positions of the joints named as in :meth:`joints`."""
 
     @abstractmethod
-    def residual(self, x: Unknowns, k: Any) -> list[Value]:
+    def residual(self, x: Unknowns, k: K) -> list[Value]:
         """The reduced loop equations F(x) (lengths, in the drawing's unit)."""
 
     @abstractmethod
-    def lines(self, x: np.ndarray, k: Any) -> tuple[np.ndarray, np.ndarray]:
+    def lines(self, x: np.ndarray, k: K) -> tuple[np.ndarray, np.ndarray]:
         """The Jacobian (..., n, n) and the margin rows (..., n, n) of the constraint lines."""
 
     @abstractmethod
-    def eliminant(self, e: np.ndarray, k: Any) -> np.ndarray:
+    def eliminant(self, e: np.ndarray, k: K) -> np.ndarray:
         """Φ at the unit complex numbers ``e`` (group and inputs expanded by one axis)."""
 
     @abstractmethod
-    def recover(self, e: np.ndarray, k: Any) -> np.ndarray:
+    def recover(self, e: np.ndarray, k: K) -> np.ndarray:
         """The unknowns (..., n) at the root ``e`` of Φ (group and inputs expanded)."""
 
     @abstractmethod
-    def joints(self, x: Unknowns, k: Any) -> dict[str, Value]:
+    def joints(self, x: Unknowns, k: K) -> dict[str, Value]:
         """The internal joints of the group by name."""
 
     @abstractmethod
-    def rotations(self, x: Unknowns, k: Any) -> dict[str, Value]:
+    def rotations(self, x: Unknowns, k: K) -> dict[str, Value]:
         """The rotation of each link of the group from the sketch, by name."""
 
-    def coefficients(self, k: Any) -> np.ndarray:
+    def coefficients(self, k: K) -> np.ndarray:
         """Coefficients p_0 … p_2m of p(E) = E^m·Φ (increasing powers), read off the FFT of
         Φ at 2m + 2 points of the unit circle (see :func:`~assur.kinematics.higher.modes.
         coefficients`)."""
@@ -215,16 +219,16 @@ class HigherGroup(ABC):
         bins = np.fft.fft(phi, axis=-1) / samples
         return np.asarray(bins[..., np.arange(-m, m + 1) % samples])
 
-    def equations(self, x: np.ndarray, k: Any) -> tuple[np.ndarray, np.ndarray]:
+    def equations(self, x: np.ndarray, k: K) -> tuple[np.ndarray, np.ndarray]:
         """F(x), shape (..., n), and the Jacobian: the data of one Newton step."""
         f = np.stack(np.broadcast_arrays(*map(plain, self.residual(x, k))), axis=-1)
         return f, self.jacobian(x, k)
 
-    def jacobian(self, x: np.ndarray, k: Any) -> np.ndarray:
+    def jacobian(self, x: np.ndarray, k: K) -> np.ndarray:
         """∂F/∂x, shape (..., n, n)."""
         return self.lines(x, k)[0]
 
-    def margin(self, x: np.ndarray, k: Any) -> np.ndarray:
+    def margin(self, x: np.ndarray, k: K) -> np.ndarray:
         """The Hadamard ratio of the constraint lines, 0 at a change point (§1.7, §3.2)."""
         return hadamard(self.lines(x, k)[1])
 
@@ -271,7 +275,7 @@ class TriadInputs:
 
 
 @dataclass(frozen=True, eq=False)
-class Triad(HigherGroup):
+class Triad(HigherGroup["TriadInputs"]):
     """A class III group of order 3: a base with three internal pairs and three leashes.
 
     Parameters
@@ -608,7 +612,7 @@ class ClassIVInputs:
 
 
 @dataclass(frozen=True, eq=False)
-class ClassIVDrawing(HigherGroup):
+class ClassIVDrawing(HigherGroup[ClassIVInputs]):
     """The drawing every class IV group of order 2 is given by: the six points of links a
     and c and the guides of their external pairs (:class:`ClassIV`, :class:`ClassIVCoupled`).
 
@@ -878,3 +882,7 @@ def _tangent_rows(nb: np.ndarray, nd: np.ndarray, columns: list[tuple[Any, Any]]
     return np.stack([np.stack(np.broadcast_arrays(*(plain_dot(nb, tb) for tb, _ in columns)), axis=-1),
                      np.stack(np.broadcast_arrays(*(plain_dot(nd, td) for _, td in columns)), axis=-1)],
                     axis=-2)
+
+
+#: A triad or a class IV group.
+AnyGroup = HigherGroup[TriadInputs] | HigherGroup[ClassIVInputs]

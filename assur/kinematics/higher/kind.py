@@ -35,9 +35,9 @@ from assur.kinematics import jets as J
 from assur.kinematics.higher.continuation import HigherSolution, Stroke, follow_mode
 from assur.kinematics.higher.coupled import ClassIVCoupled
 from assur.kinematics.higher.groups import (
+    AnyGroup,
     ClassIV,
     ClassIVInputs,
-    HigherGroup,
     Leash,
     Triad,
     TriadInputs,
@@ -129,7 +129,7 @@ class HigherGroupSolution:
     """
 
     follow: HigherSolution
-    group: HigherGroup
+    group: AnyGroup
     joints: dict[str, PairId]
     origin_i: Any
     angle_i: Any
@@ -518,9 +518,9 @@ class _Actuator:
     put: Callable[[Any, Any], Any]
 
 
-def _follow(state: State, group: GroupModel, q: Any, make: Callable[[Any], HigherGroup],
+def _follow(state: State, group: GroupModel, q: Any, make: Callable[[Any], AnyGroup],
             inputs: Callable[[State], Any], actuator: _Actuator | None = None
-            ) -> tuple[HigherSolution, Any, HigherGroup]:
+            ) -> tuple[HigherSolution, Any, AnyGroup]:
     """Follow the group's drawn mode over q; also its inputs at the reference position and
     the group as solved. A triad with a P–P leash and no bar has one mode, placed at every
     position in closed form from the inputs at q (:func:`~assur.kinematics.higher.pinned.place`).
@@ -544,7 +544,7 @@ def _follow(state: State, group: GroupModel, q: Any, make: Callable[[Any], Highe
     return follow, k0, solved
 
 
-def _record(state: State, group: GroupModel, follow: HigherSolution, solved: HigherGroup,
+def _record(state: State, group: GroupModel, follow: HigherSolution, solved: AnyGroup,
             joints: dict[str, PairId], frames: dict[str, tuple[Any, float]]
             ) -> HigherGroupSolution:
     """Write the link frames into the state (origin, angle at the sketch + rotation)."""
@@ -758,7 +758,7 @@ def solve_class_iv(state: State, group: GroupModel, q: Any) -> HigherGroupSoluti
         (h_a, u_a), (h_c, u_c) = external(known, 0), external(known, 1)
         return ClassIVInputs(h_a, h_c, u_a, u_c)
 
-    def make(k0: ClassIVInputs) -> HigherGroup:
+    def make(k0: ClassIVInputs) -> AnyGroup:
         drawn = (k0.h_a, pts["C"], pts["F"], k0.h_c, pts["D"], pts["E"], k0.u_a, k0.u_c)
         if not betas:
             return ClassIV(*drawn)

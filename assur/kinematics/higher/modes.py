@@ -10,12 +10,12 @@ deduplicated on the joint positions.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
 from assur.kinematics.higher.groups import (
     HigherGroup,
+    K,
     cofactors,
     det_rows,
     expand,
@@ -35,7 +35,7 @@ SAME = 1e-7
 NAN = complex(np.nan, np.nan)
 
 
-def coefficients(group: HigherGroup, k: Any) -> np.ndarray:
+def coefficients(group: HigherGroup[K], k: K) -> np.ndarray:
     """Coefficients p_0 … p_2m of p(E) = Σ φ_{n−m} Eⁿ, shape (..., 2m + 1).
 
     Parameters
@@ -91,13 +91,13 @@ def solve(jac: np.ndarray, rhs: np.ndarray) -> np.ndarray:
                          for j in range(n)], axis=-1)
 
 
-def weights(group: HigherGroup) -> np.ndarray:
+def weights(group: HigherGroup[K]) -> np.ndarray:
     """Per-unknown scale of step norms: 1/L for a length, 1 for an angle."""
     length = np.asarray(group.lengths)
     return np.where(length, 1.0 / np.asarray(group.size)[..., None], 1.0)
 
 
-def newton(group: HigherGroup, k: Any, x: np.ndarray, iterations: int,
+def newton(group: HigherGroup[K], k: K, x: np.ndarray, iterations: int,
            tol: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Newton's method on the reduced equations.
 
@@ -144,7 +144,7 @@ class AssemblyModes:
     roots: np.ndarray
 
 
-def assembly_modes(group: HigherGroup, k: Any) -> AssemblyModes:
+def assembly_modes(group: HigherGroup[K], k: K) -> AssemblyModes:
     """Every real assembly mode at one position, for one design or many at once.
 
     Parameters
@@ -201,7 +201,7 @@ def assembly_modes(group: HigherGroup, k: Any) -> AssemblyModes:
                          det_sign=np.sign(det_rows(jac)), roots=found)
 
 
-def select_mode(group: HigherGroup, k: Any, modes: AssemblyModes
+def select_mode(group: HigherGroup[K], k: K, modes: AssemblyModes
                 ) -> tuple[np.ndarray, np.ndarray]:
     """The mode of the sketch: the one nearest the drawn joints, with the drawn sign of det J.
 

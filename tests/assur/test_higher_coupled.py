@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+from class_iv_hinged import ClassIV
 from higher_checks import check_analogs_against_central_differences, check_class_iv_rigid
 from higher_fallback import (
     Joint,
@@ -32,7 +33,7 @@ from higher_fallback import (
 from test_higher_properties import walk_through
 
 from assur.kinematics import jets as J
-from assur.kinematics.higher import ClassIV, ClassIVInputs, assembly_modes, follow_mode
+from assur.kinematics.higher import ClassIVInputs, assembly_modes, follow_mode
 from assur.kinematics.higher.coupled import ClassIVCoupled
 from assur.kinematics.higher.groups import expand
 from assur.kinematics.higher.modes import AssemblyModes

@@ -21,7 +21,7 @@ import numpy as np
 
 from assur.kinematics import jets as J
 from assur.kinematics.higher.groups import (
-    ClassIV,
+    ClassIVDrawing,
     HigherGroup,
     K,
     det_rows,
@@ -90,7 +90,7 @@ def analogs(group: HigherGroup[K], k: K, x: np.ndarray, jac: np.ndarray | None =
 
     Parameters
     ----------
-    group : Triad or ClassIV
+    group : Triad or ClassIVCoupled
         The group.
     k : TriadInputs or ClassIVInputs
         Its inputs at the position as jets in the crank angle φ.
@@ -108,8 +108,9 @@ def analogs(group: HigherGroup[K], k: K, x: np.ndarray, jac: np.ndarray | None =
     --------
     A class IV group whose hinge H_a moves along x at unit speed:
 
-    >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
-    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> from assur.kinematics.higher.coupled import ClassIVCoupled
+    >>> from assur.kinematics.higher.groups import ClassIVInputs
+    >>> g = ClassIVCoupled(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
     >>> k = ClassIVInputs(Jet(-12.5-20j, 1.0, 0.0), 140.5+22j)
     >>> x1, x2 = analogs(g, k, np.zeros(2))
     >>> x1.shape
@@ -548,8 +549,9 @@ class HigherSolution:
 
         Examples
         --------
-        >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
-        >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+        >>> from assur.kinematics.higher.coupled import ClassIVCoupled
+        >>> from assur.kinematics.higher.groups import ClassIVInputs
+        >>> g = ClassIVCoupled(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
         >>> sol = follow_mode(g, lambda phi: ClassIVInputs(-12.5-20j, 140.5+22j), [0.0])
         >>> [m.text() for m in sol.notes()]
         ['6 real assembly modes at the sketch']
@@ -591,7 +593,7 @@ def _gap(group: HigherGroup[K], k: K, rows: np.ndarray) -> np.ndarray:
     with np.errstate(all="ignore"):
         size = np.abs(np.log(np.abs(roots(coef[rows]))))
         out[rows] = -np.where(size > TAU, size, np.inf).min(axis=-1)
-        if isinstance(group, ClassIV) and all(group.slides):
+        if isinstance(group, ClassIVDrawing) and all(group.slides):
             guides = -np.abs(np.sin(np.angle(np.asarray(k.u_c) / k.u_a)))
             out = np.where(rows & np.isneginf(out), guides, out)
     return out
@@ -644,7 +646,7 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
 
     Parameters
     ----------
-    group : Triad or ClassIV
+    group : Triad or ClassIVCoupled
         The group; drawn values of shape () or (D,).
     inputs : callable
         ``inputs(phi)`` → :class:`TriadInputs` or :class:`ClassIVInputs`: the external
@@ -679,9 +681,10 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
     --------
     The class IV group of test vector V2 driven by a crank O–B:
 
-    >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
+    >>> from assur.kinematics.higher.coupled import ClassIVCoupled
+    >>> from assur.kinematics.higher.groups import ClassIVInputs
     >>> from assur.kinematics.jets import expi
-    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> g = ClassIVCoupled(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
     >>> crank = lambda phi: ClassIVInputs((-12.5-20j) * expi(phi), 140.5+22j)
     >>> sol = follow_mode(g, crank, np.radians([60.0, 150.0]))
     >>> np.round(sol.joints["C"], 6).tolist()

@@ -186,11 +186,6 @@ class ClassIVCoupled(ClassIVDrawing):
     # --- form -----------------------------------------------------------------------------
 
     @cached_property
-    def slides(self) -> tuple[bool, bool]:
-        """Whether the external pair of a, of c, is prismatic."""
-        return self.u_a is not None, self.u_c is not None
-
-    @cached_property
     def kinds(self) -> tuple[Leash, Leash]:
         """The forms of b (pairs C, D) and d (pairs F, E), the pair on a first."""
         return (Leash.of(self.w_c is not None, self.w_d is not None),

@@ -36,7 +36,6 @@ from assur.kinematics.higher.continuation import HigherSolution, Stroke, follow_
 from assur.kinematics.higher.coupled import ClassIVCoupled
 from assur.kinematics.higher.groups import (
     AnyGroup,
-    ClassIV,
     ClassIVInputs,
     Leash,
     Triad,
@@ -731,8 +730,7 @@ def solve_class_iv(state: State, group: GroupModel, q: Any) -> HigherGroupSoluti
 
     Notes
     -----
-    With revolute internal pairs the group is a :class:`ClassIV`; with a prismatic internal
-    pair a :class:`ClassIVCoupled`, whose joints give the point of each link drawn at a
+    Every form is a :class:`ClassIVCoupled`, whose joints give the point of each link drawn at a
     sliding pair. A prismatic pair's joint is its point on the link that does not carry the
     guide in the table, and its slider has the table's carrier (:func:`_slide`).
     """
@@ -760,8 +758,6 @@ def solve_class_iv(state: State, group: GroupModel, q: Any) -> HigherGroupSoluti
 
     def make(k0: ClassIVInputs) -> AnyGroup:
         drawn = (k0.h_a, pts["C"], pts["F"], k0.h_c, pts["D"], pts["E"], k0.u_a, k0.u_c)
-        if not betas:
-            return ClassIV(*drawn)
         w = {name: J.expi(beta) for name, beta in betas.items()}
         return ClassIVCoupled(*drawn, w_c=w.get("C"), w_d=w.get("D"), w_e=w.get("E"),
                               w_f=w.get("F"))

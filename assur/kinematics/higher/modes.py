@@ -53,8 +53,9 @@ def coefficients(group: HigherGroup[K], k: K) -> np.ndarray:
 
     Examples
     --------
-    >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
-    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> from assur.kinematics.higher.coupled import ClassIVCoupled
+    >>> from assur.kinematics.higher.groups import ClassIVInputs
+    >>> g = ClassIVCoupled(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
     >>> p = coefficients(g, ClassIVInputs(-12.5-20j, 140.5+22j))
     >>> p.shape, bool(np.allclose(p, np.conj(p[::-1])))
     ((7,), True)
@@ -149,7 +150,7 @@ def assembly_modes(group: HigherGroup[K], k: K) -> AssemblyModes:
 
     Parameters
     ----------
-    group : Triad or ClassIV
+    group : Triad or ClassIVCoupled
         The group; drawn values of shape () or (D,).
     k : TriadInputs or ClassIVInputs
         Its inputs (external hinges, guides) at the position, plain arrays.
@@ -164,8 +165,9 @@ def assembly_modes(group: HigherGroup[K], k: K) -> AssemblyModes:
     --------
     The class IV group of test vector V2 has six modes at the sketch:
 
-    >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
-    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> from assur.kinematics.higher.coupled import ClassIVCoupled
+    >>> from assur.kinematics.higher.groups import ClassIVInputs
+    >>> g = ClassIVCoupled(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
     >>> modes = assembly_modes(g, ClassIVInputs(-12.5-20j, 140.5+22j))
     >>> int(modes.count), np.round(np.degrees(modes.x[3]), 6).tolist()
     (6, [-28.133111, -9.366866])
@@ -207,7 +209,7 @@ def select_mode(group: HigherGroup[K], k: K, modes: AssemblyModes
 
     Parameters
     ----------
-    group : Triad or ClassIV
+    group : Triad or ClassIVCoupled
         The group.
     k : TriadInputs or ClassIVInputs
         Its inputs at the sketch position (φ = 0).
@@ -224,8 +226,9 @@ def select_mode(group: HigherGroup[K], k: K, modes: AssemblyModes
 
     Examples
     --------
-    >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
-    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> from assur.kinematics.higher.coupled import ClassIVCoupled
+    >>> from assur.kinematics.higher.groups import ClassIVInputs
+    >>> g = ClassIVCoupled(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
     >>> k = ClassIVInputs(-12.5-20j, 140.5+22j)
     >>> x, found = select_mode(g, k, assembly_modes(g, k))
     >>> bool(found), bool(np.allclose(x, 0.0, atol=1e-12))

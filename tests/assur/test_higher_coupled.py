@@ -234,6 +234,29 @@ def test_analogs_against_central_differences(form: str) -> None:
     check_analogs_against_central_differences(designs.group, designs.inputs, 6)
 
 
+@pytest.mark.parametrize("form", SHARED + COUPLED)
+def test_residual_and_jacobian_off_the_solutions_against_central_differences(form: str) -> None:
+    """At arbitrary unknowns (no pose), the Jacobian that Newton takes with the residual equals
+    central differences of the residual, the derivative of the lifting factor included."""
+    d = 12
+    designs = random_designs(form, 70 + (SHARED + COUPLED).index(form), d)
+    g = designs.group
+    k = designs.inputs(np.full(d, 0.4))
+    x = np.random.default_rng(7).uniform(-2.5, 2.5, (d, 2))
+    f, jac = g.equations(x, k)
+    residual = np.stack(np.broadcast_arrays(*g.residual(x, k)), axis=-1)
+    assert np.allclose(f, residual, rtol=1e-12, atol=1e-12 * _col(g.size))
+    h = 1e-6
+    for i in range(2):
+        step = np.zeros(2)
+        step[i] = h
+        ahead, behind = (np.stack(np.broadcast_arrays(*g.residual(x + sign * step, k)), axis=-1)
+                         for sign in (1.0, -1.0))
+        slope = (ahead - behind) / (2.0 * h)
+        scale = np.abs(slope).max(axis=-1, keepdims=True) + _col(g.size) * 1e-3
+        assert (np.abs(jac[..., i] - slope) <= 1e-6 * scale).all(), i
+
+
 # --- the followed mode and its interval against a walk through all modes ----------------------
 
 

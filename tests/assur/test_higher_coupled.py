@@ -15,6 +15,7 @@ followed mode and its interval with a walk through all modes on a fine grid.
 from __future__ import annotations
 
 import os
+import pickle
 from dataclasses import dataclass
 from typing import Any
 
@@ -256,6 +257,18 @@ def test_residual_and_jacobian_off_the_solutions_against_central_differences(for
         slope = (ahead - behind) / (2.0 * h)
         scale = np.abs(slope).max(axis=-1, keepdims=True) + _col(g.size) * 1e-3
         assert (np.abs(jac[..., i] - slope) <= 1e-6 * scale).all(), i
+
+
+def test_a_used_group_pickles_and_solves_the_same() -> None:
+    """A group that has fitted its matrices travels to another process (pickle) and gives the
+    same residual there."""
+    designs = random_designs("PR RR/RP", 90, 4)
+    k = designs.inputs(np.full(4, 0.3))
+    x = np.zeros((4, 2))
+    before = np.stack(np.broadcast_arrays(*map(plain, designs.group.residual(x, k))), axis=-1)
+    copy = pickle.loads(pickle.dumps(designs.group))
+    after = np.stack(np.broadcast_arrays(*map(plain, copy.residual(x, k))), axis=-1)
+    assert np.array_equal(before, after)
 
 
 # --- the followed mode and its interval against a walk through all modes ----------------------

@@ -321,6 +321,11 @@ class ClassIVCoupled(ClassIVDrawing):
         drawn = np.asarray(J.value((self.c, self.f)[j])) - J.value((self.d, self.e)[j])
         return np.abs(drawn) if given is None else given
 
+    def __getstate__(self) -> dict[str, object]:
+        """The record without the fitted matrices of :meth:`_matrices` (weak references do
+        not pickle; they are fitted again on demand)."""
+        return {name: value for name, value in self.__dict__.items() if name != "_memo"}
+
     @cached_property
     def _memo(self) -> WeakKeyDictionary[ClassIVInputs, Value]:
         """The matrices of :meth:`_matrices` of the inputs records at hand."""

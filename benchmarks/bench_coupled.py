@@ -6,7 +6,7 @@ Counts: for each form with a prismatic internal pair, D random designs (the gene
 search from random starts where no sweep plan exists). Designs with a root of p just off the
 unit circle or a mode of thin margin are set aside (near a change point).
 
-Speed: on the forms :class:`ClassIV` also solves (hinged couplers), all modes of D designs at
+Speed: on the forms the tests' oracle :class:`ClassIV` also solves (hinged couplers), all modes of D designs at
 one position (designs per second), and one design followed over 360 crank angles (positions
 per second), both solvers in the same run; each variant runs once untimed, then R timed
 rounds (median and best).
@@ -31,6 +31,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "assur"))
 
 from bench_higher import rate
+from class_iv_hinged import ClassIV  # type: ignore[import-not-found]
 from test_higher_coupled import (  # type: ignore[import-not-found]
     COUPLED,
     SHARED,
@@ -39,7 +40,7 @@ from test_higher_coupled import (  # type: ignore[import-not-found]
     random_designs,
 )
 
-from assur.kinematics.higher import ClassIV, HigherGroup, assembly_modes, follow_mode
+from assur.kinematics.higher import ClassIVInputs, HigherGroup, assembly_modes, follow_mode
 
 #: Every form with a prismatic internal pair: couplers b, d (internal pairs C–D, F–E), then
 #: the external pairs of a and c ("PR RR/RP": C prismatic, c slides on its known link).
@@ -75,7 +76,7 @@ def speed(form: str, d: int, rounds: int) -> None:
     single = one.group
     single_plain = ClassIV(single.h_a, single.c, single.f, single.h_c, single.d, single.e,
                            single.u_a, single.u_c)
-    solvers: tuple[tuple[str, HigherGroup, HigherGroup], ...] = (
+    solvers: tuple[tuple[str, HigherGroup[ClassIVInputs], HigherGroup[ClassIVInputs]], ...] = (
         ("coupled", g, single), ("ClassIV", plain, single_plain))
     for name, group, alone in solvers:
         modes = rate(partial(assembly_modes, group, k), d, rounds)

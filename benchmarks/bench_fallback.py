@@ -37,7 +37,7 @@ from higher_fallback import (
 
 from assur.kinematics.higher import (
     AssemblyModes,
-    ClassIV,
+    ClassIVCoupled,
     ClassIVInputs,
     HigherGroup,
     Triad,
@@ -71,7 +71,7 @@ def _case(form: str, d: int, seed: int) -> Case:
         shift, turn = rng.uniform(8, 15, d) * (np.exp(1j * phi) - 1.0), np.ones(d) + 0j
     else:
         shift, turn = np.zeros(d) + 0j, np.full(d, np.exp(1j * phi))
-    group = ClassIV(h_a, c, f, h_c, dd, e, u_a, u_c)
+    group = ClassIVCoupled(h_a, c, f, h_c, dd, e, u_a, u_c)
     inputs = ClassIVInputs(shift + turn * h_a, h_c, None if u_a is None else u_a * turn, u_c)
     ends = [Joint("P", link, body, h, u) if u is not None else Joint("R", link, body, h)
             for link, body, h, u in ((0, "k", h_a, u_a), (2, "frame", h_c, u_c))]

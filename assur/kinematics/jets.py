@@ -134,6 +134,24 @@ class Jet:
     def __rtruediv__(self, other: object) -> Jet:
         return Jet(np.asarray(other)) / self
 
+    def __pow__(self, n: int) -> Jet:
+        """The jet of ``v**n`` for a whole exponent: n·vⁿ⁻¹·v′ and
+        n·vⁿ⁻¹·v″ + n(n − 1)·vⁿ⁻²·v′².
+
+        Examples
+        --------
+        >>> t = Jet(np.array([0.5, 2.0]), 1.0, 0.0)
+        >>> square = t ** 2
+        >>> square.v.tolist(), square.d1.tolist(), square.d2.tolist()
+        ([0.25, 4.0], [1.0, 4.0], [2.0, 2.0])
+        """
+        if n == 0:
+            return Jet(np.ones_like(self.v), 0.0, 0.0)
+        below = self.v ** (n - 1)
+        second = n * (n - 1) * self.v ** (n - 2) if n != 1 else 0.0
+        return Jet(below * self.v, n * below * self.d1,
+                   n * below * self.d2 + second * self.d1 * self.d1)
+
 
 def _chain(x: Jet, f: np.ndarray, df: np.ndarray, ddf: np.ndarray) -> Jet:
     """Jet of ``f(x)`` from the value ``f`` and the derivatives ``df``, ``ddf`` of f at x.v."""

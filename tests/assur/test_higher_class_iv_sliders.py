@@ -28,7 +28,7 @@ from test_higher_properties import walk_through
 import assur
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import analyse
-from assur.kinematics.higher import ClassIV, ClassIVInputs, assembly_modes, follow_mode
+from assur.kinematics.higher import ClassIVCoupled, ClassIVInputs, assembly_modes, follow_mode
 from assur.kinematics.higher.groups import expand
 from assur.kinematics.higher.kind import HigherGroupSolution
 
@@ -52,7 +52,7 @@ class Designs:
     """
 
     form: str
-    group: ClassIV
+    group: ClassIVCoupled
     pin: np.ndarray  # H_a⁰, on the crank (pivot at the origin) or on the translating link
     radius: np.ndarray  # the translating link's circle (PP)
 
@@ -95,7 +95,7 @@ def random_designs(form: str, seed: int, d: int) -> Designs:
     h_c = _polar(rng, d, 90, 110)
     dd, e = h_c + _polar(rng, d, 30, 60), h_c + _polar(rng, d, 30, 60)
     u_a, u_c = (np.exp(2j * np.pi * rng.uniform(size=d)) for _ in range(2))
-    group = ClassIV(h_a, c, f, h_c, dd, e, u_a if form[0] == "P" else None,
+    group = ClassIVCoupled(h_a, c, f, h_c, dd, e, u_a if form[0] == "P" else None,
                     u_c if form[1] == "P" else None)
     return Designs(form, group, h_a, rng.uniform(8, 15, d))
 

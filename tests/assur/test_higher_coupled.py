@@ -15,11 +15,13 @@ followed mode and its interval with a walk through all modes on a fine grid.
 from __future__ import annotations
 
 import os
+import pickle
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 import pytest
+from class_iv_hinged import ClassIV
 from higher_checks import check_analogs_against_central_differences, check_class_iv_rigid
 from higher_fallback import (
     Joint,
@@ -32,9 +34,9 @@ from higher_fallback import (
 from test_higher_properties import walk_through
 
 from assur.kinematics import jets as J
-from assur.kinematics.higher import ClassIV, ClassIVInputs, assembly_modes, follow_mode
+from assur.kinematics.higher import ClassIVInputs, assembly_modes, follow_mode
 from assur.kinematics.higher.coupled import ClassIVCoupled
-from assur.kinematics.higher.groups import expand
+from assur.kinematics.higher.groups import expand, plain
 from assur.kinematics.higher.modes import AssemblyModes
 
 FULL = os.environ.get("ASSUR_HIGHER_FULL") == "1"
@@ -231,6 +233,42 @@ def test_links_stay_rigid_and_on_their_guides_over_the_cycle(form: str) -> None:
 def test_analogs_against_central_differences(form: str) -> None:
     designs = random_designs(form, 50 + COUPLED.index(form), 6)
     check_analogs_against_central_differences(designs.group, designs.inputs, 6)
+
+
+@pytest.mark.parametrize("form", SHARED + COUPLED)
+def test_residual_and_jacobian_off_the_solutions_against_central_differences(form: str) -> None:
+    """At arbitrary unknowns (no pose), the Jacobian that Newton takes with the residual equals
+    central differences of the residual, the derivative of the lifting factor included."""
+    d = 12
+    designs = random_designs(form, 70 + (SHARED + COUPLED).index(form), d)
+    g = designs.group
+    k = designs.inputs(np.full(d, 0.4))
+    x = np.random.default_rng(7).uniform(-2.5, 2.5, (d, 2))
+    f, jac = g.equations(x, k)
+    residual = np.stack(np.broadcast_arrays(*map(plain, g.residual(x, k))), axis=-1)
+    assert np.allclose(f, residual, rtol=1e-12, atol=1e-12 * _col(g.size))
+    h = 1e-6
+    for i in range(2):
+        step = np.zeros(2)
+        step[i] = h
+        ahead, behind = (np.stack(np.broadcast_arrays(*map(plain, g.residual(x + sign * step, k))),
+                                  axis=-1)
+                         for sign in (1.0, -1.0))
+        slope = (ahead - behind) / (2.0 * h)
+        scale = np.abs(slope).max(axis=-1, keepdims=True) + _col(g.size) * 1e-3
+        assert (np.abs(jac[..., i] - slope) <= 1e-6 * scale).all(), i
+
+
+def test_a_used_group_pickles_and_solves_the_same() -> None:
+    """A group that has fitted its matrices travels to another process (pickle) and gives the
+    same residual there."""
+    designs = random_designs("PR RR/RP", 90, 4)
+    k = designs.inputs(np.full(4, 0.3))
+    x = np.zeros((4, 2))
+    before = np.stack(np.broadcast_arrays(*map(plain, designs.group.residual(x, k))), axis=-1)
+    copy = pickle.loads(pickle.dumps(designs.group))
+    after = np.stack(np.broadcast_arrays(*map(plain, copy.residual(x, k))), axis=-1)
+    assert np.array_equal(before, after)
 
 
 # --- the followed mode and its interval against a walk through all modes ----------------------

@@ -21,7 +21,7 @@ from scipy.optimize import minimize_scalar
 from test_higher_properties import Designs, random_class_iv, random_triads
 
 from assur.kinematics import jets as J
-from assur.kinematics.higher import ClassIV, ClassIVInputs, assembly_modes, follow_mode
+from assur.kinematics.higher import ClassIVCoupled, ClassIVInputs, assembly_modes, follow_mode
 from assur.kinematics.higher.groups import expand
 
 #: A point, or an array of points over θ.
@@ -158,7 +158,7 @@ def test_the_gap_of_a_class_iv_group_on_two_turning_guides_has_a_finite_margin()
     g = designs.group
     rng = np.random.default_rng(23)
     u_a, u_c = (np.exp(2j * np.pi * rng.uniform(size=24)) for _ in range(2))
-    group = ClassIV(g.h_a, g.c, g.f, g.h_c, g.d, g.e, u_a, u_c)
+    group = ClassIVCoupled(g.h_a, g.c, g.f, g.h_c, g.d, g.e, u_a, u_c)
 
     def inputs(phi: Any) -> ClassIVInputs:
         return ClassIVInputs(g.h_a * J.expi(phi), g.h_c, u_a * J.expi(phi), u_c)

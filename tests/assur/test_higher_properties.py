@@ -22,7 +22,7 @@ import pytest
 from assur.kinematics import jets as J
 from assur.kinematics.dyads import solve_rrr
 from assur.kinematics.higher import (
-    ClassIV,
+    ClassIVCoupled,
     ClassIVInputs,
     HigherGroup,
     Leash,
@@ -56,7 +56,7 @@ class Designs:
 
     def inputs(self, phi: Any) -> Any:
         pin = self.pin * J.expi(phi)
-        if isinstance(self.group, ClassIV):
+        if isinstance(self.group, ClassIVCoupled):
             return ClassIVInputs(pin, self.fixed[0])
         return TriadInputs((pin, self.fixed[0], self.fixed[1]), (None, None, self.fixed[2]))
 
@@ -87,7 +87,7 @@ def random_class_iv(seed: int, d: int) -> Designs:
     c, f = h_a + _polar(rng, d, 40, 70), h_a + _polar(rng, d, 40, 70)
     h_c = _polar(rng, d, 90, 110)
     dd, e = h_c + _polar(rng, d, 30, 60), h_c + _polar(rng, d, 30, 60)
-    return Designs(ClassIV(h_a, c, f, h_c, dd, e), h_a, (h_c,))
+    return Designs(ClassIVCoupled(h_a, c, f, h_c, dd, e), h_a, (h_c,))
 
 
 def _col(v: Any) -> np.ndarray:

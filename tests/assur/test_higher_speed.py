@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from test_higher_properties import Designs, random_class_iv, random_triads
 
-from assur.kinematics.higher import ClassIV, assembly_modes, continuation, follow_mode
+from assur.kinematics.higher import ClassIVCoupled, assembly_modes, continuation, follow_mode
 from assur.kinematics.higher.groups import values
 from assur.kinematics.higher.modes import select_mode
 
@@ -136,7 +136,7 @@ def test_a_mode_that_passes_close_to_a_change_point_is_not_jumped() -> None:
     def one(v: Any) -> np.ndarray:
         return np.asarray(v)[i:i + 1]
 
-    designs = Designs(ClassIV(one(g.h_a) * c, one(g.c), one(g.f), one(g.h_c), one(g.d), one(g.e)),
+    designs = Designs(ClassIVCoupled(one(g.h_a) * c, one(g.c), one(g.f), one(g.h_c), one(g.d), one(g.e)),
                       one(seeded.pin) * c, (one(seeded.fixed[0]),))
     # the close pass: the root E of the mode comes within 0.002 of another root of the eliminant
     # between two requested angles, and is far from every other root at those angles

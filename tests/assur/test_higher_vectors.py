@@ -16,7 +16,7 @@ import pytest
 from assur.kinematics import jets as J
 from assur.kinematics.dyads import solve_rrr
 from assur.kinematics.higher import (
-    ClassIV,
+    ClassIVCoupled,
     ClassIVInputs,
     Triad,
     TriadInputs,
@@ -80,7 +80,7 @@ V1_CYCLE = {
 
 V2 = {"O": 0j, "B": -12.5 - 20j, "C": 57 + 66j, "D": 115 + 67j, "E": 87 + 118j, "F": 25.5 + 98.5j,
       "G": 140.5 + 22j}
-V2_GROUP = ClassIV(V2["B"], V2["C"], V2["F"], V2["G"], V2["D"], V2["E"])
+V2_GROUP = ClassIVCoupled(V2["B"], V2["C"], V2["F"], V2["G"], V2["D"], V2["E"])
 
 
 def v2_inputs(phi):

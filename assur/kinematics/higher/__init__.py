@@ -13,7 +13,6 @@ from assur.kinematics.higher.continuation import (
 )
 from assur.kinematics.higher.coupled import ClassIVCoupled
 from assur.kinematics.higher.groups import (
-    ClassIV,
     ClassIVInputs,
     HigherGroup,
     Leash,
@@ -24,7 +23,6 @@ from assur.kinematics.higher.modes import AssemblyModes, assembly_modes, select_
 
 __all__ = [
     "AssemblyModes",
-    "ClassIV",
     "ClassIVCoupled",
     "ClassIVInputs",
     "HigherGroup",

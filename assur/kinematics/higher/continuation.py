@@ -20,7 +20,15 @@ from typing import Any
 import numpy as np
 
 from assur.kinematics import jets as J
-from assur.kinematics.higher.groups import ClassIV, HigherGroup, det_rows, hadamard, values
+from assur.kinematics.higher.groups import (
+    ClassIVDrawing,
+    HigherGroup,
+    K,
+    det_rows,
+    hadamard,
+    plain,
+    values,
+)
 from assur.kinematics.higher.modes import (
     TAU,
     AssemblyModes,
@@ -63,7 +71,7 @@ FOLD_RESIDUAL = 1e-12
 #: Central-difference step of g's derivatives (rad for angles and φ, times L for lengths).
 FOLD_DIFFERENCE = 1e-6
 
-Inputs = Callable[[Any], Any]
+Inputs = Callable[[Any], K]
 
 
 def _part(v: Any, name: str) -> np.ndarray:
@@ -76,13 +84,13 @@ def _stacked(f: list[Any], name: str) -> np.ndarray:
     return np.stack(np.broadcast_arrays(*parts), axis=-1)
 
 
-def analogs(group: HigherGroup, k: Any, x: np.ndarray, jac: np.ndarray | None = None
+def analogs(group: HigherGroup[K], k: K, x: np.ndarray, jac: np.ndarray | None = None
             ) -> tuple[np.ndarray, np.ndarray]:
     """Velocity and acceleration analogs x′, x″ of the unknowns by implicit differentiation.
 
     Parameters
     ----------
-    group : Triad or ClassIV
+    group : Triad or ClassIVCoupled
         The group.
     k : TriadInputs or ClassIVInputs
         Its inputs at the position as jets in the crank angle φ.
@@ -100,8 +108,9 @@ def analogs(group: HigherGroup, k: Any, x: np.ndarray, jac: np.ndarray | None = 
     --------
     A class IV group whose hinge H_a moves along x at unit speed:
 
-    >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
-    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> from assur.kinematics.higher.coupled import ClassIVCoupled
+    >>> from assur.kinematics.higher.groups import ClassIVInputs
+    >>> g = ClassIVCoupled(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
     >>> k = ClassIVInputs(Jet(-12.5-20j, 1.0, 0.0), 140.5+22j)
     >>> x1, x2 = analogs(g, k, np.zeros(2))
     >>> x1.shape
@@ -116,7 +125,7 @@ def analogs(group: HigherGroup, k: Any, x: np.ndarray, jac: np.ndarray | None = 
     return x1, x2
 
 
-def separation(group: HigherGroup, k: Any, x: np.ndarray) -> np.ndarray:
+def separation(group: HigherGroup[K], k: K, x: np.ndarray) -> np.ndarray:
     """A lower bound on the distance from the root E* of x to every other root of p.
 
     The Taylor shift q_j = p⁽ʲ⁺¹⁾(E*)/(j+1)! and Fujiwara's bound on the deflated polynomial
@@ -168,7 +177,7 @@ class _Point:
                       np.where(wide, self.x1, other.x1), np.where(wide, self.x2, other.x2))
 
 
-def _correct(group: HigherGroup, kv: Any, guess: np.ndarray, sign: np.ndarray
+def _correct(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarray
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Newton from the predictor ``guess`` and the acceptance tests (a)–(c) of §1.6.
 
@@ -185,14 +194,14 @@ def _correct(group: HigherGroup, kv: Any, guess: np.ndarray, sign: np.ndarray
     return xn, jac, rows, ok
 
 
-def _singularity(group: HigherGroup, x: np.ndarray, kv: Any) -> np.ndarray:
+def _singularity(group: HigherGroup[K], x: np.ndarray, kv: Any) -> np.ndarray:
     """g = det J / Π‖J_k‖ with the columns of lengths times L: 0 exactly where J is singular,
     dimensionless, in [−1, 1]."""
     jac = group.jacobian(x, kv) / weights(group)[..., None, :]
     return np.asarray(det_rows(jac) / np.prod(np.linalg.norm(jac, axis=-1), axis=-1))
 
 
-def _fold(group: HigherGroup, inputs: Inputs, s: float, start: _Point, active: np.ndarray
+def _fold(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, active: np.ndarray
           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The change point nearest ``start`` by Newton's method on the extended system.
 
@@ -246,7 +255,7 @@ def _pick(a: np.ndarray, first: np.ndarray) -> np.ndarray:
     return np.asarray(np.take_along_axis(a, index, axis=0)[0])
 
 
-def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.ndarray,
+def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goal: np.ndarray,
           active: np.ndarray, sign: np.ndarray, log: list[tuple[_Point, np.ndarray]] | None
           ) -> tuple[_Point, np.ndarray, np.ndarray]:
     """Step every active row from ``start.t`` to its ``goal`` (arrays (R, D)) under step control.
@@ -322,7 +331,7 @@ def _walk(group: HigherGroup, inputs: Inputs, s: float, start: _Point, goal: np.
     return here, end, why
 
 
-def _ending(group: HigherGroup, inputs: Inputs, s: float, here: _Point, beyond: np.ndarray,
+def _ending(group: HigherGroup[K], inputs: Inputs[K], s: float, here: _Point, beyond: np.ndarray,
             goal: np.ndarray, rows: np.ndarray) -> tuple[_Point, np.ndarray]:
     """The change point where the mode of the ``rows`` ends, if it lies near ``beyond``.
 
@@ -394,7 +403,7 @@ def _anchors(log: list[tuple[_Point, np.ndarray]], targets: np.ndarray, offset: 
     return states, nearest, before, inside | on_last
 
 
-def _follow(group: HigherGroup, inputs: Inputs, x0: np.ndarray, targets: np.ndarray,
+def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: np.ndarray,
             s: float, done: np.ndarray, jets: bool, span: Any = TWO_PI) -> _Pass:
     """Follow x0 from φ = 0 through φ = s·t for the targets 0 ≤ t ≤ span (§1.6).
 
@@ -540,8 +549,9 @@ class HigherSolution:
 
         Examples
         --------
-        >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
-        >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+        >>> from assur.kinematics.higher.coupled import ClassIVCoupled
+        >>> from assur.kinematics.higher.groups import ClassIVInputs
+        >>> g = ClassIVCoupled(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
         >>> sol = follow_mode(g, lambda phi: ClassIVInputs(-12.5-20j, 140.5+22j), [0.0])
         >>> [m.text() for m in sol.notes()]
         ['6 real assembly modes at the sketch']
@@ -570,7 +580,7 @@ class HigherSolution:
         return out
 
 
-def _gap(group: HigherGroup, k: Any, rows: np.ndarray) -> np.ndarray:
+def _gap(group: HigherGroup[K], k: K, rows: np.ndarray) -> np.ndarray:
     """The margin where a mode is gone, where the mask ``rows`` holds (NaN elsewhere).
 
     −min|ln|E|| over the roots of p off the unit circle. A class IV group with both external
@@ -583,7 +593,7 @@ def _gap(group: HigherGroup, k: Any, rows: np.ndarray) -> np.ndarray:
     with np.errstate(all="ignore"):
         size = np.abs(np.log(np.abs(roots(coef[rows]))))
         out[rows] = -np.where(size > TAU, size, np.inf).min(axis=-1)
-        if isinstance(group, ClassIV) and all(group.slides):
+        if isinstance(group, ClassIVDrawing) and all(group.slides):
             guides = -np.abs(np.sin(np.angle(np.asarray(k.u_c) / k.u_a)))
             out = np.where(rows & np.isneginf(out), guides, out)
     return out
@@ -600,7 +610,7 @@ def _spread(k: Any, d: int) -> Any:
                                      for f in dataclasses.fields(k)})
 
 
-def _designs(group: HigherGroup, inputs: Inputs) -> tuple[int, ...]:
+def _designs(group: HigherGroup[K], inputs: Inputs[K]) -> tuple[int, ...]:
     """The design shape: () for one design, (D,) for many."""
     first = values(inputs(np.zeros(1)))
     shapes = [np.shape(group.size)]
@@ -629,14 +639,14 @@ class Stroke:
     start: Any
 
 
-def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool = False,
+def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: bool = False,
                 delta: float | np.ndarray = 0.0, stroke: Stroke | None = None
                 ) -> HigherSolution:
     """Positions of the sketched assembly mode over the crank cycle, for one or many designs.
 
     Parameters
     ----------
-    group : Triad or ClassIV
+    group : Triad or ClassIVCoupled
         The group; drawn values of shape () or (D,).
     inputs : callable
         ``inputs(phi)`` → :class:`TriadInputs` or :class:`ClassIVInputs`: the external
@@ -671,9 +681,10 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
     --------
     The class IV group of test vector V2 driven by a crank O–B:
 
-    >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
+    >>> from assur.kinematics.higher.coupled import ClassIVCoupled
+    >>> from assur.kinematics.higher.groups import ClassIVInputs
     >>> from assur.kinematics.jets import expi
-    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> g = ClassIVCoupled(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
     >>> crank = lambda phi: ClassIVInputs((-12.5-20j) * expi(phi), 140.5+22j)
     >>> sol = follow_mode(g, crank, np.radians([60.0, 150.0]))
     >>> np.round(sol.joints["C"], 6).tolist()
@@ -707,7 +718,7 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
     around = ahead.reached[:, -1]
     size = np.broadcast_to(group.size, (d,))
     with np.errstate(all="ignore"):
-        home = np.max([np.abs(ahead.out["p." + a][0][:, -1] - np.broadcast_to(v, (d,)))
+        home = np.max([np.abs(ahead.out["p." + a][0][:, -1] - np.broadcast_to(plain(v), (d,)))
                        for a, v in group.joints(x0, k0).items()], axis=0)
     closed = ~around | (home <= CLOSED * size)
     back_targets = np.append(TWO_PI - grid[grid > 0][::-1], TWO_PI)
@@ -757,7 +768,7 @@ def follow_mode(group: HigherGroup, inputs: Inputs, phi: Any, *, analogs: bool =
     return _squeeze(solution) if shape == () else solution
 
 
-def _follow_stroke(group: HigherGroup, inputs: Inputs, q: np.ndarray, stroke: Stroke,
+def _follow_stroke(group: HigherGroup[K], inputs: Inputs[K], q: np.ndarray, stroke: Stroke,
                    x0: np.ndarray, sketch: tuple[AssemblyModes, np.ndarray], jets: bool,
                    delta: float | np.ndarray) -> HigherSolution:
     """The drawn mode along an actuator's stroke, one row per design.

@@ -18,8 +18,9 @@ IV form Φ = |π_bα_d − π_dα_b|² − cross(α_b, α_d)², of degree at mos
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from functools import cached_property
+from weakref import WeakKeyDictionary
 
 import numpy as np
 
@@ -29,13 +30,14 @@ from assur.kinematics.higher.groups import (
     ClassIVInputs,
     Leash,
     Unknowns,
-    Value,
-    expand,
+    plain,
     plain_cross,
     plain_dot,
+    present,
     unknown_columns,
 )
 from assur.text import render
+from assur.typing import Value
 
 __all__ = ["ClassIVCoupled"]
 
@@ -48,6 +50,13 @@ GRID = np.exp(1j * np.pi * (2 * np.arange(2 * FULL_DEGREE + 2) + 1) / (2 * FULL_
 SPLIT = GRID[None, :] ** -np.arange(-FULL_DEGREE, FULL_DEGREE + 1)[:, None] / GRID.size
 #: A coefficient of Φ at most this times the largest vanishes for the form.
 VANISH = 1e-10
+
+
+#: The unknown's samples 0, π/2, π, and the map from a loop equation's values there to its
+#: coefficients of w(y) = (κ², κσ, σ²), κ = cos(y/2), σ = sin(y/2): F(0), 2F(π/2) − F(0) − F(π),
+#: F(π). Half angles keep the lifting factor κ² exact near y = π (a slide far out).
+SAMPLES = np.array([0.0, 0.5 * np.pi, np.pi])
+FROM_SAMPLES = np.array([[1.0, 0.0, 0.0], [-1.0, 2.0, -1.0], [0.0, 0.0, 1.0]])
 
 
 #: (p, m) of each form (couplers' kinds, slides, ε) once read (see ClassIVCoupled._form).
@@ -68,6 +77,57 @@ def _deflate(series: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         quotient[..., i] = carry
         carry = series[..., i] - carry
     return quotient, carry
+
+
+def _halves(y: Value) -> Value:
+    """w(y) = (κ², κσ, σ²) on a last axis (κ = cos(y/2), σ = sin(y/2)); a jet of y gives a
+    jet, w′ = (−κσ, (κ² − σ²)/2, κσ), w″ = ((σ² − κ²)/2, −κσ, (κ² − σ²)/2)."""
+    t = np.asarray(J.value(y), dtype=float)
+    k, s = np.cos(0.5 * t), np.sin(0.5 * t)
+    w = np.empty(t.shape + (3,))
+    np.multiply(k, k, out=w[..., 0])
+    np.multiply(k, s, out=w[..., 1])
+    np.multiply(s, s, out=w[..., 2])
+    if not isinstance(y, J.Jet):
+        return w
+    half = 0.5 * (k * k - s * s)
+    d1 = np.stack([-k * s, half, k * s], axis=-1)
+    d2 = np.stack([-half, -k * s, half], axis=-1)
+    y1, y2 = np.asarray(y.d1)[..., None], np.asarray(y.d2)[..., None]
+    return J.Jet(w, d1 * y1, d2 * y1 * y1 + d1 * y2)
+
+
+def _halves_turning(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """w(y) and w′(y) = (−κσ, (κ² − σ²)/2, κσ) of plain angles."""
+    k, s = np.cos(0.5 * y), np.sin(0.5 * y)
+    w, turning = np.empty(np.shape(y) + (3,)), np.empty(np.shape(y) + (3,))
+    np.multiply(k, k, out=w[..., 0])
+    np.multiply(k, s, out=w[..., 1])
+    np.multiply(s, s, out=w[..., 2])
+    np.negative(w[..., 1], out=turning[..., 0])
+    turning[..., 2] = w[..., 1]
+    np.subtract(w[..., 0], w[..., 2], out=turning[..., 1])
+    turning[..., 1] *= 0.5
+    return w, turning
+
+
+def _form(va: np.ndarray, m: np.ndarray, vc: np.ndarray) -> np.ndarray:
+    """Σ_pq va_p·m_jpq·vc_q of plain arrays (..., 3), (..., 2, 3, 3), (..., 3)."""
+    return np.asarray((va[..., None, :, None] * m * vc[..., None, None, :]).sum(axis=(-2, -1)))
+
+
+def _contract(va: Value, m: Value, vc: Value) -> J.Jet | np.ndarray:
+    """F̂_j = Σ_pq w(y_a)_p·M_jpq·w(y_c)_q, with jets by the product rule (plain arrays: one einsum)."""
+    if not any(isinstance(t, J.Jet) for t in (va, m, vc)):
+        return _form(*(np.asarray(J.value(t)) for t in (va, m, vc)))
+    a, b, c = (np.broadcast_arrays(j.v, j.d1, j.d2) for j in map(J.as_jet, (va, m, vc)))
+
+    def f(i: int, j: int, k: int) -> np.ndarray:
+        return _form(a[i], b[j], c[k])
+
+    return J.Jet(f(0, 0, 0), f(1, 0, 0) + f(0, 1, 0) + f(0, 0, 1),
+                 f(2, 0, 0) + f(0, 2, 0) + f(0, 0, 2)
+                 + 2.0 * (f(1, 1, 0) + f(1, 0, 1) + f(0, 1, 1)))
 
 
 @dataclass(frozen=True)
@@ -111,10 +171,10 @@ class ClassIVCoupled(ClassIVDrawing):
     ((<Leash.PR: 'PR'>, <Leash.RR: 'RR'>), 3, True, 0)
     """
 
-    w_c: Value = None
-    w_d: Value = None
-    w_e: Value = None
-    w_f: Value = None
+    w_c: Value | None = None
+    w_d: Value | None = None
+    w_e: Value | None = None
+    w_f: Value | None = None
 
     n = 2
     lengths = (False, False)
@@ -125,18 +185,13 @@ class ClassIVCoupled(ClassIVDrawing):
 
     # --- form -----------------------------------------------------------------------------
 
-    @property
-    def slides(self) -> tuple[bool, bool]:
-        """Whether the external pair of a, of c, is prismatic."""
-        return self.u_a is not None, self.u_c is not None
-
-    @property
+    @cached_property
     def kinds(self) -> tuple[Leash, Leash]:
         """The forms of b (pairs C, D) and d (pairs F, E), the pair on a first."""
         return (Leash.of(self.w_c is not None, self.w_d is not None),
                 Leash.of(self.w_f is not None, self.w_e is not None))
 
-    def _guides(self, j: int) -> tuple[Value, Value]:
+    def _guides(self, j: int) -> tuple[Value | None, Value | None]:
         """The guides of coupler j (0: b, 1: d), the pair on a first."""
         return (self.w_c, self.w_d) if j == 0 else (self.w_f, self.w_e)
 
@@ -206,7 +261,7 @@ class ClassIVCoupled(ClassIVDrawing):
                               None if self.u_a is None else self.u_a * turn,
                               None if self.u_c is None else self.u_c / turn)
         with np.errstate(all="ignore"):
-            series = self._series(expand(self), expand(probe))
+            series = self._series(probe, True)
         p = 0
         while p < FULL_DEGREE * 2:
             quotient, rest = _deflate(series)
@@ -228,19 +283,19 @@ class ClassIVCoupled(ClassIVDrawing):
 
     def _links(self, y: Sequence[Value], k: ClassIVInputs) -> tuple[_Link, _Link]:
         """a and c at the unknowns y (angles; plain arrays or jets)."""
-        def link(angle: Value, h: Value, u: Value, drawn: Value) -> _Link:
-            if drawn is None:
+        def link(angle: Value, h: Value, u: Value | None, drawn: Value | None) -> _Link:
+            if drawn is None or u is None:
                 return _Link(J.expi(angle), 1.0, h)
             half = J.expi(0.5 * angle)
             weight = J.real(half)
             return _Link(u / drawn, weight, weight * h + self.size * J.imag(half) * u)
         return (link(y[0], k.h_a, k.u_a, self.u_a), link(y[1], k.h_c, k.u_c, self.u_c))
 
-    def _lifted(self, y: Sequence[Value], k: ClassIVInputs) -> list[tuple[Value, Value, Value]]:
-        """Per coupler: F̂_j, its lifting factor and the scale of the natural residual."""
+    def _lifted(self, y: Sequence[Value], k: ClassIVInputs) -> list[Value]:
+        """F̂_b, F̂_d at the unknowns y (the loop equations times their lifting factors)."""
         a, c = self._links(y, k)
         both = a.weight * a.weight * c.weight * c.weight
-        out = []
+        out: list[Value] = []
         for j, ((first, second), kind, (wa, wc)) in enumerate(zip(
                 ((self.c, self.d), (self.f, self.e)), self.kinds,
                 (self._guides(0), self._guides(1)), strict=True)):
@@ -249,65 +304,153 @@ class ClassIVCoupled(ClassIVDrawing):
             gap = c.weight * pa - a.weight * pc   # κ_aκ_c·(that on a − that on c)
             drawn = np.asarray(first) - second
             if kind is Leash.RR:  # a bar: its drawn length, or an actuator's from the inputs
-                given = k.l_b if j == 0 else k.l_d
-                length = np.abs(drawn) if given is None else given
-                out.append((J.dot(gap, gap) - length * length * both, both, 0.5 / length))
+                length = self._length(j, k)
+                out.append(J.dot(gap, gap) - length * length * both)
             elif kind is Leash.PP:
-                out.append((J.cross(a.turn, c.turn), 1.0, self.size))
+                out.append(J.cross(a.turn, c.turn))
             else:
                 turn, w = (a.turn, wa) if kind is Leash.PR else (c.turn, wc)
                 offset = plain_cross(w, drawn)
-                out.append((a.weight * c.weight * J.cross(turn * w, gap) - offset * both,
-                            both, 1.0))
+                out.append(a.weight * c.weight * J.cross(turn * present(w), gap)
+                           - offset * both)
         return out
+
+    def _length(self, j: int, k: ClassIVInputs) -> Value:
+        """The length of bar j (0: b, 1: d): drawn, or an actuator's from the inputs."""
+        given = k.l_b if j == 0 else k.l_d
+        drawn = np.asarray(J.value((self.c, self.f)[j])) - J.value((self.d, self.e)[j])
+        return np.abs(drawn) if given is None else given
+
+    def __getstate__(self) -> dict[str, object]:
+        """The record without the fitted matrices of :meth:`_matrices` (weak references do
+        not pickle; they are fitted again on demand)."""
+        return {name: value for name, value in self.__dict__.items() if name != "_memo"}
+
+    @cached_property
+    def _memo(self) -> WeakKeyDictionary[ClassIVInputs, Value]:
+        """The matrices of :meth:`_matrices` of the inputs records at hand."""
+        return WeakKeyDictionary()
+
+    def _matrices(self, k: ClassIVInputs) -> Value:
+        """M_j, shape (..., 2, 3, 3): scale_j·F̂_j = Σ_pq w(y_a)_p·M_jpq·w(y_c)_q
+        (:func:`_halves`), scale_j that of the natural residual (:meth:`_scales`).
+
+        F̂_j is trigonometrically linear in y_a and in y_c separately (a quadratic form in
+        (κ, σ) of each), so its values at y_a, y_c ∈ {0, π/2, π} give M_j, once per inputs
+        record; the residual, the Jacobian, the eliminant and the recovery are contractions
+        of M (a positive factor per equation moves no root of Φ). Jet inputs give a jet M.
+        """
+        memo = self._memo
+        if k not in memo:
+            depth = max(np.ndim(J.value(getattr(record, f.name)))
+                        for record in (self, k) for f in fields(record)
+                        if getattr(record, f.name) is not None)
+            grid = np.ones((3, 3) + (1,) * depth)
+            lifted = [f * scale for f, scale in zip(
+                self._lifted([SAMPLES.reshape((3, 1) + (1,) * depth),
+                              SAMPLES.reshape((1, 3) + (1,) * depth)], k),
+                self._scales(k), strict=True)]
+            parts = [J.as_jet(f) for f in lifted]
+
+            def fit(name: str) -> np.ndarray:
+                samples = np.stack(np.broadcast_arrays(*(getattr(f, name) * grid for f in parts)))
+                return np.asarray(np.einsum("pa,jab...,qb->...jpq", FROM_SAMPLES, samples,
+                                            FROM_SAMPLES))
+
+            jets = any(isinstance(f, J.Jet) for f in lifted)
+            memo[k] = J.Jet(fit("v"), fit("d1"), fit("d2")) if jets else fit("v")
+        return memo[k]
+
+    def _scales(self, k: ClassIVInputs) -> list[Value]:
+        """Per coupler, the natural residual's scale: 1/(2l) of a bar, L of a PP coupler, 1."""
+        return [0.5 / self._length(j, k) if kind is Leash.RR else self.size
+                if kind is Leash.PP else 1.0 for j, kind in enumerate(self.kinds)]
+
+    def _lifts(self, wa: Value, wc: Value) -> list[Value]:
+        """Per coupler, the lifting factor κ_a²κ_c² from w(y_a), w(y_c) (1 of a PP coupler;
+        κ = 1 of a hinged link)."""
+        qa, qc = ((w[..., 0] if isinstance(w, J.Jet) else plain(w)[..., 0]) if slides else 1.0
+                  for w, slides in zip((wa, wc), self.slides, strict=True))
+        return [1.0 if kind is Leash.PP else qa * qc for kind in self.kinds]
 
     def residual(self, x: Unknowns, k: ClassIVInputs) -> list[Value]:
         """g_b, g_d: RR (|C − D|² − l²)/(2l), PR/RP the offset of the hinge from the guide
         minus its drawn value, PP L·sin(θ_a − θ_c) (rotations of a sliding link its guide's)."""
-        return [value * scale / lift for value, lift, scale in self._lifted(unknown_columns(x), k)]
+        cols = unknown_columns(x)
+        wa, wc = _halves(cols[0]), _halves(cols[1])
+        f = _contract(wa, self._matrices(k), wc)
+        return [f[..., j] / lift for j, lift in enumerate(self._lifts(wa, wc))]
 
     def lines(self, x: np.ndarray, k: ClassIVInputs) -> tuple[np.ndarray, np.ndarray]:
         """The Jacobian in (y_a, y_c) and the margin rows in physical columns.
 
-        A rotation's column is divided by the RMS radius of the link's internal pairs about
-        its external pair, a slide's is ∂/∂s = ∂/∂t·2L/(L² + s²) (as :class:`ClassIV`).
+        ∂g_j/∂y = scale_j·(∂F̂_j/∂y − F̂_j·∂lift_j/∂y/lift_j)/lift_j, ∂F̂_j/∂y from M and
+        w′(y). A rotation's column is divided by the RMS radius of the
+        link's internal pairs about its external pair, a slide's is ∂/∂s = ∂/∂t·2L/(L² + s²).
         """
-        cols = unknown_columns(x)
-        shape = (2, *np.shape(cols[0]))
-        # both columns in one pass: the derivative along y_a, y_c on a leading axis
-        seed = np.eye(2).reshape((2, 2) + (1,) * (len(shape) - 1))
-        slopes = [np.broadcast_to(J.as_jet(g).d1, shape) for g in
-                  self.residual([J.Jet(v, seed[i]) for i, v in enumerate(cols)], k)]
-        jac = np.moveaxis(np.stack(slopes, axis=-1), 0, -1)
+        ya, yc = unknown_columns(x)
+        jac = self.equations(x, k)[1]
         scales = []
-        for y, slides, (p, q), h in zip(cols, self.slides, ((self.c, self.f), (self.d, self.e)),
-                                        (self.h_a, self.h_c), strict=True):
+        for y, slides, radius in zip((ya, yc), self.slides, self._radii, strict=True):
             if slides:
-                s = self.size * np.tan(0.5 * np.asarray(y))
+                s = self.size * np.tan(0.5 * plain(y))
                 scales.append(2.0 * self.size / (self.size ** 2 + s * s))
             else:
-                scales.append(1.0 / np.sqrt((np.abs(np.asarray(p) - h) ** 2
-                                             + np.abs(np.asarray(q) - h) ** 2) / 2.0))
+                scales.append(1.0 / radius)
         rows = jac * np.stack(np.broadcast_arrays(*scales), axis=-1)[..., None, :]
         return jac, rows
 
+    @cached_property
+    def _radii(self) -> tuple[np.ndarray, np.ndarray]:
+        """The RMS radius of the internal pairs of a, of c, about its external pair."""
+        return tuple(np.sqrt((np.abs(np.asarray(p) - h) ** 2 + np.abs(np.asarray(q) - h) ** 2)
+                             / 2.0) for (p, q), h in zip(((self.c, self.f), (self.d, self.e)),
+                                                         (self.h_a, self.h_c), strict=True))
+
+    def equations(self, x: np.ndarray, k: ClassIVInputs) -> tuple[np.ndarray, np.ndarray]:
+        """g (..., 2) and the Jacobian in (y_a, y_c), from one evaluation of w(y_a), w(y_c):
+        ∂g_j/∂y = (∂(scale_j·F̂_j)/∂y − g_j·∂lift_j/∂y)/lift_j, the first from M and w′(y)."""
+        ya, yc = (np.asarray(col, dtype=float) for col in unknown_columns(x))
+        m = plain(self._matrices(k))
+        (wa, ta), (wc, tc) = _halves_turning(ya), _halves_turning(yc)
+        g = _form(wa, m, wc)
+        jac = np.stack([_form(ta, m, wc), _form(wa, m, tc)], axis=-1)
+        if not any(self.slides):
+            return g, jac
+        (qa, da), (qc, dc) = ((w[..., 0], -w[..., 1]) if slides else (1.0, 0.0)
+                              for w, slides in zip((wa, wc), self.slides, strict=True))
+        pp = self._pp
+        lift = np.where(pp, 1.0, np.asarray(qa * qc)[..., None])
+        slopes = np.stack(np.broadcast_arrays(np.where(pp, 0.0, np.asarray(da * qc)[..., None]),
+                                              np.where(pp, 0.0, np.asarray(qa * dc)[..., None])),
+                          axis=-1)
+        g = g / lift
+        return g, (jac - g[..., None] * slopes) / lift[..., None]
+
+    @cached_property
+    def _pp(self) -> np.ndarray:
+        """Which coupler is PP (its equation has no lifting factor)."""
+        return np.array([kind is Leash.PP for kind in self.kinds])
+
     # --- elimination ----------------------------------------------------------------------
 
-    def _linear(self, e: np.ndarray, k: ClassIVInputs) -> list[tuple[np.ndarray, np.ndarray]]:
-        """α_j, π_j of Re(ᾱ_j E_o) = π_j at y_ε = arg e."""
-        eps = self.eliminated
-        samples = []
-        for y_o in (0.0, 0.5 * np.pi, np.pi):
-            y = [np.angle(e), np.full(np.shape(e), y_o)]
-            samples.append([value for value, _, _ in self._lifted(y if eps == 0 else y[::-1],
-                                                                   k)])
-        out = []
-        for f0, f1, f2 in zip(*samples, strict=True):
-            mean = (np.asarray(f0) + f2) / 2.0
-            out.append(((np.asarray(f0) - f2) / 2.0 + 1j * (np.asarray(f1) - mean), -mean))
-        return out
+    def _linear(self, e: np.ndarray, k: ClassIVInputs, spread: bool = False
+                ) -> list[tuple[np.ndarray, np.ndarray]]:
+        """α_j, π_j of Re(ᾱ_j E_o) = π_j at y_ε = arg e: the coefficients (d₀, d₁, d₂) of
+        F̂_j in w(y_o) are M_j contracted with w(y_ε) = ((1 + cos)/2, sin/2, (1 − cos)/2);
+        with κ² = (1 + cos)/2, κσ = sin/2, σ² = (1 − cos)/2, α_j = (d₀ − d₂ + i·d₁)/2 and
+        π_j = −(d₀ + d₂)/2. With ``spread`` the samples ``e`` lie on a new last axis (group
+        and inputs not expanded)."""
+        unit = e / np.abs(e)
+        w = np.stack(np.broadcast_arrays(0.5 + 0.5 * unit.real, 0.5 * unit.imag,
+                                         0.5 - 0.5 * unit.real), axis=-1)
+        spec = "...p,...jpq->...jq" if self.eliminated == 0 else "...q,...jpq->...jp"
+        m = plain(self._matrices(k))
+        d = np.einsum(spec, w, m[..., None, :, :, :] if spread else m)
+        return [(0.5 * (d[..., j, 0] - d[..., j, 2] + 1j * d[..., j, 1]),
+                 -0.5 * (d[..., j, 0] + d[..., j, 2])) for j in (0, 1)]
 
-    def _full(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
+    def _full(self, e: np.ndarray, k: ClassIVInputs, spread: bool = False) -> np.ndarray:
         """Φ(y_ε) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² at y_ε = arg e.
 
         Where both equations are linear in the kept slide s_o (:attr:`_linear_kept`), each
@@ -315,16 +458,28 @@ class ClassIVCoupled(ClassIVDrawing):
         (the common root y_o = π), and Φ is the resultant A_b·B_d − A_d·B_b ∝ cross(α_b, α_d)
         instead, of degree at most 2.
         """
-        (ab, pb), (ad, pd) = self._linear(e, k)
+        (ab, pb), (ad, pd) = self._linear(e, k, spread)
         if self._linear_kept:
             return np.asarray(plain_cross(ab, ad))
         return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - plain_cross(ab, ad) ** 2)
 
-    @staticmethod
-    def _series(wide: ClassIVCoupled, k: ClassIVInputs) -> np.ndarray:
+    def _series(self, k: ClassIVInputs, spread: bool) -> np.ndarray:
         """Coefficients of E⁴Φ (increasing powers, shape (..., 9)) from Φ sampled off −1
-        (group and inputs expanded)."""
-        return np.asarray(np.einsum("...k,nk->...n", wide._full(GRID, k), SPLIT))
+        (with ``spread`` on group and inputs as given, else on both expanded)."""
+        return np.asarray(np.einsum("...k,nk->...n", self._full(GRID, k, spread), SPLIT))
+
+    def _kept(self, series: np.ndarray) -> np.ndarray:
+        """The coefficients φ₋ₘ … φₘ of Φ̃ from those of E⁴Φ (see :meth:`eliminant`)."""
+        p, m = self._form
+        for _ in range(p):
+            series = _deflate(series)[0]
+        half = FULL_DEGREE - p // 2
+        return np.asarray(series[..., half - m:half + m + 1] * 2.0 ** p)
+
+    def coefficients(self, k: ClassIVInputs) -> np.ndarray:
+        """The coefficients of p(E) = E^m·Φ̃ straight from the fitted matrices (no samples of
+        :meth:`eliminant`)."""
+        return self._kept(self._series(k, True))
 
     def eliminant(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
         """Φ̃ = Φ/((1 + cos y_ε)/2)^{p/2} at e (group and inputs expanded).
@@ -333,13 +488,9 @@ class ClassIVCoupled(ClassIVDrawing):
         input (all α_j vanish there, or both lines coincide); that root is no pose, and
         divided out, as are the top coefficients that vanish for the form.
         """
-        p, m = self._form
-        series = self._series(self, k)
-        for _ in range(p):
-            series = _deflate(series)[0]
-        half = FULL_DEGREE - p // 2
+        m = self._form[1]
         powers = np.arange(-m, m + 1)
-        kept = series[..., half - m:half + m + 1] * 2.0 ** p
+        kept = self._kept(self._series(k, False))
         return np.asarray(np.einsum("...n,...kn->...k", kept,
                                     np.asarray(e)[..., None] ** powers).real)
 
@@ -380,7 +531,7 @@ class ClassIVCoupled(ClassIVDrawing):
                 ends = (pa, pa + c.turn * drawn)
             else:
                 rest = J.conj(a.turn) * (pc - pa) - drawn
-                start = pa + J.cross(rest, wc) / plain_cross(wa, wc) * a.turn * wa
+                start = pa + J.cross(rest, present(wc)) / plain_cross(wa, wc) * a.turn * present(wa)
                 ends = (start, start + a.turn * drawn)
             out.update({p: ends[0], q: ends[1], on_a: pa, on_c: pc})
         return out

@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import Enum
 from functools import cached_property
-from typing import Any, TypeVar
+from typing import Any, Generic, TypeVar
 
 import numpy as np
 
@@ -29,7 +29,8 @@ from assur.text import render
 from assur.typing import Value
 
 __all__ = [
-    "ClassIV", "ClassIVDrawing", "ClassIVInputs", "HigherGroup", "Leash", "Triad", "TriadInputs", "expand", "values",
+    "AnyGroup", "ClassIVDrawing", "ClassIVInputs", "HigherGroup", "K", "Leash", "Triad",
+    "TriadInputs", "Value", "expand", "plain", "present", "values",
 ]
 
 #: The unknowns: an ndarray (..., n) or a sequence of n values (jets for the analogs).
@@ -108,6 +109,20 @@ def values(record: T) -> T:
     return dataclasses.replace(record, **changes)  # type: ignore[type-var]
 
 
+def present(v: Value | None) -> Value:
+    """``v``, which the group's form requires to be given (a guide, a prismatic pair's
+    direction): the record's checks have made sure of it."""
+    assert v is not None
+    return v
+
+
+def plain(v: Value) -> np.ndarray:
+    """``v`` as an ndarray where it holds no jet: a drawn value, or an input on the paths that
+    take plain arrays (the Jacobian, the lines, the eliminant, the recovery)."""
+    assert not isinstance(v, J.Jet)
+    return np.asarray(v)
+
+
 def cofactors(m: np.ndarray) -> tuple[list[list[np.ndarray]], np.ndarray]:
     """Cofactors C[i][j] and determinants of stacked 2×2 or 3×3 matrices, in closed form.
 
@@ -135,7 +150,11 @@ def hadamard(rows: np.ndarray) -> np.ndarray:
     return np.asarray(np.abs(det_rows(rows)) / norms)
 
 
-class HigherGroup(ABC):
+#: The inputs record of a group: :class:`TriadInputs` or :class:`ClassIVInputs`.
+K = TypeVar("K", "TriadInputs", "ClassIVInputs")
+
+
+class HigherGroup(ABC, Generic[K]):
     """What the mode finder and the continuation need from a four-link group."""
 
     #: Number of unknowns (3 for a triad, 2 for the class IV group).
@@ -165,34 +184,51 @@ class HigherGroup(ABC):
         """The drawn positions of the joints named as in :meth:`joints`."""
 
     @abstractmethod
-    def residual(self, x: Unknowns, k: Any) -> list[Value]:
+    def residual(self, x: Unknowns, k: K) -> list[Value]:
         """The reduced loop equations F(x) (lengths, in the drawing's unit)."""
 
     @abstractmethod
-    def lines(self, x: np.ndarray, k: Any) -> tuple[np.ndarray, np.ndarray]:
+    def lines(self, x: np.ndarray, k: K) -> tuple[np.ndarray, np.ndarray]:
         """The Jacobian (..., n, n) and the margin rows (..., n, n) of the constraint lines."""
 
     @abstractmethod
-    def eliminant(self, e: np.ndarray, k: Any) -> np.ndarray:
+    def eliminant(self, e: np.ndarray, k: K) -> np.ndarray:
         """Φ at the unit complex numbers ``e`` (group and inputs expanded by one axis)."""
 
     @abstractmethod
-    def recover(self, e: np.ndarray, k: Any) -> np.ndarray:
+    def recover(self, e: np.ndarray, k: K) -> np.ndarray:
         """The unknowns (..., n) at the root ``e`` of Φ (group and inputs expanded)."""
 
     @abstractmethod
-    def joints(self, x: Unknowns, k: Any) -> dict[str, Value]:
+    def joints(self, x: Unknowns, k: K) -> dict[str, Value]:
         """The internal joints of the group by name."""
 
     @abstractmethod
-    def rotations(self, x: Unknowns, k: Any) -> dict[str, Value]:
+    def rotations(self, x: Unknowns, k: K) -> dict[str, Value]:
         """The rotation of each link of the group from the sketch, by name."""
 
-    def jacobian(self, x: np.ndarray, k: Any) -> np.ndarray:
+    def coefficients(self, k: K) -> np.ndarray:
+        """Coefficients p_0 … p_2m of p(E) = E^m·Φ (increasing powers), read off the FFT of
+        Φ at 2m + 2 points of the unit circle (see :func:`~assur.kinematics.higher.modes.
+        coefficients`)."""
+        m = self.degree
+        samples = 2 * m + 2
+        e = np.exp(2j * np.pi * np.arange(samples) / samples)
+        with np.errstate(all="ignore"):
+            phi = expand(self).eliminant(e, expand(k))
+        bins = np.fft.fft(phi, axis=-1) / samples
+        return np.asarray(bins[..., np.arange(-m, m + 1) % samples])
+
+    def equations(self, x: np.ndarray, k: K) -> tuple[np.ndarray, np.ndarray]:
+        """F(x), shape (..., n), and the Jacobian: the data of one Newton step."""
+        f = np.stack(np.broadcast_arrays(*map(plain, self.residual(x, k))), axis=-1)
+        return f, self.jacobian(x, k)
+
+    def jacobian(self, x: np.ndarray, k: K) -> np.ndarray:
         """∂F/∂x, shape (..., n, n)."""
         return self.lines(x, k)[0]
 
-    def margin(self, x: np.ndarray, k: Any) -> np.ndarray:
+    def margin(self, x: np.ndarray, k: K) -> np.ndarray:
         """The Hadamard ratio of the constraint lines, 0 at a change point (§1.7, §3.2)."""
         return hadamard(self.lines(x, k)[1])
 
@@ -234,12 +270,12 @@ class TriadInputs:
     """
 
     a: tuple[Value, Value, Value]
-    u: tuple[Value, Value, Value] = (None, None, None)
-    lengths: tuple[Value, Value, Value] = (None, None, None)
+    u: tuple[Value | None, Value | None, Value | None] = (None, None, None)
+    lengths: tuple[Value | None, Value | None, Value | None] = (None, None, None)
 
 
 @dataclass(frozen=True, eq=False)
-class Triad(HigherGroup):
+class Triad(HigherGroup["TriadInputs"]):
     """A class III group of order 3: a base with three internal pairs and three leashes.
 
     Parameters
@@ -271,7 +307,7 @@ class Triad(HigherGroup):
     leashes: tuple[Leash, Leash, Leash]
     base: tuple[Value, Value, Value]
     external: tuple[Value, Value, Value]
-    guide: tuple[Value, Value, Value] = (None, None, None)
+    guide: tuple[Value | None, Value | None, Value | None] = (None, None, None)
 
     n = 3
 
@@ -388,7 +424,7 @@ class Triad(HigherGroup):
 
     def _turn(self, k: TriadInputs) -> Value:
         """E_K = u_K/u_K⁰: the rotation of the known link carrying a P–P leash's guide."""
-        return k.u[2] / self.guide[2]
+        return present(k.u[2]) / present(self.guide[2])
 
     def residual(self, x: Unknowns, k: TriadInputs) -> list[Value]:
         """f_k: (|P_k − A_k|² − r_k²)/(2r_k), n_k·(P_k − Q_k), n_k·(P₁ + s_kE − A_k) or,
@@ -402,11 +438,11 @@ class Triad(HigherGroup):
                 arm = point - k.a[i]
                 out.append((J.dot(arm, arm) - r * r) / (2.0 * r))
             elif kind is Leash.RP:
-                out.append(J.dot(1j * k.u[i], point - k.a[i]))
+                out.append(J.dot(1j * present(k.u[i]), point - k.a[i]))
             elif kind is Leash.PP:
                 out.append(self.size * J.cross(self._turn(k), e))
             else:
-                out.append(J.dot(1j * self.guide[i] * e, point - k.a[i]))
+                out.append(J.dot(1j * present(self.guide[i]) * e, point - k.a[i]))
         return out
 
     def _constraints(self, x: np.ndarray, k: TriadInputs
@@ -444,7 +480,7 @@ class Triad(HigherGroup):
         jac = _line_rows(nu, at, p1[..., None], 1.0)
         if not self.pinned:
             return jac, rows
-        turn = np.asarray(np.cos(x[..., 2] - np.angle(self._turn(k))) * self.size)
+        turn = np.asarray(np.cos(x[..., 2] - np.angle(plain(self._turn(k)))) * self.size)
         jac, rows = jac.copy(), rows.copy()
         jac[..., 2, :] = np.stack(np.broadcast_arrays(0.0 * turn, 0.0 * turn, turn), axis=-1)
         rows[..., 2, :] = (0.0, 0.0, 1.0)
@@ -471,7 +507,7 @@ class Triad(HigherGroup):
                 rhs.append((self._length(i, k) ** 2 - r1 ** 2 - np.abs(v) ** 2) / 2.0)
             else:
                 normal = (1j * np.asarray(k.u[i]) if kind is Leash.RP
-                          else 1j * self.guide[i] * e)
+                          else 1j * plain(present(self.guide[i])) * e)
                 coef.append(normal)
                 rhs.append(J.dot(normal, ai - a1 - offset))
         return coef, rhs
@@ -504,10 +540,11 @@ class Triad(HigherGroup):
         deduplication of :func:`~assur.kinematics.higher.modes.assembly_modes` keeps one mode.
         """
         if self.unique:
-            e = self._turn(k) * np.ones(np.shape(e))
+            e = plain(self._turn(k)) * np.ones(np.shape(e))
         elif self.pinned:
-            theta = np.angle(self._turn(k))
-            return np.stack(np.broadcast_arrays(np.angle(e), self._length(0, k), theta), axis=-1)
+            theta = np.angle(plain(self._turn(k)))
+            return np.stack(np.broadcast_arrays(np.angle(e), plain(self._length(0, k)), theta),
+                            axis=-1)
         coef, rhs = self._linear(e, k)
         pairs = ((1, 2), (2, 0), (0, 1)) if len(coef) == 3 else ((0, 1),)
         best, w = None, None
@@ -568,16 +605,16 @@ class ClassIVInputs:
 
     h_a: Value
     h_c: Value
-    u_a: Value = None
-    u_c: Value = None
-    l_b: Value = None
-    l_d: Value = None
+    u_a: Value | None = None
+    u_c: Value | None = None
+    l_b: Value | None = None
+    l_d: Value | None = None
 
 
 @dataclass(frozen=True, eq=False)
-class ClassIVDrawing(HigherGroup):
+class ClassIVDrawing(HigherGroup[ClassIVInputs]):
     """The drawing every class IV group of order 2 is given by: the six points of links a
-    and c and the guides of their external pairs (:class:`ClassIV`, :class:`ClassIVCoupled`).
+    and c and the guides of their external pairs (:class:`~assur.kinematics.higher.coupled.ClassIVCoupled`).
 
     Parameters
     ----------
@@ -598,8 +635,8 @@ class ClassIVDrawing(HigherGroup):
     h_c: Value
     d: Value
     e: Value
-    u_a: Value = None
-    u_c: Value = None
+    u_a: Value | None = None
+    u_c: Value | None = None
 
     @cached_property
     def size(self) -> np.ndarray:
@@ -609,226 +646,15 @@ class ClassIVDrawing(HigherGroup):
         stack = np.stack(pts, axis=-1)
         return np.asarray(np.abs(stack[..., :, None] - stack[..., None, :]).max(axis=(-2, -1)))
 
-    @property
-    def sketch(self) -> dict[str, Value]:
-        """C, D, E, F as drawn."""
-        return {"C": self.c, "D": self.d, "E": self.e, "F": self.f}
-
-
-@dataclass(frozen=True, eq=False)
-class ClassIV(ClassIVDrawing):
-    """The class IV group of order 2: the contour a–b–c–d, external pairs on a and c.
-
-    An external pair is a hinge, or a prismatic pair on a guide of the known link: then the
-    link (a or c) turns with the known link and slides along its guide, and its unknown is
-    the slide s from the drawing instead of its rotation θ (``docs/higher_groups.md`` §3.2
-    of the note). With both pairs prismatic the unknowns are the rotation ψ of b from the
-    sketch and the length ρ of C − D (the two slides follow linearly from C − D).
-
-    Parameters
-    ----------
-    h_a, c, f, h_c, d, e, u_a, u_c
-        The drawing (:class:`ClassIVDrawing`); C, D, E, F are hinges.
-
-    Examples
-    --------
-    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
-    >>> g.degree, g.n
-    (3, 2)
-    >>> ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j, u_c=1j).degree
-    3
-    """
-
-    n = 2
-
-    @property
+    @cached_property
     def slides(self) -> tuple[bool, bool]:
         """Whether the external pair of a, of c, is prismatic."""
         return self.u_a is not None, self.u_c is not None
 
     @property
-    def eliminated(self) -> int:  # type: ignore[override]
-        """θ_c (index 1) when only a slides, else index 0 (θ_a, or ψ of b when both slide)."""
-        return 1 if self.slides == (True, False) else 0
-
-    @property
-    def lengths(self) -> tuple[bool, ...]:  # type: ignore[override]
-        """(θ_a, θ_c), (θ_a, s_c), (s_a, θ_c) or (ψ, ρ)."""
-        a, c = self.slides
-        return (False, True) if a and c else (a, c)
-
-    @property
-    def degree(self) -> int:
-        """3, or 1 when both external pairs slide (§3.2)."""
-        return 1 if all(self.slides) else 3
-
-    def drawn(self) -> np.ndarray:
-        """Zero rotations and slides; (0, l_b) when both slide."""
-        zero = np.zeros(np.shape(self.size))
-        second = self._arms()[4] + zero if all(self.slides) else zero
-        return np.stack(np.broadcast_arrays(zero, second), axis=-1)
-
-    def _arms(self, k: ClassIVInputs | None = None
-              ) -> tuple[Value, Value, Value, Value, Value, Value]:
-        """γ_C, γ_F, δ_D, δ_E and the lengths l_b, l_d (drawn, or an actuator's from ``k``)."""
-        g_c, g_f = np.asarray(self.c) - self.h_a, np.asarray(self.f) - self.h_a
-        d_d, d_e = np.asarray(self.d) - self.h_c, np.asarray(self.e) - self.h_c
-        l_b = np.abs(np.asarray(self.c) - self.d) if k is None or k.l_b is None else k.l_b
-        l_d = np.abs(np.asarray(self.f) - self.e) if k is None or k.l_d is None else k.l_d
-        return g_c, g_f, d_d, d_e, l_b, l_d
-
-    def _turns(self, x: Sequence[Value], k: ClassIVInputs) -> tuple[Value, Value]:
-        """E_a, E_c: e^{iθ} of a hinged link, u/u⁰ of a sliding one."""
-        a, c = self.slides
-        return (k.u_a / self.u_a if a else J.expi(x[0]),
-                k.u_c / self.u_c if c else J.expi(x[1]))
-
-    def _origins(self, x: Sequence[Value], k: ClassIVInputs, turns: tuple[Value, Value]
-                 ) -> tuple[Value, Value]:
-        """The points O_a, O_c of a and c drawn at H_a⁰, H_c⁰: H + s·u of a sliding link."""
-        a, c = self.slides
-        if not (a and c):
-            return (k.h_a + x[0] * k.u_a if a else k.h_a, k.h_c + x[1] * k.u_c if c else k.h_c)
-        w = self._coupler(x) - self._rest(k, turns)[0]
-        t = J.cross(k.u_c, w) / J.cross(k.u_c, k.u_a)
-        s = J.cross(k.u_a, w) / J.cross(k.u_c, k.u_a)
-        return k.h_a + t * k.u_a, k.h_c + s * k.u_c
-
-    def _coupler(self, x: Sequence[Value]) -> Value:
-        """C − D = ρ·e^{iψ}·(C⁰ − D⁰)/l_b (both external pairs sliding)."""
-        drawn = np.asarray(self.c) - self.d
-        return x[1] * J.expi(x[0]) * (drawn / np.abs(drawn))
-
-    def _rest(self, k: ClassIVInputs, turns: tuple[Value, Value]) -> tuple[Value, Value]:
-        """C̃ − D̃ and F̃ − Ẽ: the couplers' ends at zero slides (both pairs sliding)."""
-        g_c, g_f, d_d, d_e, _, _ = self._arms(k)
-        ea, ec = turns
-        return (k.h_a + g_c * ea - k.h_c - d_d * ec, k.h_a + g_f * ea - k.h_c - d_e * ec)
-
-    def _points(self, x: Unknowns, k: ClassIVInputs) -> tuple[Value, ...]:
-        """C, F, D, E and the origins O_a, O_c."""
-        cols = unknown_columns(x)
-        g_c, g_f, d_d, d_e, _, _ = self._arms(k)
-        turns = self._turns(cols, k)
-        oa, oc = self._origins(cols, k, turns)
-        ea, ec = turns
-        return oa + g_c * ea, oa + g_f * ea, oc + d_d * ec, oc + d_e * ec, oa, oc
-
-    def residual(self, x: Unknowns, k: ClassIVInputs) -> list[Value]:
-        """g_b = (|C − D|² − l_b²)/(2l_b), g_d = (|F − E|² − l_d²)/(2l_d)."""
-        c, f, d, e, _, _ = self._points(x, k)
-        *_, lb, ld = self._arms(k)
-        return [(J.dot(c - d, c - d) - lb * lb) / (2.0 * lb),
-                (J.dot(f - e, f - e) - ld * ld) / (2.0 * ld)]
-
-    def lines(self, x: np.ndarray, k: ClassIVInputs) -> tuple[np.ndarray, np.ndarray]:
-        """The Jacobian and the margin rows.
-
-        Row b holds ν_b·∂(C − D)/∂q, row d ν_d·∂(F − E)/∂q, ν the unit coupler directions: for
-        a rotation ∂C/∂θ_a = i(C − O_a), for a slide ∂C/∂s_a = u_a (c likewise, with the
-        opposite sign). The margin rows take these physical columns, a rotation's divided by
-        the RMS radius of the link's internal hinges about its external pair (§3.2); with both
-        pairs sliding the Jacobian's columns are those of ψ and ρ, ∂(C − D)/∂ψ = i(C − D),
-        ∂(C − D)/∂ρ = (C − D)/ρ, the same for F − E.
-        """
-        c, f, d, e, oa, oc = (np.asarray(p) for p in self._points(x, k))
-        g_c, g_f, d_d, d_e, lb, ld = self._arms(k)
-        nb, nd = (c - d) / lb, (f - e) / ld
-        a_slides, c_slides = self.slides
-        radius_a = np.sqrt((np.abs(g_c) ** 2 + np.abs(g_f) ** 2) / 2.0)
-        radius_c = np.sqrt((np.abs(d_d) ** 2 + np.abs(d_e) ** 2) / 2.0)
-        columns = [((k.u_a, k.u_a) if a_slides else (1j * (c - oa), 1j * (f - oa)), radius_a),
-                   ((-k.u_c, -k.u_c) if c_slides else (-1j * (d - oc), -1j * (e - oc)),
-                    radius_c)]
-        physical = _tangent_rows(nb, nd, [pair for pair, _ in columns])
-        rows = _tangent_rows(nb, nd, [(pb / (1.0 if slide else r), pd / (1.0 if slide else r))
-                                      for ((pb, pd), r), slide in zip(columns, self.slides,
-                                                                       strict=True)])
-        if not (a_slides and c_slides):
-            return physical, rows
-        coupler = c - d
-        spin, stretch = 1j * coupler, coupler / np.abs(coupler)
-        return _tangent_rows(nb, nd, [(spin, spin), (stretch, stretch)]), rows
-
-    def _linear(self, e: np.ndarray, k: ClassIVInputs) -> tuple[Any, Any, Any, Any]:
-        """α_b·E_c = π_b, α_d·E_c = π_d at E_a = e (§3.2)."""
-        g_c, g_f, d_d, d_e, lb, ld = self._arms(k)
-        c = np.asarray(k.h_a) + g_c * e - k.h_c
-        f = np.asarray(k.h_a) + g_f * e - k.h_c
-        return (c * np.conj(d_d), (np.abs(c) ** 2 + np.abs(d_d) ** 2 - lb ** 2) / 2.0,
-                f * np.conj(d_e), (np.abs(f) ** 2 + np.abs(d_e) ** 2 - ld ** 2) / 2.0)
-
-    def _slider(self, e: np.ndarray, k: ClassIVInputs) -> tuple[Any, Any, Any]:
-        """One pair sliding: V_b = X_b − Y_b, V_d = X_d − Y_d (X on the turning link at its
-        rotation e, Y on the sliding one at zero slide, so that |V − s·u| = l) and u."""
-        g_c, g_f, d_d, d_e, _, _ = self._arms(k)
-        if self.slides[1]:
-            ec = np.asarray(k.u_c) / self.u_c
-            return (np.asarray(k.h_a) + g_c * e - k.h_c - d_d * ec,
-                    np.asarray(k.h_a) + g_f * e - k.h_c - d_e * ec, np.asarray(k.u_c))
-        ea = np.asarray(k.u_a) / self.u_a
-        return (np.asarray(k.h_c) + d_d * e - k.h_a - g_c * ea,
-                np.asarray(k.h_c) + d_e * e - k.h_a - g_f * ea, np.asarray(k.u_a))
-
-    def _slide(self, e: np.ndarray, k: ClassIVInputs) -> tuple[Any, Any, Any]:
-        """s = N/Σ from the difference of the two circle equations, and N, Σ, with
-        N = (|X_d − Y_d|² − l_d²) − (|X_b − Y_b|² − l_b²), Σ = 2u·((X_d − Y_d) − (X_b − Y_b))."""
-        vb, vd, u = self._slider(e, k)
-        *_, lb, ld = self._arms(k)
-        n = (np.abs(vd) ** 2 - ld ** 2) - (np.abs(vb) ** 2 - lb ** 2)
-        sigma = 2.0 * plain_dot(u, vd - vb)
-        return n / sigma, n, sigma
-
-    def eliminant(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
-        """Φ_IV(θ_a) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)²; one pair sliding
-        Φ = N² − 2NΣ u·(X_b − Y_b) + Σ²(|X_b − Y_b|² − l_b²) in the turning link's rotation;
-        both sliding |(F̃ − Ẽ) − (C̃ − D̃) + (C − D)|² − l_d² in ψ, C − D at ρ = l_b."""
-        a_slides, c_slides = self.slides
-        if a_slides and c_slides:
-            *_, lb, ld = self._arms(k)
-            b_rest, d_rest = self._rest(k, (np.asarray(k.u_a) / self.u_a,
-                                            np.asarray(k.u_c) / self.u_c))
-            gap = d_rest - b_rest + self._coupler([np.angle(e), lb])
-            return np.asarray(np.abs(gap) ** 2 - ld ** 2)
-        if a_slides or c_slides:
-            vb, _, u = self._slider(e, k)
-            _, n, sigma = self._slide(e, k)
-            lb = self._arms(k)[4]
-            return np.asarray(n * n - 2.0 * n * sigma * plain_dot(u, vb)
-                              + sigma * sigma * (np.abs(vb) ** 2 - lb ** 2))
-        ab, pb, ad, pd = self._linear(e, k)
-        return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - plain_cross(ab, ad) ** 2)
-
-    def recover(self, e: np.ndarray, k: ClassIVInputs) -> np.ndarray:
-        """θ_a = arg E_a, θ_c = arg E_c with E_c = −i(π_bα_d − π_dα_b)/cross(α_b, α_d); one
-        pair sliding the turning link's arg e and s = N/Σ; both (ψ, ρ) = (arg e, l_b)."""
-        a_slides, c_slides = self.slides
-        if a_slides and c_slides:
-            return np.stack(np.broadcast_arrays(np.angle(e), self._arms(k)[4]), axis=-1)
-        if a_slides or c_slides:
-            s = self._slide(e, k)[0]
-            pair = (s, np.angle(e)) if a_slides else (np.angle(e), s)
-            return np.stack(np.broadcast_arrays(*pair), axis=-1)
-        ab, pb, ad, pd = self._linear(e, k)
-        ec = -1j * (pb * ad - pd * ab) / plain_cross(ab, ad)
-        return np.stack(np.broadcast_arrays(np.angle(e), np.angle(ec)), axis=-1)
-
-    def joints(self, x: Unknowns, k: ClassIVInputs) -> dict[str, Value]:
-        """C, D, E, F, and Ha, Hc: the points of a and c drawn at their external pairs (the
-        external hinges, or the sliding points of prismatic pairs)."""
-        c, f, d, e, oa, oc = self._points(x, k)
-        return {"C": c, "D": d, "E": e, "F": f, "Ha": oa, "Hc": oc}
-
-    def rotations(self, x: Unknowns, k: ClassIVInputs) -> dict[str, Value]:
-        """a, c: θ_a, θ_c (of a sliding link, the known link's rotation u/u⁰); b: of C→D; d:
-        of F→E; all from the sketch."""
-        cols = unknown_columns(x)
-        c, f, d, e, _, _ = self._points(cols, k)
-        a_slides, c_slides = self.slides
-        return {"a": J.arg(k.u_a / self.u_a) if a_slides else cols[0],
-                "b": J.arg((d - c) / (np.asarray(self.d) - self.c)),
-                "c": J.arg(k.u_c / self.u_c) if c_slides else cols[1],
-                "d": J.arg((e - f) / (np.asarray(self.e) - self.f))}
+    def sketch(self) -> dict[str, Value]:
+        """C, D, E, F as drawn."""
+        return {"C": self.c, "D": self.d, "E": self.e, "F": self.f}
 
 
 def plain_dot(a: Any, b: Any) -> np.ndarray:
@@ -836,9 +662,5 @@ def plain_dot(a: Any, b: Any) -> np.ndarray:
     return np.asarray((np.conj(a) * b).real)
 
 
-def _tangent_rows(nb: np.ndarray, nd: np.ndarray, columns: list[tuple[Any, Any]]
-                  ) -> np.ndarray:
-    """The 2×2 matrix [[ν_b·t_bj], [ν_d·t_dj]] of the columns j = (t_bj, t_dj)."""
-    return np.stack([np.stack(np.broadcast_arrays(*(plain_dot(nb, tb) for tb, _ in columns)), axis=-1),
-                     np.stack(np.broadcast_arrays(*(plain_dot(nd, td) for _, td in columns)), axis=-1)],
-                    axis=-2)
+#: A triad or a class IV group.
+AnyGroup = HigherGroup[TriadInputs] | HigherGroup[ClassIVInputs]

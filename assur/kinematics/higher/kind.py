@@ -35,12 +35,12 @@ from assur.kinematics import jets as J
 from assur.kinematics.higher.continuation import HigherSolution, Stroke, follow_mode
 from assur.kinematics.higher.coupled import ClassIVCoupled
 from assur.kinematics.higher.groups import (
-    ClassIV,
+    AnyGroup,
     ClassIVInputs,
-    HigherGroup,
     Leash,
     Triad,
     TriadInputs,
+    plain,
     values,
 )
 from assur.kinematics.higher.pinned import place
@@ -128,7 +128,7 @@ class HigherGroupSolution:
     """
 
     follow: HigherSolution
-    group: HigherGroup
+    group: AnyGroup
     joints: dict[str, PairId]
     origin_i: Any
     angle_i: Any
@@ -159,7 +159,7 @@ class HigherGroupSolution:
         modes = self.follow.modes
         index = (design,) if np.ndim(modes.count) else ()
         count = int(modes.count[index])
-        sketch = {name: complex(np.reshape(np.asarray(z), -1)[design if np.ndim(z) else 0])
+        sketch = {name: complex(np.reshape(plain(z), -1)[design if np.ndim(plain(z)) else 0])
                   for name, z in self.group.sketch.items()}
         rows = []
         for k in range(count):
@@ -517,9 +517,9 @@ class _Actuator:
     put: Callable[[Any, Any], Any]
 
 
-def _follow(state: State, group: GroupModel, q: Any, make: Callable[[Any], HigherGroup],
+def _follow(state: State, group: GroupModel, q: Any, make: Callable[[Any], AnyGroup],
             inputs: Callable[[State], Any], actuator: _Actuator | None = None
-            ) -> tuple[HigherSolution, Any, HigherGroup]:
+            ) -> tuple[HigherSolution, Any, AnyGroup]:
     """Follow the group's drawn mode over q; also its inputs at the reference position and
     the group as solved. A triad with a P–P leash and no bar has one mode, placed at every
     position in closed form from the inputs at q (:func:`~assur.kinematics.higher.pinned.place`).
@@ -543,7 +543,7 @@ def _follow(state: State, group: GroupModel, q: Any, make: Callable[[Any], Highe
     return follow, k0, solved
 
 
-def _record(state: State, group: GroupModel, follow: HigherSolution, solved: HigherGroup,
+def _record(state: State, group: GroupModel, follow: HigherSolution, solved: AnyGroup,
             joints: dict[str, PairId], frames: dict[str, tuple[Any, float]]
             ) -> HigherGroupSolution:
     """Write the link frames into the state (origin, angle at the sketch + rotation)."""
@@ -730,8 +730,7 @@ def solve_class_iv(state: State, group: GroupModel, q: Any) -> HigherGroupSoluti
 
     Notes
     -----
-    With revolute internal pairs the group is a :class:`ClassIV`; with a prismatic internal
-    pair a :class:`ClassIVCoupled`, whose joints give the point of each link drawn at a
+    Every form is a :class:`ClassIVCoupled`, whose joints give the point of each link drawn at a
     sliding pair. A prismatic pair's joint is its point on the link that does not carry the
     guide in the table, and its slider has the table's carrier (:func:`_slide`).
     """
@@ -757,10 +756,8 @@ def solve_class_iv(state: State, group: GroupModel, q: Any) -> HigherGroupSoluti
         (h_a, u_a), (h_c, u_c) = external(known, 0), external(known, 1)
         return ClassIVInputs(h_a, h_c, u_a, u_c)
 
-    def make(k0: ClassIVInputs) -> HigherGroup:
+    def make(k0: ClassIVInputs) -> AnyGroup:
         drawn = (k0.h_a, pts["C"], pts["F"], k0.h_c, pts["D"], pts["E"], k0.u_a, k0.u_c)
-        if not betas:
-            return ClassIV(*drawn)
         w = {name: J.expi(beta) for name, beta in betas.items()}
         return ClassIVCoupled(*drawn, w_c=w.get("C"), w_d=w.get("D"), w_e=w.get("E"),
                               w_f=w.get("F"))

@@ -10,11 +10,18 @@ deduplicated on the joint positions.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
-from assur.kinematics.higher.groups import HigherGroup, cofactors, det_rows, expand, hadamard
+from assur.kinematics.higher.groups import (
+    HigherGroup,
+    K,
+    cofactors,
+    det_rows,
+    expand,
+    hadamard,
+    plain,
+)
 
 __all__ = ["AssemblyModes", "assembly_modes", "coefficients", "newton", "select_mode"]
 
@@ -28,7 +35,7 @@ SAME = 1e-7
 NAN = complex(np.nan, np.nan)
 
 
-def coefficients(group: HigherGroup, k: Any) -> np.ndarray:
+def coefficients(group: HigherGroup[K], k: K) -> np.ndarray:
     """Coefficients p_0 … p_2m of p(E) = Σ φ_{n−m} Eⁿ, shape (..., 2m + 1).
 
     Parameters
@@ -46,19 +53,14 @@ def coefficients(group: HigherGroup, k: Any) -> np.ndarray:
 
     Examples
     --------
-    >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
-    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> from assur.kinematics.higher.coupled import ClassIVCoupled
+    >>> from assur.kinematics.higher.groups import ClassIVInputs
+    >>> g = ClassIVCoupled(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
     >>> p = coefficients(g, ClassIVInputs(-12.5-20j, 140.5+22j))
     >>> p.shape, bool(np.allclose(p, np.conj(p[::-1])))
     ((7,), True)
     """
-    m = group.degree
-    samples = 2 * m + 2
-    e = np.exp(2j * np.pi * np.arange(samples) / samples)
-    with np.errstate(all="ignore"):
-        phi = expand(group).eliminant(e, expand(k))
-    bins = np.fft.fft(phi, axis=-1) / samples
-    return np.asarray(bins[..., np.arange(-m, m + 1) % samples])
+    return group.coefficients(k)
 
 
 def roots(coef: np.ndarray) -> np.ndarray:
@@ -90,13 +92,13 @@ def solve(jac: np.ndarray, rhs: np.ndarray) -> np.ndarray:
                          for j in range(n)], axis=-1)
 
 
-def weights(group: HigherGroup) -> np.ndarray:
+def weights(group: HigherGroup[K]) -> np.ndarray:
     """Per-unknown scale of step norms: 1/L for a length, 1 for an angle."""
     length = np.asarray(group.lengths)
     return np.where(length, 1.0 / np.asarray(group.size)[..., None], 1.0)
 
 
-def newton(group: HigherGroup, k: Any, x: np.ndarray, iterations: int,
+def newton(group: HigherGroup[K], k: K, x: np.ndarray, iterations: int,
            tol: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Newton's method on the reduced equations.
 
@@ -107,8 +109,8 @@ def newton(group: HigherGroup, k: Any, x: np.ndarray, iterations: int,
     step = np.full(x.shape[:-1], np.inf)
     with np.errstate(all="ignore"):
         for _ in range(iterations):
-            f = np.stack(np.broadcast_arrays(*group.residual(x, k)), axis=-1)
-            dx = solve(group.jacobian(x, k), -f)
+            f, jac = group.equations(x, k)
+            dx = solve(jac, -f)
             x = x + dx
             step = np.abs(dx * scale).sum(axis=-1)
             if not (step > tol).any():
@@ -143,12 +145,12 @@ class AssemblyModes:
     roots: np.ndarray
 
 
-def assembly_modes(group: HigherGroup, k: Any) -> AssemblyModes:
+def assembly_modes(group: HigherGroup[K], k: K) -> AssemblyModes:
     """Every real assembly mode at one position, for one design or many at once.
 
     Parameters
     ----------
-    group : Triad or ClassIV
+    group : Triad or ClassIVCoupled
         The group; drawn values of shape () or (D,).
     k : TriadInputs or ClassIVInputs
         Its inputs (external hinges, guides) at the position, plain arrays.
@@ -163,8 +165,9 @@ def assembly_modes(group: HigherGroup, k: Any) -> AssemblyModes:
     --------
     The class IV group of test vector V2 has six modes at the sketch:
 
-    >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
-    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> from assur.kinematics.higher.coupled import ClassIVCoupled
+    >>> from assur.kinematics.higher.groups import ClassIVInputs
+    >>> g = ClassIVCoupled(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
     >>> modes = assembly_modes(g, ClassIVInputs(-12.5-20j, 140.5+22j))
     >>> int(modes.count), np.round(np.degrees(modes.x[3]), 6).tolist()
     (6, [-28.133111, -9.366866])
@@ -175,10 +178,10 @@ def assembly_modes(group: HigherGroup, k: Any) -> AssemblyModes:
         near = np.abs(np.log(np.abs(found))) <= TAU
         x = wide.recover(found / np.abs(found), kk)
         x, _ = newton(wide, kk, x, 3)
-        f = np.stack(np.broadcast_arrays(*wide.residual(x, kk)), axis=-1)
+        f = np.stack(np.broadcast_arrays(*map(plain, wide.residual(x, kk))), axis=-1)
         size = np.asarray(group.size)[..., None]
         valid = near & (np.abs(f).max(axis=-1) <= ACCEPT * size)
-        points = wide.joints(x, kk)
+        points = {name: plain(p) for name, p in wide.joints(x, kk).items()}
         # the joints and the eliminated rotation (as a point at the distance L): a triad
         # whose leashes all slide on the base has the same joints in two modes
         turn = size * np.exp(1j * x[..., group.eliminated])
@@ -200,13 +203,13 @@ def assembly_modes(group: HigherGroup, k: Any) -> AssemblyModes:
                          det_sign=np.sign(det_rows(jac)), roots=found)
 
 
-def select_mode(group: HigherGroup, k: Any, modes: AssemblyModes
+def select_mode(group: HigherGroup[K], k: K, modes: AssemblyModes
                 ) -> tuple[np.ndarray, np.ndarray]:
     """The mode of the sketch: the one nearest the drawn joints, with the drawn sign of det J.
 
     Parameters
     ----------
-    group : Triad or ClassIV
+    group : Triad or ClassIVCoupled
         The group.
     k : TriadInputs or ClassIVInputs
         Its inputs at the sketch position (φ = 0).
@@ -223,8 +226,9 @@ def select_mode(group: HigherGroup, k: Any, modes: AssemblyModes
 
     Examples
     --------
-    >>> from assur.kinematics.higher.groups import ClassIV, ClassIVInputs
-    >>> g = ClassIV(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
+    >>> from assur.kinematics.higher.coupled import ClassIVCoupled
+    >>> from assur.kinematics.higher.groups import ClassIVInputs
+    >>> g = ClassIVCoupled(-12.5-20j, 57+66j, 25.5+98.5j, 140.5+22j, 115+67j, 87+118j)
     >>> k = ClassIVInputs(-12.5-20j, 140.5+22j)
     >>> x, found = select_mode(g, k, assembly_modes(g, k))
     >>> bool(found), bool(np.allclose(x, 0.0, atol=1e-12))

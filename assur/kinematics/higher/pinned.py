@@ -21,10 +21,18 @@ from assur.kinematics.higher.continuation import (
     analogs,
     finite_inputs,
 )
-from assur.kinematics.higher.groups import Triad, TriadInputs, expand, hadamard, values
+from assur.kinematics.higher.groups import (
+    Triad,
+    TriadInputs,
+    expand,
+    hadamard,
+    plain,
+    values,
+)
 from assur.kinematics.higher.modes import assembly_modes, select_mode
 from assur.kinematics.jets import Jet
 from assur.kinematics.reasons import Reason
+from assur.typing import Value
 
 __all__ = ["place"]
 
@@ -87,13 +95,13 @@ def place(group: Triad, k0: TriadInputs, k: TriadInputs, *, delta: float | np.nd
             x1, x2 = analogs(wide, k, x)
         cols = [Jet(x[..., i], x1[..., i], x2[..., i]) for i in range(3)]
 
-    def blank(v: Jet | np.ndarray) -> Jet | np.ndarray:
+    def blank(v: Value) -> Jet | np.ndarray:
         """NaN where the group does not exist; a jet (a fixed input's with zero analogs)
         when the inputs are jets."""
         if jets:
             jet = J.as_jet(v)
             return Jet(*(np.where(exists, part, np.nan) for part in (jet.v, jet.d1, jet.d2)))
-        return np.where(exists, np.asarray(v), np.nan)
+        return np.where(exists, plain(v), np.nan)
 
     design = np.shape(found)
     return HigherSolution(

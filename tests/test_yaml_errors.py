@@ -179,7 +179,8 @@ def test_a_row_of_a_mapping_and_a_key_inside_a_row_written_twice(
     assert f"line {line + 1}, column" in err
     assert f"the key '{key}' is written twice, on lines {line} and {line + 1}" in err
 
-    text = FOUR_BAR.replace("{id: 2, name: coupler}", "{id: 2, name: coupler, name: rod}")
+    text = FOUR_BAR.replace("{id: 2, name: {en: coupler, ru: шатун}}",
+                            "{id: 2, name: {en: coupler, ru: шатун}, name: rod}")
     line, column, source = _spot(text, "name: rod")
     code, err = _run(tmp_path, text, capsys)
     assert code == 2

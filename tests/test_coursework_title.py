@@ -9,9 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from assur import TableError
+from assur import TableError, load_chain
 from synthesis.app.coursework import build_report, render_html
-from synthesis.app.coursework.student import read_student
 from synthesis.cli import main
 
 TABLES = Path(__file__).resolve().parent.parent / "input_tables"
@@ -56,7 +55,7 @@ def test_title_block_blank_lines_and_today_by_default(tmp_path):
 ])
 def test_a_bad_student_section_is_reported_by_field(tmp_path, section, field):
     with pytest.raises(TableError) as info:
-        read_student(_with_student(tmp_path, section))
+        load_chain(_with_student(tmp_path, section))
     assert field in str(info.value)
 
 

@@ -77,7 +77,7 @@ def test_a_valid_higher_group_mechanism_has_no_error_style(name, lang):
     assert "<th></th>" not in page  # no empty header row anywhere
 
 
-def test_the_chain_reader_gives_the_student_section(tmp_path):
+def test_the_chain_reader_gives_the_student_section(tmp_path: Path) -> None:
     table = _with_student(tmp_path, "student:\n  name: ' Ivanova A. A. '\n  group: MT-21\n"
                                     "  variant: 7\n  date: 2026-05-12\n")
     # written by hand above: the name trimmed, the variant's number kept as its digits
@@ -93,7 +93,7 @@ def _problem_with_student(tmp_path: Path, section: str) -> Path:
     return table
 
 
-def test_a_problem_gives_its_student_section_to_the_report(tmp_path):
+def test_a_problem_gives_its_student_section_to_the_report(tmp_path: Path) -> None:
     table = _problem_with_student(tmp_path, "student: {name: Petrov B. B., variant: 3}\n")
     assert load_problem(table).student == Student(name="Petrov B. B.", variant="3")
     report = build_report(table, points=12, budget=4,
@@ -103,7 +103,7 @@ def test_a_problem_gives_its_student_section_to_the_report(tmp_path):
                      "Date": "2026-05-12"}
 
 
-def test_a_bad_student_section_of_a_problem_is_reported_by_field(tmp_path):
+def test_a_bad_student_section_of_a_problem_is_reported_by_field(tmp_path: Path) -> None:
     with pytest.raises(TableError) as info:
         load_problem(_problem_with_student(tmp_path, "student: {variant: ''}\n"))
     assert "student 'variant'" in str(info.value)

@@ -11,7 +11,7 @@ Link and pair ids are whole numbers or texts; digit-only texts are turned into n
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from enum import Enum
 from typing import TYPE_CHECKING, Any, TypeAlias
 
@@ -45,6 +45,7 @@ __all__ = [
     "PairType",
     "Sketch",
     "SketchTrace",
+    "Student",
     "Tabulated",
     "id_key",
     "joint_key",
@@ -344,6 +345,38 @@ class General:
                   if row.pressure_angle is not None}
         return {group.label: stated.get(frozenset(group.members), DEFAULT_PRESSURE_ANGLE)
                 for group in model.groups}
+
+
+@dataclass(frozen=True, slots=True)
+class Student:
+    """The ``student:`` section of a table, read once by the table reader: who hands the
+    report in, in which group, which variant, and when; None where not given (a blank on
+    the title page of the report).
+
+    Attributes
+    ----------
+    name, group, variant : str or None
+        As written in the table (a whole number kept as its digits).
+    date : str or None
+        ISO date (``2026-05-12``).
+
+    Examples
+    --------
+    >>> Student(name="Ivanova A. A.", variant="7").merged(variant="12", group=None)
+    Student(name='Ivanova A. A.', group=None, variant='12', date=None)
+    """
+
+    name: str | None = None
+    group: str | None = None
+    variant: str | None = None
+    date: str | None = None
+
+    def merged(self, **typed: str | None) -> Student:
+        """This student with the values typed as options (those not None) put in."""
+        return replace(self, **{key: value for key, value in typed.items()
+                                if value is not None})
+
+
 # ------------------------------------------------------------------ force sections
 # The ``masses:``, ``loads:`` and ``gravity:`` sections of a table (``docs/forces.md`` §1),
 # kept in table units: points in mm (sketch points, at the sketched position), forces in N,
@@ -534,6 +567,9 @@ class Chain:
     forces : ForceData or None
         The table's ``masses:``, ``loads:`` and ``gravity:`` sections (``docs/forces.md``);
         None when it has neither masses nor loads.
+    student : Student or None
+        The table's ``student:`` section (the title block of a report); None when the table
+        has none.
     warnings : tuple of Issue
         What looks wrong in the table but does not refuse it (an angle that looks like
         radians, a slider hinge off its guide), found as it was read.
@@ -561,6 +597,7 @@ class Chain:
     identification: tuple[IdentificationRow, ...] | None = None
     claims: Mapping[str, int] = field(default_factory=dict)
     forces: ForceData | None = None
+    student: Student | None = None
     warnings: tuple[Issue, ...] = ()
     _index: dict[str, dict[Any, Any]] = field(default_factory=dict, init=False, repr=False,
                                               compare=False)

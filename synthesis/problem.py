@@ -67,7 +67,7 @@ import numpy.typing as npt
 
 from assur import KinematicModel
 from assur.io.reader import normalise_id
-from assur.model import DEFAULT_PRESSURE_ANGLE, LinkId, PairId
+from assur.model import DEFAULT_PRESSURE_ANGLE, LinkId, PairId, Student
 from assur.typing import ComplexArray, FloatArray
 from synthesis.criteria import Objective
 from synthesis.problem_chain import design_table, is_chain_form, table_number
@@ -215,6 +215,9 @@ class Problem:
     forces : ForceConditions or None
         The ``forces:`` table: masses, loads and limits on the driving torque and the
         reactions (:mod:`synthesis.force_conditions`).
+    student : Student or None
+        The ``student:`` section, read by the chain tables' reader
+        (:func:`assur.io.chain_table.read_student`); None when the table has none.
     """
 
     source: str
@@ -238,6 +241,7 @@ class Problem:
     group_models: tuple[Any, ...] = ()
     search: Mapping[str, Any] = field(default_factory=dict)
     forces: ForceConditions | None = None
+    student: Student | None = None
 
     @property
     def output_unit(self) -> str:

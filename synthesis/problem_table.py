@@ -43,6 +43,7 @@ import assur.kinematics.model
 import assur.model
 from assur import AssurError, KinematicModel, TableError
 from assur.errors import Issue
+from assur.io.chain_table import read_student
 from assur.io.reader import (
     MISSING,
     Node,
@@ -219,6 +220,7 @@ def _read(reader: TableReader, base: Path) -> Problem:
         if output.link is not MISSING:
             _check_output(reader, model, output, general.task_class)
     forces = read_force_conditions(top, model)
+    student = read_student(top)
     reader.raise_if_any()
     if form.foreign is not None:
         raise form.foreign
@@ -233,7 +235,7 @@ def _read(reader: TableReader, base: Path) -> Problem:
         pressure_angles={labels[k]: v for k, v in pressure.items()},
         rotations={labels[k]: v for k, v in rotations.items()},
         workspace={labels[k]: v for k, v in boxes.items()},
-        group_models=models, search=search, forces=forces)
+        group_models=models, search=search, forces=forces, student=student)
 
 
 def _read_general(top: Node) -> _General:

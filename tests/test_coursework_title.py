@@ -9,9 +9,10 @@ from pathlib import Path
 
 import pytest
 
-from assur import TableError
+from assur import TableError, load_chain
+from assur.model import Student
+from synthesis import load_problem
 from synthesis.app.coursework import build_report, render_html
-from synthesis.app.coursework.student import read_student
 from synthesis.cli import main
 
 TABLES = Path(__file__).resolve().parent.parent / "input_tables"
@@ -56,7 +57,7 @@ def test_title_block_blank_lines_and_today_by_default(tmp_path):
 ])
 def test_a_bad_student_section_is_reported_by_field(tmp_path, section, field):
     with pytest.raises(TableError) as info:
-        read_student(_with_student(tmp_path, section))
+        load_chain(_with_student(tmp_path, section))
     assert field in str(info.value)
 
 
@@ -74,3 +75,35 @@ def test_a_valid_higher_group_mechanism_has_no_error_style(name, lang):
     assert 'class="bad"' not in section
     assert '<p class="note" id="no-dgtu-table">' in section
     assert "<th></th>" not in page  # no empty header row anywhere
+
+
+def test_the_chain_reader_gives_the_student_section(tmp_path: Path) -> None:
+    table = _with_student(tmp_path, "student:\n  name: ' Ivanova A. A. '\n  group: MT-21\n"
+                                    "  variant: 7\n  date: 2026-05-12\n")
+    # written by hand above: the name trimmed, the variant's number kept as its digits
+    assert load_chain(table).student == Student(name="Ivanova A. A.", group="MT-21",
+                                                variant="7", date="2026-05-12")
+    assert load_chain(TABLES / "four_bar.yaml").student is None
+
+
+def _problem_with_student(tmp_path: Path, section: str) -> Path:
+    table = tmp_path / "problem.yaml"
+    table.write_text((TABLES / "problems" / "class1_fourbar_rocker.yaml")
+                     .read_text(encoding="utf-8") + section, encoding="utf-8")
+    return table
+
+
+def test_a_problem_gives_its_student_section_to_the_report(tmp_path: Path) -> None:
+    table = _problem_with_student(tmp_path, "student: {name: Petrov B. B., variant: 3}\n")
+    assert load_problem(table).student == Student(name="Petrov B. B.", variant="3")
+    report = build_report(table, points=12, budget=4,
+                          student={"group": "MT-22", "date": "2026-05-12", "name": None})
+    shown = _title_block(render_html(report))
+    assert shown == {"Student": "Petrov B. B.", "Group": "MT-22", "Variant": "3",
+                     "Date": "2026-05-12"}
+
+
+def test_a_bad_student_section_of_a_problem_is_reported_by_field(tmp_path: Path) -> None:
+    with pytest.raises(TableError) as info:
+        load_problem(_problem_with_student(tmp_path, "student: {variant: ''}\n"))
+    assert "student 'variant'" in str(info.value)

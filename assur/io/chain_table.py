@@ -20,6 +20,7 @@ for the kinematic model. Every problem of a table is collected and raised as one
 
 from __future__ import annotations
 
+import datetime
 import os
 from collections.abc import Collection
 from dataclasses import replace
@@ -42,6 +43,7 @@ from assur.model import (
     PairId,
     PairType,
     Sketch,
+    Student,
     id_key,
 )
 from assur.text import DEFAULT, Message, languages
@@ -51,6 +53,7 @@ __all__ = [
     "chain_from_dict",
     "load_chain",
     "pair_label",
+    "read_student",
     "recentre_hinge",
 ]
 
@@ -204,6 +207,7 @@ def _read_chain_form(reader: TableReader) -> Chain:
     geometry = _geometry(reader, top, mech, joints, links, frame, inputs,
                          reported=named if read else None)
     general = read_general(top)
+    student = read_student(top)
     rows, _ = _read_rows(top, required=False)
     claims = _read_claims(top)
     every = [*links, *(link for link in dict.fromkeys(mentioned) if link not in links)]
@@ -216,7 +220,59 @@ def _read_chain_form(reader: TableReader) -> Chain:
     return Chain(name=name or _stem(reader.source), frame=frame, links=tuple(links),
                  pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,
                  source=reader.source, group_params=_group_params(rows), names=names,
-                 local_names=local, identification=tuple(rows) if rows else None, claims=claims, forces=forces)
+                 local_names=local, identification=tuple(rows) if rows else None, claims=claims,
+                 forces=forces, student=student)
+
+
+#: The fields of the ``student:`` section, in the order of :class:`~assur.model.Student`.
+_STUDENT = ("name", "group", "variant", "date")
+
+
+def read_student(top: Node) -> Student | None:
+    """The ``student:`` section of a table: every field optional, each checked (a wrong one
+    recorded with the section and the field named).
+
+    Parameters
+    ----------
+    top : Node
+        The top of the table; problems go to its reader.
+
+    Returns
+    -------
+    Student or None
+        None when the table has no ``student:`` section.
+
+    Examples
+    --------
+    >>> reader = TableReader.from_data({"student": {"name": "Ivanova A. A.", "variant": 7}})
+    >>> read_student(reader.root(allowed=None))
+    Student(name='Ivanova A. A.', group=None, variant='7', date=None)
+    """
+    node = top.child("student", allowed=_STUDENT, required=False)
+    if node is None:
+        return None
+    values = {key: node.get(key, required=False, default=None,
+                            check=_date if key == "date" else _text) for key in _STUDENT}
+    return Student(**{key: None if value is None or value is MISSING else str(value).strip()
+                      for key, value in values.items()})
+
+
+def _text(value: object) -> Message | None:
+    """The rule for a title-block value: a text or a whole number, not empty."""
+    if isinstance(value, bool) or not isinstance(value, (str, int)) or str(value).strip() == "":
+        return Message("rule.text_or_number")
+    return None
+
+
+def _date(value: object) -> Message | None:
+    """The rule for the date: a calendar date, ``YYYY-MM-DD``."""
+    if isinstance(value, datetime.date):
+        return None
+    try:
+        datetime.date.fromisoformat(str(value))
+    except ValueError:
+        return Message("rule.iso_date")
+    return None
 
 
 def _read_forces(top: Node, links: list[LinkId], frame: LinkId, inputs: list[Drive],
@@ -561,6 +617,7 @@ def _read_table_form(reader: TableReader) -> Chain:
     frame = top.get("frame", kind="id", required=False, default=0)
     rows, read = _read_rows(top, required=True)
     general = read_general(top)
+    student = read_student(top)
     claims = _read_claims(top)
     if not rows and not reader.issues:
         reader.problem("structure_identification", "chain.no_rows")
@@ -585,7 +642,7 @@ def _read_table_form(reader: TableReader) -> Chain:
     return Chain(name=name or _stem(reader.source), frame=frame, links=tuple(links),
                  pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,
                  source=reader.source, group_params=_group_params(rows),
-                 identification=tuple(rows), claims=claims)
+                 identification=tuple(rows), claims=claims, student=student)
 
 
 def _check_members(reader: TableReader, rows: list[IdentificationRow], members: set[LinkId],

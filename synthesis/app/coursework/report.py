@@ -31,7 +31,7 @@ from assur.io.files import atomic_write_text
 from assur.kinematics.analysis import analyse
 from assur.kinematics.dyads import reason_text
 from assur.kinematics.existence import CONDITIONS
-from assur.model import PairType
+from assur.model import PairType, Student
 from assur.plot.schemes import roman, scheme_bytes
 from assur.structure.report import group_description
 from assur.text import check_lang, render
@@ -39,7 +39,7 @@ from synthesis.app.assess import assess, read_table
 from synthesis.app.check_report import verdict_words
 from synthesis.app.coursework.forces_section import forces_sections
 from synthesis.app.coursework.page import Section, esc, figure, figure_html, page, table
-from synthesis.app.coursework.student import Student, read_student
+from synthesis.app.coursework.student import title_rows, title_student
 
 if TYPE_CHECKING:  # pragma: no cover
     from collections.abc import Callable
@@ -128,7 +128,7 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
     synthesis_sections: list[Section] = []
     report = CourseworkReport(title="", source=str(path), lang=lang)
     table = read_table(path)
-    report.student = read_student(path).merged(**(student or {}))
+    report.student = title_student(table.student, student)
     if not isinstance(table, Chain):
         table, synthesis_sections = _synthesis(table, lang, budget, report)
     found = assess(table, points=points)
@@ -415,7 +415,7 @@ def render_html(report: CourseworkReport) -> str:
     summary = f'<dl class="summary" id="summary">{items}</dl>'
     block = "".join(f"<dt>{esc(label)}</dt>"
                     + (f"<dd>{esc(value)}</dd>" if value else '<dd class="blank"></dd>')
-                    for label, value in report.student.rows(report.lang))
+                    for label, value in title_rows(report.student, report.lang))
     title_block = f'<dl class="student" id="student">{block}</dl>'
     return page(report.title, report.source, title_block + summary, report.sections,
                 report.lang)

@@ -64,7 +64,7 @@ class Leash(str, Enum):
     @property
     def slides(self) -> tuple[bool, bool]:
         """Whether its first, its second pair is prismatic."""
-        return self.value[0] == "P", self.value[1] == "P"
+        return self[0] == "P", self[1] == "P"
 
     @property
     def bar(self) -> bool:
@@ -80,6 +80,9 @@ class Leash(str, Enum):
     def text(self) -> str:
         """As messages write it: ``R–P``."""
         return "–".join(self.value)
+
+
+_LEASH_OF: dict[str, Leash] = {kind.value: kind for kind in Leash}  # str or Leash → Leash
 
 T = TypeVar("T")
 
@@ -312,10 +315,10 @@ class Triad(HigherGroup["TriadInputs"]):
     n = 3
 
     def __post_init__(self) -> None:
-        for kind in self.leashes:
-            if kind not in set(Leash):
-                raise ValueError(render("higher.error.leash_kind", found=kind))
-        leashes = tuple(Leash(kind) for kind in self.leashes)
+        try:
+            leashes = tuple(_LEASH_OF[kind] for kind in self.leashes)
+        except KeyError as missing:
+            raise ValueError(render("higher.error.leash_kind", found=missing.args[0])) from None
         object.__setattr__(self, "leashes", leashes)
         if any(kind.bar for kind in leashes) and not leashes[0].bar:
             raise ValueError(render("higher.error.first_leash", found=leashes[0].text))

@@ -226,7 +226,9 @@ def _formula_section(found: Assessment, lang: str) -> Section:
         body += f'<p class="ok" id="applicable">{esc(render("term.applicable", lang))}</p>'
     else:
         failed = found.failed_conditions(lang)
-        body += (f'<p class="bad" id="applicable">{esc(render("term.not_applicable", lang))}:</p>'
+        # outside the course's program is a fact of the mechanism, not a mistake (the verdict
+        # section says how serious it is): no error style
+        body += (f'<p class="note" id="applicable">{esc(render("term.not_applicable", lang))}:</p>'
                  f'<ul class="findings">{"".join(f"<li>{esc(x)}</li>" for x in failed)}</ul>')
     if analysis.issues:
         items = "".join(f"<li><code>{esc(d.code)}</code> {esc(d.text(lang))}</li>"

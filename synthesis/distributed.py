@@ -315,6 +315,7 @@ def connect(spec: str, *, retries: int = 2, chunk: int | None = None
 
     cluster: LocalCluster | None = None
     client: Client | None = None
+    _quiet_cancel_race()
     # the local workers, restarted ones included, are forked from a server that ignores
     # Ctrl-C (:func:`_start_fork_server`)
     with dask.config.set({METHOD: "forkserver"} if isinstance(target, int) else {}):
@@ -328,6 +329,34 @@ def connect(spec: str, *, retries: int = 2, chunk: int | None = None
                     client.close()
                 if cluster is not None:
                     cluster.close()
+
+
+class _CancelRace(logging.Filter):
+    """Drops the one traceback Dask's event loop logs when Ctrl-C strikes a call to the
+    cluster before that call's future exists: the cancel callback of ``distributed.utils.sync``
+    then reads its unset variable ``future`` (a ``NameError``, logged by tornado as "Exception
+    in callback"). The run itself ends as interrupted (exit 130); every other record passes.
+
+    >>> import logging
+    >>> def record(exc: BaseException) -> logging.LogRecord:
+    ...     return logging.LogRecord("tornado.application", logging.ERROR, __file__, 1,
+    ...                              "Exception in callback", None, (type(exc), exc, None))
+    >>> race = NameError("cannot access free variable 'future' where it is not associated "
+    ...                  "with a value in enclosing scope")
+    >>> _CancelRace().filter(record(race)), _CancelRace().filter(record(NameError("x")))
+    (False, True)
+    """
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        error = record.exc_info[1] if record.exc_info else None
+        return not (isinstance(error, NameError) and "'future'" in str(error))
+
+
+def _quiet_cancel_race() -> None:
+    """Install :class:`_CancelRace` on tornado's callback logger, once."""
+    logger = logging.getLogger("tornado.application")
+    if not any(isinstance(f, _CancelRace) for f in logger.filters):
+        logger.addFilter(_CancelRace())
 
 
 def _start(spec: str, target: int | str) -> tuple[LocalCluster | None, Client]:

@@ -44,6 +44,7 @@ import assur.model
 from assur import AssurError, KinematicModel, TableError
 from assur.errors import Issue
 from assur.io.chain_table import read_student
+from assur.io.general import read_box
 from assur.io.reader import (
     MISSING,
     Node,
@@ -847,7 +848,7 @@ def _read_allowable(top: Node, groups: dict[GroupKey, Any]
                 value = turns.get(joint, kind="number", check=positive)
                 if value is not MISSING:
                     limits[str(joint)] = math.radians(value)
-        box = _read_box(row)
+        box = read_box(row)
         if key is None:
             continue
         if angle not in (None, MISSING):
@@ -857,22 +858,6 @@ def _read_allowable(top: Node, groups: dict[GroupKey, Any]
         if box is not None:
             boxes[key] = box
     return pressure, rotations, boxes
-
-
-def _read_box(row: Node) -> tuple[float, float, float, float] | None:
-    node = row.child("workspace", ("x", "y"), required=False)
-    if node is None:
-        return None
-    out: list[float] = []
-    for axis in ("x", "y"):
-        value = node.get(axis, kind="list")
-        if value is MISSING:
-            return None
-        if len(value) != 2 or not all(map(is_number, value)) or value[0] >= value[1]:
-            row.reader.problem(f"{node.location} {axis!r}", "problem.box", found=value)
-            return None
-        out.extend(float(v) for v in value)
-    return out[0], out[1], out[2], out[3]
 
 
 def _check_rotations(reader: TableReader, model: KinematicModel,

@@ -27,7 +27,7 @@ from assur.io.reader import MISSING, Node, is_number, normalise_id, positive
 from assur.model import Allowable, General, LinkId
 from assur.text import Message
 
-__all__ = ["read_general"]
+__all__ = ["read_box", "read_general"]
 
 _GENERAL = ("omega", "allowable")
 _ALLOWABLE = ("links", "pressure_angle", "rotations", "workspace")
@@ -72,7 +72,7 @@ def _allowable(row: Node) -> Allowable | None:
             value = turns.get(joint, kind="number", check=positive)
             if value is not MISSING:
                 rotations[str(joint)] = float(value)
-    box = _box(row)
+    box = read_box(row)
     if len(row.reader.issues) > before or MISSING in (links, angle):
         return None  # (a misspelt key reads as MISSING: reported when the row was read)
     ids: tuple[LinkId, ...] = tuple(normalise_id(v) for v in links)
@@ -93,8 +93,10 @@ def _pressure_angle(value: float) -> Message | None:
     return None if 0 < value <= _RIGHT_ANGLE else Message("rule.pressure_angle")
 
 
-def _box(row: Node) -> tuple[float, float, float, float] | None:
-    """The working-space box ``{x: [low, high], y: [low, high]}``, mm."""
+def read_box(row: Node) -> tuple[float, float, float, float] | None:
+    """The working-space box ``{x: [low, high], y: [low, high]}`` of a row, mm (None when
+    absent or wrong, the latter recorded); a mechanism's ``general:`` and a problem's
+    allowable limits read it alike."""
     node = row.child("workspace", ("x", "y"), required=False)
     if node is None:
         return None

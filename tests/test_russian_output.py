@@ -40,6 +40,7 @@ from typing import Any
 
 import pytest
 import yaml
+from cli_runner import RUNNER
 
 ROOT = Path(__file__).resolve().parent.parent
 TABLES = ROOT / "input_tables"
@@ -48,22 +49,6 @@ POINTS = "24"
 WORD = re.compile(r"(?<![\w'])[A-Za-z]{2,}(?![\w])")
 SYMBOLS = frozenset({"II", "III", "IV", "VI", "sin", "cos", "det", "seq", "variant"})
 
-_RUNNER = r"""
-import contextlib, io, json, sys
-import matplotlib
-matplotlib.use("Agg")
-from synthesis.cli import main
-results = []
-for argv in json.load(sys.stdin):
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            code = main(argv)
-        except SystemExit as exc:
-            code = exc.code if isinstance(exc.code, int) else 2
-    results.append({"argv": argv, "code": code, "text": out.getvalue() + err.getvalue()})
-json.dump(results, sys.stdout)
-"""
 
 
 def commands(work: Path) -> list[tuple[list[str], Path | None]]:
@@ -131,13 +116,13 @@ def english_words(text: str, user: set[str]) -> list[str]:
 def runs(tmp_path_factory) -> list[tuple[dict[str, Any], Path | None, Path]]:
     work = tmp_path_factory.mktemp("ru")
     listed = commands(work)
-    process = subprocess.run([sys.executable, "-c", _RUNNER], cwd=work, text=True,
+    process = subprocess.run([sys.executable, "-c", RUNNER], cwd=work, text=True,
                              input=json.dumps([argv for argv, _ in listed]),
                              capture_output=True, env={**os.environ, "MPLBACKEND": "Agg"},
                              timeout=1200, check=False)
     assert process.returncode == 0, process.stderr[-3000:]
-    return [(result, table, work) for result, (_, table) in
-            zip(json.loads(process.stdout), listed, strict=True)]
+    return [({**result, "text": result["stdout"] + result["stderr"]}, table, work)
+            for result, (_, table) in zip(json.loads(process.stdout), listed, strict=True)]
 
 
 @pytest.mark.slow

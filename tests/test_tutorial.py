@@ -30,6 +30,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from cli_runner import RUNNER
 
 #: One command's outcome as the runner prints it: argv, code, stdout, stderr.
 Result = dict[str, Any]
@@ -41,25 +42,6 @@ TUTORIALS = ("tutorial.md", "tutorial.ru.md")
 SETUP = ("sudo apt-get install", "git clone", "cd assur", "python3 -m venv",
          ". .venv/bin/activate", "pip install")
 
-# Runs the commands of one tutorial in one process (no start-up cost per command) and
-# prints, as JSON, the exit code and the output of each.
-_RUNNER = r"""
-import contextlib, io, json, sys
-import matplotlib
-matplotlib.use("Agg")
-from synthesis.cli import main
-results = []
-for argv in json.load(sys.stdin):
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            code = main(argv)
-        except SystemExit as exc:
-            code = exc.code if isinstance(exc.code, int) else 2
-    results.append({"argv": argv, "code": code, "stdout": out.getvalue(),
-                    "stderr": err.getvalue()})
-json.dump(results, sys.stdout)
-"""
 
 
 def blocks(text: str, language: str) -> list[str]:
@@ -161,7 +143,7 @@ def runs(tmp_path_factory: pytest.TempPathFactory) -> Runs:
     for name in TUTORIALS:
         text = (ROOT / "docs" / name).read_text(encoding="utf-8")
         work = _workspace(base / name.replace(".", "_"))
-        process = subprocess.Popen([sys.executable, "-c", _RUNNER], cwd=work, env=env,
+        process = subprocess.Popen([sys.executable, "-c", RUNNER], cwd=work, env=env,
                                    stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                    stderr=subprocess.PIPE, text=True)
         argvs = [argv for argv, _ in commands(text)]

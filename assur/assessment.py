@@ -20,7 +20,7 @@ public verb.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
@@ -29,6 +29,7 @@ from assur.kinematics.build import build_model
 from assur.kinematics.model import GroupModel, KinematicModel
 from assur.model import Chain
 from assur.structure.analysis import StructuralAnalysis, analyse_structure
+from assur.structure.group_models import GroupModelRow, check_group_models, group_models_table
 from assur.structure.identification import (
     IdentificationRow,
     Mismatch,
@@ -44,6 +45,8 @@ __all__ = ["POINTS", "VERDICTS", "Assessment", "Finding", "VariantFinding", "ass
 
 #: The table name used in the labels of the student's rows.
 TABLE = "structure_identification"
+#: The table name of the student's table 1.5.
+MODELS = "group_models"
 
 #: Crank positions of the existence check behind the verdict (every 1°; the interval ends
 #: are refined anyway): ``assur check``, ``assur batch`` and ``assur report`` use the same.
@@ -138,6 +141,12 @@ class Assessment:
     mismatches : tuple of Mismatch or None
         The student's identification table against the chain; None when the file gives no
         table.
+    group_models : tuple of GroupModelRow or None
+        Table 1.5, the identification array of the group models, built from the analysis
+        (None where :attr:`table` is None).
+    model_mismatches : tuple of Mismatch or None
+        The student's table 1.5 (``group_models:``) against the built one; None when the
+        file gives none or there is no table to compare with.
     variants : tuple of VariantFinding
         The student's rows whose assembly variant the dimensions contradict.
     model : KinematicModel or None
@@ -181,6 +190,8 @@ class Assessment:
     model: KinematicModel | None
     why_no_model: Message | AssurError | None
     existence: ExistenceReport | None
+    group_models: tuple[GroupModelRow, ...] | None = None
+    model_mismatches: tuple[Mismatch, ...] | None = None
     findings: tuple[Finding, ...] = ()
 
     @property
@@ -243,6 +254,17 @@ class Assessment:
                      "variant", v.group.sigma, v.given, v.message) for v in self.variants))
 
     @property
+    def n_q(self) -> int:
+        """N_Q, the number of groups of the mechanism, the input group L0 included (the
+        course's "количество структурных групп в механизме, включая группу L0")."""
+        return len(self.analysis.input_groups) + len(self.analysis.groups)
+
+    @property
+    def models_given(self) -> int:
+        """Number of records of the student's table 1.5."""
+        return len(self.chain.group_models or ())
+
+    @property
     def rows_given(self) -> int:
         """Number of rows of the student's table."""
         return len(self.chain.identification or ())
@@ -262,8 +284,13 @@ class Assessment:
             a row of ``assur batch``) with every finding in ``findings``, the first first.
         """
         payload = self.analysis.to_dict()
+        payload["N_Q"] = self.n_q
         payload["identification_table"] = (None if self.table is None
                                            else [row.to_dict() for row in self.table])
+        payload["group_models"] = (None if self.group_models is None
+                                   else [row.to_dict() for row in self.group_models])
+        payload["group_models_check"] = (None if self.model_mismatches is None
+                                         else [m.to_dict() for m in self.model_mismatches])
         table_findings = self.table_findings
         payload["identification_check"] = (None if table_findings is None
                                            else [m.to_dict() for m in table_findings])
@@ -293,7 +320,8 @@ class Assessment:
                 f"  verdict: {self.verdict} ({self.problems} findings))")
 
 
-def assess(chain: Chain, *, points: int | None = 360) -> Assessment:
+def assess(chain: Chain, *, points: int | None = 360,
+           out_codes: Mapping[tuple[Any, Any], str] | None = None) -> Assessment:
     """Check a student's table: structure, identification table, variants, existence.
 
     Parameters
@@ -303,6 +331,11 @@ def assess(chain: Chain, *, points: int | None = 360) -> Assessment:
     points : int or None
         Crank positions of the existence check over the cycle (the interval ends are
         refined anyway); None leaves the existence out.
+    out_codes : mapping, optional
+        The output-parameter codes of table 1.6 that the caller knows (a synthesis problem's
+        ``output:``), keyed by a group's links ``(i, j)``; without them the table leaves the
+        codes empty and checks a student's only for their form
+        (:func:`~assur.structure.identification.identification_table`).
 
     Returns
     -------
@@ -326,13 +359,17 @@ def assess(chain: Chain, *, points: int | None = 360) -> Assessment:
                                       if g.j is not None}
     try:
         rows: tuple[IdentificationRow, ...] | None = tuple(
-            identification_table(analysis, sigma or None))
+            identification_table(analysis, sigma or None, out_codes=out_codes))
+        models: tuple[GroupModelRow, ...] | None = tuple(group_models_table(analysis))
         table_error = None
     except StructureError as exc:
-        rows, table_error = None, exc
+        rows, models, table_error = None, None, exc
     given = chain.identification
-    checked = check_identification(analysis, given)
+    checked = check_identification(analysis, given, out_codes=out_codes)
     mismatches = None if checked is None else tuple(checked)
+    models_checked = (None if models is None else
+                      check_group_models(analysis, chain.group_models, table=MODELS))
+    model_mismatches = None if models_checked is None else tuple(models_checked)
     variants = () if given is None or model is None else tuple(_variants(model, given))
     existence = None
     if model is not None and points is not None:
@@ -340,7 +377,7 @@ def assess(chain: Chain, *, points: int | None = 360) -> Assessment:
 
         existence = check_existence(model, points=points)
     found = Assessment(chain, analysis, rows, table_error, mismatches, variants, model,
-                       why_not, existence)
+                       why_not, existence, models, model_mismatches)
     return replace(found, findings=_findings(found))
 
 
@@ -351,6 +388,7 @@ def _findings(found: Assessment) -> tuple[Finding, ...]:
                     key=lambda d: d.code == "E_MOBILITY_MISMATCH")
     wrong = [Finding("wrong", d.message) for d in errors]
     wrong += [Finding("wrong", m.message) for m in found.mismatches or ()]
+    wrong += [Finding("wrong", m.message) for m in found.model_mismatches or ()]
     wrong += [Finding("wrong", v.message) for v in found.variants]
     why = found.why_no_model
     if isinstance(why, TableError):

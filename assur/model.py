@@ -564,6 +564,9 @@ class Chain:
     claims : dict
         Counts stated in an identification table (``n_moving_links``, ``p5``, ``p4``, ``W``,
         ``N_Q``), to be checked.
+    group_models : tuple of mappings or None
+        The records of the table's ``group_models:`` (a student's table 1.5, to be checked
+        by :func:`assur.structure.group_models.check_group_models`); None when it has none.
     forces : ForceData or None
         The table's ``masses:``, ``loads:`` and ``gravity:`` sections (``docs/forces.md``);
         None when it has neither masses nor loads.
@@ -596,6 +599,7 @@ class Chain:
     local_names: Mapping[str, Mapping[LinkId, str]] = field(default_factory=dict)
     identification: tuple[IdentificationRow, ...] | None = None
     claims: Mapping[str, int] = field(default_factory=dict)
+    group_models: tuple[Mapping[str, Any], ...] | None = None
     forces: ForceData | None = None
     student: Student | None = None
     warnings: tuple[Issue, ...] = ()

@@ -60,10 +60,10 @@ __all__ = [
 #: The sections of the force analysis (:data:`assur.forces.table.SECTIONS`).
 _FORCES = ("masses", "loads", "gravity")
 _TOP_CHAIN = ("schema_version", "mechanism", "general", "geometry", "structure_identification",
-              "n_moving_links", "p5", "p4", "W", "N_Q", "layering_order", "student", *_FORCES)
+              "n_moving_links", "p5", "p4", "W", "N_Q", "layering_order", "student", "group_models", *_FORCES)
 _TOP_TABLE = ("schema_version", "mechanism", "name", "frame", "general", "geometry",
               "structure_identification", "n_moving_links", "p5", "p4", "W", "N_Q",
-              "layering_order", "student")
+              "layering_order", "student", "group_models")
 _MECHANISM = ("name", "frame", "links", "pairs", "inputs", "geometry")
 _PAIR = ("id", "type", "links", "guide", "name")
 _LINK = ("id", "name")
@@ -71,6 +71,16 @@ _INPUT = ("link", "pair")
 IDENTIFICATION_FIELDS = ("L", "seq", "i_minus_1", "j_minus_1", "i", "j", "i_plus_1",
                          "j_plus_1", "variant", "out_code", "params")
 _CLAIMS = ("n_moving_links", "p5", "p4", "W", "N_Q")
+#: The fields of a record of ``group_models:`` (table 1.5, :mod:`assur.structure.group_models`).
+GROUP_MODEL_FIELDS = ("k", "L", "i", "j", "links", "H_i", "P_i", "C", "P_c", "H_j", "P_j", "N",
+                      "M", "A", "B")
+
+
+def _read_group_models(top: Node) -> tuple[dict[str, Any], ...] | None:
+    """The records of ``group_models:`` as given (unknown fields reported), or None."""
+    if "group_models" not in top.mapping:
+        return None
+    return tuple(dict(row.mapping) for row in top.rows("group_models", GROUP_MODEL_FIELDS))
 
 
 def load_chain(path: str | os.PathLike[str]) -> Chain:
@@ -210,6 +220,7 @@ def _read_chain_form(reader: TableReader) -> Chain:
     student = read_student(top)
     rows, _ = _read_rows(top, required=False)
     claims = _read_claims(top)
+    models = _read_group_models(top)
     every = [*links, *(link for link in dict.fromkeys(mentioned) if link not in links)]
     forces = _read_forces(top, every, frame, inputs, joints,  # (a link not in links: reported)
                           geometry)
@@ -221,7 +232,7 @@ def _read_chain_form(reader: TableReader) -> Chain:
                  pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,
                  source=reader.source, group_params=_group_params(rows), names=names,
                  local_names=local, identification=tuple(rows) if rows else None, claims=claims,
-                 forces=forces, student=student)
+                 group_models=models, forces=forces, student=student)
 
 
 #: The fields of the ``student:`` section, in the order of :class:`~assur.model.Student`.
@@ -619,6 +630,7 @@ def _read_table_form(reader: TableReader) -> Chain:
     general = read_general(top)
     student = read_student(top)
     claims = _read_claims(top)
+    models = _read_group_models(top)
     if not rows and not reader.issues:
         reader.problem("structure_identification", "chain.no_rows")
     if read is not None:  # (a row whose i or j could not be read may hold the link)
@@ -642,7 +654,8 @@ def _read_table_form(reader: TableReader) -> Chain:
     return Chain(name=name or _stem(reader.source), frame=frame, links=tuple(links),
                  pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,
                  source=reader.source, group_params=_group_params(rows),
-                 identification=tuple(rows), claims=claims, student=student)
+                 identification=tuple(rows), claims=claims, group_models=models,
+                 student=student)
 
 
 def _check_members(reader: TableReader, rows: list[IdentificationRow], members: set[LinkId],

@@ -8,22 +8,23 @@ table filled by hand with the analysis and reports every mismatch by row and fie
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any, overload
 
 from assur.errors import StructureError
-from assur.kinds import KINDS, kind_of
+from assur.kinds import kind_of
 from assur.model import COLUMNS, IdentificationRow, LinkId, PairType, id_key
 from assur.structure.analysis import StructuralAnalysis
 from assur.structure.classification import AssurGroup
 from assur.text import Message, in_every_language, joined
 
-__all__ = ["COLUMNS", "OUT_CODES", "IdentificationRow", "Mismatch", "check_identification",
-           "identification_table"]
+__all__ = ["COLUMNS", "IdentificationRow", "Mismatch", "check_identification",
+           "field_mismatch", "identification_table", "require_dgtu"]
 
-#: Output-parameter codes of the source's table 1.6 per kind (meaning lost; kept as text).
-OUT_CODES = {number: kind.out_code for number, kind in KINDS.items()}
+#: The form of an output-parameter code in the course's table 1.6: ``5`` or ``8;2``.
+_CODE = re.compile(r"\s*-?\d+\s*(;\s*-?\d+\s*)?")
 
 
 @dataclass(frozen=True)
@@ -62,7 +63,9 @@ class Mismatch:
                 **in_every_language("message", self.message)}
 
 
-def _require_dgtu(analysis: StructuralAnalysis) -> None:
+def require_dgtu(analysis: StructuralAnalysis) -> None:
+    """Raise :class:`StructureError` unless the mechanism is made of input groups and dyads
+    of kinds 1–5 only (the tables of the course describe no other groups)."""
     others = [g.label for g in analysis.groups if not g.is_dyad or g.composite]
     placed = {link for g in (*analysis.input_groups, *analysis.groups) for link in g.links}
     unplaced = [link for link in analysis.chain.moving_links if link not in placed]
@@ -78,7 +81,8 @@ def _require_dgtu(analysis: StructuralAnalysis) -> None:
 
 
 def identification_table(analysis: StructuralAnalysis,
-                         variants: Mapping[tuple[Any, Any], int] | None = None,
+                         variants: Mapping[tuple[Any, Any], int] | None = None, *,
+                         out_codes: Mapping[tuple[Any, Any], str] | None = None,
                          ) -> list[IdentificationRow]:
     """Fill the structure-identification table from an analysis, in layering order.
 
@@ -86,7 +90,10 @@ def identification_table(analysis: StructuralAnalysis,
     σ of each dyad (keyed by its links ``(i, j)``) when the dimensions are known, e.g. from
     the kinematic model of the table's sketch; otherwise the table gets the default (+1 for
     L1/L2, 0 for L3). For L3 the course writes its default branch σ = +1 as 0.
-    ``out_code`` gets the source's code per kind.
+
+    The output-parameter code is written only where the caller knows it (``out_codes``, e.g.
+    from a synthesis problem's ``output:``): what the course's codes mean is lost from the
+    text (``method.md`` §3.2), so the structure alone gives none and ``out_code`` is None.
 
     Raises
     ------
@@ -99,6 +106,9 @@ def identification_table(analysis: StructuralAnalysis,
         The analysed chain.
     variants : mapping, optional
         Assembly variant σ per group, keyed by the group's links ``(i, j)``; default +1.
+    out_codes : mapping, optional
+        The output-parameter code of the groups whose output the caller knows, keyed by the
+        group's links ``(i, j)`` (``(i, None)`` for an input group).
 
     Returns
     -------
@@ -113,7 +123,7 @@ def identification_table(analysis: StructuralAnalysis,
     >>> [(row.L, row.i, row.j) for row in assur.identification_table(analysis)]
     [(0, 1, None), (1, 2, 3)]
     """
-    _require_dgtu(analysis)
+    require_dgtu(analysis)
     rows = []
     for seq, group in enumerate((*analysis.input_groups, *analysis.groups), start=1):
         kind = group.kind or 0
@@ -123,7 +133,7 @@ def identification_table(analysis: StructuralAnalysis,
             j=group.j, i_plus_1=_successor(analysis, group, group.i),
             j_plus_1=_successor(analysis, group, group.j) if group.j is not None else None,
             variant=_variant(kind, (variants or {}).get((group.i, group.j))),
-            out_code=kind_of(kind).out_code))
+            out_code=(out_codes or {}).get((group.i, group.j))))
     return rows
 
 
@@ -162,17 +172,22 @@ def _flexible(group: AssurGroup, frame: LinkId) -> bool:
 @overload
 def check_identification(analysis: StructuralAnalysis,
                          rows: Iterable[Mapping[str, Any] | IdentificationRow],
-                         *, table: str = ...) -> list[Mismatch]: ...
+                         *, table: str = ...,
+                         out_codes: Mapping[tuple[Any, Any], str] | None = ...
+                         ) -> list[Mismatch]: ...
 
 
 @overload
 def check_identification(analysis: StructuralAnalysis, rows: None,
-                         *, table: str = ...) -> None: ...
+                         *, table: str = ...,
+                         out_codes: Mapping[tuple[Any, Any], str] | None = ...) -> None: ...
 
 
 def check_identification(analysis: StructuralAnalysis,
                          rows: Iterable[Mapping[str, Any] | IdentificationRow] | None,
-                         *, table: str = "structure_identification") -> list[Mismatch] | None:
+                         *, table: str = "structure_identification",
+                         out_codes: Mapping[tuple[Any, Any], str] | None = None,
+                         ) -> list[Mismatch] | None:
     """Compare a filled identification table with the analysis, field by field.
 
     Parameters
@@ -183,6 +198,11 @@ def check_identification(analysis: StructuralAnalysis,
         there is no table to check (``Chain.identification`` of a table without one).
     table : str
         Table name used in the labels.
+    out_codes : mapping, optional
+        The output-parameter codes the caller knows, keyed by the group's links ``(i, j)``
+        (:func:`identification_table`): a student's code of such a group is checked against
+        it; any other code only for its form, one whole number or two joined by ``;`` (all
+        the course's table 1.6 shows: what the codes mean is lost from the text).
 
     Returns
     -------
@@ -224,7 +244,7 @@ def check_identification(analysis: StructuralAnalysis,
 
         def miss(field: str, expected: Any, found: Any, why: Message | None = None,
                  shown: Message | None = None, index: int = index, label: str = label) -> None:
-            out.append(_mismatch(index, label, field, expected, found, why, shown))
+            out.append(field_mismatch(index, label, field, expected, found, why, shown))
 
         user_i, user_j = row.get("i"), row.get("j")
         group = analysis.group_of(user_i) if user_i is not None else None
@@ -278,6 +298,13 @@ def check_identification(analysis: StructuralAnalysis,
                 miss("variant", list(allowed), row.get("variant"),
                      Message("ident.why.variant", {"kind": kind}),
                      Message("ident.any_of", {"values": ", ".join(map(_shown, allowed))}))
+        code = row.get("out_code")
+        known = (out_codes or {}).get((i, j))
+        if code is not None and known is not None and str(code) != known:
+            miss("out_code", known, code, Message("ident.why.out_code", {"group": group.label}))
+        elif code is not None and known is None and not _CODE.fullmatch(str(code)):
+            miss("out_code", None, code, Message("ident.why.out_code_form"),
+                 Message("ident.code_form"))
         if row.get("seq") is not None:
             user_seq[key] = (row["seq"], index, label)
 
@@ -301,11 +328,11 @@ def _neighbours(analysis: StructuralAnalysis, group: AssurGroup, i: LinkId | Non
         if field in row and row[field] != expected:
             why = (Message("ident.why.external", {"link": link, "known": expected})
                    if expected is not None else None)
-            out.append(_mismatch(index, label, field, expected, row[field], why))
+            out.append(field_mismatch(index, label, field, expected, row[field], why))
     for field, link in (("i_plus_1", i), ("j_plus_1", j)):
         later = _successor(analysis, group, link)
         if field in row and link is not None and not _same(row[field], later):
-            out.append(_mismatch(index, label, field, later, row[field],
+            out.append(field_mismatch(index, label, field, later, row[field],
                                  _successor_why(analysis, link, row[field], later, rows_of)))
     return _swaps(out)
 
@@ -373,8 +400,8 @@ def _label(table: str, index: int, row: Mapping[str, Any]) -> str:
     return f"{table}[{index}] (L{row.get('L')}, {roles})"
 
 
-def _mismatch(index: int | None, label: str, field: str, expected: Any, found: Any,
-              why: Message | None = None, shown: Message | None = None) -> Mismatch:
+def field_mismatch(index: int | None, label: str, field: str, expected: Any, found: Any,
+                   why: Message | None = None, shown: Message | None = None) -> Mismatch:
     """A mismatch of one field; ``shown`` describes the expected value when it is no value."""
     data = {"label": label, "field": field, "found": _shown(found),
             "expected": shown if shown is not None else _shown(expected)}
@@ -405,7 +432,7 @@ def _check_seq(analysis: StructuralAnalysis, groups: tuple[AssurGroup, ...],
         if late or (clash and seq != seq_of[id(group)]):
             why = (Message("ident.why.seq_late", {"groups": ", ".join(g.label for g in late)})
                    if late else Message("ident.why.seq_unique", {"n": len(groups)}))
-            out.append(_mismatch(index, label, "seq", seq_of[id(group)], seq, why))
+            out.append(field_mismatch(index, label, "seq", seq_of[id(group)], seq, why))
     return out
 
 

@@ -16,10 +16,19 @@ from collections.abc import Sequence
 
 from assur.structure.analysis import StructuralAnalysis
 from assur.structure.classification import AssurGroup, roman, signature
-from assur.structure.identification import COLUMNS, IdentificationRow, Mismatch
+from assur.structure.group_models import GroupModelRow
+from assur.structure.identification import IdentificationRow, Mismatch
 from assur.text import Message, joined, render
 
-__all__ = ["group_description", "structure_report"]
+__all__ = ["ORDERS", "group_description", "in_order", "models_lines", "structure_report",
+           "table_lines"]
+
+#: The orders table 1.6 is printed in: ``course`` by kind L0…L5 as the course's table 1.6
+#: (groups of one kind in layering order), ``layering`` in layering order.
+ORDERS = ("course", "layering")
+#: The columns of table 1.6 as the course prints them (no ``seq``).
+_PRINTED = ("L", "i_minus_1", "j_minus_1", "i", "j", "i_plus_1", "j_plus_1", "variant",
+            "out_code")
 
 
 def _external(group: AssurGroup) -> Message | str:
@@ -65,9 +74,43 @@ def _cell(value: object) -> str:
     return str(value)
 
 
-def _table(rows: Sequence[IdentificationRow]) -> list[str]:
-    header = ["L", "seq", "i-1", "j-1", "i", "j", "i+1", "j+1", "variant", "out_code"]
-    cells = [[_cell(getattr(row, key)) for key in COLUMNS] for row in rows]
+def in_order(rows: Sequence[IdentificationRow], order: str = "course"
+             ) -> list[IdentificationRow]:
+    """The rows of table 1.6 in a printed order (:data:`ORDERS`): by kind L0…L5 as the
+    course prints them, or in layering order.
+
+    >>> from assur.model import IdentificationRow
+    >>> rows = [IdentificationRow(0, 1, 0, None, 1, None, 2, None, None, None),
+    ...         IdentificationRow(4, 2, 3, 0, 4, 5, None, None, None, None),
+    ...         IdentificationRow(3, 3, 2, 0, 6, 7, None, None, 0, None)]
+    >>> [row.L for row in in_order(rows)], [row.L for row in in_order(rows, "layering")]
+    ([0, 3, 4], [0, 4, 3])
+    """
+    if order not in ORDERS:
+        raise ValueError(f"order must be one of {ORDERS}; got {order!r}")
+    if order == "layering":
+        return sorted(rows, key=lambda row: row.seq or 0)
+    return sorted(rows, key=lambda row: (row.L, row.seq or 0))
+
+
+def table_lines(rows: Sequence[IdentificationRow], lang: str = "en", order: str = "course"
+                ) -> list[str]:
+    """Table 1.6 as text: the course's columns, the rows in ``order``."""
+    header = ["L", "i-1", "j-1", "i", "j", "i+1", "j+1", render("report.table.variant", lang),
+              render("report.table.code", lang)]
+    cells = [[_cell(getattr(row, key)) for key in _PRINTED] for row in in_order(rows, order)]
+    return _aligned(header, cells)
+
+
+def models_lines(rows: Sequence[GroupModelRow], lang: str = "en") -> list[str]:
+    """Table 1.5 as text, one record per group in layering order."""
+    header = ["k", "L", "i", "j", render("report.models.external_i", lang),
+              render("report.models.internal", lang), render("report.models.external_j", lang),
+              "N", "M", "A_k", "B_k"]
+    return _aligned(header, [row.cells() for row in rows])
+
+
+def _aligned(header: Sequence[str], cells: Sequence[Sequence[str]]) -> list[str]:
     widths = [max(len(h), *(len(c[k]) for c in cells)) for k, h in enumerate(header)]
     lines = ["  " + "  ".join(h.rjust(w) for h, w in zip(header, widths, strict=True))]
     lines += ["  " + "  ".join(c.rjust(w) for c, w in zip(line, widths, strict=True))
@@ -75,10 +118,24 @@ def _table(rows: Sequence[IdentificationRow]) -> list[str]:
     return lines
 
 
+def _verdict(mismatches: Sequence[Mismatch] | None, given: int, lang: str, stem: str
+             ) -> list[str]:
+    """The verdict on a student's table: agrees, or every mismatch."""
+    if mismatches is None:
+        return []
+    if mismatches:
+        return ["", render(f"{stem}_differs", lang, n=len(mismatches)),
+                *(f"  - {m.text(lang)}" for m in mismatches)]
+    return ["", render(f"{stem}_agrees", lang, k=given)]
+
+
 def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
                      table: Sequence[IdentificationRow] | None = None,
                      mismatches: Sequence[Mismatch] | None = None,
-                     checked_rows: int = 0) -> str:
+                     checked_rows: int = 0,
+                     models: Sequence[GroupModelRow] | None = None,
+                     model_mismatches: Sequence[Mismatch] | None = None,
+                     checked_models: int = 0, order: str = "course") -> str:
     """The text report of ``assur check``.
 
     Parameters
@@ -86,11 +143,19 @@ def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
     analysis : StructuralAnalysis
     lang : {'en', 'ru'}
     table : sequence of IdentificationRow, optional
-        The identification table built from the analysis, printed when given.
+        The identification table built from the analysis (table 1.6), printed when given.
     mismatches : sequence of Mismatch, optional
         The result of checking a user's table (None when no table was given).
     checked_rows : int
         Number of rows of the user's table.
+    models : sequence of GroupModelRow, optional
+        Table 1.5 built from the analysis, printed when given.
+    model_mismatches : sequence of Mismatch, optional
+        The result of checking a user's table 1.5 (None when none was given).
+    checked_models : int
+        Number of records of the user's table 1.5.
+    order : {'course', 'layering'}
+        The order of the rows of table 1.6 (:func:`in_order`).
 
     Returns
     -------
@@ -128,6 +193,7 @@ def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
     width = max((len(g.label) for g in groups), default=0)
     lines += [f"  {g.label.ljust(width)}  {group_description(g, lang)}" for g in groups] or \
         ["  " + render("report.structure.no_groups", lang)]
+    lines.append(render("report.structure.n_q", lang, n=len(groups)))
     lines += ["", render("report.structure.formula", lang, formula=a.formula or "—"),
               render("report.structure.class", lang, cls=roman(a.mechanism_class))]
     if a.leftover:
@@ -139,14 +205,15 @@ def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
         lines += ["", render("report.structure.findings", lang)]
         lines += [f"  {d.code}: {d.text(lang)}" for d in a.issues]
     if table is not None:
-        lines += ["", render("report.structure.table", lang), *_table(table)]
-    if mismatches is not None:
-        lines.append("")
-        if mismatches:
-            lines.append(render("report.structure.table_differs", lang, n=len(mismatches)))
-            lines += [f"  - {m.text(lang)}" for m in mismatches]
-        else:
-            lines.append(render("report.structure.table_agrees", lang, k=checked_rows))
+        lines += ["", render(f"report.structure.table_{order}", lang),
+                  *table_lines(table, lang, order)]
+        if any(row.out_code is None for row in table):
+            lines.append("  " + render("report.structure.no_code", lang))
+    lines += _verdict(mismatches, checked_rows, lang, "report.structure.table")
+    if models is not None:
+        lines += ["", render("report.structure.models", lang), *models_lines(models, lang),
+                  "  " + render("report.structure.models_key", lang)]
+    lines += _verdict(model_mismatches, checked_models, lang, "report.structure.models")
     lines.append("")
     lines.append(render("report.structure.applicable" if a.applicable
                         else "report.structure.not_applicable", lang))

@@ -11,7 +11,7 @@ from assur.text import render
 __all__ = ["check_text", "verdict_text", "verdict_words"]
 
 
-def check_text(assessment: Assessment, lang: str = "en") -> str:
+def check_text(assessment: Assessment, lang: str = "en", order: str = "course") -> str:
     """The text report: counts, groups, formula, class, findings, the identification table
     and the verdict on the table given in the file.
 
@@ -21,6 +21,8 @@ def check_text(assessment: Assessment, lang: str = "en") -> str:
         From :func:`assur.check`.
     lang : str
         A catalogue language.
+    order : {'course', 'layering'}
+        The order of the rows of table 1.6: by kind, as the course prints it, or layering.
 
     Returns
     -------
@@ -38,7 +40,9 @@ def check_text(assessment: Assessment, lang: str = "en") -> str:
     """
     text = structure_report(assessment.analysis, lang=lang, table=assessment.table,
                             mismatches=assessment.table_findings,
-                            checked_rows=assessment.rows_given)
+                            checked_rows=assessment.rows_given, models=assessment.group_models,
+                            model_mismatches=assessment.model_mismatches,
+                            checked_models=assessment.models_given, order=order)
     return f"{text}\n\n{verdict_text(assessment, lang)}"
 
 

@@ -123,11 +123,12 @@ class Analysis:
 
     def to_dict(self) -> dict[str, Any]:
         """Every position as a JSON-ready mapping: what ``assur analyze --json`` prints
-        (:func:`assur.records.analysis_record`, with ``forces``,
+        (:func:`assur.records.analysis_record`, with ``N_Q``, the number of groups, and ``forces``,
         :meth:`ForceAnalysis.to_dict`, when the forces were analysed)."""
         from assur.records import analysis_record
 
         record = analysis_record(self)
+        record["N_Q"] = len(self.model.groups)  # the groups, the input-link group L0 included
         record["warnings"] = [issue.to_dict() for issue in self.warnings]
         if self.forces is not None:
             record["forces"] = self.forces.to_dict()

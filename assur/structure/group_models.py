@@ -224,14 +224,14 @@ def _row(analysis: StructuralAnalysis, group: AssurGroup, k: int) -> GroupModelR
     kind = group.group_kind
     assert kind is not None and group.i is not None
     side_pair = {"i": group.pair_i, "j": group.pair_j, "c": group.pair_c}
-    pairs = tuple((role, pair) for role, side in kind.roles
-                  if (pair := side_pair[side]) is not None)
+    pairs = tuple((role, pair_id) for role, side in kind.roles
+                  if (pair_id := side_pair[side]) is not None)
     chain = analysis.chain
     own = {pair for _, pair in pairs}
     hinge = {"i": group.pair_i, "j": group.pair_j}
     base: dict[str, BasePoint] = {}
-    for _, pair_id in pairs:
-        pair = chain.pair(pair_id)
+    for _, own_id in pairs:
+        pair = chain.pair(own_id)
         if pair.type is not PairType.P or pair.guide is None:
             continue
         # the guide's side: the group's link that carries it, else the link sliding on it
@@ -242,7 +242,7 @@ def _row(analysis: StructuralAnalysis, group: AssurGroup, k: int) -> GroupModelR
         if at is not None and chain.pair(at).type is not PairType.R:
             at = None
         letter = "A" if side == "i" else "B"
-        base[letter] = BasePoint(letter, k, pair_id, carrier, at)
+        base[letter] = BasePoint(letter, k, own_id, carrier, at)
     return GroupModelRow(k, group.kind or 0, group.i, group.j, pairs,
                          _attachment(analysis, group.i, own),
                          _attachment(analysis, group.j, own) if group.j is not None else None,

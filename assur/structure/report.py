@@ -20,14 +20,14 @@ from assur.structure.group_models import GroupModelRow
 from assur.structure.identification import IdentificationRow, Mismatch
 from assur.text import Message, joined, render
 
-__all__ = ["ORDERS", "group_description", "in_order", "models_lines", "structure_report",
+__all__ = ["ORDERS", "PRINTED", "group_description", "in_order", "models_lines", "structure_report",
            "table_lines"]
 
 #: The orders table 1.6 is printed in: ``course`` by kind L0…L5 as the course's table 1.6
 #: (groups of one kind in layering order), ``layering`` in layering order.
 ORDERS = ("course", "layering")
 #: The columns of table 1.6 as the course prints them (no ``seq``).
-_PRINTED = ("L", "i_minus_1", "j_minus_1", "i", "j", "i_plus_1", "j_plus_1", "variant",
+PRINTED = ("L", "i_minus_1", "j_minus_1", "i", "j", "i_plus_1", "j_plus_1", "variant",
             "out_code")
 
 
@@ -98,7 +98,7 @@ def table_lines(rows: Sequence[IdentificationRow], lang: str = "en", order: str 
     """Table 1.6 as text: the course's columns, the rows in ``order``."""
     header = ["L", "i-1", "j-1", "i", "j", "i+1", "j+1", render("report.table.variant", lang),
               render("report.table.code", lang)]
-    cells = [[_cell(getattr(row, key)) for key in _PRINTED] for row in in_order(rows, order)]
+    cells = [[_cell(getattr(row, key)) for key in PRINTED] for row in in_order(rows, order)]
     return _aligned(header, cells)
 
 
@@ -193,7 +193,8 @@ def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
     width = max((len(g.label) for g in groups), default=0)
     lines += [f"  {g.label.ljust(width)}  {group_description(g, lang)}" for g in groups] or \
         ["  " + render("report.structure.no_groups", lang)]
-    lines.append(render("report.structure.n_q", lang, n=len(groups)))
+    lines.append(render("report.structure.n_q" if a.input_groups else
+                        "report.structure.n_q_no_l0", lang, n=len(groups)))
     lines += ["", render("report.structure.formula", lang, formula=a.formula or "—"),
               render("report.structure.class", lang, cls=roman(a.mechanism_class))]
     if a.leftover:

@@ -64,6 +64,9 @@ def analysis_text(result: Analysis, lang: str = "en") -> str:
     else:
         lines.append(render("analyze.actuator", lang, lo=model.input_range[0],
                             hi=model.input_range[1], n=n))
+    with_l0 = any(group.kind == 0 for group in model.groups)
+    lines.append(render("report.structure.n_q" if with_l0 else "report.structure.n_q_no_l0",
+                        lang, n=len(model.groups)))
     lines += ["", render("analyze.existence", lang)]
     units = {"mm": render("analyze.unit_mm", lang), "deg": "°"}
     verdicts = {"assembles": render("analyze.assembles", lang),

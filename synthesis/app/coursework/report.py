@@ -33,7 +33,7 @@ from assur.kinematics.dyads import reason_text
 from assur.kinematics.existence import CONDITIONS
 from assur.model import PairType, Student
 from assur.plot.schemes import roman, scheme_bytes
-from assur.structure.report import group_description
+from assur.structure.report import PRINTED, group_description, in_order
 from assur.text import check_lang, render
 from synthesis.app.assess import assess, read_table
 from synthesis.app.check_report import verdict_words
@@ -95,8 +95,8 @@ def _cap(text: str) -> str:
 
 
 def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int = POINTS,
-                 budget: int | None = None, student: dict[str, str | None] | None = None
-                 ) -> CourseworkReport:
+                 budget: int | None = None, student: dict[str, str | None] | None = None,
+                 order: str = "course") -> CourseworkReport:
     """Analyse a table and collect the report.
 
     Parameters
@@ -113,6 +113,8 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
     student : dict, optional
         Title-block values typed as options (``name``, ``group``, ``variant``, ``date``),
         each replacing the one of the table's ``student:`` section.
+    order : {'course', 'layering'}
+        The order of the rows of table 1.6: by kind as the course prints it, or layering.
 
     Returns
     -------
@@ -138,13 +140,15 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
     name = chain.name or path.stem
     report.title = f"{_cap(render('term.report', lang))}: {name}"
     report.summary[render("term.mobility", lang)] = _mobility(analysis)
+    report.summary["N_Q"] = str(found.n_q)
     report.summary[render("term.formula", lang)] = analysis.formula
     report.summary[render("term.mechanism_class", lang)] = roman(analysis.mechanism_class)
-    report.facts.update(W=analysis.W, formula=analysis.formula,
+    report.facts.update(W=analysis.W, N_Q=found.n_q, formula=analysis.formula,
                         mechanism_class=analysis.mechanism_class, applicable=analysis.applicable)
     report.sections += [_data_section(chain, lang), _counts_section(analysis, lang),
                         _groups_section(analysis, lang), _formula_section(found, lang)]
-    report.sections.append(_identification_section(found, lang, report))
+    report.sections.append(_identification_section(found, lang, report, order))
+    report.sections += _models_section(found, lang, report)
     report.sections.append(_verdict_section(found, lang, report))
     report.sections.append(_schemes_section(chain, analysis, lang))
     report.sections += _kinematic_sections(found, lang, points, report)
@@ -238,16 +242,22 @@ def _formula_section(found: Assessment, lang: str) -> Section:
     return Section("formula", _cap(render("term.formula", lang)), body)
 
 
-def _identification_section(found: Assessment, lang: str, report: CourseworkReport) -> Section:
-    """The program's identification table (assembly variants from the dimensions, when there
-    are any) and the verdict on the table given in the file."""
-    header = ("L", "seq", "i−1", "j−1", "i", "j", "i+1", "j+1", "variant", "out_code")
+def _identification_section(found: Assessment, lang: str, report: CourseworkReport,
+                            order: str) -> Section:
+    """The program's identification table, table 1.6 (assembly variants from the dimensions,
+    when there are any), in ``order``, and the verdict on the table given in the file."""
+    header = ("L", "i−1", "j−1", "i", "j", "i+1", "j+1", render("report.table.variant", lang),
+              render("report.table.code", lang))
     if found.table is None:
         why = found.table_error.text(lang) if found.table_error is not None else ""
         body = f'<p class="note" id="no-dgtu-table">{esc(why)}</p>'
     else:
-        body = table(header, ([_cell(v) for v in r.to_dict().values()] for r in found.table),
+        rows = in_order(found.table, order)
+        body = table(header, ([_cell(getattr(r, key)) for key in PRINTED] for r in rows),
                      table_id="identification")
+        if any(row.out_code is None for row in rows):
+            body += (f'<p class="note" id="no-code">'
+                     f'{esc(render("report.structure.no_code", lang))}</p>')
     summary = report.summary
     verdict_key = render("term.student_table", lang)
     report.facts["identification"] = found.identification
@@ -272,6 +282,32 @@ def _identification_section(found: Assessment, lang: str, report: CourseworkRepo
                  f"{esc(render('term.differs', lang))} ({len(problems)})</p>"
                  f'<ul class="findings">{items}</ul>')
     return Section("identification", title, body)
+
+
+def _models_section(found: Assessment, lang: str, report: CourseworkReport) -> list[Section]:
+    """Table 1.5, the identification array of the group models, and the verdict on the
+    student's copy (``group_models:``) when the file gives one; none when the mechanism is
+    not made of the course's groups (the section of table 1.6 says why)."""
+    title = _cap(render("term.group_models", lang))
+    if found.group_models is None:
+        return []
+    header = ("k", "L", "i", "j", render("report.models.external_i", lang),
+              render("report.models.internal", lang), render("report.models.external_j", lang),
+              "N", "M", "A_k", "B_k")
+    body = table(header, (row.cells() for row in found.group_models), table_id="group-models")
+    body += f'<p class="note">{esc(render("report.structure.models_key", lang))}</p>'
+    checked = found.model_mismatches
+    if checked is None:
+        return [Section("group-models", title, body)]
+    report.facts["group_models_check"] = [m.to_dict() for m in checked]
+    if not checked:
+        text = render("report.structure.models_agrees", lang, k=found.models_given)
+        return [Section("group-models", title,
+                        body + f'<p class="ok" id="student-models">{esc(text)}</p>')]
+    items = "".join(f"<li>{esc(m.text(lang))}</li>" for m in checked)
+    text = render("report.structure.models_differs", lang, n=len(checked))
+    return [Section("group-models", title, body + f'<p class="bad" id="student-models">'
+                    f'{esc(text)}</p><ul class="findings">{items}</ul>')]
 
 
 def _verdict_section(found: Assessment, lang: str, report: CourseworkReport) -> Section:
@@ -425,7 +461,8 @@ def render_html(report: CourseworkReport) -> str:
 
 def write_report(path: str | os.PathLike[str], out: str | os.PathLike[str] | None = None, *,
                  lang: str = "en", points: int = POINTS, budget: int | None = None,
-                 student: dict[str, str | None] | None = None) -> CourseworkReport:
+                 student: dict[str, str | None] | None = None, order: str = "course"
+                 ) -> CourseworkReport:
     """Build the report of a table and write it as HTML (atomically).
 
     Parameters
@@ -434,7 +471,7 @@ def write_report(path: str | os.PathLike[str], out: str | os.PathLike[str] | Non
         The table.
     out : path-like, optional
         The HTML file; default: the table's name with ``.html`` next to it.
-    lang, points, budget, student
+    lang, points, budget, student, order
         As for :func:`build_report`.
 
     Returns
@@ -443,7 +480,8 @@ def write_report(path: str | os.PathLike[str], out: str | os.PathLike[str] | Non
         With :attr:`~CourseworkReport.out` set to the written page.
     """
     target = Path(out) if out is not None else Path(path).with_suffix(".html")
-    report = build_report(path, lang=lang, points=points, budget=budget, student=student)
+    report = build_report(path, lang=lang, points=points, budget=budget, student=student,
+                          order=order)
     atomic_write_text(target, render_html(report))
     report.out = target
     return report

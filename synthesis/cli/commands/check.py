@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 
+from assur.structure.report import ORDERS
 from assur.text import DEFAULT, languages, render
 
 #: The output options, checked before the run.
@@ -24,6 +25,8 @@ def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
     parser.add_argument("--lang", choices=languages(), default=lang,
                         help=render("cli.check.lang", lang))
     parser.add_argument("--plot", metavar="FILE", default=None, help=render("cli.check.plot", lang))
+    parser.add_argument("--order", choices=ORDERS, default=ORDERS[0],
+                        help=render("cli.check.order", lang))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -51,5 +54,5 @@ def run(args: argparse.Namespace) -> int:
         print(strict_json(assessment.to_dict(), indent=2))
     else:
         print_warnings(warnings, args.table, args.lang)
-        print(check_text(assessment, args.lang))
+        print(check_text(assessment, args.lang, args.order))
     return 0

@@ -33,6 +33,8 @@ def add_args(parser: argparse.ArgumentParser, lang: str = DEFAULT) -> None:
     parser.add_argument("--budget", type=int, default=None, metavar="M",
                         help=render("cli.report.budget", lang))
     parser.add_argument("--quiet", action="store_true", help=render("cli.quiet", lang))
+    parser.add_argument("--order", choices=ORDERS, default=ORDERS[0],
+                        help=render("cli.check.order", lang))
     parser.add_argument("--student", metavar="NAME", help=render("cli.report.student", lang))
     parser.add_argument("--group", metavar="GROUP", help=render("cli.report.group", lang))
     parser.add_argument("--variant", metavar="N", help=render("cli.report.variant", lang))
@@ -61,7 +63,8 @@ def run(args: argparse.Namespace) -> int:
     check_search_options(args, {"budget": "budget_log2"})
     with following_search(quiet=args.quiet, lang=args.lang):
         report = build_report(args.table, lang=args.lang, points=args.points,
-                              budget=args.budget, student=_typed_student(args))
+                              budget=args.budget, student=_typed_student(args),
+                              order=args.order)
     out = Path(args.out) if args.out else Path(args.table).with_suffix(".html")
     outputs = outputs_of(args)
     outputs.write_text(out, render_html(report))

@@ -126,7 +126,7 @@ def test_report_speaks_the_course_terms() -> None:
     russian = structure_report(analysis, lang="ru")
     assert "группа Ассура 2 класса 2 порядка 2 вида (ВВП)" in russian
     assert "Формула строения: I(0,1) → II₂(2,3)" in russian
-    assert "начальный механизм" in russian
+    assert "группа входных звеньев (нулевая группа) L0" in russian
     english = structure_report(analysis)
     assert "Assur group of class 2, order 2, kind 2 (RRP); i = 3, j = 2" in english
     assert "DGTU method applicable: yes" in english

@@ -8,6 +8,7 @@ from pathlib import Path
 
 from assur.errors import Issue, TableError
 from assur.io.reader import describe
+from assur.structure.report import ORDERS
 from assur.text import DEFAULT, Message, languages, render
 from synthesis.app.outputs import outputs_of
 from synthesis.app.progress import following_search

@@ -34,7 +34,10 @@ from assur.io.files import atomic_write_bytes
 from assur.kinds import KINDS
 from assur.model import Chain, LinkId, Pair, PairId, PairType, id_key, joint_key
 from assur.plot.formats import PICTURE_FORMATS, PictureFormatError, figure_bytes, picture_format
+from assur.errors import StructureError
 from assur.structure.classification import roman as roman_numeral
+from assur.structure.classification import subscript
+from assur.structure.group_models import GroupModelRow, group_models_table
 from assur.text import render
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -68,8 +71,13 @@ SCHEME_SIZE = {"structural": (7.0, 5.2), "formalised": (7.0, 3.4), "both": (7.0,
 #: first (:func:`separate_labels`).
 _SHIFTS = ((0, 0), (20, 0), (-20, 0), (0, 24), (0, -24), (20, 24), (-20, 24), (20, -24),
            (-20, -24), (34, 0), (-34, 0), (0, 36), (0, -36))
+#: The further places a point's name may go: a leader line joins it to its point.
+_FAR = ((48, 0), (-48, 0), (0, 48), (0, -48), (48, 40), (-48, 40), (48, -40), (-48, -40),
+        (70, 0), (-70, 0), (0, 64), (0, -64))
 #: The labels :func:`separate_labels` moves, in the order they are placed.
-_MOVABLE = ("label-link", "label-group", "label-pair", "label-edge")
+_MOVABLE = ("label-link", "label-group", "label-pair", "label-point", "label-edge")
+#: The colour of the points the course asks to mark (N, M, A_k, B_k).
+_POINT_COLOUR = "#8b0000"
 
 _GROUP_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b",
                   "#e377c2", "#7f7f7f", "#bcbd22")
@@ -487,6 +495,79 @@ def _link_label_place(points: list[complex], node: complex) -> tuple[complex, co
     return (points[0] if points else node), complex(6, 6)
 
 
+def _models(analysis: StructuralAnalysis) -> list[GroupModelRow]:
+    """Table 1.5 of the mechanism; empty when it is not made of the course's groups."""
+    try:
+        return group_models_table(analysis)
+    except StructureError:
+        return []
+
+
+def scheme_points(chain: Chain, analysis: StructuralAnalysis
+                  ) -> list[tuple[str, PairId | None, PairId]]:
+    """The points the course asks to mark on the schemes (step 15 of its procedure): the
+    attachment points N_k, M_k of every group and the base points A_k, B_k of its guides.
+
+    Returns
+    -------
+    list of (name, pair, where)
+        The name (``N₂``; ``M₂~`` for a point that slides: a later link runs on a guide of
+        the link), the pair it names (None for a base point), and the pair whose place in
+        the drawing it is marked at: the hinge, the guide, or the hinge a base point is put
+        at.
+
+    Examples
+    --------
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/slider_crank.yaml"
+    >>> analysis = assur.analyse_structure(assur.load_chain(table))
+    >>> scheme_points(analysis.chain, analysis)
+    [('N₁', 'B', 'B'), ('N₂', 'C', 'C'), ('A₂', None, 'D')]
+    """
+    del chain  # the analysis holds it; the signature is that of the drawings
+    found: list[tuple[str, PairId | None, PairId]] = []
+    for row in _models(analysis):
+        sub = subscript(row.k)
+        for letter, point in (("N", row.N), ("M", row.M)):
+            if point is None:
+                continue
+            found += [(f"{letter}{sub}", pair, pair) for pair in point.hinges]
+            found += [(f"{letter}{sub}~", pair, pair) for pair in point.guides]
+        for base in (row.A, row.B):
+            if base is not None:
+                found.append((f"{base.letter}{sub}", None,
+                              base.at if base.at is not None else base.pair))
+    return found
+
+
+def _base_place(chain: Chain, layout: SchemeLayout, pair: PairId) -> complex:
+    """Where a base point is drawn: a hinge's place, or the point of the guide's line the
+    sketch gives (where the student put the base), else the pair's place."""
+    sketch = chain.geometry
+    key = joint_key(chain.pair(pair))
+    if chain.pair(pair).type is PairType.P and sketch is not None and key in sketch.points:
+        return sketch.points[key]
+    return layout.pairs[pair]
+
+
+def _draw_points(ax: Axes, chain: Chain, analysis: StructuralAnalysis,
+                 layout: SchemeLayout) -> None:
+    """Mark N_k, M_k, A_k and B_k on the structural scheme."""
+    for name, named, where in scheme_points(chain, analysis):
+        at = layout.pairs[where] if named is not None else _base_place(chain, layout, where)
+        if named is None:
+            ax.plot([at.real], [at.imag], marker="x", ms=5, mew=1.2, color=_POINT_COLOUR,
+                    zorder=7)
+        # a leader line joins the name to its point wherever the name is moved to
+        ax.annotate(name, (at.real, at.imag), xytext=(8, 8), textcoords="offset points",
+                    fontsize=LABEL_PT, fontstyle="italic", fontweight="bold",
+                    color=_POINT_COLOUR, zorder=8, gid="label-point",
+                    bbox={"boxstyle": "round,pad=0.05", "fc": "white", "ec": "none",
+                          "alpha": 0.8},
+                    arrowprops={"arrowstyle": "-", "color": _POINT_COLOUR, "lw": 0.6,
+                                "shrinkA": 0, "shrinkB": 3})
+
+
 def draw_structural_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Axes | None = None,
                            lang: str = "en", layout: SchemeLayout | None = None) -> Axes:
     """Draw the structural scheme (fig. 1.26 of the course).
@@ -548,6 +629,7 @@ def draw_structural_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
                     fontsize=LABEL_PT, color="#444444", zorder=8, gid="label-pair",
                     bbox={"boxstyle": "round,pad=0.05", "fc": "white", "ec": "none",
                           "alpha": 0.8})
+    _draw_points(ax, chain, analysis, layout)
     _draw_group_outlines(ax, chain, groups, layout, size, lang)
     ax.set_aspect("equal")
     ax.autoscale_view()
@@ -616,15 +698,23 @@ def draw_formalised_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
 
     ax = ax if ax is not None else _new_axes(SCHEME_SIZE["formalised"])
     groups = _groups(analysis, chain)
+    marks: dict[PairId, list[str]] = {}
+    for name, named, _ in scheme_points(chain, analysis):
+        if named is not None:
+            marks.setdefault(named, []).append(name)
+    bases = {frozenset(x for x in (row.i, row.j) if x is not None): ", ".join(base.text().replace(f"_{row.k}", subscript(row.k))
+                                  for base in (row.A, row.B) if base is not None)
+             for row in _models(analysis)}
     by_level: dict[int, list[_Group]] = {}
     for group in groups:
         by_level.setdefault(group.level, []).append(group)
     tallest = max((len(m) for m in by_level.values()), default=1)
+    step = 1.5 if any(bases.values()) else 1.2  # a node with its base points is taller
     where: dict[str, complex] = {}
     for level, members in sorted(by_level.items()):
         for k, group in enumerate(members):
-            where[group.name] = complex(2.4 * level, 1.2 * (tallest - len(members)) / 2
-                                        + 1.2 * (len(members) - 1 - k) + 1.3)
+            where[group.name] = complex(2.4 * level, step * (tallest - len(members)) / 2
+                                        + step * (len(members) - 1 - k) + 1.3)
     colour = {g.name: ("black" if g.is_input else _GROUP_COLOURS[k % len(_GROUP_COLOURS)])
               for k, g in enumerate(groups)}
     left, right = -1.1, 2.4 * max(by_level, default=0) + 1.1
@@ -637,6 +727,8 @@ def draw_formalised_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
         label = group.name if group.is_input else (
             f"{group.name}\n{roman(group.group_class)}/{group.order}, "
             f"{_kind_text(group, lang)}")
+        if bases.get(frozenset(group.links)):
+            label += f"\n{bases[frozenset(group.links)]}"
         node = ax.text(at.real, at.imag, label, ha="center", va="center", fontsize=9,
                        bbox={"boxstyle": "round,pad=0.35", "fc": "white", "lw": 1.4,
                              "ec": colour[group.name]}, zorder=5)
@@ -652,10 +744,12 @@ def draw_formalised_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
         arrow.set_gid(f"edge-{source}-{target}")
         ax.add_patch(arrow)
         mid = (a + b) / 2
-        ax.annotate(", ".join(map(str, pairs)), (mid.real, mid.imag + 0.08), xytext=(0, 0),
+        text = ", ".join(str(pair) + (f" ({', '.join(marks[pair])})" if pair in marks else "")
+                         for pair in pairs)
+        ax.annotate(text, (mid.real, mid.imag + 0.08), xytext=(0, 0),
                     textcoords="offset points", ha="center", va="bottom", fontsize=LABEL_PT,
                     color="#444444", zorder=4, gid="label-edge")
-    top = 1.2 * tallest + 0.6
+    top = step * tallest + 0.6 + (step - 1.2)
     for level in sorted(by_level):
         ax.text(2.4 * level, top, render("scheme.level", lang, level=level), ha="center",
                 fontsize=LABEL_PT, color="#666666")
@@ -717,7 +811,7 @@ def separate_labels(fig: Figure) -> list[Annotation]:
         The labels moved, placed.
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.text import Annotation
+    from matplotlib.text import Annotation, Text
     from matplotlib.transforms import Bbox
 
     renderer = FigureCanvasAgg(fig).get_renderer()
@@ -736,9 +830,10 @@ def separate_labels(fig: Figure) -> list[Annotation]:
     for label in movable:
         start = label.xyann
         best: tuple[float, tuple[float, float]] | None = None
-        for dx, dy in _SHIFTS:
+        shifts = (*_SHIFTS, *_FAR) if label.get_gid() == "label-point" else _SHIFTS
+        for dx, dy in shifts:
             label.xyann = (start[0] + dx, start[1] + dy)
-            box = label.get_window_extent(renderer)
+            box = Text.get_window_extent(label, renderer)  # the text, not its leader line
             overlap = sum(_overlap(box, other) for other in placed)
             if best is None or overlap < best[0]:
                 best = (overlap, label.xyann)
@@ -746,7 +841,7 @@ def separate_labels(fig: Figure) -> list[Annotation]:
                 break
         assert best is not None
         label.xyann = best[1]
-        placed.append(label.get_window_extent(renderer))
+        placed.append(Text.get_window_extent(label, renderer))
     return movable
 
 

@@ -67,8 +67,7 @@ SMALLEST = 1e-12
 #: kind; ``table.kind.<name>`` in the catalogue names it.
 TABLE_KINDS: dict[str, tuple[str, frozenset[str]]] = {
     "problem": ("assur synthesize FILE",
-                frozenset({"control_points", "parameters", "allowable", "group_models",
-                           "search"})),
+                frozenset({"control_points", "parameters", "allowable", "search"})),
     "tracker": ("assur case tracker --table FILE", frozenset({"design_task"})),
     "impact": ("assur case impact --table FILE",
                frozenset({"lengths_mm", "masses_kg", "inertias_kg_mm2", "clearance_mm",

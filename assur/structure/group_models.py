@@ -314,8 +314,9 @@ def check_group_models(analysis: StructuralAnalysis,
     used: dict[int, int] = {}
     for index, given in enumerate(rows):
         links = _links(given)
-        label = f"{table}[{index}]" + (f" ({', '.join(map(str, links))})" if links else "")
         row = next((by_link[x] for x in links if x in by_link), None)
+        label = f"{table}[{index}]" + (f" ({row.label})" if row is not None else
+                                       f" ({', '.join(map(str, links))})" if links else "")
         if row is None:
             out.append(field_mismatch(index, label, "links", None, links or None,
                                       Message("ident.why.no_group"), Message("ident.a_link")))
@@ -377,9 +378,16 @@ def _check_row(chain: Chain, row: GroupModelRow, given: Mapping[str, Any], index
         if letter in given:
             why = _base_wrong(chain, getattr(row, letter), given[letter], letter, row)
             if why is not None:
-                expected = getattr(row, letter)
-                miss(letter, None if expected is None else expected.to_dict(), given[letter], why)
+                miss(letter, _base_value(getattr(row, letter)), given[letter], why)
     return out
+
+
+def _base_value(point: BasePoint | None) -> object:
+    """A base point as a student writes it: the carrier link, with the hinge when the
+    course puts the point at one."""
+    if point is None or point.at is None:
+        return None if point is None else point.link
+    return {"link": point.link, "at": point.at}
 
 
 def _same_pairs(chain: Chain, value: Any, expected: tuple[PairId, ...]) -> bool:

@@ -30,11 +30,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from assur.errors import StructureError
 from assur.io.files import atomic_write_bytes
 from assur.kinds import KINDS
 from assur.model import Chain, LinkId, Pair, PairId, PairType, id_key, joint_key
 from assur.plot.formats import PICTURE_FORMATS, PictureFormatError, figure_bytes, picture_format
-from assur.errors import StructureError
 from assur.structure.classification import roman as roman_numeral
 from assur.structure.classification import subscript
 from assur.structure.group_models import GroupModelRow, group_models_table
@@ -558,14 +558,30 @@ def _draw_points(ax: Axes, chain: Chain, analysis: StructuralAnalysis,
         if named is None:
             ax.plot([at.real], [at.imag], marker="x", ms=5, mew=1.2, color=_POINT_COLOUR,
                     zorder=7)
-        # a leader line joins the name to its point wherever the name is moved to
-        ax.annotate(name, (at.real, at.imag), xytext=(8, 8), textcoords="offset points",
+        ax.annotate(name, (at.real, at.imag), xytext=(6, 6), textcoords="offset points",
                     fontsize=LABEL_PT, fontstyle="italic", fontweight="bold",
                     color=_POINT_COLOUR, zorder=8, gid="label-point",
                     bbox={"boxstyle": "round,pad=0.05", "fc": "white", "ec": "none",
-                          "alpha": 0.8},
-                    arrowprops={"arrowstyle": "-", "color": _POINT_COLOUR, "lw": 0.6,
-                                "shrinkA": 0, "shrinkB": 3})
+                          "alpha": 0.8})
+
+
+def _draw_leaders(labels: Iterable[Annotation]) -> None:
+    """A thin line from each point's name, where :func:`separate_labels` put it, to its
+    point (none when the name sits next to it)."""
+    from matplotlib.lines import Line2D
+
+    for label in labels:
+        if label.get_gid() != "label-point" or label.axes is None:
+            continue
+        ax = label.axes
+        box = label.get_window_extent()
+        x, y = ax.transData.transform(label.xy)
+        near = (min(max(x, box.x0), box.x1), min(max(y, box.y0), box.y1))
+        if math.dist((x, y), near) < 6.0 * ax.figure.dpi / 72.0:
+            continue
+        (x0, y0), (x1, y1) = ax.transData.inverted().transform([(x, y), near])
+        ax.add_line(Line2D([x0, x1], [y0, y1], color=_POINT_COLOUR, lw=0.6, zorder=7,
+                           gid="leader"))
 
 
 def draw_structural_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Axes | None = None,
@@ -794,7 +810,7 @@ def scheme_figure(chain: Chain, analysis: StructuralAnalysis, *, lang: str = "en
         ax = fig.add_subplot()
         draw = draw_structural_scheme if which == "structural" else draw_formalised_scheme
         draw(chain, analysis, ax=ax, lang=lang)
-    separate_labels(fig)
+    _draw_leaders(separate_labels(fig))
     return fig
 
 
@@ -811,7 +827,7 @@ def separate_labels(fig: Figure) -> list[Annotation]:
         The labels moved, placed.
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.text import Annotation, Text
+    from matplotlib.text import Annotation
     from matplotlib.transforms import Bbox
 
     renderer = FigureCanvasAgg(fig).get_renderer()
@@ -833,7 +849,7 @@ def separate_labels(fig: Figure) -> list[Annotation]:
         shifts = (*_SHIFTS, *_FAR) if label.get_gid() == "label-point" else _SHIFTS
         for dx, dy in shifts:
             label.xyann = (start[0] + dx, start[1] + dy)
-            box = Text.get_window_extent(label, renderer)  # the text, not its leader line
+            box = label.get_window_extent(renderer)  # the text and its leader line
             overlap = sum(_overlap(box, other) for other in placed)
             if best is None or overlap < best[0]:
                 best = (overlap, label.xyann)
@@ -841,7 +857,7 @@ def separate_labels(fig: Figure) -> list[Annotation]:
                 break
         assert best is not None
         label.xyann = best[1]
-        placed.append(Text.get_window_extent(label, renderer))
+        placed.append(label.get_window_extent(renderer))
     return movable
 
 

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, overload
 
 from assur.kinds import kind_of
 from assur.model import Chain, LinkId, Pair, PairId, PairType, id_key
@@ -264,6 +264,16 @@ def _attachment(analysis: StructuralAnalysis, link: LinkId, own: set[PairId]
 
 
 # ----------------------------------------------------------------------------- the check
+
+
+@overload
+def check_group_models(analysis: StructuralAnalysis, rows: Iterable[Mapping[str, Any]], *,
+                       table: str = ...) -> list[Mismatch]: ...
+
+
+@overload
+def check_group_models(analysis: StructuralAnalysis, rows: None, *,
+                       table: str = ...) -> None: ...
 
 
 def check_group_models(analysis: StructuralAnalysis,

@@ -19,12 +19,14 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import Any
 
 import pytest
 import yaml
 
 from assur import analyse_structure, load_chain
-from assur.structure.group_models import check_group_models, group_models_table
+from assur.structure.analysis import StructuralAnalysis
+from assur.structure.group_models import GroupModelRow, check_group_models, group_models_table
 from assur.structure.identification import check_identification, identification_table
 from synthesis.cli import main
 
@@ -54,16 +56,16 @@ def _pair(a: int, b: int) -> str:
 
 
 @pytest.fixture(scope="module")
-def analysis():
+def analysis() -> StructuralAnalysis:
     return analyse_structure(load_chain(COURSE))
 
 
 @pytest.fixture(scope="module")
-def models(analysis):
+def models(analysis: StructuralAnalysis) -> dict[int, GroupModelRow]:
     return {row.L: row for row in group_models_table(analysis)}
 
 
-def test_six_groups_in_every_output(capsys) -> None:
+def test_six_groups_in_every_output(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["check", str(COURSE), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["N_Q"] == 6
     assert main(["check", str(COURSE)]) == 0
@@ -74,13 +76,13 @@ def test_six_groups_in_every_output(capsys) -> None:
     assert "Число групп N_Q = 6" in capsys.readouterr().out
 
 
-def test_every_group_has_a_record_with_its_place_in_layering(models) -> None:
+def test_every_group_has_a_record_with_its_place_in_layering(models: dict[int, GroupModelRow]) -> None:
     assert sorted(models) == [0, 1, 2, 3, 4, 5]
     assert [models[kind].k for kind in LAYERING] == [1, 2, 3, 4, 5, 6]
 
 
 @pytest.mark.parametrize("row", TABLE_1_6, ids=lambda r: f"L{r[0]}")
-def test_pairs_are_those_table_1_6_implies(models, row) -> None:
+def test_pairs_are_those_table_1_6_implies(models: dict[int, GroupModelRow], row: tuple[Any, ...]) -> None:
     kind, i_1, j_1, i, j, i_plus, j_plus, _ = row
     built = models[kind]
     assert (built.i, built.j) == (i, j)
@@ -95,7 +97,7 @@ def test_pairs_are_those_table_1_6_implies(models, row) -> None:
             assert point is not None and point.hinges == (_pair(link, later),)
 
 
-def test_l1_point_on_rocker_3_is_not_fixed(models) -> None:
+def test_l1_point_on_rocker_3_is_not_fixed(models: dict[int, GroupModelRow]) -> None:
     point = models[1].M
     assert point is not None and point.link == 3
     assert point.hinges == () and point.guides == ("3-4",) and not point.fixed
@@ -109,7 +111,8 @@ def test_l1_point_on_rocker_3_is_not_fixed(models) -> None:
     (5, "A", "A_6", 0, None),      # the base of S, on the frame
     (5, "B", "B_6", 10, "8-10"),   # the base of T: the hinge of j = 10 with link 8
 ])
-def test_base_points_of_the_course(models, kind, letter, name, link, at) -> None:
+def test_base_points_of_the_course(models: dict[int, GroupModelRow], kind: int, letter: str, name: str,
+                                    link: int, at: str | None) -> None:
     point = getattr(models[kind], letter)
     assert point is not None
     assert (point.name, point.link, point.at) == (name, link, at)
@@ -117,11 +120,12 @@ def test_base_points_of_the_course(models, kind, letter, name, link, at) -> None
 
 @pytest.mark.parametrize(("kind", "letter"), [(0, "A"), (1, "A"), (1, "B"), (2, "B"),
                                               (3, "B")])
-def test_no_base_point_without_a_guide(models, kind, letter) -> None:
+def test_no_base_point_without_a_guide(models: dict[int, GroupModelRow], kind: int, letter: str
+                                      ) -> None:
     assert getattr(models[kind], letter) is None
 
 
-def test_student_copy_agrees_and_is_reported(capsys) -> None:
+def test_student_copy_agrees_and_is_reported(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["check", str(COURSE_TABLE), "--json"]) == 0
     found = json.loads(capsys.readouterr().out)
     assert found["group_models_check"] == []
@@ -135,7 +139,8 @@ def test_student_copy_agrees_and_is_reported(capsys) -> None:
     (4, "k", 4),            # L2 is fifth in layering
     (5, "B", {"link": 10, "at": "10-11"}),   # the course puts B_6 at the hinge 8-10
 ])
-def test_one_wrong_field_is_named(analysis, row, key, wrong) -> None:
+def test_one_wrong_field_is_named(analysis: StructuralAnalysis, row: int, key: str,
+                                  wrong: Any) -> None:
     given = yaml.safe_load(COURSE_TABLE.read_text(encoding="utf-8"))["group_models"]
     given[row][key] = wrong
     found = check_group_models(analysis, given)
@@ -143,13 +148,13 @@ def test_one_wrong_field_is_named(analysis, row, key, wrong) -> None:
     assert f"'{key}'" in found[0].text() and f"'{key}'" in found[0].text("ru")
 
 
-def test_a_missing_record_is_reported(analysis) -> None:
+def test_a_missing_record_is_reported(analysis: StructuralAnalysis) -> None:
     given = yaml.safe_load(COURSE_TABLE.read_text(encoding="utf-8"))["group_models"]
     found = check_group_models(analysis, given[:5])
     assert [(m.field, m.expected) for m in found] == [("row", "L5(11,10)")]
 
 
-def test_table_1_6_in_course_order_without_invented_codes(capsys) -> None:
+def test_table_1_6_in_course_order_without_invented_codes(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["check", str(COURSE)]) == 0
     lines = capsys.readouterr().out.splitlines()
     start = next(k for k, line in enumerate(lines) if "table 1.6" in line)
@@ -165,14 +170,14 @@ def test_table_1_6_in_course_order_without_invented_codes(capsys) -> None:
     assert [int(line.split()[0]) for line in lines[start + 2:start + 8]] == LAYERING
 
 
-def test_codes_only_where_the_caller_knows_the_output(analysis) -> None:
+def test_codes_only_where_the_caller_knows_the_output(analysis: StructuralAnalysis) -> None:
     assert all(row.out_code is None for row in identification_table(analysis))
     # the caller knows the output of group L1 (2, 3), keyed by its links (i, j)
     rows = identification_table(analysis, out_codes={(2, 3): "psi3"})
     assert [(row.L, row.out_code) for row in rows if row.out_code] == [(1, "psi3")]
 
 
-def test_student_codes_checked_for_form_or_against_a_known_output(analysis) -> None:
+def test_student_codes_checked_for_form_or_against_a_known_output(analysis: StructuralAnalysis) -> None:
     given = [row.to_dict() for row in load_chain(COURSE_TABLE).identification or ()]
     assert check_identification(analysis, given) == []   # the course's own codes
     given[1]["out_code"] = "8,2"
@@ -182,7 +187,7 @@ def test_student_codes_checked_for_form_or_against_a_known_output(analysis) -> N
     assert [(m.field, m.expected, m.found) for m in found] == [("out_code", "psi3", "8;2")]
 
 
-def test_points_are_marked_on_both_schemes_apart(analysis) -> None:
+def test_points_are_marked_on_both_schemes_apart(analysis: StructuralAnalysis) -> None:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.text import Text
 

@@ -208,3 +208,14 @@ def test_points_are_marked_on_both_schemes_apart(analysis: StructuralAnalysis) -
     shown = " ".join(t.get_text() for t in formalised.texts)
     for name in ("N₁", "M₂~", "A₃ ∈ 3", "B₃ ∈ 0", "A₄ = 2-6", "A₅ ∈ 0", "B₆ = 8-10"):
         assert name in shown
+
+
+def test_coursework_report_shows_table_1_5_and_n_q() -> None:
+    from synthesis.app.coursework import build_report, render_html
+
+    report = build_report(COURSE_TABLE, points=8, lang="ru")
+    assert report.facts["N_Q"] == 6
+    assert report.facts["group_models_check"] == []
+    page = render_html(report)
+    assert 'id="group-models"' in page and 'id="student-models"' in page
+    assert "A_3 ∈ 3" in page and "B_6 = 8-10" in page

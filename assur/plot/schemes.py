@@ -522,7 +522,7 @@ def scheme_points(chain: Chain, analysis: StructuralAnalysis
     >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/slider_crank.yaml"
     >>> analysis = assur.analyse_structure(assur.load_chain(table))
     >>> scheme_points(analysis.chain, analysis)
-    [('N₁', 'B', 'B'), ('N₂', 'C', 'C'), ('A₂', None, 'D')]
+    [('N₁', 'B', 'B'), ('A₂', None, 'D')]
     """
     del chain  # the analysis holds it; the signature is that of the drawings
     found: list[tuple[str, PairId | None, PairId]] = []

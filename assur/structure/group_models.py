@@ -169,8 +169,7 @@ class GroupModelRow:
         def shown(value: object) -> str:
             return "–" if value is None else str(value)
 
-        roles = [(role, pair) for role, pair in self.pairs]
-        by_side = {side: next((f"{r} {p}" for r, p in roles if r.endswith(side)), None)
+        by_side = {side: next((f"{r} {p}" for r, p in self.pairs if r.endswith(side)), None)
                    for side in ("_i", "C", "_c", "_j")}
         internal = by_side["C"] or by_side["_c"]
         return [str(self.k), str(self.L), str(self.i), shown(self.j), shown(by_side["_i"]),
@@ -251,12 +250,9 @@ def _row(analysis: StructuralAnalysis, group: AssurGroup, k: int) -> GroupModelR
 
 def _attachment(analysis: StructuralAnalysis, link: LinkId, own: set[PairId]
                 ) -> Attachment | None:
-    """Where links of later groups join ``link``: its pairs outside the group whose other
-    link is not earlier (the frame and earlier links are what the group attaches to)."""
-    group = analysis.group_of(link)
-    external = {pair for pair, _, _ in group.external} if group is not None else set()
-    later = [pair for pair in analysis.chain.pairs_of(link)
-             if pair.id not in own and pair.id not in external]
+    """Where links of later groups join ``link``: its pairs that are not the group's own
+    (the group reaches the frame and earlier links through its external pairs only)."""
+    later = [pair for pair in analysis.chain.pairs_of(link) if pair.id not in own]
     guides = tuple(sorted((p.id for p in later if p.type is PairType.P and p.guide == link),
                           key=id_key))
     hinges = tuple(sorted((p.id for p in later if p.id not in guides), key=id_key))

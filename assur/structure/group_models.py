@@ -15,8 +15,9 @@ the record ``method.md`` §3.6 reconstructs, one per group in layering order, L0
   groups join them; a point is fixed where they are hinged and "не фиксированное" where a
   later link slides on a guide the link carries (link 3 of fig. 1.25);
 * ``A``, ``B``: the base points A_k, B_k of the guides of the group's prismatic pairs, on the
-  link that carries each guide: A_k for the guide on the side of link i, B_k for that of link
-  j. The course fixes two of them at a hinge: L3 "базовая точка … должна совпадать с" the
+  link that carries each guide: A_k for the guide link i slides on, B_k for the one link j
+  slides on, the internal guide taking the letter left (L3: A_k, L5: B_k). The course fixes
+  two of them at a hinge: L3 "базовая точка … должна совпадать с" the
   kulisa's hinge H_i, L5 takes "за базу отсчета" of T the hinge H_j; the others lie anywhere
   on their carrier (L4: "удобнее совместить" A_3 with a hinge of link 3, B_3 "в любом месте").
 
@@ -227,21 +228,22 @@ def _row(analysis: StructuralAnalysis, group: AssurGroup, k: int) -> GroupModelR
                   if (pair_id := side_pair[side]) is not None)
     chain = analysis.chain
     own = {pair for _, pair in pairs}
-    hinge = {"i": group.pair_i, "j": group.pair_j}
+    hinge = {group.i: group.pair_i, group.j: group.pair_j}
     base: dict[str, BasePoint] = {}
-    for _, own_id in pairs:
-        pair = chain.pair(own_id)
-        if pair.type is not PairType.P or pair.guide is None:
-            continue
-        # the guide's side: the group's link that carries it, else the link sliding on it
-        carrier = pair.guide
-        side = ("i" if carrier == group.i else "j" if carrier == group.j else
-                "i" if group.i in pair.links else "j")
-        at = hinge[side] if carrier in (group.i, group.j) else None
+    # the guides of the external prismatic pairs of i and j first: A_k on the side of i,
+    # B_k on the side of j; the internal guide takes the letter left (L3: A_k, L5: B_k)
+    guides = [(side, pair_id) for side, pair_id in (("A", group.pair_i), ("B", group.pair_j),
+                                                   ("", group.pair_c))
+              if pair_id is not None and chain.pair(pair_id).type is PairType.P]
+    for side, pair_id in guides:
+        carrier = chain.pair(pair_id).guide
+        assert carrier is not None  # a prismatic pair names the link carrying its guide
+        letter = side or ("B" if "A" in base else "A")
+        # a guide the group's own link carries: the course puts the base at its hinge
+        at = hinge.get(carrier)
         if at is not None and chain.pair(at).type is not PairType.R:
             at = None
-        letter = "A" if side == "i" else "B"
-        base[letter] = BasePoint(letter, k, own_id, carrier, at)
+        base[letter] = BasePoint(letter, k, pair_id, carrier, at)
     return GroupModelRow(k, group.kind or 0, group.i, group.j, pairs,
                          _attachment(analysis, group.i, own),
                          _attachment(analysis, group.j, own) if group.j is not None else None,

@@ -219,3 +219,14 @@ def test_coursework_report_shows_table_1_5_and_n_q() -> None:
     page = render_html(report)
     assert 'id="group-models"' in page and 'id="student-models"' in page
     assert "A_3 ∈ 3" in page and "B_6 = 8-10" in page
+
+
+def test_rpp_with_the_slot_on_i_has_both_base_points() -> None:
+    """A Scotch yoke's L5: the yoke 3 (i) slides on a frame guide and carries the slot of the
+    block 2 (j). As in the course's L5, A_k is the base of S on the frame guide and B_k the
+    base of T on the link carrying the internal guide, here anywhere on the yoke (no hinge)."""
+    table = ROOT / "input_tables" / "scotch_yoke.yaml"
+    row = group_models_table(analyse_structure(load_chain(table)))[1]
+    assert (row.L, row.i, row.j) == (5, 3, 2)
+    assert row.A is not None and (row.A.name, row.A.link, row.A.at) == ("A_2", 0, None)
+    assert row.B is not None and (row.B.name, row.B.link, row.B.at) == ("B_2", 3, None)

@@ -9,6 +9,9 @@ they mean is lost from the text and a chain table names no output, so the progra
 from __future__ import annotations
 
 import json
+from pathlib import Path
+
+import pytest
 
 from synthesis.cli import main
 
@@ -23,13 +26,15 @@ TABLE_1_6 = [  # L, i-1, j-1, i, j, i+1, j+1, variant, out_code (none derivable)
 FIELDS = ("L", "i_minus_1", "j_minus_1", "i", "j", "i_plus_1", "j_plus_1", "variant", "out_code")
 
 
-def test_course_example_table_matches_table_1_6_with_variants(tables_dir, capsys) -> None:
+def test_course_example_table_matches_table_1_6_with_variants(
+        tables_dir: Path, capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["check", str(tables_dir / "course_11_link.yaml"), "--json"]) == 0
     rows = json.loads(capsys.readouterr().out)["identification_table"]
     assert [tuple(row[f] for f in FIELDS) for row in rows] == TABLE_1_6
 
 
-def test_mirrored_sketch_flips_the_rrr_variant(tables_dir, tmp_path, capsys) -> None:
+def test_mirrored_sketch_flips_the_rrr_variant(tables_dir: Path, tmp_path: Path,
+                                               capsys: pytest.CaptureFixture[str]) -> None:
     """Mirroring every joint about the x-axis puts C on the other side of H_i→H_j."""
     import yaml
 

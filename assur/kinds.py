@@ -2,8 +2,8 @@
 
 A :class:`GroupKind` holds what the program knows of one kind of group: its names in every
 language (catalogue codes), the pair pattern that classification recognises, the roles of
-its pairs, the parameter columns of ``method.md`` §4.3, the assembly variants and output code
-of the identification table, the pairs rebuilt from an identification row and the existence
+its pairs, the parameter columns of ``method.md`` §4.3, the assembly variants of the
+identification table, the pairs rebuilt from an identification row and the existence
 condition. Structure, identification, kinematics, existence, transmission, schemes and
 reports look a kind up here; none of them tests ``kind == …``.
 
@@ -83,8 +83,6 @@ class GroupKind:
     variants : tuple
         Allowed values of the identification table's ``variant``; ``default_variant`` is
         printed when the dimensions are not known.
-    out_code : str
-        The output-parameter code of table 1.6.
     condition : str
         The existence inequality, as printed in reports.
     row_pairs : tuple of three RowPair, or None
@@ -114,7 +112,6 @@ class GroupKind:
     guides: Mapping[str, GuideColumns] = field(default_factory=dict)
     variants: tuple[int | None, ...] = (None,)
     default_variant: int | None = None
-    out_code: str = ""
     condition: str = "—"
     row_pairs: tuple[RowPair, RowPair, RowPair] | None = None
     j_rule: str = ""
@@ -157,30 +154,30 @@ _P_PREV: RowPair = ("P", "prev")
 #: The kinds of the DGTU method: L0 (input group) and the dyads L1–L5.
 KINDS: Mapping[int, GroupKind] = {
     0: GroupKind(0, "L0", "", 1, roles=(("H_i", "i"),),
-                 columns=("x_O1", "y_O1", "l_1", "phi_1_0"), out_code="0"),
+                 columns=("x_O1", "y_O1", "l_1", "phi_1_0")),
     1: GroupKind(1, "L1", "RRR", 2, ("R", "RR"), (("H_i", "i"), ("H_j", "j"), ("C", "c")),
                  (*_HI, *_HJ, "l_i", "l_j", *_TAIL), {"i": _HI, "j": _HJ},
-                 variants=(1, -1), default_variant=1, out_code="8;2",
+                 variants=(1, -1), default_variant=1,
                  condition="|l_i − l_j| ≤ |H_iH_j| ≤ l_i + l_j,  |cos ∠H_i| ≤ 1 − δ",
                  row_pairs=(_R, _R, _R), j_rule="frame_last"),
     2: GroupKind(2, "L2", "RRP", 2, ("R", "PR"), (("P_i", "i"), ("C", "c"), ("H_j", "j")),
                  (*_HJ, "l_j", "x_Ak", "y_Ak", "beta_g", "e", *_TAIL), {"j": _HJ},
                  {"i": ("x_Ak", "y_Ak", "beta_g", "e")}, variants=(1, -1), default_variant=1,
-                 out_code="7;3", condition="|h| ≤ (1 − δ)·l_j",
+                 condition="|h| ≤ (1 − δ)·l_j",
                  row_pairs=(_P_PREV, _R, _R), j_rule="revolute"),
     3: GroupKind(3, "L3", "RPR", 2, ("P", "RR"), (("H_i", "i"), ("P_c", "c"), ("H_j", "j")),
                  (*_HI, *_HJ, "d", *_TAIL), {"i": _HI, "j": _HJ}, variants=(0, 1, -1),
-                 default_variant=0, out_code="5", condition="|d| ≤ (1 − δ)·|H_iH_j|",
+                 default_variant=0, condition="|d| ≤ (1 − δ)·|H_iH_j|",
                  row_pairs=(_R, ("P", "i"), _R), j_rule="not_carrier"),
     4: GroupKind(4, "L4", "PRP", 2, ("R", "PP"), (("P_i", "i"), ("C", "c"), ("P_j", "j")),
                  ("x_Ak", "y_Ak", "beta_i", "e_i", "x_Bk", "y_Bk", "beta_j", "e_j", *_TAIL),
                  guides={"i": ("x_Ak", "y_Ak", "beta_i", "e_i"),
                          "j": ("x_Bk", "y_Bk", "beta_j", "e_j")},
-                 out_code="4", condition="|sin(θ_j − θ_i)| ≥ δ",
+                 condition="|sin(θ_j − θ_i)| ≥ δ",
                  row_pairs=(_P_PREV, _R, _P_PREV), j_rule="frame_first"),
     5: GroupKind(5, "L5", "RPP", 2, ("P", "PR"), (("P_i", "i"), ("P_c", "c"), ("H_j", "j")),
                  (*_HJ, "gamma", "x_Ak", "y_Ak", "beta_S", "e", *_TAIL), {"j": _HJ},
-                 {"i": ("x_Ak", "y_Ak", "beta_S", "e")}, out_code="5",
+                 {"i": ("x_Ak", "y_Ak", "beta_S", "e")},
                  condition="|sin γ| ≥ δ", row_pairs=(_P_PREV, ("P", "j"), _R),
                  j_rule="revolute"),
 }

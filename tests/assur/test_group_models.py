@@ -230,3 +230,14 @@ def test_rpp_with_the_slot_on_i_has_both_base_points() -> None:
     assert (row.L, row.i, row.j) == (5, 3, 2)
     assert row.A is not None and (row.A.name, row.A.link, row.A.at) == ("A_2", 0, None)
     assert row.B is not None and (row.B.name, row.B.link, row.B.at) == ("B_2", 3, None)
+
+
+def test_a_drive_between_moving_links_has_no_l0(capsys: pytest.CaptureFixture[str]) -> None:
+    """The hydraulic boom is driven by its cylinder, "входное звено не связано со стойкой":
+    its one group is the dyad with the frozen cylinder, and no input-link group is counted."""
+    table = ROOT / "input_tables" / "hydraulic_boom.yaml"
+    assert main(["check", str(table), "--json"]) == 0
+    found = json.loads(capsys.readouterr().out)
+    assert found["N_Q"] == len(found["groups"]) == 1 and found["input_groups"] == []
+    assert main(["check", str(table)]) == 0
+    assert "N_Q = 1 (no input-link group L0" in capsys.readouterr().out

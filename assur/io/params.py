@@ -74,6 +74,9 @@ class Cell:
     both_forms : bool
         Whether the cell is ``[v, v, 0]`` with v < 0, which the program's encoding would
         read as a range (v to 0, from v): it is read as the course's fixed value v.
+    ranged : bool
+        Whether the cell is written as a range of the program's, right or wrong (three
+        numbers, lower < upper or out of order, none of the course's forms).
     """
 
     value: Any
@@ -81,6 +84,7 @@ class Cell:
     problem: Message | None = None
     warning: Message | None = None
     both_forms: bool = False
+    ranged: bool = False
 
 
 def read_cell(raw: Any) -> Cell:
@@ -141,12 +145,13 @@ def read_cell(raw: Any) -> Cell:
     if lower > upper and upper == 0:
         return Cell(raw, problem=Message("params.fixed_form", {"found": found}))
     if lower > upper:
-        return Cell(raw, problem=Message("problem.bounds_order", {"found": found}))
+        return Cell(raw, problem=Message("problem.bounds_order", {"found": found}), ranged=True)
     if not lower <= initial <= upper:
-        return Cell(raw, problem=Message("problem.initial_outside", {"found": found}))
+        return Cell(raw, problem=Message("problem.initial_outside", {"found": found}),
+                    ranged=True)
     if lower == upper:
         return Cell(raw[0])
-    return Cell(raw[0], (initial, lower, upper))
+    return Cell(raw[0], (initial, lower, upper), ranged=True)
 
 
 def _supplied(text: str) -> Cell | None:
@@ -198,10 +203,10 @@ def read_params(source: str, label: str, data: Any,
         cell = read_cell(raw)
         if cell.warning is not None and warnings is not None:
             warnings.append(Issue(at, cell.warning))
-        if cell.problem is not None:
-            reader.problem(at, cell.problem.code, **cell.problem.data)
-        elif cell.bounds is not None:
+        if cell.ranged:
             reader.problem(at, "model.range_in_problem", found=str(raw))
+        elif cell.problem is not None:
+            reader.problem(at, cell.problem.code, **cell.problem.data)
         elif cell.value == SUPPLIED:
             supplied.add(str(column))
         elif is_number(cell.value):

@@ -20,9 +20,10 @@ complete example of each task class):
     defines (:mod:`synthesis.problem_chain`; the only form for triads and class IV groups).
 ``group_models``
     Table 1.5, the group-model identification array (optional): rows ``{links: [i, j],
-    <column>: value, …}`` (``links: [1]`` for L0), each value a text (a pair or a point:
-    ``"2-3"``, ``N``), a number or null (the course's dash); read into
-    :class:`GroupModelRow` and checked against the groups of the mechanism.
+    <column>: value, …}`` (``links: [1]`` for L0; or the columns ``i``, ``j``), each value
+    a text (a pair or a point: ``"2-3"``), a number, null (the course's dash), or a list or
+    a mapping of these; read into :class:`GroupModelRow` and checked against the groups of
+    the mechanism.
 ``output``
     What the task controls: ``{link: L}`` (its angle ψ, class 1; its slider displacement S,
     class 2) or ``{link: L, point: N|M}`` (tracing point Ж, classes 3–4).
@@ -137,8 +138,11 @@ class Parameter:
         return self.name.rsplit(".", 1)[1]
 
 
-#: A cell of table 1.5: a text (a pair, a point), a number, or None (the course's dash).
-ModelValue = str | int | float | None
+#: A plain cell of table 1.5: a text (a pair, a point), a number, or None (the course's dash).
+ModelScalar = str | int | float | None
+#: A cell of table 1.5: a plain one, a list of them (the pairs of an attachment point), or a
+#: mapping of them (a base point ``{link: 3, at: 3-0}``).
+ModelValue = ModelScalar | list[ModelScalar] | dict[str, ModelScalar]
 
 
 @dataclass(frozen=True)

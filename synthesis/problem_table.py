@@ -878,18 +878,21 @@ def _read_allowable(top: Node, groups: dict[GroupKey, Any]
 
 
 def _read_group_models(top: Node, groups: dict[GroupKey, Any]) -> tuple[GroupModelRow, ...]:
-    """Table 1.5: one row per group, named by its links as the other tables name it, every
-    other column a text, a number or null; a group named twice is told.  Whether the
-    columns are the ones the group's model has is judged against the table the structure
-    analysis builds (:func:`_check_group_models`)."""
+    """Table 1.5: one row per group, named by its links as the other tables name it
+    (``links: [i, j]``), or by its columns ``i`` and ``j`` as the printed table has them;
+    every other column a :data:`~synthesis.problem.ModelValue` (a text, a number, null, a
+    list of these, or a mapping of these such as ``{link: 3, at: 3-0}``); a group named
+    twice is told.  Whether the columns are the ones the group's model has is judged
+    against the table the structure analysis builds (:func:`_check_group_models`)."""
     out: list[GroupModelRow] = []
     for row in top.rows("group_models", None, required=False):
-        key = _group_of(row, groups)
+        key = _group_of(row, groups) if row.has("links") or not row.has("i") \
+            else _group_by_roles(row, groups)
         fields = {}
         for column, value in row.mapping.items():
             if column == "links":
                 continue
-            if value is None or isinstance(value, str) or is_number(value):
+            if _model_value(value):
                 fields[str(column)] = value
             else:
                 top.reader.problem(f"{row.location} {column!r}", "table.wrong_kind",
@@ -902,6 +905,36 @@ def _read_group_models(top: Node, groups: dict[GroupKey, Any]) -> tuple[GroupMod
             continue
         out.append(GroupModelRow(key, "", fields, row.location))
     return tuple(out)
+
+
+def _group_by_roles(row: Node, groups: dict[GroupKey, Any]) -> GroupKey | None:
+    """The group of a row of table 1.5 that names its links in the columns ``i`` and ``j``
+    (``j`` null or absent for L0)."""
+    links = [row.mapping.get(column) for column in ("i", "j") if row.mapping.get(column)
+             is not None]
+    if not all(map(_is_link, links)):
+        row.reader.problem(f"{row.location} 'i'", "table.wrong_kind",
+                           expected=Message("value.kind.id"), found=describe(links[0]))
+        return None
+    key = tuple(normalise_id(link) for link in links)
+    if key not in groups:
+        row.reader.problem(f"{row.location} 'i'", "problem.links_unknown", links=list(key),
+                           known=", ".join(str(list(k)) for k in groups))
+        return None
+    return key
+
+
+def _model_value(value: Any, depth: int = 0) -> bool:
+    """Whether ``value`` may stand in a cell of table 1.5: a text, a number or null, or
+    (not nested further) a list or a mapping of these."""
+    if value is None or isinstance(value, str) or is_number(value):
+        return True
+    if depth == 0 and isinstance(value, list):
+        return all(_model_value(item, 1) for item in value)
+    if depth == 0 and isinstance(value, dict):
+        return all(isinstance(key, str) and _model_value(item, 1)
+                   for key, item in value.items())
+    return False
 
 
 def _check_group_models(reader: TableReader, analysis: StructuralAnalysis,

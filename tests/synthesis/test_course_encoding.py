@@ -80,7 +80,8 @@ def _data(path: Path) -> dict[str, Any]:
     return data
 
 
-def test_bad_cells_of_a_problem_are_told_by_row_and_field_with_exit_2(tmp_path, capsys) -> None:
+def test_bad_cells_of_a_problem_are_told_by_row_and_field_with_exit_2(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     data = _data(COURSE)
     data["parameters"][1]["x_Hj"] = [0, "B", 0]
     data["parameters"][1]["y_Hj"] = [5, 3, 0]
@@ -115,7 +116,7 @@ def _synthesise(problem: Path, out: Path, capsys: pytest.CaptureFixture[str]) ->
 
 
 def test_the_course_encoding_synthesises_the_same_design_and_analyses_back(
-        tmp_path, capsys) -> None:
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     course = _synthesise(COURSE, tmp_path / "course.yaml", capsys)
     own = _synthesise(OWN, tmp_path / "own.yaml", capsys)
     assert course["design"] == own["design"]
@@ -132,16 +133,36 @@ def test_the_course_encoding_synthesises_the_same_design_and_analyses_back(
 
 
 def test_table_1_5_is_read_into_typed_rows() -> None:
-    (row,) = load_problem(ROCKER).group_models
-    assert (row.links, row.label, dict(row.fields)) == \
-        ((2, 3), "L1(2,3)", {"H_i": "1-2", "C": "2-3", "H_j": "3-0"})
-    assert row.as_row() == {"links": [2, 3], "H_i": "1-2", "C": "2-3", "H_j": "3-0"}
+    first, second = load_problem(ROCKER).group_models
+    assert (first.links, first.label, dict(first.fields)) == ((1,), "L0(1)", {"H_i": "0-1"})
+    assert (second.links, second.label, dict(second.fields)) == \
+        ((2, 3), "L1(2,3)", {"H_i": "1-2", "C": "2-3", "H_j": "3-0", "N": None, "M": None})
+    assert second.as_row() == {"links": [2, 3], "H_i": "1-2", "C": "2-3", "H_j": "3-0",
+                               "N": None, "M": None}
+    rows = load_problem(COURSE).group_models
+    assert [row.label for row in rows] == ["L0(1)", "L1(2,3)", "L4(4,5)", "L3(6,7)",
+                                           "L2(9,8)", "L5(11,10)"]
+    assert rows[3].fields["A"] == {"link": 6, "at": "2-6"}
+
+
+def test_a_row_of_table_1_5_may_name_its_group_by_i_and_j() -> None:
+    data = _data(ROCKER)
+    data["group_models"] = [{"k": 1, "L": 0, "i": 1, "j": None, "H_i": "0-1"},
+                            {"k": 2, "L": 1, "i": 2, "j": 3, "C": "2-3"}]
+    rows = problem_from_dict(data, "models.yaml", PROBLEMS).group_models
+    assert [(row.links, row.label) for row in rows] == [((1,), "L0(1)"), ((2, 3), "L1(2,3)")]
+    data["group_models"][1]["j"] = 4
+    with pytest.raises(TableError) as caught:
+        problem_from_dict(data, "models.yaml", PROBLEMS)
+    assert [issue.text() for issue in caught.value.issues] == [
+        ("group_models[1] 'i': no group of the mechanism has links [2, 4]; the groups are "
+        "[1], [2, 3]")]
 
 
 def test_a_bad_table_1_5_is_told_by_row_and_field() -> None:
     data = _data(ROCKER)
     data["group_models"] = [
-        {"links": [2, 3], "H_i": "1-2", "C": ["2-3"]},
+        {"links": [2, 3], "H_i": "1-2", "C": [["2-3"]]},
         {"links": [3, 2], "H_i": "1-2"},
         {"links": [2, 3], "N": None},
         "L1",
@@ -150,10 +171,11 @@ def test_a_bad_table_1_5_is_told_by_row_and_field() -> None:
         problem_from_dict(copy.deepcopy(data), "models.yaml", PROBLEMS)
     texts = [issue.text() for issue in caught.value.issues]
     assert texts == [
-        "group_models[0] 'C': expected a text (a pair or a point, such as '2-3' or N), a "
-        "number, or null (the course's dash); found a list of 1 item",
-        "group_models[1] 'links': no group of the mechanism has links [3, 2]; the groups are "
-        "[1], [2, 3]",
+        ("group_models[0] 'C': expected a text (a pair or a point, such as '2-3'), a number, "
+        "null (the course's dash), or a list or a mapping of these (such as {link: 3, at: "
+        "3-0}); found a list of 1 item"),
+        ("group_models[1] 'links': no group of the mechanism has links [3, 2]; the groups are "
+        "[1], [2, 3]"),
         "group_models[2] 'links': group [2, 3] already has a row of table 1.5",
         "group_models[3]: expected a row (a mapping such as {id: A, ...}); found 'L1' (a text)",
     ]

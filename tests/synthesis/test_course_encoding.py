@@ -179,3 +179,19 @@ def test_a_bad_table_1_5_is_told_by_row_and_field() -> None:
         "group_models[2] 'links': group [2, 3] already has a row of table 1.5",
         "group_models[3]: expected a row (a mapping such as {id: A, ...}); found 'L1' (a text)",
     ]
+
+
+def test_the_chain_form_takes_the_course_s_fixed_value_but_no_a() -> None:
+    """A chain-form problem's columns are the sketch's own: nothing is supplied by an earlier
+    group, so «А» is refused there, while [v, v, 0] fixes the value."""
+    data = _data(PROBLEMS / "class2_six_bar_triad.yaml")
+    data["parameters"][0]["x_D"] = [0, "A", 0]
+    with pytest.raises(TableError) as caught:
+        problem_from_dict(copy.deepcopy(data), "triad.yaml", PROBLEMS)
+    assert [issue.text() for issue in caught.value.issues] == [
+        "parameters[0] 'x_D': expected a number or [initial, lower, upper] (mm, degrees); "
+        "found [0, 'A', 0]"]
+    data["parameters"][0]["x_D"] = [110, 110, 0]
+    problem = problem_from_dict(data, "triad.yaml", PROBLEMS)
+    assert "III(2,3,4,5).x_D" not in problem.names
+    assert float(np.ravel(problem.model.params["III(2,3,4,5).x_D"])[0]) == 110.0

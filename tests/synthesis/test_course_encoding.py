@@ -189,8 +189,8 @@ def test_the_chain_form_takes_the_course_s_fixed_value_but_no_a() -> None:
     with pytest.raises(TableError) as caught:
         problem_from_dict(copy.deepcopy(data), "triad.yaml", PROBLEMS)
     assert [issue.text() for issue in caught.value.issues] == [
-        "parameters[0] 'x_D': expected a number or [initial, lower, upper] (mm, degrees); "
-        "found [0, 'A', 0]"]
+        ("parameters[0] 'x_D': expected a number or [initial, lower, upper] (mm, degrees); "
+        "found [0, 'A', 0]")]
     data["parameters"][0]["x_D"] = [110, 110, 0]
     problem = problem_from_dict(data, "triad.yaml", PROBLEMS)
     assert "III(2,3,4,5).x_D" not in problem.names

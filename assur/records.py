@@ -185,6 +185,7 @@ def analysis_record(result: Analysis) -> Record:
         out["tracing"][name] = entry
     out["pressure_angles"] = [
         {"group": p.label, "pair": p.pair, "binary_links": list(p.binary),
+         "guide_links": list(p.guides),
          "alpha_deg": floats(np.degrees(p.alpha)), "max_deg": number(math.degrees(p.maximum)),
          "allowed_deg": result.allowed_pressure[p.label]}
         for p in pressure_angles(motion)]

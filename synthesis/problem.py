@@ -19,7 +19,11 @@ complete example of each task class):
     groups are then named by the links of their labels and the columns are those the sketch
     defines (:mod:`synthesis.problem_chain`; the only form for triads and class IV groups).
 ``group_models``
-    Optional records of table 1.5, kept for the report.
+    Table 1.5, the group-model identification array (optional): rows ``{links: [i, j],
+    <column>: value, …}`` (``links: [1]`` for L0; or the columns ``i``, ``j``), each value
+    a text (a pair or a point: ``"2-3"``), a number, null (the course's dash), or a list or
+    a mapping of these; read into :class:`GroupModelRow` and checked against the groups of
+    the mechanism.
 ``output``
     What the task controls: ``{link: L}`` (its angle ψ, class 1; its slider displacement S,
     class 2) or ``{link: L, point: N|M}`` (tracing point Ж, classes 3–4).
@@ -66,6 +70,7 @@ import numpy as np
 import numpy.typing as npt
 
 from assur import KinematicModel
+from assur.errors import Issue
 from assur.io.reader import normalise_id
 from assur.model import DEFAULT_PRESSURE_ANGLE, LinkId, PairId, Student
 from assur.typing import ComplexArray, FloatArray
@@ -81,6 +86,7 @@ __all__ = [
     "OUTPUT_QUANTITIES",
     "ControlPoints",
     "GroupKey",
+    "GroupModelRow",
     "Output",
     "Parameter",
     "Problem",
@@ -130,6 +136,39 @@ class Parameter:
     def column(self) -> str:
         """Designation of the column, e.g. ``'l_i'``."""
         return self.name.rsplit(".", 1)[1]
+
+
+#: A plain cell of table 1.5: a text (a pair, a point), a number, or None (the course's dash).
+ModelScalar = str | int | float | None
+#: A cell of table 1.5: a plain one, a list of them (the pairs of an attachment point), or a
+#: mapping of them (a base point ``{link: 3, at: 3-0}``).
+ModelValue = ModelScalar | list[ModelScalar] | dict[str, ModelScalar]
+
+
+@dataclass(frozen=True)
+class GroupModelRow:
+    """One row of table 1.5 (the group-model identification array) as a problem gives it.
+
+    Attributes
+    ----------
+    links : tuple
+        The links of its group as the tables name them (``(1,)``, ``(2, 3)``).
+    label : str
+        The group's label in the mechanism (``'L1(2,3)'``).
+    fields : mapping
+        The row's other columns, in the order written, each a :data:`ModelValue`.
+    location : str
+        Where the row is (``group_models[1]``).
+    """
+
+    links: GroupKey
+    label: str
+    fields: Mapping[str, ModelValue]
+    location: str
+
+    def as_row(self) -> dict[str, object]:
+        """The row as written: ``links`` and the other columns."""
+        return {"links": list(self.links), **self.fields}
 
 
 @dataclass(frozen=True)
@@ -218,6 +257,11 @@ class Problem:
     student : Student or None
         The ``student:`` section, read by the chain tables' reader
         (:func:`assur.io.chain_table.read_student`); None when the table has none.
+    group_models : tuple of GroupModelRow
+        Table 1.5 as the problem gives it (empty when it gives none).
+    warnings : tuple of Issue
+        What the table reader read but warns of (the course's Cyrillic «А», a cell that is
+        a range of the program's and a fixed value of the course's alike).
     """
 
     source: str
@@ -238,10 +282,11 @@ class Problem:
     pressure_angles: Mapping[str, float] = field(default_factory=dict)
     rotations: Mapping[str, Mapping[str, float]] = field(default_factory=dict)
     workspace: Mapping[str, tuple[float, float, float, float]] = field(default_factory=dict)
-    group_models: tuple[Any, ...] = ()
+    group_models: tuple[GroupModelRow, ...] = ()
     search: Mapping[str, Any] = field(default_factory=dict)
     forces: ForceConditions | None = None
     student: Student | None = None
+    warnings: tuple[Issue, ...] = ()
 
     @property
     def output_unit(self) -> str:

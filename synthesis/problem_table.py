@@ -31,7 +31,7 @@ import math
 import os
 import re
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from itertools import pairwise
 from pathlib import Path
 from typing import Any
@@ -45,6 +45,7 @@ from assur import AssurError, KinematicModel, TableError
 from assur.errors import Issue
 from assur.io.chain_table import read_student
 from assur.io.general import read_box
+from assur.io.params import SUPPLIED, read_cell
 from assur.io.reader import (
     MISSING,
     Node,
@@ -55,6 +56,8 @@ from assur.io.reader import (
     positive,
     with_commas,
 )
+from assur.structure.analysis import StructuralAnalysis
+from assur.structure.identification import Mismatch
 from assur.text import Message
 from synthesis.force_conditions import read_force_conditions
 from synthesis.problem import (
@@ -63,6 +66,7 @@ from synthesis.problem import (
     SEARCH_FIELDS,
     ControlPoints,
     GroupKey,
+    GroupModelRow,
     Output,
     Parameter,
     Problem,
@@ -184,13 +188,15 @@ class _Mechanism:
 class _Form:
     """What the mechanism's form gives the rest of the reader: the groups by their links,
     the model of the initial design (or the error of another file), the bounds of the varied
-    columns, and the mechanism table the problem keeps."""
+    columns, the mechanism table the problem keeps, and the structural analysis the model
+    is built from."""
 
     groups: dict[GroupKey, Any]
     model: KinematicModel | None
     foreign: AssurError | None
     bounds: Bounds
     table: dict[str, Any]
+    analysis: StructuralAnalysis | None = None
 
 
 def _read(reader: TableReader, base: Path) -> Problem:
@@ -205,7 +211,7 @@ def _read(reader: TableReader, base: Path) -> Problem:
     output = _read_output(top, general.task_class, groups, quantity)
     control = _read_control(top, general.task_class, general.n_points, general.output)
     pressure, rotations, boxes = _read_allowable(top, groups)
-    models = tuple(top.get("group_models", kind="list", required=False, default=[]) or [])
+    models = _read_group_models(top, groups)
     search = _read_search(top)
     parameters: tuple[Parameter, ...] = ()
     labels: dict[GroupKey, str] = {}
@@ -220,6 +226,10 @@ def _read(reader: TableReader, base: Path) -> Problem:
         _check_rotations(reader, model, {labels[k]: v for k, v in rotations.items()})
         if output.link is not MISSING:
             _check_output(reader, model, output, general.task_class)
+        models = tuple(replace(row, label=labels.get(row.links, row.label)) for row in models)
+    if form.analysis is not None and models and not any(
+            issue.location.startswith("group_models") for issue in reader.issues):
+        _check_group_models(reader, form.analysis, models)
     forces = read_force_conditions(top, model)
     student = read_student(top)
     reader.raise_if_any()
@@ -236,7 +246,8 @@ def _read(reader: TableReader, base: Path) -> Problem:
         pressure_angles={labels[k]: v for k, v in pressure.items()},
         rotations={labels[k]: v for k, v in rotations.items()},
         workspace={labels[k]: v for k, v in boxes.items()},
-        group_models=models, search=search, forces=forces, student=student)
+        group_models=models, search=search, forces=forces, student=student,
+        warnings=tuple(reader.warnings))
 
 
 def _read_general(top: Node) -> _General:
@@ -292,12 +303,12 @@ def _identification_form(top: Node, mechanism: _Mechanism, general: _General) ->
     structure_ok = bool(mechanism.rows) and "parameters" not in top.misspelt and not any(
         issue.location.startswith(_STRUCTURE) for issue in reader.issues)
     start = len(reader.issues)
-    model, foreign = _build_model(reader, table, mechanism.source) if structure_ok \
-        else (None, None)
+    model, analysis, foreign = _build_model(reader, table, mechanism.source) if structure_ok \
+        else (None, None, None)
     if model is None and structure_ok:
         _tell_swapped_cells(reader, start, places)
         foreign = _own_cells(reader, start, foreign, places)
-    return _Form(groups, model, foreign, bounds, table)
+    return _Form(groups, model, foreign, bounds, table, analysis)
 
 
 def _own_cells(reader: TableReader, start: int, foreign: AssurError | None,
@@ -421,7 +432,7 @@ def _chain_form(top: Node, mechanism: _Mechanism, general: _General) -> _Form:
     replaces the sketch's value in the model of the initial design.
     """
     reader = top.reader
-    model, foreign = _build_model(reader, mechanism.data, mechanism.source)
+    model, analysis, foreign = _build_model(reader, mechanism.data, mechanism.source)
     if model is None:
         return _Form({}, None, foreign, {}, mechanism.data)
     groups: dict[GroupKey, Any] = {group_key(g): g.label for g in model.groups}
@@ -450,10 +461,12 @@ def _chain_form(top: Node, mechanism: _Mechanism, general: _General) -> _Form:
                 reader.problem(location, "higher.problem.cell", found=describe(value))
             else:
                 initial = _cell(reader, value, location, key, column, bounds)
-                if is_number(initial):
+                if initial == SUPPLIED:  # (the course's [0, A, 0]: the sketch gives it)
+                    reader.problem(location, "higher.problem.cell", found=with_commas(value))
+                elif is_number(initial):
                     values[name] = float(initial)
     return _Form(groups, model.with_params(values) if values else model, foreign, bounds,
-                 mechanism.data)
+                 mechanism.data, analysis)
 
 
 def _columns(model: KinematicModel, label: str) -> list[str]:
@@ -462,22 +475,24 @@ def _columns(model: KinematicModel, label: str) -> list[str]:
 
 
 def _build_model(reader: TableReader, data: dict[str, Any], source: str
-                 ) -> tuple[KinematicModel | None, AssurError | None]:
-    """The kinematic model of the initial design (built, not analysed).
+                 ) -> tuple[KinematicModel | None, StructuralAnalysis | None,
+                            AssurError | None]:
+    """The kinematic model of the initial design (built, not analysed), with the structural
+    analysis it is built from.
 
     Problems that :mod:`assur` finds in rows of this file join its list unchanged; an error
     of another file, or of the structure, is returned to be raised as it is.
     """
     try:
-        chain = assur.chain_from_dict(data, source=source)
-        return assur.build_model(assur.analyse_structure(chain)), None
+        analysis = assur.analyse_structure(assur.chain_from_dict(data, source=source))
+        return assur.build_model(analysis), analysis, None
     except TableError as exc:
         if exc.source != reader.source:
-            return None, exc
+            return None, None, exc
         reader.issues.extend(exc.issues)
     except assur.StructureError as exc:
-        return None, exc
-    return None, None
+        return None, None, exc
+    return None, None, None
 
 
 def _read_mechanism(reader: TableReader, top: Node, base: Path) -> _Mechanism:
@@ -614,21 +629,23 @@ def _merge_parameters(top: Node, mechanism: _Mechanism, groups: dict[GroupKey, A
 
 def _cell(reader: TableReader, value: Any, location: str, key: GroupKey, column: str,
           bounds: Bounds) -> Any:
-    """The plain value of one parameter cell; a ``[initial, lower, upper]`` cell is checked
-    and its bounds recorded.  Other values go to the kinematic model unchanged."""
-    if column == "tracing" or not isinstance(value, list):
+    """The plain value of one parameter cell, in the program's encoding or the course's
+    (:func:`assur.io.params.read_cell`): a range ``[initial, lower, upper]`` has its bounds
+    recorded, the course's ``[v, v, 0]`` and ``[0, A, 0]`` become ``v`` and ``'A'``.  A
+    list that is neither is told; other values go to the kinematic model unchanged."""
+    if column == "tracing":
         return value
-    if len(value) != 3 or not all(map(is_number, value)):
-        reader.problem(location, "problem.cell", found=with_commas(value))
+    cell = read_cell(value)
+    if cell.problem is not None:
+        reader.problem(location, cell.problem.code, **cell.problem.data)
         return value
-    initial, lower, upper = (float(v) for v in value)
-    if lower > upper:
-        reader.problem(location, "problem.bounds_order", found=value)
-    elif not lower <= initial <= upper:
-        reader.problem(location, "problem.initial_outside", found=value)
-    else:
-        bounds[key, column] = (initial, lower, upper)
-    return value[0]
+    if cell.warning is not None:
+        reader.warn(location, cell.warning.code, **cell.warning.data)
+    if cell.both_forms:
+        reader.warn(location, "params.both_forms", found=with_commas(value), v=value[0])
+    if cell.bounds is not None:
+        bounds[key, column] = cell.bounds
+    return cell.value
 
 
 def _check_varied(reader: TableReader, model: KinematicModel, bounds: Bounds,
@@ -858,6 +875,84 @@ def _read_allowable(top: Node, groups: dict[GroupKey, Any]
         if box is not None:
             boxes[key] = box
     return pressure, rotations, boxes
+
+
+def _read_group_models(top: Node, groups: dict[GroupKey, Any]) -> tuple[GroupModelRow, ...]:
+    """Table 1.5: one row per group, named by its links as the other tables name it
+    (``links: [i, j]``), or by its columns ``i`` and ``j`` as the printed table has them;
+    every other column a :data:`~synthesis.problem.ModelValue` (a text, a number, null, a
+    list of these, or a mapping of these such as ``{link: 3, at: 3-0}``); a group named
+    twice is told.  Whether the columns are the ones the group's model has is judged
+    against the table the structure analysis builds (:func:`_check_group_models`)."""
+    out: list[GroupModelRow] = []
+    for row in top.rows("group_models", None, required=False):
+        key = _group_of(row, groups) if row.has("links") or not row.has("i") \
+            else _group_by_roles(row, groups)
+        fields = {}
+        for column, value in row.mapping.items():
+            if column == "links":
+                continue
+            if _model_value(value):
+                fields[str(column)] = value
+            else:
+                top.reader.problem(f"{row.location} {column!r}", "table.wrong_kind",
+                                   expected=Message("group_models.cell"), found=describe(value))
+        if key is None:
+            continue
+        if any(done.links == key for done in out):
+            top.reader.problem(f"{row.location} 'links'", "group_models.repeated",
+                               links=list(key))
+            continue
+        out.append(GroupModelRow(key, "", fields, row.location))
+    return tuple(out)
+
+
+def _group_by_roles(row: Node, groups: dict[GroupKey, Any]) -> GroupKey | None:
+    """The group of a row of table 1.5 that names its links in the columns ``i`` and ``j``
+    (``j`` null or absent for L0)."""
+    links = [row.mapping.get(column) for column in ("i", "j") if row.mapping.get(column)
+             is not None]
+    if not all(map(_is_link, links)):
+        row.reader.problem(f"{row.location} 'i'", "table.wrong_kind",
+                           expected=Message("value.kind.id"), found=describe(links[0]))
+        return None
+    key = tuple(normalise_id(link) for link in links)
+    if key not in groups:
+        row.reader.problem(f"{row.location} 'i'", "problem.links_unknown", links=list(key),
+                           known=", ".join(str(list(k)) for k in groups))
+        return None
+    return key
+
+
+def _model_value(value: Any, depth: int = 0) -> bool:
+    """Whether ``value`` may stand in a cell of table 1.5: a text, a number or null, or
+    (not nested further) a list or a mapping of these."""
+    if value is None or isinstance(value, str) or is_number(value):
+        return True
+    if depth == 0 and isinstance(value, list):
+        return all(_model_value(item, 1) for item in value)
+    if depth == 0 and isinstance(value, dict):
+        return all(isinstance(key, str) and _model_value(item, 1)
+                   for key, item in value.items())
+    return False
+
+
+def _check_group_models(reader: TableReader, analysis: StructuralAnalysis,
+                        rows: tuple[GroupModelRow, ...]) -> None:
+    """Each difference of the problem's table 1.5 from the one the structure analysis
+    builds is a problem of the table, told as the comparison words it (its row, its field,
+    what was expected and what was found)."""
+    for mismatch in _group_model_mismatches(analysis, [row.as_row() for row in rows]):
+        reader.issues.append(Issue("", mismatch.message))
+
+
+def _group_model_mismatches(analysis: StructuralAnalysis,
+                            rows: list[dict[str, object]]) -> list[Mismatch]:
+    """The differences of table 1.5 as given (``rows``, in the problem's order) from the
+    one the structure analysis builds.  None are found yet: the structure analysis builds
+    no table 1.5, so the rows are kept as read."""
+    del analysis, rows
+    return []
 
 
 def _check_rotations(reader: TableReader, model: KinematicModel,

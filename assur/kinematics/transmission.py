@@ -1,8 +1,10 @@
 """Force transmission and joint rotations: pressure angles (L1, L2) and relative rotations.
 
 ``method.md`` §2.7: the pressure angle is computed only at the internal revolute pair C of
-L1 and L2 groups where a link of the group is a two-hinge rod (a binary link: no attachment
-point of a later group and no guide for a later group on it):
+L1 and L2 groups where a link of the group is a two-hinge rod — "звено i или j является
+двухшарнирным": a link with no hinge of a later group on it, counted as the course's table
+1.6 counts hinges (a guide the link carries for a later link is no hinge; the angle of such
+a rod is the course's geometric one, and :attr:`PressureAngle.guides` names it):
 
 * L1: ``α = arccos |sin(φ_i − φ_j)|`` (``|π/2 − μ|``, μ the transmission angle at C);
 * L2 (rod j binary): ``α = arccos |cos(φ_j − θ)|``.
@@ -30,6 +32,7 @@ __all__ = [
     "JointRotation",
     "PressureAngle",
     "binary_links",
+    "guide_carriers",
     "joint_rotations",
     "pressure_angles",
 ]
@@ -37,12 +40,19 @@ __all__ = [
 
 @dataclass(frozen=True)
 class PressureAngle:
-    """Pressure angle at C of one L1/L2 group over the positions (radians)."""
+    """Pressure angle at C of one L1/L2 group over the positions (radians).
+
+    ``binary`` are the group's two-hinge rods that define it; ``guides`` those of them that
+    also carry the guide of a later link (rocker 3 of the course's fig. 1.25): the angle is
+    then the course's geometric one, ``|π/2 − μ|`` from the two hinges, while the force at C
+    is not along the rod.
+    """
 
     label: str
     pair: PairId
     binary: tuple[LinkId, ...]
     alpha: np.ndarray
+    guides: tuple[LinkId, ...] = ()
 
     @property
     def maximum(self) -> float:
@@ -73,17 +83,14 @@ class JointRotation:
 def binary_links(model: KinematicModel) -> set[LinkId]:
     """Links of the dyads that are two-hinge rods (``method.md`` §2.7, binary test).
 
-    A link is binary when no later group is hinged to it and no later group slides on a
-    guide it carries.
+    A link is binary when no later group is hinged to it: its columns i+1 / j+1 of table
+    1.6 are "–".  A guide it carries for a later link is not a hinge (:func:`guide_carriers`).
     """
     loaded: set[LinkId] = set()
     for group in model.groups:
         for anchor in (group.hinge_i, group.hinge_j):
             if anchor is not None:
                 loaded.add(anchor.link)
-        for guide in (group.guide_i, group.guide_j):
-            if guide is not None:
-                loaded.add(guide.carrier)
     for group in model.groups:
         if loaded & set(group.composite):
             loaded |= set(group.composite)
@@ -93,6 +100,12 @@ def binary_links(model: KinematicModel) -> set[LinkId]:
             continue
         out |= {link for link in (group.i, group.j) if link is not None and link not in loaded}
     return out
+
+
+def guide_carriers(model: KinematicModel) -> set[LinkId]:
+    """Links that carry the guide of a prismatic pair of another group."""
+    return {guide.carrier for group in model.groups for guide in (group.guide_i, group.guide_j)
+            if guide is not None and guide.carrier not in (group.i, group.j)}
 
 
 def pressure_angles(motion: Motion) -> list[PressureAngle]:
@@ -124,6 +137,7 @@ def pressure_angles(motion: Motion) -> list[PressureAngle]:
     """
     model = motion.model
     binary = binary_links(model)
+    carriers = guide_carriers(model)
     out = []
     for group in model.groups:
         rule = rules_of(group.group_kind).pressure
@@ -136,7 +150,8 @@ def pressure_angles(motion: Motion) -> list[PressureAngle]:
             rods, alpha = rule(group, binary, phi_i, phi_j)
         if not rods:
             continue
-        out.append(PressureAngle(group.label, group.pairs["C"], rods, alpha))
+        out.append(PressureAngle(group.label, group.pairs["C"], rods, alpha,
+                                 tuple(link for link in rods if link in carriers)))
     return out
 
 

@@ -162,6 +162,9 @@ def _pressure_lines(result: Analysis, lang: str) -> list[str]:
                                    allowed=allowed,
                                    verdict=render("analyze.alpha_over" if over
                                                   else "analyze.alpha_within", lang)))
+        if item.guides:
+            lines.append("    " + render("analyze.alpha_guide", lang,
+                                         links=", ".join(map(str, item.guides))))
     return lines
 
 

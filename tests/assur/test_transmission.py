@@ -5,6 +5,7 @@ from __future__ import annotations
 import cmath
 import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -12,12 +13,13 @@ import pytest
 import assur
 import assur.kinematics.transmission
 from assur.kinematics.analysis import analyse
+from assur.kinematics.jets import value
 
 ROOT = Path(__file__).resolve().parents[2]
 PHI = np.linspace(0.0, 2 * np.pi, 720, endpoint=False)
 
 
-def _build(pairs: list[dict], geometry: dict) -> assur.KinematicModel:
+def _build(pairs: list[dict[str, Any]], geometry: dict[str, Any]) -> assur.KinematicModel:
     chain = assur.chain_from_dict({"mechanism": {"pairs": pairs, "inputs": [1]},
                                    "geometry": geometry})
     return assur.build_model(assur.analyse_structure(chain))
@@ -69,11 +71,22 @@ def test_slider_crank_pressure_angle_is_arcsin_of_the_offset() -> None:
     assert item.maximum == pytest.approx(math.asin((r + e) / rod), abs=1e-5)
 
 
-def test_course_example_has_no_two_hinge_rod_in_l1_or_l2() -> None:
-    """Link 2 carries N, link 3 the guide of 4, rod 8 carries M (method.md §2.7)."""
-    model = assur.load_model(ROOT / "input_tables" / "course_11_link.yaml")
-    assert not ({2, 3, 8} & assur.kinematics.transmission.binary_links(model))
-    assert assur.pressure_angles(analyse(model, PHI[::10])) == []
+def test_course_example_l1_pressure_angle_by_hand() -> None:
+    """The course's reading (method.md §2.7): a two-hinge link is counted by its hinges, as
+    table 1.6 counts them.  Rocker 3 has two (2-3, 3-0) and carries the guide of slider 4;
+    coupler 2 has the hinge 2-6 of link 6, rod 8 the hinge 8-10.  So L1(2,3) has a pressure
+    angle and L2(9,8) none.  By hand, from the table's dimensions: crank pin
+    B = 40·e^{i(30° + φ)}, hinge distance d = |H_j − B| with H_j = (150, 0), and with l_i = 140,
+    l_j = 100 the angle at C is cos μ = (l_i² + l_j² − d²)/(2 l_i l_j); α = |90° − μ|."""
+    model = assur.load_model(ROOT / "input_tables" / "course_11_link_table.yaml")
+    binary = assur.kinematics.transmission.binary_links(model)
+    assert 3 in binary and not {2, 8} & binary
+    (item,) = assur.pressure_angles(analyse(model, PHI))
+    assert (item.label, item.pair, item.binary, item.guides) == ("L1(2,3)", "2-3", (3,), (3,))
+    b = 40.0 * np.exp(1j * (np.radians(30.0) + PHI))
+    d = np.abs(150.0 - b)
+    mu = np.arccos((140.0 ** 2 + 100.0 ** 2 - d * d) / (2 * 140.0 * 100.0))
+    np.testing.assert_allclose(item.alpha, np.abs(np.pi / 2 - mu), atol=1e-9)
 
 
 def test_joint_rotations_of_the_course_example_from_positions() -> None:
@@ -82,7 +95,7 @@ def test_joint_rotations_of_the_course_example_from_positions() -> None:
     motion = analyse(model, PHI)
     rot = {r.pair: r for r in assur.joint_rotations(motion)}
     assert len(rot) == 10  # 1 + 3 + 1 + 2 + 2 + 1 revolute joints (method.md §2.8)
-    j = motion.joints
+    j = {pair: np.asarray(value(point), dtype=complex) for pair, point in motion.joints.items()}
     coupler = np.angle(j["2-3"] - j["1-2"])
     rocker = np.angle(j["2-3"] - j["3-0"])
     theta = np.unwrap(coupler - rocker)

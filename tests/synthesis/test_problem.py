@@ -184,8 +184,9 @@ def test_bounds_are_checked_where_they_are_written() -> None:
     text = "\n".join(_messages(bad))
     assert ("parameters[0] 'l_1': expected [initial, lower, upper] with lower ≤ initial ≤ "
             "upper; found [10, 20, 40]") in text
-    assert ("parameters[1] 'l_j': expected a number, 'A' (supplied by an earlier group) or "
-            "[initial, lower, upper]; found [150, 120]") in text
+    assert ("parameters[1] 'l_j': expected a number, 'A', [initial, lower, upper], or the "
+            "course's [v, v, 0] (fixed) or [0, A, 0] (supplied by an earlier group); found "
+            "[150, 120]") in text
     # a parameters row replaces the column of the identification row: 'e' comes from it
     assert "'e'" not in text
 

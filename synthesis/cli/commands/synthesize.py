@@ -64,11 +64,17 @@ def run(args: argparse.Namespace) -> int:
     check_search_options(args, _SETTINGS)
     check_scheduler(args.scheduler)
     problem = load_problem(args.problem)
+    if not args.json:
+        from synthesis.app.table_warnings import print_warnings
+
+        print_warnings(problem.warnings, args.problem, args.lang)
     with following_search(quiet=args.quiet, lang=args.lang):
         outcome = synthesize(problem, budget=args.budget, seed=args.seed, refine=args.refine,
                              shrink=args.shrink, restarts=args.restarts,
                              time_limit=args.time_limit, scheduler=args.scheduler)
     data = outcome.to_dict()
+    if problem.warnings:
+        data["warnings"] = [issue.to_dict() for issue in problem.warnings]
     outputs = outputs_of(args)
     if args.out:
         outputs.write(args.out, lambda path: write_result(path, problem, outcome.search, data,

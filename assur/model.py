@@ -26,8 +26,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from assur.typing import ComplexArray, FloatArray
 
 __all__ = [
-    "DEFAULT_PRESSURE_ANGLE",
     "DEFAULT_GEAR_PRESSURE_ANGLE",
+    "DEFAULT_PRESSURE_ANGLE",
     "Allowable",
     "Chain",
     "CircleProfile",

@@ -317,3 +317,20 @@ def test_bad_profiles_and_gear_data_are_refused_naming_the_field(
     for words in expected:
         assert words in err, err
     assert "Traceback" not in err
+
+
+def test_the_picture_shows_the_profiles_beside_the_replacing_mechanism() -> None:
+    """The left panel draws both pitch circles, both base circles, the line of action and
+    the replacing link dashed; the right panel is the replacing mechanism's scheme (its
+    replacing link G' among the pairs drawn)."""
+    import re
+
+    from assur.plot.formats import figure_bytes
+    from assur.plot.higher import replacing_figure
+
+    analysis = analyse_structure(load_chain(TABLES / "geared_five_bar.yaml"))
+    svg = figure_bytes(replacing_figure(analysis, lang="ru"), "svg", tight=False).decode()
+    ids = set(re.findall(r'id="([^"]*)"', svg))
+    assert {"profile-G-0", "profile-G-1", "base-G", "line-of-action-G", "replacing-G'",
+            "pair-G1", "pair-G2"} <= ids
+    assert "Заменяющий механизм" in svg and "Механизм с высшими парами" in svg

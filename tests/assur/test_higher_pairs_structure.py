@@ -334,3 +334,24 @@ def test_the_picture_shows_the_profiles_beside_the_replacing_mechanism() -> None
     assert {"profile-G-0", "profile-G-1", "base-G", "line-of-action-G", "replacing-G'",
             "pair-G1", "pair-G2"} <= ids
     assert "Заменяющий механизм" in svg and "Механизм с высшими парами" in svg
+
+
+def test_the_gap_of_two_profiles_against_the_drawing() -> None:
+    """Gaps measured on the drawing: a roller of radius 10 above the table cam r = 45 − 5 sin θ
+    (its lowest radius 40 at 90°, a node) stands y − 50 off it; a face at height y stands
+    y − 40 off it; a pinion of radius 20 inside a ring of radius 60 with its centre 39 mm
+    off the ring's stands 1 mm off; a knife edge 5 mm above a face, 5 mm."""
+    from assur.model import CircleProfile, Direction, LineProfile, PolarProfile
+    from assur.profiles import contact
+
+    angles = tuple(float(a) for a in range(0, 360, 30))
+    cam = PolarProfile(0j, angles, tuple(45 - 5 * math.sin(math.radians(a)) for a in angles))
+    for y in (45.0, 49.0, 50.0, 51.0, 60.0):
+        touch = contact(cam, CircleProfile(complex(0, y), 10.0))
+        assert touch is not None and abs(touch.gap - (y - 50)) < 1e-9
+        face = contact(LineProfile(complex(0, y - 10), Direction(0.0, 1 + 0j)), cam)
+        assert face is not None and abs(face.gap - (y - 50)) < 1e-9
+    ring = contact(CircleProfile(39 + 0j, 20.0), CircleProfile(0j, 60.0, concave=True))
+    assert ring is not None and ring.gap == 1.0 and ring.point == 59 + 0j
+    knife = contact(CircleProfile(5j, 0.0), LineProfile(0j, Direction(0.0, 1 + 0j)))
+    assert knife is not None and knife.gap == 5.0

@@ -355,3 +355,16 @@ def test_the_gap_of_two_profiles_against_the_drawing() -> None:
     assert ring is not None and ring.gap == 1.0 and ring.point == 59 + 0j
     knife = contact(CircleProfile(5j, 0.0), LineProfile(0j, Direction(0.0, 1 + 0j)))
     assert knife is not None and knife.gap == 5.0
+
+
+def test_the_coursework_report_shows_both_mechanisms_and_the_passive_freedom() -> None:
+    """The cam-lever mechanism's report: the counts section subtracts the roller's passive
+    freedom (W = 2 − 1 = 1 = m, no mismatch told), and the schemes section holds the figure
+    of the mechanism beside its replacing mechanism."""
+    from synthesis.app.coursework import build_report
+
+    report = build_report(TABLES / "cam_lever.yaml", lang="ru", points=12)
+    sections = {section.ident: section.body for section in report.sections}
+    assert "исключены: W = 1" in sections["counts"]
+    assert 'class="bad"' not in sections["counts"]
+    assert 'id="replacing-mechanism"' in sections["schemes"]

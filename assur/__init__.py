@@ -47,6 +47,7 @@ from assur.structure.classification import AssurGroup
 from assur.structure.diagnostics import Diagnostic
 from assur.structure.group_models import check_group_models, group_models_table
 from assur.structure.identification import check_identification, identification_table
+from assur.structure.replacing import replacing_mechanism
 from assur.structure.report import structure_report
 
 __all__ = [  # noqa: RUF022 - grouped by topic, as the comments say
@@ -79,6 +80,7 @@ __all__ = [  # noqa: RUF022 - grouped by topic, as the comments say
     "check_identification",
     "group_models_table",
     "identification_table",
+    "replacing_mechanism",
     "structure_report",
     # kinematics
     "ExistenceReport",

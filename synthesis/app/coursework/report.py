@@ -32,8 +32,9 @@ from assur.kinematics.analysis import analyse
 from assur.kinematics.dyads import reason_text
 from assur.kinematics.existence import CONDITIONS
 from assur.model import PairType, Student
+from assur.plot.formats import figure_bytes
 from assur.plot.schemes import roman, scheme_bytes
-from assur.structure.report import PRINTED, group_description, in_order
+from assur.structure.report import PRINTED, group_description, higher_pair_lines, in_order
 from assur.text import check_lang, render
 from synthesis.app.assess import assess, read_table
 from synthesis.app.check_report import verdict_words
@@ -193,8 +194,11 @@ def _counts_section(analysis: StructuralAnalysis, lang: str) -> Section:
             (render("term.p4", lang), analysis.p4),
             (render("term.mobility", lang), _mobility(analysis))]
     body = table(("", ""), rows, numeric=(1,), table_id="counts")
-    if analysis.W != analysis.m:
-        body += (f'<p class="bad">W = {analysis.W} ≠ {analysis.m} '
+    lines = higher_pair_lines(analysis, lang)
+    if lines:
+        body += "<pre>" + esc("\n".join(lines)) + "</pre>"
+    if analysis.W - len(analysis.passive) != analysis.m:
+        body += (f'<p class="bad">W = {analysis.W - len(analysis.passive)} ≠ {analysis.m} '
                  f"({esc(render('term.inputs', lang))})</p>")
     body += f'<p id="value-W" data-value="{analysis.W}">W = {analysis.W}</p>'
     return Section("counts", _cap(render("term.counts", lang)), body)
@@ -341,6 +345,13 @@ def _schemes_section(chain: Chain, analysis: StructuralAnalysis, lang: str) -> S
     body += figure_html(scheme_bytes(chain, analysis, "svg", lang=lang, which="formalised"),
                         "svg", _cap(render("term.formalised_scheme", lang)),
                         ident="formalised-scheme")
+    if analysis.original is not None and analysis.original.geometry is not None:
+        from assur.plot.higher import replacing_figure
+
+        body += figure_html(figure_bytes(replacing_figure(analysis, lang=lang), "svg",
+                                         tight=False),
+                            "svg", _cap(render("term.replacing_mechanism", lang)),
+                            ident="replacing-mechanism")
     return Section("schemes", _cap(render("term.schemes", lang)), body)
 
 

@@ -41,7 +41,7 @@ import numpy as np
 import assur
 import assur.kinematics.model
 import assur.model
-from assur import AssurError, KinematicModel, TableError
+from assur import AssurError, KinematicModel, StructureError, TableError
 from assur.errors import Issue
 from assur.io.chain_table import read_student
 from assur.io.general import read_box
@@ -57,7 +57,6 @@ from assur.io.reader import (
     with_commas,
 )
 from assur.structure.analysis import StructuralAnalysis
-from assur.structure.identification import Mismatch
 from assur.text import Message
 from synthesis.force_conditions import read_force_conditions
 from synthesis.problem import (
@@ -942,17 +941,20 @@ def _check_group_models(reader: TableReader, analysis: StructuralAnalysis,
     """Each difference of the problem's table 1.5 from the one the structure analysis
     builds is a problem of the table, told as the comparison words it (its row, its field,
     what was expected and what was found)."""
-    for mismatch in _group_model_mismatches(analysis, [row.as_row() for row in rows]):
-        reader.issues.append(Issue("", mismatch.message))
+    reader.issues.extend(_group_model_mismatches(analysis, [row.as_row() for row in rows]))
 
 
 def _group_model_mismatches(analysis: StructuralAnalysis,
-                            rows: list[dict[str, object]]) -> list[Mismatch]:
+                            rows: list[dict[str, object]]) -> list[Issue]:
     """The differences of table 1.5 as given (``rows``, in the problem's order) from the
-    one the structure analysis builds.  None are found yet: the structure analysis builds
-    no table 1.5, so the rows are kept as read."""
-    del analysis, rows
-    return []
+    one the structure analysis builds (:func:`assur.check_group_models`); for a mechanism
+    the course's table does not describe (a triad, a class IV group), the reason why."""
+    try:
+        mismatches = assur.check_group_models(analysis, rows)
+    except StructureError as exc:
+        assert isinstance(exc.message, Message)  # the dyads-only refusal is catalogued
+        return [Issue("group_models", exc.message)]
+    return [Issue("", mismatch.message) for mismatch in mismatches]
 
 
 def _check_rotations(reader: TableReader, model: KinematicModel,

@@ -195,3 +195,14 @@ def test_the_chain_form_takes_the_course_s_fixed_value_but_no_a() -> None:
     problem = problem_from_dict(data, "triad.yaml", PROBLEMS)
     assert "III(2,3,4,5).x_D" not in problem.names
     assert float(np.ravel(problem.model.params["III(2,3,4,5).x_D"])[0]) == 110.0
+
+
+def test_a_wrong_field_of_a_problem_s_table_1_5_is_caught_naming_it() -> None:
+    data = _data(COURSE)
+    assert problem_from_dict(copy.deepcopy(data), "models.yaml", PROBLEMS).group_models
+    data["group_models"][3]["H_j"] = "6-0"     # the course's table 1.6: link 7 slides on 0
+    with pytest.raises(TableError) as caught:
+        problem_from_dict(data, "models.yaml", PROBLEMS)
+    texts = [issue.text() for issue in caught.value.issues]
+    assert len(texts) == 1
+    assert "H_j" in texts[0] and "7-0" in texts[0] and "6-0" in texts[0]

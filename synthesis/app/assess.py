@@ -8,6 +8,8 @@ at its initial design (its mechanism table at the initial values).
 
 from __future__ import annotations
 
+import dataclasses
+
 import os
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -62,8 +64,11 @@ def load_table_chain(path: str | os.PathLike[str]) -> Chain:
 
 
 def _design(problem: Problem, path: str | os.PathLike[str]) -> Chain:
-    """The mechanism of a synthesis problem at its initial design."""
-    return chain_from_dict(problem.mechanism_table(problem.initial), source=str(path))
+    """The mechanism of a synthesis problem at its initial design, with the problem's table
+    1.5 (when it gives one) for the assessment to check."""
+    chain = chain_from_dict(problem.mechanism_table(problem.initial), source=str(path))
+    models = tuple(row.as_row() for row in problem.group_models)
+    return dataclasses.replace(chain, group_models=models) if models else chain
 
 
 def assess(table: str | os.PathLike[str] | Chain, *, points: int | None = 360) -> Assessment:

@@ -9,7 +9,6 @@ at its initial design (its mechanism table at the initial values).
 from __future__ import annotations
 
 import dataclasses
-
 import os
 from pathlib import Path
 from typing import TYPE_CHECKING

@@ -321,6 +321,12 @@ def _shift(step: int) -> int:
     return (step + 1) // 2 * (1 if step % 2 else -1)
 
 
+def _drawn(chain: Chain, analysis: StructuralAnalysis) -> Chain:
+    """The chain a scheme shows: the replacing mechanism of a chain with higher pairs (its
+    groups are the analysis's), else the chain itself."""
+    return analysis.chain if analysis.original is not None else chain
+
+
 def scheme_layout(chain: Chain, analysis: StructuralAnalysis) -> SchemeLayout:
     """Positions of pairs and links for the structural scheme.
 
@@ -614,6 +620,7 @@ def draw_structural_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
     True
     """
     ax = ax if ax is not None else _new_axes(SCHEME_SIZE["structural"])
+    chain = _drawn(chain, analysis)
     layout = layout or scheme_layout(chain, analysis)
     size = _scale(layout)
     groups = _groups(analysis, chain)
@@ -713,6 +720,7 @@ def draw_formalised_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
     from matplotlib.patches import FancyArrowPatch, Rectangle
 
     ax = ax if ax is not None else _new_axes(SCHEME_SIZE["formalised"])
+    chain = _drawn(chain, analysis)
     groups = _groups(analysis, chain)
     marks: dict[PairId, list[str]] = {}
     for name, named, _ in scheme_points(chain, analysis):

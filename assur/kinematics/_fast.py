@@ -62,12 +62,12 @@ def crank_pin(o: Any, length: Any, angle: Any) -> np.ndarray | None:
     unit = np.empty(angle.shape, dtype=complex)
     np.cos(angle, out=unit.real)
     np.sin(angle, out=unit.imag)
-    unit_xy = unit.view(np.float64).reshape(*unit.shape, 2)
     if type(length) is np.ndarray:
+        unit_xy = unit.view(np.float64).reshape(*unit.shape, 2)
         pin = np.multiply(length[..., None], unit_xy).view(np.complex128)[..., 0]
     else:
-        unit_xy *= length
         pin = unit
+        np.multiply(unit.view(np.float64), length, out=unit.view(np.float64))
     if o != 0:
         pin += o
     return pin

@@ -307,6 +307,9 @@ class State:
             return fixed
         first = p(f"{anchor.owner}.{anchor.first}")
         if anchor.second is None:
+            arm = self.arms.get(anchor.link)
+            if arm is not None and arm[2] is first:  # the very point its group solved
+                return arm[0]
             local = first
         elif anchor.polar:
             local = first * np.exp(1j * p(f"{anchor.owner}.{anchor.second}"))

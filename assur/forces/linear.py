@@ -112,36 +112,43 @@ def _system(links: tuple[LinkId, ...], pairs: list[tuple[PairId, str, LinkId, Li
             points: dict[PairId, np.ndarray], normals: dict[PairId, np.ndarray],
             loads: Loads, length: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The scaled equilibrium equations of the group's links: matrix (…, 3n, 3n) and right-hand
-    side (…, 3n); rows x, y and moment/length per link, columns two per pair."""
+    side (…, 3n); rows x, y and moment/length per link, columns two per pair.
+
+    The entries are written with the positions along the last axis (each entry one
+    contiguous row of positions) and the matrices then laid out one after another, as the
+    batched solve reads them.
+    """
     shape = np.broadcast_shapes(*(np.shape(p) for p in points.values()), np.shape(length))
     size = 3 * len(links)
     row = {link: 3 * k for k, link in enumerate(links)}
     centres = {link: _mean([points[pair] for pair, _, source, target in pairs
                             if link in (source, target)]) for link in links}
-    matrix = np.zeros((*shape, size, size))
-    rhs = np.zeros((*shape, size))
+    matrix = np.zeros((size, size, *shape))
+    rhs = np.zeros((size, *shape))
     for k, (pair, kind, source, target) in enumerate(pairs):
         for link, sign in ((target, 1.0), (source, -1.0)):
             if link not in row:
                 continue
             r, arm = row[link], (points[pair] - centres[link]) / length
             if kind == "R":
-                matrix[..., r, 2 * k] += sign
-                matrix[..., r + 1, 2 * k + 1] += sign
-                matrix[..., r + 2, 2 * k] -= sign * arm.imag
-                matrix[..., r + 2, 2 * k + 1] += sign * arm.real
+                matrix[r, 2 * k] += sign
+                matrix[r + 1, 2 * k + 1] += sign
+                matrix[r + 2, 2 * k] -= sign * arm.imag
+                matrix[r + 2, 2 * k + 1] += sign * arm.real
             else:
                 n = normals[pair]
-                matrix[..., r, 2 * k] += sign * n.real
-                matrix[..., r + 1, 2 * k] += sign * n.imag
-                matrix[..., r + 2, 2 * k] += sign * cross(arm, n)
-                matrix[..., r + 2, 2 * k + 1] += sign
+                matrix[r, 2 * k] += sign * n.real
+                matrix[r + 1, 2 * k] += sign * n.imag
+                matrix[r + 2, 2 * k] += sign * cross(arm, n)
+                matrix[r + 2, 2 * k + 1] += sign
     for link in links:
         r, force = row[link], loads.force(link)
-        rhs[..., r] = -force.real
-        rhs[..., r + 1] = -force.imag
-        rhs[..., r + 2] = -loads.moment(link, centres[link]) / length
-    return matrix, rhs
+        rhs[r] = -force.real
+        rhs[r + 1] = -force.imag
+        rhs[r + 2] = -loads.moment(link, centres[link]) / length
+    axes = tuple(range(2, matrix.ndim))
+    return (np.ascontiguousarray(matrix.transpose(*axes, 0, 1)),
+            np.ascontiguousarray(rhs.transpose(*(a - 1 for a in axes), 0)))
 
 
 def _mean(points: list[np.ndarray]) -> np.ndarray:
@@ -163,7 +170,8 @@ def _solve(matrix: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     eye = np.eye(n)
     finite = np.all(np.isfinite(matrix), axis=(-2, -1)) & np.all(np.isfinite(rhs), axis=-1)
     try:
-        x, inverse_norm = _solve_regular(np.where(finite[..., None, None], matrix, eye), rhs)
+        x, inverse_norm = _solve_regular(
+            matrix if finite.all() else np.where(finite[..., None, None], matrix, eye), rhs)
     except np.linalg.LinAlgError:  # a matrix singular to the last bit: the batch's
         # singular values find every matrix that is singular or nearly so, left out
         values = np.linalg.svd(np.where(finite[..., None, None], matrix, eye), compute_uv=False)

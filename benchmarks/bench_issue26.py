@@ -32,6 +32,7 @@ import subprocess
 import sys
 import time
 from collections.abc import Callable
+from functools import partial
 from pathlib import Path
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")  # one core: no threaded BLAS anywhere
@@ -86,8 +87,8 @@ def fourbar(rounds: int) -> dict[str, float]:
         phi = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
         ours_best, hand_best = 0.0, 0.0
         for _ in range(8 * rounds):  # short batches, interleaved: both see the same load
-            ours_best = max(ours_best, best_rate(lambda p=phi: ours(p), n, 0.05, 1))
-            hand_best = max(hand_best, best_rate(lambda p=phi: handwritten(p), n, 0.05, 1))
+            ours_best = max(ours_best, best_rate(partial(ours, phi), n, 0.05, 1))
+            hand_best = max(hand_best, best_rate(partial(handwritten, phi), n, 0.05, 1))
         out[f"fourbar_{n}"], out[f"hand_{n}"] = ours_best, hand_best
         out[f"fourbar_ratio_{n}"] = ours_best / hand_best
     return out
@@ -122,9 +123,8 @@ def forces(rounds: int) -> dict[str, float]:
     for n in (360, 3600):
         q = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
         motion = analyse(model, q, analogs=True)
-        kinematics = 1.0 / best_rate(lambda x=q: analyse(model, x, analogs=True), 1, 0.2,
-                                     rounds)
-        force = 1.0 / best_rate(lambda m=motion: kinetostatics(m, data, 10.0), 1, 0.2, rounds)
+        kinematics = 1.0 / best_rate(partial(analyse, model, q, analogs=True), 1, 0.2, rounds)
+        force = 1.0 / best_rate(partial(kinetostatics, motion, data, 10.0), 1, 0.2, rounds)
         out[f"forces_ratio_{n}"] = force / kinematics
     return out
 

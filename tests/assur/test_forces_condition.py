@@ -16,8 +16,8 @@ from assur.forces.linear import _solve
 
 def exact_rcond(matrix: np.ndarray) -> np.ndarray:
     inverse = np.linalg.inv(matrix)
-    return 1.0 / (np.abs(matrix).sum(axis=-2).max(axis=-1) * np.abs(inverse).sum(axis=-2)
-                  .max(axis=-1))
+    return np.asarray(1.0 / (np.abs(matrix).sum(axis=-2).max(axis=-1)
+                             * np.abs(inverse).sum(axis=-2).max(axis=-1)))
 
 
 def test_the_condition_estimate_is_never_below_and_close_to_the_exact_one() -> None:

@@ -2,6 +2,8 @@
 
 Figures (one core; positions per second unless marked):
 
+* the whole analysis of ``input_tables/four_bar.yaml`` (``analyse``: every joint, link frame
+  and tracing point with the groups' existence) at N = 360 and 3,600;
 * four-bar, crank + RRR dyad through ``solve_input`` + ``solve_rrr`` (existence margin, mask
   and reasons included), beside the minimal hand-written numpy closed form of
   ``bench_fourbar.py``, at N = 360 and N = 3,600 (their ratio measured in the same process,
@@ -50,10 +52,14 @@ FIGURES: dict[str, tuple[str, str, bool]] = {
     "fourbar_3600": ("four-bar (solvers), N = 3,600", "pos/s", True),
     "hand_3600": ("hand-written numpy four-bar, N = 3,600", "pos/s", True),
     "fourbar_ratio_3600": ("  four-bar / hand-written, N = 3,600", "ratio", True),
+    "analysis_360": ("analyse(four_bar.yaml), N = 360", "pos/s", True),
+    "analysis_3600": ("analyse(four_bar.yaml), N = 3,600", "pos/s", True),
     "triad_1": ("RRR triad, 1 x 360", "pos/s", True),
     "triad_many": ("RRR triad, D x 360", "pos/s", True),
     "class_iv_1": ("class IV group, 1 x 360", "pos/s", True),
     "class_iv_many": ("class IV group, D x 360", "pos/s", True),
+    "forces_360": ("triad forces (six_bar_triad_forces.yaml), N = 360", "ms", False),
+    "forces_3600": ("triad forces, N = 3,600", "ms", False),
     "forces_ratio_360": ("triad forces / kinematics with analogs, N = 360", "ratio", False),
     "forces_ratio_3600": ("triad forces / kinematics with analogs, N = 3,600", "ratio", False),
     "synthesis": ("synthesis of class2_six_bar_triad", "s", False),
@@ -94,6 +100,16 @@ def fourbar(rounds: int) -> dict[str, float]:
     return out
 
 
+def analysis(rounds: int) -> dict[str, float]:
+    """The whole analysis of the four-bar table (every joint, frame and tracing point)."""
+    import assur
+    from assur.kinematics.analysis import analyse
+
+    model = assur.load_model(TABLES / "four_bar.yaml")
+    return {f"analysis_{n}": best_rate(partial(analyse, model, assur.input_grid(model, n)), n,
+                                       0.1, 4 * rounds) for n in (360, 3600)}
+
+
 def higher(table: str, key: str, designs: int, rounds: int) -> dict[str, float]:
     """One design and ``designs`` designs of a mechanism with a higher group over 360 angles."""
     import assur
@@ -112,7 +128,8 @@ def higher(table: str, key: str, designs: int, rounds: int) -> dict[str, float]:
 
 
 def forces(rounds: int) -> dict[str, float]:
-    """Time of the force analysis over that of the kinematics with analogs, the triad six-bar."""
+    """Time of the force analysis (ms) and over that of the kinematics with analogs, of the
+    six-bar with a triad."""
     from assur.forces import kinetostatics
     from assur.kinematics.analysis import analyse
     from assur.kinematics.build import load_with_forces
@@ -125,6 +142,7 @@ def forces(rounds: int) -> dict[str, float]:
         motion = analyse(model, q, analogs=True)
         kinematics = 1.0 / best_rate(partial(analyse, model, q, analogs=True), 1, 0.2, rounds)
         force = 1.0 / best_rate(partial(kinetostatics, motion, data, 10.0), 1, 0.2, rounds)
+        out[f"forces_{n}"] = 1e3 * force
         out[f"forces_ratio_{n}"] = force / kinematics
     return out
 
@@ -144,7 +162,7 @@ def synthesis() -> tuple[dict[str, float], str]:
 
 def measure(designs: int, rounds: int) -> tuple[dict[str, float], str]:
     """Every figure of this checkout, and the synthesis result's note."""
-    figures = fourbar(rounds)
+    figures = fourbar(rounds) | analysis(rounds)
     figures |= higher("eight_bar_triad.yaml", "triad", designs, rounds)
     figures |= higher("class_iv_group.yaml", "class_iv", designs, rounds)
     figures |= forces(rounds)

@@ -77,8 +77,11 @@ def floats(data: npt.ArrayLike) -> list[float | None]:
 
 
 def _xy(z: npt.ArrayLike) -> Record:
+    """A point's coordinates, both null where either is not finite (no assembly)."""
     z = np.asarray(z)
-    return {"x": floats(z.real), "y": floats(z.imag)}
+    missing = ~np.isfinite(z)
+    return {"x": floats(np.where(missing, np.nan, z.real)),
+            "y": floats(np.where(missing, np.nan, z.imag))}
 
 
 def _derivatives(jet: Jet, omega: float | None, out: Record,

@@ -62,12 +62,12 @@ def crank_pin(o: Any, length: Any, angle: Any) -> np.ndarray | None:
     unit = np.empty(angle.shape, dtype=complex)
     np.cos(angle, out=unit.real)
     np.sin(angle, out=unit.imag)
-    unit_xy = unit.view(np.float64).reshape(*unit.shape, 2)
     if type(length) is np.ndarray:
+        unit_xy = unit.view(np.float64).reshape(*unit.shape, 2)
         pin = np.multiply(length[..., None], unit_xy).view(np.complex128)[..., 0]
     else:
-        unit_xy *= length
         pin = unit
+        np.multiply(unit.view(np.float64), length, out=unit.view(np.float64))
     if o != 0:
         pin += o
     return pin
@@ -104,15 +104,6 @@ def rrr(h_i: Any, h_j: Any, l_i: Any, l_j: Any, s: Any, shape: tuple[int, ...],
     return (*outputs, lowest)  # the minimum keeps a NaN
 
 
-def _zero_dim(*values: Any) -> tuple[Any, ...]:
-    """Real Python numbers as 0-d float64 arrays, other values unchanged.
-
-    With a float64 array, numpy applies a 0-d array sooner than a Python number, with the
-    same result.
-    """
-    return tuple(np.array(x, np.float64) if type(x) in REALS else x for x in values)
-
-
 def positive(x: Any) -> bool:
     """Whether the number or every element of the array ``x`` is positive."""
     return bool((x if type(x) in REALS else np.minimum.reduce(x, axis=None)) > 0.0)
@@ -133,7 +124,7 @@ def _rrr_block(
     if rx.shape != shape:
         rx, ry = (np.array(np.broadcast_to(t, shape)) for t in (rx, ry))
     l_sum, l_dif, two_l_i = l_i + l_j, l_i - l_j, 2.0 * l_i
-    l_sum, l_dif, two_l_i, l_squares = _zero_dim(l_sum, l_dif, two_l_i, l_dif * l_sum)
+    l_squares = l_dif * l_sum
     c, angle_i, angle_j, margin, d = out if out is not None else (None,) * 5
     d2 = rx * rx
     d2 += ry * ry

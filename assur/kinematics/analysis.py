@@ -253,13 +253,15 @@ def sketch_input(model: KinematicModel) -> Any:
 
 
 def full(x: Any, shape: tuple[int, ...], jet: bool = False) -> Any:
-    """``x`` broadcast to ``shape`` (read-only views); a jet when ``jet`` (zero derivatives
-    for a constant)."""
+    """``x`` broadcast to ``shape`` (read-only views of what has another shape); a jet when
+    ``jet`` (zero derivatives for a constant)."""
+    if type(x) is np.ndarray and x.shape == shape and not jet:
+        return x  # a solver's own output over the positions: nothing to broadcast
     if jet and not isinstance(x, Jet):
         x = Jet(x, 0.0, 0.0)
     if isinstance(x, Jet):
-        return Jet(np.broadcast_to(x.v, shape), np.broadcast_to(x.d1, shape),
-                   np.broadcast_to(x.d2, shape))
+        return Jet(*(part if part.shape == shape else np.broadcast_to(part, shape)
+                     for part in (x.v, x.d1, x.d2)))
     return np.broadcast_to(x, shape)
 
 
@@ -276,13 +278,25 @@ class State:
         self.solutions: dict[str, GroupSolution] = {}
         self.frames: dict[LinkId, tuple[Value, Value]] = {}
         self.rotors: dict[LinkId, Value] = {}
+        self.arms: dict[LinkId, tuple[Value, Value, Value]] = {}
         self.joints: dict[PairId, Value] = {}
         self.sliders: dict[PairId, SliderState] = {}
 
     def rotor(self, link: LinkId) -> Value:
+        """The unit vector of a link's frame axis, made when a point of the link is asked."""
         if link not in self.rotors:
-            self.rotors[link] = J.expi(self.frames[link][1])
+            arm = self.arms.get(link)
+            if arm is None:
+                self.rotors[link] = J.expi(self.frames[link][1])
+            else:
+                point, origin, length = arm
+                self.rotors[link] = (point - origin) / length
         return self.rotors[link]
+
+    def arm(self, link: LinkId, point: Value, origin: Value, length: Value) -> None:
+        """Record that ``point`` lies on the axis of a link's frame at ``length`` from its
+        origin: its rotor, if a point of the link is asked, is ``(point − origin)/length``."""
+        self.arms[link] = (point, origin, length)
 
     def point(self, anchor: Anchor) -> Value:
         """Position of a point fixed on a link."""
@@ -293,6 +307,9 @@ class State:
             return fixed
         first = p(f"{anchor.owner}.{anchor.first}")
         if anchor.second is None:
+            arm = self.arms.get(anchor.link)
+            if arm is not None and arm[2] is first:  # the very point its group solved
+                return arm[0]
             local = first
         elif anchor.polar:
             local = first * np.exp(1j * p(f"{anchor.owner}.{anchor.second}"))

@@ -112,7 +112,7 @@ class DyadSolution(NamedTuple):
 
 def _branch(sigma: float | np.ndarray) -> float | np.ndarray:
     """Assembly sign as ±1.0; 0 (the L3 default of table 1.6) reads as +1."""
-    if getattr(sigma, "ndim", 0) == 0:
+    if type(sigma) in _REALS or getattr(sigma, "ndim", 0) == 0:
         return -1.0 if sigma < 0 else 1.0
     return np.where(sigma < 0, -1.0, 1.0)
 

@@ -17,6 +17,7 @@ import difflib
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -254,8 +255,13 @@ class KinematicModel:
 
     def value(self, name: str) -> Any:
         """A parameter in program units (angles in radians)."""
-        value = self.params[name]
-        return np.radians(value) if is_angle(name.rsplit(".", 1)[-1]) else value
+        return self.program_values[name]
+
+    @cached_property
+    def program_values(self) -> dict[str, Any]:
+        """Every parameter in program units (angles in radians), converted once per model."""
+        return {name: np.radians(value) if is_angle(name.rsplit(".", 1)[-1]) else value
+                for name, value in self.params.items()}
 
     def with_params(self, values: Mapping[str, Any]) -> KinematicModel:
         """A copy with some parameters replaced (e.g. by ``(D, 1)`` arrays of D designs).
@@ -274,7 +280,7 @@ class KinematicModel:
         params.update({name: np.asarray(value, dtype=float) for name, value in values.items()})
         return replace(self, params=params)
 
-    @property
+    @cached_property
     def design_shape(self) -> tuple[int, ...]:
         """Broadcast shape of the parameters (``()`` for one design, ``(D, 1)`` for D)."""
         return np.broadcast_shapes(*(np.shape(v) for v in self.params.values()))

@@ -135,7 +135,7 @@ def _solve_input(state: State, group: GroupModel, q: Value) -> DyadSolution:
     pivot = p(col("x_O1")) + 1j * p(col("y_O1"))
     sol = dyads.solve_input(pivot, p(col("l_1")), angle)
     state.joints[group.pairs["H_i"]] = sol.origin_i
-    state.rotors[group.i] = (sol.c - sol.origin_i) / p(col("l_1"))
+    state.arm(group.i, sol.c, sol.origin_i, p(col("l_1")))
     return sol
 
 
@@ -152,8 +152,8 @@ def _solve_rrr(state: State, group: GroupModel, q: Value) -> DyadSolution:
             (given(sol.origin_j), given(sol.angle_j))
         state.actuator(group, frame, sol.c, q)
     else:
-        state.rotors[group.i] = (sol.c - sol.origin_i) / p(col("l_i"))
-        state.rotors[group.j] = (sol.c - given(sol.origin_j)) / p(col("l_j"))
+        state.arm(group.i, sol.c, sol.origin_i, p(col("l_i")))
+        state.arm(group.j, sol.c, given(sol.origin_j), p(col("l_j")))
     return sol
 
 
@@ -166,7 +166,7 @@ def _solve_rrp(state: State, group: GroupModel, q: Value) -> DyadSolution:
     state.joints.update({roles["C"]: sol.c, roles["H_j"]: h_j})
     state.slider(roles["P_i"], group.guide_i.carrier, group.i, sol.c, given(sol.s_i), base,
                  sol.angle_i, e)
-    state.rotors[group.j] = (sol.c - given(sol.origin_j)) / p(col("l_j"))
+    state.arm(group.j, sol.c, given(sol.origin_j), p(col("l_j")))
     return sol
 
 

@@ -16,6 +16,7 @@ import subprocess
 import sys
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -152,6 +153,9 @@ def test_assess_reads_a_table_once(path: Path) -> None:
     if path == PROBLEM:
         problem = load_problem(path)
         expected = chain_from_dict(problem.mechanism_table(problem.initial), source=str(path))
+        # with the problem's table 1.5, which the assessment checks
+        expected = replace(expected, group_models=tuple(
+            row.as_row() for row in problem.group_models) or None)
     else:
         expected = load_chain(path)
     assert found.chain == expected

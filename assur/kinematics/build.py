@@ -23,7 +23,7 @@ Examples
 ...     "C": {"point": [80, 60]}, "D": {"point": [100, 0]}}})
 >>> model = build_model(analyse_structure(chain))
 >>> [group.name for group in model.groups]
-['L0 input group (1)', 'L1 RRR (2, 3)']
+['L0 input-link group (1)', 'L1 RRR (2, 3)']
 >>> round(model.params["L0(1).l_1"], 6)
 30.0
 """

@@ -24,6 +24,7 @@ import numpy as np
 
 from assur.io.params import SUPPLIED
 from assur.kinds import HIGHER, KINDS, GroupKind, kind_of
+from assur.text import render
 from assur.model import LinkId, PairId
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -173,7 +174,7 @@ class GroupModel:
 
     @property
     def name(self) -> str:
-        """Kind and links for reports, e.g. ``'L1 RRR (2, 3)'``, ``'L0 input group (1)'``."""
+        """Kind and links for reports, e.g. ``'L1 RRR (2, 3)'``, ``'L0 input-link group (1)'``."""
         return self.title("en")
 
     def title(self, lang: str) -> str:
@@ -181,7 +182,7 @@ class GroupModel:
         members = list(self.members)
         links = ", ".join(map(str, members if self.layout is None else sorted(members, key=str)))
         kind = self.group_kind
-        title = kind.pair_text(lang) or (kind.title(lang) if kind.is_input else "")
+        title = kind.pair_text(lang) or (render("kind.l0.short", lang) if kind.is_input else "")
         return f"{kind.code} {title} ({links})" if title else f"{kind.code} ({links})"
 
     def column(self, name: str) -> str:

@@ -157,7 +157,7 @@ def test_bad_cells_are_reported_together(tmp_path: Path,
             "parameters[0] 'x_E': the lower bound must not exceed the upper bound",
             ("parameters[1] 'links': no group of the mechanism has links [2, 3]; the groups "
              "are [1], [2, 3, 4, 5]"),
-            "general 'groups': the mechanism has 2 groups (the input group included); found 3",
+            "general 'groups': the mechanism has 2 groups (the input-link group L0 included); found 3",
             "general 'direction': the sketch turns the crank with s = 1"):
         assert expected in text, (expected, text)
 

@@ -70,6 +70,11 @@ FOLD_ITERATIONS = 8
 FOLD_RESIDUAL = 1e-12
 #: Central-difference step of g's derivatives (rad for angles and φ, times L for lengths).
 FOLD_DIFFERENCE = 1e-6
+#: A change point is confirmed this far (pass parameter) before and after it: two real roots
+#: of p near the merging pair before, none after (:func:`_meets`).
+MEET = 1e-8
+#: Newton iterations for the extremum of Φ between the merging pair.
+MEET_ITERATIONS = 6
 
 Inputs = Callable[[Any], K]
 
@@ -350,8 +355,48 @@ def _ending(group: HigherGroup[K], inputs: Inputs[K], s: float, here: _Point, be
         apart = (np.abs(x - here.x) * w).sum(axis=-1)
         off = (np.abs(x - model) * w).sum(axis=-1)
         ok &= (t > here.t) & (t < 2.0 * beyond - here.t) & (t < goal) & (off <= 0.5 * apart)
+    ok &= _meets(group, inputs, s, t, x, ok)
     blank = np.full(x.shape, np.nan)
     return _Point(t, x, blank, blank), ok
+
+
+def _pair(group: HigherGroup[K], k: K, theta: np.ndarray) -> np.ndarray:
+    """The sign of the local discriminant of the two roots of Φ near ``theta``.
+
+    Φ(θ) = Σ φ_n e^{inθ} (n = −m … m, the coefficients of p) has an extremum θ_c between the
+    two roots of a merging pair, found by Newton's method on Φ′ from ``theta``. Two real roots
+    lie about θ_c where Φ(θ_c) and Φ″(θ_c) have opposite signs, none where they have the same:
+    returns −sign(Φ(θ_c)·Φ″(θ_c)), +1 with the pair on the unit circle, −1 with it off.
+    """
+    coef = coefficients(group, k)
+    m = group.degree
+    n = np.arange(-m, m + 1)
+    with np.errstate(all="ignore"):
+        for _ in range(MEET_ITERATIONS):
+            e = coef * np.exp(1j * n * theta[..., None])
+            slope, bend = (1j * n * e).sum(axis=-1).real, (-n * n * e).sum(axis=-1).real
+            theta = theta - np.where(bend != 0.0, slope / bend, 0.0)
+        e = coef * np.exp(1j * n * theta[..., None])
+        value, bend = e.sum(axis=-1).real, (-n * n * e).sum(axis=-1).real
+    return np.asarray(-np.sign(value * bend))
+
+
+def _meets(group: HigherGroup[K], inputs: Inputs[K], s: float, t: np.ndarray, x: np.ndarray,
+           rows: np.ndarray) -> np.ndarray:
+    """Where the change point (t, x) of the ``rows`` is one: two modes really meet there.
+
+    Near a change point the merging pair of roots of p is real on the side the mode comes
+    from and complex beyond it: the local discriminant (:func:`_pair`) is +1 at t − ``MEET``
+    and −1 at t + ``MEET``. Two modes that only pass close to each other keep it +1 on both
+    sides (the extended system of :func:`_fold` then converges halfway between them, where
+    det J = 0 and the residual is small but the pose is on neither mode).
+    """
+    out = np.zeros(rows.shape, dtype=bool)
+    if not rows.any():
+        return out
+    theta = x[..., group.eliminated]
+    sides = [_pair(group, values(inputs(s * (t + side))), theta) for side in (-MEET, MEET)]
+    return np.asarray(rows & (sides[0] > 0) & (sides[1] < 0))
 
 
 @dataclass(frozen=True, eq=False)

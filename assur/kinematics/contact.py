@@ -1,0 +1,635 @@
+"""The contact of a higher pair's two profiles over the positions: cams, followers, gears.
+
+A higher pair touches at one point K with a common normal n, and transmits a force along n
+only (friction ignored). Each function here solves the contact at every position of the
+input at once — positions shaped ``(N,)``, designs ``(D, 1)`` — with or without analogs
+(the cam's pose given as :class:`~assur.kinematics.jets.Jet`\\ s gives the follower's
+velocity and acceleration analogs exactly):
+
+* **Circles** (an eccentric, a roller, a knife edge = a circle of radius 0). The centres of
+  curvature of the two profiles are the centres of the circles, fixed on their links, so the
+  replacing link joining them has a constant length (:func:`replacing_length`) and the
+  replacement is exact at every position: a roller follower on an eccentric *is* a four-bar
+  (rocking follower, :func:`~assur.kinematics.dyads.solve_rrr`) or a slider-crank
+  (translating follower, :func:`~assur.kinematics.dyads.solve_rrp`) whose links are the
+  centre distances (:func:`circle_follower`).
+* **A circle on a straight line** (a flat-faced translating follower on an eccentric). The
+  replacing link is hinged at the circle's centre and slides parallel to the face, at the
+  circle's radius from it: an RPP dyad (:func:`~assur.kinematics.dyads.solve_rpp`,
+  :func:`flat_follower`).
+* **A tabulated closed profile** (:class:`PolarProfile`: radii over angles around a point of
+  the cam). The table is interpolated by a periodic cubic spline and the contact is solved at
+  every position (:func:`polar_follower`): the contact point, the normal, the curvature and
+  its centre, the follower's coordinate; the analogs by implicit differentiation.
+* **Gears**: two pitch circles rolling without slip turn at the fixed ratio
+  (:func:`gear_angle`).
+
+Existence is data, as for every group: a :class:`Contact` carries ``exists`` and a
+:class:`~assur.kinematics.reasons.Reason` per position — the replacing dyad's own reasons,
+:attr:`~Reason.UNDERCUT` (a roller passing over a concave part of the profile whose radius of
+curvature is smaller than its own), :attr:`~Reason.PRESSURE_ANGLE` (beyond the allowed one),
+:attr:`~Reason.CONTACT_LOST` (the follower's path never touches the profile; the force
+analysis adds the positions where the contact force would have to pull,
+:mod:`assur.forces.contact`).
+
+References
+----------
+.. [1] Артоболевский И. И. Теория механизмов и машин. М.: Наука, 1988, §§ 8, 24
+   (заменяющие механизмы высших пар; угол давления кулачковых механизмов).
+.. [2] Uicker J. J., Pennock G. R., Shigley J. E. Theory of Machines and Mechanisms, 5th ed.
+   Oxford, 2017, §§ 3.6 (equivalent linkages), 6.6–6.8 (cam pressure angle, radius of
+   curvature, undercutting).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+
+from assur.kinematics import jets as J
+from assur.kinematics.dyads import DyadSolution, solve_rpp, solve_rrp, solve_rrr
+from assur.kinematics.jets import Jet
+from assur.kinematics.reasons import Reason
+from assur.typing import BoolArray, FloatArray, Value
+
+__all__ = [
+    "Contact",
+    "PolarProfile",
+    "Rocker",
+    "Slider",
+    "circle_follower",
+    "flat_follower",
+    "gear_angle",
+    "polar_follower",
+    "replacing_length",
+]
+
+#: Newton steps that polish a contact found on the sampled profile: the bracket is a sample
+#: step, so a dozen steps reach round-off (bisection takes over where Newton would leave it).
+_POLISH = 12
+
+#: Profile samples per table node when the contact is searched for (at least ``_LEAST``).
+_PER_NODE = 8
+_LEAST = 720
+
+
+class Slider(NamedTuple):
+    """The path of a translating follower's point (the roller's centre, a knife's edge).
+
+    Attributes
+    ----------
+    base : complex
+        A point of the path (mm); the follower's coordinate ``s`` is measured from it.
+    angle : float
+        The path's direction u (rad, absolute), pointing away from the cam: the follower
+        rests on the cam at the largest ``s`` where it touches.
+    """
+
+    base: Value
+    angle: Value
+
+
+class Rocker(NamedTuple):
+    """The path of a rocking follower's point: a circle about the arm's pivot.
+
+    Attributes
+    ----------
+    pivot : complex
+        The arm's pivot on the frame (mm).
+    arm : float
+        The distance from the pivot to the roller's centre (mm).
+    away : {+1, -1}
+        The sense in which the arm turning leaves the cam: +1 counter-clockwise. The
+        follower rests on the cam at the arm angle furthest that way where it touches.
+    """
+
+    pivot: Value
+    arm: Value
+    away: int = 1
+
+
+class Contact(NamedTuple):
+    """A higher pair's contact over the positions.
+
+    Attributes
+    ----------
+    point : complex ndarray or Jet
+        The contact point K (mm).
+    normal : complex ndarray or Jet
+        The unit common normal at K, from the cam (first profile) towards the follower.
+    centre : complex ndarray or Jet
+        The cam profile's centre of curvature at K, K − n/κ (mm; NaN where κ = 0): the hinge
+        of the replacing link on the cam.
+    curvature : ndarray
+        The cam profile's signed curvature at K (1/mm; > 0 convex, < 0 concave).
+    follower : ndarray or Jet
+        The follower's coordinate: ``s`` along a :class:`Slider` path (mm), or the arm's
+        angle on a :class:`Rocker` path (rad, absolute).
+    centre_b : complex ndarray or Jet
+        The follower's point on its path (the roller's centre), the replacing link's other
+        hinge.
+    pressure_angle : ndarray
+        The angle between the normal and the velocity of the follower's point (rad, in
+        [0, π/2]).
+    exists : ndarray, bool
+        Where the pair keeps its contact and every condition holds.
+    reason : ndarray, int8
+        0 where it exists, else a :class:`~assur.kinematics.reasons.Reason` code.
+    """
+
+    point: Value
+    normal: Value
+    centre: Value
+    curvature: FloatArray
+    follower: Value
+    centre_b: Value
+    pressure_angle: FloatArray
+    exists: BoolArray
+    reason: np.ndarray
+
+
+@dataclass(frozen=True)
+class PolarProfile:
+    """A closed cam profile tabulated as polar radii over angles around a point of the cam.
+
+    The profile is r(θ) in the cam's own frame (θ from its axis, counter-clockwise), read by
+    a periodic cubic spline through the table: it passes through every tabulated point, is
+    2π-periodic with its first and second derivatives continuous, so the tangent and the
+    curvature (which needs r″) are continuous round the whole profile. A Fourier fit would
+    be as smooth but would not pass through the table's points and rings near a steep
+    rise; the spline's error is local to a table interval.
+
+    Parameters
+    ----------
+    spline : scipy.interpolate.CubicSpline
+        r(θ) in mm over θ in rad, ``bc_type='periodic'``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> angles = np.arange(0.0, 360.0, 10.0)
+    >>> profile = PolarProfile.from_table(angles, 40.0 + 0.0 * angles)
+    >>> round(float(profile.curvature(np.array(1.0))), 12)    # a circle of radius 40
+    0.025
+    """
+
+    spline: CubicSpline
+
+    @classmethod
+    def from_table(cls, angles: FloatArray, radii: FloatArray) -> PolarProfile:
+        """The profile through a table: angles in degrees (increasing, spanning less than
+        a turn), radii in mm (positive)."""
+        theta = np.radians(np.asarray(angles, dtype=float))
+        r = np.asarray(radii, dtype=float)
+        return cls(CubicSpline(np.append(theta, theta[0] + 2.0 * math.pi), np.append(r, r[0]),
+                               bc_type="periodic"))
+
+    @property
+    def nodes(self) -> int:
+        """The number of tabulated points."""
+        return len(self.spline.x) - 1
+
+    def radius(self, theta: Value, order: int = 0) -> Value:
+        """The ``order``-th derivative of r(θ) (mm/rad^order); a jet for a jet ``theta``.
+
+        The spline is a cubic per interval, so its derivatives beyond the third are 0.
+        """
+        if not isinstance(theta, Jet):
+            return self._derivative(theta, order)
+        v = theta.v.real
+        first = self._derivative(v, order + 1)
+        return Jet(self._derivative(v, order), first * theta.d1,
+                   self._derivative(v, order + 2) * theta.d1 ** 2 + first * theta.d2)
+
+    def _derivative(self, theta: Value, order: int) -> np.ndarray:
+        if order > 3:
+            return np.zeros(np.shape(theta))
+        return np.asarray(self.spline(theta, order))
+
+    def local(self, theta: Value) -> tuple[Value, Value]:
+        """The profile's point X(θ) and unit outward normal n(θ), in the cam's frame.
+
+        With X = r·e^{iθ}, X′ = (r′ + i·r)·e^{iθ} runs counter-clockwise round the profile,
+        so n = −i·X′/|X′| points out of the cam.
+        """
+        r, dr = self.radius(theta), self.radius(theta, 1)
+        turn = J.expi(theta)
+        tangent = (dr + 1j * r) * turn
+        return r * turn, -1j * tangent / J.abs(tangent)
+
+    def curvature(self, theta: FloatArray) -> FloatArray:
+        """The signed curvature κ(θ) = (r² + 2r′² − r·r″)/(r² + r′²)^{3/2} (1/mm; > 0
+        convex)."""
+        r, dr, ddr = (np.asarray(self.radius(theta, k)) for k in range(3))
+        curvature: FloatArray = (r * r + 2.0 * dr * dr - r * ddr) / (r * r + dr * dr) ** 1.5
+        return curvature
+
+
+def replacing_length(radius_a: float, radius_b: float, *, concave_a: bool = False,
+                     concave_b: bool = False) -> float:
+    """The length of the link replacing two circular profiles: the distance of their centres.
+
+    Two touching circles keep their centres at the sum of their signed radii (a concave
+    profile's radius counts negative): an eccentric of radius R and a roller r give R + r;
+    a roller inside a circular groove of radius R gives R − r. A knife edge is a roller of
+    radius 0.
+
+    Parameters
+    ----------
+    radius_a, radius_b : float
+        The radii (mm, ≥ 0).
+    concave_a, concave_b : bool
+        Whether the profile is the inside of its circle.
+
+    Returns
+    -------
+    float
+        The centre distance (mm); negative where the roller is larger than the concave
+        circle it should run in (it cannot: an undercut).
+
+    Raises
+    ------
+    ValueError
+        For two concave profiles.
+
+    Examples
+    --------
+    >>> replacing_length(40.0, 10.0), replacing_length(40.0, 10.0, concave_a=True)
+    (50.0, 30.0)
+    """
+    if concave_a and concave_b:
+        raise ValueError("two concave profiles cannot touch each other")
+    if concave_a:
+        return radius_a - radius_b
+    if concave_b:
+        return radius_b - radius_a
+    return radius_a + radius_b
+
+
+def circle_follower(centre: Value, radius: float, path: Slider | Rocker, roller: float = 0.0,
+                    *, concave: bool = False, allowed: float = 0.5 * math.pi,
+                    delta: float = 0.0) -> Contact:
+    """A roller (or knife-edge) follower on a circular cam profile, by its exact replacement.
+
+    The replacing link joins the circle's centre to the roller's centre at the constant
+    length :func:`replacing_length`, so the follower is the last link of an RRR dyad (a
+    rocking follower: the four-bar pivot–eccentric–link–arm) or an RRP dyad (a translating
+    follower: the slider-crank), solved in closed form at every position.
+
+    Parameters
+    ----------
+    centre : complex ndarray or Jet
+        The circle's centre at every position (mm): a point fixed on the cam.
+    radius : float
+        The circle's radius R (mm).
+    path : Slider or Rocker
+        The path of the roller's centre.
+    roller : float
+        The roller's radius r (mm); 0 for a knife edge.
+    concave : bool
+        The profile is the inside of the circle (a groove): the roller runs inside it.
+    allowed : float
+        The largest pressure angle allowed (rad).
+    delta : float
+        The replacing dyad's assigned tolerance δ (:mod:`assur.kinematics.dyads`).
+
+    Returns
+    -------
+    Contact
+        NaN geometry where the dyad does not assemble (its own reason) or the roller is
+        larger than the groove (:attr:`Reason.UNDERCUT`).
+
+    Examples
+    --------
+    An eccentric of radius 40 mm whose centre is 10 mm from the shaft, under a radial
+    translating roller follower of radius 10 mm: at the top the roller's centre is
+    10 + 40 + 10 mm above the shaft.
+
+    >>> import numpy as np
+    >>> centre = 10.0 * np.exp(1j * np.radians([90.0, 0.0]))
+    >>> contact = circle_follower(centre, 40.0, Slider(0j, np.pi / 2), 10.0)
+    >>> print(np.round(contact.follower, 6), np.degrees(contact.pressure_angle).round(4))
+    [60.       48.989795] [ 0.    11.537]
+    """
+    length = replacing_length(radius, roller, concave_a=concave)
+    if length < 0.0:
+        return _undercut(centre, path)
+    with np.errstate(all="ignore"):
+        if isinstance(path, Slider):
+            solution = solve_rrp(centre, path.base, path.angle, 0.0, length, 1.0, delta)
+            follower = solution.s_i
+        else:
+            solution = solve_rrr(centre, path.pivot, length, path.arm, -path.away, delta)
+            follower = solution.angle_j
+        towards = (solution.c - centre) / length
+        normal = -towards if concave else towards
+        point = centre + radius * towards
+        curvature = np.full(np.shape(solution.exists), -1.0 / radius if concave else 1.0 / radius)
+        return _contact(point, normal, centre, curvature, _given(follower), solution.c, path,
+                        solution.exists, solution.reason, allowed)
+
+
+def flat_follower(centre: Value, radius: float, path: Slider, gamma: float = 0.5 * math.pi,
+                  *, allowed: float = 0.5 * math.pi, delta: float = 0.0) -> Contact:
+    """A translating flat-faced follower on a circular cam profile (an eccentric).
+
+    The replacing link is hinged at the circle's centre C and slides, parallel to the face,
+    in a guide of the follower through C: an RPP dyad whose internal point is where the
+    line through C parallel to the face crosses the follower's path. The face itself lies R
+    further from C, on the follower's side, so the follower's point on its path is R/|sin γ|
+    ahead of that crossing.
+
+    Parameters
+    ----------
+    centre : complex ndarray or Jet
+        The circle's centre at every position (mm).
+    radius : float
+        The circle's radius R (mm).
+    path : Slider
+        The path of the follower's point where its face crosses the path; ``angle`` points
+        away from the cam.
+    gamma : float
+        The angle from the path's direction to the face (rad); π/2 for a face square to
+        the path.
+    allowed : float
+        The largest pressure angle allowed (rad); a face at γ has the constant pressure angle
+        |π/2 − |γ||.
+    delta : float
+        The replacing dyad's assigned tolerance δ₅ (``|sin γ| >= δ``).
+
+    Returns
+    -------
+    Contact
+        ``follower`` is the coordinate of the follower's point along its path; ``centre_b``
+        that point.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> centre = 10.0 * np.exp(1j * np.radians([90.0, 0.0, 270.0]))
+    >>> print(flat_follower(centre, 40.0, Slider(0j, np.pi / 2)).follower.round(6))
+    [50. 40. 30.]
+    """
+    with np.errstate(all="ignore"):
+        solution = solve_rpp(centre, gamma, path.base, path.angle, 0.0, delta)
+        side = -1.0 if math.sin(gamma) > 0.0 else 1.0
+        normal = side * 1j * J.expi(path.angle + gamma) + 0.0 * centre
+        shift = radius / abs(math.sin(gamma))
+        follower = _given(solution.s_i) + shift
+        reference = solution.c + shift * J.expi(path.angle)
+        curvature = np.full(np.shape(solution.exists), 1.0 / radius)
+        return _contact(centre + radius * normal, normal, centre, curvature, follower,
+                        reference, path, solution.exists, solution.reason, allowed)
+
+
+def polar_follower(profile: PolarProfile, origin: Value, angle: Value, path: Slider | Rocker,
+                   roller: float = 0.0, *, allowed: float = 0.5 * math.pi) -> Contact:
+    """A roller (or knife-edge) follower on a tabulated cam profile, solved at every position.
+
+    Parameters
+    ----------
+    profile : PolarProfile
+        r(θ) around the point of the cam given by ``origin``.
+    origin : complex ndarray or Jet
+        The profile's pole at every position (mm) — the cam's shaft for a disc cam.
+    angle : ndarray or Jet
+        The direction of the profile's θ = 0 at every position (rad, absolute).
+    path : Slider or Rocker
+        The path of the roller's centre.
+    roller : float
+        The roller's radius ρ (mm); 0 for a knife edge.
+    allowed : float
+        The largest pressure angle allowed (rad).
+
+    Returns
+    -------
+    Contact
+        Jets (the follower's analogs) where ``origin``, ``angle`` or the path are jets.
+
+    Notes
+    -----
+    The roller's centre touching the profile at X(θ) is on the offset curve
+    P(θ) = X(θ) + ρ·n(θ), turned with the cam. The follower rests where its path meets the
+    offset curve furthest away from the cam (the largest ``s`` on a slider's path, the arm
+    angle furthest in its ``away`` sense): that is where it touches without entering the
+    cam, the position a brute-force search over the profile's points gives. The path's
+    equation g(θ) = 0 (a slider: Im(ū·(P − b)) = 0; a rocker: (|P − F|² − L²)/(2L) = 0) is
+    sampled over the profile (8 samples per table node, at least 720), its sign changes are
+    the meeting points, and the outermost one is polished by a bracketed Newton iteration
+    with dg/dθ, dP/dθ = X′·(1 + ρκ).
+
+    The analogs come from implicit differentiation of g(θ(φ), φ) = 0, carried out on the
+    jets: starting from the solved θ, two steps θ ← θ − g(θ, φ)/g_θ make the first and then
+    the second derivative of θ exact (each step of this chord iteration in truncated power
+    series gains one order), and the follower's coordinate follows from θ.
+
+    A roller passing over a concave part of the profile whose radius of curvature is
+    smaller than its own (1 + ρκ < 0, an undercut: the offset curve folds into a
+    swallowtail there) bridges it, touching two points; the positions where its path still
+    meets that part of the offset curve are reported as :attr:`Reason.UNDERCUT` — the follower
+    does not follow the profile there. A path that never meets the offset curve is
+    :attr:`Reason.CONTACT_LOST`.
+
+    Examples
+    --------
+    A circle of radius 40 mm about the shaft keeps a roller of 10 mm at 50 mm:
+
+    >>> import numpy as np
+    >>> profile = PolarProfile.from_table(np.arange(0.0, 360.0, 15.0), np.full(24, 40.0))
+    >>> contact = polar_follower(profile, 0j, np.radians([0.0, 33.0]), Slider(0j, 1.2), 10.0)
+    >>> contact.follower.round(9), bool(contact.exists.all())
+    (array([50., 50.]), True)
+    """
+    samples = max(_LEAST, _PER_NODE * profile.nodes)
+    start = float(profile.spline.x[0])
+    step = 2.0 * math.pi / samples
+    grid = start + step * np.arange(samples)
+    pose = _Pose(origin, angle, path)
+    sampled = pose.sampled()
+    values = _Pose(*(np.squeeze(x, -1) for x in sampled[:2]), _path_values(path))
+    with np.errstate(all="ignore"):
+        x, n = profile.local(grid)
+        curvature = profile.curvature(grid)
+        offset = sampled.globally(np.asarray(x) + roller * np.asarray(n))
+        g, rank = _on_path(sampled.path, offset, sampled.origin)
+        ahead = np.roll(g, -1, axis=-1)
+        meets = np.isfinite(g) & np.isfinite(ahead) & ((g == 0.0) | (np.sign(g) != np.sign(ahead)))
+        share = np.clip(g / (g - ahead), 0.0, 1.0)
+        reach = np.where(meets, rank + share * (np.roll(rank, -1, axis=-1) - rank), -np.inf)
+        best = np.argmax(reach, axis=-1)
+        found = meets.any(axis=-1)
+        facing = _facing(sampled.path, offset, sampled.rotor * np.asarray(n))
+        undercut = (meets & (1.0 + roller * curvature < 0.0) & facing).any(axis=-1)
+        theta = _polish(profile, roller, values, grid[best], step)
+        theta = np.where(found, theta, np.nan)
+        if any(isinstance(v, Jet) for v in (origin, angle, *path[:2])):
+            solved: Value = Jet(theta, 0.0, 0.0)
+            slope = _residual(profile, roller, values, Jet(theta, 1.0, 0.0)).d1
+            for _ in range(2):
+                solved = solved - _residual(profile, roller, pose, solved) / slope
+        else:
+            solved = theta
+        x, n = profile.local(solved)
+        point = pose.globally(x)
+        normal = pose.rotor * n
+        centre_b = point + roller * normal
+        kappa = profile.curvature(theta)
+        centre = values.globally(np.asarray(J.value(x)) - np.asarray(J.value(n)) / kappa)
+        reason = np.where(found, np.where(undercut, Reason.UNDERCUT, Reason.ASSEMBLES),
+                          Reason.CONTACT_LOST).astype(np.int8)
+        return _contact(point, normal, centre, kappa, _coordinate(pose.path, centre_b),
+                        centre_b, path, reason == 0, reason, allowed)
+
+
+def gear_angle(angle: Value, radii: tuple[float, float], *, internal: bool = False,
+               start: Value = 0.0) -> Value:
+    """The angle of the second of two meshing gears, from the rotation of the first.
+
+    The pitch circles roll without slip: r₁·dφ₁ = ∓r₂·dφ₂, so the second gear turns at the
+    fixed ratio ψ = start − (r₁/r₂)·φ (external mesh: the opposite sense), or
+    ψ = start + (r₁/r₂)·φ (internal mesh: the same sense).
+
+    Parameters
+    ----------
+    angle : ndarray or Jet
+        The first gear's rotation φ from the reference position (rad).
+    radii : (float, float)
+        The pitch radii r₁, r₂ (mm).
+    internal : bool
+        An internal mesh (one gear's teeth inside a ring).
+    start : float or ndarray
+        The second gear's angle at the reference position (rad).
+
+    Returns
+    -------
+    ndarray or Jet
+        ψ (rad); a jet for a jet ``angle``.
+
+    Examples
+    --------
+    >>> print(gear_angle(0.6, (20.0, 60.0)), gear_angle(0.6, (20.0, 60.0), internal=True))
+    -0.19999999999999998 0.19999999999999998
+    """
+    ratio = radii[0] / radii[1]
+    turned: Value = start + (ratio if internal else -ratio) * angle
+    return turned
+
+
+class _Pose(NamedTuple):
+    """The cam's pose and the follower's path, values or jets."""
+
+    origin: Value
+    angle: Value
+    path: Slider | Rocker
+
+    @property
+    def rotor(self) -> Value:
+        return J.expi(self.angle)
+
+    def globally(self, local: Value) -> Value:
+        """A point of the cam's frame in the plane: origin + e^{i·angle}·local."""
+        moved: Value = self.origin + self.rotor * local
+        return moved
+
+    def sampled(self) -> _Pose:
+        """The plain values with an axis added last, for the profile's samples."""
+        def axis(x: Value) -> np.ndarray:
+            return np.asarray(J.value(x))[..., None]
+
+        path = self.path
+        return _Pose(axis(self.origin), axis(self.angle),
+                     Slider(axis(path.base), axis(path.angle)) if isinstance(path, Slider)
+                     else Rocker(axis(path.pivot), axis(path.arm), path.away))
+
+
+def _path_values(path: Slider | Rocker) -> Slider | Rocker:
+    if isinstance(path, Slider):
+        return Slider(J.value(path.base), J.value(path.angle))
+    return Rocker(J.value(path.pivot), J.value(path.arm), path.away)
+
+
+def _on_path(path: Slider | Rocker, point: Value, origin: Value) -> tuple[Value, Value]:
+    """The residual g of a point on the path (0 on it, mm) and how far along the path away
+    from the cam it is (the quantity the follower's rest maximises)."""
+    if isinstance(path, Slider):
+        along = J.conj(J.expi(path.angle)) * (point - path.base)
+        return J.imag(along), J.real(along)
+    pivot, arm = path.pivot, path.arm
+    arm_to = point - pivot
+    cam = J.conj(origin - pivot)
+    g = (J.real(arm_to * J.conj(arm_to)) - arm * arm) / (2.0 * arm)
+    return g, path.away * J.arg(arm_to * cam)
+
+
+def _coordinate(path: Slider | Rocker, point: Value) -> Value:
+    """The follower's coordinate of its point on the path: ``s`` (mm) or the arm angle."""
+    if isinstance(path, Slider):
+        return J.real(J.conj(J.expi(path.angle)) * (point - path.base))
+    return J.arg(point - path.pivot)
+
+
+def _heading(path: Slider | Rocker, point: Value) -> Value:
+    """The unit direction in which the follower's point leaves the cam."""
+    if isinstance(path, Slider):
+        return J.expi(path.angle)
+    return path.away * 1j * (point - path.pivot) / path.arm
+
+
+def _facing(path: Slider | Rocker, point: FloatArray, normal: Value) -> BoolArray:
+    """Where the profile's outward normal faces the follower (the near side of the cam)."""
+    return np.asarray(J.real(J.conj(normal) * _heading(path, point)) > 0.0)
+
+
+def _residual(profile: PolarProfile, roller: float, pose: _Pose, theta: Value) -> Value:
+    """g(θ) of the roller's centre touching the profile at θ, on the follower's path."""
+    x, n = profile.local(theta)
+    return _on_path(pose.path, pose.globally(x + roller * n), pose.origin)[0]
+
+
+def _polish(profile: PolarProfile, roller: float, pose: _Pose, lo: FloatArray,
+            step: float) -> FloatArray:
+    """The root of g in [lo, lo + step] at every position: Newton, bisection where Newton
+    would leave the bracket."""
+    hi = lo + step
+    g_lo = np.asarray(_residual(profile, roller, pose, lo))
+    theta = lo + 0.5 * step
+    for _ in range(_POLISH):
+        g = _residual(profile, roller, pose, Jet(theta, 1.0, 0.0))
+        assert isinstance(g, Jet)
+        same = np.sign(g.v) == np.sign(g_lo)
+        lo, g_lo, hi = np.where(same, theta, lo), np.where(same, g.v, g_lo), np.where(same, hi, theta)
+        newton = theta - g.v / g.d1
+        theta = np.where((newton > lo) & (newton < hi), newton, 0.5 * (lo + hi))
+    return theta
+
+
+def _given(x: Value | None) -> Value:
+    if x is None:  # pragma: no cover - the solvers used here give every output
+        raise ValueError("the replacing dyad gives no follower coordinate")
+    return x
+
+
+def _undercut(centre: Value, path: Slider | Rocker) -> Contact:
+    """No contact anywhere: the roller is larger than the groove it should run in."""
+    shape = np.shape(J.value(centre))
+    nan = np.full(shape, np.nan)
+    return Contact(nan + 0j, nan + 0j, nan + 0j, nan, nan, nan + 0j, nan,
+                   np.zeros(shape, bool), np.full(shape, Reason.UNDERCUT, np.int8))
+
+
+def _contact(point: Value, normal: Value, centre: Value, curvature: FloatArray,
+             follower: Value, centre_b: Value, path: Slider | Rocker, exists: BoolArray,
+             reason: np.ndarray, allowed: float) -> Contact:
+    """The contact with its pressure angle; a pressure angle beyond ``allowed`` fails
+    where nothing else does."""
+    heading = np.asarray(J.value(_heading(path, J.value(centre_b))))
+    cosine = np.abs(np.real(np.conj(np.asarray(J.value(normal))) * heading))
+    pressure = np.arccos(np.minimum(cosine, 1.0))
+    steep = np.asarray(exists) & (pressure > allowed)
+    reason = np.where(steep, Reason.PRESSURE_ANGLE, reason).astype(np.int8)
+    return Contact(point, normal, centre, np.asarray(curvature), follower, centre_b, pressure,
+                   np.asarray(exists) & ~steep, reason)

@@ -603,7 +603,7 @@ def _polish(profile: PolarProfile, roller: float, pose: _Pose, lo: FloatArray,
         same = np.sign(g.v) == np.sign(g_lo)
         lo, g_lo, hi = np.where(same, theta, lo), np.where(same, g.v, g_lo), np.where(same, hi, theta)
         newton = theta - g.v / g.d1
-        theta = np.where((newton > lo) & (newton < hi), newton, 0.5 * (lo + hi))
+        theta = np.where((newton >= lo) & (newton <= hi), newton, 0.5 * (lo + hi))
     return theta
 
 

@@ -1,0 +1,337 @@
+"""The contact of a higher pair (assur.kinematics.contact) against closed forms and brute force.
+
+* an eccentric with a roller follower is a four-bar (rocking) or a slider-crank
+  (translating) whose links are the centre distances: positions and analogs against those
+  closed forms, written here;
+* a tabulated profile: the follower's rest against a brute-force search over the densely
+  sampled profile (the largest position where the roller touches a profile point), the
+  analogs against the instantaneous replacing slider-crank (centre of curvature computed here);
+* a geared five-bar against its closed form;
+* existence: undercut, pressure angle, no contact.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.interpolate import CubicSpline
+
+from assur.kinematics.contact import (
+    PolarProfile,
+    Rocker,
+    Slider,
+    circle_follower,
+    flat_follower,
+    gear_angle,
+    polar_follower,
+    replacing_length,
+)
+from assur.kinematics.dyads import solve_rrr
+from assur.kinematics.jets import Jet
+from assur.kinematics.reasons import Reason
+
+PHI = np.radians(np.arange(0.0, 360.0, 5.0))
+
+
+def _cam_centre(e: float, start: float) -> Jet:
+    """The eccentric's centre turning about the shaft at the origin, with its analogs."""
+    turn = np.exp(1j * (start + PHI))
+    return Jet(e * turn, 1j * e * turn, -e * turn)
+
+
+def _solve2(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Real x, y with a·x + b·y = c (complex a, b, c), by Cramer's rule."""
+    det = (a * np.conj(b)).imag
+    return (c * np.conj(b)).imag / det, (a * np.conj(c)).imag / det
+
+
+def _four_bar(centre: Jet, length: float, pivot: complex, arm: float, away: int
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Arm angle ψ and its analogs of the four-bar shaft–eccentric centre–roller–pivot.
+
+    The roller's centre B is where the circle (C, length) meets the circle (pivot, arm), the
+    one turned furthest in the ``away`` sense about the pivot; then C + ℓ·e^{iθ} = F + L·e^{iψ}
+    differentiated once and twice gives two linear equations each for (θ′, ψ′), (θ″, ψ″).
+    """
+    c = centre.v
+    d = np.abs(pivot - c)
+    u = (pivot - c) / d
+    a = (length ** 2 - arm ** 2 + d ** 2) / (2 * d)
+    h = np.sqrt(length ** 2 - a ** 2)
+    candidates = [c + a * u + sign * h * 1j * u for sign in (1, -1)]
+    ranks = [away * np.angle((b - pivot) * np.conj(c - pivot)) for b in candidates]
+    b = np.where(ranks[0] > ranks[1], candidates[0], candidates[1])
+    psi = np.angle(b - pivot)
+    theta = np.angle(b - c)
+    ei, ej = length * np.exp(1j * theta), arm * np.exp(1j * psi)
+    t1, p1 = _solve2(1j * ei, -1j * ej, -centre.d1)
+    t2, p2 = _solve2(1j * ei, -1j * ej, -centre.d2 + ei * t1 ** 2 - ej * p1 ** 2)
+    return psi, p1, p2
+
+
+def _slider_crank(centre: Jet, length: float, base: complex, angle: float
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """s and its analogs of the roller's centre on a line: s = p + √(ℓ² − q²) with p, q the
+    eccentric centre's coordinates along and across the line."""
+    rot = np.exp(-1j * angle)
+    p, q = ((centre.v - base) * rot).real, ((centre.v - base) * rot).imag
+    p1, q1 = (centre.d1 * rot).real, (centre.d1 * rot).imag
+    p2, q2 = (centre.d2 * rot).real, (centre.d2 * rot).imag
+    w = np.sqrt(length ** 2 - q ** 2)
+    return (p + w, p1 - q * q1 / w,
+            p2 - (q1 ** 2 + q * q2) / w - q ** 2 * q1 ** 2 / w ** 3)
+
+
+@pytest.mark.parametrize("away", [1, -1])
+def test_eccentric_with_a_rocking_roller_is_its_four_bar(away: int) -> None:
+    centre = _cam_centre(12.0, 0.3)
+    pivot, arm = 95.0 + 40.0j, 70.0
+    contact = circle_follower(centre, 40.0, Rocker(pivot, arm, away), 10.0)
+    psi, psi1, psi2 = _four_bar(centre, 50.0, pivot, arm, away)
+    assert contact.exists.all()
+    follower = contact.follower
+    assert isinstance(follower, Jet)
+    for got, want in ((follower.v, psi), (follower.d1, psi1), (follower.d2, psi2)):
+        assert np.max(np.abs(got - want)) * arm <= 1e-9
+    roller = contact.centre_b
+    assert isinstance(roller, Jet)
+    assert np.max(np.abs(roller.v - (pivot + arm * np.exp(1j * psi)))) <= 1e-9
+    # the contact is on the eccentric, the normal through both centres
+    assert np.max(np.abs(np.abs(contact.point.v - centre.v) - 40.0)) <= 1e-9
+    assert np.max(np.abs(np.abs(roller.v - contact.point.v) - 10.0)) <= 1e-9
+
+
+def test_eccentric_with_a_translating_roller_is_its_slider_crank() -> None:
+    centre = _cam_centre(15.0, 0.0)
+    base, angle = 8.0 - 5.0j, 1.4
+    contact = circle_follower(centre, 40.0, Slider(base, angle), 10.0)
+    s, s1, s2 = _slider_crank(centre, 50.0, base, angle)
+    follower = contact.follower
+    assert isinstance(follower, Jet)
+    for got, want in ((follower.v, s), (follower.d1, s1), (follower.d2, s2)):
+        assert np.max(np.abs(got - want)) <= 1e-9
+
+
+def test_flat_faced_follower_on_an_eccentric() -> None:
+    """A face square to its path stays R beyond the centre's projection on the path:
+    s = u·(C − b) + R; a face at γ: the line through C parallel to the face meets the path
+    at s = (n·… ) — here checked against the distance from C to the face, which must be R."""
+    centre = _cam_centre(15.0, 0.2)
+    base, angle = 3.0 + 1.0j, 1.3
+    square = flat_follower(centre, 40.0, Slider(base, angle))
+    rot = np.exp(-1j * angle)
+    for part in ("v", "d1", "d2"):
+        want = (getattr(centre, part) * rot).real + (40.0 - (base * rot).real
+                                                    if part == "v" else 0.0)
+        assert np.max(np.abs(getattr(square.follower, part) - want)) <= 1e-9
+    gamma = 1.2
+    slanted = flat_follower(centre, 40.0, Slider(base, angle), gamma)
+    face_point = base + slanted.follower.v * np.exp(1j * angle)
+    face = np.exp(1j * (angle + gamma))
+    distance = ((centre.v - face_point) * np.conj(face)).imag
+    assert np.max(np.abs(np.abs(distance) - 40.0)) <= 1e-9
+    assert np.allclose(slanted.pressure_angle, abs(math.pi / 2 - gamma))
+
+
+# --- a tabulated profile ------------------------------------------------------------------
+
+TABLE_ANGLES = np.arange(0.0, 360.0, 10.0)
+TABLE_RADII = 40.0 + 9.0 * np.sin(np.radians(TABLE_ANGLES)) \
+    + 3.0 * np.cos(np.radians(2 * TABLE_ANGLES))
+
+
+def _spline(angles: np.ndarray, radii: np.ndarray) -> CubicSpline:
+    theta = np.radians(angles)
+    return CubicSpline(np.append(theta, theta[0] + 2 * math.pi), np.append(radii, radii[0]),
+                       bc_type="periodic")
+
+
+def _dense(spline: CubicSpline, start: np.ndarray, samples: int = 200_000) -> np.ndarray:
+    """The profile's points in the plane, the cam turned by ``start``: shape (N, samples)."""
+    theta = 2 * math.pi * np.arange(samples) / samples
+    local = spline(theta) * np.exp(1j * theta)
+    return np.exp(1j * start)[:, None] * local[None, :]
+
+
+def _brute_slider(points: np.ndarray, roller: float, base: complex, angle: float
+                  ) -> np.ndarray:
+    """The largest s where a roller on the line touches one of the points (the nearest
+    touching position coming down the path); for a knife edge (radius 0), the furthest
+    crossing of the line with the polygon through the points."""
+    rel = (points - base) * np.exp(-1j * angle)
+    across = rel.imag
+    if roller == 0.0:
+        ahead = np.roll(rel, -1, axis=1)
+        crosses = np.sign(across) != np.sign(ahead.imag)
+        share = across / (across - ahead.imag)
+        at = rel.real + share * (ahead.real - rel.real)
+        return np.where(crosses, at, -np.inf).max(axis=1)
+    reach = np.where(np.abs(across) <= roller,
+                     rel.real + np.sqrt(np.maximum(roller ** 2 - across ** 2, 0.0)), -np.inf)
+    return reach.max(axis=1)
+
+
+def _brute_rocker(points: np.ndarray, roller: float, pivot: complex, arm: float, away: int,
+                  cam: complex = 0j) -> np.ndarray:
+    """The arm angle furthest ``away`` where the roller touches one of the points."""
+    rel = points - pivot
+    d = np.abs(rel)
+    cosine = (arm ** 2 + d ** 2 - roller ** 2) / (2 * arm * d)
+    beta = np.arccos(np.clip(cosine, -1.0, 1.0))
+    ok = np.abs(cosine) <= 1.0
+    ref = np.angle(cam - pivot)
+    best = np.full(points.shape[0], -np.inf)
+    for sign in (1, -1):
+        psi = np.angle(rel) + sign * beta
+        rank = away * np.angle(np.exp(1j * (psi - ref)))
+        best = np.maximum(best, np.where(ok, rank, -np.inf).max(axis=1))
+    return ref + away * best
+
+
+@pytest.mark.parametrize("roller", [0.0, 12.0])
+def test_tabulated_profile_against_a_brute_force_contact_search(roller: float) -> None:
+    profile = PolarProfile.from_table(TABLE_ANGLES, TABLE_RADII)
+    start = np.radians(np.arange(0.0, 360.0, 10.0))
+    base, angle = 6.0 + 0.0j, 1.5
+    contact = polar_follower(profile, 0j, start, Slider(base, angle), roller)
+    want = _brute_slider(_dense(_spline(TABLE_ANGLES, TABLE_RADII), start), roller, base, angle)
+    assert contact.exists.all()
+    assert np.max(np.abs(np.asarray(contact.follower) - want)) <= 1e-6
+
+
+def test_tabulated_profile_with_a_rocking_roller_against_brute_force() -> None:
+    profile = PolarProfile.from_table(TABLE_ANGLES, TABLE_RADII)
+    start = np.radians(np.arange(0.0, 360.0, 10.0))
+    pivot, arm, roller = 80.0 + 60.0j, 75.0, 10.0
+    contact = polar_follower(profile, 0j, start, Rocker(pivot, arm, 1), roller)
+    want = _brute_rocker(_dense(_spline(TABLE_ANGLES, TABLE_RADII), start), roller, pivot,
+                         arm, 1)
+    assert np.max(np.abs(np.asarray(contact.follower) - want)) * arm <= 1e-6
+
+
+def test_tabulated_analogs_equal_the_instantaneous_replacing_slider_crank() -> None:
+    """At every position the follower moves, to the second order, like the slider-crank whose
+    crank ends at the profile's centre of curvature at the contact and whose rod reaches the
+    roller's centre (the replacing mechanism); the curvature is computed here from the
+    spline's derivatives."""
+    spline = _spline(TABLE_ANGLES, TABLE_RADII)
+    profile = PolarProfile(spline)
+    start = np.radians(np.arange(0.0, 360.0, 10.0))
+    base, angle, roller = 6.0 + 0.0j, 1.5, 12.0
+    turning = Jet(start, 1.0, 0.0)
+    contact = polar_follower(profile, 0j, turning, Slider(base, angle), roller)
+    point = contact.point.v
+    theta = np.angle(point * np.exp(-1j * start))
+    r, dr, ddr = spline(theta), spline(theta, 1), spline(theta, 2)
+    radius = (r * r + dr * dr) ** 1.5 / (r * r + 2 * dr * dr - r * ddr)
+    normal = (contact.centre_b.v - point) / roller
+    curvature_centre = point - radius * normal
+    centre = Jet(curvature_centre, 1j * curvature_centre, -curvature_centre)
+    s, s1, s2 = _slider_crank(centre, radius + roller, base, angle)
+    follower = contact.follower
+    assert np.max(np.abs(follower.v - s)) <= 1e-9
+    assert np.max(np.abs(follower.d1 - s1)) <= 1e-7 * np.max(np.abs(s1))
+    assert np.max(np.abs(follower.d2 - s2)) <= 1e-7 * np.max(np.abs(s2))
+
+
+def test_a_tabulated_eccentric_follows_like_the_eccentric() -> None:
+    """An eccentric tabulated as r(θ) = e·cos θ + √(R² − e² sin² θ) every 2°: the spline's
+    follower stays within the interpolation error of the exact replacement."""
+    e, radius = 10.0, 40.0
+    angles = np.arange(0.0, 360.0, 2.0)
+    t = np.radians(angles)
+    profile = PolarProfile.from_table(angles, e * np.cos(t) + np.sqrt(radius ** 2
+                                                                      - (e * np.sin(t)) ** 2))
+    pivot, arm = 90.0 + 30.0j, 70.0
+    tabulated = polar_follower(profile, 0j, PHI, Rocker(pivot, arm, -1), 10.0)
+    exact = circle_follower(e * np.exp(1j * PHI), radius, Rocker(pivot, arm, -1), 10.0)
+    assert np.max(np.abs(np.asarray(tabulated.follower) - exact.follower)) * arm <= 1e-4
+
+
+def test_a_roller_larger_than_a_hollow_is_an_undercut() -> None:
+    """A hollow of radius of curvature ≈ 8 mm at its bottom (θ = 180°): a roller of 5 mm
+    follows it, one of 14 mm cannot; the undercut is reported while the hollow passes under
+    the follower, and nowhere else."""
+    angles = np.arange(0.0, 360.0, 2.0)
+    t = np.radians(angles)
+    radii = 40.0 - 4.0 * np.exp(-((t - math.pi) / 0.2) ** 2)
+    profile = PolarProfile.from_table(angles, radii)
+    spline = _spline(angles, radii)
+    fine = np.linspace(0.0, 2 * math.pi, 20_001)
+    r, dr, ddr = spline(fine), spline(fine, 1), spline(fine, 2)
+    kappa = (r * r + 2 * dr * dr - r * ddr) / (r * r + dr * dr) ** 1.5
+    smallest = float(1.0 / -kappa[kappa < 0].min())
+    assert 5.0 < smallest < 14.0
+    start = np.radians(np.arange(0.0, 360.0, 1.0))
+    path = Slider(0j, math.pi / 2)
+    small = polar_follower(profile, 0j, start, path, 5.0)
+    assert (small.reason != Reason.UNDERCUT).all()
+    large = polar_follower(profile, 0j, start, path, 14.0)
+    flagged = np.degrees(start[large.reason == Reason.UNDERCUT])
+    assert flagged.size
+    # the hollow's bottom (θ = 180°) faces the follower (90°) when the cam has turned −90°
+    assert 270.0 in flagged
+    assert flagged.min() > 240.0 and flagged.max() < 300.0
+    near = slice(240, 301, 3)  # the roller bridges the hollow: still where it rests
+    want = _brute_slider(_dense(spline, start[near]), 14.0, 0j, math.pi / 2)
+    assert np.max(np.abs(np.asarray(large.follower)[near] - want)) <= 1e-6
+
+
+def test_pressure_angle_beyond_the_allowed_one() -> None:
+    """A radial roller follower on an eccentric: sin α = e·|cos φ|/(R + r)."""
+    e, length = 15.0, 50.0
+    centre = e * np.exp(1j * PHI)
+    allowed = math.radians(14.0)
+    contact = circle_follower(centre, 40.0, Slider(0j, math.pi / 2), 10.0, allowed=allowed)
+    alpha = np.arcsin(e * np.abs(np.cos(PHI)) / length)
+    assert np.max(np.abs(contact.pressure_angle - alpha)) <= 1e-12
+    steep = alpha > allowed
+    assert steep.any() and not steep.all()
+    assert (contact.reason[steep] == Reason.PRESSURE_ANGLE).all()
+    assert (contact.reason[~steep] == 0).all()
+    assert (contact.exists == ~steep).all()
+
+
+def test_no_contact_where_the_path_misses_the_cam() -> None:
+    profile = PolarProfile.from_table(TABLE_ANGLES, TABLE_RADII)
+    contact = polar_follower(profile, 0j, PHI, Slider(80.0j, 0.0), 5.0)
+    assert (contact.reason == Reason.CONTACT_LOST).all()
+    assert np.isnan(np.asarray(contact.follower)).all()
+
+
+def test_a_roller_larger_than_its_groove() -> None:
+    assert replacing_length(40.0, 10.0, concave_a=True) == 30.0
+    contact = circle_follower(10.0 * np.exp(1j * PHI), 8.0, Slider(0j, 1.0), 10.0,
+                              concave=True)
+    assert (contact.reason == Reason.UNDERCUT).all()
+
+
+# --- gears ----------------------------------------------------------------------------------
+
+def test_geared_five_bar_against_its_closed_form() -> None:
+    """Two cranks on meshing gears (pitch radii 30, 45 mm, centres 75 mm apart) joined by two
+    couplers: the second crank's angle is −(r₁/r₂)·φ + const, the coupler joint where the
+    couplers' circles meet."""
+    r1, r2 = 30.0, 45.0
+    o1, o2 = 0j, 75.0 + 0j
+    a1, a2, l1, l2 = 25.0, 35.0, 90.0, 80.0
+    phi = Jet(PHI, 1.0, 0.0)
+    psi = gear_angle(phi, (r1, r2), start=2.0)
+    a = o1 + a1 * Jet(np.exp(1j * PHI), 1j * np.exp(1j * PHI), -np.exp(1j * PHI))
+    turn = np.exp(1j * psi.v)
+    b = o2 + a2 * Jet(turn, 1j * turn * psi.d1, -turn * psi.d1 ** 2)
+    joint = solve_rrr(a, b, l1, l2, 1.0).c
+    # closed form
+    psi_c = 2.0 - r1 / r2 * PHI
+    pa, pb = o1 + a1 * np.exp(1j * PHI), o2 + a2 * np.exp(1j * psi_c)
+    d = np.abs(pb - pa)
+    u = (pb - pa) / d
+    along = (l1 ** 2 - l2 ** 2 + d ** 2) / (2 * d)
+    c = pa + along * u + np.sqrt(l1 ** 2 - along ** 2) * 1j * u
+    assert np.max(np.abs(psi.v - psi_c)) <= 1e-12 and np.all(psi.d1 == -r1 / r2)
+    assert np.max(np.abs(joint.v - c)) <= 1e-9
+    # the joint's velocity analog: both couplers keep their lengths
+    assert np.max(np.abs(((joint.v - pa) * np.conj(joint.d1 - a.d1)).real)) <= 1e-9
+    assert np.max(np.abs(((joint.v - pb) * np.conj(joint.d1 - b.d1)).real)) <= 1e-9

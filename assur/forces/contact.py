@@ -78,7 +78,7 @@ def contact_force(forces: ForceAnalysis, pair: PairId, normal: Value, follower: 
 
     Examples
     --------
-    See ``tests/assur/test_contact_force.py``: the cam of an eccentric with a rocking roller
+    See ``tests/assur/test_contact.py``: the cam of an eccentric with a rocking roller
     follower against a Newton–Euler solve of the whole mechanism.
     """
     reaction = forces.reactions[pair]

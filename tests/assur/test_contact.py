@@ -335,3 +335,141 @@ def test_geared_five_bar_against_its_closed_form() -> None:
     # the joint's velocity analog: both couplers keep their lengths
     assert np.max(np.abs(((joint.v - pa) * np.conj(joint.d1 - a.d1)).real)) <= 1e-9
     assert np.max(np.abs(((joint.v - pb) * np.conj(joint.d1 - b.d1)).real)) <= 1e-9
+
+
+# --- the contact force ----------------------------------------------------------------------
+
+E, START, RADIUS, ROLLER = 12.0, 0.3, 40.0, 10.0
+PIVOT, ARM = 95.0 + 40.0j, 70.0
+G1, M1, I1 = 5.0 + 3.0j, 2.0, 0.004       # cam: centre of mass (sketch, mm), kg, kg·m²
+M3, I3 = 1.5, 0.02                         # follower arm
+MM = 1e-3
+
+
+def _sketch() -> tuple[complex, complex, complex]:
+    """The eccentric's centre, the roller's centre and the arm's centre of mass, sketched."""
+    centre = E * np.exp(1j * START)
+    psi = _four_bar(Jet(np.array([centre]), 0.0, 0.0), RADIUS + ROLLER, PIVOT, ARM, 1)[0][0]
+    roller = PIVOT + ARM * np.exp(1j * psi)
+    return centre, roller, PIVOT + 0.5 * (roller - PIVOT) + 4.0j
+
+
+def _replacing_forces(phi: np.ndarray, torque: float, omega: float) -> tuple[object, object]:
+    """The replacing four-bar (shaft–eccentric–replacing link–arm) through the program:
+    its motion, the contact, and its group-by-group kinetostatics."""
+    from assur.forces import ForceData, Load, Mass, kinetostatics
+    from assur.io.chain_table import chain_from_dict
+    from assur.kinematics.analysis import analyse
+    from assur.kinematics.build import build_model
+    from assur.structure.analysis import analyse_structure
+
+    centre, roller, g3 = _sketch()
+    point = {"A": 0j, "B": centre, "C": roller, "D": PIVOT}
+    chain = chain_from_dict({"mechanism": {"pairs": [
+        {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [1, 2]},
+        {"id": "C", "type": "R", "links": [2, 3]}, {"id": "D", "type": "R", "links": [3, 0]}],
+        "inputs": [1]}, "geometry": {k: {"point": [z.real, z.imag]} for k, z in point.items()}})
+    motion = analyse(build_model(analyse_structure(chain)), phi, analogs=True)
+    data = ForceData({1: Mass(M1, G1, I1), 3: Mass(M3, g3, I3)}, (Load(3, torque=torque),),
+                     -9.81j)
+    contact = circle_follower(motion.joints["B"], RADIUS, Rocker(PIVOT, ARM, 1), ROLLER)
+    return motion, contact, kinetostatics(motion, data, omega)
+
+
+def _newton_euler(phi: np.ndarray, torque: float, omega: float
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The cam and the arm, each in Newton–Euler equilibrium with d'Alembert's forces, the
+    contact force N along the normal through both centres (on the arm; −N on the cam),
+    the shaft's and the pivot's reactions and the driving torque: six unknowns per position.
+
+    Returns N (N), the driving torque (N·m) and the relative power balance."""
+    centre_sk, roller_sk, g3_sk = _sketch()
+    psi0 = np.angle(roller_sk - PIVOT)
+    centre = E * np.exp(1j * (START + phi)) * MM
+    psi, psi1, psi2 = _four_bar(_cam_centre_at(phi), RADIUS + ROLLER, PIVOT, ARM, 1)
+    pivot = PIVOT * MM
+    roller = pivot + ARM * MM * np.exp(1j * psi)
+    normal = (roller - centre) / np.abs(roller - centre)
+    g1 = G1 * MM * np.exp(1j * phi)
+    a1 = -omega ** 2 * g1
+    arm_g = (g3_sk - PIVOT) * MM * np.exp(1j * (psi - psi0))
+    g3 = pivot + arm_g
+    a3 = omega ** 2 * (1j * psi2 - psi1 ** 2) * arm_g
+    eps3 = psi2 * omega ** 2
+    grav = -9.81j
+
+    def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        return (np.conj(a) * b).imag
+
+    size = phi.size
+    matrix = np.zeros((size, 6, 6))
+    rhs = np.zeros((size, 6))
+    load1, load3 = M1 * (grav - a1), M3 * (grav - a3)
+    # unknowns: R1x, R1y, R3x, R3y, M, N
+    matrix[:, 0, 0], matrix[:, 0, 5], rhs[:, 0] = 1, -normal.real, -load1.real
+    matrix[:, 1, 1], matrix[:, 1, 5], rhs[:, 1] = 1, -normal.imag, -load1.imag
+    matrix[:, 2, 4], matrix[:, 2, 5], rhs[:, 2] = 1, -cross(centre, normal), -cross(g1, load1)
+    matrix[:, 3, 2], matrix[:, 3, 5], rhs[:, 3] = 1, normal.real, -load3.real
+    matrix[:, 4, 3], matrix[:, 4, 5], rhs[:, 4] = 1, normal.imag, -load3.imag
+    matrix[:, 5, 5] = cross(roller - pivot, normal)
+    rhs[:, 5] = -(cross(arm_g, load3) - I3 * eps3 + torque)
+    x = np.linalg.solve(matrix, rhs[..., None])[..., 0]
+    driving, force = x[:, 4], x[:, 5]
+    v1 = 1j * omega * g1
+    v3 = 1j * omega * psi1 * arm_g
+    terms = [driving * omega, (np.conj(v1) * load1).real, (np.conj(v3) * load3).real,
+             (-I3 * eps3 + torque) * psi1 * omega]
+    balance = sum(terms) / sum(np.abs(t) for t in terms)
+    return force, driving, balance
+
+
+def _cam_centre_at(phi: np.ndarray) -> Jet:
+    turn = np.exp(1j * (START + phi))
+    return Jet(E * turn, 1j * E * turn, -E * turn)
+
+
+def test_contact_force_against_a_newton_euler_solve_of_the_whole_mechanism() -> None:
+    from assur.forces.contact import contact_force
+
+    torque, omega = -15.0, 30.0
+    motion, contact, forces = _replacing_forces(PHI, torque, omega)
+    # the replacing four-bar moves the roller like the contact solved on its own
+    assert np.max(np.abs(motion.joints["C"].v - contact.centre_b.v)) <= 1e-9
+    result = contact_force(forces, "C", contact.normal, 3, contact.reason)
+    force, driving, balance = _newton_euler(PHI, torque, omega)
+    scale = np.max(np.abs(force))
+    assert np.max(np.abs(result.normal - force)) <= 1e-9 * scale
+    assert np.max(np.abs(result.tangential)) <= 1e-9 * scale
+    assert np.max(np.abs(forces.driving - driving)) <= 1e-9 * np.max(np.abs(driving))
+    assert np.max(np.abs(balance)) <= 1e-9
+    assert np.max(np.abs(forces.power_balance / forces.power_scale)) <= 1e-9
+    assert result.holds.all() and (force > 0).all()
+
+
+def test_a_contact_lost_over_part_of_the_cycle_is_an_interval_with_its_reason() -> None:
+    """A weak return torque at a high speed: the arm's inertia would need the cam to pull it
+    over part of the turn. The interval's ends are where the Newton–Euler N crosses 0."""
+    from scipy.optimize import brentq
+
+    from assur.forces.contact import contact_force, lost_intervals
+
+    torque, omega = -2.0, 40.0
+    phi = np.radians(np.arange(0.0, 360.0, 1.0))
+    _, contact, forces = _replacing_forces(phi, torque, omega)
+    result = contact_force(forces, "C", contact.normal, 3, contact.reason)
+    force = _newton_euler(phi, torque, omega)[0]
+    assert ((force < 0) == (result.reason == Reason.CONTACT_LOST)).all()
+    intervals = lost_intervals(phi, result.normal)
+    assert intervals and all(i.reason == Reason.CONTACT_LOST for i in intervals)
+
+    def n_at(x: float) -> float:
+        return float(_newton_euler(np.array([x]), torque, omega)[0][0])
+
+    changes = np.flatnonzero(np.sign(force) != np.sign(np.roll(force, -1)))
+    roots = sorted(brentq(n_at, phi[k], phi[k] + math.radians(1.0), xtol=1e-13)
+                   % (2 * math.pi) for k in changes)
+    ends = sorted([i.start for i in intervals] + [i.end for i in intervals])
+    assert len(ends) == len(roots)
+    assert np.max(np.abs(np.array(ends) - roots)) <= math.radians(0.01)
+    for interval in intervals:
+        assert interval.shortfall == pytest.approx(force[force < 0].min(), rel=1e-9)

@@ -44,6 +44,7 @@ References
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -51,7 +52,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from assur.kinematics import jets as J
-from assur.kinematics.dyads import DyadSolution, solve_rpp, solve_rrp, solve_rrr
+from assur.kinematics.dyads import solve_rpp, solve_rrp, solve_rrr
 from assur.kinematics.jets import Jet
 from assur.kinematics.reasons import Reason
 from assur.typing import BoolArray, FloatArray, Value
@@ -445,44 +446,51 @@ def polar_follower(profile: PolarProfile, origin: Value, angle: Value, path: Sli
     (array([50., 50.]), True)
     """
     samples = max(_LEAST, _PER_NODE * profile.nodes)
-    start = float(profile.spline.x[0])
     step = 2.0 * math.pi / samples
-    grid = start + step * np.arange(samples)
+    grid: FloatArray = float(profile.spline.x[0]) + step * np.arange(samples, dtype=float)
     pose = _Pose(origin, angle, path)
-    sampled = pose.sampled()
-    values = _Pose(*(np.squeeze(x, -1) for x in sampled[:2]), _path_values(path))
+    values = pose.values()
     with np.errstate(all="ignore"):
-        x, n = profile.local(grid)
-        curvature = profile.curvature(grid)
-        offset = sampled.globally(np.asarray(x) + roller * np.asarray(n))
-        g, rank = _on_path(sampled.path, offset, sampled.origin)
-        ahead = np.roll(g, -1, axis=-1)
-        meets = np.isfinite(g) & np.isfinite(ahead) & ((g == 0.0) | (np.sign(g) != np.sign(ahead)))
-        share = np.clip(g / (g - ahead), 0.0, 1.0)
-        reach = np.where(meets, rank + share * (np.roll(rank, -1, axis=-1) - rank), -np.inf)
-        best = np.argmax(reach, axis=-1)
-        found = meets.any(axis=-1)
-        facing = _facing(sampled.path, offset, sampled.rotor * np.asarray(n))
-        undercut = (meets & (1.0 + roller * curvature < 0.0) & facing).any(axis=-1)
-        theta = _polish(profile, roller, values, grid[best], step)
-        theta = np.where(found, theta, np.nan)
+        best, found, undercut = _meetings(profile, roller, pose, grid)
+        theta = np.where(found, _polish(profile, roller, values, grid[best], step), np.nan)
+        solved: Value = theta
         if any(isinstance(v, Jet) for v in (origin, angle, *path[:2])):
-            solved: Value = Jet(theta, 0.0, 0.0)
-            slope = _residual(profile, roller, values, Jet(theta, 1.0, 0.0)).d1
+            slope = _array(_derivative(_residual(profile, roller, values, Jet(theta, 1.0))))
+            solved = Jet(theta)
             for _ in range(2):
                 solved = solved - _residual(profile, roller, pose, solved) / slope
-        else:
-            solved = theta
         x, n = profile.local(solved)
         point = pose.globally(x)
         normal = pose.rotor * n
         centre_b = point + roller * normal
         kappa = profile.curvature(theta)
-        centre = values.globally(np.asarray(J.value(x)) - np.asarray(J.value(n)) / kappa)
+        centre = values.globally(_array(x) - _array(n) / kappa)
         reason = np.where(found, np.where(undercut, Reason.UNDERCUT, Reason.ASSEMBLES),
                           Reason.CONTACT_LOST).astype(np.int8)
         return _contact(point, normal, centre, kappa, _coordinate(pose.path, centre_b),
                         centre_b, path, reason == 0, reason, allowed)
+
+
+def _meetings(profile: PolarProfile, roller: float, pose: _Pose, grid: FloatArray
+              ) -> tuple[np.ndarray, BoolArray, BoolArray]:
+    """Where the follower's path meets the offset curve sampled at ``grid``, per position.
+
+    Returns the sample after which the outermost meeting lies, whether there is one, and
+    whether the path meets the offset curve where the roller cannot follow the profile (an
+    undercut: 1 + ρκ < 0 on the side of the cam facing the follower).
+    """
+    sampled = pose.sampled()
+    x, n = (_array(part) for part in profile.local(grid))
+    offset = _array(sampled.globally(x + roller * n))
+    g, rank = (_array(part) for part in _on_path(sampled.path, offset, sampled.origin))
+    ahead = np.roll(g, -1, axis=-1)
+    meets = np.isfinite(g) & np.isfinite(ahead) & ((g == 0.0) | (np.sign(g) != np.sign(ahead)))
+    share = np.clip(g / (g - ahead), 0.0, 1.0)
+    reach = np.where(meets, rank + share * (np.roll(rank, -1, axis=-1) - rank), -np.inf)
+    facing = _facing(sampled.path, offset, _array(sampled.rotor) * n)
+    concave = 1.0 + roller * profile.curvature(grid) < 0.0
+    return (np.argmax(reach, axis=-1), meets.any(axis=-1),
+            (meets & concave & facing).any(axis=-1))
 
 
 def gear_angle(angle: Value, radii: tuple[float, float], *, internal: bool = False,
@@ -535,21 +543,29 @@ class _Pose(NamedTuple):
         moved: Value = self.origin + self.rotor * local
         return moved
 
+    def values(self) -> _Pose:
+        """The plain values, without derivatives."""
+        return self._mapped(_array)
+
     def sampled(self) -> _Pose:
         """The plain values with an axis added last, for the profile's samples."""
-        def axis(x: Value) -> np.ndarray:
-            return np.asarray(J.value(x))[..., None]
+        return self._mapped(lambda x: _array(x)[..., None])
 
+    def _mapped(self, change: Callable[[Value], np.ndarray]) -> _Pose:
         path = self.path
-        return _Pose(axis(self.origin), axis(self.angle),
-                     Slider(axis(path.base), axis(path.angle)) if isinstance(path, Slider)
-                     else Rocker(axis(path.pivot), axis(path.arm), path.away))
+        return _Pose(change(self.origin), change(self.angle),
+                     Slider(change(path.base), change(path.angle)) if isinstance(path, Slider)
+                     else Rocker(change(path.pivot), change(path.arm), path.away))
 
 
-def _path_values(path: Slider | Rocker) -> Slider | Rocker:
-    if isinstance(path, Slider):
-        return Slider(J.value(path.base), J.value(path.angle))
-    return Rocker(J.value(path.pivot), J.value(path.arm), path.away)
+def _array(x: Value) -> np.ndarray:
+    """The plain values of a quantity (a jet's value) as an array."""
+    return np.asarray(J.value(x))
+
+
+def _derivative(x: Value) -> Value:
+    """A jet's first derivative (0 for a plain value)."""
+    return x.d1 if isinstance(x, Jet) else 0.0
 
 
 def _on_path(path: Slider | Rocker, point: Value, origin: Value) -> tuple[Value, Value]:
@@ -579,9 +595,10 @@ def _heading(path: Slider | Rocker, point: Value) -> Value:
     return path.away * 1j * (point - path.pivot) / path.arm
 
 
-def _facing(path: Slider | Rocker, point: FloatArray, normal: Value) -> BoolArray:
+def _facing(path: Slider | Rocker, point: np.ndarray, normal: np.ndarray) -> BoolArray:
     """Where the profile's outward normal faces the follower (the near side of the cam)."""
-    return np.asarray(J.real(J.conj(normal) * _heading(path, point)) > 0.0)
+    facing: BoolArray = np.real(np.conj(normal) * _array(_heading(path, point))) > 0.0
+    return facing
 
 
 def _residual(profile: PolarProfile, roller: float, pose: _Pose, theta: Value) -> Value:

@@ -26,16 +26,21 @@ if TYPE_CHECKING:  # pragma: no cover
     from assur.typing import ComplexArray, FloatArray
 
 __all__ = [
+    "DEFAULT_GEAR_PRESSURE_ANGLE",
     "DEFAULT_PRESSURE_ANGLE",
     "Allowable",
     "Chain",
+    "CircleProfile",
     "Direction",
     "Drive",
     "ForceData",
+    "GearMesh",
     "General",
     "GroupParams",
+    "HigherPair",
     "IdentificationRow",
     "Input",
+    "LineProfile",
     "Link",
     "LinkId",
     "Load",
@@ -43,6 +48,8 @@ __all__ = [
     "Pair",
     "PairId",
     "PairType",
+    "PolarProfile",
+    "Profile",
     "Sketch",
     "SketchTrace",
     "Student",
@@ -109,6 +116,10 @@ class Sketch:
     tracing : tuple of SketchTrace
     margin : float, mapping or None
         δ for every group, or group label → δ.
+    profiles : mapping
+        Higher pair id → the two profiles in contact, in the order of the pair's links
+        (:attr:`HigherPair.links`), at the reference position; a gear mesh's are its two
+        pitch circles.
 
     Examples
     --------
@@ -125,6 +136,7 @@ class Sketch:
     stroke: tuple[float, float] | None = None
     tracing: tuple[SketchTrace, ...] = ()
     margin: float | Mapping[str, float] | None = None
+    profiles: Mapping[PairId, tuple[Profile, Profile]] = field(default_factory=dict)
 
     def pose(self, pairs: Iterable[Pair]) -> dict[PairId, tuple[complex, complex | None]] | None:
         """Point and (for a P pair) slide vector of each pair, keyed by pair id; None when
@@ -187,6 +199,144 @@ class Pair:
     links: tuple[LinkId, LinkId]
     guide: LinkId | None = None
     origin: PairId | None = None
+
+    def other(self, link: LinkId) -> LinkId:
+        """The link at the other end of the pair from ``link``."""
+        a, b = self.links
+        return b if link == a else a
+
+
+#: The default pressure angle of a gear mesh (the angle between the line of action and the
+#: common tangent of the pitch circles), degrees: the standard basic rack (ISO 53, GOST 13755).
+DEFAULT_GEAR_PRESSURE_ANGLE = 20.0
+
+
+@dataclass(frozen=True, slots=True)
+class CircleProfile:
+    """A circular profile fixed on a link: a roller, an eccentric disc, a pitch circle, or
+    (radius 0) the point of a knife edge.
+
+    Points are sketch points (mm): where the profile stands when the mechanism is as
+    sketched; the profile moves with its link.
+
+    Attributes
+    ----------
+    centre : complex
+        The centre of the circle (the knife edge's point for radius 0).
+    radius : float
+        ≥ 0; 0 is a point (a knife-edge follower).
+    concave : bool
+        The link is outside the circle (a circular slot or groove, a ring gear): the partner
+        touches it from inside.
+
+    Examples
+    --------
+    >>> CircleProfile(50j, 0.0).is_point
+    True
+    """
+
+    centre: complex
+    radius: float
+    concave: bool = False
+
+    @property
+    def is_point(self) -> bool:
+        """A knife edge: a circle of radius 0."""
+        return self.radius == 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class LineProfile:
+    """A straight profile fixed on a link: the face of a flat-faced follower.
+
+    Attributes
+    ----------
+    point : complex
+        A sketch point of the line, mm.
+    direction : Direction
+        Its direction.
+    """
+
+    point: complex
+    direction: Direction
+
+
+@dataclass(frozen=True, slots=True)
+class PolarProfile:
+    """A closed profile given as a table of polar radii around a point of its link (a disc
+    cam), periodic over one turn; smooth between the nodes (a periodic cubic spline of the
+    radius over the angle).
+
+    Attributes
+    ----------
+    centre : complex
+        The pole: a sketch point of the link, mm.
+    angles : tuple of float
+        Polar angles, degrees from the x-axis at the sketched position, strictly increasing,
+        within one turn (``angles[-1] − angles[0] < 360``).
+    radii : tuple of float
+        The radius at each angle, mm, > 0.
+    """
+
+    centre: complex
+    angles: tuple[float, ...]
+    radii: tuple[float, ...]
+
+
+#: The profile of one link of a higher pair.
+Profile: TypeAlias = CircleProfile | LineProfile | PolarProfile
+
+
+@dataclass(frozen=True, slots=True)
+class GearMesh:
+    """The mesh of two gears: pitch circles rolling without slip, the line of action at the
+    pressure angle to their common tangent.
+
+    Attributes
+    ----------
+    radii : tuple of two floats
+        Pitch radii r1, r2 of the gears on the pair's first and second link, mm, > 0.
+    internal : bool
+        An internal mesh: the gear with the larger radius is a ring (annulus).
+    pressure_angle : float
+        Degrees in (0, 90); :data:`DEFAULT_GEAR_PRESSURE_ANGLE` unless given.
+
+    Examples
+    --------
+    >>> GearMesh((20.0, 40.0)).ratio
+    -2.0
+    """
+
+    radii: tuple[float, float]
+    internal: bool = False
+    pressure_angle: float = DEFAULT_GEAR_PRESSURE_ANGLE
+
+    @property
+    def ratio(self) -> float:
+        """The gear ratio ω1/ω2 relative to the link carrying both axles: −r2/r1 for an
+        external mesh, +r2/r1 for an internal one."""
+        ratio = self.radii[1] / self.radii[0]
+        return ratio if self.internal else -ratio
+
+
+@dataclass(frozen=True, slots=True)
+class HigherPair:
+    """A higher kinematic pair (высшая пара, 4th class): two links touching along profiles,
+    one constraint (the bodies may not part or cut into each other along the common normal).
+
+    Parameters
+    ----------
+    id : int or str
+        Pair id, unique among all pairs of the chain.
+    links : tuple of two link ids
+        The two links, in the user's order; the profiles of the sketch follow this order.
+    gear : GearMesh or None
+        The mesh data of a gear pair; None for a cam pair (the profiles are in the sketch).
+    """
+
+    id: PairId
+    links: tuple[LinkId, LinkId]
+    gear: GearMesh | None = None
 
     def other(self, link: LinkId) -> LinkId:
         """The link at the other end of the pair from ``link``."""
@@ -541,7 +691,7 @@ class Chain:
     links : tuple of link ids
         Every link, frame included, in table order.
     pairs : tuple of Pair
-        The normalised pairs.
+        The normalised lower pairs.
     inputs : tuple of Drive
         The inputs (входные звенья / приводы).
     geometry : Sketch or None
@@ -573,6 +723,9 @@ class Chain:
     warnings : tuple of Issue
         What looks wrong in the table but does not refuse it (an angle that looks like
         radians, a slider hinge off its guide), found as it was read.
+    higher : tuple of HigherPair
+        The higher pairs (type ``H``: cam contacts and gear meshes); their profiles are in
+        the sketch (:attr:`Sketch.profiles`).
 
     Examples
     --------
@@ -599,6 +752,7 @@ class Chain:
     forces: ForceData | None = None
     student: Student | None = None
     warnings: tuple[Issue, ...] = ()
+    higher: tuple[HigherPair, ...] = ()
     _index: dict[str, dict[Any, Any]] = field(default_factory=dict, init=False, repr=False,
                                               compare=False)
 

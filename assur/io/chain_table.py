@@ -29,14 +29,25 @@ from typing import Any
 from assur.errors import TableError
 from assur.io.general import read_general
 from assur.io.params import read_params
-from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
+from assur.io.reader import (
+    MISSING,
+    Node,
+    TableReader,
+    describe,
+    is_number,
+    normalise_id,
+    positive,
+)
 from assur.io.sketch import Joints, actuator_pairs, read_sketch
 from assur.kinds import KINDS, kind_of
 from assur.model import (
+    DEFAULT_GEAR_PRESSURE_ANGLE,
     Chain,
     Drive,
     ForceData,
+    GearMesh,
     GroupParams,
+    HigherPair,
     IdentificationRow,
     LinkId,
     Pair,
@@ -65,7 +76,10 @@ _TOP_TABLE = ("schema_version", "mechanism", "name", "frame", "general", "geomet
               "structure_identification", "n_moving_links", "p5", "p4", "W", "N_Q",
               "layering_order", "student")
 _MECHANISM = ("name", "frame", "links", "pairs", "inputs", "geometry")
-_PAIR = ("id", "type", "links", "guide", "name")
+_PAIR = ("id", "type", "links", "guide", "name", "gear")
+_GEAR = ("radii", "internal", "pressure_angle")
+#: The pair types of the pairs table: revolute, prismatic, higher.
+_TYPES = ("R", "P", "H")
 _LINK = ("id", "name")
 _INPUT = ("link", "pair")
 IDENTIFICATION_FIELDS = ("L", "seq", "i_minus_1", "j_minus_1", "i", "j", "i_plus_1",
@@ -202,10 +216,11 @@ def _read_chain_form(reader: TableReader) -> Chain:
         len(raw_pairs) == len(mech.mapping["pairs"])
     _check_inputs(reader, inputs, set(links) | set(mentioned), raw_pairs, frame,  # (reported)
                   links_known=known is not None or read, pairs_known=read)
-    joints = {pair.id: (pair.type.value, tuple(pair.links)) for pair in raw_pairs}
+    joints = {pair.id: (pair.type, tuple(pair.links)) for pair in raw_pairs}
     named = {drive.pair for drive in inputs if drive.pair is not None} - set(joints)
+    higher = _higher(raw_pairs)
     geometry = _geometry(reader, top, mech, joints, links, frame, inputs,
-                         reported=named if read else None)
+                         reported=named if read else None, higher=higher)
     general = read_general(top)
     student = read_student(top)
     rows, _ = _read_rows(top, required=False)
@@ -221,7 +236,7 @@ def _read_chain_form(reader: TableReader) -> Chain:
                  pairs=tuple(pairs), inputs=tuple(inputs), geometry=geometry, general=general,
                  source=reader.source, group_params=_group_params(rows), names=names,
                  local_names=local, identification=tuple(rows) if rows else None, claims=claims,
-                 forces=forces, student=student)
+                 forces=forces, student=student, higher=higher)
 
 
 #: The fields of the ``student:`` section, in the order of :class:`~assur.model.Student`.
@@ -337,11 +352,12 @@ def _read_links(mech: Node, names: dict[LinkId, str],
 class _RawPair:
     """A pair as written by the user (a compound hinge may list more than two links)."""
 
-    __slots__ = ("guide", "id", "links", "type", "where")
+    __slots__ = ("gear", "guide", "id", "links", "type", "where")
 
-    def __init__(self, pid: PairId, ptype: PairType, links: list[LinkId], guide: LinkId | None,
-                 where: str) -> None:
+    def __init__(self, pid: PairId, ptype: str, links: list[LinkId], guide: LinkId | None,
+                 where: str, gear: GearMesh | None = None) -> None:
         self.id, self.type, self.links, self.guide, self.where = pid, ptype, links, guide, where
+        self.gear = gear
 
 
 def _read_pairs(mech: Node) -> tuple[list[_RawPair], list[LinkId]]:
@@ -350,13 +366,13 @@ def _read_pairs(mech: Node) -> tuple[list[_RawPair], list[LinkId]]:
     mentioned: list[LinkId] = []
     seen: dict[PairId, str] = {}
     for row in mech.rows("pairs", _PAIR, label=_pair_label):
-        row.swapped({"id": _is_id, "type": lambda v: v in ("R", "P"),
+        row.swapped({"id": _is_id, "type": lambda v: v in _TYPES,
                      "links": lambda v: isinstance(v, list), "guide": _is_id})
         pid = row.get("id", kind="id")
-        ptype = row.choice("type", ["R", "P"])
+        ptype = row.choice("type", _TYPES)
         links = row.get("links", kind="list")
         guide = row.get("guide", kind="id", required=False, default=None)
-        ok = True
+        gear, ok = _read_gear(row, ptype)
         if isinstance(links, list):
             bad = [item for item in links if not _is_id(item)]
             if bad:
@@ -377,11 +393,19 @@ def _read_pairs(mech: Node) -> tuple[list[_RawPair], list[LinkId]]:
                     row.reader.problem(row._where("links"), "chain.compound_prismatic",
                                        found=str(links))
                     ok = False
+                elif len(links) > 2 and ptype == "H":
+                    row.reader.problem(row._where("links"), "chain.higher_two_links",
+                                       found=str(links))
+                    ok = False
         if ptype == "P" and guide is None and not row.has("guide"):
             row.reader.problem(row._where("guide"), "chain.guide_missing")
             ok = False
         elif ptype == "R" and guide not in (None, MISSING):
             row.reader.problem(row._where("guide"), "chain.guide_on_revolute",
+                               found=describe(guide))
+            ok = False
+        elif ptype == "H" and guide not in (None, MISSING):
+            row.reader.problem(row._where("guide"), "chain.guide_on_higher",
                                found=describe(guide))
             ok = False
         elif ptype == "P" and isinstance(links, list) and guide not in (MISSING, None) and ok \
@@ -397,8 +421,51 @@ def _read_pairs(mech: Node) -> tuple[list[_RawPair], list[LinkId]]:
             else:
                 seen[pid] = row.location
         if ok and MISSING not in (pid, ptype, links, guide):
-            pairs.append(_RawPair(pid, PairType(ptype), links, guide, row.location))
+            pairs.append(_RawPair(pid, ptype, links, guide, row.location, gear))
     return pairs, mentioned
+
+
+def _read_gear(row: Node, ptype: str) -> tuple[GearMesh | None, bool]:
+    """The ``gear:`` of a pair row (a gear mesh, type H): the pitch radii, whether the mesh
+    is internal, the pressure angle; and whether the row's gear was read without a problem
+    (every problem recorded)."""
+    if not row.has("gear"):
+        return None, True
+    if ptype not in ("H", MISSING):
+        row.reader.problem(row._where("gear"), "chain.gear_on_lower", type=ptype)
+        return None, False
+    node = row.child("gear", allowed=_GEAR)
+    if node is None:
+        return None, False
+    count = len(row.reader.issues)
+    radii = node.get("radii", kind="list", check=_gear_radii)
+    internal = node.get("internal", kind="bool", required=False, default=False)
+    angle = node.get("pressure_angle", kind="number", required=False,
+                     default=DEFAULT_GEAR_PRESSURE_ANGLE, check=_gear_angle)
+    if internal is True and isinstance(radii, list) and radii[0] == radii[1]:
+        row.reader.problem(node._where("radii"), "chain.gear_internal_equal",
+                           found=describe(radii))
+    if len(row.reader.issues) > count or MISSING in (radii, internal, angle):
+        return None, False
+    return GearMesh((float(radii[0]), float(radii[1])), bool(internal), float(angle)), True
+
+
+def _gear_radii(value: Any) -> Message | None:
+    """The rule of a mesh's pitch radii: two positive numbers."""
+    if len(value) == 2 and all(is_number(item) and positive(item) is None for item in value):
+        return None
+    return Message("rule.gear_radii")
+
+
+def _gear_angle(value: float) -> Message | None:
+    """The rule of a mesh's pressure angle: strictly between 0 and 90 degrees."""
+    return None if 0 < value < 90 else Message("rule.strictly_between", {"low": 0, "high": 90})
+
+
+def _higher(raw: list[_RawPair]) -> tuple[HigherPair, ...]:
+    """The higher pairs of the pairs table."""
+    return tuple(HigherPair(item.id, (item.links[0], item.links[1]), item.gear)
+                 for item in raw if item.type == "H")
 
 
 def _pair_label(row: dict[str, Any]) -> str | None:
@@ -469,6 +536,8 @@ def _check_inputs(reader: TableReader, inputs: list[Drive], links: set[LinkId],
             elif len(pair.links) != 2:
                 reader.problem(f"{where} 'pair'", "chain.driven_pair_links",
                                pair=repr(drive.pair), links=str(pair.links))
+            elif pair.type == "H":
+                reader.problem(f"{where} 'pair'", "chain.driven_higher", pair=repr(drive.pair))
             elif drive.link is not None and drive.link not in pair.links:
                 reader.problem(f"{where} 'link'", "chain.input_not_in_pair",
                                link=repr(drive.link), links=str(pair.links),
@@ -482,9 +551,11 @@ def _check_inputs(reader: TableReader, inputs: list[Drive], links: set[LinkId],
 def _normalise(raw: list[_RawPair], frame: LinkId, input_links: list[LinkId]) -> list[Pair]:
     pairs: list[Pair] = []
     for item in raw:
+        if item.type == "H":
+            continue  # a higher pair: Chain.higher
         if len(item.links) == 2:
-            pairs.append(Pair(item.id, item.type, (item.links[0], item.links[1]), item.guide,
-                              item.id))
+            pairs.append(Pair(item.id, PairType(item.type), (item.links[0], item.links[1]),
+                              item.guide, item.id))
         else:
             centre = next((c for c in [frame, *input_links] if c in item.links), item.links[0])
             pairs.extend(recentre_hinge(item.id, item.links, centre))
@@ -503,9 +574,11 @@ def recentre_hinge(origin: PairId, links: list[LinkId] | tuple[LinkId, ...],
 
 def _geometry(reader: TableReader, top: Node, mech: Node | None, joints: Joints,
               links: list[LinkId], frame: LinkId, inputs: list[Drive], *,
-              reported: Collection[PairId] | None = ()) -> Sketch | None:
+              reported: Collection[PairId] | None = (),
+              higher: tuple[HigherPair, ...] = ()) -> Sketch | None:
     """The sketch, given inside ``mechanism:`` or at the top of the file (not both);
-    ``reported`` as in :func:`~assur.io.sketch.read_sketch`."""
+    ``reported`` as in :func:`~assur.io.sketch.read_sketch`; the profiles of the ``higher``
+    pairs read with it."""
     inner = mech.get("geometry", kind="mapping", required=False, default=None) if mech else None
     outer = top.get("geometry", kind="mapping", required=False, default=None)
     if isinstance(inner, dict) and isinstance(outer, dict):
@@ -515,7 +588,8 @@ def _geometry(reader: TableReader, top: Node, mech: Node | None, joints: Joints,
     if not isinstance(data, dict) or frame is MISSING:
         return None
     return read_sketch(reader, data, joints, links=links, frame=frame,
-                       optional=actuator_pairs(inputs, joints, frame), reported=reported)
+                       optional=actuator_pairs(inputs, joints, frame), reported=reported,
+                       gears={pair.id: pair.gear for pair in higher if pair.gear is not None})
 
 
 def _read_claims(top: Node) -> dict[str, int]:

@@ -41,21 +41,44 @@ from assur.io.reader import (
     latin_form,
     lookalike_letters,
     normalise_id,
+    positive,
     radian_look,
     with_commas,
 )
-from assur.model import Chain, Direction, LinkId, PairId, Sketch, SketchTrace, joint_key
+from assur.model import (
+    Chain,
+    CircleProfile,
+    Direction,
+    GearMesh,
+    LineProfile,
+    LinkId,
+    PairId,
+    PolarProfile,
+    Profile,
+    Sketch,
+    SketchTrace,
+    joint_key,
+)
+from assur.profiles import (
+    MIN_TABLE_NODES,
+    TOUCH_TOLERANCE,
+    Contact,
+    contact,
+    gear_contact,
+    pitch_circles,
+)
 from assur.text import Message
 
 __all__ = ["read_sketch", "sketch_from_dict", "with_sketch"]
 
 RESERVED = ("input", "tracing", "margin")
-#: Joint id → (pair type ``"R"``/``"P"``, the links the joint joins).
+#: Joint id → (pair type ``"R"``/``"P"``/``"H"``, the links the joint joins).
 Joints = Mapping[PairId, tuple[str, tuple[LinkId, ...]]]
 
 
 def sketch_from_dict(data: Any, joints: Joints, *, links: Iterable[LinkId], frame: LinkId,
-                     source: str = "<data>", optional: Iterable[PairId] = ()) -> Sketch:
+                     source: str = "<data>", optional: Iterable[PairId] = (),
+                     gears: Mapping[PairId, GearMesh] | None = None) -> Sketch:
     """Read a sketch given as a mapping (see :func:`read_sketch`).
 
     Raises
@@ -64,7 +87,8 @@ def sketch_from_dict(data: Any, joints: Joints, *, links: Iterable[LinkId], fram
         Listing every problem of the sketch.
     """
     reader = TableReader.from_data({"geometry": data}, source)
-    sketch = read_sketch(reader, data, joints, links=links, frame=frame, optional=optional)
+    sketch = read_sketch(reader, data, joints, links=links, frame=frame, optional=optional,
+                         gears=gears)
     reader.raise_if_any()
     assert sketch is not None
     return sketch
@@ -87,9 +111,13 @@ def with_sketch(chain: Chain, data: Any) -> Chain:
     joints: dict[PairId, tuple[str, tuple[LinkId, ...]]] = {}
     for pair in chain.pairs:
         joints.setdefault(joint_key(pair), (pair.type.value, pair.links))
+    for higher in chain.higher:
+        joints[higher.id] = ("H", higher.links)
     sketch = sketch_from_dict(data, joints, links=chain.links, frame=chain.frame,
                               source=chain.source, optional=actuator_pairs(chain.inputs, joints,
-                                                                           chain.frame))
+                                                                           chain.frame),
+                              gears={pair.id: pair.gear for pair in chain.higher
+                                     if pair.gear is not None})
     return replace(chain, geometry=sketch)
 
 
@@ -102,7 +130,8 @@ def actuator_pairs(inputs: Iterable[Any], joints: Joints, frame: Any) -> set[Pai
 
 def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterable[LinkId],
                 frame: LinkId, optional: Iterable[PairId] = (),
-                reported: Iterable[PairId] | None = ()) -> Sketch | None:
+                reported: Iterable[PairId] | None = (),
+                gears: Mapping[PairId, GearMesh] | None = None) -> Sketch | None:
     """Read the ``geometry:`` section, recording every problem in ``reader``.
 
     Parameters
@@ -122,6 +151,9 @@ def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterab
         Pairs whose absence is reported already (a pair an input names): a key naming one
         is not reported again.  None when a row of the pairs table could not be read: a key
         that names no joint may then name that row's pair, and is not reported.
+    gears : mapping, optional
+        Joint id of every gear mesh (a higher pair with ``gear:``) → its mesh data: the
+        sketch gives the centres of its pitch circles, not profiles.
 
     Returns
     -------
@@ -137,8 +169,15 @@ def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterab
     meant = set() if reported is None else _unknown_keys(reader, raw, joints, set(reported))
     points: dict[PairId, complex] = {}
     directions: dict[PairId, Direction] = {}
+    profiles: dict[PairId, tuple[Profile, Profile]] = {}
     for key, (ptype, ends) in joints.items():
-        if key not in meant:
+        if key in meant:
+            continue
+        if ptype == "H":
+            found = _higher(reader, key, raw.get(key), ends, (gears or {}).get(key))
+            if found is not None:
+                profiles[key] = found
+        else:
             _joint(reader, key, raw.get(key), ptype, ends, points, directions,
                    key in optional)
     rotation, stroke = _input(reader, raw.get("input"))
@@ -147,7 +186,7 @@ def read_sketch(reader: TableReader, data: Any, joints: Joints, *, links: Iterab
     if len(reader.issues) > count:
         return None
     _suspicious_directions(reader, raw, joints, frame, points, directions)
-    return Sketch(points, directions, rotation, stroke, tracing, margin)
+    return Sketch(points, directions, rotation, stroke, tracing, margin, profiles)
 
 
 #: A hinge farther from its slider's guide than this share of the sketch's size is "far off".
@@ -283,14 +322,182 @@ def _joint(reader: TableReader, key: PairId, value: Any, ptype: str,
         if ptype == "P":
             reader.problem(where, "sketch.needs_direction", joint=repr(key), a=a, b=b)
         return
-    vector = _vector(direction)
-    if is_number(direction):
-        angle = math.radians(direction)
-        directions[key] = Direction(angle, complex(math.cos(angle), math.sin(angle)))
-    elif vector is not None and vector != 0:
-        directions[key] = Direction(cmath.phase(vector), vector)
-    else:
-        reader.problem(f"{where} 'direction'", "sketch.direction", found=describe(direction))
+    read = _direction(reader, f"{where} 'direction'", direction)
+    if read is not None:
+        directions[key] = read
+
+
+def _direction(reader: TableReader, where: str, value: Any) -> Direction | None:
+    """A direction: an angle in degrees from the x-axis or a vector ``[dx, dy]``; None when
+    it is neither (recorded)."""
+    vector = _vector(value)
+    if is_number(value):
+        angle = math.radians(value)
+        return Direction(angle, complex(math.cos(angle), math.sin(angle)))
+    if vector is not None and vector != 0:
+        return Direction(cmath.phase(vector), vector)
+    reader.problem(where, "sketch.direction", found=describe(value))
+    return None
+
+
+# ------------------------------------------------------------------------ higher pairs
+
+#: The kinds of profile of a cam pair's sketch entry.
+PROFILE_KINDS = ("circle", "point", "line", "table")
+
+
+def _higher(reader: TableReader, key: PairId, value: Any, ends: tuple[LinkId, ...],
+            gear: GearMesh | None) -> tuple[Profile, Profile] | None:
+    """The sketch of a higher pair: the two profiles of a cam pair (``profiles:``), or the
+    centres of a gear mesh's pitch circles (``centres:``), checked to touch."""
+    where = f"geometry {key!r}"
+    field = "profiles" if gear is None else "centres"
+    if value is None:
+        reader.problem(where, f"sketch.needs_{field}", joint=repr(key), a=ends[0], b=ends[1])
+        return None
+    if not isinstance(value, dict):
+        reader.problem(where, f"sketch.{field}", found=describe(value))
+        return None
+    node = Node(reader, where, value, (field,))
+    items = node.get(field, kind="list")
+    if items is MISSING:
+        return None
+    if len(items) != 2:
+        reader.problem(f"{where} {field!r}", f"sketch.two_{field}", found=describe(items))
+        return None
+    if gear is not None:
+        centres = [_vector(item) for item in items]
+        for index, (item, centre) in enumerate(zip(items, centres, strict=True)):
+            if centre is None:
+                reader.problem(f"{where} 'centres'[{index}]", "sketch.point",
+                               found=describe(item))
+        if centres[0] is None or centres[1] is None:
+            return None
+        pair = pitch_circles(gear, (centres[0], centres[1]))
+        return _touching(reader, f"{where} {field!r}", pair,
+                         gear_contact(gear, (centres[0], centres[1])))
+    read = [_profile(reader, f"{where} 'profiles'[{index}]", item)
+            for index, item in enumerate(items)]
+    if read[0] is None or read[1] is None:
+        return None
+    touch = contact(read[0], read[1])
+    if touch is None:
+        reader.problem(f"{where} {field!r}", "sketch.profiles_cannot_touch",
+                       first=_kind_of(read[0]), second=_kind_of(read[1]))
+        return None
+    return _touching(reader, f"{where} {field!r}", (read[0], read[1]), touch)
+
+
+def _touching(reader: TableReader, where: str, pair: tuple[Profile, Profile],
+              touch: Contact) -> tuple[Profile, Profile] | None:
+    """The profiles, when they touch at the sketch; else None (recorded)."""
+    if abs(touch.gap) <= TOUCH_TOLERANCE:
+        return pair
+    code = "sketch.profiles_apart" if touch.gap > 0 else "sketch.profiles_cut"
+    reader.problem(where, code, gap=round(abs(touch.gap), 6), tolerance=TOUCH_TOLERANCE)
+    return None
+
+
+def _kind_of(profile: Profile) -> str:
+    """The table's word for a profile."""
+    if isinstance(profile, CircleProfile):
+        return "point" if profile.is_point else "circle"
+    return "line" if isinstance(profile, LineProfile) else "table"
+
+
+def _profile(reader: TableReader, where: str, value: Any) -> Profile | None:
+    """One profile: ``{circle: {centre, radius, concave}}``, ``{point: [x, y]}``,
+    ``{line: {point, direction}}`` or ``{table: {centre, angles, radii}}``; None when it
+    is wrong (every problem recorded)."""
+    if not isinstance(value, dict) or len(value) != 1 or next(iter(value)) not in PROFILE_KINDS:
+        reader.problem(where, "sketch.profile", kinds=", ".join(PROFILE_KINDS),
+                       found=describe(value))
+        return None
+    kind, body = next(iter(value.items()))
+    inner = f"{where}.{kind}"
+    if kind == "point":
+        point = _vector(body)
+        if point is None:
+            reader.problem(inner, "sketch.point", found=describe(body))
+            return None
+        return CircleProfile(point, 0.0)
+    if not isinstance(body, dict):
+        reader.problem(inner, "sketch.profile_body", kind=kind, found=describe(body))
+        return None
+    if kind == "circle":
+        return _circle(reader, Node(reader, inner, body, ("centre", "radius", "concave")))
+    if kind == "line":
+        return _line(reader, Node(reader, inner, body, ("point", "direction")))
+    return _table(reader, Node(reader, inner, body, ("centre", "angles", "radii")))
+
+
+def _point_of(reader: TableReader, node: Node, key: str) -> complex | None:
+    """A point ``[x, y]`` of a profile's field; None when absent or wrong (recorded)."""
+    value = node.get(key)
+    if value is MISSING:
+        return None
+    point = _vector(value)
+    if point is None:
+        reader.problem(f"{node.location} {key!r}", "sketch.point", found=describe(value))
+    return point
+
+
+def _circle(reader: TableReader, node: Node) -> CircleProfile | None:
+    """A circle profile: its centre, a positive radius, convex unless ``concave: true``."""
+    centre = _point_of(reader, node, "centre")
+    radius = node.get("radius", kind="number", check=positive)
+    concave = node.get("concave", kind="bool", required=False, default=False)
+    if centre is None or MISSING in (radius, concave):
+        return None
+    return CircleProfile(centre, float(radius), bool(concave))
+
+
+def _line(reader: TableReader, node: Node) -> LineProfile | None:
+    """A straight profile: a point of it and its direction."""
+    point = _point_of(reader, node, "point")
+    value = node.get("direction")
+    direction = None if value is MISSING else _direction(
+        reader, f"{node.location} 'direction'", value)
+    if point is None or direction is None:
+        return None
+    return LineProfile(point, direction)
+
+
+def _table(reader: TableReader, node: Node) -> PolarProfile | None:
+    """A polar profile table: at least :data:`MIN_TABLE_NODES` angles, strictly increasing
+    within one turn, and as many positive radii."""
+    count = len(reader.issues)
+    centre = _point_of(reader, node, "centre")
+    angles = node.get("angles", kind="list", check=_numbers)
+    radii = node.get("radii", kind="list", check=_numbers)
+    at = f"{node.location} 'angles'"
+    if isinstance(angles, list):
+        if len(angles) < MIN_TABLE_NODES:
+            reader.problem(at, "sketch.table_short", least=MIN_TABLE_NODES, count=len(angles))
+        down = next((k for k in range(1, len(angles)) if angles[k] <= angles[k - 1]), None)
+        if down is not None:
+            reader.problem(at, "sketch.table_unsorted", index=down, value=angles[down],
+                           before=angles[down - 1])
+        elif angles and angles[-1] - angles[0] >= 360:
+            reader.problem(at, "sketch.table_turn", first=angles[0], last=angles[-1])
+    if isinstance(radii, list):
+        for index, radius in enumerate(radii):
+            rule = positive(radius)
+            if rule is not None:
+                reader.problem(f"{node.location} 'radii'[{index}]", "table.rule_broken",
+                               rule=rule, found=describe(radius))
+        if isinstance(angles, list) and len(radii) != len(angles):
+            reader.problem(f"{node.location} 'radii'", "sketch.table_lengths",
+                           radii=len(radii), angles=len(angles))
+    if len(reader.issues) > count or centre is None or not isinstance(angles, list) or \
+            not isinstance(radii, list):
+        return None
+    return PolarProfile(centre, tuple(map(float, angles)), tuple(map(float, radii)))
+
+
+def _numbers(value: Any) -> Message | None:
+    """The rule of a list of numbers."""
+    return None if all(is_number(item) for item in value) else Message("rule.list_numbers")
 
 
 def _input(reader: TableReader, value: Any) -> tuple[int, tuple[float, float] | None]:

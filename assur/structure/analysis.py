@@ -32,6 +32,7 @@ from assur.structure.diagnostics import Diagnostic, diagnostic
 from assur.structure.fixes import with_fixes
 from assur.structure.peeling import BodyGraph, Peeling, body_graph, peel
 from assur.structure.rank_test import RankResult, pose_from_geometry, rank_test
+from assur.structure.replacing import PassiveDof, Replacement, replacement
 from assur.text import Message, joined, language_key, languages
 
 __all__ = ["AssurGroup", "Diagnostic", "StructuralAnalysis", "analyse_structure"]
@@ -46,11 +47,14 @@ class StructuralAnalysis:
     Attributes
     ----------
     chain : Chain
-        The analysed chain (compound hinges re-centred if needed).
+        The analysed chain (compound hinges re-centred if needed); for a chain with higher
+        pairs, its replacing mechanism (:mod:`assur.structure.replacing`), which the groups,
+        the formula and the findings describe.
     n, p5, p4, W : int
-        Moving links, lower pairs, higher pairs, W = 3n − 2p5 − p4.
+        Moving links, lower pairs, higher pairs, W = 3n − 2p5 − p4 (of the chain as given).
     W_star : int
-        W corrected for loops of prismatic pairs only (``structure.md`` §3.3).
+        W less the passive degrees of freedom, corrected for loops of prismatic pairs only
+        (``structure.md`` §3.3).
     m : int
         Number of inputs.
     input_groups, groups : tuple of AssurGroup
@@ -72,6 +76,13 @@ class StructuralAnalysis:
         Links that no group could take.
     rank : RankResult or None
         The rank test at the table's pose, when a complete pose was given.
+    original : Chain or None
+        The chain as given, when it has higher pairs (``chain`` is then its replacing
+        mechanism); None otherwise.
+    passive : tuple of PassiveDof
+        The passive (local) degrees of freedom, each with its reason, subtracted from W.
+    replacements : tuple of Replacement
+        Each higher pair and the link that replaces it.
 
     Examples
     --------
@@ -99,6 +110,9 @@ class StructuralAnalysis:
     issues: tuple[Diagnostic, ...]
     leftover: tuple[LinkId, ...]
     rank: RankResult | None = None
+    original: Chain | None = None
+    passive: tuple[PassiveDof, ...] = ()
+    replacements: tuple[Replacement, ...] = ()
 
     def __repr__(self) -> str:
         return (f"StructuralAnalysis({self.chain.name!r}: n={self.n}, p5={self.p5}, "
@@ -146,7 +160,19 @@ class StructuralAnalysis:
             "issues": [d.to_dict() for d in self.issues],
             "leftover": list(self.leftover),
             "rank_test": self.rank.to_dict() if self.rank else None,
+            "passive": [{**dof.to_dict(), **{language_key("reason", lang): dof.reason.text(lang)
+                                             for lang in languages()}}
+                        for dof in self.passive],
+            "replacing_mechanism": self._replacing(),
         }
+
+    def _replacing(self) -> dict[str, Any] | None:
+        """The replacing mechanism's counts and links (None without higher pairs)."""
+        if self.original is None:
+            return None
+        n, p5 = len(self.chain.moving_links), len(self.chain.pairs)
+        return {"n": n, "p5": p5, "p4": 0, "W": 3 * n - 2 * p5,
+                "replacements": [item.to_dict() for item in self.replacements]}
 
 
 def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalysis:
@@ -174,6 +200,8 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
     >>> analysis.W, analysis.formula
     (1, 'I(0,1) → II₁(2,3)')
     """
+    if chain.higher:
+        return _with_higher_pairs(chain, suggest=suggest)
     graph = body_graph(chain)
     peeling = peel(graph)
     recentred = _recentre_compound_hinges(chain, graph, peeling)
@@ -224,6 +252,19 @@ def analyse_structure(chain: Chain, *, suggest: bool = True) -> StructuralAnalys
         leftover=tuple(sorted(peeling.leftover + peeling.disconnected, key=id_key)), rank=rank)
     failed = _applicability(analysis, graph)
     return replace(analysis, applicable=not failed, applicability=tuple(failed))
+
+
+def _with_higher_pairs(chain: Chain, *, suggest: bool) -> StructuralAnalysis:
+    """A chain with higher pairs: counted as given, W less its passive degrees of freedom,
+    decomposed as its replacing mechanism; the DGTU program takes lower pairs only."""
+    replaced = replacement(chain)
+    inner = analyse_structure(replaced.chain, suggest=suggest)
+    n, p5, p4 = len(chain.moving_links), len(chain.pairs), len(chain.higher)
+    lower_only = Message("structure.condition.lower_pairs",
+                         {"pairs": ", ".join(str(pair.id) for pair in chain.higher)})
+    return replace(inner, n=n, p5=p5, p4=p4, W=3 * n - 2 * p5 - p4, original=chain,
+                   passive=replaced.passive, replacements=replaced.replacements,
+                   applicable=False, applicability=(lower_only, *inner.applicability))
 
 
 def _formula(inputs: tuple[AssurGroup, ...], groups: list[AssurGroup]

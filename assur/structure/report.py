@@ -75,6 +75,28 @@ def _table(rows: Sequence[IdentificationRow]) -> list[str]:
     return lines
 
 
+def _higher_pairs(a: StructuralAnalysis, lang: str) -> list[str]:
+    """The passive degrees of freedom, subtracted with their reasons, and the replacing
+    mechanism of a chain with higher pairs (nothing for one without)."""
+    lines = []
+    if a.passive:
+        lines.append("  " + render("report.structure.passive", lang, count=len(a.passive),
+                                   W=a.W - len(a.passive)))
+        lines += [f"    - {dof.reason.text(lang)}" for dof in a.passive]
+    if a.original is None:
+        return lines
+    n, p5 = len(a.chain.moving_links), len(a.chain.pairs)
+    lines.append("  " + render("report.structure.replacing", lang, n=n, p5=p5,
+                               W=3 * n - 2 * p5))
+    for item in a.replacements:
+        first, second = item.pairs
+        lines.append("    - " + render(
+            "report.structure.replaced", lang, pair=item.pair, link=item.link,
+            first=first.id, type1=first.type.value, a1=first.links[0], b1=first.links[1],
+            second=second.id, type2=second.type.value, a2=second.links[0], b2=second.links[1]))
+    return lines
+
+
 def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
                      table: Sequence[IdentificationRow] | None = None,
                      mismatches: Sequence[Mismatch] | None = None,
@@ -119,11 +141,13 @@ def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
     lines = [render("report.structure.title", lang, name=chain.name, source=chain.source),
              "  " + render("report.structure.counts", lang, n=a.n, p5=a.p5, p4=a.p4),
              "  " + render("report.structure.mobility", lang, n=a.n, p5=a.p5, p4=a.p4, W=a.W)]
-    if a.W_star != a.W:
+    lines += _higher_pairs(a, lang)
+    if a.W_star != a.W - len(a.passive):
         lines.append("  " + render("report.structure.w_star", lang, W_star=a.W_star))
     lines.append("  " + render("report.structure.inputs", lang, m=a.m,
                                items=", ".join(items) or "—"))
-    lines += ["", render("report.structure.groups", lang)]
+    lines += ["", render("report.structure.groups" if a.original is None
+                         else "report.structure.groups_replacing", lang)]
     groups = (*a.input_groups, *a.groups)
     width = max((len(g.label) for g in groups), default=0)
     lines += [f"  {g.label.ljust(width)}  {group_description(g, lang)}" for g in groups] or \

@@ -17,7 +17,7 @@ velocity and acceleration analogs exactly):
   replacing link is hinged at the circle's centre and slides parallel to the face, at the
   circle's radius from it: an RPP dyad (:func:`~assur.kinematics.dyads.solve_rpp`,
   :func:`flat_follower`).
-* **A tabulated closed profile** (:class:`PolarProfile`: radii over angles around a point of
+* **A tabulated closed profile** (:class:`PolarSpline`: radii over angles around a point of
   the cam). The table is interpolated by a periodic cubic spline and the contact is solved at
   every position (:func:`polar_follower`): the contact point, the normal, the curvature and
   its centre, the follower's coordinate; the analogs by implicit differentiation.
@@ -46,20 +46,27 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from scipy.interpolate import CubicSpline
 
 from assur.kinematics import jets as J
-from assur.kinematics.dyads import solve_rpp, solve_rrp, solve_rrr
+from assur.kinematics.dyads import DyadSolution, solve_rpp, solve_rrp, solve_rrr
 from assur.kinematics.jets import Jet
 from assur.kinematics.reasons import Reason
+from assur.model import LinkId, PairId
 from assur.typing import BoolArray, FloatArray, Value
 
+if TYPE_CHECKING:  # pragma: no cover
+    from assur.kinematics.analysis import State
+    from assur.kinematics.model import GroupModel
+
 __all__ = [
+    "CamContact",
     "Contact",
-    "PolarProfile",
+    "GearContact",
+    "PolarSpline",
     "Rocker",
     "Slider",
     "circle_follower",
@@ -154,7 +161,7 @@ class Contact(NamedTuple):
 
 
 @dataclass(frozen=True)
-class PolarProfile:
+class PolarSpline:
     """A closed cam profile tabulated as polar radii over angles around a point of the cam.
 
     The profile is r(θ) in the cam's own frame (θ from its axis, counter-clockwise), read by
@@ -173,7 +180,7 @@ class PolarProfile:
     --------
     >>> import numpy as np
     >>> angles = np.arange(0.0, 360.0, 10.0)
-    >>> profile = PolarProfile.from_table(angles, 40.0 + 0.0 * angles)
+    >>> profile = PolarSpline.from_table(angles, 40.0 + 0.0 * angles)
     >>> round(float(profile.curvature(np.array(1.0))), 12)    # a circle of radius 40
     0.025
     """
@@ -181,7 +188,7 @@ class PolarProfile:
     spline: CubicSpline
 
     @classmethod
-    def from_table(cls, angles: FloatArray, radii: FloatArray) -> PolarProfile:
+    def from_table(cls, angles: FloatArray, radii: FloatArray) -> PolarSpline:
         """The profile through a table: angles in degrees (increasing, spanning less than
         a turn), radii in mm (positive)."""
         theta = np.radians(np.asarray(angles, dtype=float))
@@ -387,13 +394,13 @@ def flat_follower(centre: Value, radius: float, path: Slider, gamma: float = 0.5
                         reference, path, solution.exists, solution.reason, allowed)
 
 
-def polar_follower(profile: PolarProfile, origin: Value, angle: Value, path: Slider | Rocker,
+def polar_follower(profile: PolarSpline, origin: Value, angle: Value, path: Slider | Rocker,
                    roller: float = 0.0, *, allowed: float = 0.5 * math.pi) -> Contact:
     """A roller (or knife-edge) follower on a tabulated cam profile, solved at every position.
 
     Parameters
     ----------
-    profile : PolarProfile
+    profile : PolarSpline
         r(θ) around the point of the cam given by ``origin``.
     origin : complex ndarray or Jet
         The profile's pole at every position (mm) — the cam's shaft for a disc cam.
@@ -440,7 +447,7 @@ def polar_follower(profile: PolarProfile, origin: Value, angle: Value, path: Sli
     A circle of radius 40 mm about the shaft keeps a roller of 10 mm at 50 mm:
 
     >>> import numpy as np
-    >>> profile = PolarProfile.from_table(np.arange(0.0, 360.0, 15.0), np.full(24, 40.0))
+    >>> profile = PolarSpline.from_table(np.arange(0.0, 360.0, 15.0), np.full(24, 40.0))
     >>> contact = polar_follower(profile, 0j, np.radians([0.0, 33.0]), Slider(0j, 1.2), 10.0)
     >>> contact.follower.round(9), bool(contact.exists.all())
     (array([50., 50.]), True)
@@ -471,7 +478,7 @@ def polar_follower(profile: PolarProfile, origin: Value, angle: Value, path: Sli
                         centre_b, path, reason == 0, reason, allowed)
 
 
-def _meetings(profile: PolarProfile, roller: float, pose: _Pose, grid: FloatArray
+def _meetings(profile: PolarSpline, roller: float, pose: _Pose, grid: FloatArray
               ) -> tuple[np.ndarray, BoolArray, BoolArray]:
     """Where the follower's path meets the offset curve sampled at ``grid``, per position.
 
@@ -491,6 +498,146 @@ def _meetings(profile: PolarProfile, roller: float, pose: _Pose, grid: FloatArra
     concave = 1.0 + roller * profile.curvature(grid) < 0.0
     return (np.argmax(reach, axis=-1), meets.any(axis=-1),
             (meets & concave & facing).any(axis=-1))
+
+
+@dataclass(frozen=True)
+class CamContact:
+    """A tabulated cam profile on a roller (or knife-edge) follower, in a mechanism.
+
+    The replacing mechanism (:mod:`assur.structure.replacing`) holds for a tabulated profile
+    at the sketched position only; over the cycle, the group made of the replacing link and
+    the follower is solved through the contact instead (:meth:`solve`): a slider follower
+    (an RRP dyad) or a rocking one (an RRR dyad).
+
+    Attributes
+    ----------
+    pair : pair id
+        The higher pair.
+    cam : link id
+        The link carrying the profile (solved by an earlier group).
+    spline : PolarSpline
+        The profile, θ from the x-axis at the sketched position.
+    pole : complex
+        The profile's pole in the cam's frame of the kinematics (mm).
+    turn : float
+        The cam frame's angle at the sketched position (rad).
+    roller : float
+        The roller's radius (mm; 0 a knife edge).
+    replacing : link id
+        The replacing link, a member of the group.
+    away : int
+        +1 where the follower's coordinate (the slider's ``S``, the arm's angle) grows away
+        from the cam, else −1.
+    """
+
+    pair: PairId
+    cam: LinkId
+    spline: PolarSpline
+    pole: complex
+    turn: float
+    roller: float
+    replacing: LinkId
+    away: int
+
+    def solve(self, state: State, group: GroupModel, q: Value) -> DyadSolution:
+        """Solve the group (the replacing link and the follower) through the contact,
+        writing its joints (the replacing link's hinges: the cam's centre of curvature and
+        the roller's centre), slider and link frames into the analysis state."""
+        origin, angle = state.frames[self.cam]
+        rotor = J.expi(angle)
+        pole = origin + self.pole * rotor
+        roles, p = group.pairs, state.p
+        if group.guide_i is not None:  # RRP: the follower slides, the replacing link is j
+            base, theta, e = state.guide(group.guide_i)
+            start = base + e * 1j * J.expi(theta)
+            path: Slider | Rocker = Slider(start, theta if self.away > 0 else theta + math.pi)
+        else:  # RRR: the follower rocks about its hinge
+            side = "j" if group.i == self.replacing else "i"
+            anchor = group.hinge_j if side == "j" else group.hinge_i
+            assert anchor is not None
+            path = Rocker(state.point(anchor), p(group.column(f"l_{side}")), self.away)
+        contact = polar_follower(self.spline, pole, angle - self.turn, path, self.roller)
+        b, centre, normal = contact.centre_b, contact.centre, contact.normal
+        margin = np.where(contact.exists, 1.0, -1.0)
+        if isinstance(path, Slider):
+            assert group.guide_i is not None and group.j is not None
+            s = J.real(J.conj(J.expi(theta)) * (b - start))
+            state.joints.update({roles["C"]: b, roles["H_j"]: centre})
+            state.slider(roles["P_i"], group.guide_i.carrier, group.i, b, s, base, theta, e)
+            return DyadSolution(b, b, theta, centre, J.arg(normal), s, None, margin,
+                                contact.exists, contact.reason)
+        rocker = (path.pivot, contact.follower)
+        ends = (centre, J.arg(normal))
+        first, second = (ends, rocker) if group.i == self.replacing else (rocker, ends)
+        hinges = {"H_i": first[0], "H_j": second[0]}
+        state.joints.update({roles["C"]: b, **{roles[r]: z for r, z in hinges.items()}})
+        return DyadSolution(b, first[0], first[1], second[0], second[1], None, None, margin,
+                            contact.exists, contact.reason)
+
+
+@dataclass(frozen=True)
+class GearContact:
+    """A gear mesh in a mechanism: the driven gear turns at the fixed ratio.
+
+    The replacing link N₁N₂ of a mesh holds at the sketched position only (its ends, the
+    points where the line of action touches the base circles, are fixed on the carrier,
+    not on the gears); over the cycle the group of the replacing link and the driven gear
+    is solved from the ratio (:meth:`solve`): the driven gear turns, relative to the
+    carrier of the two axles, by ∓(r₁/r₂) times the driving gear's turn.
+
+    Attributes
+    ----------
+    pair : pair id
+        The higher pair.
+    driver : link id
+        The driving gear (solved by an earlier group).
+    carrier : link id
+        The link carrying the driven gear's axle (the frame for fixed axles).
+    radii : (float, float)
+        Pitch radii of the driving and the driven gear (mm).
+    internal : bool
+        An internal mesh.
+    start : (float, float, float)
+        The kinematic frame angles of the driver, the carrier and the driven gear at the
+        sketched position (rad; the driven gear's with the group's convention: its axis
+        from its axle to N₂).
+    ends : (complex, complex)
+        N₁ and N₂ in the carrier's frame of the kinematics (mm).
+    replacing : link id
+        The replacing link, a member of the group.
+    """
+
+    pair: PairId
+    driver: LinkId
+    carrier: LinkId
+    radii: tuple[float, float]
+    internal: bool
+    start: tuple[float, float, float]
+    ends: tuple[complex, complex]
+    replacing: LinkId
+
+    def solve(self, state: State, group: GroupModel, q: Value) -> DyadSolution:
+        """Solve the group (the replacing link and the driven gear) from the gear ratio."""
+        carrier = state.frames.get(self.carrier)
+        origin, turn = carrier if carrier is not None else (0j, 0.0)
+        rotor = J.expi(turn)
+        n1, n2 = (origin + end * rotor for end in self.ends)
+        relative = turn - self.start[1]
+        driver = state.frames[self.driver][1] - self.start[0] - relative
+        angle = gear_angle(driver, self.radii, internal=self.internal,
+                           start=self.start[2] + relative)
+        driven = group.hinge_j if group.i == self.replacing else group.hinge_i
+        assert driven is not None
+        axle = state.point(driven)
+        link = (n1, J.arg(n2 - n1))
+        gear = (axle, angle)
+        first, second = (link, gear) if group.i == self.replacing else (gear, link)
+        hinges = (n1, axle) if group.i == self.replacing else (axle, n1)
+        roles = group.pairs
+        state.joints.update({roles["C"]: n2, roles["H_i"]: hinges[0], roles["H_j"]: hinges[1]})
+        shape = np.shape(J.value(n2 + 0.0 * J.value(angle)))
+        return DyadSolution(n2, first[0], first[1], second[0], second[1], None, None,
+                            np.ones(shape), np.ones(shape, bool), np.zeros(shape, np.int8))
 
 
 def gear_angle(angle: Value, radii: tuple[float, float], *, internal: bool = False,
@@ -601,13 +748,13 @@ def _facing(path: Slider | Rocker, point: np.ndarray, normal: np.ndarray) -> Boo
     return facing
 
 
-def _residual(profile: PolarProfile, roller: float, pose: _Pose, theta: Value) -> Value:
+def _residual(profile: PolarSpline, roller: float, pose: _Pose, theta: Value) -> Value:
     """g(θ) of the roller's centre touching the profile at θ, on the follower's path."""
     x, n = profile.local(theta)
     return _on_path(pose.path, pose.globally(x + roller * n), pose.origin)[0]
 
 
-def _polish(profile: PolarProfile, roller: float, pose: _Pose, lo: FloatArray,
+def _polish(profile: PolarSpline, roller: float, pose: _Pose, lo: FloatArray,
             step: float) -> FloatArray:
     """The root of g in [lo, lo + step] at every position: Newton, bisection where Newton
     would leave the bracket."""

@@ -26,6 +26,7 @@ from assur.kinds import HIGHER, KINDS, GroupKind, kind_of
 from assur.model import LinkId, PairId
 
 if TYPE_CHECKING:  # pragma: no cover
+    from assur.kinematics.contact import CamContact, GearContact
     from assur.kinematics.higher.kind import Layout
 
 __all__ = [
@@ -218,6 +219,10 @@ class KinematicModel:
         Pair id → (type ``'R'``/``'P'``, the two links, guide carrier or None).
     source : str
         The table the model was built from.
+    contacts : mapping
+        Group label → the higher pair (:class:`~assur.kinematics.contact.CamContact`,
+        :class:`~assur.kinematics.contact.GearContact`) through which that group is solved,
+        where the replacing mechanism holds at the sketched position only.
 
     Examples
     --------
@@ -240,6 +245,7 @@ class KinematicModel:
     pair_links: Mapping[PairId, tuple[str, tuple[LinkId, LinkId], LinkId | None]] = field(
         default_factory=dict)
     source: str = "<data>"
+    contacts: Mapping[str, CamContact | GearContact] = field(default_factory=dict)
 
     def parameter_names(self) -> tuple[str, ...]:
         """Every parameter name, in layering order and column order."""

@@ -19,7 +19,7 @@ import pytest
 from scipy.interpolate import CubicSpline
 
 from assur.kinematics.contact import (
-    PolarProfile,
+    PolarSpline,
     Rocker,
     Slider,
     circle_follower,
@@ -192,7 +192,7 @@ def _brute_rocker(points: np.ndarray, roller: float, pivot: complex, arm: float,
 
 @pytest.mark.parametrize("roller", [0.0, 12.0])
 def test_tabulated_profile_against_a_brute_force_contact_search(roller: float) -> None:
-    profile = PolarProfile.from_table(TABLE_ANGLES, TABLE_RADII)
+    profile = PolarSpline.from_table(TABLE_ANGLES, TABLE_RADII)
     start = np.radians(np.arange(0.0, 360.0, 10.0))
     base, angle = 6.0 + 0.0j, 1.5
     contact = polar_follower(profile, 0j, start, Slider(base, angle), roller)
@@ -202,7 +202,7 @@ def test_tabulated_profile_against_a_brute_force_contact_search(roller: float) -
 
 
 def test_tabulated_profile_with_a_rocking_roller_against_brute_force() -> None:
-    profile = PolarProfile.from_table(TABLE_ANGLES, TABLE_RADII)
+    profile = PolarSpline.from_table(TABLE_ANGLES, TABLE_RADII)
     start = np.radians(np.arange(0.0, 360.0, 10.0))
     pivot, arm, roller = 80.0 + 60.0j, 75.0, 10.0
     contact = polar_follower(profile, 0j, start, Rocker(pivot, arm, 1), roller)
@@ -217,7 +217,7 @@ def test_tabulated_analogs_equal_the_instantaneous_replacing_slider_crank() -> N
     roller's centre (the replacing mechanism); the curvature is computed here from the
     spline's derivatives."""
     spline = _spline(TABLE_ANGLES, TABLE_RADII)
-    profile = PolarProfile(spline)
+    profile = PolarSpline(spline)
     start = np.radians(np.arange(0.0, 360.0, 10.0))
     base, angle, roller = 6.0 + 0.0j, 1.5, 12.0
     turning = Jet(start, 1.0, 0.0)
@@ -242,7 +242,7 @@ def test_a_tabulated_eccentric_follows_like_the_eccentric() -> None:
     e, radius = 10.0, 40.0
     angles = np.arange(0.0, 360.0, 2.0)
     t = np.radians(angles)
-    profile = PolarProfile.from_table(angles, e * np.cos(t) + np.sqrt(radius ** 2
+    profile = PolarSpline.from_table(angles, e * np.cos(t) + np.sqrt(radius ** 2
                                                                       - (e * np.sin(t)) ** 2))
     pivot, arm = 90.0 + 30.0j, 70.0
     tabulated = polar_follower(profile, 0j, PHI, Rocker(pivot, arm, -1), 10.0)
@@ -257,7 +257,7 @@ def test_a_roller_larger_than_a_hollow_is_an_undercut() -> None:
     angles = np.arange(0.0, 360.0, 2.0)
     t = np.radians(angles)
     radii = 40.0 - 4.0 * np.exp(-((t - math.pi) / 0.2) ** 2)
-    profile = PolarProfile.from_table(angles, radii)
+    profile = PolarSpline.from_table(angles, radii)
     spline = _spline(angles, radii)
     fine = np.linspace(0.0, 2 * math.pi, 20_001)
     r, dr, ddr = spline(fine), spline(fine, 1), spline(fine, 2)
@@ -295,7 +295,7 @@ def test_pressure_angle_beyond_the_allowed_one() -> None:
 
 
 def test_no_contact_where_the_path_misses_the_cam() -> None:
-    profile = PolarProfile.from_table(TABLE_ANGLES, TABLE_RADII)
+    profile = PolarSpline.from_table(TABLE_ANGLES, TABLE_RADII)
     contact = polar_follower(profile, 0j, PHI, Slider(80.0j, 0.0), 5.0)
     assert (contact.reason == Reason.CONTACT_LOST).all()
     assert np.isnan(np.asarray(contact.follower)).all()

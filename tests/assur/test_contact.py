@@ -28,6 +28,7 @@ from assur.kinematics.contact import (
     polar_follower,
     replacing_length,
 )
+from assur.kinematics.analysis import values
 from assur.kinematics.dyads import solve_rrr
 from assur.kinematics.jets import Jet
 from assur.kinematics.reasons import Reason
@@ -473,3 +474,51 @@ def test_a_contact_lost_over_part_of_the_cycle_is_an_interval_with_its_reason() 
     assert np.max(np.abs(np.array(ends) - roots)) <= math.radians(0.01)
     for interval in intervals:
         assert interval.shortfall == pytest.approx(force[force < 0].min(), rel=1e-9)
+
+
+# --- through assur.analyse ------------------------------------------------------------------
+
+TABLES = __import__("pathlib").Path(__file__).parents[2] / "input_tables"
+
+
+def test_a_tabulated_cam_through_the_analysis_against_brute_force() -> None:
+    """input_tables/cam_table_roller.yaml: the roller's centre (joint K2 of the replacing
+    mechanism) on the vertical line through the shaft, against the brute-force search over
+    the table's profile turned with the cam."""
+    import yaml
+
+    import assur
+
+    result = assur.analyse(TABLES / "cam_table_roller.yaml", points=36)
+    table = yaml.safe_load((TABLES / "cam_table_roller.yaml").read_text())
+    profile = table["geometry"]["K"]["profiles"][0]["table"]
+    spline = _spline(np.array(profile["angles"], float), np.array(profile["radii"], float))
+    q = result.motion.q
+    want = _brute_slider(_dense(spline, q), 10.0, 0j, math.pi / 2)
+    roller = values(result.motion.joints["K2"])
+    assert result.existence.all_exist
+    assert np.max(np.abs(roller.real)) <= 1e-9
+    assert np.max(np.abs(roller.imag - want)) <= 1e-6
+    follower = result.motion.sliders["C"]
+    assert np.max(np.abs(values(follower.point) - roller)) <= 1e-9
+
+
+def test_a_geared_five_bar_through_the_analysis_against_its_closed_form() -> None:
+    """input_tables/geared_five_bar.yaml: gear 2 turns at −(30/60) of gear 1; the joint E
+    where the couplers' circles meet, on the sketched side of B → C."""
+    import assur
+
+    result = assur.analyse(TABLES / "geared_five_bar.yaml", points=36)
+    phi = result.motion.q
+    b0, c0, d, e0 = 20j, 90 + 40j, 90 + 0j, 40 + 90j
+    b = b0 * np.exp(1j * phi)
+    c = d + (c0 - d) * np.exp(-0.5j * phi)
+    l1, l2 = abs(e0 - b0), abs(e0 - c0)
+    side = np.sign(((np.conj(c0 - b0)) * (e0 - b0)).imag)
+    dist = np.abs(c - b)
+    u = (c - b) / dist
+    along = (l1 ** 2 - l2 ** 2 + dist ** 2) / (2 * dist)
+    e = b + along * u + side * np.sqrt(l1 ** 2 - along ** 2) * 1j * u
+    assert result.existence.all_exist
+    for name, want in (("B", b), ("C", c), ("E", e)):
+        assert np.max(np.abs(values(result.motion.joints[name]) - want)) <= 1e-9

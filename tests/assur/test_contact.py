@@ -522,3 +522,40 @@ def test_a_geared_five_bar_through_the_analysis_against_its_closed_form() -> Non
     assert result.existence.all_exist
     for name, want in (("B", b), ("C", c), ("E", e)):
         assert np.max(np.abs(values(result.motion.joints[name]) - want)) <= 1e-9
+
+
+def test_the_contact_force_of_a_table_with_a_higher_pair_through_the_analysis() -> None:
+    """The eccentric and its rocking roller entered as a chain with a higher pair K (the
+    roller 2 on its pin B, a passive degree of freedom), analysed with its forces by
+    assur.analyse: the reaction of the replacing link on the arm along the normal K1 → K2 is
+    the Newton–Euler contact force, and the driving torque the Newton–Euler one."""
+    import assur
+    from assur.forces.contact import contact_force
+    from assur.io.chain_table import chain_from_dict
+
+    centre, roller, g3 = _sketch()
+
+    def xy(z: complex) -> list[float]:
+        return [z.real, z.imag]
+
+    chain = chain_from_dict({
+        "mechanism": {"pairs": [
+            {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [2, 3]},
+            {"id": "D", "type": "R", "links": [3, 0]}, {"id": "K", "type": "H", "links": [1, 2]}],
+            "inputs": [1]},
+        "geometry": {"A": {"point": [0, 0]}, "B": {"point": xy(roller)},
+                     "D": {"point": xy(PIVOT)},
+                     "K": {"profiles": [{"circle": {"centre": xy(centre), "radius": RADIUS}},
+                                        {"circle": {"centre": xy(roller), "radius": ROLLER}}]}},
+        "masses": {1: {"mass": M1, "centre": xy(G1), "inertia": I1},
+                   3: {"mass": M3, "centre": xy(g3), "inertia": I3}},
+        "loads": [{"link": 3, "torque": -15.0}], "gravity": [0, -9.81]})
+    result = assur.analyse(chain, points=72, forces=True, omega=30.0)
+    assert result.forces is not None
+    joints = result.motion.joints
+    k1, k2 = values(joints["K1"]), values(joints["K2"])
+    normal = (k2 - k1) / np.abs(k2 - k1)
+    force = contact_force(result.forces, "K2", normal, 3)
+    want, driving, _ = _newton_euler(result.motion.q, -15.0, 30.0)
+    assert np.max(np.abs(force.normal - want)) <= 1e-9 * np.max(np.abs(want))
+    assert np.max(np.abs(result.forces.driving - driving)) <= 1e-9 * np.max(np.abs(driving))

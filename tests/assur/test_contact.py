@@ -18,7 +18,10 @@ import numpy as np
 import pytest
 from scipy.interpolate import CubicSpline
 
+from assur.forces import ForceAnalysis
+from assur.kinematics.analysis import Motion, values
 from assur.kinematics.contact import (
+    Contact,
     PolarSpline,
     Rocker,
     Slider,
@@ -28,10 +31,10 @@ from assur.kinematics.contact import (
     polar_follower,
     replacing_length,
 )
-from assur.kinematics.analysis import values
 from assur.kinematics.dyads import solve_rrr
 from assur.kinematics.jets import Jet
 from assur.kinematics.reasons import Reason
+from assur.typing import Value
 
 PHI = np.radians(np.arange(0.0, 360.0, 5.0))
 
@@ -40,6 +43,12 @@ def _cam_centre(e: float, start: float) -> Jet:
     """The eccentric's centre turning about the shaft at the origin, with its analogs."""
     turn = np.exp(1j * (start + PHI))
     return Jet(e * turn, 1j * e * turn, -e * turn)
+
+
+def _jet(x: Value) -> Jet:
+    """A quantity solved with analogs."""
+    assert isinstance(x, Jet)
+    return x
 
 
 def _solve2(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -68,7 +77,7 @@ def _four_bar(centre: Jet, length: float, pivot: complex, arm: float, away: int
     theta = np.angle(b - c)
     ei, ej = length * np.exp(1j * theta), arm * np.exp(1j * psi)
     t1, p1 = _solve2(1j * ei, -1j * ej, -centre.d1)
-    t2, p2 = _solve2(1j * ei, -1j * ej, -centre.d2 + ei * t1 ** 2 - ej * p1 ** 2)
+    _, p2 = _solve2(1j * ei, -1j * ej, -centre.d2 + ei * t1 ** 2 - ej * p1 ** 2)
     return psi, p1, p2
 
 
@@ -100,8 +109,8 @@ def test_eccentric_with_a_rocking_roller_is_its_four_bar(away: int) -> None:
     assert isinstance(roller, Jet)
     assert np.max(np.abs(roller.v - (pivot + arm * np.exp(1j * psi)))) <= 1e-9
     # the contact is on the eccentric, the normal through both centres
-    assert np.max(np.abs(np.abs(contact.point.v - centre.v) - 40.0)) <= 1e-9
-    assert np.max(np.abs(np.abs(roller.v - contact.point.v) - 10.0)) <= 1e-9
+    assert np.max(np.abs(np.abs(_jet(contact.point).v - centre.v) - 40.0)) <= 1e-9
+    assert np.max(np.abs(np.abs(roller.v - _jet(contact.point).v) - 10.0)) <= 1e-9
 
 
 def test_eccentric_with_a_translating_roller_is_its_slider_crank() -> None:
@@ -126,10 +135,10 @@ def test_flat_faced_follower_on_an_eccentric() -> None:
     for part in ("v", "d1", "d2"):
         want = (getattr(centre, part) * rot).real + (40.0 - (base * rot).real
                                                     if part == "v" else 0.0)
-        assert np.max(np.abs(getattr(square.follower, part) - want)) <= 1e-9
+        assert np.max(np.abs(getattr(_jet(square.follower), part) - want)) <= 1e-9
     gamma = 1.2
     slanted = flat_follower(centre, 40.0, Slider(base, angle), gamma)
-    face_point = base + slanted.follower.v * np.exp(1j * angle)
+    face_point = base + _jet(slanted.follower).v * np.exp(1j * angle)
     face = np.exp(1j * (angle + gamma))
     distance = ((centre.v - face_point) * np.conj(face)).imag
     assert np.max(np.abs(np.abs(distance) - 40.0)) <= 1e-9
@@ -153,7 +162,8 @@ def _dense(spline: CubicSpline, start: np.ndarray, samples: int = 200_000) -> np
     """The profile's points in the plane, the cam turned by ``start``: shape (N, samples)."""
     theta = 2 * math.pi * np.arange(samples) / samples
     local = spline(theta) * np.exp(1j * theta)
-    return np.exp(1j * start)[:, None] * local[None, :]
+    points: np.ndarray = np.exp(1j * start)[:, None] * local[None, :]
+    return points
 
 
 def _brute_slider(points: np.ndarray, roller: float, base: complex, angle: float
@@ -168,10 +178,12 @@ def _brute_slider(points: np.ndarray, roller: float, base: complex, angle: float
         crosses = np.sign(across) != np.sign(ahead.imag)
         share = across / (across - ahead.imag)
         at = rel.real + share * (ahead.real - rel.real)
-        return np.where(crosses, at, -np.inf).max(axis=1)
+        knife: np.ndarray = np.where(crosses, at, -np.inf).max(axis=1)
+        return knife
     reach = np.where(np.abs(across) <= roller,
                      rel.real + np.sqrt(np.maximum(roller ** 2 - across ** 2, 0.0)), -np.inf)
-    return reach.max(axis=1)
+    rest: np.ndarray = reach.max(axis=1)
+    return rest
 
 
 def _brute_rocker(points: np.ndarray, roller: float, pivot: complex, arm: float, away: int,
@@ -223,15 +235,15 @@ def test_tabulated_analogs_equal_the_instantaneous_replacing_slider_crank() -> N
     base, angle, roller = 6.0 + 0.0j, 1.5, 12.0
     turning = Jet(start, 1.0, 0.0)
     contact = polar_follower(profile, 0j, turning, Slider(base, angle), roller)
-    point = contact.point.v
+    point = _jet(contact.point).v
     theta = np.angle(point * np.exp(-1j * start))
     r, dr, ddr = spline(theta), spline(theta, 1), spline(theta, 2)
     radius = (r * r + dr * dr) ** 1.5 / (r * r + 2 * dr * dr - r * ddr)
-    normal = (contact.centre_b.v - point) / roller
+    normal = (_jet(contact.centre_b).v - point) / roller
     curvature_centre = point - radius * normal
     centre = Jet(curvature_centre, 1j * curvature_centre, -curvature_centre)
     s, s1, s2 = _slider_crank(centre, radius + roller, base, angle)
-    follower = contact.follower
+    follower = _jet(contact.follower)
     assert np.max(np.abs(follower.v - s)) <= 1e-9
     assert np.max(np.abs(follower.d1 - s1)) <= 1e-7 * np.max(np.abs(s1))
     assert np.max(np.abs(follower.d2 - s2)) <= 1e-7 * np.max(np.abs(s2))
@@ -319,11 +331,11 @@ def test_geared_five_bar_against_its_closed_form() -> None:
     o1, o2 = 0j, 75.0 + 0j
     a1, a2, l1, l2 = 25.0, 35.0, 90.0, 80.0
     phi = Jet(PHI, 1.0, 0.0)
-    psi = gear_angle(phi, (r1, r2), start=2.0)
+    psi = _jet(gear_angle(phi, (r1, r2), start=2.0))
     a = o1 + a1 * Jet(np.exp(1j * PHI), 1j * np.exp(1j * PHI), -np.exp(1j * PHI))
     turn = np.exp(1j * psi.v)
     b = o2 + a2 * Jet(turn, 1j * turn * psi.d1, -turn * psi.d1 ** 2)
-    joint = solve_rrr(a, b, l1, l2, 1.0).c
+    joint = _jet(solve_rrr(a, b, l1, l2, 1.0).c)
     # closed form
     psi_c = 2.0 - r1 / r2 * PHI
     pa, pb = o1 + a1 * np.exp(1j * PHI), o2 + a2 * np.exp(1j * psi_c)
@@ -355,7 +367,8 @@ def _sketch() -> tuple[complex, complex, complex]:
     return centre, roller, PIVOT + 0.5 * (roller - PIVOT) + 4.0j
 
 
-def _replacing_forces(phi: np.ndarray, torque: float, omega: float) -> tuple[object, object]:
+def _replacing_forces(phi: np.ndarray, torque: float, omega: float
+                      ) -> tuple[Motion, Contact, ForceAnalysis]:
     """The replacing four-bar (shaft–eccentric–replacing link–arm) through the program:
     its motion, the contact, and its group-by-group kinetostatics."""
     from assur.forces import ForceData, Load, Mass, kinetostatics
@@ -384,7 +397,7 @@ def _newton_euler(phi: np.ndarray, torque: float, omega: float
     the shaft's and the pivot's reactions and the driving torque: six unknowns per position.
 
     Returns N (N), the driving torque (N·m) and the relative power balance."""
-    centre_sk, roller_sk, g3_sk = _sketch()
+    _, roller_sk, g3_sk = _sketch()
     psi0 = np.angle(roller_sk - PIVOT)
     centre = E * np.exp(1j * (START + phi)) * MM
     psi, psi1, psi2 = _four_bar(_cam_centre_at(phi), RADIUS + ROLLER, PIVOT, ARM, 1)
@@ -394,13 +407,13 @@ def _newton_euler(phi: np.ndarray, torque: float, omega: float
     g1 = G1 * MM * np.exp(1j * phi)
     a1 = -omega ** 2 * g1
     arm_g = (g3_sk - PIVOT) * MM * np.exp(1j * (psi - psi0))
-    g3 = pivot + arm_g
     a3 = omega ** 2 * (1j * psi2 - psi1 ** 2) * arm_g
     eps3 = psi2 * omega ** 2
     grav = -9.81j
 
     def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        return (np.conj(a) * b).imag
+        moment: np.ndarray = (np.conj(a) * b).imag
+        return moment
 
     size = phi.size
     matrix = np.zeros((size, 6, 6))
@@ -435,7 +448,7 @@ def test_contact_force_against_a_newton_euler_solve_of_the_whole_mechanism() -> 
     torque, omega = -15.0, 30.0
     motion, contact, forces = _replacing_forces(PHI, torque, omega)
     # the replacing four-bar moves the roller like the contact solved on its own
-    assert np.max(np.abs(motion.joints["C"].v - contact.centre_b.v)) <= 1e-9
+    assert np.max(np.abs(_jet(motion.joints["C"]).v - _jet(contact.centre_b).v)) <= 1e-9
     result = contact_force(forces, "C", contact.normal, 3, contact.reason)
     force, driving, balance = _newton_euler(PHI, torque, omega)
     scale = np.max(np.abs(force))

@@ -535,6 +535,14 @@ def test_a_geared_five_bar_through_the_analysis_against_its_closed_form() -> Non
     assert result.existence.all_exist
     for name, want in (("B", b), ("C", c), ("E", e)):
         assert np.max(np.abs(values(result.motion.joints[name]) - want)) <= 1e-9
+    # the replacing link stays on the line of action, touching both base circles
+    n1, n2 = values(result.motion.joints["G1"]), values(result.motion.joints["G2"])
+    base = math.cos(math.radians(20.0))
+    assert np.max(np.abs(np.abs(n1) - 30.0 * base)) <= 1e-9
+    assert np.max(np.abs(np.abs(n2 - d) - 60.0 * base)) <= 1e-9
+    assert np.max(np.abs((np.conj(n2 - n1) * n1).real)) <= 1e-9
+    assert np.max(np.abs((np.conj(n2 - n1) * (n2 - d)).real)) <= 1e-9
+    assert np.ptp(n1) == 0 and np.ptp(n2) == 0
 
 
 def test_the_contact_force_of_a_table_with_a_higher_pair_through_the_analysis() -> None:

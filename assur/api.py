@@ -130,7 +130,11 @@ class Analysis:
         record = analysis_record(self)
         record["warnings"] = [issue.to_dict() for issue in self.warnings]
         if self.forces is not None:
+            from assur.forces.contact import contact_forces, contact_record
+
             record["forces"] = self.forces.to_dict()
+            record["forces"]["contacts"] = contact_record(
+                contact_forces(self.motion, self.forces), self.motion.q, self.crank)
         return record
 
     def __repr__(self) -> str:

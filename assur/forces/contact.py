@@ -21,12 +21,15 @@ import numpy as np
 
 from assur.forces.solver import ForceAnalysis
 from assur.kinematics import jets as J
+from assur.kinematics.analysis import Motion
+from assur.kinematics.contact import followers
 from assur.kinematics.existence import FailureInterval
 from assur.kinematics.reasons import Reason
 from assur.model import LinkId, PairId
 from assur.typing import BoolArray, FloatArray, Value
 
-__all__ = ["ContactForce", "contact_force", "lost_intervals"]
+__all__ = ["ContactForce", "contact_force", "contact_forces", "contact_record",
+           "lost_intervals"]
 
 
 class ContactForce(NamedTuple):
@@ -91,6 +94,42 @@ def contact_force(forces: ForceAnalysis, pair: PairId, normal: Value, follower: 
     if kinematic is not None:
         reason = np.where(kinematic != 0, kinematic, reason)
     return ContactForce(push, across, holds & (reason == 0), reason.astype(np.int8))
+
+
+def contact_forces(motion: Motion, forces: ForceAnalysis) -> dict[PairId, ContactForce]:
+    """The normal force of every higher pair of an analysed mechanism whose replacing link
+    is hinged to its follower (a flat face's, which slides, is left out).
+
+    Parameters
+    ----------
+    motion : Motion
+        The kinematics (:func:`~assur.kinematics.analysis.analyse`, with analogs).
+    forces : ForceAnalysis
+        Its kinetostatics.
+
+    Returns
+    -------
+    dict
+        Higher pair → :class:`ContactForce`.
+    """
+    return {follower.pair: contact_force(forces, follower.hinge, follower.normal.v,
+                                         follower.link, follower.reason)
+            for follower in followers(motion) if follower.normal is not None}
+
+
+def contact_record(found: dict[PairId, ContactForce], q: FloatArray, crank: bool
+                   ) -> dict[str, dict[str, object]]:
+    """The ``contacts`` of the forces' JSON: per higher pair its normal force (N), the
+    reason per position (null where the contact holds) and the intervals where it is lost
+    (crank positions in degrees), each with its reason and sentence."""
+    from assur.records import floats
+
+    return {str(pair): {
+        "normal": floats(force.normal), "tangential": floats(force.tangential),
+        "reason": [None if r == 0 else int(r) for r in np.ravel(force.reason)],
+        "lost": [interval.to_dict(crank)
+                 for interval in lost_intervals(q, np.ravel(force.normal), periodic=crank)]}
+        for pair, force in found.items()}
 
 
 def lost_intervals(q: FloatArray, normal: FloatArray, *, periodic: bool = True

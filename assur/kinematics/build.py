@@ -211,7 +211,7 @@ def with_contacts(analysis: StructuralAnalysis, model: KinematicModel) -> Kinema
     if original is None or original.geometry is None:
         return model
     from assur.kinematics.analysis import analyse, sketch_input
-    from assur.kinematics.contact import CamContact, GearContact, PolarSpline
+    from assur.kinematics.contact import CamContact, ExactContact, GearContact, PolarSpline
     from assur.model import CircleProfile, PolarProfile
     from assur.profiles import contact
 
@@ -226,13 +226,15 @@ def with_contacts(analysis: StructuralAnalysis, model: KinematicModel) -> Kinema
     def point(pair: PairId) -> complex:
         return complex(np.ravel(J.value(sketched.joints[pair]))[0])
 
-    contacts: dict[str, CamContact | GearContact] = {}
+    contacts: dict[str, CamContact | GearContact | ExactContact] = {}
     for item in analysis.replacements:
         higher = next(pair for pair in original.higher if pair.id == item.pair)
         profiles = original.geometry.profiles[higher.id]
         group = next((g for g in model.groups if item.link in g.members), None)
         tabulated = [isinstance(profile, PolarProfile) for profile in profiles]
         if higher.gear is None and not any(tabulated):
+            if group is not None and group.layout is None:
+                contacts[group.label] = ExactContact(higher.id, item.link)
             continue
         if group is None or group.layout is not None or group.kind not in (1, 2) \
                 or (group.kind == 2 and group.j != item.link):

@@ -55,22 +55,26 @@ from assur.kinematics import jets as J
 from assur.kinematics.dyads import DyadSolution, solve_rpp, solve_rrp, solve_rrr
 from assur.kinematics.jets import Jet
 from assur.kinematics.reasons import Reason
+from assur.kinematics.rules import rules_of
 from assur.model import LinkId, PairId
 from assur.typing import BoolArray, FloatArray, Value
 
 if TYPE_CHECKING:  # pragma: no cover
-    from assur.kinematics.analysis import State
+    from assur.kinematics.analysis import GroupSolution, Motion, State
     from assur.kinematics.model import GroupModel
 
 __all__ = [
     "CamContact",
     "Contact",
+    "ExactContact",
+    "Follower",
     "GearContact",
     "PolarSpline",
     "Rocker",
     "Slider",
     "circle_follower",
     "flat_follower",
+    "followers",
     "gear_angle",
     "polar_follower",
     "replacing_length",
@@ -498,6 +502,113 @@ def _meetings(profile: PolarSpline, roller: float, pose: _Pose, grid: FloatArray
     concave = 1.0 + roller * profile.curvature(grid) < 0.0
     return (np.argmax(reach, axis=-1), meets.any(axis=-1),
             (meets & concave & facing).any(axis=-1))
+
+
+@dataclass(frozen=True)
+class ExactContact:
+    """A higher pair of circles or a straight profile in a mechanism: the replacing link
+    joins points fixed on the two links, so its group, solved by its own kind, moves exactly
+    like the original over the cycle.
+
+    Attributes
+    ----------
+    pair : pair id
+        The higher pair.
+    replacing : link id
+        The replacing link, a member of the group.
+    """
+
+    pair: PairId
+    replacing: LinkId
+
+    def solve(self, state: State, group: GroupModel, q: Value) -> GroupSolution:
+        """Solve the group by its kind (:mod:`assur.kinematics.rules`)."""
+        return rules_of(group.group_kind).solve(state, group, q)
+
+
+class Follower(NamedTuple):
+    """The follower of a higher pair over the positions (:func:`followers`).
+
+    Attributes
+    ----------
+    pair : pair id
+        The higher pair.
+    group : str
+        The label of the group of its replacing link.
+    link : link id
+        The follower (the driven gear of a mesh): the group's other member.
+    unit : {'mm', 'deg'}
+        A slider's coordinate S along its guide (mm), or a rocking link's angle (degrees,
+        continuous over the cycle).
+    coordinate : Jet
+        The coordinate with its first and second analogs (per radian of the input).
+    normal : Jet or None
+        The unit common normal at the contact, from the first link's side towards the
+        follower's (the replacing link's axis); None where the replacing link slides along a
+        straight profile.
+    hinge : pair id
+        The pair of the replacing link with the follower (its reaction carries the contact
+        force).
+    reason : ndarray, int8
+        The group's reason per position (0 where the contact holds).
+    """
+
+    pair: PairId
+    group: str
+    link: LinkId
+    unit: str
+    coordinate: Jet
+    normal: Jet | None
+    hinge: PairId
+    reason: np.ndarray
+
+
+def followers(motion: Motion) -> list[Follower]:
+    """The follower of every higher pair of an analysed mechanism (none without any).
+
+    Parameters
+    ----------
+    motion : Motion
+        Analysed with analogs.
+
+    Returns
+    -------
+    list of Follower
+        In the order of the groups.
+
+    Examples
+    --------
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/cam_table_roller.yaml"
+    >>> follower, = followers(assur.analyse(table, points=36).motion)
+    >>> follower.link, follower.unit, round(float(np.ptp(follower.coordinate.v)), 6)
+    (3, 'mm', 10.0)
+    """
+    model = motion.model
+    found = []
+    for label, contact in model.contacts.items():
+        group = model.group(label)
+        link = next(member for member in group.members if member != contact.replacing)
+        hinge = next(pair for pair, (_, links, _) in model.pair_links.items()
+                     if set(links) == {link, contact.replacing})
+        solution = motion.solutions[label]
+        if group.guide_i is not None and group.i == link:
+            unit, coordinate = "mm", J.as_jet(motion.sliders[group.pairs["P_i"]].s)
+        else:
+            angle = J.as_jet(motion.frames[link][1])
+            unit = "deg"
+            coordinate = Jet(np.degrees(_unwrapped(angle.v)), np.degrees(angle.d1),
+                             np.degrees(angle.d2))
+        sliding = model.pair_links[hinge][0] == "P"
+        normal = None if sliding else J.as_jet(J.expi(motion.frames[contact.replacing][1]))
+        found.append(Follower(contact.pair, label, link, unit, coordinate, normal, hinge,
+                              np.asarray(solution.reason)))
+    return found
+
+
+def _unwrapped(angle: np.ndarray) -> np.ndarray:
+    """Angles continuous along the positions (the last axis)."""
+    return np.unwrap(angle, axis=-1) if np.all(np.isfinite(angle)) else angle
 
 
 @dataclass(frozen=True)

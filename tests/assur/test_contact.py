@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 from scipy.interpolate import CubicSpline
 
+from assur.api import Analysis
 from assur.forces import ForceAnalysis
 from assur.kinematics.analysis import Motion, values
 from assur.kinematics.contact import (
@@ -550,8 +551,59 @@ def test_the_contact_force_of_a_table_with_a_higher_pair_through_the_analysis() 
     roller 2 on its pin B, a passive degree of freedom), analysed with its forces by
     assur.analyse: the reaction of the replacing link on the arm along the normal K1 → K2 is
     the Newton–Euler contact force, and the driving torque the Newton–Euler one."""
-    import assur
     from assur.forces.contact import contact_force
+
+    result = _analysed_with_a_higher_pair(-15.0, 30.0)
+    assert result.forces is not None
+    joints = result.motion.joints
+    k1, k2 = values(joints["K1"]), values(joints["K2"])
+    normal = (k2 - k1) / np.abs(k2 - k1)
+    force = contact_force(result.forces, "K2", normal, 3)
+    want, driving, _ = _newton_euler(result.motion.q, -15.0, 30.0)
+    assert np.max(np.abs(force.normal - want)) <= 1e-9 * np.max(np.abs(want))
+    assert np.max(np.abs(result.forces.driving - driving)) <= 1e-9 * np.max(np.abs(driving))
+    record = result.to_dict()
+    assert record["forces"]["contacts"]["K"]["lost"] == []
+    assert np.allclose(record["forces"]["contacts"]["K"]["normal"], want, rtol=1e-9, atol=0)
+
+
+def test_the_analysis_reports_the_follower_and_where_its_contact_is_lost() -> None:
+    """The same table under a weak return torque at a high speed: the JSON of the analysis
+    gives the arm's angle with its analogs (against the four-bar's closed form) and the
+    interval where the contact is lost, its ends the zeros of the Newton–Euler force."""
+    from scipy.optimize import brentq
+
+    torque, omega = -2.0, 40.0
+    record = _analysed_with_a_higher_pair(torque, omega).to_dict()
+    phi = np.radians(record["input"]["values"])
+    contact, = record["contacts"]
+    psi, psi1, psi2 = _four_bar(_cam_centre_at(phi), RADIUS + ROLLER, PIVOT, ARM, 1)
+    assert (contact["pair"], contact["follower"], contact["unit"]) == ("K", 3, "deg")
+    got = contact["coordinate"]
+    turn = np.degrees(np.angle(np.exp(1j * (np.radians(got["value"]) - psi))))
+    assert np.max(np.abs(turn)) * ARM <= 1e-9
+    assert np.max(np.abs(np.radians(got["d1"]) - psi1)) * ARM <= 1e-9
+    assert np.max(np.abs(np.radians(got["d2"]) - psi2)) * ARM <= 1e-9
+    lost = record["forces"]["contacts"]["K"]["lost"]
+    assert len(lost) == 1 and lost[0]["reason"] == Reason.CONTACT_LOST
+    assert lost[0]["condition"].startswith("contact lost")
+    force = _newton_euler(phi, torque, omega)[0]
+
+    def n_at(x: float) -> float:
+        return float(_newton_euler(np.array([x]), torque, omega)[0][0])
+
+    step = phi[1] - phi[0]
+    roots = [math.degrees(brentq(n_at, phi[k], phi[k] + step, xtol=1e-13))
+             for k in np.flatnonzero(np.sign(force) != np.sign(np.roll(force, -1)))]
+    start, end = lost[0]["start"], lost[0]["end"]
+    assert min(abs(start - r) for r in roots) <= 0.05
+    assert min(abs(end - r) for r in roots) <= 0.05
+
+
+def _analysed_with_a_higher_pair(torque: float, omega: float) -> Analysis:
+    """The eccentric with its rocking roller as a table with a higher pair, analysed with
+    its forces over 360 positions."""
+    import assur
     from assur.io.chain_table import chain_from_dict
 
     centre, roller, g3 = _sketch()
@@ -570,13 +622,5 @@ def test_the_contact_force_of_a_table_with_a_higher_pair_through_the_analysis() 
                                         {"circle": {"centre": xy(roller), "radius": ROLLER}}]}},
         "masses": {1: {"mass": M1, "centre": xy(G1), "inertia": I1},
                    3: {"mass": M3, "centre": xy(g3), "inertia": I3}},
-        "loads": [{"link": 3, "torque": -15.0}], "gravity": [0, -9.81]})
-    result = assur.analyse(chain, points=72, forces=True, omega=30.0)
-    assert result.forces is not None
-    joints = result.motion.joints
-    k1, k2 = values(joints["K1"]), values(joints["K2"])
-    normal = (k2 - k1) / np.abs(k2 - k1)
-    force = contact_force(result.forces, "K2", normal, 3)
-    want, driving, _ = _newton_euler(result.motion.q, -15.0, 30.0)
-    assert np.max(np.abs(force.normal - want)) <= 1e-9 * np.max(np.abs(want))
-    assert np.max(np.abs(result.forces.driving - driving)) <= 1e-9 * np.max(np.abs(driving))
+        "loads": [{"link": 3, "torque": torque}], "gravity": [0, -9.81]})
+    return assur.analyse(chain, points=360, forces=True, omega=omega)

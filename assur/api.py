@@ -133,8 +133,9 @@ class Analysis:
             from assur.forces.contact import contact_forces, contact_record
 
             record["forces"] = self.forces.to_dict()
-            record["forces"]["contacts"] = contact_record(
-                contact_forces(self.motion, self.forces), self.motion.q, self.crank)
+            found = contact_forces(self.motion, self.forces)
+            if found:
+                record["forces"]["contacts"] = contact_record(found, self.motion.q, self.crank)
         return record
 
     def __repr__(self) -> str:

@@ -35,6 +35,7 @@ from assur.kinematics.contact import (
 from assur.kinematics.dyads import solve_rrr
 from assur.kinematics.jets import Jet
 from assur.kinematics.reasons import Reason
+from assur.kinematics.transmission import pressure_angles
 from assur.typing import Value
 
 PHI = np.radians(np.arange(0.0, 360.0, 5.0))
@@ -544,6 +545,8 @@ def test_a_geared_five_bar_through_the_analysis_against_its_closed_form() -> Non
     assert np.max(np.abs((np.conj(n2 - n1) * n1).real)) <= 1e-9
     assert np.max(np.abs((np.conj(n2 - n1) * (n2 - d)).real)) <= 1e-9
     assert np.ptp(n1) == 0 and np.ptp(n2) == 0
+    # the mesh's pressure angle is its own, not that of a rod
+    assert [angle.label for angle in pressure_angles(result.motion)] == ["L1(3,4)"]
 
 
 def test_the_contact_force_of_a_table_with_a_higher_pair_through_the_analysis() -> None:

@@ -627,3 +627,36 @@ def _analysed_with_a_higher_pair(torque: float, omega: float) -> Analysis:
                    3: {"mass": M3, "centre": xy(g3), "inertia": I3}},
         "loads": [{"link": 3, "torque": torque}], "gravity": [0, -9.81]})
     return assur.analyse(chain, points=360, forces=True, omega=omega)
+
+
+def test_an_undercut_through_the_analysis_is_an_interval_with_its_excess() -> None:
+    """A disc cam with a hollow (its tightest radius of curvature computed here) under a
+    translating roller larger than it: the existence report gives the interval where the
+    hollow passes under the roller, reason 13, and by how much the roller is too large."""
+    import assur
+    from assur.io.chain_table import chain_from_dict
+
+    angles = np.arange(0.0, 360.0, 5.0)
+    t = np.radians(angles)
+    radii = 40.0 - 4.0 * np.exp(-((t - math.pi) / 0.2) ** 2)
+    chain = chain_from_dict({"mechanism": {"pairs": [
+        {"id": "A", "type": "R", "links": [0, 1]}, {"id": "B", "type": "R", "links": [2, 3]},
+        {"id": "C", "type": "P", "links": [3, 0], "guide": 0},
+        {"id": "K", "type": "H", "links": [1, 2]}], "inputs": [1]},
+        "geometry": {"A": {"point": [0, 0]}, "B": {"point": [0, 54]},
+                     "C": {"point": [0, 90], "direction": 90},
+                     "K": {"profiles": [{"table": {"centre": [0, 0], "angles": angles.tolist(),
+                                                   "radii": radii.tolist()}},
+                                        {"circle": {"centre": [0, 54], "radius": 14}}]}}})
+    result = assur.analyse(chain, points=360)
+    spline = _spline(angles, radii)
+    fine = np.linspace(0.0, 2 * math.pi, 200_001)
+    r, dr, ddr = spline(fine), spline(fine, 1), spline(fine, 2)
+    kappa = (r * r + 2 * dr * dr - r * ddr) / (r * r + dr * dr) ** 1.5
+    tightest = float(np.min(-1.0 / kappa[kappa < 0]))
+    group, = result.existence.groups
+    interval, = group.intervals
+    assert interval.reason == Reason.UNDERCUT
+    assert interval.shortfall == pytest.approx(14.0 - tightest, abs=1e-6)
+    start, end = math.degrees(interval.start), math.degrees(interval.end)
+    assert 240.0 < start < 270.0 < end < 300.0

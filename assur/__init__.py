@@ -46,6 +46,7 @@ from assur.structure.analysis import StructuralAnalysis, analyse_structure
 from assur.structure.classification import AssurGroup
 from assur.structure.diagnostics import Diagnostic
 from assur.structure.identification import check_identification, identification_table
+from assur.structure.replacing import replacing_mechanism
 from assur.structure.report import structure_report
 
 __all__ = [  # noqa: RUF022 - grouped by topic, as the comments say
@@ -76,6 +77,7 @@ __all__ = [  # noqa: RUF022 - grouped by topic, as the comments say
     "analyse_structure",
     "check_identification",
     "identification_table",
+    "replacing_mechanism",
     "structure_report",
     # kinematics
     "ExistenceReport",

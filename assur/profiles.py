@@ -252,13 +252,19 @@ def _circle_table(circle: CircleProfile, table: PolarProfile) -> Contact:
 
     theta = _minimum(distance)
     point, tangent, bend = (value[0] for value in polar_points(table, np.array([theta])))
-    inside = abs(circle.centre - table.centre) < abs(point - table.centre) and \
-        _dot(circle.centre - point, point - table.centre) < 0
+    inside = _inside(table, circle.centre)
     reach = abs(point - circle.centre)
     gap = -(reach + circle.radius) if inside else reach - circle.radius
     normal = _unit(point - circle.centre, -1j * _unit(tangent))
     return Contact(gap, circle.centre + circle.radius * normal, normal,
                    (circle.centre, _curvature_centre(point, tangent, bend)))
+
+
+def _inside(table: PolarProfile, point: complex) -> bool:
+    """Whether a point lies inside a tabulated profile (star-shaped about its pole)."""
+    offset = point - table.centre
+    edge = polar_points(table, np.array([cmath.phase(offset)]))[0][0]
+    return bool(abs(offset) < abs(edge - table.centre))
 
 
 def _line_table(line: LineProfile, table: PolarProfile) -> Contact:

@@ -27,6 +27,7 @@ from __future__ import annotations
 import cmath
 import difflib
 import math
+import re
 from collections.abc import Iterable, Mapping
 from dataclasses import replace
 from typing import Any
@@ -69,7 +70,7 @@ from assur.profiles import (
 )
 from assur.text import Message
 
-__all__ = ["read_sketch", "sketch_from_dict", "with_sketch"]
+__all__ = ["higher_pair_problem", "read_sketch", "sketch_from_dict", "with_sketch"]
 
 RESERVED = ("input", "tracing", "margin")
 #: Joint id → (pair type ``"R"``/``"P"``/``"H"``, the links the joint joins).
@@ -341,6 +342,25 @@ def _direction(reader: TableReader, where: str, value: Any) -> Direction | None:
 
 
 # ------------------------------------------------------------------------ higher pairs
+
+#: The codes of a higher pair's sketch entry as a whole (missing, not a mapping).
+_HIGHER_CODES = frozenset({"sketch.needs_profiles", "sketch.needs_centres", "sketch.profiles",
+                           "sketch.centres"})
+_HIGHER_PLACE = re.compile(r"geometry '[^']*' '(?:profiles|centres)'")
+
+
+def higher_pair_problem(issue: Issue) -> bool:
+    """Whether a problem of the sketch is one of a higher pair's profiles or a gear mesh's
+    centres. The structure needs them (the passive rollers, the replacing pairs), so such a
+    problem refuses the table, where the structure of a chain of lower pairs does without
+    its sketch.
+
+    >>> from assur.text import Message
+    >>> higher_pair_problem(Issue("geometry 'K' 'profiles'[1].circle 'radius'",
+    ...                           Message("rule.positive")))
+    True
+    """
+    return issue.message.code in _HIGHER_CODES or bool(_HIGHER_PLACE.match(issue.location))
 
 #: The kinds of profile of a cam pair's sketch entry.
 PROFILE_KINDS = ("circle", "point", "line", "table")

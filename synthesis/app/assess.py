@@ -17,6 +17,7 @@ from assur.assessment import Assessment
 from assur.errors import Issue, TableError
 from assur.io.chain_table import chain_from_dict
 from assur.io.reader import TableReader
+from assur.io.sketch import higher_pair_problem
 from assur.model import Chain
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -115,8 +116,10 @@ def assess(table: str | os.PathLike[str] | Chain, *, points: int | None = 360) -
 
 
 def _in_sketch(issue: Issue) -> bool:
-    """Whether a problem of a table is one of its sketch (the ``geometry:`` section)."""
-    return issue.location.startswith(("geometry", "mechanism 'geometry'"))
+    """Whether a problem of a table is one of its sketch (the ``geometry:`` section) that the
+    structure does without (not a higher pair's profiles)."""
+    return issue.location.startswith(("geometry", "mechanism 'geometry'")) and \
+        not higher_pair_problem(issue)
 
 
 def _chain_without_sketch(path: str | os.PathLike[str]) -> Chain:

@@ -32,6 +32,7 @@ from assur.kinematics.analysis import analyse
 from assur.kinematics.dyads import reason_text
 from assur.kinematics.existence import CONDITIONS
 from assur.model import PairType, Student
+from assur.plot.formats import figure_bytes
 from assur.plot.schemes import roman, scheme_bytes
 from assur.structure.report import group_description
 from assur.text import check_lang, render
@@ -305,6 +306,13 @@ def _schemes_section(chain: Chain, analysis: StructuralAnalysis, lang: str) -> S
     body += figure_html(scheme_bytes(chain, analysis, "svg", lang=lang, which="formalised"),
                         "svg", _cap(render("term.formalised_scheme", lang)),
                         ident="formalised-scheme")
+    if analysis.original is not None and analysis.original.geometry is not None:
+        from assur.plot.higher import replacing_figure
+
+        body += figure_html(figure_bytes(replacing_figure(analysis, lang=lang), "svg",
+                                         tight=False),
+                            "svg", _cap(render("term.replacing_mechanism", lang)),
+                            ident="replacing-mechanism")
     return Section("schemes", _cap(render("term.schemes", lang)), body)
 
 

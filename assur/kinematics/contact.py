@@ -650,6 +650,21 @@ class CamContact:
     replacing: LinkId
     away: int
 
+    @property
+    def excess(self) -> float:
+        """How much the roller's radius exceeds the smallest radius of curvature of a
+        concave part of the profile (mm; ≤ 0 when the roller follows every hollow)."""
+        theta = np.linspace(0.0, 2.0 * math.pi, _LEAST * 8, endpoint=False)
+        curvature = self.spline.curvature(theta)
+        hollow = curvature[curvature < 0.0]
+        return self.roller - float(np.min(-1.0 / hollow)) if hollow.size else -math.inf
+
+    def shortfall(self, margin: float) -> tuple[float, str]:
+        """The violated condition at a failing position, from its margin: an undercut's
+        excess of the roller's radius over the hollow's radius of curvature (mm); NaN
+        where the path does not touch the profile."""
+        return (-margin * max(self.roller, 1.0) if margin > -1.0 else math.nan), "mm"
+
     def solve(self, state: State, group: GroupModel, q: Value) -> DyadSolution:
         """Solve the group (the replacing link and the follower) through the contact,
         writing its joints (the replacing link's hinges: the cam's centre of curvature and
@@ -669,7 +684,8 @@ class CamContact:
             path = Rocker(state.point(anchor), p(group.column(f"l_{side}")), self.away)
         contact = polar_follower(self.spline, pole, angle - self.turn, path, self.roller)
         b, centre, normal = contact.centre_b, contact.centre, contact.normal
-        margin = np.where(contact.exists, 1.0, -1.0)
+        margin = np.where(contact.exists, 1.0, np.where(
+            contact.reason == Reason.UNDERCUT, -self.excess / max(self.roller, 1.0), -1.0))
         if isinstance(path, Slider):
             assert group.guide_i is not None and group.j is not None
             s = J.real(J.conj(J.expi(theta)) * (b - start))

@@ -160,7 +160,7 @@ def _spline(angles: np.ndarray, radii: np.ndarray) -> CubicSpline:
                        bc_type="periodic")
 
 
-def _dense(spline: CubicSpline, start: np.ndarray, samples: int = 200_000) -> np.ndarray:
+def _dense(spline: CubicSpline, start: np.ndarray, samples: int = 100_000) -> np.ndarray:
     """The profile's points in the plane, the cam turned by ``start``: shape (N, samples)."""
     theta = 2 * math.pi * np.arange(samples) / samples
     local = spline(theta) * np.exp(1j * theta)

@@ -28,6 +28,7 @@ from assur.kinematics.contact import (
     Slider,
     circle_follower,
     flat_follower,
+    followers,
     gear_angle,
     polar_follower,
     replacing_length,
@@ -660,3 +661,32 @@ def test_an_undercut_through_the_analysis_is_an_interval_with_its_excess() -> No
     assert interval.shortfall == pytest.approx(14.0 - tightest, abs=1e-6)
     start, end = math.degrees(interval.start), math.degrees(interval.end)
     assert 240.0 < start < 270.0 < end < 300.0
+
+
+def test_the_contact_force_of_a_tabulated_cam_on_its_translating_follower() -> None:
+    """input_tables/cam_table_roller.yaml with a mass and a load on the follower: along its
+    guide the follower is in equilibrium under the contact force N·n, its weight, the load
+    and its inertia −m·s″·ω² (s″ checked against the replacing slider-crank above), so
+    N = (m·s″·ω² − m·g_u − F_u)/(n·u); the power balance holds."""
+    import yaml
+
+    import assur
+    from assur.forces.contact import contact_forces
+    from assur.io.chain_table import chain_from_dict
+
+    table = yaml.safe_load((TABLES / "cam_table_roller.yaml").read_text())
+    mass, load, omega = 0.5, -20.0, 40.0
+    table["masses"] = {3: {"mass": mass, "centre": [0, 70], "inertia": 1e-4}}
+    table["loads"] = [{"link": 3, "force": [0, load], "point": [0, 70]}]
+    table["gravity"] = [0, -9.81]
+    result = assur.analyse(chain_from_dict(table), points=72, forces=True, omega=omega)
+    assert result.forces is not None
+    follower, = followers(result.motion)
+    force = contact_forces(result.motion, result.forces)["K"]
+    s2 = follower.coordinate.d2 * MM  # along the guide's direction, upwards
+    normal = values(_jet(follower.normal))
+    want = (mass * s2 * omega ** 2 + mass * 9.81 - load) / normal.imag
+    assert np.max(np.abs(force.normal - want)) <= 1e-9 * np.max(np.abs(want))
+    assert np.max(np.abs(force.tangential)) <= 1e-9 * np.max(np.abs(want))
+    power = result.forces
+    assert np.max(np.abs(power.power_balance)) <= 1e-9 * np.max(np.abs(power.power_scale))

@@ -24,6 +24,11 @@ velocity and acceleration analogs exactly):
 * **Gears**: two pitch circles rolling without slip turn at the fixed ratio
   (:func:`gear_angle`).
 
+In a mechanism (:func:`assur.kinematics.build.with_contacts`) each higher pair's replacing
+link is a member of a dyad: :class:`ExactContact` solves it by its kind (circles, lines),
+:class:`CamContact` and :class:`GearContact` through the contact (a tabulated profile, a
+mesh), and :func:`followers` gives each follower's coordinate with its analogs.
+
 Existence is data, as for every group: a :class:`Contact` carries ``exists`` and a
 :class:`~assur.kinematics.reasons.Reason` per position — the replacing dyad's own reasons,
 :attr:`~Reason.UNDERCUT` (a roller passing over a concave part of the profile whose radius of
@@ -55,7 +60,7 @@ from assur.kinematics import jets as J
 from assur.kinematics.dyads import DyadSolution, solve_rpp, solve_rrp, solve_rrr
 from assur.kinematics.jets import Jet
 from assur.kinematics.reasons import Reason
-from assur.kinematics.rules import rules_of
+from assur.kinematics.rules import given, rules_of
 from assur.model import LinkId, PairId
 from assur.typing import BoolArray, FloatArray, Value
 
@@ -329,7 +334,7 @@ def circle_follower(centre: Value, radius: float, path: Slider | Rocker, roller:
     """
     length = replacing_length(radius, roller, concave_a=concave)
     if length < 0.0:
-        return _undercut(centre, path)
+        return _undercut(centre)
     with np.errstate(all="ignore"):
         if isinstance(path, Slider):
             solution = solve_rrp(centre, path.base, path.angle, 0.0, length, 1.0, delta)
@@ -341,7 +346,7 @@ def circle_follower(centre: Value, radius: float, path: Slider | Rocker, roller:
         normal = -towards if concave else towards
         point = centre + radius * towards
         curvature = np.full(np.shape(solution.exists), -1.0 / radius if concave else 1.0 / radius)
-        return _contact(point, normal, centre, curvature, _given(follower), solution.c, path,
+        return _contact(point, normal, centre, curvature, given(follower), solution.c, path,
                         solution.exists, solution.reason, allowed)
 
 
@@ -391,7 +396,7 @@ def flat_follower(centre: Value, radius: float, path: Slider, gamma: float = 0.5
         side = -1.0 if math.sin(gamma) > 0.0 else 1.0
         normal = side * 1j * J.expi(path.angle + gamma) + 0.0 * centre
         shift = radius / abs(math.sin(gamma))
-        follower = _given(solution.s_i) + shift
+        follower = given(solution.s_i) + shift
         reference = solution.c + shift * J.expi(path.angle)
         curvature = np.full(np.shape(solution.exists), 1.0 / radius)
         return _contact(centre + radius * normal, normal, centre, curvature, follower,
@@ -898,13 +903,7 @@ def _polish(profile: PolarSpline, roller: float, pose: _Pose, lo: FloatArray,
     return theta
 
 
-def _given(x: Value | None) -> Value:
-    if x is None:  # pragma: no cover - the solvers used here give every output
-        raise ValueError("the replacing dyad gives no follower coordinate")
-    return x
-
-
-def _undercut(centre: Value, path: Slider | Rocker) -> Contact:
+def _undercut(centre: Value) -> Contact:
     """No contact anywhere: the roller is larger than the groove it should run in."""
     shape = np.shape(J.value(centre))
     nan = np.full(shape, np.nan)

@@ -691,3 +691,29 @@ def test_the_contact_force_of_a_tabulated_cam_on_its_translating_follower() -> N
     assert np.max(np.abs(force.tangential)) <= 1e-9 * np.max(np.abs(want))
     power = result.forces
     assert np.max(np.abs(power.power_balance)) <= 1e-9 * np.max(np.abs(power.power_scale))
+
+
+def test_the_tooth_force_of_a_gear_pair_by_hand() -> None:
+    """Two gears on fixed axles (pitch radii 30, 60 mm, 20°), a torque of −6 N·m on the
+    driven one, statically: the driving torque is −T·ψ′ = −(−6)·(−½) = −3 N·m, and the
+    tooth force along the line of action has the moment T about the driven axle: its size
+    is |T|/(60·cos 20° mm)."""
+    import assur
+    from assur.forces.contact import contact_forces
+    from assur.io.chain_table import chain_from_dict
+
+    chain = chain_from_dict({
+        "mechanism": {"pairs": [
+            {"id": "A", "type": "R", "links": [0, 1]}, {"id": "D", "type": "R", "links": [0, 2]},
+            {"id": "G", "type": "H", "links": [1, 2], "gear": {"radii": [30, 60]}}],
+            "inputs": [1]},
+        "geometry": {"A": {"point": [0, 0]}, "D": {"point": [90, 0]},
+                     "G": {"centres": [[0, 0], [90, 0]]}},
+        "loads": [{"link": 2, "torque": -6.0}]})
+    result = assur.analyse(chain, points=24, forces=True, omega=0.0)
+    assert result.forces is not None
+    assert np.max(np.abs(result.forces.driving + 3.0)) <= 1e-12
+    force = contact_forces(result.motion, result.forces)["G"]
+    size = 6.0 / (60.0 * math.cos(math.radians(20.0)) * MM)
+    assert np.max(np.abs(np.abs(force.normal) - size)) <= 1e-9 * size
+    assert np.max(np.abs(force.tangential)) <= 1e-9 * size

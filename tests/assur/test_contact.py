@@ -713,6 +713,7 @@ def test_the_tooth_force_of_a_gear_pair_by_hand() -> None:
     result = assur.analyse(chain, points=24, forces=True, omega=0.0)
     assert result.forces is not None
     assert np.max(np.abs(result.forces.driving + 3.0)) <= 1e-12
+    assert np.max(np.abs(result.forces.driving_lever + 3.0)) <= 1e-12  # by the power
     force = contact_forces(result.motion, result.forces)["G"]
     size = 6.0 / (60.0 * math.cos(math.radians(20.0)) * MM)
     assert np.max(np.abs(np.abs(force.normal) - size)) <= 1e-9 * size

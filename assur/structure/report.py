@@ -19,7 +19,7 @@ from assur.structure.classification import AssurGroup, roman, signature
 from assur.structure.identification import COLUMNS, IdentificationRow, Mismatch
 from assur.text import Message, joined, render
 
-__all__ = ["group_description", "structure_report"]
+__all__ = ["group_description", "higher_pair_lines", "structure_report"]
 
 
 def _external(group: AssurGroup) -> Message | str:
@@ -75,22 +75,29 @@ def _table(rows: Sequence[IdentificationRow]) -> list[str]:
     return lines
 
 
-def _higher_pairs(a: StructuralAnalysis, lang: str) -> list[str]:
+def higher_pair_lines(a: StructuralAnalysis, lang: str = "en") -> list[str]:
     """The passive degrees of freedom, subtracted with their reasons, and the replacing
-    mechanism of a chain with higher pairs (nothing for one without)."""
+    mechanism of a chain with higher pairs, as lines (nothing for a chain without).
+
+    Examples
+    --------
+    >>> import pathlib, assur
+    >>> table = pathlib.Path(assur.__file__).parents[1] / "input_tables/cam_lever.yaml"
+    >>> print(higher_pair_lines(assur.analyse_structure(assur.load_chain(table)))[0])
+    passive degrees of freedom: 1, subtracted: W = 1
+    """
     lines = []
     if a.passive:
-        lines.append("  " + render("report.structure.passive", lang, count=len(a.passive),
-                                   W=a.W - len(a.passive)))
-        lines += [f"    - {dof.reason.text(lang)}" for dof in a.passive]
+        lines.append(render("report.structure.passive", lang, count=len(a.passive),
+                            W=a.W - len(a.passive)))
+        lines += [f"  - {dof.reason.text(lang)}" for dof in a.passive]
     if a.original is None:
         return lines
     n, p5 = len(a.chain.moving_links), len(a.chain.pairs)
-    lines.append("  " + render("report.structure.replacing", lang, n=n, p5=p5,
-                               W=3 * n - 2 * p5))
+    lines.append(render("report.structure.replacing", lang, n=n, p5=p5, W=3 * n - 2 * p5))
     for item in a.replacements:
         first, second = item.pairs
-        lines.append("    - " + render(
+        lines.append("  - " + render(
             "report.structure.replaced", lang, pair=item.pair, link=item.link,
             first=first.id, type1=first.type.value, a1=first.links[0], b1=first.links[1],
             second=second.id, type2=second.type.value, a2=second.links[0], b2=second.links[1]))
@@ -141,7 +148,7 @@ def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
     lines = [render("report.structure.title", lang, name=chain.name, source=chain.source),
              "  " + render("report.structure.counts", lang, n=a.n, p5=a.p5, p4=a.p4),
              "  " + render("report.structure.mobility", lang, n=a.n, p5=a.p5, p4=a.p4, W=a.W)]
-    lines += _higher_pairs(a, lang)
+    lines += ["  " + line for line in higher_pair_lines(a, lang)]
     if a.W_star != a.W - len(a.passive):
         lines.append("  " + render("report.structure.w_star", lang, W_star=a.W_star))
     lines.append("  " + render("report.structure.inputs", lang, m=a.m,

@@ -29,7 +29,7 @@ from typing import Any
 import pytest
 
 from assur.io.chain_table import chain_from_dict, load_chain
-from assur.model import Chain
+from assur.model import Chain, Sketch
 from assur.structure.analysis import analyse_structure
 from assur.structure.classification import AssurGroup
 from assur.structure.replacing import replacement, replacing_mechanism
@@ -41,6 +41,11 @@ ALPHA = math.radians(20.0)
 
 def _pair(pid: str, ptype: str, a: Any, b: Any, **extra: Any) -> dict[str, Any]:
     return {"id": pid, "type": ptype, "links": [a, b], **extra}
+
+
+def _sketch(chain: Chain) -> Sketch:
+    assert chain.geometry is not None
+    return chain.geometry
 
 
 def _chain(pairs: list[dict[str, Any]], geometry: dict[str, Any], inputs: list[Any]
@@ -83,7 +88,7 @@ def _rocking_roller() -> Chain:
     return _chain([_pair("A", "R", 0, 1), _pair("B", "R", 2, 3), _pair("D", "R", 3, 0),
                    _pair("K", "H", 1, 2)],
                   {"A": {"point": [0, 0]}, "B": {"point": b}, "D": {"point": [70, 10]},
-                   "K": {"profiles": [_circle(10, 0, 30), _circle(*b, 8)]}}, [1])
+                   "K": {"profiles": [_circle(10, 0, 30), _circle(b[0], b[1], 8)]}}, [1])
 
 
 def _rocking_flat() -> Chain:
@@ -197,7 +202,7 @@ def _pair_types(chain: Chain, group: AssurGroup) -> list[str]:
 
 def test_the_replacing_pairs_stand_at_the_centres_of_the_circles() -> None:
     replaced = replacing_mechanism(_roller_cam_translating())
-    points = replaced.geometry.points
+    points = _sketch(replaced).points
     assert points["K1"] == 15 + 0j and points["K2"] == 15 + 50j  # disc centre, roller centre
     assert {link for pair in replaced.pairs for link in pair.links} == {0, 1, 3, "K'"}
 
@@ -206,14 +211,14 @@ def test_a_flat_face_gives_a_slider_along_it() -> None:
     replaced = replacing_mechanism(_rocking_flat())
     slider = next(pair for pair in replaced.pairs if pair.id == "K2")
     assert slider.type.value == "P" and slider.guide == 2
-    assert replaced.geometry.points["K1"] == 10 + 0j
-    assert replaced.geometry.directions["K2"].unit == 1 + 0j  # the face's direction
+    assert _sketch(replaced).points["K1"] == 10 + 0j
+    assert _sketch(replaced).directions["K2"].unit == 1 + 0j  # the face's direction
 
 
 def test_a_gear_mesh_is_replaced_by_the_link_between_the_base_circle_points() -> None:
     """The pitch point P = (30, 0); the line of action through it at 20° to the tangent,
     direction (sin α, cos α); N1, N2 the feet of the perpendiculars from the centres."""
-    points = replacing_mechanism(_gear_pair()).geometry.points
+    points = _sketch(replacing_mechanism(_gear_pair())).points
     n1 = 30 * math.cos(ALPHA) * complex(math.cos(ALPHA), -math.sin(ALPHA))
     n2 = complex(30 + 60 * math.sin(ALPHA) ** 2, 60 * math.sin(ALPHA) * math.cos(ALPHA))
     assert abs(points["G1"] - n1) < 1e-12 and abs(points["G2"] - n2) < 1e-12
@@ -274,8 +279,8 @@ BAD = {
          "'profiles'[0].table 'radii'[2]: must be positive; found -2",
          "'profiles'[0].table 'radii': one radius per angle: 3 radii for 4 angles"]),
     "table beyond a turn": (ROLLER % (
-        "{table: {centre: [0, 0], angles: [0, 60, 120, 180, 240, 300, 360], "
-        "radii: [40, 40, 40, 40, 40, 40, 40]}}", ROLL),
+        ("{table: {centre: [0, 0], angles: [0, 60, 120, 180, 240, 300, 360], "
+        "radii: [40, 40, 40, 40, 40, 40, 40]}}"), ROLL),
         ["'profiles'[0].table 'angles': the angles must lie within one turn"]),
     "one profile": (ROLLER.replace("[%s, %s]", "[%s]") % DISC,
                     ["geometry 'K' 'profiles': expected a list of two profiles"]),
@@ -287,20 +292,20 @@ BAD = {
     "gear radius negative, angle 95": (GEARS % ("{radii: [30, -60], pressure_angle: 95}",
                                                 "[[0, 0], [90, 0]]"),
                                        ["(id 'G').gear 'radii': must be two positive pitch",
-                                        "(id 'G').gear 'pressure_angle': must lie strictly "
-                                        "between 0 and 90; found 95"]),
+                                        ("(id 'G').gear 'pressure_angle': must lie strictly "
+                                        "between 0 and 90; found 95")]),
     "gear internal, equal radii": (GEARS % ("{radii: [30, 30], internal: true}",
                                             "[[0, 0], [90, 0]]"),
-                                   ["(id 'G').gear 'radii': an internal mesh needs two "
-                                    "different pitch radii"]),
+                                   [("(id 'G').gear 'radii': an internal mesh needs two "
+                                    "different pitch radii")]),
     "gear centres apart": (GEARS % ("{radii: [30, 50]}", "[[0, 0], [90, 0]]"),
                            ["geometry 'G' 'centres': the profiles do not touch",
                             "10.0 mm apart"]),
     "gear on a lower pair": (GEARS.replace("type: R, links: [0, 2]}",
                                            "type: R, links: [0, 2], gear: {radii: [1, 2]}}")
                              % ("{radii: [30, 60]}", "[[0, 0], [90, 0]]"),
-                             ["(id 'D') 'gear': 'gear' is given for a higher pair (type H) "
-                              "only; this pair is of type R"]),
+                             [("(id 'D') 'gear': 'gear' is given for a higher pair (type H) "
+                              "only; this pair is of type R")]),
     "gear without centres": (GEARS.replace("  G: {centres: %s}\n", "") % "{radii: [30, 60]}",
                              ["geometry 'G': the gear mesh 'G' (links 1–2) needs 'centres"]),
 }
@@ -355,3 +360,16 @@ def test_the_gap_of_two_profiles_against_the_drawing() -> None:
     assert ring is not None and ring.gap == 1.0 and ring.point == 59 + 0j
     knife = contact(CircleProfile(5j, 0.0), LineProfile(0j, Direction(0.0, 1 + 0j)))
     assert knife is not None and knife.gap == 5.0
+
+
+def test_the_coursework_report_shows_both_mechanisms_and_the_passive_freedom() -> None:
+    """The cam-lever mechanism's report: the counts section subtracts the roller's passive
+    freedom (W = 2 − 1 = 1 = m, no mismatch told), and the schemes section holds the figure
+    of the mechanism beside its replacing mechanism."""
+    from synthesis.app.coursework import build_report
+
+    report = build_report(TABLES / "cam_lever.yaml", lang="ru", points=12)
+    sections = {section.ident: section.body for section in report.sections}
+    assert "исключены: W = 1" in sections["counts"]
+    assert 'class="bad"' not in sections["counts"]
+    assert 'id="replacing-mechanism"' in sections["schemes"]

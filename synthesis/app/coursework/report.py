@@ -34,7 +34,7 @@ from assur.kinematics.existence import CONDITIONS
 from assur.model import PairType, Student
 from assur.plot.formats import figure_bytes
 from assur.plot.schemes import roman, scheme_bytes
-from assur.structure.report import group_description
+from assur.structure.report import group_description, higher_pair_lines
 from assur.text import check_lang, render
 from synthesis.app.assess import assess, read_table
 from synthesis.app.check_report import verdict_words
@@ -190,8 +190,11 @@ def _counts_section(analysis: StructuralAnalysis, lang: str) -> Section:
             (render("term.p4", lang), analysis.p4),
             (render("term.mobility", lang), _mobility(analysis))]
     body = table(("", ""), rows, numeric=(1,), table_id="counts")
-    if analysis.W != analysis.m:
-        body += (f'<p class="bad">W = {analysis.W} ≠ {analysis.m} '
+    lines = higher_pair_lines(analysis, lang)
+    if lines:
+        body += "<pre>" + esc("\n".join(lines)) + "</pre>"
+    if analysis.W - len(analysis.passive) != analysis.m:
+        body += (f'<p class="bad">W = {analysis.W - len(analysis.passive)} ≠ {analysis.m} '
                  f"({esc(render('term.inputs', lang))})</p>")
     body += f'<p id="value-W" data-value="{analysis.W}">W = {analysis.W}</p>'
     return Section("counts", _cap(render("term.counts", lang)), body)

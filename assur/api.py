@@ -131,7 +131,12 @@ class Analysis:
         record["N_Q"] = len(self.model.groups)  # the groups, the input-link group L0 included
         record["warnings"] = [issue.to_dict() for issue in self.warnings]
         if self.forces is not None:
+            from assur.forces.contact import contact_forces, contact_record
+
             record["forces"] = self.forces.to_dict()
+            found = contact_forces(self.motion, self.forces)
+            if found:
+                record["forces"]["contacts"] = contact_record(found, self.motion.q, self.crank)
         return record
 
     def __repr__(self) -> str:

@@ -21,6 +21,7 @@ import numpy as np
 import numpy.typing as npt
 
 from assur.kinematics.analysis import acceleration, unwrap, values, velocity
+from assur.kinematics.contact import followers
 from assur.kinematics.existence import CONDITIONS
 from assur.kinematics.higher.kind import HigherGroupSolution
 from assur.kinematics.jets import Jet, as_jet
@@ -121,7 +122,9 @@ def analysis_record(result: Analysis) -> Record:
     dict
         ``mechanism``, ``source``, ``drive``, ``direction``, ``input``, ``parameters``,
         ``groups`` (with their existence), ``links``, ``joints``, ``sliders``, ``tracing``,
-        ``all_exist``, ``pressure_angles``, ``joint_rotations``; ``omega`` when given.
+        ``all_exist``, ``pressure_angles``, ``joint_rotations``, ``contacts`` (each higher
+        pair's follower: its coordinate with analogs, lift and reason per position);
+        ``omega`` when given.
 
     Examples
     --------
@@ -196,5 +199,11 @@ def analysis_record(result: Analysis) -> Record:
         {"pair": r.pair, "links": list(r.links), "group": r.group, "full_turn": r.full_turn,
          "swing_deg": number(math.degrees(r.swing)), "theta_deg": floats(np.degrees(r.theta))}
         for r in joint_rotations(motion)]
+    out["contacts"] = [
+        {"pair": f.pair, "group": f.group, "follower": f.link, "unit": f.unit,
+         "coordinate": _scalar(f.coordinate, omega),
+         "lift": number(float(np.nanmax(f.coordinate.v) - np.nanmin(f.coordinate.v))),
+         "reason": [int(v) for v in np.ravel(f.reason)]}
+        for f in followers(motion)]
     return out
 

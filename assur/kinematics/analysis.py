@@ -364,8 +364,11 @@ class State:
         self.sliders[pair] = SliderState(pair, carrier, slider, point, s, base, angle, offset)
 
     def solve(self, group: GroupModel, q: Value) -> None:
-        """Solve one group (its kind's solver) and record its links' frames."""
-        sol = rules_of(group.group_kind).solve(self, group, q)
+        """Solve one group (its kind's solver, or its higher pair's) and record its links'
+        frames."""
+        contact = self.model.contacts.get(group.label)
+        sol = rules_of(group.group_kind).solve(self, group, q) if contact is None \
+            else contact.solve(self, group, q)
         self.solutions[group.label] = sol
         self.frames[group.i] = (sol.origin_i, sol.angle_i)
         if group.j is not None:

@@ -35,12 +35,16 @@ import difflib
 import math
 import os
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from assur.errors import Issue, StructureError, TableError
 from assur.io.chain_table import load_chain
 from assur.io.reader import Node, TableReader, describe, latin_form, lookalike_letters
 from assur.kinds import KINDS, GroupKind, GuideColumns, HingeColumns, kind_of, kind_of_class
+from assur.kinematics import jets as J
 from assur.kinematics.model import (
     KIND_COLUMNS,
     Anchor,
@@ -68,7 +72,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from assur.kinematics.higher.kind import Layout
 
 __all__ = ["Builder", "Topology", "build_model", "load_model", "load_with_forces",
-           "model_from_params", "model_from_sketch"]
+           "model_from_params", "model_from_sketch", "with_contacts"]
 
 
 def load_model(path: str | os.PathLike[str]) -> KinematicModel:
@@ -168,10 +172,111 @@ def build_model(analysis: StructuralAnalysis) -> KinematicModel:
     """
     chain = analysis.chain
     if chain.geometry is not None:
-        return model_from_sketch(analysis)
+        return with_contacts(analysis, model_from_sketch(analysis))
     if chain.group_params:
         return model_from_params(analysis)
     raise TableError(chain.source, [Issue("geometry", Message("model.no_dimensions", {}))])
+
+
+def with_contacts(analysis: StructuralAnalysis, model: KinematicModel) -> KinematicModel:
+    """The model of a replacing mechanism with the higher pairs its replacement does not
+    hold for over the cycle: a tabulated cam profile, a gear mesh.
+
+    The replacing links of circles and straight profiles join points fixed on their links,
+    so the replacing mechanism's own groups move exactly like the original; a tabulated
+    profile's centre of curvature moves on the cam, and a mesh's N₁N₂ stays on the carrier
+    while the gears turn. The group of such a replacing link is solved through its contact
+    (:class:`~assur.kinematics.contact.CamContact`,
+    :class:`~assur.kinematics.contact.GearContact`), from the sketched position of the
+    replacing mechanism (where it holds).
+
+    Parameters
+    ----------
+    analysis : StructuralAnalysis
+        The analysis of a chain (its replacing mechanism when it has higher pairs).
+    model : KinematicModel
+        The replacing mechanism's model from its sketch.
+
+    Returns
+    -------
+    KinematicModel
+        ``model`` with :attr:`~KinematicModel.contacts` (``model`` itself without any).
+
+    Raises
+    ------
+    StructureError
+        When such a replacing link is not in a dyad with the follower or the driven gear.
+    """
+    original = analysis.original
+    if original is None or original.geometry is None:
+        return model
+    from assur.kinematics.analysis import analyse, sketch_input
+    from assur.kinematics.contact import CamContact, ExactContact, GearContact, PolarSpline
+    from assur.model import CircleProfile, PolarProfile
+    from assur.profiles import contact
+
+    sketched = analyse(model, np.array([sketch_input(model)]))
+    frames = {link: (complex(np.ravel(J.value(o))[0]), float(np.ravel(J.value(a))[0]))
+              for link, (o, a) in sketched.frames.items()}
+
+    def local(link: LinkId, point: complex) -> complex:
+        origin, angle = frames.get(link, (0j, 0.0))
+        return (point - origin) * cmath.exp(-1j * angle)
+
+    def point(pair: PairId) -> complex:
+        return complex(np.ravel(J.value(sketched.joints[pair]))[0])
+
+    contacts: dict[str, CamContact | GearContact | ExactContact] = {}
+    for item in analysis.replacements:
+        higher = next(pair for pair in original.higher if pair.id == item.pair)
+        profiles = original.geometry.profiles[higher.id]
+        group = next((g for g in model.groups if item.link in g.members), None)
+        tabulated = [isinstance(profile, PolarProfile) for profile in profiles]
+        if higher.gear is None and not any(tabulated):
+            if group is not None and group.layout is None:
+                contacts[group.label] = ExactContact(higher.id, item.link)
+            continue
+        if group is None or group.layout is not None or group.kind not in (1, 2) \
+                or (group.kind == 2 and group.j != item.link):
+            raise StructureError(Message("contact.unsupported_group",
+                                         {"pair": higher.id, "link": item.link}))
+        member = next(link for link in group.members if link != item.link)
+        roles = group.pairs
+        if higher.gear is not None:
+            driver = next(link for link in higher.links if link not in group.members)
+            first = higher.links[0] == driver
+            anchor = group.hinge_j if group.i == item.link else group.hinge_i
+            assert anchor is not None
+            carrier = anchor.link
+            ends = item.points if first else item.points[::-1]
+            assert ends[0] is not None and ends[1] is not None
+            radii = higher.gear.radii if first else higher.gear.radii[::-1]
+            contacts[group.label] = GearContact(
+                higher.id, driver, carrier, (radii[0], radii[1]), higher.gear.internal,
+                (frames[driver][1], frames.get(carrier, (0j, 0.0))[1], frames[member][1]),
+                (local(carrier, ends[0]), local(carrier, ends[1])), item.link)
+            continue
+        index = tabulated.index(True)
+        table, other = profiles[index], profiles[1 - index]
+        if not isinstance(other, CircleProfile) or other.concave:
+            raise StructureError(Message("contact.unsupported_profile", {"pair": higher.id}))
+        assert isinstance(table, PolarProfile)
+        cam = higher.links[index]
+        touch = contact(table, other)
+        assert touch is not None  # the sketch reader refuses profiles that do not touch
+        roller = point(roles["C"])
+        if group.kind == 2:
+            heading = cmath.exp(1j * float(np.ravel(J.value(sketched.sliders[roles["P_i"]]
+                                                            .angle))[0]))
+        else:
+            pivot = point(roles["H_j"] if group.i == item.link else roles["H_i"])
+            heading = 1j * (roller - pivot)
+        away = 1 if (heading.conjugate() * touch.normal).real > 0 else -1
+        contacts[group.label] = CamContact(
+            higher.id, cam, PolarSpline.from_table(np.asarray(table.angles, dtype=float),
+                                                   np.asarray(table.radii, dtype=float)),
+            local(cam, table.centre), frames[cam][1], other.radius, item.link, away)
+    return replace(model, contacts=contacts) if contacts else model
 
 
 class Topology:
@@ -310,8 +415,10 @@ class Builder:
         owner = self.owner[link]
         count = self.attach_count.get(link, 0)
         self.attach_count[link] = count + 1
-        if owner.group_kind.is_input and count == 0:
-            self.put(owner.label, "l_1", abs(self.local(link, point)))
+        local = self.local(link, point)
+        if owner.group_kind.is_input and count == 0 and \
+                abs(local.imag) <= 1e-9 * max(abs(local), 1.0) and local.real > 0:
+            self.put(owner.label, "l_1", abs(local))
             return Anchor(link, owner.label, "l_1", None, True)
         letter = _LETTERS.get(self.links[link][1], self.links[link][1])
         return self.polar(link, point, letter if count == 0 else f"{letter}{count + 1}")

@@ -21,6 +21,7 @@ import numpy as np
 from assur.kinds import HIGHER, KINDS
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import GroupSolution, Motion, analyse
+from assur.kinematics.contact import CamContact
 from assur.kinematics.model import GroupModel, KinematicModel
 from assur.kinematics.reasons import reason_text
 from assur.kinematics.rules import ShortfallAt, rules_of
@@ -344,6 +345,9 @@ def _shortfall(model: KinematicModel, motion: Motion, group: GroupModel, at: int
         return complex(np.broadcast_to(J.value(motion.joints[group.pairs[role]]),
                                        motion.q.shape)[at])
 
+    contact = model.contacts.get(group.label)
+    if isinstance(contact, CamContact):  # a tabulated cam: the contact's own condition
+        return contact.shortfall(float(np.broadcast_to(sol.margin, motion.q.shape)[at]))
     rule = rules_of(group.group_kind).shortfall
     assert rule is not None  # every kind but the input group has one
     return rule(group, ShortfallAt(

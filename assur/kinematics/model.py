@@ -28,6 +28,7 @@ from assur.text import render
 from assur.model import LinkId, PairId
 
 if TYPE_CHECKING:  # pragma: no cover
+    from assur.kinematics.contact import CamContact, ExactContact, GearContact
     from assur.kinematics.higher.kind import Layout
 
 __all__ = [
@@ -220,6 +221,12 @@ class KinematicModel:
         Pair id → (type ``'R'``/``'P'``, the two links, guide carrier or None).
     source : str
         The table the model was built from.
+    contacts : mapping
+        Group label → the higher pair whose replacing link is a member of that group: the
+        group is solved through the contact (:class:`~assur.kinematics.contact.CamContact`,
+        :class:`~assur.kinematics.contact.GearContact`) where the replacing mechanism holds
+        at the sketched position only, by its kind otherwise
+        (:class:`~assur.kinematics.contact.ExactContact`).
 
     Examples
     --------
@@ -242,6 +249,8 @@ class KinematicModel:
     pair_links: Mapping[PairId, tuple[str, tuple[LinkId, LinkId], LinkId | None]] = field(
         default_factory=dict)
     source: str = "<data>"
+    contacts: Mapping[str, CamContact | GearContact | ExactContact] = field(
+        default_factory=dict)
 
     def parameter_names(self) -> tuple[str, ...]:
         """Every parameter name, in layering order and column order."""

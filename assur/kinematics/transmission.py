@@ -23,6 +23,7 @@ import numpy as np
 
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import Motion, unwrap
+from assur.kinematics.contact import GearContact
 from assur.kinematics.model import KinematicModel
 from assur.kinematics.rules import given, rules_of
 from assur.model import LinkId, PairId
@@ -141,8 +142,8 @@ def pressure_angles(motion: Motion) -> list[PressureAngle]:
     out = []
     for group in model.groups:
         rule = rules_of(group.group_kind).pressure
-        if rule is None:
-            continue
+        if rule is None or isinstance(model.contacts.get(group.label), GearContact):
+            continue  # a mesh's line of action is fixed: its pressure angle is the mesh's own
         sol = motion.solutions[group.label]
         phi_i = np.asarray(J.value(sol.angle_i))
         phi_j = np.asarray(J.value(given(sol.angle_j)))

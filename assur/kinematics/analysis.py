@@ -24,14 +24,16 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 import numpy as np
 
 from assur.kinematics import jets as J
+from assur.kinematics.dyads import DyadSolution
 from assur.kinematics.jets import Jet
+from assur.kinematics.laws import STROKE, stroke_margin
 from assur.kinematics.model import Anchor, GroupModel, Guide, KinematicModel
+from assur.kinematics.reasons import Reason
 from assur.kinematics.rules import given, rules_of
 from assur.model import LinkId, PairId
 from assur.typing import Value
 
 if TYPE_CHECKING:  # pragma: no cover
-    from assur.kinematics.dyads import DyadSolution
     from assur.kinematics.higher.kind import HigherGroupSolution
 
 #: What the analysis keeps of a group: a dyad's closed-form solution, or the followed mode
@@ -45,6 +47,7 @@ __all__ = [
     "State",
     "acceleration",
     "analyse",
+    "held",
     "input_grid",
     "sketch_input",
     "unwrap",
@@ -167,7 +170,7 @@ def input_grid(model: KinematicModel, points: int) -> np.ndarray:
     [0.     1.5708 3.1416 4.7124]
     """
     lo, hi = model.input_range
-    if model.drive == "crank" and math.isclose(hi - lo, 2 * math.pi):
+    if model.periodic:
         return lo + (hi - lo) * np.arange(points) / points
     return np.linspace(lo, hi, points)
 
@@ -250,6 +253,21 @@ def sketch_input(model: KinematicModel) -> Any:
 
     point, origin = actuator_ends(group)
     return np.abs(drawn(point) - drawn(origin))
+
+
+def held(model: KinematicModel) -> KinematicModel:
+    """The model of a cycle of laws with every input held at its sketched position (a crank
+    at rotation 0, a slider at displacement 0, an actuator at its drawn length), whatever
+    the cycle parameter: the sketched pose, which the laws need not pass through."""
+    laws = {}
+    for label, law in model.laws.items():
+        drawn = 0.0
+        group = model.group(label)
+        if group.driven is not None:
+            drawn = float(np.max(sketch_input(replace(model, laws={}))))
+        laws[label] = replace(law, phase=drawn if law.linear else 0.0, ratio=0, table=(),
+                              limited=False, held=True)
+    return replace(model, laws=laws)
 
 
 def full(x: Any, shape: tuple[int, ...], jet: bool = False) -> Any:
@@ -347,8 +365,20 @@ class State:
         self.sliders[pair] = SliderState(pair, carrier, slider, point, s, base, angle, offset)
 
     def solve(self, group: GroupModel, q: Value) -> None:
-        """Solve one group (its kind's solver) and record its links' frames."""
+        """Solve one group (its kind's solver) and record its links' frames; a group that
+        holds an input with a law gets that input's coordinate at the cycle parameter q, and
+        does not assemble where a linear input is beyond its stroke."""
+        law = self.model.laws.get(group.label)
+        margin = None
+        if law is not None:
+            q = law.coordinate(q, self.p)
+            if law.limited:
+                lo, hi = (self.p(group.column(column)) for column in STROKE)
+                margin = stroke_margin(q, lo, hi)
+                q = J.where(margin >= -STROKE_TOLERANCE, q, np.nan)
         sol = rules_of(group.group_kind).solve(self, group, q)
+        if margin is not None and isinstance(sol, DyadSolution):
+            sol = _stroke_limited(sol, margin, group.group_kind.is_input)
         self.solutions[group.label] = sol
         self.frames[group.i] = (sol.origin_i, sol.angle_i)
         if group.j is not None:
@@ -375,6 +405,22 @@ class State:
 
     def trace(self) -> dict[str, Value]:
         return {point.name: self.point(point.anchor) for point in self.model.tracing}
+
+
+#: A linear input within this (normalised) distance beyond its stroke end is at the end.
+STROKE_TOLERANCE = 1e-12
+
+
+def _stroke_limited(sol: DyadSolution, margin: np.ndarray, is_input: bool) -> DyadSolution:
+    """A group holding a linear input, failing where the input is beyond its stroke; an
+    input group's margin is its margin to the stroke ends."""
+    shape = np.broadcast_shapes(np.shape(sol.exists), np.shape(margin))
+    inside = np.broadcast_to(margin >= -STROKE_TOLERANCE, shape)
+    own = np.broadcast_to(margin if is_input else sol.margin, shape)
+    return sol._replace(
+        margin=np.where(inside, own, margin),
+        exists=np.broadcast_to(sol.exists, shape) & inside,
+        reason=np.where(inside, sol.reason, Reason.STROKE_END).astype(np.int8))
 
 
 def velocity(x: Jet, omega: float | np.ndarray) -> np.ndarray:

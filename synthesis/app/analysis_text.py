@@ -80,7 +80,7 @@ def analysis_text(result: Analysis, lang: str = "en") -> str:
     if model.drive == "laws":
         lines += input_laws(model, n, lang)
     elif model.drive == "slider":
-        lines.append(render("analyze.slider", lang, link=model.groups[0].i,
+        lines.append(render("analyze.slider_input", lang, link=model.groups[0].i,
                             lo=model.input_range[0], hi=model.input_range[1], n=n))
     elif result.crank:
         turning = (render("analyze.ccw", lang) if model.direction > 0

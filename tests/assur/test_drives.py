@@ -321,3 +321,93 @@ def test_driving_efforts_equal_the_global_solve_and_balance_the_power(name: str)
     assert np.max(np.abs(total) / scale) <= 1e-9
     assert np.max(np.abs(result.power_balance) / result.power_scale) <= 1e-9
     assert max(float(np.max(r.moment)) for r in result.residuals.values()) <= 1e-9
+
+
+# ----------------------------------------------------------------- a stroke end reached
+
+
+def _boom_with_law(table: list[list[float]], stroke: list[float]) -> dict[str, Any]:
+    data = yaml.safe_load((TABLES / "hydraulic_boom_forces.yaml").read_text(encoding="utf-8"))
+    data["mechanism"]["inputs"] = [{"pair": "Pd", "stroke": stroke, "table": table}]
+    return data
+
+
+def test_a_cylinder_beyond_its_stroke_does_not_assemble_there() -> None:
+    """The cylinder's length follows 110 + 30·sin t (tabulated every 5°), its stroke is
+    [70, 130]: it passes 130 mm where sin t = 2/3, so the boom's group fails between
+    t = asin(2/3) and 180° − asin(2/3), worst at 90°, 10 mm beyond the end."""
+    table = [[t, 110 + 30 * math.sin(math.radians(t))] for t in range(0, 360, 5)]
+    model = assur.build_model(assur.analyse_structure(
+        assur.chain_from_dict(_boom_with_law(table, [70, 130]))))
+    report = assur.check_existence(model, points=360)
+    (group,) = report.groups
+    (interval,) = group.intervals
+    start = math.asin(2 / 3)
+    assert interval.reason == Reason.STROKE_END
+    assert abs(interval.start - start) <= 1e-4 and abs(interval.end - (math.pi - start)) <= 1e-4
+    assert abs(interval.worst_at - math.pi / 2) <= 0.02
+    assert interval.unit == "mm" and abs(interval.shortfall - 10.0) <= 1e-3
+
+
+def test_a_slider_beyond_its_stroke_is_reported_by_its_input_group() -> None:
+    data = yaml.safe_load((TABLES / "slider_driven_slider_crank.yaml").read_text("utf-8"))
+    data["mechanism"]["inputs"] = [{"pair": "D", "stroke": [-40, 20],
+                                    "table": [[0, -30], [90, 30], [180, 0], [270, -20]]}]
+    model = assur.build_model(assur.analyse_structure(assur.chain_from_dict(data)))
+    report = assur.check_existence(model, points=72)
+    slider = report.groups[0]
+    assert slider.label == "L0(3)" and slider.intervals
+    assert {i.reason for i in slider.intervals} == {Reason.STROKE_END}
+    assert not report.groups[1].intervals  # the dyad is not blamed for the input's stroke
+
+
+# ------------------------------------------------------------------------ bad input rows
+
+
+@pytest.mark.parametrize("row, field", [
+    ({"pair": "Pd", "stroke": [130, 90]}, "'stroke'"),
+    ({"pair": "Pd", "stroke": [90]}, "'stroke'"),
+    ({"pair": "Pd", "stroke": [90, 130], "ratio": 0}, "'ratio'"),
+    ({"pair": "Pd", "stroke": [90, 130], "ratio": 1.5}, "'ratio'"),
+    ({"pair": "Pd", "stroke": [90, 130], "phase": "late"}, "'phase'"),
+    ({"pair": "Pd", "stroke": [90, 130], "table": [[0, 95], [0, 100]]}, "'table'"),
+    ({"pair": "Pd", "stroke": [90, 130], "table": [[0, 95]]}, "'table'"),
+    ({"pair": "Pd", "table": [[0, 95], [180, 120]]}, "'table'"),
+    ({"pair": "Pd", "stroke": [90, 130], "speed": 2}, ": unknown key 'speed'"),
+])
+def test_a_bad_input_law_is_refused_naming_its_field(
+        row: dict[str, Any], field: str, tmp_path: Path,
+        capsys: pytest.CaptureFixture[str]) -> None:
+    data = yaml.safe_load((TABLES / "hydraulic_boom_forces.yaml").read_text(encoding="utf-8"))
+    data["mechanism"]["inputs"] = [row]
+    path = tmp_path / "boom.yaml"
+    path.write_text(yaml.safe_dump(data), encoding="utf-8")
+    for command in ("check", "analyze"):
+        assert main([command, str(path)]) == 2
+        err = capsys.readouterr().err
+        assert f"mechanism.inputs[0]{field if field.startswith(':') else ' ' + field}" in err and "Traceback" not in err, err
+
+
+@pytest.mark.parametrize("inputs, field", [
+    ([{"link": 1, "stroke": [0, 10]}, {"link": 4}], "mechanism.inputs[0] 'stroke'"),
+    ([{"link": 1}, {"link": 4, "table": [[0, 1], [90, 2]], "stroke": [0, 5]}],
+     "mechanism.inputs[1] 'stroke'"),
+])
+def test_a_crank_refuses_a_stroke(inputs: list[dict[str, Any]], field: str, tmp_path: Path,
+                                  capsys: pytest.CaptureFixture[str]) -> None:
+    data = yaml.safe_load((TABLES / "five_bar_two_cranks.yaml").read_text(encoding="utf-8"))
+    data["mechanism"]["inputs"] = inputs
+    path = tmp_path / "five_bar.yaml"
+    path.write_text(yaml.safe_dump(data), encoding="utf-8")
+    assert main(["analyze", str(path)]) == 2
+    assert field in capsys.readouterr().err
+
+
+def test_a_linear_input_with_a_law_needs_its_stroke(tmp_path: Path,
+                                                    capsys: pytest.CaptureFixture[str]) -> None:
+    data = yaml.safe_load((TABLES / "crank_and_cylinder.yaml").read_text(encoding="utf-8"))
+    data["mechanism"]["inputs"][1].pop("stroke")
+    path = tmp_path / "cc.yaml"
+    path.write_text(yaml.safe_dump(data), encoding="utf-8")
+    assert main(["analyze", str(path)]) == 2
+    assert "mechanism.inputs[1] 'stroke'" in capsys.readouterr().err

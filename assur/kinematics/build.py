@@ -189,9 +189,6 @@ class Topology:
                 "structure.in_no_group", {"links": ", ".join(map(str, analysis.leftover))}))
             raise StructureError(Message("structure.no_model",
                                          {"source": chain.source, "found": found}))
-        if not chain.inputs:
-            raise StructureError(Message("structure.inputs_not_analysed",
-                                         {"source": chain.source, "n": 0}))
         for group in analysis.groups:
             if group.kind is None and kind_of_class(group.group_class) is None:
                 raise StructureError(Message("structure.unsolved_class", {

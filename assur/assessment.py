@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any
 from assur.errors import AssurError, Issue, StructureError, TableError
 from assur.kinematics.build import build_model
 from assur.kinematics.model import GroupModel, KinematicModel
-from assur.model import Chain
+from assur.model import Chain, Drive, PairType
 from assur.structure.analysis import StructuralAnalysis, analyse_structure
 from assur.structure.identification import (
     IdentificationRow,
@@ -35,7 +35,7 @@ from assur.structure.identification import (
     check_identification,
     identification_table,
 )
-from assur.text import Message, in_every_language
+from assur.text import Message, in_every_language, joined
 
 if TYPE_CHECKING:  # pragma: no cover
     from assur.kinematics.existence import ExistenceReport
@@ -360,13 +360,49 @@ def _findings(found: Assessment) -> tuple[Finding, ...]:
     elif isinstance(why, AssurError):
         wrong.append(Finding("wrong", Message("check.finding_text", {"text": str(why)})))
     if found.existence is not None and found.model is not None:
-        wrong += _failures(found.existence, found.model.drive == "crank")
+        wrong += _failures(found.existence, found.model.drive in ("crank", "laws"))
     # a row's kind contradicted by its own parameters explains the other differences: the
     # chain was built from that kind
     wrong.sort(key=lambda finding: finding.message.code != "model.params_of_kind")
     unverified = [Finding("not verified", message) for message in _unverified(found)]
-    outside = [Finding("outside program", message) for message in found.analysis.applicability]
+    outside = [Finding("outside program", _refused(found.analysis, message))
+               for message in found.analysis.applicability]
     return (*wrong, *unverified, *outside)
+
+
+def _refused(analysis: StructuralAnalysis, condition: Message) -> Message:
+    """A failed condition of the course's method, with what the course's own program refuses
+    in it when that is a drive this program analyses: an input that is not a crank
+    (condition 3: a slider on a frame guide, a linear actuator), or several inputs
+    (condition 5)."""
+    chain = analysis.chain
+    if condition.code == "structure.condition.crank":
+        drives = [_drive_kind(chain, drive) for drive in chain.inputs]
+        kinds = [kind for kind in drives if kind is not None]
+        if kinds:
+            return Message("verdict.refused_drives", {"condition": condition,
+                                                      "drives": joined(kinds)})
+    if condition.code == "structure.condition.mobility" and analysis.m > 1 \
+            and analysis.W == analysis.m:
+        return Message("verdict.refused_inputs", {"condition": condition,
+                                                  "others": analysis.m - 1})
+    return condition
+
+
+def _drive_kind(chain: Chain, drive: Drive) -> Message | None:
+    """What an input is when it is not a crank: a slider driven along a frame guide, or a
+    linear actuator between two moving links (None for a crank, or an input that is
+    neither)."""
+    pairs = [chain.pair(drive.pair)] if drive.pair is not None else [
+        p for p in chain.pairs_of(drive.link) if chain.frame in p.links]
+    if len(pairs) != 1 or pairs[0].type is not PairType.P:
+        return None
+    pair = pairs[0]
+    name = drive.pair if drive.pair is not None else drive.link
+    if chain.frame in pair.links:
+        return Message("verdict.drive_slider", {"name": name, "link": pair.other(chain.frame)})
+    return Message("verdict.drive_actuator", {"name": name, "a": pair.links[0],
+                                              "b": pair.links[1]})
 
 
 def _failures(report: ExistenceReport, crank: bool) -> list[Finding]:

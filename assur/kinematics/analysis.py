@@ -26,7 +26,7 @@ import numpy as np
 from assur.kinematics import jets as J
 from assur.kinematics.dyads import DyadSolution
 from assur.kinematics.jets import Jet
-from assur.kinematics.laws import STROKE, stroke_margin
+from assur.kinematics.laws import STROKE, InputLaw, stroke_margin
 from assur.kinematics.model import Anchor, GroupModel, Guide, KinematicModel
 from assur.kinematics.reasons import Reason
 from assur.kinematics.rules import given, rules_of
@@ -47,6 +47,7 @@ __all__ = [
     "State",
     "acceleration",
     "analyse",
+    "cycle_model",
     "held",
     "input_grid",
     "sketch_input",
@@ -253,6 +254,56 @@ def sketch_input(model: KinematicModel) -> Any:
 
     point, origin = actuator_ends(group)
     return np.abs(drawn(point) - drawn(origin))
+
+
+def cycle_model(model: KinematicModel) -> KinematicModel:
+    """The model with its input a law of one cycle parameter t, whatever drives it.
+
+    A crank turns once per cycle; a slider on a frame guide or an actuator runs its stroke
+    and back harmonically, ``s_min + (s_max − s_min)·(1 − cos t)/2``, with ``s_min``,
+    ``s_max`` (mm) new parameters of the group holding it. Every design of a batch then
+    shares the positions t while its stroke limits may differ (``with_params`` with arrays
+    shaped ``(D, 1)``); a model whose inputs already follow laws is returned as it is.
+
+    Parameters
+    ----------
+    model : KinematicModel
+        Driven by a crank, a slider, an actuator, or by laws (several inputs).
+
+    Returns
+    -------
+    KinematicModel
+        ``drive == 'laws'``, positions t ∈ [0, 2π) (:func:`input_grid`); the force
+        analysis then takes ω as the rate of t (rad/s).
+
+    Examples
+    --------
+    Two boom designs whose cylinders end their strokes at 120 and 135 mm, at four positions:
+
+    >>> import pathlib, assur
+    >>> tables = pathlib.Path(assur.__file__).parents[1] / "input_tables"
+    >>> cycle = cycle_model(assur.load_model(tables / "hydraulic_boom_forces.yaml"))
+    >>> cycle.drive, cycle.params["L1(1,2).s_min"], cycle.params["L1(1,2).s_max"]
+    ('laws', 95.0, 135.0)
+    >>> designs = cycle.with_params({"L1(1,2).s_max": np.array([[120.0], [135.0]])})
+    >>> motion = analyse(designs, input_grid(designs, 4))
+    >>> values(motion.sliders["Pd"].s).round(3).tolist()
+    [[95.0, 107.5, 120.0, 107.5], [95.0, 115.0, 135.0, 115.0]]
+    """
+    if model.drive == "laws":
+        return model
+    params = dict(model.params)
+    if model.drive == "crank":
+        group = next(g for g in model.groups if g.group_kind.is_input)
+        law = InputLaw(group.label, False, ratio=model.direction)
+    else:
+        group = next(g for g in model.groups if g.driven is not None
+                     or g.group_kind.is_input)
+        law = InputLaw(group.label, True, limited=True)
+        params.update({group.column(c): v for c, v in zip(STROKE, model.input_range,
+                                                           strict=True)})
+    return replace(model, params=params, drive="laws", direction=1,
+                   input_range=(0.0, 2 * math.pi), laws={group.label: law})
 
 
 def held(model: KinematicModel) -> KinematicModel:

@@ -411,3 +411,45 @@ def test_a_linear_input_with_a_law_needs_its_stroke(tmp_path: Path,
     path.write_text(yaml.safe_dump(data), encoding="utf-8")
     assert main(["analyze", str(path)]) == 2
     assert "mechanism.inputs[1] 'stroke'" in capsys.readouterr().err
+
+
+# ------------------------------------------------------------ batches of designs, verdict
+
+
+def test_a_batch_of_boom_designs_with_their_own_strokes() -> None:
+    """``cycle_model``: D designs share the positions t while each has its stroke; each
+    design's positions are the closed form's at its cylinder lengths, and its static driving
+    force is that of the boom analysed alone at those lengths."""
+    case = _boom()
+    model, data = load_with_forces(TABLES / case.table)
+    assert data is not None
+    cycle = assur.cycle_model(model)
+    s_max = np.array([110.0, 125.0, 135.0])
+    designs = cycle.with_params({"L1(1,2).s_max": s_max[:, None]})
+    t = assur.input_grid(designs, 12)
+    batch = kinetostatics(analyse(designs, t, analogs=True), data, 0.0)
+    for k, top in enumerate(s_max):
+        lengths = 95.0 + (top - 95.0) * (1 - np.cos(t)) / 2
+        alone = analyse(model, lengths, analogs=True)
+        want = case.joints([Jet(lengths)])["C"].v
+        got = analyse(designs, t).joints["C"][k]
+        assert np.max(np.abs(got - want)) <= 1e-9
+        expected = kinetostatics(alone, data, 0.0).driving
+        assert np.max(np.abs(batch.driving[k] - expected)) <= 1e-9 * np.max(np.abs(expected))
+
+
+@pytest.mark.parametrize("table, code, part", [
+    ("slider_driven_slider_crank.yaml", "verdict.refused_drives", "verdict.drive_slider"),
+    ("hydraulic_boom_forces.yaml", "verdict.refused_drives", "verdict.drive_actuator"),
+    ("five_bar_two_cranks.yaml", "verdict.refused_inputs", None),
+])
+def test_the_verdict_says_what_the_course_program_refuses(table: str, code: str,
+                                                          part: str | None) -> None:
+    from assur.assessment import assess
+
+    found = assess(assur.load_chain(TABLES / table), points=None)
+    assert found.verdict == "outside program"
+    messages = [f.message for f in found.findings if f.message.code == code]
+    assert messages, [f.message.code for f in found.findings]
+    if part is not None:
+        assert part in repr(messages[0].data)

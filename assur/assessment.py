@@ -393,12 +393,16 @@ def _drive_kind(chain: Chain, drive: Drive) -> Message | None:
     """What an input is when it is not a crank: a slider driven along a frame guide, or a
     linear actuator between two moving links (None for a crank, or an input that is
     neither)."""
-    pairs = [chain.pair(drive.pair)] if drive.pair is not None else [
-        p for p in chain.pairs_of(drive.link) if chain.frame in p.links]
+    if drive.pair is not None:
+        pairs = [chain.pair(drive.pair)]
+        name = drive.pair
+    else:
+        assert drive.link is not None  # an input names a link or a pair
+        pairs = [p for p in chain.pairs_of(drive.link) if chain.frame in p.links]
+        name = drive.link
     if len(pairs) != 1 or pairs[0].type is not PairType.P:
         return None
     pair = pairs[0]
-    name = drive.pair if drive.pair is not None else drive.link
     if chain.frame in pair.links:
         return Message("verdict.drive_slider", {"name": name, "link": pair.other(chain.frame)})
     return Message("verdict.drive_actuator", {"name": name, "a": pair.links[0],

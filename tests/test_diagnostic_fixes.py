@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import Any
 
 import pytest
 import yaml
@@ -28,7 +29,7 @@ def _without(text: str, *marks: str) -> str:
 
 
 def _check(path: Path, capsys: pytest.CaptureFixture[str], lang: str = "en"
-           ) -> tuple[str, dict]:
+           ) -> tuple[str, dict[str, Any]]:
     assert main(["check", str(path), "--lang", lang]) == 0
     text = capsys.readouterr().out
     assert main(["check", str(path), "--json"]) == 0

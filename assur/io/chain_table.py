@@ -21,6 +21,7 @@ for the kinematic model. Every problem of a table is collected and raised as one
 from __future__ import annotations
 
 import datetime
+import itertools
 import os
 from collections.abc import Collection
 from dataclasses import replace
@@ -473,7 +474,7 @@ def _law_table(row: Node, table: list[Any]) -> tuple[tuple[float, float], ...] |
         return None
     rows = tuple((float(t), float(v)) for t, v in table)
     ts = [t for t, _ in rows]
-    if ts[0] < 0 or ts[-1] >= 360 or any(b <= a for a, b in zip(ts, ts[1:])):
+    if ts[0] < 0 or ts[-1] >= 360 or any(b <= a for a, b in itertools.pairwise(ts)):
         row.reader.problem(where, "chain.input_table_order", found=describe(ts))
         return None
     return rows

@@ -21,8 +21,8 @@ import numpy as np
 from assur.kinds import HIGHER, KINDS
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import GroupSolution, Motion, analyse
-from assur.kinematics.model import GroupModel, KinematicModel
 from assur.kinematics.laws import STROKE
+from assur.kinematics.model import GroupModel, KinematicModel
 from assur.kinematics.reasons import Reason, reason_text
 from assur.kinematics.rules import ShortfallAt, rules_of
 

@@ -350,6 +350,8 @@ def test_a_cylinder_beyond_its_stroke_does_not_assemble_there() -> None:
     assert abs(interval.start - start) <= 1e-4 and abs(interval.end - (math.pi - start)) <= 1e-4
     assert abs(interval.worst_at - math.pi / 2) <= 0.02
     assert interval.unit == "mm" and abs(interval.shortfall - 10.0) <= 1e-3
+    beyond = analyse(model, np.array([math.pi / 2]))
+    assert np.isnan(np.asarray(J.value(beyond.joints["C"]))).all()  # no pose beyond the end
 
 
 def test_a_slider_beyond_its_stroke_is_reported_by_its_input_group() -> None:

@@ -49,6 +49,7 @@ __all__ = [
     "analyse",
     "cycle_model",
     "held",
+    "input_analogs",
     "input_grid",
     "sketch_input",
     "unwrap",
@@ -304,6 +305,52 @@ def cycle_model(model: KinematicModel) -> KinematicModel:
                                                            strict=True)})
     return replace(model, params=params, drive="laws", direction=1,
                    input_range=(0.0, 2 * math.pi), laws={group.label: law})
+
+
+def input_analogs(model: KinematicModel, label: str, q: np.ndarray | None = None, *,
+                  points: int = 360) -> Motion:
+    """The motion of a mechanism with several inputs, its analogs taken with respect to one
+    input's coordinate, the others held (partial derivatives ∂x/∂q_k, ∂²x/∂q_k²).
+
+    Parameters
+    ----------
+    model : KinematicModel
+        Whose inputs follow laws (``drive == 'laws'``, :func:`cycle_model`).
+    label : str
+        The group holding the input (a key of ``model.laws``: ``"L0(4)"``).
+    q : array_like, optional
+        Positions t (radians); default :func:`input_grid` with ``points``.
+    points : int
+        Grid size when ``q`` is not given.
+
+    Returns
+    -------
+    Motion
+        Values as :func:`analyse` gives them; the jets' ``d1``, ``d2`` are per radian of a
+        crank's rotation, or per mm of a slider's or an actuator's coordinate.
+
+    Raises
+    ------
+    KeyError
+        When no input's law is held by ``label``.
+
+    Examples
+    --------
+    By the chain rule the analogs with respect to t are Σ_k ∂x/∂q_k · q_k′(t):
+
+    >>> import pathlib, assur
+    >>> tables = pathlib.Path(assur.__file__).parents[1] / "input_tables"
+    >>> model = assur.load_model(tables / "five_bar_two_cranks.yaml")   # φ1 = t, φ4 = 90° + 2t
+    >>> t = input_grid(model, 8)
+    >>> d1 = input_analogs(model, "L0(1)", t).joints["C"].d1
+    >>> d4 = input_analogs(model, "L0(4)", t).joints["C"].d1
+    >>> bool(np.allclose(analyse(model, t, analogs=True).joints["C"].d1, d1 + 2 * d4))
+    True
+    """
+    if label not in model.laws:
+        raise KeyError(f"no input is held by {label!r}; inputs: {', '.join(model.laws)}")
+    laws = {name: replace(law, moving=name == label) for name, law in model.laws.items()}
+    return analyse(replace(model, laws=laws), q, points=points, analogs=True)
 
 
 def held(model: KinematicModel) -> KinematicModel:

@@ -25,7 +25,7 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import Any
 
@@ -62,6 +62,10 @@ class InputLaw:
         Whether the group's ``s_min``, ``s_max`` limit the coordinate.
     held : bool
         The input held at ``phase`` (its sketched coordinate), whatever t.
+    moving : bool or None
+        For analogs with respect to one input's coordinate (None: with respect to t): the
+        coordinate's value follows t, its derivatives are 1, 0 (True, the input the
+        analogs are taken for) or 0, 0 (False, every other input).
     """
 
     group: str
@@ -71,6 +75,7 @@ class InputLaw:
     table: tuple[tuple[float, float], ...] = ()
     limited: bool = False
     held: bool = False
+    moving: bool | None = None
 
     def coordinate(self, t: Value, value: Callable[[str], Any]) -> Value:
         """The input's coordinate at the cycle parameter t (plain or a jet).
@@ -88,6 +93,9 @@ class InputLaw:
         array_like or Jet
             Radians of crank rotation, or mm.
         """
+        if self.moving is not None and isinstance(t, Jet):
+            plain = replace(self, moving=None).coordinate(t.v, value)
+            return Jet(plain, float(self.moving), 0.0)
         if self.held:
             return self.phase + 0.0 * t
         if not self.linear:

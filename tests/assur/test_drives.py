@@ -458,3 +458,24 @@ def test_the_verdict_says_what_the_course_program_refuses(table: str, code: str,
     assert messages, [f.message.code for f in found.findings]
     if part is not None:
         assert part in repr(messages[0].data)
+
+
+@pytest.mark.parametrize("name", ["five_bar", "crank_and_cylinder"])
+def test_analogs_with_respect_to_each_input(name: str) -> None:
+    """∂x/∂q_k of every joint against the closed form moved in q_k alone (the other inputs
+    held at their values), per radian of a crank, per mm of a cylinder."""
+    from assur.kinematics.analysis import input_analogs
+
+    case = CASES[name]()
+    model = assur.load_model(TABLES / case.table)
+    values = [np.asarray(J.value(x)) + 0.0 * case.q for x in case.laws(case.q)]
+    for k, label in enumerate(model.laws):
+        moved = [Jet(v, float(i == k), 0.0) for i, v in enumerate(values)]
+        want = case.joints(moved)
+        got = input_analogs(model, label, case.q).joints
+        for pid, point in want.items():
+            scale = 1.0 + np.max(np.abs(point.d1)) + np.max(np.abs(point.d2))
+            jet = J.as_jet(got[pid])
+            assert np.max(np.abs(jet.v - point.v)) <= 1e-9, (label, pid)
+            assert np.max(np.abs(jet.d1 - point.d1)) <= 1e-9 * scale, (label, pid)
+            assert np.max(np.abs(jet.d2 - point.d2)) <= 1e-9 * scale, (label, pid)

@@ -360,7 +360,7 @@ def _findings(found: Assessment) -> tuple[Finding, ...]:
     elif isinstance(why, AssurError):
         wrong.append(Finding("wrong", Message("check.finding_text", {"text": str(why)})))
     if found.existence is not None and found.model is not None:
-        wrong += _failures(found.existence, found.model.drive in ("crank", "laws"))
+        wrong += _failures(found.existence, found.model.drive)
     # a row's kind contradicted by its own parameters explains the other differences: the
     # chain was built from that kind
     wrong.sort(key=lambda finding: finding.message.code != "model.params_of_kind")
@@ -409,18 +409,26 @@ def _drive_kind(chain: Chain, drive: Drive) -> Message | None:
                                               "b": pair.links[1]})
 
 
-def _failures(report: ExistenceReport, crank: bool) -> list[Finding]:
-    """Every interval where a group does not assemble."""
+def _failures(report: ExistenceReport, drive: str) -> list[Finding]:
+    """Every interval where a group does not assemble, in the input coordinate of the drive:
+    a crank's φ, the cycle parameter t of several inputs, a slider's displacement s, an
+    actuator's length l."""
     from assur.kinematics.reasons import reason_message
 
     found = []
+    angle = drive in ("crank", "laws")
+    symbol = {"laws": "t", "slider": "s"}.get(drive, "l")
     for group in report.groups:
         for interval in group.intervals:
             where = (f"{math.degrees(interval.start):.1f}°…{math.degrees(interval.end):.1f}°"
-                     if crank else f"{interval.start:.2f}…{interval.end:.2f} mm")
-            found.append(Finding("wrong", Message("batch.group_fails", {
-                "group": group.label, "where": where,
-                "reason": reason_message(interval.reason)})))
+                     if angle else f"{interval.start:.2f}…{interval.end:.2f} mm")
+            reason = reason_message(interval.reason)
+            message = (Message("batch.group_fails", {"group": group.label, "where": where,
+                                                     "reason": reason}) if drive == "crank"
+                       else Message("batch.group_fails_at", {
+                           "group": group.label, "where": f"{symbol} = {where}",
+                           "reason": reason}))
+            found.append(Finding("wrong", message))
     return found
 
 

@@ -479,3 +479,16 @@ def test_analogs_with_respect_to_each_input(name: str) -> None:
             assert np.max(np.abs(jet.v - point.v)) <= 1e-9, (label, pid)
             assert np.max(np.abs(jet.d1 - point.d1)) <= 1e-9 * scale, (label, pid)
             assert np.max(np.abs(jet.d2 - point.d2)) <= 1e-9 * scale, (label, pid)
+
+
+def test_a_batch_finding_names_the_cycle_parameter_of_a_stroke_end() -> None:
+    """The boom whose cylinder follows 110 + 30·sin t beyond its 130 mm end: the finding
+    says where in t (asin(2/3) = 41.8°, 138.2°) and why."""
+    from assur.assessment import assess
+
+    table = [[t, 110 + 30 * math.sin(math.radians(t))] for t in range(0, 360, 5)]
+    found = assess(assur.chain_from_dict(_boom_with_law(table, [70, 130])), points=72)
+    assert found.verdict == "wrong"
+    texts = [finding.text("en") for finding in found.findings]
+    assert ("group L1(1,2) does not assemble for t = 41.8°…138.2°: a linear input (a slider, "
+            "an actuator) is beyond an end of its stroke") in texts, texts

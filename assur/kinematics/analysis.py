@@ -277,6 +277,12 @@ def cycle_model(model: KinematicModel) -> KinematicModel:
         ``drive == 'laws'``, positions t ∈ [0, 2π) (:func:`input_grid`); the force
         analysis then takes ω as the rate of t (rad/s).
 
+    Raises
+    ------
+    ValueError
+        For an actuator inside a triad or a class IV group, which is followed along its
+        length only.
+
     Examples
     --------
     Two boom designs whose cylinders end their strokes at 120 and 135 mm, at four positions:
@@ -300,6 +306,9 @@ def cycle_model(model: KinematicModel) -> KinematicModel:
     else:
         group = next(g for g in model.groups if g.driven is not None
                      or g.group_kind.is_input)
+        if group.layout is not None:
+            raise ValueError(f"the actuator of {group.label} is followed along its length "
+                             "only; a triad or class IV group takes no law of a cycle")
         law = InputLaw(group.label, True, limited=True)
         params.update({group.column(c): v for c, v in zip(STROKE, model.input_range,
                                                            strict=True)})

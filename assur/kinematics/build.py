@@ -538,6 +538,9 @@ def _laws(topo: Topology, build: Builder, sketch: Sketch, holders: list[GroupMod
             laws[group.label] = InputLaw(group.label, False, math.radians(drive.phase),
                                          drive.ratio)
             continue
+        if group.layout is not None:  # a triad or class IV group follows its mode in length
+            build.problem(f"{where} 'pair'", "model.law_higher_actuator", group=group.label)
+            continue
         stroke = drive.stroke or (sketch.stroke if group.driven is not None else None)
         if stroke is None:
             build.problem(f"{where} 'stroke'", "model.law_stroke", group=group.label)

@@ -492,3 +492,16 @@ def test_a_batch_finding_names_the_cycle_parameter_of_a_stroke_end() -> None:
     texts = [finding.text("en") for finding in found.findings]
     assert ("group L1(1,2) does not assemble for t = 41.8°…138.2°: a linear input (a slider, "
             "an actuator) is beyond an end of its stroke") in texts, texts
+
+
+def test_an_actuator_of_a_triad_takes_no_law(tmp_path: Path,
+                                              capsys: pytest.CaptureFixture[str]) -> None:
+    data = yaml.safe_load((TABLES / "actuator_triad.yaml").read_text(encoding="utf-8"))
+    data["mechanism"]["inputs"] = [{"pair": "S", "stroke": [85, 115],
+                                    "table": [[0, 90], [180, 110]]}]
+    path = tmp_path / "triad.yaml"
+    path.write_text(yaml.safe_dump(data), encoding="utf-8")
+    assert main(["analyze", str(path)]) == 2
+    assert "mechanism.inputs[0] 'pair'" in capsys.readouterr().err
+    with pytest.raises(ValueError, match="along its length only"):
+        assur.cycle_model(assur.load_model(TABLES / "actuator_triad.yaml"))

@@ -188,8 +188,41 @@ def _crank_and_cylinder() -> Case:
                 pairs, 3.0)
 
 
+def _press() -> Case:
+    s = _sketch("cylinder_press.yaml")
+    a, b, c0, d0, e0 = s["A"], s["B"], s["C"], s["D"], s["E"]
+    arm, rod = abs(c0 - a), abs(e0 - d0)
+    sign = _side(b, a, c0)
+    theta0 = cmath.phase(c0 - a)
+
+    def joints(x: list[Any]) -> dict[str, Any]:
+        c = _meet(b, x[0], a, arm, sign)
+        d = a + (d0 - a) * J.expi(J.arg(c - a) - theta0)
+        dx = e0.real - J.real(d)                      # the ram's guide: the line x = 140
+        e = e0.real + 1j * (J.imag(d) - J.sqrt(rod * rod - dx * dx))   # below D, as drawn
+        return {"A": a + 0.0 * x[0], "B": b + 0.0 * x[0], "C": c, "D": d, "E": e}
+
+    def poses(x: list[Any]) -> dict[Any, tuple[Any, Any]]:
+        p = joints(x)
+        axis = J.arg(p["C"] - p["B"])
+        return {1: (p["A"], J.arg(p["C"] - p["A"])), 2: (p["B"], axis), 3: (p["C"], axis),
+                4: (p["D"], J.arg(p["E"] - p["D"])), 5: (p["E"], 0.0 * x[0])}
+
+    def pairs(x: list[Any]) -> dict[str, tuple[str, tuple[Any, Any], Any, Any]]:
+        p = joints(x)
+        u = (p["C"] - p["B"]) / J.abs(p["C"] - p["B"])
+        return {"A": ("R", (0, 1), p["A"], None), "B": ("R", (0, 2), p["B"], None),
+                "Pd": ("P", (2, 3), p["C"], 1j * u), "C": ("R", (3, 1), p["C"], None),
+                "D": ("R", (1, 4), p["D"], None), "E": ("R", (4, 5), p["E"], None),
+                "F": ("P", (5, 0), p["E"], 1.0 + 0.0 * x[0])}
+
+    assert e0.imag < d0.imag
+    return Case("cylinder_press.yaml", np.linspace(150.0, 190.0, 21), lambda q: [q],
+                [abs(c0 - b)], poses, joints, [("cylinder", "Pd")], pairs, 30.0)
+
+
 CASES = {"slider": _slider_crank, "boom": _boom, "five_bar": _five_bar,
-         "crank_and_cylinder": _crank_and_cylinder}
+         "crank_and_cylinder": _crank_and_cylinder, "press": _press}
 
 
 def _coordinates(case: Case, q: np.ndarray) -> list[Any]:

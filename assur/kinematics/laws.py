@@ -94,7 +94,7 @@ class InputLaw:
             Radians of crank rotation, or mm.
         """
         if self.moving is not None and isinstance(t, Jet):
-            plain = replace(self, moving=None).coordinate(t.v, value)
+            plain = J.value(replace(self, moving=None).coordinate(t.v, value))
             return Jet(plain, float(self.moving), 0.0)
         if self.held:
             return self.phase + 0.0 * t

@@ -45,7 +45,7 @@ from assur.plot.schemes import draw_structural_scheme, save_schemes
 from assur.structure.analysis import StructuralAnalysis, analyse_structure
 from assur.structure.classification import AssurGroup
 from assur.structure.diagnostics import Diagnostic
-from assur.structure.group_models import check_group_models, group_models_table
+from assur.structure.group_models import check_group_models
 from assur.structure.identification import check_identification, identification_table
 from assur.structure.replacing import replacing_mechanism
 from assur.structure.report import structure_report
@@ -78,7 +78,6 @@ __all__ = [  # noqa: RUF022 - grouped by topic, as the comments say
     "analyse_structure",
     "check_group_models",
     "check_identification",
-    "group_models_table",
     "identification_table",
     "replacing_mechanism",
     "structure_report",

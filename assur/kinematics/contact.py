@@ -54,7 +54,6 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
-from scipy.interpolate import CubicSpline
 
 from assur.kinematics import jets as J
 from assur.kinematics.dyads import DyadSolution, solve_rpp, solve_rrp, solve_rrr
@@ -65,6 +64,8 @@ from assur.model import LinkId, PairId
 from assur.typing import BoolArray, FloatArray, Value
 
 if TYPE_CHECKING:  # pragma: no cover
+    from scipy.interpolate import CubicSpline
+
     from assur.kinematics.analysis import GroupSolution, Motion, State
     from assur.kinematics.model import GroupModel
 
@@ -200,6 +201,8 @@ class PolarSpline:
     def from_table(cls, angles: FloatArray, radii: FloatArray) -> PolarSpline:
         """The profile through a table: angles in degrees (increasing, spanning less than
         a turn), radii in mm (positive)."""
+        from scipy.interpolate import CubicSpline  # only a tabulated cam needs scipy
+
         theta = np.radians(np.asarray(angles, dtype=float))
         r = np.asarray(radii, dtype=float)
         return cls(CubicSpline(np.append(theta, theta[0] + 2.0 * math.pi), np.append(r, r[0]),

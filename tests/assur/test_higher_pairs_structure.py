@@ -372,4 +372,8 @@ def test_the_coursework_report_shows_both_mechanisms_and_the_passive_freedom() -
     sections = {section.ident: section.body for section in report.sections}
     assert "исключены: W = 1" in sections["counts"]
     assert 'class="bad"' not in sections["counts"]
+    # the page's W and its summary are the mobility with the roller subtracted (n = 5,
+    # p5 = 6, p4 = 1 by the table's header: W = 15 − 12 − 1 = 2, less 1 passive)
+    assert '<p id="value-W" data-value="1">W = 1</p>' in sections["counts"]
+    assert "W = 3·5 − 2·6 − 1 = 2 − 1 = 1" in sections["counts"]
     assert 'id="replacing-mechanism"' in sections["schemes"]

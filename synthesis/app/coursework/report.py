@@ -162,8 +162,11 @@ def build_report(path: str | os.PathLike[str], *, lang: str = "en", points: int 
 
 
 def _mobility(analysis: StructuralAnalysis) -> str:
-    """Chebyshev's formula with the numbers of the chain."""
-    return f"W = 3·{analysis.n} − 2·{analysis.p5} − {analysis.p4} = {analysis.W}"
+    """Chebyshev's formula with the numbers of the chain, less its passive degrees of
+    freedom when it has any."""
+    formula = f"W = 3·{analysis.n} − 2·{analysis.p5} − {analysis.p4} = {analysis.W}"
+    passive = len(analysis.passive)
+    return f"{formula} − {passive} = {analysis.W - passive}" if passive else formula
 
 
 def _data_section(chain: Chain, lang: str) -> Section:
@@ -197,10 +200,11 @@ def _counts_section(analysis: StructuralAnalysis, lang: str) -> Section:
     lines = higher_pair_lines(analysis, lang)
     if lines:
         body += "<pre>" + esc("\n".join(lines)) + "</pre>"
-    if analysis.W - len(analysis.passive) != analysis.m:
-        body += (f'<p class="bad">W = {analysis.W - len(analysis.passive)} ≠ {analysis.m} '
+    mobility = analysis.W - len(analysis.passive)
+    if mobility != analysis.m:
+        body += (f'<p class="bad">W = {mobility} ≠ {analysis.m} '
                  f"({esc(render('term.inputs', lang))})</p>")
-    body += f'<p id="value-W" data-value="{analysis.W}">W = {analysis.W}</p>'
+    body += f'<p id="value-W" data-value="{mobility}">W = {mobility}</p>'
     return Section("counts", _cap(render("term.counts", lang)), body)
 
 

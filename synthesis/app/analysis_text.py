@@ -13,6 +13,7 @@ import numpy as np
 from assur import joint_rotations, pressure_angles
 from assur.api import Analysis
 from assur.kinematics.analysis import unwrap, values
+from assur.kinematics.contact import followers
 from assur.kinematics.existence import CONDITIONS
 from assur.kinematics.higher.kind import HigherGroupSolution
 from assur.kinematics.laws import STROKE
@@ -131,6 +132,10 @@ def analysis_text(result: Analysis, lang: str = "en") -> str:
         z = values(point)
         lines.append(f"  {render('analyze.trace', lang, name=name):<34} "
                      f"x {_range(z.real, ' ' + mm)}, y {_range(z.imag, ' ' + mm)}")
+    for follower in followers(motion):
+        label = render("analyze.follower", lang, pair=follower.pair, link=follower.link)
+        unit = "°" if follower.unit == "deg" else " " + mm
+        lines.append(f"  {label:<34} {_range(values(follower.coordinate), unit)}")
     lines += ["", *_pressure_lines(result, lang)]
     lines += ["", render("analyze.rotations", lang)]
     for turn in joint_rotations(motion):

@@ -519,6 +519,27 @@ def test_a_tabulated_cam_through_the_analysis_against_brute_force() -> None:
     assert np.max(np.abs(values(follower.point) - roller)) <= 1e-9
 
 
+def test_the_text_report_gives_the_follower_s_travel_of_the_brute_force_search() -> None:
+    """``assur analyze`` prints the follower's range; its Δ is the travel of the roller's
+    centre that the brute-force search over the table's profile finds."""
+    import re
+
+    import yaml
+
+    import assur
+    from synthesis.app.analysis_text import analysis_text
+
+    result = assur.analyse(TABLES / "cam_table_roller.yaml", points=36)
+    table = yaml.safe_load((TABLES / "cam_table_roller.yaml").read_text())
+    profile = table["geometry"]["K"]["profiles"][0]["table"]
+    spline = _spline(np.array(profile["angles"], float), np.array(profile["radii"], float))
+    want = _brute_slider(_dense(spline, result.motion.q), 10.0, 0j, math.pi / 2)
+    line, = [line for line in analysis_text(result).splitlines()
+             if "follower 3 of higher pair K" in line]
+    travel = float(re.search(r"\(Δ ([0-9.]+)\)", line).group(1))
+    assert travel == pytest.approx(float(np.ptp(want)), abs=1e-3)
+
+
 def test_a_geared_five_bar_through_the_analysis_against_its_closed_form() -> None:
     """input_tables/geared_five_bar.yaml: gear 2 turns at −(30/60) of gear 1; the joint E
     where the couplers' circles meet, on the sketched side of B → C."""

@@ -21,7 +21,7 @@ Figures (one core; positions per second unless marked):
 main branch) in a separate process, alternating with this checkout's, and prints both columns
 and the speed-up after/before of every figure; the script itself is the same in both runs.
 
-Run: ``python benchmarks/bench_issue26.py [--designs D] [--rounds R] [--before /work/main]``;
+Run: ``python benchmarks/bench_speed_table.py [--designs D] [--rounds R] [--before OTHER_CHECKOUT]``;
 ``--json`` prints the figures of this checkout as one JSON object.
 """
 
@@ -36,6 +36,8 @@ import time
 from collections.abc import Callable
 from functools import partial
 from pathlib import Path
+
+from bench_higher import rate
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")  # one core: no threaded BLAS anywhere
 
@@ -68,19 +70,8 @@ FIGURES: dict[str, tuple[str, str, bool]] = {
 
 def best_rate(run: Callable[[], object], positions: int, seconds: float, rounds: int) -> float:
     """The best positions per second of ``run`` over ``rounds`` batches of at least
-    ``seconds`` each, after one untimed call."""
-    run()
-    best = 0.0
-    for _ in range(rounds):
-        calls, start = 0, time.perf_counter()
-        while True:
-            run()
-            calls += 1
-            elapsed = time.perf_counter() - start
-            if elapsed >= seconds:
-                break
-        best = max(best, positions * calls / elapsed)
-    return best
+    ``seconds`` each, after one untimed call (:func:`bench_higher.rate`)."""
+    return rate(run, positions, rounds, seconds)[1]
 
 
 def fourbar(rounds: int) -> dict[str, float]:
@@ -190,7 +181,7 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--designs", type=int, default=1000)
     parser.add_argument("--rounds", type=int, default=3)
-    parser.add_argument("--before", type=Path, help="another checkout, e.g. /work/main")
+    parser.add_argument("--before", type=Path, help="another checkout of the program to compare with")
     parser.add_argument("--json", action="store_true", help="this checkout's figures as JSON")
     args = parser.parse_args(argv)
     if args.json:

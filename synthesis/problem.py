@@ -77,8 +77,10 @@ if TYPE_CHECKING:  # pragma: no cover
     from synthesis.force_conditions import ForceConditions
 
 __all__ = [
+    "CRITERIA",
     "DEFAULT_PRESSURE_ANGLE",
     "OUTPUT_QUANTITIES",
+    "SEGMENT_ANGLE",
     "ControlPoints",
     "GroupKey",
     "Output",
@@ -94,6 +96,11 @@ GroupKey = tuple[LinkId, ...]
 
 #: Class-1 outputs: the output link's angle ψ, or its velocity ratio n = dψ/dφ.
 OUTPUT_QUANTITIES = ("angle", "ratio")
+#: Name of the varied parameter of a class-5 task's segment angle (degrees in the tables),
+#: a parameter of the problem rather than of the mechanism.
+SEGMENT_ANGLE = "output.angle"
+#: Ways to build Q from the deviations: their largest magnitude, or their root mean square.
+CRITERIA = ("max", "rms")
 #: Keys of the ``search`` table → fields of :class:`~synthesis.search.SearchSettings`.
 SEARCH_FIELDS = {"budget": "budget_log2", "seed": "seed", "refine": "refine",
                  "shrink_passes": "shrink_passes", "stall": "stall",
@@ -148,7 +155,10 @@ class ControlPoints:
     weight : ndarray, shape (K,)
         Weights E_K.
     lower, upper : ndarray, shape (K,) or None
-        Limits of a class-1 tolerance zone (radians, or plain numbers for the ratio).
+        Limits of a tolerance zone: class 1 (radians, or plain numbers for the ratio),
+        class 2 (mm).
+    angle : ndarray, shape (K,) or None
+        Class 5: the required direction θ_K of the guided segment (radians).
     """
 
     phi: FloatArray
@@ -157,16 +167,24 @@ class ControlPoints:
     weight: FloatArray
     lower: FloatArray | None = None
     upper: FloatArray | None = None
+    angle: FloatArray | None = None
 
     def __post_init__(self) -> None:
-        for array in (self.phi, self.value, self.point, self.weight, self.lower, self.upper):
+        for array in (self.phi, self.value, self.point, self.weight, self.lower, self.upper,
+                      self.angle):
             if array is not None:
                 array.setflags(write=False)
 
     @property
     def zone(self) -> bool:
-        """Whether the class-1 task is given as a tolerance zone."""
+        """Whether the task (class 1 or 2) is given as a tolerance zone."""
         return self.lower is not None
+
+    @property
+    def timed(self) -> bool:
+        """Whether each control point belongs to a given crank angle φ_K (classes 1, 2, 4;
+        class 5 when its rows give ``phi``)."""
+        return bool(np.all(np.isfinite(self.phi))) and self.phi.size > 0
 
 
 @dataclass(frozen=True)
@@ -174,12 +192,17 @@ class Output:
     """The controlled output: the angle or slider of ``link``, or a point on it.
 
     ``point`` is ``'N'``/``'M'`` (an attachment point) or the name of a tracing point;
-    ``quantity`` (class 1) is ``'angle'`` (ψ) or ``'ratio'`` (n = dψ/dφ).
+    ``quantity`` (class 1) is ``'angle'`` (ψ) or ``'ratio'`` (n = dψ/dφ).  Class 5 guides
+    a segment fixed on the link: it starts at ``point``, is ``length`` mm long and makes the
+    angle ``angle`` (radians) with the axis of the link's local frame; a varied angle is the
+    parameter :data:`SEGMENT_ANGLE` of the problem, and ``angle`` is then its initial value.
     """
 
     link: LinkId
     point: str | None = None
     quantity: str = "angle"
+    length: float | None = None
+    angle: float = 0.0
 
     @property
     def ratio(self) -> bool:
@@ -209,6 +232,12 @@ class Problem:
     pressure_angles, rotations, workspace : mapping
         Group label → allowable pressure angle (radians), joint → allowable swing
         (radians), working-space box ``(x_min, x_max, y_min, y_max)`` (mm).
+    strokes : mapping
+        Group label → prismatic pair role → the allowed range ``(s_min, s_max)`` of its
+        slider coordinate s (mm, as the kinematics measures it from the guide's base point).
+    criterion : str
+        How Q is built from the deviations: ``'max'`` (the course's, the default) or
+        ``'rms'`` (:data:`CRITERIA`).
     search : mapping
         The values the ``search`` table gives (its own keys: ``budget``, ``seed``, …),
         each already checked by the rule of its setting.
@@ -238,6 +267,8 @@ class Problem:
     pressure_angles: Mapping[str, float] = field(default_factory=dict)
     rotations: Mapping[str, Mapping[str, float]] = field(default_factory=dict)
     workspace: Mapping[str, tuple[float, float, float, float]] = field(default_factory=dict)
+    strokes: Mapping[str, Mapping[str, tuple[float, float]]] = field(default_factory=dict)
+    criterion: str = "max"
     group_models: tuple[Any, ...] = ()
     search: Mapping[str, Any] = field(default_factory=dict)
     forces: ForceConditions | None = None
@@ -250,7 +281,7 @@ class Problem:
         dimensionless ratio n).  Inside, ψ and its deviations are radians."""
         if self.task_class == 1:
             return "1" if self.output.ratio else "deg"
-        return "mm"
+        return "mm"  # (class 5: the deviations of the segment's end points)
 
     @property
     def output_scale(self) -> float:
@@ -298,6 +329,11 @@ class Problem:
         """Name → value of the varied parameters of design x."""
         return {p.name: float(v) for p, v in zip(self.parameters, np.asarray(x, dtype=float))}
 
+    def mechanism_design(self, x: npt.ArrayLike) -> dict[str, float]:
+        """Name → value of the varied parameters of design x that belong to the mechanism
+        (all but a class-5 segment angle, :data:`SEGMENT_ANGLE`)."""
+        return {name: value for name, value in self.design(x).items() if name != SEGMENT_ANGLE}
+
     def mechanism_table(self, x: npt.ArrayLike) -> dict[str, Any]:
         """The mechanism table of design x: what the result file stores.
 
@@ -310,7 +346,8 @@ class Problem:
         table = copy.deepcopy(dict(self.mechanism))
         rows = {row_key(row): row for row in table.get("structure_identification", [])}
         for p, value in zip(self.parameters, np.asarray(x, dtype=float)):
-            rows[p.links]["params"][p.column] = table_number(float(value))
+            if p.name != SEGMENT_ANGLE:
+                rows[p.links]["params"][p.column] = table_number(float(value))
         return table
 
 

@@ -95,8 +95,7 @@ def design_table(problem: Problem, x: npt.ArrayLike) -> dict[str, Any]:
     dict
         ``mechanism`` and ``geometry`` as a chain table has them.
     """
-    design = problem.design(x)
-    model = problem.model.with_params(design)
+    model = problem.model.with_params(problem.mechanism_design(x))
     motion = analyse(model, np.zeros(1))
     table = copy.deepcopy(dict(problem.mechanism))
     geometry = table["geometry"]

@@ -31,6 +31,10 @@ from synthesis.search_result import SearchResult, distinct_optima
 
 __all__ = ["allowable_rows", "summary", "text_report", "write_result", "write_trials"]
 
+#: The report's label of Q by the way it is built (``general: criterion``).
+_Q_LABEL = {"max": "q", "rms": "q_rms"}
+
+
 def _w(key: str, lang: str, **data: Any) -> str:
     """A sentence of the report from the catalogue (codes ``synth.report.<key>``)."""
     return render(f"synth.report.{key}", lang, **data)
@@ -230,8 +234,7 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
 
     unit = "" if data["unit"] == "1" else w(data["unit"])  # the ratio n has no unit
     lines += ["", w("criteria"),
-              f"  {w('q' if data.get('criterion', 'max') == 'max' else 'q_rms'):<40} "
-              f"{_fmt(data['Q'])} {unit}",
+              f"  {w(_Q_LABEL[data.get('criterion', 'max')]):<40} {_fmt(data['Q'])} {unit}",
               f"  {w('rms'):<40} {_fmt(data['Q_rms'])} {unit}",
               f"  {w('p1'):<40} {_fmt(data['P1'])}",
               f"  {w('p2'):<40} {_fmt(data['P2'])}"]

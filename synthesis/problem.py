@@ -5,12 +5,13 @@ complete example of each task class):
 
 ``general``
     ``control_points`` (N_z), ``direction`` (s: +1 counter-clockwise, −1 clockwise),
-    ``groups`` (N_Q, L0 included), ``task_class`` (1–4), ``grid`` (positions of the
+    ``groups`` (N_Q, L0 included), ``task_class`` (1–5), ``grid`` (positions of the
     analysis grid over a full crank turn), optional ``accuracy`` ([Q], stop rule a, in
     the unit of the output: degrees for ψ, mm for S and Ж, none for the ratio n),
     ``objective`` (``lexicographic`` | ``weighted``), ``p2_weight`` (λ of the weighted form),
     ``output`` (class 1 only: ``angle``, the output link's angle ψ, the default; or
-    ``ratio``, its velocity ratio n = dψ/dφ, the first analog).
+    ``ratio``, its velocity ratio n = dψ/dφ, the first analog), ``criterion`` (``max``, the
+    default, or ``rms``: how Q is built from the deviations).
 ``mechanism`` or ``structure_identification``
     The structure identification: a path (relative to the problem file) of an
     identification table, or its rows inline.  The rows' ``params:`` give the values of the
@@ -22,7 +23,9 @@ complete example of each task class):
     Optional records of table 1.5, kept for the report.
 ``output``
     What the task controls: ``{link: L}`` (its angle ψ, class 1; its slider displacement S,
-    class 2) or ``{link: L, point: N|M}`` (tracing point Ж, classes 3–4).
+    class 2) or ``{link: L, point: N|M}`` (tracing point Ж, classes 3–4), with
+    ``length`` (mm) and ``angle`` (degrees, a number or ``[initial, lower, upper]``) the
+    guided segment of class 5 (:mod:`synthesis.guidance`).
 ``parameters``
     The varied-parameter tables 2.1–2.6, one row per group (``links: [i, j]``, or
     ``links: [1]`` for L0); each column of the group is ``[initial, lower, upper]``, a single
@@ -33,13 +36,17 @@ complete example of each task class):
     the kinematic model checks every column (:func:`assur.build_model`).
 ``allowable``
     Tables 2.7–2.11: rows ``{links: [i, j], pressure_angle: deg, rotations: {joint: deg},
-    workspace: {x: [min, max], y: [min, max]}}`` (the box applies to the group's revolute
-    joints, mm).
+    workspace: {x: [min, max], y: [min, max]}, strokes: {P_i: [min, max]}}`` (the box
+    applies to the group's revolute joints, mm; a stroke range to the slider coordinate of
+    a prismatic pair, mm).
 ``control_points``
     Tables 2.12–2.15, columns by class: 1 ``K, phi, psi, E`` (or ``psi_lo, psi_hi`` for a
     zone; with ``output: ratio`` the columns ``n``, ``n_lo``, ``n_hi`` instead, plain
-    numbers), 2 ``K, phi, S, E``, 3 ``K, x, y, E``, 4 ``K, phi, x, y, E`` (φ, ψ in degrees;
-    E defaults to 1).
+    numbers), 2 ``K, phi, S, E`` (or ``S_lo, S_hi``), 3 ``K, x, y, E``, 4 ``K, phi, x, y,
+    E``, 5 ``K, [phi,] x, y, theta, E`` (φ, ψ, θ in degrees; E defaults to 1).
+``law``
+    Classes 1–4, instead of ``control_points``: ``phi: [first, last]`` and the output as
+    formulas of φ (:mod:`synthesis.expressions`).
 ``search``
     Optional defaults of the search: ``budget`` (log2 of the LPτ trials), ``seed``,
     ``refine``, ``shrink_passes``, ``stall``, ``time_limit``, ``refine_evaluations``

@@ -161,8 +161,8 @@ def test_bad_new_fields_exit_2_all_at_once(tmp_path: Path,
     data["allowable"] = [{"links": [3, 2], "strokes": {"P_i": [180, 120], "C": [0, 1]}}]
     err = _exit_2(tmp_path, data, capsys)
     assert "general 'criterion': expected one of 'max', 'rms'; found 'mean'" in err
-    assert ("law 'S': expected a formula of phi (degrees) made of numbers, phi, pi, "
-            "+ - * / **, sin cos tan sqrt exp log abs radians degrees, e.g. "
+    assert ("law 'S': expected a formula of 'phi' (degrees) made of numbers, 'phi', 'pi', "
+            "'+ - * / **', 'sin cos tan sqrt exp log abs radians degrees', e.g. "
             "'50 + 20*cos(radians(phi))'; found 'import os' (a text): not a formula") in err
     assert ("allowable[0] 'strokes' 'P_i': the lower end of the stroke must not exceed the "
             "upper one; expected s_min <= s_max, found [180, 120]") in err
@@ -174,7 +174,7 @@ def test_bad_stroke_pair_and_law_of_no_angle(tmp_path: Path,
     data["law"] = {"phi": [0, 330], "S": "2 * pi"}
     data["allowable"] = [{"links": [3, 2], "strokes": {"C": [0, 1]}}]
     err = _exit_2(tmp_path, data, capsys)
-    assert "law 'S': " in err and "found '2 * pi' (a text): the formula does not depend on phi" \
+    assert "law 'S': " in err and "found '2 * pi' (a text): the formula does not depend on 'phi'" \
         in err
     assert ("allowable (L2(3,2)) 'strokes': unknown prismatic pair 'C'; the prismatic pairs "
             "of L2(3,2) are P_i") in err
@@ -190,8 +190,8 @@ def test_bad_guidance_fields_exit_2(tmp_path: Path,
     data["output"]["length"] = -5
     data["output"]["angle"] = [10, 20, 0]
     err = _exit_2(tmp_path, data, capsys)
-    assert ("control_points: a guidance task needs at least 2 control poses (x, y, theta); "
-            "found 1") in err
+    assert ("control_points: a guidance task needs at least 2 control poses ('x', 'y', "
+            "'theta'); found 1") in err
     assert "output 'length': " in err and "found -5" in err
     assert "output 'angle': the lower bound must not exceed the upper bound" in err
     data = yaml.safe_load(path.read_text(encoding="utf-8"))

@@ -210,3 +210,16 @@ def test_segment_fields_belong_to_class_5(tmp_path: Path,
     err = _exit_2(tmp_path, data, capsys)
     assert ("output 'length': only task class 5 (rigid-body guidance) has a segment; remove "
             "'length' from this task of class 2") in err
+
+
+def test_law_undefined_and_law_with_table_exit_2(tmp_path: Path,
+                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    data = copy.deepcopy(SLIDER)
+    data["law"] = {"phi": [0, 330], "S": "sqrt(phi - 100)"}
+    data["control_points"] = [{"K": 0, "phi": 0, "S": 0}]
+    err = _exit_2(tmp_path, data, capsys)
+    # φ_K = 0, 30, …, 330: the root is not real at 0, 30, 60 and 90
+    assert ("law 'S': the formula has no finite value at 'phi' = 0 degrees (4 of the control "
+            "angles)") in err
+    assert ("law: give the required motion either as a law (formulas of 'phi') or as the "
+            "control-point table, not both") in err

@@ -276,6 +276,7 @@ class Evaluator:
                 dev, res = _scalar_deviations(out, control)
             elif cls == 5:
                 gamma = self.segment_angle(x)
+                length = float(self.problem.output.length or 0.0)
                 a, b = (_full(assur.kinematics.analysis.values(end), d, self.positions.size)
                         for end in self._segment(motion, model, gamma))
                 out_grid = a[:, :n]
@@ -284,15 +285,11 @@ class Evaluator:
                     out, ends_b = a[:, n:], b[:, n:]
                     phi_c = np.broadcast_to(self.control_phi, out.shape)
                 else:
-                    targets = G.segment_ends(control.point, control.angle,
-                                             float(self.problem.output.length or 0.0))
-                    gap = (np.abs(a[:, None, :n] - targets[0][None, :, None]) ** 2
-                           + np.abs(b[:, None, :n] - targets[1][None, :, None]) ** 2)
-                    index = np.argmin(np.where(np.isnan(gap), np.inf, gap), axis=-1)
+                    targets = G.segment_ends(control.point, control.angle, length)
+                    start = G.nearest_pose(a[:, :n], b[:, :n], *targets) * (2 * np.pi / n)
                     phi_c, (out, ends_b) = self._nearest(
-                        model, index * (2 * np.pi / n), list(targets),
+                        model, start.astype(float), list(targets),
                         lambda m: self._segment(m, model, gamma), 2 * np.pi / n)
-                length = float(self.problem.output.length or 0.0)
                 theta = np.angle(ends_b - out)
                 dev = G.segment_deviations(out, theta, control.point, control.angle, length,
                                            control.weight)

@@ -31,10 +31,11 @@ A segment of length 10 in its required pose, and one turned by 90° about A:
 from __future__ import annotations
 
 import numpy as np
+import numpy.typing as npt
 
 from assur.typing import ComplexArray, FloatArray
 
-__all__ = ["segment_deviations", "segment_ends", "segment_residuals"]
+__all__ = ["nearest_pose", "segment_deviations", "segment_ends", "segment_residuals"]
 
 
 def segment_ends(point: ComplexArray, angle: FloatArray, length: float
@@ -96,6 +97,44 @@ def segment_residuals(point: ComplexArray, angle: FloatArray, target: ComplexArr
     w = np.asarray(weights)
     return np.concatenate([(w * gap_a).real, (w * gap_a).imag, (w * gap_b).real,
                            (w * gap_b).imag], axis=-1)
+
+
+def nearest_pose(a: ComplexArray, b: ComplexArray, a_k: ComplexArray, b_k: ComplexArray, *,
+                 chunk: int = 128) -> npt.NDArray[np.intp]:
+    """The grid position of each design's pose nearest to each required pose (no timing).
+
+    ::
+
+        m_K = argmin_m (|A_m − A_K|² + |B_m − B_K|²)
+
+    Parameters
+    ----------
+    a, b : array_like of complex, shape (D, N)
+        The segment's ends at the grid positions (NaN where a design does not exist).
+    a_k, b_k : array_like of complex, shape (K,)
+        The required ends.
+    chunk : int
+        Designs handled per block, to bound memory (D·K·N distances per block).
+
+    Returns
+    -------
+    ndarray of int, shape (D, K)
+
+    Examples
+    --------
+    >>> a = np.array([[0j, 1 + 0j, 2 + 0j]])
+    >>> nearest_pose(a, a + 1j, np.array([1.9 + 0j]), np.array([1.9 + 1j])).tolist()
+    [[2]]
+    """
+    a, b = np.asarray(a, dtype=complex), np.asarray(b, dtype=complex)
+    a_k, b_k = np.asarray(a_k, dtype=complex), np.asarray(b_k, dtype=complex)
+    index = np.empty((a.shape[0], a_k.size), dtype=np.intp)
+    for start in range(0, a.shape[0], chunk):
+        block = slice(start, start + chunk)
+        gap = (np.abs(a[block, None, :] - a_k[None, :, None]) ** 2
+               + np.abs(b[block, None, :] - b_k[None, :, None]) ** 2)
+        index[block] = np.argmin(np.where(np.isnan(gap), np.inf, gap), axis=-1)
+    return index
 
 
 def _gaps(point: ComplexArray, angle: FloatArray, target: ComplexArray,

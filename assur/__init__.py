@@ -25,7 +25,7 @@ from assur.assessment import Assessment
 from assur.errors import AssemblyError, AssurError, StructureError, TableError
 from assur.io.chain_table import chain_from_dict, load_chain
 from assur.kinds import KINDS, GroupKind, kind_of
-from assur.kinematics.analysis import Motion, input_grid
+from assur.kinematics.analysis import Motion, cycle_model, input_grid
 from assur.kinematics.build import build_model, load_model
 from assur.kinematics.dyads import (
     solve_input,
@@ -84,6 +84,7 @@ __all__ = [  # noqa: RUF022 - grouped by topic, as the comments say
     "Motion",
     "build_model",
     "check_existence",
+    "cycle_model",
     "input_grid",
     "joint_rotations",
     "load_model",

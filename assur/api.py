@@ -108,8 +108,10 @@ class Analysis:
 
     @property
     def crank(self) -> bool:
-        """Whether the input is a crank (else a linear actuator)."""
-        return self.model.drive == "crank"
+        """Whether the input coordinate is an angle: a crank's rotation, or the cycle
+        parameter t of several inputs' laws (else a length: an actuator's, or a slider's
+        displacement)."""
+        return self.model.drive in ("crank", "laws")
 
     def index_at(self, at: float) -> int:
         """The analysed position nearest to ``at`` (crank angle in degrees, or actuator

@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any
 from assur.errors import AssurError, Issue, StructureError, TableError
 from assur.kinematics.build import build_model
 from assur.kinematics.model import GroupModel, KinematicModel
-from assur.model import Chain
+from assur.model import Chain, Drive, PairType
 from assur.structure.analysis import StructuralAnalysis, analyse_structure
 from assur.structure.identification import (
     IdentificationRow,
@@ -35,7 +35,7 @@ from assur.structure.identification import (
     check_identification,
     identification_table,
 )
-from assur.text import Message, in_every_language
+from assur.text import Message, in_every_language, joined
 
 if TYPE_CHECKING:  # pragma: no cover
     from assur.kinematics.existence import ExistenceReport
@@ -360,27 +360,75 @@ def _findings(found: Assessment) -> tuple[Finding, ...]:
     elif isinstance(why, AssurError):
         wrong.append(Finding("wrong", Message("check.finding_text", {"text": str(why)})))
     if found.existence is not None and found.model is not None:
-        wrong += _failures(found.existence, found.model.drive == "crank")
+        wrong += _failures(found.existence, found.model.drive)
     # a row's kind contradicted by its own parameters explains the other differences: the
     # chain was built from that kind
     wrong.sort(key=lambda finding: finding.message.code != "model.params_of_kind")
     unverified = [Finding("not verified", message) for message in _unverified(found)]
-    outside = [Finding("outside program", message) for message in found.analysis.applicability]
+    outside = [Finding("outside program", _refused(found.analysis, message))
+               for message in found.analysis.applicability]
     return (*wrong, *unverified, *outside)
 
 
-def _failures(report: ExistenceReport, crank: bool) -> list[Finding]:
-    """Every interval where a group does not assemble."""
+def _refused(analysis: StructuralAnalysis, condition: Message) -> Message:
+    """A failed condition of the course's method, with what the course's own program refuses
+    in it when that is a drive this program analyses: an input that is not a crank
+    (condition 3: a slider on a frame guide, a linear actuator), or several inputs
+    (condition 5)."""
+    chain = analysis.chain
+    if condition.code == "structure.condition.crank":
+        drives = [_drive_kind(chain, drive) for drive in chain.inputs]
+        kinds = [kind for kind in drives if kind is not None]
+        if kinds:
+            return Message("verdict.refused_drives", {"condition": condition,
+                                                      "drives": joined(kinds)})
+    if condition.code == "structure.condition.mobility" and analysis.m > 1 \
+            and analysis.W == analysis.m:
+        return Message("verdict.refused_inputs", {"condition": condition,
+                                                  "others": analysis.m - 1})
+    return condition
+
+
+def _drive_kind(chain: Chain, drive: Drive) -> Message | None:
+    """What an input is when it is not a crank: a slider driven along a frame guide, or a
+    linear actuator between two moving links (None for a crank, or an input that is
+    neither)."""
+    if drive.pair is not None:
+        pairs = [chain.pair(drive.pair)]
+        name = drive.pair
+    else:
+        assert drive.link is not None  # an input names a link or a pair
+        pairs = [p for p in chain.pairs_of(drive.link) if chain.frame in p.links]
+        name = drive.link
+    if len(pairs) != 1 or pairs[0].type is not PairType.P:
+        return None
+    pair = pairs[0]
+    if chain.frame in pair.links:
+        return Message("verdict.drive_slider", {"name": name, "link": pair.other(chain.frame)})
+    return Message("verdict.drive_actuator", {"name": name, "a": pair.links[0],
+                                              "b": pair.links[1]})
+
+
+def _failures(report: ExistenceReport, drive: str) -> list[Finding]:
+    """Every interval where a group does not assemble, in the input coordinate of the drive:
+    a crank's φ, the cycle parameter t of several inputs, a slider's displacement s, an
+    actuator's length l."""
     from assur.kinematics.reasons import reason_message
 
     found = []
+    angle = drive in ("crank", "laws")
+    symbol = {"laws": "t", "slider": "s"}.get(drive, "l")
     for group in report.groups:
         for interval in group.intervals:
             where = (f"{math.degrees(interval.start):.1f}°…{math.degrees(interval.end):.1f}°"
-                     if crank else f"{interval.start:.2f}…{interval.end:.2f} mm")
-            found.append(Finding("wrong", Message("batch.group_fails", {
-                "group": group.label, "where": where,
-                "reason": reason_message(interval.reason)})))
+                     if angle else f"{interval.start:.2f}…{interval.end:.2f} mm")
+            reason = reason_message(interval.reason)
+            message = (Message("batch.group_fails", {"group": group.label, "where": where,
+                                                     "reason": reason}) if drive == "crank"
+                       else Message("batch.group_fails_at", {
+                           "group": group.label, "where": f"{symbol} = {where}",
+                           "reason": reason}))
+            found.append(Finding("wrong", message))
     return found
 
 

@@ -157,7 +157,8 @@ _P_PREV: RowPair = ("P", "prev")
 #: The kinds of the DGTU method: L0 (input group) and the dyads L1–L5.
 KINDS: Mapping[int, GroupKind] = {
     0: GroupKind(0, "L0", "", 1, roles=(("H_i", "i"),),
-                 columns=("x_O1", "y_O1", "l_1", "phi_1_0"), out_code="0"),
+                 columns=("x_O1", "y_O1", "l_1", "phi_1_0"), out_code="0",
+                 condition="s_min ≤ s ≤ s_max"),
     1: GroupKind(1, "L1", "RRR", 2, ("R", "RR"), (("H_i", "i"), ("H_j", "j"), ("C", "c")),
                  (*_HI, *_HJ, "l_i", "l_j", *_TAIL), {"i": _HI, "j": _HJ},
                  variants=(1, -1), default_variant=1, out_code="8;2",

@@ -267,16 +267,42 @@ class IdentificationRow:
 
 @dataclass(frozen=True, slots=True)
 class Drive:
-    """One input of the mechanism.
+    """One input of the mechanism and its law over the cycle (``docs/tables.md``, "Inputs").
 
     Either a driven link (``link``; it must share exactly one pair with the frame, which is
-    the driven pair) or a driven pair (``pair``), which may join two moving links — an
-    actuator such as a hydraulic cylinder. Both may be given for a link driven through a
-    named pair.
+    the driven pair: a crank's hinge or a slider's guide) or a driven pair (``pair``), which
+    may join two moving links — an actuator such as a hydraulic cylinder. Both may be given
+    for a link driven through a named pair.
+
+    Attributes
+    ----------
+    link, pair : id or None
+        The driven link, the driven pair.
+    stroke : (float, float) or None
+        A linear input's limits, mm: a slider's displacement from its sketched position along
+        the drawn direction, or an actuator's length; reaching beyond them is a failure to
+        assemble (:attr:`assur.kinematics.reasons.Reason.STROKE_END`).
+    phase : float
+        Degrees: a crank's rotation at t = 0; a linear input's phase of its harmonic law.
+    ratio : int
+        A crank turns ``ratio`` times per cycle (its rotation ``phase + ratio·t``); a linear
+        input makes ``ratio`` double strokes per cycle.
+    table : tuple of (float, float)
+        A linear input's law as a table: cycle parameter t (degrees, increasing in
+        [0, 360)) → its coordinate (mm), interpolated by a periodic cubic spline.
     """
 
     link: LinkId | None = None
     pair: PairId | None = None
+    stroke: tuple[float, float] | None = None
+    phase: float = 0.0
+    ratio: int = 1
+    table: tuple[tuple[float, float], ...] = ()
+
+    @property
+    def has_law(self) -> bool:
+        """Whether the row gives a law (a phase, a ratio other than 1, or a table)."""
+        return self.phase != 0.0 or self.ratio != 1 or bool(self.table)
 
 
 Input = Drive

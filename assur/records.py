@@ -31,7 +31,11 @@ from assur.model import LinkId
 if TYPE_CHECKING:  # pragma: no cover
     from assur.api import Analysis
 
-__all__ = ["analysis_record", "floats", "higher_item", "moving_links", "number"]
+__all__ = ["INPUT_NAMES", "analysis_record", "floats", "higher_item", "moving_links", "number"]
+
+#: The name of the input coordinate in the JSON record, by the model's drive (an actuator's
+#: length otherwise).
+INPUT_NAMES = {"crank": "phi", "laws": "t", "slider": "slider_displacement"}
 
 #: A JSON value of the record.
 Record = dict[str, Any]
@@ -134,7 +138,7 @@ def analysis_record(result: Analysis) -> Record:
     out: Record = {
         "mechanism": model.name, "source": model.source, "drive": model.drive,
         "direction": model.direction,
-        "input": {"name": "phi" if crank else "actuator_length",
+        "input": {"name": INPUT_NAMES.get(model.drive, "actuator_length"),
                   "unit": "deg" if crank else "mm",
                   "values": floats(np.degrees(motion.q) if crank else motion.q)},
         "parameters": {name: float(np.asarray(v)) for name, v in model.params.items()},

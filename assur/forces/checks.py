@@ -44,16 +44,17 @@ class Power:
     scale: np.ndarray
 
 
-def lever_torque(power: Power, rate: float) -> tuple[np.ndarray, np.ndarray]:
+def lever_torque(power: Power, rate: float | np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The driving torque (or force) from the power balance, and its round-off scale.
 
     Parameters
     ----------
     power : Power
         The power of every known load per unit input speed.
-    rate : float
+    rate : float or ndarray
         θ_in′, the derivative of the input link's angle with respect to the input coordinate
-        (±1 for a crank; 1 for an actuator, whose force works along its own length).
+        (±1 for a crank; 1 for an actuator, whose force works along its own length; per
+        position when the input follows a law of the cycle parameter).
 
     Returns
     -------

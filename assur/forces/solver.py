@@ -39,7 +39,7 @@ from assur.forces.groups import (
 from assur.forces.linear import equilibrium_linear
 from assur.kinds import KindCode
 from assur.kinematics import jets as J
-from assur.kinematics.analysis import Motion, analyse, sketch_input, values
+from assur.kinematics.analysis import Motion, analyse, held, sketch_input, values
 from assur.kinematics.jets import Jet
 from assur.kinematics.model import GroupModel, KinematicModel
 from assur.model import ForceData, LinkId, PairId, Tabulated
@@ -144,7 +144,9 @@ class ForceAnalysis:
     gravity : complex
         m/s².
     drive : str
-        ``'driving_torque'`` (N·m on the crank, counter-clockwise positive).
+        ``'driving_torque'`` (N·m on the crank, counter-clockwise positive), or
+        ``'driving_force'`` (N, a slider along its drawn guide direction, an actuator along
+        its length) — of the first input.
     driving : ndarray
         The driving torque from the group-by-group solution.
     driving_lever : ndarray
@@ -161,10 +163,18 @@ class ForceAnalysis:
         The label of the singular group, None elsewhere.
     ill_conditioned : ndarray, bool
         A group's normalised determinant is below 1e-6 (reactions grow like its inverse).
-    known, origins, drive_load
+    known, origins, drive_loads
         What the residuals are computed from: every moving link's known loads (resultant
-        force, N, and moment about its origin, N·m), its origin (m), and the drive as a load
-        (the driving torque on the crank, or the actuator's force on its two members).
+        force, N, and moment about its origin, N·m), its origin (m), and each drive as a
+        load (the driving torque on a crank, a slider's driving force along its guide, or an
+        actuator's force on its two members).
+    drivings : dict
+        Label of the group holding each input → its driving effort (N·m on a crank, N on a
+        slider or an actuator), in the order of the inputs; ``driving`` is the first. With
+        several inputs ``driving_lever`` is the first input's effort from the power balance
+        of every load and the other inputs' efforts.
+    drive_kinds : dict
+        The same labels → ``'driving_torque'`` or ``'driving_force'``.
     """
 
     omega: float
@@ -180,7 +190,9 @@ class ForceAnalysis:
     ill_conditioned: np.ndarray
     known: dict[LinkId, tuple[np.ndarray, np.ndarray]] = field(repr=False)
     origins: dict[LinkId, np.ndarray] = field(repr=False)
-    drive_load: DriveLoad = field(repr=False)
+    drive_loads: tuple[DriveLoad, ...] = field(repr=False)
+    drivings: dict[str, np.ndarray] = field(default_factory=dict)
+    drive_kinds: dict[str, str] = field(default_factory=dict)
 
     def __repr__(self) -> str:
         solved = int(np.count_nonzero(self.reason == 0))
@@ -229,7 +241,10 @@ class ForceAnalysis:
             residuals = list(forces.residuals.values())
             worst_force = np.max([r.force for r in residuals], axis=0)
             worst_moment = np.max([r.moment for r in residuals], axis=0)
+        inputs = {label: {"kind": self.drive_kinds[label], "values": floats(values)}
+                  for label, values in self.drivings.items()}
         return {
+            "inputs": inputs,
             "omega": forces.omega,
             "gravity": [forces.gravity.real, forces.gravity.imag],
             drive: floats(forces.driving),
@@ -252,7 +267,7 @@ class ForceAnalysis:
             return link_residuals(
                 self.known, self.origins,
                 [*((r.links, r.x + 1j * r.y, r.point, r.moment)
-                   for r in self.reactions.values()), self.drive_load])
+                   for r in self.reactions.values()), *self.drive_loads])
 
     def message(self, index: int | tuple[int, ...]) -> Message | None:
         """Why the forces at one position are not given (None where they are).
@@ -334,23 +349,80 @@ def kinetostatics(motion: Motion, data: ForceData, omega: float = 0.0) -> ForceA
         power = _known_loads(bodies, motion, frames, data, omega)
         known = {link: (bodies.forces[link], bodies.moments[link]) for link in bodies.forces}
         solved, reason, singular, ill, actuator = _groups(bodies, motion)
-        if actuator is None:
-            driving, drive = _crank(bodies, motion, solved)
-            rate = float(model.direction)
-        else:
-            driving, drive = actuator
-            rate = MM
-        driving = np.where(reason > ForceReason.NOT_ASSEMBLED, np.nan, driving)
-        lever, scale = lever_torque(power, rate)
+        efforts = _efforts(bodies, motion, solved, actuator)
+        blank = reason > ForceReason.NOT_ASSEMBLED
+        drivings = {label: np.where(blank, np.nan, effort.driving)
+                    for label, effort in efforts.items()}
+        first, *others = efforts
+        rate = efforts[first].rate
+        others_power = sum((drivings[label] * efforts[label].rate for label in others),
+                           np.zeros(shape))
+        lever, scale = lever_torque(Power(power.total + others_power, power.scale), rate)
+    driving = drivings[first]
     reactions = {pair: solved[pair] for pair in model.pair_links if pair in solved}
     reason = np.where(~np.asarray(motion.exists) & (reason == 0), ForceReason.NOT_ASSEMBLED,
                       reason).astype(np.int8)
     return ForceAnalysis(omega=float(omega), gravity=complex(data.gravity),
-                         drive="driving_torque" if actuator is None else "driving_force",
-                         driving=driving, driving_lever=lever, power_balance=driving - lever,
-                         power_scale=scale, reactions=reactions, reason=reason,
-                         singular=singular, ill_conditioned=ill, known=known,
-                         origins=bodies.origins, drive_load=drive)
+                         drive=efforts[first].kind, driving=driving, driving_lever=lever,
+                         power_balance=driving - lever, power_scale=scale, reactions=reactions,
+                         reason=reason, singular=singular, ill_conditioned=ill, known=known,
+                         origins=bodies.origins,
+                         drive_loads=tuple(effort.load for effort in efforts.values()),
+                         drivings=drivings,
+                         drive_kinds={label: e.kind for label, e in efforts.items()})
+
+
+@dataclass(frozen=True)
+class _Effort:
+    """One input's driving effort: its kind (``'driving_torque'``, N·m, or
+    ``'driving_force'``, N), its values, its load for the residuals, and the rate of its
+    coordinate per unit input speed (rad or m per unit of the input coordinate)."""
+
+    kind: str
+    driving: np.ndarray
+    load: DriveLoad
+    rate: float | np.ndarray
+
+
+def _efforts(bodies: _Bodies, motion: Motion, reactions: dict[PairId, Reaction],
+             actuator: tuple[np.ndarray, DriveLoad] | None) -> dict[str, _Effort]:
+    """The driving effort of every input, in the order of the mechanism's inputs: the
+    torque on a crank, the force on a slider along its frame guide, an actuator's force."""
+    model = motion.model
+    out: dict[str, _Effort] = {}
+    for group in model.groups:
+        law = model.laws.get(group.label)
+        rate: float | np.ndarray = float(model.direction) if law is None else \
+            np.broadcast_to(np.asarray(_jet(law.coordinate(Jet(motion.q, 1.0, 0.0),
+                                                           model.value)).d1), bodies.shape)
+        if group.group_kind.is_input and group.guide_i is not None:
+            driving, load = _slide(bodies, motion, group, reactions)
+            out[group.label] = _Effort("driving_force", driving, load, MM * rate)
+        elif group.group_kind.is_input:
+            driving, load = _crank(bodies, motion, group, reactions)
+            out[group.label] = _Effort("driving_torque", driving, load, rate)
+        elif group.driven is not None and actuator is not None:
+            out[group.label] = _Effort("driving_force", *actuator,
+                                       MM * (1.0 if law is None else rate))
+    return out
+
+
+def _slide(bodies: _Bodies, motion: Motion, group: GroupModel,
+           reactions: dict[PairId, Reaction]) -> tuple[np.ndarray, DriveLoad]:
+    """An input slider on a frame guide: the driving force along the guide (N, positive
+    along the drawn direction) and the guide's reaction (normal force and couple)."""
+    model = motion.model
+    pair = group.pairs["P_i"]
+    point = bodies.joint(pair)
+    n = bodies.normal(pair)
+    u = -1j * n
+    force = bodies.force(group.i)
+    driving = np.asarray(-dot(force, u))
+    normal = np.asarray(-dot(force, n))
+    couple = -bodies.moment(group.i, point)
+    reactions[pair] = _oriented(motion, Transfer(pair, model.frame, group.i, normal * n, point,
+                                                 normal, couple))
+    return driving, ((model.frame, group.i), driving * u, point, None)
 
 
 #: A load given with the reactions to the residual check: the two links (the load acts on
@@ -358,11 +430,10 @@ def kinetostatics(motion: Motion, data: ForceData, omega: float = 0.0) -> ForceA
 DriveLoad = tuple[tuple[LinkId, LinkId], np.ndarray, np.ndarray, "np.ndarray | None"]
 
 
-def _crank(bodies: _Bodies, motion: Motion, reactions: dict[PairId, Reaction]
-           ) -> tuple[np.ndarray, DriveLoad]:
-    """The input group L0: the frame's reaction at O_1 and the driving torque."""
+def _crank(bodies: _Bodies, motion: Motion, crank: GroupModel,
+           reactions: dict[PairId, Reaction]) -> tuple[np.ndarray, DriveLoad]:
+    """An input crank L0: the frame's reaction at O_1 and the driving torque."""
     model = motion.model
-    crank = model.groups[0]
     pivot = bodies.joint(crank.pairs["H_i"])
     driving = -bodies.moment(crank.i, pivot)
     reactions[crank.pairs["H_i"]] = _oriented(
@@ -512,7 +583,7 @@ def _known_loads(bodies: _Bodies, motion: Motion, frames: dict[LinkId, tuple[Jet
         origin, angle = frames[link]
         return np.asarray(dot(force, origin.d1 * MM) + angle.d1 * moment)
 
-    periodic = model.drive == "crank"
+    periodic = model.periodic
     terms: list[np.ndarray] = []
     for link, mass in data.masses.items():
         origin, angle = frames[link]
@@ -548,7 +619,8 @@ def _sketch_frames(motion: Motion, frames: dict[LinkId, tuple[Jet, Jet]]
     q = np.asarray(motion.q)
     hit = np.flatnonzero(q == sketched[0]) if q.ndim == 1 else np.zeros(0, int)
     if hit.size == 0 or not np.all(np.take(np.asarray(motion.exists), hit[:1], axis=-1)):
-        frames = _frames(analyse(model, sketched, analogs=True))
+        frames = _frames(analyse(held(model), np.zeros(1), analogs=True)
+                         if model.drive == "laws" else analyse(model, sketched, analogs=True))
         return {link: (origin.v, angle.v) for link, (origin, angle) in frames.items()}
     shape = np.shape(motion.exists)
 
@@ -574,6 +646,8 @@ def _expi(angle: np.ndarray) -> np.ndarray:
 
 def _sketched(model: KinematicModel) -> np.ndarray:
     """The input coordinate of the sketched position: φ = 0, or the actuator's length."""
+    if model.drive == "laws":
+        return np.full(1, np.nan)  # the laws need not pass through the sketch
     group = _driven(model)
     if group is None:
         return np.zeros(1)

@@ -21,6 +21,7 @@ for the kinematic model. Every problem of a table is collected and raised as one
 from __future__ import annotations
 
 import datetime
+import itertools
 import os
 from collections.abc import Collection
 from dataclasses import replace
@@ -29,7 +30,7 @@ from typing import Any
 from assur.errors import TableError
 from assur.io.general import read_general
 from assur.io.params import read_params
-from assur.io.reader import MISSING, Node, TableReader, describe, normalise_id
+from assur.io.reader import MISSING, Node, TableReader, describe, is_number, normalise_id
 from assur.io.sketch import Joints, actuator_pairs, read_sketch
 from assur.kinds import KINDS, kind_of
 from assur.model import (
@@ -67,7 +68,7 @@ _TOP_TABLE = ("schema_version", "mechanism", "name", "frame", "general", "geomet
 _MECHANISM = ("name", "frame", "links", "pairs", "inputs", "geometry")
 _PAIR = ("id", "type", "links", "guide", "name")
 _LINK = ("id", "name")
-_INPUT = ("link", "pair")
+_INPUT = ("link", "pair", "stroke", "phase", "ratio", "table")
 IDENTIFICATION_FIELDS = ("L", "seq", "i_minus_1", "j_minus_1", "i", "j", "i_plus_1",
                          "j_plus_1", "variant", "out_code", "params")
 _CLAIMS = ("n_moving_links", "p5", "p4", "W", "N_Q")
@@ -423,9 +424,60 @@ def _read_inputs(mech: Node) -> list[Drive]:
         pair = row.get("pair", kind="id", required=False, default=None)
         if link is None and pair is None and not item.keys() - set(_INPUT):
             mech.reader.problem(where, "chain.input_empty")
-        if MISSING not in (link, pair) and (link is not None or pair is not None):
-            drives.append(Drive(link=link, pair=pair))
+        law = _read_law(row)
+        if MISSING not in (link, pair) and (link is not None or pair is not None) \
+                and law is not None:
+            drives.append(Drive(link, pair, *law))
     return drives
+
+
+def _read_law(row: Node) -> tuple[tuple[float, float] | None, float, int,
+                                  tuple[tuple[float, float], ...]] | None:
+    """An input row's stroke limits and law (``docs/tables.md``, "Inputs"); None after a
+    problem was recorded."""
+    ok = True
+    stroke = row.get("stroke", kind="list", required=False, default=None)
+    if stroke is not None and stroke is not MISSING:
+        if len(stroke) != 2 or not all(is_number(v) for v in stroke):
+            row.reader.problem(f"{row.location} 'stroke'", "chain.input_stroke",
+                               found=describe(stroke))
+            ok = False
+        elif float(stroke[0]) > float(stroke[1]):
+            row.reader.problem(f"{row.location} 'stroke'", "chain.input_stroke_order",
+                               lower=describe(stroke[0]), upper=describe(stroke[1]))
+            ok = False
+        else:
+            stroke = (float(stroke[0]), float(stroke[1]))
+    phase = row.get("phase", kind="number", required=False, default=0.0)
+    ratio = row.get("ratio", kind="int", required=False, default=1, check=_not_zero)
+    table = row.get("table", kind="list", required=False, default=())
+    rows = _law_table(row, table) if table not in ((), MISSING) else ()
+    if table and stroke is None and rows is not None:
+        row.reader.problem(f"{row.location} 'table'", "chain.input_table_stroke")
+        ok = False
+    if MISSING in (stroke, phase, ratio, table) or rows is None or not ok:
+        return None
+    return stroke, float(phase), int(ratio), rows
+
+
+def _not_zero(value: Any) -> Message | None:
+    return Message("rule.not_zero") if value == 0 else None
+
+
+def _law_table(row: Node, table: list[Any]) -> tuple[tuple[float, float], ...] | None:
+    """The rows [t, value] of a law table: t in degrees, increasing in [0, 360); None after a
+    problem was recorded."""
+    where = f"{row.location} 'table'"
+    if len(table) < 2 or not all(isinstance(r, list) and len(r) == 2
+                                 and all(is_number(v) for v in r) for r in table):
+        row.reader.problem(where, "chain.input_table", found=describe(table))
+        return None
+    rows = tuple((float(t), float(v)) for t, v in table)
+    ts = [t for t, _ in rows]
+    if ts[0] < 0 or ts[-1] >= 360 or any(b <= a for a, b in itertools.pairwise(ts)):
+        row.reader.problem(where, "chain.input_table_order", found=describe(ts))
+        return None
+    return rows
 
 
 def _check_pairs(reader: TableReader, pairs: list[_RawPair], links: set[LinkId]) -> None:

@@ -24,14 +24,16 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 import numpy as np
 
 from assur.kinematics import jets as J
+from assur.kinematics.dyads import DyadSolution
 from assur.kinematics.jets import Jet
+from assur.kinematics.laws import STROKE, InputLaw, stroke_margin
 from assur.kinematics.model import Anchor, GroupModel, Guide, KinematicModel
+from assur.kinematics.reasons import Reason
 from assur.kinematics.rules import given, rules_of
 from assur.model import LinkId, PairId
 from assur.typing import Value
 
 if TYPE_CHECKING:  # pragma: no cover
-    from assur.kinematics.dyads import DyadSolution
     from assur.kinematics.higher.kind import HigherGroupSolution
 
 #: What the analysis keeps of a group: a dyad's closed-form solution, or the followed mode
@@ -45,6 +47,9 @@ __all__ = [
     "State",
     "acceleration",
     "analyse",
+    "cycle_model",
+    "held",
+    "input_analogs",
     "input_grid",
     "sketch_input",
     "unwrap",
@@ -167,7 +172,7 @@ def input_grid(model: KinematicModel, points: int) -> np.ndarray:
     [0.     1.5708 3.1416 4.7124]
     """
     lo, hi = model.input_range
-    if model.drive == "crank" and math.isclose(hi - lo, 2 * math.pi):
+    if model.periodic:
         return lo + (hi - lo) * np.arange(points) / points
     return np.linspace(lo, hi, points)
 
@@ -250,6 +255,126 @@ def sketch_input(model: KinematicModel) -> Any:
 
     point, origin = actuator_ends(group)
     return np.abs(drawn(point) - drawn(origin))
+
+
+def cycle_model(model: KinematicModel) -> KinematicModel:
+    """The model with its input a law of one cycle parameter t, whatever drives it.
+
+    A crank turns once per cycle; a slider on a frame guide or an actuator runs its stroke
+    and back harmonically, ``s_min + (s_max − s_min)·(1 − cos t)/2``, with ``s_min``,
+    ``s_max`` (mm) new parameters of the group holding it. Every design of a batch then
+    shares the positions t while its stroke limits may differ (``with_params`` with arrays
+    shaped ``(D, 1)``); a model whose inputs already follow laws is returned as it is.
+
+    Parameters
+    ----------
+    model : KinematicModel
+        Driven by a crank, a slider, an actuator, or by laws (several inputs).
+
+    Returns
+    -------
+    KinematicModel
+        ``drive == 'laws'``, positions t ∈ [0, 2π) (:func:`input_grid`); the force
+        analysis then takes ω as the rate of t (rad/s).
+
+    Raises
+    ------
+    ValueError
+        For an actuator inside a triad or a class IV group, which is followed along its
+        length only.
+
+    Examples
+    --------
+    Two boom designs whose cylinders end their strokes at 120 and 135 mm, at four positions:
+
+    >>> import pathlib, assur
+    >>> tables = pathlib.Path(assur.__file__).parents[1] / "input_tables"
+    >>> cycle = cycle_model(assur.load_model(tables / "hydraulic_boom_forces.yaml"))
+    >>> cycle.drive, cycle.params["L1(1,2).s_min"], cycle.params["L1(1,2).s_max"]
+    ('laws', 95.0, 135.0)
+    >>> designs = cycle.with_params({"L1(1,2).s_max": np.array([[120.0], [135.0]])})
+    >>> motion = analyse(designs, input_grid(designs, 4))
+    >>> values(motion.sliders["Pd"].s).round(3).tolist()
+    [[95.0, 107.5, 120.0, 107.5], [95.0, 115.0, 135.0, 115.0]]
+    """
+    if model.drive == "laws":
+        return model
+    params = dict(model.params)
+    if model.drive == "crank":
+        group = next(g for g in model.groups if g.group_kind.is_input)
+        law = InputLaw(group.label, False, ratio=model.direction)
+    else:
+        group = next(g for g in model.groups if g.driven is not None
+                     or g.group_kind.is_input)
+        if group.layout is not None:
+            raise ValueError(f"the actuator of {group.label} is followed along its length "
+                             "only; a triad or class IV group takes no law of a cycle")
+        law = InputLaw(group.label, True, limited=True)
+        params.update({group.column(c): v for c, v in zip(STROKE, model.input_range,
+                                                           strict=True)})
+    return replace(model, params=params, drive="laws", direction=1,
+                   input_range=(0.0, 2 * math.pi), laws={group.label: law})
+
+
+def input_analogs(model: KinematicModel, label: str, q: np.ndarray | None = None, *,
+                  points: int = 360) -> Motion:
+    """The motion of a mechanism with several inputs, its analogs taken with respect to one
+    input's coordinate, the others held (partial derivatives ∂x/∂q_k, ∂²x/∂q_k²).
+
+    Parameters
+    ----------
+    model : KinematicModel
+        Whose inputs follow laws (``drive == 'laws'``, :func:`cycle_model`).
+    label : str
+        The group holding the input (a key of ``model.laws``: ``"L0(4)"``).
+    q : array_like, optional
+        Positions t (radians); default :func:`input_grid` with ``points``.
+    points : int
+        Grid size when ``q`` is not given.
+
+    Returns
+    -------
+    Motion
+        Values as :func:`analyse` gives them; the jets' ``d1``, ``d2`` are per radian of a
+        crank's rotation, or per mm of a slider's or an actuator's coordinate.
+
+    Raises
+    ------
+    KeyError
+        When no input's law is held by ``label``.
+
+    Examples
+    --------
+    By the chain rule the analogs with respect to t are Σ_k ∂x/∂q_k · q_k′(t):
+
+    >>> import pathlib, assur
+    >>> tables = pathlib.Path(assur.__file__).parents[1] / "input_tables"
+    >>> model = assur.load_model(tables / "five_bar_two_cranks.yaml")   # φ1 = t, φ4 = 90° + 2t
+    >>> t = input_grid(model, 8)
+    >>> d1 = input_analogs(model, "L0(1)", t).joints["C"].d1
+    >>> d4 = input_analogs(model, "L0(4)", t).joints["C"].d1
+    >>> bool(np.allclose(analyse(model, t, analogs=True).joints["C"].d1, d1 + 2 * d4))
+    True
+    """
+    if label not in model.laws:
+        raise KeyError(f"no input is held by {label!r}; inputs: {', '.join(model.laws)}")
+    laws = {name: replace(law, moving=name == label) for name, law in model.laws.items()}
+    return analyse(replace(model, laws=laws), q, points=points, analogs=True)
+
+
+def held(model: KinematicModel) -> KinematicModel:
+    """The model of a cycle of laws with every input held at its sketched position (a crank
+    at rotation 0, a slider at displacement 0, an actuator at its drawn length), whatever
+    the cycle parameter: the sketched pose, which the laws need not pass through."""
+    laws = {}
+    for label, law in model.laws.items():
+        drawn = 0.0
+        group = model.group(label)
+        if group.driven is not None:
+            drawn = float(np.max(sketch_input(replace(model, laws={}))))
+        laws[label] = replace(law, phase=drawn if law.linear else 0.0, ratio=0, table=(),
+                              limited=False, held=True)
+    return replace(model, laws=laws)
 
 
 def full(x: Any, shape: tuple[int, ...], jet: bool = False) -> Any:
@@ -347,8 +472,20 @@ class State:
         self.sliders[pair] = SliderState(pair, carrier, slider, point, s, base, angle, offset)
 
     def solve(self, group: GroupModel, q: Value) -> None:
-        """Solve one group (its kind's solver) and record its links' frames."""
+        """Solve one group (its kind's solver) and record its links' frames; a group that
+        holds an input with a law gets that input's coordinate at the cycle parameter q, and
+        does not assemble where a linear input is beyond its stroke."""
+        law = self.model.laws.get(group.label)
+        margin = None
+        if law is not None:
+            q = law.coordinate(q, self.p)
+            if law.limited:
+                lo, hi = (self.p(group.column(column)) for column in STROKE)
+                margin = stroke_margin(q, lo, hi)
+                q = J.where(margin >= -STROKE_TOLERANCE, q, np.nan)
         sol = rules_of(group.group_kind).solve(self, group, q)
+        if margin is not None and isinstance(sol, DyadSolution):
+            sol = _stroke_limited(sol, margin, group.group_kind.is_input)
         self.solutions[group.label] = sol
         self.frames[group.i] = (sol.origin_i, sol.angle_i)
         if group.j is not None:
@@ -375,6 +512,22 @@ class State:
 
     def trace(self) -> dict[str, Value]:
         return {point.name: self.point(point.anchor) for point in self.model.tracing}
+
+
+#: A linear input within this (normalised) distance beyond its stroke end is at the end.
+STROKE_TOLERANCE = 1e-12
+
+
+def _stroke_limited(sol: DyadSolution, margin: np.ndarray, is_input: bool) -> DyadSolution:
+    """A group holding a linear input, failing where the input is beyond its stroke; an
+    input group's margin is its margin to the stroke ends."""
+    shape = np.broadcast_shapes(np.shape(sol.exists), np.shape(margin))
+    inside = np.broadcast_to(margin >= -STROKE_TOLERANCE, shape)
+    own = np.broadcast_to(margin if is_input else sol.margin, shape)
+    return sol._replace(
+        margin=np.where(inside, own, margin),
+        exists=np.broadcast_to(sol.exists, shape) & inside,
+        reason=np.where(inside, sol.reason, Reason.STROKE_END).astype(np.int8))
 
 
 def velocity(x: Jet, omega: float | np.ndarray) -> np.ndarray:

@@ -41,6 +41,7 @@ from assur.errors import Issue, StructureError, TableError
 from assur.io.chain_table import load_chain
 from assur.io.reader import Node, TableReader, describe, latin_form, lookalike_letters
 from assur.kinds import KINDS, GroupKind, GuideColumns, HingeColumns, kind_of, kind_of_class
+from assur.kinematics.laws import STROKE, InputLaw
 from assur.kinematics.model import (
     KIND_COLUMNS,
     Anchor,
@@ -51,6 +52,7 @@ from assur.kinematics.model import (
 )
 from assur.kinematics.rules import rules_of
 from assur.model import (
+    Drive,
     ForceData,
     GroupParams,
     LinkId,
@@ -187,15 +189,12 @@ class Topology:
                 "structure.in_no_group", {"links": ", ".join(map(str, analysis.leftover))}))
             raise StructureError(Message("structure.no_model",
                                          {"source": chain.source, "found": found}))
-        if len(chain.inputs) != 1:
-            raise StructureError(Message("structure.inputs_not_analysed",
-                                         {"source": chain.source, "n": len(chain.inputs)}))
         for group in analysis.groups:
             if group.kind is None and kind_of_class(group.group_class) is None:
                 raise StructureError(Message("structure.unsolved_class", {
                     "source": chain.source, "group": group.name, "cls": group.group_class}))
         self.pairs = {pair.id: pair for pair in chain.pairs}
-        self.drive = chain.inputs[0]
+        self.drives = chain.inputs
         self.groups = list(analysis.groups)
         self.composite_group = next((g for g in self.groups if g.composite), None)
         self.labels = {id(group): f"{self.kind(group).code}("
@@ -212,28 +211,46 @@ class Topology:
         """The group's label, the prefix of its parameter names (``"L1(2,3)"``)."""
         return self.labels[id(group)]
 
-    def crank(self) -> tuple[LinkId, PairId]:
-        """The crank and its driven pair (to the frame)."""
-        drive = self.drive
-        if drive.link is not None:
-            link = drive.link
-            pairs = [p for p in self.chain.pairs
-                     if link in p.links and self.frame in p.links]
-            if drive.pair is not None:
-                pairs = [self.pairs[drive.pair]] if drive.pair in self.pairs else pairs
-            if len(pairs) != 1 or pairs[0].type != PairType.R:
-                raise StructureError(Message("structure.input_not_crank",
-                                             {"source": self.chain.source, "link": link}))
-            return link, pairs[0].id
-        raise AssertionError("not a crank drive")  # pragma: no cover
+    def on_frame(self, drive: Drive) -> tuple[LinkId, Pair] | None:
+        """The driven link and its driven pair with the frame (a crank's hinge, a slider's
+        guide); None for an actuator, a driven pair between two moving links."""
+        if drive.link is None:
+            pair = self.pairs.get(drive.pair) if drive.pair is not None else None
+            if pair is None or self.frame not in pair.links:
+                return None
+            return pair.other(self.frame), pair
+        link = drive.link
+        pairs = [p for p in self.chain.pairs if link in p.links and self.frame in p.links]
+        if drive.pair is not None:
+            named = self.pairs.get(drive.pair)
+            if named is not None and self.frame not in named.links:
+                return None
+            pairs = [named] if named is not None else pairs
+        if len(pairs) != 1:
+            raise StructureError(Message("structure.input_not_crank",
+                                         {"source": self.chain.source, "link": link}))
+        return link, pairs[0]
 
-    def input_group(self) -> GroupModel:
-        """The input group L0: the crank, hinged to the frame at O_1."""
-        crank, driven = self.crank()
-        label = f"L0({crank})"
-        return GroupModel(label, 0, 1, crank, None,
-                          hinge_i=Anchor(self.frame, label, "x_O1", "y_O1", False),
-                          pairs={"H_i": driven})
+    def input_groups(self) -> list[GroupModel]:
+        """The input groups L0: a crank hinged to the frame at O_1, or a slider on a frame
+        guide through S (columns ``x_S``, ``y_S``, ``beta_S``), one per input on the frame."""
+        groups = []
+        for drive in self.drives:
+            found = self.on_frame(drive)
+            if found is None:
+                continue
+            link, pair = found
+            label = f"L0({link})"
+            if pair.type == PairType.R:
+                groups.append(GroupModel(label, 0, 1, link, None,
+                                         hinge_i=Anchor(self.frame, label, "x_O1", "y_O1", False),
+                                         pairs={"H_i": pair.id}))
+            else:
+                guide = Guide(pair.id, self.frame, Anchor(self.frame, label, "x_S", "y_S", False),
+                              "beta_S", None)
+                groups.append(GroupModel(label, 0, 1, link, None, guide_i=guide,
+                                         pairs={"P_i": pair.id}))
+        return groups
 
     def dyad_pairs(self, group: AssurGroup) -> tuple[Pair, Pair, Pair]:
         """The external pair of i, the external pair of j and the internal pair."""
@@ -310,7 +327,7 @@ class Builder:
         owner = self.owner[link]
         count = self.attach_count.get(link, 0)
         self.attach_count[link] = count + 1
-        if owner.group_kind.is_input and count == 0:
+        if owner.hinge_i is not None and owner.group_kind.is_input and count == 0:
             self.put(owner.label, "l_1", abs(self.local(link, point)))
             return Anchor(link, owner.label, "l_1", None, True)
         letter = _LETTERS.get(self.links[link][1], self.links[link][1])
@@ -372,7 +389,8 @@ class Builder:
 
     def model(self, *, direction: int, drive: str,
               input_range: tuple[float, float] = (0.0, 2 * math.pi),
-              tracing: tuple[TracePoint, ...] = ()) -> KinematicModel:
+              tracing: tuple[TracePoint, ...] = (),
+              laws: Mapping[str, InputLaw] | None = None) -> KinematicModel:
         """The model of what was built (after every problem was raised)."""
         chain = self.topo.chain
         return KinematicModel(name=chain.name, frame=self.topo.frame, groups=tuple(self.groups),
@@ -380,7 +398,7 @@ class Builder:
                               input_range=input_range, tracing=tracing, links=self.links,
                               pair_links={p.id: (p.type.value, p.links, p.guide)
                                           for p in chain.pairs},
-                              source=chain.source)
+                              source=chain.source, laws=dict(laws or {}))
 
     def _ordered(self) -> dict[str, Any]:
         """Parameters in layering and column order; every dyad gets its margin δ (default 0)."""
@@ -450,9 +468,8 @@ def model_from_sketch(analysis: StructuralAnalysis) -> KinematicModel:
     sketch = topo.chain.geometry
     assert sketch is not None
     build = Builder(topo, sketch)
-    actuator = topo.composite_group is not None
-    if not actuator:
-        _sketch_crank(topo, build)
+    for start in topo.input_groups():
+        _sketch_input(topo, build, start)
     for seq, group in enumerate(topo.groups, start=2):
         _sketch_group(topo, build, group, seq)
     tracing = tuple(TracePoint(trace.name, build.polar(trace.link, trace.point, trace.name))
@@ -461,16 +478,79 @@ def model_from_sketch(analysis: StructuralAnalysis) -> KinematicModel:
     build.reader.raise_if_any()
     for label, delta in margins.items():
         build.params[f"{label}.delta"] = float(delta)
-    if not actuator:
-        return build.model(direction=sketch.rotation, drive="crank", tracing=tracing)
-    span = sketch.stroke
-    if span is None:
-        from assur.kinematics.higher.kind import actuator_ends  # only for an actuator
+    return _driven_model(topo, build, sketch, tracing)
 
-        ends = actuator_ends(next(group for group in build.groups if group.driven))
-        length = abs(build.point(topo.pairs[ends[0]]) - build.point(topo.pairs[ends[1]]))
-        span = (length, length)
+
+def _driven_model(topo: Topology, build: Builder, sketch: Sketch,
+                  tracing: tuple[TracePoint, ...]) -> KinematicModel:
+    """The model with its drive: one crank, one actuator or one slider moved over its
+    stroke, or every input a law of one cycle parameter (several inputs, or a law given)."""
+    drives = topo.drives
+    holders = [_holder(topo, build, drive) for drive in drives]
+    if len(drives) > 1 or drives[0].has_law:
+        laws = _laws(topo, build, sketch, holders)
+        build.reader.raise_if_any()
+        return build.model(direction=1, drive="laws", laws=laws, tracing=tracing)
+    drive, group = drives[0], holders[0]
+    if group.driven is None and group.hinge_i is not None:
+        if drive.stroke is not None:
+            build.problem("mechanism.inputs[0] 'stroke'", "model.crank_stroke", group=group.label)
+            build.reader.raise_if_any()
+        return build.model(direction=sketch.rotation, drive="crank", tracing=tracing)
+    span = drive.stroke or sketch.stroke
+    if group.driven is None:
+        return build.model(direction=1, drive="slider", input_range=span or (0.0, 0.0),
+                           tracing=tracing)
+    if span is None:
+        span = (_drawn_length(topo, build, group),) * 2
     return build.model(direction=1, drive="actuator", input_range=span, tracing=tracing)
+
+
+def _holder(topo: Topology, build: Builder, drive: Drive) -> GroupModel:
+    """The group that holds an input: its input group L0, or the actuator's group."""
+    found = topo.on_frame(drive)
+    if found is None:
+        return next(group for group in build.groups if group.driven is not None)
+    return next(group for group in build.groups
+                if group.group_kind.is_input and group.i == found[0])
+
+
+def _drawn_length(topo: Topology, build: Builder, group: GroupModel) -> float:
+    """An actuator's length as sketched (the distance of the hinges of the bar it is)."""
+    from assur.kinematics.higher.kind import actuator_ends  # only for an actuator
+
+    ends = actuator_ends(group)
+    return abs(build.point(topo.pairs[ends[0]]) - build.point(topo.pairs[ends[1]]))
+
+
+def _laws(topo: Topology, build: Builder, sketch: Sketch, holders: list[GroupModel]
+          ) -> dict[str, InputLaw]:
+    """Each input's law of the cycle parameter (``docs/tables.md``, "Inputs"); a linear
+    input's stroke limits become its group's parameters ``s_min``, ``s_max``."""
+    laws: dict[str, InputLaw] = {}
+    for index, (drive, group) in enumerate(zip(topo.drives, holders, strict=True)):
+        where = f"mechanism.inputs[{index}]"
+        crank = group.driven is None and group.hinge_i is not None
+        if crank:
+            if drive.stroke is not None or drive.table:
+                build.problem(f"{where} {'stroke' if drive.stroke else 'table'!r}",
+                              "model.crank_stroke", group=group.label)
+            laws[group.label] = InputLaw(group.label, False, math.radians(drive.phase),
+                                         drive.ratio)
+            continue
+        if group.layout is not None:  # a triad or class IV group follows its mode in length
+            build.problem(f"{where} 'pair'", "model.law_higher_actuator", group=group.label)
+            continue
+        stroke = drive.stroke or (sketch.stroke if group.driven is not None else None)
+        if stroke is None:
+            build.problem(f"{where} 'stroke'", "model.law_stroke", group=group.label)
+            continue
+        for column, value in zip(STROKE, stroke, strict=True):
+            build.put(group.label, column, value)
+        table = tuple((math.radians(t), v) for t, v in drive.table)
+        laws[group.label] = InputLaw(group.label, True, math.radians(drive.phase),
+                                     drive.ratio, table, limited=True)
+    return laws
 
 
 def _margins(build: Builder, value: float | Mapping[str, float] | None) -> dict[str, float]:
@@ -483,9 +563,19 @@ def _margins(build: Builder, value: float | Mapping[str, float] | None) -> dict[
     return {label: value[label] for label in labels if label in value}
 
 
-def _sketch_crank(topo: Topology, build: Builder) -> None:
-    group = topo.input_group()
-    crank, driven, label = group.i, group.pairs["H_i"], group.label
+def _sketch_input(topo: Topology, build: Builder, group: GroupModel) -> None:
+    """An input group from the sketch: a slider's guide line through its drawn point, or a
+    crank from its pivot to its first pin."""
+    label = group.label
+    if group.guide_i is not None:
+        pair = topo.pairs[group.pairs["P_i"]]
+        point, theta = build.point(pair), build.direction(pair)
+        build.put(label, "x_S", point.real)
+        build.put(label, "y_S", point.imag)
+        build.put(label, "beta_S", math.degrees(theta))
+        build.add(group, (point, theta), None)
+        return
+    crank, driven = group.i, group.pairs["H_i"]
     pivot = build.point(topo.pairs[driven])
     pins = [p for p in topo.chain.pairs if crank in p.links and p.id != driven]
     if not pins:
@@ -587,7 +677,11 @@ def model_from_params(analysis: StructuralAnalysis) -> KinematicModel:
         row.key: row.variant for row in chain.identification or ()}
     if topo.composite_group is not None:
         raise StructureError(Message("structure.actuator_sketch", {"source": chain.source}))
-    group0 = topo.input_group()
+    inputs = topo.input_groups()
+    if len(topo.drives) != 1 or len(inputs) != 1 or inputs[0].hinge_i is None \
+            or topo.drives[0].has_law:
+        raise StructureError(Message("structure.params_one_crank", {"source": chain.source}))
+    group0 = inputs[0]
     params0 = _params(build, rows, group0, group0.label, kind_of(0))
     direction = params0.direction if params0 is not None else 1
     build.add(group0)

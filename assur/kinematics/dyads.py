@@ -45,6 +45,7 @@ __all__ = [
     "solve_rpr",
     "solve_rrp",
     "solve_rrr",
+    "solve_slide",
 ]
 
 
@@ -311,6 +312,41 @@ def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
     return _finish(
         shape, (o, length, angle), margin, 0.0, lambda: Reason.UNDEFINED_INPUT,
         (point, _spread(o, shape), _spread(angle, shape), None, None, None, None), jets,
+    )
+
+
+def solve_slide(base: Value, angle: Value, s: Value) -> DyadSolution:
+    """L0 of a slider driven along a frame guide: its point ``base + s·u(angle)``.
+
+    Parameters
+    ----------
+    base : complex
+        The guide's point at s = 0 (the slider's sketched point).
+    angle : float
+        The guide's direction, radians.
+    s : float, array or Jet
+        The slider's displacement (the input coordinate), mm.
+
+    Returns
+    -------
+    DyadSolution
+        ``c`` = ``origin_i`` = the slider's point, ``angle_i`` = the guide's direction,
+        ``s_i`` = s; margin 1 (a slider always assembles; its stroke is checked by the
+        analysis, :mod:`assur.kinematics.laws`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> solve_slide(1 + 1j, np.pi / 2, np.array([0.0, 2.0])).c.round(12).tolist()
+    [(1+1j), (1+3j)]
+    """
+    shape, jets = _layout(base, angle, s)
+    with np.errstate(all="ignore"):
+        point = s * J.expi(angle) + base
+        margin = np.where(np.isfinite(J.value(point)), 1.0, np.nan)
+    return _finish(
+        shape, (base, angle, s), margin, 0.0, lambda: Reason.UNDEFINED_INPUT,
+        (point, point, _spread(angle, shape), None, None, s, None), jets,
     )
 
 

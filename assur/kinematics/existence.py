@@ -21,8 +21,9 @@ import numpy as np
 from assur.kinds import HIGHER, KINDS
 from assur.kinematics import jets as J
 from assur.kinematics.analysis import GroupSolution, Motion, analyse
+from assur.kinematics.laws import STROKE
 from assur.kinematics.model import GroupModel, KinematicModel
-from assur.kinematics.reasons import reason_text
+from assur.kinematics.reasons import Reason, reason_text
 from assur.kinematics.rules import ShortfallAt, rules_of
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -34,6 +35,7 @@ __all__ = [
     "FailureInterval",
     "GroupExistence",
     "check_existence",
+    "checked_groups",
     "first_failure",
 ]
 
@@ -172,12 +174,19 @@ class ExistenceReport:
         return bool((self.first < 0).all())
 
 
+def checked_groups(model: KinematicModel) -> list[GroupModel]:
+    """The groups whose existence is checked, in layering order: every group but the input
+    groups, and an input group whose linear input has stroke limits."""
+    return [g for g in model.groups if not g.group_kind.is_input
+            or (g.label in model.laws and model.laws[g.label].limited)]
+
+
 def first_failure(motion: Motion) -> np.ndarray:
     """Index (into the dyads in layering order) of the first failing group; −1 if none.
 
     Works for any shape of positions and designs, e.g. ``(D, N)``.
     """
-    dyads = [g for g in motion.model.groups if not g.group_kind.is_input]
+    dyads = checked_groups(motion.model)
     shape = np.shape(motion.q)
     first = np.full(np.broadcast_shapes(shape, *(np.shape(motion.solutions[g.label].exists)
                                                  for g in dyads)), -1, dtype=np.int32)
@@ -224,11 +233,11 @@ def check_existence(model: KinematicModel, q: np.ndarray | None = None, *, point
     q = motion.q
     if q.ndim != 1 or model.design_shape not in ((), (1,), (1, 1)):
         raise ValueError("check_existence works on one design over a 1-D grid of positions")
-    dyads = [g for g in model.groups if not g.group_kind.is_input]
+    dyads = checked_groups(model)
     first = first_failure(motion).reshape(q.shape)
     span = model.input_range[1] - model.input_range[0]
-    periodic = model.drive == "crank" and math.isclose(span, 2 * math.pi) and \
-        q.size > 1 and math.isclose(q[-1] + (q[1] - q[0]) - q[0], 2 * math.pi)
+    periodic = model.periodic and q.size > 1 and \
+        math.isclose(q[-1] + (q[1] - q[0]) - q[0], 2 * math.pi)
     groups = []
     for index, group in enumerate(dyads):
         sol = motion.solutions[group.label]
@@ -344,6 +353,10 @@ def _shortfall(model: KinematicModel, motion: Motion, group: GroupModel, at: int
         return complex(np.broadcast_to(J.value(motion.joints[group.pairs[role]]),
                                        motion.q.shape)[at])
 
+    margin = float(np.broadcast_to(sol.margin, motion.q.shape)[at])
+    if int(np.broadcast_to(sol.reason, motion.q.shape)[at]) == Reason.STROKE_END:
+        lo, hi = (float(np.max(model.value(group.column(c)))) for c in STROKE)
+        return -margin * max(hi - lo, 1.0), "mm"
     rule = rules_of(group.group_kind).shortfall
     assert rule is not None  # every kind but the input group has one
     return rule(group, ShortfallAt(

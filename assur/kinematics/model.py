@@ -23,6 +23,7 @@ import numpy as np
 
 from assur.io.params import SUPPLIED
 from assur.kinds import HIGHER, KINDS, GroupKind, kind_of
+from assur.kinematics.laws import InputLaw
 from assur.model import LinkId, PairId
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -204,12 +205,14 @@ class KinematicModel:
         Parameter name → value (float or array broadcasting as ``(D, 1)``), table units.
     direction : int
         Input direction s = +1 (counter-clockwise) or −1 (clockwise) for a crank.
-    drive : {'crank', 'actuator'}
+    drive : {'crank', 'actuator', 'slider', 'laws'}
         What the input coordinate q is: the crank rotation φ (radians, φ = 0 at the
-        reference position) or the actuator length (mm).
+        reference position), the actuator length (mm), a slider's displacement along its
+        frame guide from the reference position (mm), or the cycle parameter t (radians) of
+        which every input's coordinate is a law (``laws``; several inputs, or one given a law).
     input_range : tuple of float
-        The analysed interval of q: (0, 2π) for a full-turn crank, the stroke for an
-        actuator.
+        The analysed interval of q: (0, 2π) for a full-turn crank or a cycle of laws, the
+        stroke for an actuator or a slider.
     tracing : tuple of TracePoint
         Named tracing points.
     links : mapping
@@ -218,6 +221,9 @@ class KinematicModel:
         Pair id → (type ``'R'``/``'P'``, the two links, guide carrier or None).
     source : str
         The table the model was built from.
+    laws : mapping
+        Label of the group holding an input → its :class:`~assur.kinematics.laws.InputLaw`
+        (``drive == 'laws'`` only).
 
     Examples
     --------
@@ -240,6 +246,13 @@ class KinematicModel:
     pair_links: Mapping[PairId, tuple[str, tuple[LinkId, LinkId], LinkId | None]] = field(
         default_factory=dict)
     source: str = "<data>"
+    laws: Mapping[str, InputLaw] = field(default_factory=dict)
+
+    @property
+    def periodic(self) -> bool:
+        """Whether the analysed interval is one full cycle (a crank's turn, a cycle of laws)."""
+        lo, hi = self.input_range
+        return self.drive in ("crank", "laws") and math.isclose(hi - lo, 2 * math.pi)
 
     def parameter_names(self) -> tuple[str, ...]:
         """Every parameter name, in layering order and column order."""

@@ -1,7 +1,7 @@
 """Why a group does not assemble at a position: every code any group kind reports.
 
 The dyads L1–L5 report the codes 1–7 (``docs/group_solvers.md``), the triad and the class IV
-group (:mod:`assur.kinematics.higher`) 7–9; every consumer (text, JSON, CSV, plots, the
+group (:mod:`assur.kinematics.higher`) 7–9, a linear input beyond its stroke 10; every consumer (text, JSON, CSV, plots, the
 report, batch) turns a code into its sentence with :func:`reason_text`. The sentence of
 :class:`Reason` ``R`` is the catalogue entry ``reason.<r>`` (:mod:`assur.text`).
 """
@@ -31,6 +31,8 @@ class Reason(IntEnum):
     MODE_ENDS = 8
     #: The followed mode is not connected to the sketched position, or is ambiguous.
     NOT_FOLLOWED = 9
+    #: A linear input (a slider, an actuator) is beyond an end of its stroke.
+    STROKE_END = 10
 
     @property
     def code(self) -> str:

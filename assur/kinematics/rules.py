@@ -130,12 +130,24 @@ def given(x: Value | None) -> Value:
 
 
 def _solve_input(state: State, group: GroupModel, q: Value) -> DyadSolution:
+    if group.guide_i is not None:
+        return _solve_slide(state, group, q)
     p, col = state.p, group.column
     angle = p(col("phi_1_0")) + state.model.direction * q
     pivot = p(col("x_O1")) + 1j * p(col("y_O1"))
     sol = dyads.solve_input(pivot, p(col("l_1")), angle)
     state.joints[group.pairs["H_i"]] = sol.origin_i
     state.rotors[group.i] = (sol.c - sol.origin_i) / p(col("l_1"))
+    return sol
+
+
+def _solve_slide(state: State, group: GroupModel, q: Value) -> DyadSolution:
+    """A slider driven along a frame guide: q its displacement from the sketched point."""
+    assert group.guide_i is not None
+    base, theta, _ = state.guide(group.guide_i)
+    sol = dyads.solve_slide(base, theta, q)
+    state.rotors[group.i] = J.expi(theta)
+    state.slider(group.pairs["P_i"], group.guide_i.carrier, group.i, sol.c, q, base, theta, 0.0)
     return sol
 
 

@@ -172,14 +172,14 @@ def joint_rotations(motion: Motion) -> list[JointRotation]:
         for role, pid in group.pairs.items():
             if not role.startswith("P"):
                 owner[pid] = group.label
-    crank_pivot = next((g.pairs["H_i"] for g in model.groups if g.group_kind.is_input), None)
+    pivots = {g.pairs["H_i"] for g in model.groups if g.group_kind.is_input and "H_i" in g.pairs}
     out = []
     for pid, (ptype, links, _) in model.pair_links.items():
         if ptype != "R" or pid not in owner:
             continue
         a, b = links
         theta = _angle(motion, a) - _angle(motion, b)
-        full = pid == crank_pivot
+        full = pid in pivots
         out.append(JointRotation(pid, (a, b), owner[pid], unwrap(theta), full))
     return out
 

@@ -170,7 +170,7 @@ def failure_text(motion: Motion, failure: Failure, lang: str) -> str:
     if failure.runs == ((0, n - 1),):
         where = render("plot.fails_whole_cycle", lang)
     else:
-        crank = motion.model.drive == "crank"
+        crank = motion.model.periodic
         q = np.degrees(motion.q) if crank else motion.q
         unit = "°" if crank else " mm"
         ranges = "; ".join(f"{q[a]:.1f}{unit}" if a == b else f"{q[a]:.1f}…{q[b]:.1f}{unit}"
@@ -190,8 +190,11 @@ def _title(motion: Motion, index: int, failure: Failure | None, lang: str, wrap:
         arm = _at(crank.c, index) - _at(crank.origin_i, index)
         absolute = math.degrees(float(np.angle(arm))) % 360.0
         position = render("plot.crank_angle", lang, angle=math.degrees(q), absolute=absolute)
+    elif model.drive == "laws":
+        position = render("plot.cycle_t", lang, angle=math.degrees(q))
     else:
-        position = render("plot.actuator_length", lang, length=q)
+        position = render("plot.slider_s" if model.drive == "slider" else "plot.actuator_length",
+                          lang, length=q)
     lines = [model.name, position]
     if failure is not None:
         lines.append(failure_text(motion, failure, lang))

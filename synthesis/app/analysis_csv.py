@@ -13,7 +13,7 @@ from assur import Jet
 from assur.api import Analysis
 from assur.kinematics.analysis import acceleration, unwrap, values, velocity
 from assur.kinematics.jets import as_jet
-from assur.records import moving_links
+from assur.records import INPUT_NAMES, moving_links
 
 __all__ = ["analysis_csv"]
 
@@ -51,7 +51,8 @@ def analysis_csv(result: Analysis,
     model, motion, omega = result.model, result.motion, result.omega
     q = motion.q
     columns: list[tuple[str, np.ndarray]] = [
-        ("phi_deg" if result.crank else "actuator_mm", np.degrees(q) if result.crank else q)]
+        (f"{INPUT_NAMES.get(result.model.drive, 'actuator')}_{'deg' if result.crank else 'mm'}",
+         np.degrees(q) if result.crank else q)]
 
     def add(name: str, jet: Jet, point: bool) -> None:
         parts = [("", jet.v), ("_d1", jet.d1), ("_d2", jet.d2)]

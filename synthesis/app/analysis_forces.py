@@ -30,9 +30,22 @@ import numpy as np
 
 from assur.forces.groups import ForceReason
 from assur.forces.solver import ForceAnalysis
+from assur.kinds import KINDS
 from assur.model import LinkId, PairId
 
-__all__ = ["Extreme", "ForceSummary", "PairPeak", "summarise"]
+__all__ = ["Extreme", "ForceSummary", "InputEffort", "PairPeak", "summarise"]
+
+
+@dataclass(frozen=True, slots=True)
+class InputEffort:
+    """One input's driving effort over the positions: the label of its group, its kind
+    (``'driving_torque'``, N·m, or ``'driving_force'``, N), its extremes and mean."""
+
+    label: str
+    kind: str
+    low: Extreme
+    high: Extreme
+    mean: float
 
 
 @dataclass(frozen=True, slots=True)
@@ -76,6 +89,9 @@ class ForceSummary:
         Reason → the first position where it holds (positions not solved).
     solved, total : int
         Positions solved, and all positions.
+    inputs : tuple of InputEffort
+        Each input's driving effort, when there are several inputs or the input is a slider
+        (empty otherwise: ``low``, ``high``, ``mean`` say it).
     """
 
     low: Extreme
@@ -89,6 +105,7 @@ class ForceSummary:
     unsolved: dict[ForceReason, tuple[float, str | None]]
     solved: int
     total: int
+    inputs: tuple[InputEffort, ...] = ()
 
 
 def summarise(forces: ForceAnalysis, q: np.ndarray) -> ForceSummary:
@@ -116,15 +133,31 @@ def summarise(forces: ForceAnalysis, q: np.ndarray) -> ForceSummary:
     for index in np.flatnonzero(forces.reason):
         reason = ForceReason(int(forces.reason[index]))
         unsolved.setdefault(reason, (float(q[index]), forces.singular[index]))
+    inputs: tuple[InputEffort, ...] = ()
+    slider = forces.drive == "driving_force" and next(iter(forces.drivings)).startswith(
+        KINDS[0].code)  # a force on an input group: a slider on a frame guide
+    if len(forces.drivings) > 1 or slider:
+        inputs = tuple(_effort(label, forces.drive_kinds[label], values, q)
+                       for label, values in forces.drivings.items())
     return ForceSummary(
         low=_extreme(driving, q, np.nanargmin), high=_extreme(driving, q, np.nanargmax),
-        mean=float(np.nanmean(driving)) if np.isfinite(driving).any() else float("nan"),
+        mean=_mean(driving),
         pairs=pairs, balance=_peak(np.abs(forces.power_balance)),
         balance_relative=_peak(np.where(forces.power_scale > 0, relative, 0.0)),
         residual_force=_peak(np.concatenate([r.force.ravel() for r in residuals])),
         residual_moment=_peak(np.concatenate([r.moment.ravel() for r in residuals])),
         unsolved=unsolved, solved=int(np.count_nonzero(forces.reason == 0)),
-        total=int(forces.reason.size))
+        total=int(forces.reason.size), inputs=inputs)
+
+
+def _effort(label: str, kind: str, values: np.ndarray, q: np.ndarray) -> InputEffort:
+    data = np.asarray(values, dtype=float)
+    return InputEffort(label, kind, _extreme(data, q, np.nanargmin),
+                       _extreme(data, q, np.nanargmax), _mean(data))
+
+
+def _mean(data: np.ndarray) -> float:
+    return float(np.nanmean(data)) if np.isfinite(data).any() else float("nan")
 
 
 def _extreme(data: np.ndarray, q: np.ndarray, pick: Callable[[np.ndarray], Any]) -> Extreme:

@@ -40,6 +40,9 @@ def forces_columns(forces: ForceAnalysis) -> list[tuple[str, np.ndarray]]:
     drive = forces.drive
     columns = [(drive, forces.driving), (f"{drive}_lever", forces.driving_lever),
                ("power_balance", forces.power_balance)]
+    if len(forces.drivings) > 1:
+        columns[1:1] = [(f"{forces.drive_kinds[label]}_{label}", values)
+                        for label, values in list(forces.drivings.items())[1:]]
     for pair, r in forces.reactions.items():
         columns += [(f"R_{pair}_x", r.x), (f"R_{pair}_y", r.y)]
         if r.normal is not None and r.moment is not None:
@@ -70,10 +73,18 @@ def summary_lines(result: Analysis, forces: ForceAnalysis, summary: ForceSummary
                     g=(render("force.report.gravity", lang, gx=_signed(gravity.real),
                               gy=_signed(gravity.imag)) if gravity
                        else render("force.report.no_gravity", lang)))]
-    lines.append("  " + render("force.report.torque" if crank else "force.report.force", lang,
-                               lo=summary.low.value, lo_at=at(summary.low),
-                               hi=summary.high.value, hi_at=at(summary.high),
-                               mean=summary.mean))
+    if summary.inputs:
+        for effort in summary.inputs:
+            code = ("force.report.input_torque" if effort.kind == "driving_torque"
+                    else "force.report.input_force")
+            lines.append("  " + render(code, lang, group=effort.label, lo=effort.low.value,
+                                       lo_at=at(effort.low), hi=effort.high.value,
+                                       hi_at=at(effort.high), mean=effort.mean))
+    else:
+        lines.append("  " + render("force.report.torque" if crank else "force.report.force",
+                                   lang, lo=summary.low.value, lo_at=at(summary.low),
+                                   hi=summary.high.value, hi_at=at(summary.high),
+                                   mean=summary.mean))
     lines.append("  " + render("force.report.reactions", lang))
     for peak in summary.pairs:
         text = render("force.report.pair", lang, pair=peak.pair, a=peak.links[0],

@@ -15,19 +15,39 @@ from assur.api import Analysis
 from assur.kinematics.analysis import unwrap, values
 from assur.kinematics.existence import CONDITIONS
 from assur.kinematics.higher.kind import HigherGroupSolution
+from assur.kinematics.laws import STROKE
+from assur.kinematics.model import KinematicModel
 from assur.kinematics.reasons import reason_text
 from assur.records import moving_links
 from assur.text import render
 
-__all__ = ["analysis_text", "modes_lines", "position_text"]
+__all__ = ["analysis_text", "input_laws", "modes_lines", "position_text"]
 
 
 def position_text(result: Analysis, value: float, lang: str = "en") -> str:
     """An input position as the report writes it: ``φ = 12.50°`` or ``l = 40.000 mm``
     (``мм`` in Russian)."""
+    drive = result.model.drive
     if result.crank:
-        return f"φ = {math.degrees(value):.2f}°"
-    return f"l = {value:.3f} {render('analyze.unit_mm', lang)}"
+        return f"{'t' if drive == 'laws' else 'φ'} = {math.degrees(value):.2f}°"
+    return f"{'s' if drive == 'slider' else 'l'} = {value:.3f} {render('analyze.unit_mm', lang)}"
+
+
+def input_laws(model: KinematicModel, n: int, lang: str) -> list[str]:
+    """The lines of the inputs of a cycle of laws: the cycle, then each input's law."""
+    lines = [render("analyze.laws", lang, k=len(model.laws), n=n)]
+    for label, law in model.laws.items():
+        group = model.group(label)
+        if not law.linear:
+            lines.append("  " + render("analyze.law_crank", lang, group=label, link=group.i,
+                                       phase=f"{math.degrees(law.phase):g}",
+                                       ratio=f"{law.ratio:+d}"))
+            continue
+        lo, hi = (float(np.max(model.params[group.column(c)])) for c in STROKE)
+        code = "analyze.law_table" if law.table else "analyze.law_harmonic"
+        lines.append("  " + render(code, lang, group=label, lo=lo, hi=hi, rows=len(law.table),
+                                   phase=f"{math.degrees(law.phase):g}", ratio=law.ratio))
+    return lines
 
 
 def analysis_text(result: Analysis, lang: str = "en") -> str:
@@ -57,7 +77,12 @@ def analysis_text(result: Analysis, lang: str = "en") -> str:
     model, motion, report = result.model, result.motion, result.existence
     lines = [render("analyze.title", lang, name=model.name, source=model.source)]
     n = motion.q.size
-    if result.crank:
+    if model.drive == "laws":
+        lines += input_laws(model, n, lang)
+    elif model.drive == "slider":
+        lines.append(render("analyze.slider_input", lang, link=model.groups[0].i,
+                            lo=model.input_range[0], hi=model.input_range[1], n=n))
+    elif result.crank:
         turning = (render("analyze.ccw", lang) if model.direction > 0
                    else render("analyze.cw", lang))
         lines.append(render("analyze.crank", lang, link=model.groups[0].i, n=n, dir=turning))

@@ -66,9 +66,11 @@ def _styles(curves: dict[str, np.ndarray], lang: str) -> dict[str, tuple[str, st
 
 
 def _axis(model: KinematicModel, q: np.ndarray, lang: str) -> tuple[np.ndarray, str]:
-    if model.drive == "crank":
-        return np.degrees(q), render("plot.crank_angle_deg", lang)
-    return q, render("plot.actuator_length_mm", lang)
+    if model.periodic:
+        return np.degrees(q), render("plot.cycle_t_deg" if model.drive == "laws"
+                                     else "plot.crank_angle_deg", lang)
+    return q, render("plot.slider_s_mm" if model.drive == "slider"
+                     else "plot.actuator_length_mm", lang)
 
 
 def existence_figure(report: ExistenceReport, model: KinematicModel, *,
@@ -116,7 +118,7 @@ def existence_figure(report: ExistenceReport, model: KinematicModel, *,
     ax.set_ylabel(render("plot.existence_margin", lang))
     ax.set_title(render("plot.existence", lang), fontsize=11)
     ax.grid(alpha=0.3)
-    if model.drive == "crank":
+    if model.periodic:
         ax.set_xticks(np.arange(0, 361, 45))
         ax.set_xlim(0, 360)
     _legend_outside(ax)
@@ -229,7 +231,7 @@ def kinematic_figures(motion: Motion, *, lang: str = "en") -> list[tuple[str, Fi
         ax.grid(alpha=0.3)
         _legend_outside(ax)
         figures.append((title, fig))
-    if model.drive == "crank":
+    if model.periodic:
         for _caption, fig in figures:
             for ax in fig.axes:
                 ax.set_xticks(np.arange(0, 361, 45))

@@ -107,7 +107,7 @@ def play_data(motion: Motion, frames: int = FRAMES) -> dict[str, Any]:
     """
     size = motion.q.size
     picks = np.arange(0, size, -(-size // frames))  # every k-th, evenly spaced
-    crank = motion.model.drive == "crank"
+    crank = motion.model.periodic
     drawn = scheme(motion, picks)
     traced, _ = paths(motion, picks)
     fails = []

@@ -335,7 +335,7 @@ def _existence_section(existence: ExistenceReport, model: KinematicModel, lang: 
                        report: CourseworkReport) -> Section:
     from synthesis.app.coursework.diagrams import existence_figure
 
-    crank = model.drive == "crank"
+    crank = model.periodic
     rows = []
     for group in existence.groups:
         where = "; ".join(

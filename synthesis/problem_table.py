@@ -57,7 +57,7 @@ from assur.io.reader import (
 )
 from assur.text import Message
 from synthesis.expressions import LawError, parse_law
-from synthesis.force_conditions import read_force_conditions
+from synthesis.force_conditions import LINEAR_DRIVES, read_force_conditions
 from synthesis.problem import (
     CRITERIA,
     DEFAULT_PRESSURE_ANGLE,
@@ -443,9 +443,9 @@ def _chain_form(top: Node, mechanism: _Mechanism, general: _General) -> _Form:
     model, foreign = _build_model(reader, mechanism.data, mechanism.source)
     if model is None:
         return _Form({}, None, foreign, {}, mechanism.data)
+    if model.drive in LINEAR_DRIVES:  # (one cylinder or slider: its stroke over the cycle)
+        model = assur.cycle_model(model)
     groups: dict[GroupKey, Any] = {group_key(g): g.label for g in model.groups}
-    if model.drive != "crank":
-        reader.problem("mechanism", "problem.actuator_drive", source=mechanism.source)
     if general.n_groups is not MISSING and general.n_groups != len(groups):
         reader.problem("general 'groups'", "higher.problem.groups_count", rows=len(groups),
                        found=general.n_groups)

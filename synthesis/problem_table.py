@@ -444,6 +444,11 @@ def _chain_form(top: Node, mechanism: _Mechanism, general: _General) -> _Form:
     if model is None:
         return _Form({}, None, foreign, {}, mechanism.data)
     if model.drive in LINEAR_DRIVES:  # (one cylinder or slider: its stroke over the cycle)
+        holder = next(g for g in model.groups if g.driven is not None or g.group_kind.is_input)
+        if holder.layout is not None:  # (a higher group follows its actuator's length only)
+            reader.problem("mechanism", "problem.actuator_in_group", source=mechanism.source,
+                           group=holder.label)
+            return _Form({}, None, foreign, {}, mechanism.data)
         model = assur.cycle_model(model)
     groups: dict[GroupKey, Any] = {group_key(g): g.label for g in model.groups}
     if general.n_groups is not MISSING and general.n_groups != len(groups):

@@ -29,9 +29,9 @@ import assur
 from assur.kinematics.analysis import analyse, values
 from synthesis import problem_from_dict
 from synthesis.cli import main
+from synthesis.cli.commands import synthesize
 from synthesis.evaluate import Evaluator
 from synthesis.problem_chain import group_key
-from synthesis.cli.commands import synthesize
 
 ROOT = Path(__file__).resolve().parents[2]
 PROBLEM = ROOT / "input_tables" / "problems" / "class2_six_bar_triad.yaml"

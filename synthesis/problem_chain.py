@@ -32,7 +32,7 @@ import numpy as np
 import numpy.typing as npt
 
 from assur.io.reader import normalise_id
-from assur.kinematics.analysis import analyse
+from assur.kinematics.analysis import analyse, held
 from assur.kinematics.laws import STROKE
 from assur.kinematics.model import GroupModel, KinematicModel
 from assur.model import LinkId
@@ -97,7 +97,9 @@ def design_table(problem: Problem, x: npt.ArrayLike) -> dict[str, Any]:
         ``mechanism`` and ``geometry`` as a chain table has them.
     """
     model = problem.model.with_params(problem.mechanism_design(x))
-    motion = analyse(model, np.zeros(1))
+    # inputs that follow laws are drawn at their sketched coordinates, which the laws of
+    # the result then move from as they move from the problem's sketch
+    motion = analyse(held(model) if model.laws else model, np.zeros(1))
     table = copy.deepcopy(dict(problem.mechanism))
     geometry = table["geometry"]
     for key, entry in geometry.items():

@@ -174,8 +174,9 @@ def test_an_actuator_inside_a_triad_is_refused(tmp_path: Path,
     chain = str(PROBLEM.parent.parent / "actuator_triad.yaml")
     code, text = _problems(tmp_path, {"mechanism": chain, "parameters": []}, capsys)
     assert code == 2 and "Traceback" not in text
-    assert (f"mechanism: the actuator of the mechanism of {chain} is a bar of the higher "
-            "group III(2,3,4,5,6), which follows its length only") in text, text
+    assert (f"mechanism: the actuator of the mechanism of {chain} is a bar of the group "
+            "III(2,3,4,5,6) (a triad or a class IV group), which follows its length only"
+            ) in text, text
 
 
 @pytest.mark.parametrize(("table", "ends", "output"), [

@@ -36,6 +36,8 @@ def _reanalyse(problem: dict[str, Any], result: Path, design: dict[str, float]) 
     """Q of the result file's mechanism, from the public kinematics alone (``design``: the
     found parameters as the report gives them, for a class-5 segment's varied angle)."""
     model = assur.load_model(result)
+    if model.drive in ("actuator", "slider"):  # its stroke over the cycle t, as synthesised
+        model = assur.cycle_model(model)
     general, control, output = problem["general"], problem["control_points"], problem["output"]
     task = general["task_class"]
     if task == 5:
@@ -73,7 +75,9 @@ def _reanalyse(problem: dict[str, Any], result: Path, design: dict[str, float]) 
         s = assur.kinematics.analysis.values(motion.sliders[pair].s)
         return float(np.max(weights * np.abs(s[1:] - s[0] - [row["S"] for row in control])))
     targets = np.array([row["x"] + 1j * row["y"] for row in control])
-    point = _tracing_point(model, motion, output["link"])
+    point = (assur.kinematics.analysis.values(motion.tracing[output["point"]])
+             if output["point"] in motion.tracing else _tracing_point(model, motion,
+                                                                       output["link"]))
     if task == 4:
         return float(np.max(weights * np.abs(point[1:] - targets)))
     # class 3: nearest grid point, then the polygon of a 400 times finer grid around it

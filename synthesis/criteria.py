@@ -34,6 +34,7 @@ from assur.typing import BoolArray, ComplexArray, FloatArray, IntArray
 __all__ = [
     "Criteria",
     "bounds_penalty",
+    "criterion",
     "criterion_q",
     "criterion_rms",
     "desirable_penalty",
@@ -305,6 +306,32 @@ def criterion_rms(deviations: FloatArray, weights: FloatArray) -> FloatArray:
     delta = np.asarray(deviations) / weights
     out: FloatArray = np.sqrt(np.sum(weights * delta ** 2, axis=-1) / np.sum(weights))
     return out
+
+
+def criterion(deviations: FloatArray, weights: FloatArray, kind: str = "max") -> FloatArray:
+    """Q built from the deviations the way the problem asks (``general: criterion``).
+
+    The course takes Q as the largest deviation and adds that "other ways to build Q on
+    the known deviation function are possible"; the root mean square is the other one::
+
+        max:  Q = max_K |Δ_K|                       (:func:`criterion_q`)
+        rms:  Q = sqrt(Σ_K E_K·δ_K² / Σ_K E_K)      (:func:`criterion_rms`, δ_K = Δ_K/E_K)
+
+    Parameters
+    ----------
+    deviations : array_like, shape (D, K)
+    weights : array_like, shape (K,)
+    kind : {'max', 'rms'}
+
+    Examples
+    --------
+    >>> d = np.array([[3.0, 4.0]])
+    >>> criterion(d, np.ones(2)).tolist(), criterion(d, np.ones(2), "rms").round(6).tolist()
+    ([4.0], [3.535534])
+    """
+    if kind == "rms":
+        return criterion_rms(deviations, weights)
+    return criterion_q(deviations)
 
 
 # -------------------------------------------------------------------------------- P1 (§5.4)

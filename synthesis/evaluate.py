@@ -16,6 +16,11 @@ Outputs (``method.md`` §4.5):
   the control angles only (see :meth:`Evaluator.ratio`);
 * class 2, S: the slider coordinate of the output link on its guide, measured from its value
   at φ = 0;
+* class 5, the guided segment AB (:mod:`synthesis.guidance`): A = Ж as for classes 3–4,
+  θ = the angle of the output link's local frame plus the segment's angle γ on the link;
+  without timing, each control pose is compared with the nearest pose of the cycle, found on
+  the grid and refined by Newton steps in φ as for class 3 with
+  ``f = |A(φ) − A_K|² + |B(φ) − B_K|²``;
 * classes 3–4, Ж: a tracing point of the output link (its attachment point N/M, or a named
   tracing point).  For class 3 the nearest point of the path is found on the grid polygon
   and then refined by Newton steps in φ on the true path, using the exact first and second
@@ -27,6 +32,7 @@ Outputs (``method.md`` §4.5):
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -39,10 +45,11 @@ from assur import KinematicModel, Motion, TableError
 from assur.errors import Issue
 from assur.kinematics.analysis import analyse
 from assur.text import Message
-from assur.typing import FloatArray, Value
+from assur.typing import ComplexArray, FloatArray, Value
 from synthesis import criteria as C
+from synthesis import guidance as G
 from synthesis.force_conditions import force_penalties
-from synthesis.problem import Problem, output_slider
+from synthesis.problem import SEGMENT_ANGLE, ControlPoints, Problem, output_slider
 
 __all__ = ["Analysis", "Evaluator"]
 
@@ -75,6 +82,9 @@ class Analysis:
         Group label → swing of each checked joint, shape (D, J), radians.
     workspace : dict
         Group label → largest excursion of each joint outside its box, shape (D, J), mm.
+    strokes : dict
+        Group label → largest excursion of the slider coordinate of each limited prismatic
+        pair outside its range, shape (D, J), mm.
     """
 
     motion: Motion
@@ -86,6 +96,7 @@ class Analysis:
     pressure: dict[str, FloatArray]
     rotations: dict[str, FloatArray]
     workspace: dict[str, FloatArray]
+    strokes: dict[str, FloatArray]
 
 
 class Evaluator:
@@ -112,8 +123,7 @@ class Evaluator:
         self.problem = problem
         n = grid or problem.grid
         self.grid = 2.0 * np.pi * np.arange(n) / n
-        self.control_phi = (problem.control.phi if problem.task_class != 3
-                            else np.zeros(0))
+        self.control_phi = problem.control.phi if problem.control.timed else np.zeros(0)
         self.positions = np.concatenate([self.grid, self.control_phi])
         model = problem.model
         self.output_link = problem.output.link
@@ -143,7 +153,27 @@ class Evaluator:
         """The kinematic model with the varied parameters of the designs X, shape (D, q)."""
         x = np.atleast_2d(np.asarray(x, dtype=float))
         return self.problem.model.with_params(
-            {name: x[:, k:k + 1] for k, name in enumerate(self.problem.names)})
+            {name: x[:, k:k + 1] for k, name in enumerate(self.problem.names)
+             if name != SEGMENT_ANGLE})
+
+    def segment_angle(self, x: npt.ArrayLike) -> FloatArray:
+        """γ of the designs X (class 5), shape (D, 1), radians: the varied column
+        :data:`~synthesis.problem.SEGMENT_ANGLE` (degrees) or the fixed angle."""
+        x = np.atleast_2d(np.asarray(x, dtype=float))
+        if SEGMENT_ANGLE in self.problem.names:
+            k = self.problem.names.index(SEGMENT_ANGLE)
+            angle: FloatArray = np.radians(x[:, k:k + 1])
+            return angle
+        return np.full((x.shape[0], 1), self.problem.output.angle)
+
+    def _segment(self, motion: Motion, model: KinematicModel, gamma: FloatArray
+                 ) -> list[Value]:
+        """The end points A, B of the guided segment over the analysed positions."""
+        length = self.problem.output.length
+        assert length is not None  # (class 5 reads it)
+        a = self._point(motion, model)
+        theta = motion.link_angle(self.output_link) + gamma
+        return [a, a + length * assur.kinematics.jets.expi(theta)]
 
     def _point(self, motion: Motion, model: KinematicModel) -> Value:
         """The tracing point Ж of the output link over the analysed positions."""
@@ -235,12 +265,7 @@ class Evaluator:
                     wrap = np.angle(np.exp(1j * (raw[:, n:] - raw[:, nearest])))
                     out = out_grid[:, nearest] + wrap
                 phi_c = np.broadcast_to(self.control_phi, out.shape)
-                if control.lower is not None and control.upper is not None:  # a zone
-                    dev = C.zone_deviations(out, control.lower, control.upper, control.weight)
-                    res = C.zone_residuals(out, control.lower, control.upper, control.weight)
-                else:
-                    dev = C.value_deviations(out, control.value, control.weight)
-                    res = dev
+                dev, res = _scalar_deviations(out, control)
             elif cls == 2:
                 assert self._slider_pair is not None
                 s = _full(assur.kinematics.analysis.values(motion.sliders[self._slider_pair].s), d,
@@ -248,8 +273,28 @@ class Evaluator:
                 out_grid = s[:, :n] - s[:, :1]
                 out = s[:, n:] - s[:, :1]
                 phi_c = np.broadcast_to(self.control_phi, out.shape)
-                dev = C.value_deviations(out, control.value, control.weight)
-                res = dev
+                dev, res = _scalar_deviations(out, control)
+            elif cls == 5:
+                gamma = self.segment_angle(x)
+                length = float(self.problem.output.length or 0.0)
+                a, b = (_full(assur.kinematics.analysis.values(end), d, self.positions.size)
+                        for end in self._segment(motion, model, gamma))
+                out_grid = a[:, :n]
+                assert control.angle is not None  # (class 5 reads it)
+                if control.timed:
+                    out, ends_b = a[:, n:], b[:, n:]
+                    phi_c = np.broadcast_to(self.control_phi, out.shape)
+                else:
+                    targets = G.segment_ends(control.point, control.angle, length)
+                    start = G.nearest_pose(a[:, :n], b[:, :n], *targets) * (2 * np.pi / n)
+                    phi_c, (out, ends_b) = self._nearest(
+                        model, start.astype(float), list(targets),
+                        lambda m: self._segment(m, model, gamma), 2 * np.pi / n)
+                theta = np.angle(ends_b - out)
+                dev = G.segment_deviations(out, theta, control.point, control.angle, length,
+                                           control.weight)
+                res = G.segment_residuals(out, theta, control.point, control.angle, length,
+                                          control.weight)
             else:
                 path = _full(assur.kinematics.analysis.values(self._point(motion, model)), d, self.positions.size)
                 out_grid = path[:, :n]
@@ -258,15 +303,19 @@ class Evaluator:
                     phi_c = np.broadcast_to(self.control_phi, out.shape)
                 else:
                     index, _ = C.nearest_on_path(out_grid, control.point)
-                    phi_c, out = self._nearest(model, index * (2 * np.pi / n))
+                    phi_c, (out,) = self._nearest(model, index * (2 * np.pi / n),
+                                                  [control.point],
+                                                  lambda m: [self._point(m, model)])
                 dev = C.timed_path_deviations(out, control.point, control.weight)
                 gap = control.weight * (out - control.point)
                 res = np.concatenate([gap.real, gap.imag], axis=1)
             pressure, rotation = self._desirable(motion, d, n)
             signed = self._workspace(motion, d, n)
+            stroke_signed = self._strokes(motion, d, n)
         workspace = {label: np.maximum(v, 0.0) for label, v in signed.items()}
+        strokes = {label: np.maximum(v, 0.0) for label, v in stroke_signed.items()}
         feasible = p1 == 0
-        q = np.where(feasible, C.criterion_q(dev), np.nan)
+        q = np.where(feasible, C.criterion(dev, control.weight, self.problem.criterion), np.nan)
         bounds = C.bounds_penalty(x, self.lower, self.upper)
         alpha_allowed = np.array([self.problem.pressure_angles[k] for k in pressure])
         p2_alpha = C.pressure_penalty(_stack(pressure, d), alpha_allowed)
@@ -277,38 +326,56 @@ class Evaluator:
         for label, excess in workspace.items():
             x_min, x_max, y_min, y_max = self.problem.workspace[label]
             scales += [math.hypot(x_max - x_min, y_max - y_min)] * excess.shape[1]
-        p2_work = C.workspace_penalty(_stack(workspace, d), np.array(scales))
+        ranges = np.array([hi - lo for label in strokes
+                           for lo, hi in self.problem.strokes[label].values()])
+        p2_work = (C.workspace_penalty(_stack(workspace, d), np.array(scales))
+                   + C.workspace_penalty(_stack(strokes, d), ranges))
         p2_force = force_penalties(self.problem.forces, self.model, x, feasible, self.grid)
         p2 = np.where(feasible, C.desirable_penalty(bounds, p2_alpha, p2_rot, p2_work)
                       + p2_force, np.nan)
         margins = np.concatenate([_stack(pressure, d) / alpha_allowed - 1.0,
                                   _stack(rotation, d) / limits - 1.0,
-                                  _stack(signed, d) / np.array(scales)], axis=1)
+                                  _stack(signed, d) / np.array(scales),
+                                  _stack(stroke_signed, d) / ranges], axis=1)
         dev, res, margins = (np.where(feasible[:, None], a, np.nan) for a in (dev, res, margins))
         return Analysis(motion, self.grid, out_grid, out, np.asarray(phi_c),
-                        C.Criteria(p1, p2, q, dev, res, margins), pressure, rotation, workspace)
+                        C.Criteria(p1, p2, q, dev, res, margins), pressure, rotation, workspace,
+                        strokes)
 
-    def _nearest(self, model: KinematicModel, phi: FloatArray
-                 ) -> tuple[FloatArray, npt.NDArray[Any]]:
-        """Newton refinement in φ of the nearest path points (class 3).
+    def _nearest(self, model: KinematicModel, phi: FloatArray, targets: list[ComplexArray],
+                 points: Callable[[Motion], list[Value]], spacing: float = 0.0
+                 ) -> tuple[FloatArray, list[npt.NDArray[Any]]]:
+        """Newton refinement in φ of the positions nearest to required points.
 
-        The start (from the grid polygon) is already within O(h²) of the minimum, so two
-        Newton steps reach machine precision; the last point is the second-order Taylor
-        step ``Ж + Ж'·Δ + Ж''·Δ²/2`` from the last analysed position.
+        Class 3: one point, Ж, and its required points P_K; class 5: the two ends of the
+        segment and their required places.  With P_j(φ) the points and T_j their targets::
+
+            f = Σ_j |P_j(φ) − T_j|²,   f' = 2·Σ_j Re(conj(P_j − T_j)·P_j'),
+            f'' = 2·Σ_j (|P_j'|² + Re(conj(P_j − T_j)·P_j''))
+
+        The start (from the grid polygon, or a grid position for class 5) is within a grid
+        step of the minimum; each step is clipped to ``max(0.05, spacing/2)`` rad, and the
+        last points are the second-order Taylor step ``P + P'·Δ + P''·Δ²/2`` from the last
+        analysed position.
         """
-        targets = self.problem.control.point
-        point = None
-        for _ in range(_NEWTON_STEPS):
-            jet = self._point(analyse(model, phi, analogs=True), model)
-            assert isinstance(jet, assur.Jet), "a motion with analogs"
-            gap = jet.v - targets
-            f1 = 2 * (np.conj(gap) * jet.d1).real
-            f2 = 2 * (np.abs(jet.d1) ** 2 + (np.conj(gap) * jet.d2).real)
+        limit = max(0.05, 0.5 * spacing)
+        steps = _NEWTON_STEPS + (spacing > 0)
+        found: list[npt.NDArray[Any]] = []
+        for _ in range(steps):
+            jets = points(analyse(model, phi, analogs=True))
+            f1 = np.zeros(np.shape(phi))
+            f2 = np.zeros(np.shape(phi))
+            for jet, target in zip(jets, targets):
+                assert isinstance(jet, assur.Jet), "a motion with analogs"
+                gap = jet.v - target
+                f1 = f1 + 2 * (np.conj(gap) * jet.d1).real
+                f2 = f2 + 2 * (np.abs(jet.d1) ** 2 + (np.conj(gap) * jet.d2).real)
             step = np.where(f2 > 0, -f1 / np.where(f2 > 0, f2, 1.0), 0.0)
-            step = np.clip(np.nan_to_num(step), -0.05, 0.05)
+            step = np.clip(np.nan_to_num(step), -limit, limit)
             phi = phi + step
-            point = jet.v + jet.d1 * step + 0.5 * jet.d2 * step ** 2
-        return phi, np.asarray(point)
+            found = [np.asarray(jet.v + jet.d1 * step + 0.5 * jet.d2 * step ** 2)
+                     for jet in jets if isinstance(jet, assur.Jet)]
+        return phi, found
 
     def _existence(self, motion: Motion, model: KinematicModel, d: int) -> FloatArray:
         """P1 over all analysed positions (``criteria.existence_penalty``)."""
@@ -350,6 +417,23 @@ class Evaluator:
                                            axis=1)
         return pressure, rotation
 
+    def _strokes(self, motion: Motion, d: int, n: int) -> dict[str, FloatArray]:
+        """Signed largest excursion of the slider coordinate s of each limited prismatic
+        pair outside its range [s_min, s_max] over the grid, (D, J) mm: positive outside,
+        minus the smallest clearance to an end where s stays inside."""
+        out: dict[str, FloatArray] = {}
+        size = self.positions.size
+        for label, limits in self.problem.strokes.items():
+            group = motion.model.group(label)
+            columns = []
+            for role, (low, high) in limits.items():
+                s = _full(assur.kinematics.analysis.values(
+                    motion.sliders[group.pairs[role]].s), d, size)[:, :n]
+                excess = np.fmax.reduce(np.maximum(low - s, s - high), axis=1)
+                columns.append(np.nan_to_num(excess))
+            out[label] = np.stack(columns, axis=1)
+        return out
+
     def _workspace(self, motion: Motion, d: int, n: int) -> dict[str, FloatArray]:
         """Signed largest excursion of each group's revolute joints outside its box, (D, J)
         mm: positive outside (as :func:`_outside`), minus the smallest clearance to a side
@@ -379,6 +463,17 @@ def _outside(z: npt.NDArray[Any], box: tuple[float, float, float, float]) -> Flo
     out = np.fmax.reduce(np.maximum(ex, 0.0) + np.maximum(ey, 0.0), axis=1)
     inside = np.fmax.reduce(np.maximum(ex, ey), axis=1)
     return np.nan_to_num(np.where(out > 0, out, inside))
+
+
+def _scalar_deviations(out: FloatArray, control: ControlPoints
+                       ) -> tuple[FloatArray, FloatArray]:
+    """Deviations and residuals of a scalar output (classes 1, 2): from the required values,
+    or from the tolerance zone when the rows give one."""
+    if control.lower is not None and control.upper is not None:  # a zone
+        return (C.zone_deviations(out, control.lower, control.upper, control.weight),
+                C.zone_residuals(out, control.lower, control.upper, control.weight))
+    dev = C.value_deviations(out, control.value, control.weight)
+    return dev, dev
 
 
 def _full(value: Any, d: int, n: int) -> npt.NDArray[Any]:

@@ -1,8 +1,9 @@
 """Force limits as desirable conditions of the synthesis (block B2 → P2, ``docs/forces.md`` §9).
 
 A problem table may hold a ``forces:`` table: the masses and loads of the links, the input
-speed, and limits on the largest driving torque, on the largest reaction in named pairs and
-on the largest couple in named prismatic pairs::
+speed, and limits on the largest driving torque (of every crank), on the largest driving
+force (of every linear input: a cylinder, a slider driven along its guide), on the largest
+reaction in named pairs and on the largest couple in named prismatic pairs::
 
     forces:
       omega: 10                      # rad/s of the crank
@@ -24,7 +25,9 @@ link with more than two names the two meant with ``between: [A, B]``.
 
 The penalty of a design (the designs of a batch at once, over the analysis grid)::
 
-    P2_F = max(0, max_φ |M_d| − [M_d]) / [M_d] + Σ_pairs max(0, max_φ |R| − [R]) / [R]
+    P2_F = Σ_cranks max(0, max_φ |M_d| − [M_d]) / [M_d]
+           + Σ_linear inputs max(0, max_φ |F_d| − [F_d]) / [F_d]
+           + Σ_pairs max(0, max_φ |R| − [R]) / [R]
            + Σ_prismatic pairs max(0, max_φ |M| − [M]) / [M]
 
 with |R| = √(x² + y²) for a revolute pair and |normal| for a prismatic one, and M the couple
@@ -63,11 +66,18 @@ from assur.kinematics.model import KinematicModel
 from assur.model import ForceData, LinkId, Mass, PairId
 from assur.typing import BoolArray, ComplexArray, FloatArray
 
-__all__ = ["ForceConditions", "MassRule", "excess", "force_penalties", "read_force_conditions"]
+__all__ = ["LINEAR_DRIVES", "ForceConditions", "MassRule", "excess", "force_penalties",
+           "read_force_conditions"]
 
 
 _KEYS = ("omega", "gravity", "masses", "loads", "limits")
-_LIMITS = ("driving_torque", "reactions", "couples")
+_LIMITS = ("driving_torque", "driving_force", "reactions", "couples")
+#: Drives whose one input is linear (mm): an actuator between two links, a slider on a frame
+#: guide.  A problem puts such a mechanism on the cycle of its input's harmonic law
+#: (:func:`assur.cycle_model`), its stroke limits ``s_min``, ``s_max`` then parameters.
+LINEAR_DRIVES = ("actuator", "slider")
+#: The limit of ``limits:`` that bounds each kind of driving effort of the force analysis.
+_EFFORT_LIMITS = {"driving_torque": "driving_torque", "driving_force": "driving_force"}
 _MASS = ("mass", "per_mm", "centre", "inertia", "between")
 
 #: ``centre:`` and ``inertia:`` words that make a mass follow the design.
@@ -156,13 +166,15 @@ class ForceConditions:
     omega : float
         Crank speed, rad/s (0: static).
     driving_torque : float or None
-        [M_d], N·m.
+        [M_d], N·m, of every crank.
     reactions : mapping
         Pair id → [R], N.
     couples : mapping
         Prismatic pair id → [M], N·m: a limit on the couple of the pair.
     follow : tuple of MassRule
         The masses that follow the design.
+    driving_force : float or None
+        [F_d], N, of every linear input (a cylinder, a slider driven along its guide).
     """
 
     data: ForceData
@@ -171,6 +183,13 @@ class ForceConditions:
     reactions: Mapping[PairId, float]
     couples: Mapping[PairId, float] = field(default_factory=dict)
     follow: tuple[MassRule, ...] = ()
+    driving_force: float | None = None
+
+    def effort_limit(self, kind: str) -> float | None:
+        """The limit of a driving effort of the kind the force analysis names it
+        (``'driving_torque'``, N·m, or ``'driving_force'``, N), None when not limited."""
+        limit: float | None = getattr(self, _EFFORT_LIMITS[kind])
+        return limit
 
     def data_of(self, motion: Motion) -> ForceData:
         """The masses and loads of the designs of a motion (the rules resolved).
@@ -223,19 +242,20 @@ def read_force_conditions(top: Node, model: KinematicModel | None) -> ForceCondi
     reach = _reach(model)
     rules = _mass_rules(node, model, reach)
     local = Node(reader, node.location, _localised(node.mapping), None)
-    data = read_sections(local, tuple(model.links), model.drive != "crank", reach)
+    data = read_sections(local, tuple(model.links), model.drive in LINEAR_DRIVES, reach)
     if not (node.given("masses") or node.given("loads")):
         reader.problem(node.location, "force.condition.no_loads")
     limits = node.child("limits", allowed=_LIMITS)
-    torque, reactions, couples = (_limits(limits, model) if limits is not None
-                                  else (None, {}, {}))
+    torque, force, reactions, couples = (_limits(limits, model) if limits is not None
+                                         else (None, None, {}, {}))
     if limits is not None and not any(limits.has(key) for key in _LIMITS):
         reader.problem(limits.location, "force.condition.no_limits")
     if len(reader.issues) > before or data is None or omega is MISSING:
         return None
     fixed = {rule.link: rule.fixed for rule in rules if not rule.follows}
     return ForceConditions(replace(data, masses=fixed, local=True), float(omega), torque,
-                           reactions, couples, tuple(rule for rule in rules if rule.follows))
+                           reactions, couples, tuple(rule for rule in rules if rule.follows),
+                           force)
 
 
 def _reach(model: KinematicModel) -> Reach | None:
@@ -414,15 +434,33 @@ def _in_frame(motion: Motion, link: LinkId, pair: PairId) -> ComplexArray:
 
 
 def _limits(node: Node, model: KinematicModel
-            ) -> tuple[float | None, dict[PairId, float], dict[PairId, float]]:
+            ) -> tuple[float | None, float | None, dict[PairId, float], dict[PairId, float]]:
     torque = node.get("driving_torque", kind="number", required=False, default=None,
                       check=positive)
+    force = node.get("driving_force", kind="number", required=False, default=None,
+                     check=positive)
+    kinds = _effort_kinds(model)
+    for key, value in (("driving_torque", torque), ("driving_force", force)):
+        if value not in (None, MISSING) and key not in kinds:
+            node.reader.problem(f"{node.location} {key!r}", "force.condition.no_such_input",
+                                limit=key, inputs=", ".join(sorted(kinds)))
     reactions = _pair_limits(node, "reactions", tuple(model.pair_links),
                              "force.condition.unknown_pair", "force.condition.limit")
     prismatic = tuple(pair for pair, (kind, _, _) in model.pair_links.items() if kind == "P")
     couples = _pair_limits(node, "couples", prismatic, "force.condition.not_prismatic",
                            "force.condition.couple_limit")
-    return (None if torque in (MISSING, None) else float(torque)), reactions, couples
+    return (None if torque in (MISSING, None) else float(torque),
+            None if force in (MISSING, None) else float(force), reactions, couples)
+
+
+def _effort_kinds(model: KinematicModel) -> set[str]:
+    """The kinds of the driving efforts of a model's inputs: ``driving_torque`` for a
+    crank, ``driving_force`` for a linear input (an actuator, a slider on its guide)."""
+    if model.drive in LINEAR_DRIVES:
+        return {"driving_force"}
+    if model.drive == "crank":
+        return {"driving_torque"}
+    return {"driving_force" if law.linear else "driving_torque" for law in model.laws.values()}
 
 
 def _pair_limits(node: Node, key: str, pairs: tuple[PairId, ...], unknown: str,
@@ -474,8 +512,10 @@ def force_penalties(conditions: ForceConditions | None,
     forces = kinetostatics(motion, conditions.data_of(motion), conditions.omega)
     shape = (int(feasible.sum()), grid.size)
     total = np.zeros(shape[0])
-    if conditions.driving_torque is not None:
-        total += excess(np.broadcast_to(forces.driving, shape), conditions.driving_torque)
+    for label, effort in forces.drivings.items():
+        limit = conditions.effort_limit(forces.drive_kinds[label])
+        if limit is not None:
+            total += excess(np.broadcast_to(effort, shape), limit)
     for pair, limit in conditions.reactions.items():
         r = forces.reactions[pair]
         size = np.abs(r.normal) if r.normal is not None else np.hypot(r.x, r.y)

@@ -5,12 +5,13 @@ complete example of each task class):
 
 ``general``
     ``control_points`` (N_z), ``direction`` (s: +1 counter-clockwise, −1 clockwise),
-    ``groups`` (N_Q, L0 included), ``task_class`` (1–4), ``grid`` (positions of the
+    ``groups`` (N_Q, L0 included), ``task_class`` (1–5), ``grid`` (positions of the
     analysis grid over a full crank turn), optional ``accuracy`` ([Q], stop rule a, in
     the unit of the output: degrees for ψ, mm for S and Ж, none for the ratio n),
     ``objective`` (``lexicographic`` | ``weighted``), ``p2_weight`` (λ of the weighted form),
     ``output`` (class 1 only: ``angle``, the output link's angle ψ, the default; or
-    ``ratio``, its velocity ratio n = dψ/dφ, the first analog).
+    ``ratio``, its velocity ratio n = dψ/dφ, the first analog), ``criterion`` (``max``, the
+    default, or ``rms``: how Q is built from the deviations).
 ``mechanism`` or ``structure_identification``
     The structure identification: a path (relative to the problem file) of an
     identification table, or its rows inline.  The rows' ``params:`` give the values of the
@@ -26,7 +27,9 @@ complete example of each task class):
     the mechanism.
 ``output``
     What the task controls: ``{link: L}`` (its angle ψ, class 1; its slider displacement S,
-    class 2) or ``{link: L, point: N|M}`` (tracing point Ж, classes 3–4).
+    class 2) or ``{link: L, point: N|M}`` (tracing point Ж, classes 3–4), with
+    ``length`` (mm) and ``angle`` (degrees, a number or ``[initial, lower, upper]``) the
+    guided segment of class 5 (:mod:`synthesis.guidance`).
 ``parameters``
     The varied-parameter tables 2.1–2.6, one row per group (``links: [i, j]``, or
     ``links: [1]`` for L0); each column of the group is ``[initial, lower, upper]``, a single
@@ -37,13 +40,17 @@ complete example of each task class):
     the kinematic model checks every column (:func:`assur.build_model`).
 ``allowable``
     Tables 2.7–2.11: rows ``{links: [i, j], pressure_angle: deg, rotations: {joint: deg},
-    workspace: {x: [min, max], y: [min, max]}}`` (the box applies to the group's revolute
-    joints, mm).
+    workspace: {x: [min, max], y: [min, max]}, strokes: {P_i: [min, max]}}`` (the box
+    applies to the group's revolute joints, mm; a stroke range to the slider coordinate of
+    a prismatic pair, mm).
 ``control_points``
     Tables 2.12–2.15, columns by class: 1 ``K, phi, psi, E`` (or ``psi_lo, psi_hi`` for a
     zone; with ``output: ratio`` the columns ``n``, ``n_lo``, ``n_hi`` instead, plain
-    numbers), 2 ``K, phi, S, E``, 3 ``K, x, y, E``, 4 ``K, phi, x, y, E`` (φ, ψ in degrees;
-    E defaults to 1).
+    numbers), 2 ``K, phi, S, E`` (or ``S_lo, S_hi``), 3 ``K, x, y, E``, 4 ``K, phi, x, y,
+    E``, 5 ``K, [phi,] x, y, theta, E`` (φ, ψ, θ in degrees; E defaults to 1).
+``law``
+    Classes 1–4, instead of ``control_points``: ``phi: [first, last]`` and the output as
+    formulas of φ (:mod:`synthesis.expressions`).
 ``search``
     Optional defaults of the search: ``budget`` (log2 of the LPτ trials), ``seed``,
     ``refine``, ``shrink_passes``, ``stall``, ``time_limit``, ``refine_evaluations``
@@ -82,8 +89,10 @@ if TYPE_CHECKING:  # pragma: no cover
     from synthesis.force_conditions import ForceConditions
 
 __all__ = [
+    "CRITERIA",
     "DEFAULT_PRESSURE_ANGLE",
     "OUTPUT_QUANTITIES",
+    "SEGMENT_ANGLE",
     "ControlPoints",
     "GroupKey",
     "GroupModelRow",
@@ -100,6 +109,11 @@ GroupKey = tuple[LinkId, ...]
 
 #: Class-1 outputs: the output link's angle ψ, or its velocity ratio n = dψ/dφ.
 OUTPUT_QUANTITIES = ("angle", "ratio")
+#: Name of the varied parameter of a class-5 task's segment angle (degrees in the tables),
+#: a parameter of the problem rather than of the mechanism.
+SEGMENT_ANGLE = "output.angle"
+#: Ways to build Q from the deviations: their largest magnitude, or their root mean square.
+CRITERIA = ("max", "rms")
 #: Keys of the ``search`` table → fields of :class:`~synthesis.search.SearchSettings`.
 SEARCH_FIELDS = {"budget": "budget_log2", "seed": "seed", "refine": "refine",
                  "shrink_passes": "shrink_passes", "stall": "stall",
@@ -187,7 +201,10 @@ class ControlPoints:
     weight : ndarray, shape (K,)
         Weights E_K.
     lower, upper : ndarray, shape (K,) or None
-        Limits of a class-1 tolerance zone (radians, or plain numbers for the ratio).
+        Limits of a tolerance zone: class 1 (radians, or plain numbers for the ratio),
+        class 2 (mm).
+    angle : ndarray, shape (K,) or None
+        Class 5: the required direction θ_K of the guided segment (radians).
     """
 
     phi: FloatArray
@@ -196,16 +213,24 @@ class ControlPoints:
     weight: FloatArray
     lower: FloatArray | None = None
     upper: FloatArray | None = None
+    angle: FloatArray | None = None
 
     def __post_init__(self) -> None:
-        for array in (self.phi, self.value, self.point, self.weight, self.lower, self.upper):
+        for array in (self.phi, self.value, self.point, self.weight, self.lower, self.upper,
+                      self.angle):
             if array is not None:
                 array.setflags(write=False)
 
     @property
     def zone(self) -> bool:
-        """Whether the class-1 task is given as a tolerance zone."""
+        """Whether the task (class 1 or 2) is given as a tolerance zone."""
         return self.lower is not None
+
+    @property
+    def timed(self) -> bool:
+        """Whether each control point belongs to a given crank angle φ_K (classes 1, 2, 4;
+        class 5 when its rows give ``phi``)."""
+        return bool(np.all(np.isfinite(self.phi))) and self.phi.size > 0
 
 
 @dataclass(frozen=True)
@@ -213,12 +238,17 @@ class Output:
     """The controlled output: the angle or slider of ``link``, or a point on it.
 
     ``point`` is ``'N'``/``'M'`` (an attachment point) or the name of a tracing point;
-    ``quantity`` (class 1) is ``'angle'`` (ψ) or ``'ratio'`` (n = dψ/dφ).
+    ``quantity`` (class 1) is ``'angle'`` (ψ) or ``'ratio'`` (n = dψ/dφ).  Class 5 guides
+    a segment fixed on the link: it starts at ``point``, is ``length`` mm long and makes the
+    angle ``angle`` (radians) with the axis of the link's local frame; a varied angle is the
+    parameter :data:`SEGMENT_ANGLE` of the problem, and ``angle`` is then its initial value.
     """
 
     link: LinkId
     point: str | None = None
     quantity: str = "angle"
+    length: float | None = None
+    angle: float = 0.0
 
     @property
     def ratio(self) -> bool:
@@ -248,6 +278,12 @@ class Problem:
     pressure_angles, rotations, workspace : mapping
         Group label → allowable pressure angle (radians), joint → allowable swing
         (radians), working-space box ``(x_min, x_max, y_min, y_max)`` (mm).
+    strokes : mapping
+        Group label → prismatic pair role → the allowed range ``(s_min, s_max)`` of its
+        slider coordinate s (mm, as the kinematics measures it from the guide's base point).
+    criterion : str
+        How Q is built from the deviations: ``'max'`` (the course's, the default) or
+        ``'rms'`` (:data:`CRITERIA`).
     search : mapping
         The values the ``search`` table gives (its own keys: ``budget``, ``seed``, …),
         each already checked by the rule of its setting.
@@ -282,6 +318,8 @@ class Problem:
     pressure_angles: Mapping[str, float] = field(default_factory=dict)
     rotations: Mapping[str, Mapping[str, float]] = field(default_factory=dict)
     workspace: Mapping[str, tuple[float, float, float, float]] = field(default_factory=dict)
+    strokes: Mapping[str, Mapping[str, tuple[float, float]]] = field(default_factory=dict)
+    criterion: str = "max"
     group_models: tuple[GroupModelRow, ...] = ()
     search: Mapping[str, Any] = field(default_factory=dict)
     forces: ForceConditions | None = None
@@ -295,7 +333,7 @@ class Problem:
         dimensionless ratio n).  Inside, ψ and its deviations are radians."""
         if self.task_class == 1:
             return "1" if self.output.ratio else "deg"
-        return "mm"
+        return "mm"  # (class 5: the deviations of the segment's end points)
 
     @property
     def output_scale(self) -> float:
@@ -343,6 +381,11 @@ class Problem:
         """Name → value of the varied parameters of design x."""
         return {p.name: float(v) for p, v in zip(self.parameters, np.asarray(x, dtype=float))}
 
+    def mechanism_design(self, x: npt.ArrayLike) -> dict[str, float]:
+        """Name → value of the varied parameters of design x that belong to the mechanism
+        (all but a class-5 segment angle, :data:`SEGMENT_ANGLE`)."""
+        return {name: value for name, value in self.design(x).items() if name != SEGMENT_ANGLE}
+
     def mechanism_table(self, x: npt.ArrayLike) -> dict[str, Any]:
         """The mechanism table of design x: what the result file stores.
 
@@ -355,7 +398,8 @@ class Problem:
         table = copy.deepcopy(dict(self.mechanism))
         rows = {row_key(row): row for row in table.get("structure_identification", [])}
         for p, value in zip(self.parameters, np.asarray(x, dtype=float)):
-            rows[p.links]["params"][p.column] = table_number(float(value))
+            if p.name != SEGMENT_ANGLE:
+                rows[p.links]["params"][p.column] = table_number(float(value))
         return table
 
 

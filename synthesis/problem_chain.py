@@ -32,7 +32,8 @@ import numpy as np
 import numpy.typing as npt
 
 from assur.io.reader import normalise_id
-from assur.kinematics.analysis import analyse
+from assur.kinematics.analysis import analyse, held
+from assur.kinematics.laws import STROKE
 from assur.kinematics.model import GroupModel, KinematicModel
 from assur.model import LinkId
 
@@ -95,9 +96,10 @@ def design_table(problem: Problem, x: npt.ArrayLike) -> dict[str, Any]:
     dict
         ``mechanism`` and ``geometry`` as a chain table has them.
     """
-    design = problem.design(x)
-    model = problem.model.with_params(design)
-    motion = analyse(model, np.zeros(1))
+    model = problem.model.with_params(problem.mechanism_design(x))
+    # inputs that follow laws are drawn at their sketched coordinates, which the laws of
+    # the result then move from as they move from the problem's sketch
+    motion = analyse(held(model) if model.laws else model, np.zeros(1))
     table = copy.deepcopy(dict(problem.mechanism))
     geometry = table["geometry"]
     for key, entry in geometry.items():
@@ -119,7 +121,21 @@ def design_table(problem: Problem, x: npt.ArrayLike) -> dict[str, Any]:
         point = _value(motion.tracing.get(name))
         if isinstance(entry, dict) and cmath.isfinite(point):
             entry["point"] = [table_number(point.real), table_number(point.imag)]
+    _write_strokes(table, model)
     return table
+
+
+def _write_strokes(table: dict[str, Any], model: KinematicModel) -> None:
+    """The design's stroke limits ``s_min``, ``s_max`` of each linear input, written into
+    its row of ``mechanism.inputs`` (``stroke: [s_min, s_max]``, mm); the rows are in the
+    order of the inputs, as the model's laws."""
+    rows = (table.get("mechanism") or {}).get("inputs")
+    if not isinstance(rows, list) or len(rows) != len(model.laws):
+        return
+    for row, law in zip(rows, model.laws.values()):
+        if law.linear and law.limited and isinstance(row, dict):
+            row["stroke"] = [table_number(float(np.ravel(model.params[f"{law.group}.{c}"])[0]))
+                             for c in STROKE]
 
 
 def _drawn(model: KinematicModel, pair: str) -> complex | None:

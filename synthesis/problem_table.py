@@ -58,11 +58,14 @@ from assur.io.reader import (
 )
 from assur.structure.analysis import StructuralAnalysis
 from assur.text import Message
-from synthesis.force_conditions import read_force_conditions
+from synthesis.expressions import LawError, parse_law
+from synthesis.force_conditions import LINEAR_DRIVES, read_force_conditions
 from synthesis.problem import (
+    CRITERIA,
     DEFAULT_PRESSURE_ANGLE,
     OUTPUT_QUANTITIES,
     SEARCH_FIELDS,
+    SEGMENT_ANGLE,
     ControlPoints,
     GroupKey,
     GroupModelRow,
@@ -79,17 +82,26 @@ __all__ = ["load_problem", "problem_from_dict"]
 
 _TOP = ("schema_version", "name", "general", "mechanism", "structure_identification",
         "frame", "geometry", "group_models", "output", "parameters", "allowable",
-        "control_points", "search", "forces", "student")
+        "control_points", "search", "forces", "student", "law")
 _GENERAL = ("control_points", "direction", "groups", "task_class", "grid", "accuracy",
-            "objective", "p2_weight", "output")
+            "objective", "p2_weight", "output", "criterion")
 #: Control-point columns of the target value and of the zone limits, per class-1 output.
 _VALUE_COLUMNS = {"angle": ("psi", "psi_lo", "psi_hi"), "ratio": ("n", "n_lo", "n_hi")}
+#: Class-2 control-point columns of the target stroke and of the zone limits.
+_S_COLUMNS = ("S", "S_lo", "S_hi")
 _POINT_COLUMNS = {
     1: ("K", "phi", "psi", "psi_lo", "psi_hi", "E"),
-    2: ("K", "phi", "S", "E"),
+    2: ("K", "phi", "S", "S_lo", "S_hi", "E"),
     3: ("K", "x", "y", "E"),
     4: ("K", "phi", "x", "y", "E"),
+    5: ("K", "phi", "x", "y", "theta", "E"),
 }
+#: The task classes.
+TASK_CLASSES = (1, 2, 3, 4, 5)
+#: Fewest control poses of a class-5 task: a motion of the segment needs two positions.
+MIN_POSES = 2
+#: Columns of the ``law`` table: the angle range and the formula of each class's output.
+_LAW_COLUMNS = {1: ("psi",), 2: ("S",), 4: ("x", "y")}
 #: Locations whose problems leave no mechanism to build.
 _STRUCTURE = ("mechanism", "structure_identification", "parameters", "frame", "geometry")
 Bounds = dict[tuple[GroupKey, str], tuple[float, float, float]]
@@ -161,6 +173,7 @@ class _General:
     objective: Any = "lexicographic"
     p2_weight: Any = 1.0
     output: Any = "angle"
+    criterion: Any = "max"
 
 
 @dataclass(frozen=True)
@@ -208,8 +221,11 @@ def _read(reader: TableReader, base: Path) -> Problem:
     groups, model, bounds = form.groups, form.model, form.bounds
     quantity = general.output if general.output in OUTPUT_QUANTITIES else "angle"
     output = _read_output(top, general.task_class, groups, quantity)
-    control = _read_control(top, general.task_class, general.n_points, general.output)
-    pressure, rotations, boxes = _read_allowable(top, groups)
+    if top.has("law"):
+        control = _read_law(top, general.task_class, general.n_points)
+    else:
+        control = _read_control(top, general.task_class, general.n_points, general.output)
+    pressure, rotations, boxes, strokes = _read_allowable(top, groups)
     models = _read_group_models(top, groups)
     search = _read_search(top)
     parameters: tuple[Parameter, ...] = ()
@@ -218,11 +234,12 @@ def _read(reader: TableReader, base: Path) -> Problem:
         labels = {group_key(g): g.label for g in model.groups}
         if not mechanism.chain:
             _check_varied(reader, model, bounds, labels)
-        parameters = _parameters(model, bounds)
+        parameters = _parameters(model, bounds) + _segment_parameter(top, general.task_class)
         if not parameters and "parameters" not in top.misspelt and not any(
                 issue.location.lstrip("'").startswith("parameters") for issue in reader.issues):
             reader.problem("parameters", "problem.nothing_varied")
         _check_rotations(reader, model, {labels[k]: v for k, v in rotations.items()})
+        _check_strokes(reader, model, {labels[k]: v for k, v in strokes.items()})
         if output.link is not MISSING:
             _check_output(reader, model, output, general.task_class)
         models = tuple(replace(row, label=labels.get(row.links, row.label)) for row in models)
@@ -245,6 +262,7 @@ def _read(reader: TableReader, base: Path) -> Problem:
         pressure_angles={labels[k]: v for k, v in pressure.items()},
         rotations={labels[k]: v for k, v in rotations.items()},
         workspace={labels[k]: v for k, v in boxes.items()},
+        strokes={labels[k]: v for k, v in strokes.items()}, criterion=general.criterion,
         group_models=models, search=search, forces=forces, student=student,
         warnings=tuple(reader.warnings))
 
@@ -253,7 +271,7 @@ def _read_general(top: Node) -> _General:
     general = top.child("general", allowed=_GENERAL)
     if general is None:
         return _General()
-    task_class = general.choice("task_class", [1, 2, 3, 4])
+    task_class = general.choice("task_class", TASK_CLASSES)
     out = _General(
         n_points=general.get("control_points", kind="int", check=positive),
         direction=general.choice("direction", [1, -1], required=False, default=1),
@@ -268,8 +286,9 @@ def _read_general(top: Node) -> _General:
                                  default="lexicographic"),
         p2_weight=general.get("p2_weight", kind="number", required=False, default=1.0,
                               check=positive),
-        output=general.choice("output", OUTPUT_QUANTITIES, required=False, default="angle"))
-    if general.has("output") and task_class in (2, 3, 4):
+        output=general.choice("output", OUTPUT_QUANTITIES, required=False, default="angle"),
+        criterion=general.choice("criterion", CRITERIA, required=False, default="max"))
+    if general.has("output") and task_class in (2, 3, 4, 5):
         top.reader.problem("general 'output'", "problem.output_class", task_class=task_class)
     return out
 
@@ -434,9 +453,14 @@ def _chain_form(top: Node, mechanism: _Mechanism, general: _General) -> _Form:
     model, analysis, foreign = _build_model(reader, mechanism.data, mechanism.source)
     if model is None:
         return _Form({}, None, foreign, {}, mechanism.data)
+    if model.drive in LINEAR_DRIVES:  # (one cylinder or slider: its stroke over the cycle)
+        holder = next(g for g in model.groups if g.driven is not None or g.group_kind.is_input)
+        if holder.layout is not None:  # (a higher group follows its actuator's length only)
+            reader.problem("mechanism", "problem.actuator_in_group", source=mechanism.source,
+                           group=holder.label)
+            return _Form({}, None, foreign, {}, mechanism.data)
+        model = assur.cycle_model(model)
     groups: dict[GroupKey, Any] = {group_key(g): g.label for g in model.groups}
-    if model.drive != "crank":
-        reader.problem("mechanism", "problem.actuator_drive", source=mechanism.source)
     if general.n_groups is not MISSING and general.n_groups != len(groups):
         reader.problem("general 'groups'", "higher.problem.groups_count", rows=len(groups),
                        found=general.n_groups)
@@ -684,20 +708,73 @@ def _parameters(model: KinematicModel, bounds: Bounds) -> tuple[Parameter, ...]:
 
 def _read_output(top: Node, task_class: Any, groups: dict[GroupKey, Any],
                  quantity: str) -> Output:
-    node = top.child("output", allowed=("link", "point"))
+    node = top.child("output", allowed=("link", "point", "length", "angle"))
     if node is None:
         return Output(MISSING, quantity=quantity)
     link = node.get("link", kind="id")
     point = node.get("point", kind="str", required=False, default=None)
+    length, angle = _read_segment(node, task_class)
     members = {k for key in groups for k in key}
     if link is not MISSING and members and link not in members:
         top.reader.problem("output 'link'", "problem.output_link_unknown", link=link)
         link = MISSING  # (told: not judged again against the mechanism)
-    if task_class in (3, 4) and point is None:
+    if task_class in (3, 4, 5) and point is None:
         top.reader.problem("output 'point'", "problem.point_needed")
     elif task_class in (1, 2) and point is not None:
         top.reader.problem("output 'point'", "problem.point_extra", task_class=task_class)
-    return Output(link, point, quantity)
+    return Output(link, point, quantity, length, angle)
+
+
+def _read_segment(node: Node, task_class: Any) -> tuple[float | None, float]:
+    """The guided segment of a class-5 task: ``length`` (mm, required) and ``angle`` on the
+    link (degrees; a number, or ``[initial, lower, upper]`` when varied — read as a
+    parameter by :func:`_segment_parameter`); both belong to class 5 only.  Returns the
+    length (None when absent or invalid) and the fixed angle or the initial one (radians).
+    """
+    if task_class != 5:
+        for key in ("length", "angle"):
+            if node.has(key) and task_class is not MISSING:
+                node.reader.problem(f"output {key!r}", "problem.segment_extra", field=key,
+                                    task_class=task_class)
+        return None, 0.0
+    length = node.get("length", kind="number", check=positive)
+    value = node.mapping.get("angle", 0.0)
+    angle = _segment_cell(node.reader, value)
+    return (None if length is MISSING else float(length),
+            math.radians(angle[0]) if angle is not None else 0.0)
+
+
+def _segment_cell(reader: TableReader, value: Any) -> tuple[float, float, float] | None:
+    """``output: angle``: a number (fixed) or ``[initial, lower, upper]`` (varied), degrees;
+    a bad cell is reported (None)."""
+    if is_number(value):
+        return float(value), float(value), float(value)
+    if isinstance(value, list) and len(value) == 3 and all(map(is_number, value)):
+        initial, lower, upper = (float(v) for v in value)
+        if lower > upper:
+            reader.problem("output 'angle'", "problem.bounds_order", found=value)
+        elif not lower <= initial <= upper:
+            reader.problem("output 'angle'", "problem.initial_outside", found=value)
+        else:
+            return initial, lower, upper
+        return None
+    reader.problem("output 'angle'", "problem.segment_angle_cell", found=with_commas(value)
+                   if isinstance(value, list) else describe(value))
+    return None
+
+
+def _segment_parameter(top: Node, task_class: Any) -> tuple[Parameter, ...]:
+    """The segment's angle as a varied parameter (:data:`SEGMENT_ANGLE`, degrees) when
+    a class-5 task gives it as ``[initial, lower, upper]`` with lower < upper."""
+    node = top.mapping.get("output")
+    value = node.get("angle") if isinstance(node, dict) else None
+    if task_class != 5 or not isinstance(value, list) or len(value) != 3 \
+            or not all(map(is_number, value)):
+        return ()
+    initial, lower, upper = (float(v) for v in value)
+    if not lower <= initial <= upper or lower == upper:
+        return ()
+    return (Parameter(SEGMENT_ANGLE, initial, lower, upper),)
 
 
 def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> ControlPoints:
@@ -715,17 +792,18 @@ def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> C
                           (c for v in _VALUE_COLUMNS.values() for c in v)), "E")
     else:
         columns = _POINT_COLUMNS.get(task_class, (  # (no valid class: every column passes)
-            "K", "phi", *(c for v in _VALUE_COLUMNS.values() for c in v), "S", "x", "y", "E"))
+            "K", "phi", *(c for v in _VALUE_COLUMNS.values() for c in v), "S", "S_lo", "S_hi",
+            "x", "y", "theta", "E"))
     rows = list(top.rows("control_points", columns))
     if quantity not in _VALUE_COLUMNS:
         used = {column for row in rows for column in row.mapping}
         quantity = "ratio" if used & set(_VALUE_COLUMNS["ratio"]) else "angle"
-    value_col, lo_col, hi_col = _VALUE_COLUMNS[quantity]
-    convert = _num if quantity == "ratio" else _deg
+    value_col, lo_col, hi_col = _VALUE_COLUMNS[quantity] if task_class != 2 else _S_COLUMNS
+    convert = _num if quantity == "ratio" or task_class == 2 else _deg
     k = len(rows)
-    phi, value, lo, hi, weight = (np.full(k, np.nan) for _ in range(5))
+    phi, value, lo, hi, weight, angle = (np.full(k, np.nan) for _ in range(6))
     point = np.full(k, np.nan, dtype=complex)
-    zone_rows = 0
+    zone_rows = timed_rows = 0
     reader = top.reader
     table = top.mapping.get("control_points")
     places = [n for n, row in enumerate(table) if isinstance(row, dict)] \
@@ -738,9 +816,10 @@ def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> C
         e = row.get("E", kind="number", required=False, default=1.0, check=positive)
         weight[n] = e if e is not MISSING else np.nan
         cut = _cut_by_comma(row)
-        if task_class in (1, 2, 4):
+        if task_class in (1, 2, 4) or (task_class == 5 and row.has("phi")):
+            timed_rows += 1
             phi[n] = _deg(row.get("phi", kind="number"))
-        if task_class == 1:
+        if task_class in (1, 2):
             if row.has(lo_col) or row.has(hi_col):
                 zone_rows += 1
                 lo[n] = convert(row.get(lo_col, kind="number"))
@@ -753,13 +832,15 @@ def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> C
                                    lower=row.mapping[lo_col])
             else:
                 value[n] = convert(row.get(value_col, kind="number"))
-        elif task_class == 2:
-            value[n] = _num(row.get("S", kind="number"))
-        elif task_class in (3, 4):
+        elif task_class in (3, 4, 5):
             point[n] = complex(_num(row.get("x", kind="number")), _num(row.get("y", kind="number")))
+        if task_class == 5:
+            angle[n] = _deg(row.get("theta", kind="number"))
         if cut:
             phi[n] = np.nan
-    _check_repeated_angles(reader, rows, phi, value, point, lo, hi)
+    _check_repeated_angles(reader, rows, phi, value, point, lo, hi, angle)
+    if task_class == 5:
+        _check_poses(top, k, timed_rows)
     if 0 < zone_rows < k:
         reader.problem("control_points", "problem.zone_mixed", lo=lo_col, hi=hi_col,
                        zone=zone_rows, rows=k)
@@ -770,9 +851,20 @@ def _read_control(top: Node, task_class: Any, n_points: Any, quantity: Any) -> C
                        found=n_points)
     if k == 0 and not reader.issues:
         reader.problem("control_points", "problem.control_empty")
-    zone = task_class == 1 and zone_rows == k and k > 0
+    zone = task_class in (1, 2) and zone_rows == k and k > 0
     return ControlPoints(phi=phi, value=value, point=point, weight=weight,
-                         lower=lo if zone else None, upper=hi if zone else None)
+                         lower=lo if zone else None, upper=hi if zone else None,
+                         angle=angle if task_class == 5 else None)
+
+
+def _check_poses(top: Node, rows: int, timed: int) -> None:
+    """A class-5 task gives at least :data:`MIN_POSES` poses, and either every pose its
+    crank angle ``phi`` (a timed task) or none."""
+    if rows < MIN_POSES:
+        top.reader.problem("control_points", "problem.poses_few", needed=MIN_POSES,
+                           found=rows)
+    if 0 < timed < rows:
+        top.reader.problem("control_points", "problem.poses_timing", timed=timed, rows=rows)
 
 
 def _cut_by_comma(row: Node) -> bool:
@@ -838,14 +930,17 @@ def _shown(value: float) -> float | int:
 
 def _read_allowable(top: Node, groups: dict[GroupKey, Any]
                     ) -> tuple[dict[GroupKey, float], dict[GroupKey, dict[str, float]],
-                               dict[GroupKey, tuple[float, float, float, float]]]:
+                               dict[GroupKey, tuple[float, float, float, float]],
+                               dict[GroupKey, dict[str, tuple[float, float]]]]:
     """Tables 2.7–2.11: allowable pressure angles and joint rotations (degrees → radians),
-    and working-space boxes of the groups' joints (mm)."""
+    working-space boxes of the groups' joints (mm), and stroke ranges of their prismatic
+    pairs (mm, :func:`_read_stroke_limits`)."""
     pressure: dict[GroupKey, float] = {}
     rotations: dict[GroupKey, dict[str, float]] = {}
     boxes: dict[GroupKey, tuple[float, float, float, float]] = {}
-    for row in top.rows("allowable", ("links", "pressure_angle", "rotations", "workspace"),
-                        required=False):
+    strokes: dict[GroupKey, dict[str, tuple[float, float]]] = {}
+    for row in top.rows("allowable", ("links", "pressure_angle", "rotations", "workspace",
+                                      "strokes"), required=False):
         row.swapped({"links": lambda v: isinstance(v, list),
                      "pressure_angle": lambda v: is_number(v) or v == "default",
                      "rotations": lambda v: isinstance(v, dict),
@@ -865,15 +960,107 @@ def _read_allowable(top: Node, groups: dict[GroupKey, Any]
                 if value is not MISSING:
                     limits[str(joint)] = math.radians(value)
         box = read_box(row)
+        ranges = _read_stroke_limits(row)
         if key is None:
             continue
+        if ranges:
+            strokes[key] = ranges
         if angle not in (None, MISSING):
             pressure[key] = math.radians(angle)
         if limits:
             rotations[key] = limits
         if box is not None:
             boxes[key] = box
-    return pressure, rotations, boxes
+    return pressure, rotations, boxes, strokes
+
+
+def _read_stroke_limits(row: Node) -> dict[str, tuple[float, float]]:
+    """An ``allowable`` row's ``strokes``: prismatic pair role → ``[s_min, s_max]`` (mm),
+    the range its slider coordinate must keep over the cycle (a working-space condition)."""
+    node = row.child("strokes", required=False)
+    limits: dict[str, tuple[float, float]] = {}
+    if node is None:
+        return limits
+    for role, value in node.mapping.items():
+        where = f"{row.location} 'strokes' {str(role)!r}"
+        if not (isinstance(value, list) and len(value) == 2 and all(map(is_number, value))):
+            row.reader.problem(where, "problem.stroke_cell", found=with_commas(value)
+                               if isinstance(value, list) else describe(value))
+        elif float(value[0]) > float(value[1]):
+            row.reader.problem(where, "problem.stroke_order", lower=float(value[0]),
+                               upper=float(value[1]))
+        else:
+            limits[str(role)] = (float(value[0]), float(value[1]))
+    return limits
+
+
+def _check_strokes(reader: TableReader, model: KinematicModel,
+                   strokes: dict[str, dict[str, tuple[float, float]]]) -> None:
+    """Stroke ranges are given only to the group's prismatic pairs."""
+    for label, limits in strokes.items():
+        group = model.group(label)
+        pairs = [role for role in group.pairs if role.startswith("P")]
+        for role in limits:
+            if role not in pairs:
+                reader.problem(f"allowable ({label}) 'strokes'", "problem.stroke_pair",
+                               pair=role, group=label, pairs=", ".join(pairs) or "—")
+
+
+def _read_law(top: Node, task_class: Any, n_points: Any) -> ControlPoints:
+    """The ``law`` table: the required output as formulas of φ (the course's (2.22)) in
+    place of the control-point table.
+
+    ``phi: [first, last]`` (degrees) and one formula per output of the class — ``psi``
+    (degrees, class 1), ``S`` (mm, class 2), ``x`` and ``y`` (mm, classes 3–4) — each read
+    by :func:`synthesis.expressions.parse_law`.  The control points are the N_z angles
+    evenly spaced from the first to the last (``general: control_points``), every weight
+    E_K = 1; a class-3 task keeps the points and drops their angles.
+    """
+    reader = top.reader
+    k = n_points if isinstance(n_points, int) and n_points > 0 else 0
+    empty = np.full(k, np.nan)
+    out = ControlPoints(phi=empty, value=empty.copy(), point=empty + 0j, weight=np.ones(k))
+    if top.has("control_points"):
+        reader.problem("law", "problem.law_and_table")
+    law_of = task_class if task_class != 3 else 4
+    if task_class is not MISSING and law_of not in _LAW_COLUMNS:
+        reader.problem("law", "problem.law_class", task_class=task_class)
+        return out
+    names = _LAW_COLUMNS.get(law_of, ("psi", "S", "x", "y"))
+    node = top.child("law", allowed=("phi", *names))
+    if node is None or task_class is MISSING:
+        return out
+    laws = {}
+    for name in names:
+        text = node.get(name, kind="str")
+        if text is MISSING:
+            continue
+        try:
+            laws[name] = parse_law(text)
+        except LawError as exc:
+            reader.problem(f"law {name!r}", "problem.law_formula",
+                           reason=Message(f"law.reason.{exc.reason}", {"detail": exc.detail}),
+                           found=describe(text))
+    span = node.get("phi", kind="list")
+    if span is not MISSING and not (len(span) == 2 and all(map(is_number, span))
+                                    and float(span[0]) < float(span[1])):
+        reader.problem("law 'phi'", "problem.law_span", found=with_commas(span))
+        span = MISSING
+    if span is MISSING or len(laws) != len(names) or k == 0:
+        return out
+    phi = np.linspace(float(span[0]), float(span[1]), k)
+    values = {name: law(phi) for name, law in laws.items()}
+    for name, value in values.items():
+        bad = np.flatnonzero(~np.isfinite(value))
+        if bad.size:
+            reader.problem(f"law {name!r}", "problem.law_undefined",
+                           phi=_shown(float(phi[bad[0]])), count=int(bad.size))
+    angles = np.radians(phi) if task_class != 3 else np.full(k, np.nan)
+    if law_of == 4:
+        return ControlPoints(phi=angles, value=empty.copy(),
+                             point=values["x"] + 1j * values["y"], weight=np.ones(k))
+    value = np.radians(values["psi"]) if task_class == 1 else values["S"]
+    return ControlPoints(phi=angles, value=value, point=empty + 0j, weight=np.ones(k))
 
 
 def _read_group_models(top: Node, groups: dict[GroupKey, Any]) -> tuple[GroupModelRow, ...]:

@@ -31,6 +31,10 @@ from synthesis.search_result import SearchResult, distinct_optima
 
 __all__ = ["allowable_rows", "summary", "text_report", "write_result", "write_trials"]
 
+#: The report's label of Q by the way it is built (``general: criterion``).
+_Q_LABEL = {"max": "q", "rms": "q_rms"}
+
+
 def _w(key: str, lang: str, **data: Any) -> str:
     """A sentence of the report from the catalogue (codes ``synth.report.<key>``)."""
     return render(f"synth.report.{key}", lang, **data)
@@ -64,10 +68,12 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
     for k in range(control.weight.size):
         row: dict[str, Any] = {"K": k, "E": float(control.weight[k]),
                                "deviation": _num(c.deviations[0, k] * scale)}
-        if problem.task_class in (3, 4):
+        if problem.task_class in (3, 4, 5):
             row.update(x=float(control.point[k].real), y=float(control.point[k].imag),
                        x_reproduced=_num(out[k].real), y_reproduced=_num(out[k].imag))
-        if problem.task_class != 3:
+        if control.angle is not None:  # (class 5: the segment's direction)
+            row["theta"] = math.degrees(control.angle[k])
+        if control.timed:
             row["phi"] = math.degrees(control.phi[k])
         if problem.task_class in (1, 2):
             if control.lower is not None and control.upper is not None:  # a zone
@@ -76,7 +82,7 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
             else:
                 row["target"] = float(control.value[k]) * scale
             row["reproduced"] = _num(np.real(out[k]) * scale)
-        if problem.task_class == 3:
+        else:
             row["phi_nearest"] = _num(math.degrees(analysis.phi_control[0, k] % (2 * math.pi)))
         points.append(row)
     return {
@@ -87,6 +93,7 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
         "initial": problem.design(problem.initial),
         "bounds": {p.name: [p.lower, p.upper] for p in problem.parameters},
         "Q": _num(c.q[0] * scale),
+        "criterion": problem.criterion,
         "unit": problem.output_unit,
         "output": problem.output.quantity,
         "Q_rms": _num(criterion_rms(c.deviations[0], control.weight) * scale),
@@ -106,6 +113,9 @@ def summary(problem: Problem, result: SearchResult, analysis: Analysis, *,
         "workspace": {k: {"max_outside_mm": float(np.max(v[0])),
                           "box_mm": list(problem.workspace[k])}
                       for k, v in analysis.workspace.items()},
+        "strokes": {k: {role: {"max_outside_mm": float(v[0, n]), "range_mm": list(limits)}
+                        for n, (role, limits) in enumerate(problem.strokes[k].items())}
+                    for k, v in analysis.strokes.items()},
         "advice": _advice(problem, result, float(c.q[0]) * scale),
         "margins": _margins(analysis),
         "binding": _binding(problem, result, analysis),
@@ -224,7 +234,7 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
 
     unit = "" if data["unit"] == "1" else w(data["unit"])  # the ratio n has no unit
     lines += ["", w("criteria"),
-              f"  {w('q'):<40} {_fmt(data['Q'])} {unit}",
+              f"  {w(_Q_LABEL[data.get('criterion', 'max')]):<40} {_fmt(data['Q'])} {unit}",
               f"  {w('rms'):<40} {_fmt(data['Q_rms'])} {unit}",
               f"  {w('p1'):<40} {_fmt(data['P1'])}",
               f"  {w('p2'):<40} {_fmt(data['P2'])}"]
@@ -244,8 +254,10 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
                          f"{w('reproduced')} {_fmt(row['reproduced']):>12}  "
                          f"Δ={_fmt(row['deviation'])} {unit}")
         else:
-            where = (f"φ={row['phi']:8.3f}" if cls == 4
+            where = (f"φ={row['phi']:8.3f}" if "phi" in row
                      else f"φ*={_fmt(row['phi_nearest']):>8}")
+            if "theta" in row:
+                where += f"  θ={row['theta']:8.3f}"
             lines.append(f"  K={row['K']:<3} {where}  ({row['x']:.6g}, {row['y']:.6g})  "
                          f"Δ={_fmt(row['deviation'])} {unit}")
     if data["pressure_angles"]:
@@ -264,6 +276,11 @@ def text_report(data: dict[str, Any], lang: str = "en") -> str:
         for label, info in data["workspace"].items():
             x0, x1, y0, y1 = info["box_mm"]
             lines.append(f"  {label:<12} x ∈ [{x0:g}, {x1:g}], y ∈ [{y0:g}, {y1:g}]   "
+                         f"{w('outside')} {info['max_outside_mm']:.6g}")
+    for label, pairs in data.get("strokes", {}).items():
+        for role, info in pairs.items():
+            s0, s1 = info["range_mm"]
+            lines.append(f"  {label:<12} {role:<4} s ∈ [{s0:g}, {s1:g}]   "
                          f"{w('outside')} {info['max_outside_mm']:.6g}")
     lines += ["", w("binding")]
     if not data["binding"]:

@@ -25,8 +25,13 @@ import numpy as np
 import pytest
 import yaml
 
+import assur
+from assur.kinematics.analysis import analyse, values
+from synthesis import problem_from_dict
 from synthesis.cli import main
 from synthesis.cli.commands import synthesize
+from synthesis.evaluate import Evaluator
+from synthesis.problem_chain import group_key
 
 ROOT = Path(__file__).resolve().parents[2]
 PROBLEM = ROOT / "input_tables" / "problems" / "class2_six_bar_triad.yaml"
@@ -162,16 +167,42 @@ def test_bad_cells_are_reported_together(tmp_path: Path,
         assert expected in text, (expected, text)
 
 
-@pytest.mark.parametrize("table", ["actuator_triad.yaml", "hydraulic_boom.yaml"])
-def test_a_mechanism_driven_by_an_actuator_is_refused(table: str, tmp_path: Path,
-                                                      capsys: pytest.CaptureFixture[str]
-                                                      ) -> None:
-    """The search turns a crank through the control angles: an actuator's length is no
-    angle, so the problem is refused with the reason instead of being solved on nonsense."""
-    chain = str(PROBLEM.parent.parent / table)
+def test_an_actuator_inside_a_triad_is_refused(tmp_path: Path,
+                                               capsys: pytest.CaptureFixture[str]) -> None:
+    """A triad follows its actuator's length only (``docs/higher_groups.md``): it cannot
+    run over a cycle of a law, so the problem is refused with the reason."""
+    chain = str(PROBLEM.parent.parent / "actuator_triad.yaml")
     code, text = _problems(tmp_path, {"mechanism": chain, "parameters": []}, capsys)
     assert code == 2 and "Traceback" not in text
-    assert f"mechanism: the mechanism of {chain} is driven by a linear actuator" in text, text
+    assert (f"mechanism: the actuator of the mechanism of {chain} is a bar of the group "
+            "III(2,3,4,5,6) (a triad or a class IV group), which follows its length only"
+            ) in text, text
+
+
+@pytest.mark.parametrize(("table", "ends", "output"), [
+    ("hydraulic_boom.yaml", ("B", "C"), 1), ("hydraulic_boom_forces.yaml", ("B", "C"), 1)])
+def test_a_cylinder_runs_its_varied_stroke_over_the_cycle(table: str, ends: tuple[str, str],
+                                                          output: int) -> None:
+    """A mechanism driven by a cylinder that is a dyad's bar is synthesised over the cycle
+    t of its harmonic law: its stroke limits are the columns ``s_min``, ``s_max`` of the
+    group that holds it, and each design's cylinder — the distance of its two hinges — is
+    s_min at t = 0, their mean at 90°, s_max at 180°."""
+    model = assur.load_model(PROBLEM.parent.parent / table)
+    label = next(g.label for g in model.groups if g.driven is not None)
+    lo, hi = model.input_range
+    data = {"general": {"control_points": 1, "groups": len(model.groups), "task_class": 1},
+            "mechanism": str(PROBLEM.parent.parent / table), "output": {"link": output},
+            "parameters": [{"links": list(group_key(model.group(label))),
+                            "s_min": [lo, lo - 10, lo + 5], "s_max": [hi, hi - 5, hi + 10]}],
+            "control_points": [{"K": 0, "phi": 90, "psi": 0}]}
+    problem = problem_from_dict(data, "cylinder.yaml")
+    assert problem.model.drive == "laws"
+    assert problem.names == (f"{label}.s_max", f"{label}.s_min")
+    x = np.array([[hi, lo], [hi + 6, lo - 4]])
+    motion = analyse(Evaluator(problem).model(x), np.radians([0.0, 90.0, 180.0]))
+    length = np.abs(values(motion.joints[ends[1]]) - values(motion.joints[ends[0]]))
+    hand = np.array([[lo, (lo + hi) / 2, hi], [lo - 4, (lo + hi + 2) / 2, hi + 6]])
+    np.testing.assert_allclose(length, hand, rtol=1e-12)
 
 
 def test_a_chain_without_its_sketch_is_named(tmp_path: Path,

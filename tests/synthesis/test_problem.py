@@ -62,7 +62,7 @@ def test_every_problem_is_reported_at_once() -> None:
     messages = _messages(bad)
     text = "\n".join(messages)
     assert "general: unknown key 'gird'; did you mean 'grid'?" in text
-    assert "general 'task_class': expected one of 1, 2, 3, 4; found 7" in text
+    assert "general 'task_class': expected one of 1, 2, 3, 4, 5; found 7" in text
     assert "general 'groups': the structure identification has 2 groups" in text
     assert "control_points[1] 'K': control points must be numbered 0, 1, 2" in text
     assert "parameters[1] 'l_j': the lower bound must not exceed the upper bound" in text

@@ -62,10 +62,10 @@ def _deviations(data: Mapping[str, Any], lang: str) -> str:
                   r["target"] if "target" in r else f"[{r['lower']:.6g}, {r['upper']:.6g}]",
                   r["reproduced"], r["deviation"]) for r in rows]
     else:
-        where = "φ, °" if data["task_class"] == 4 else "φ*, °"
-        header = ("K", where, "x, mm", "y, mm", f"Δ{unit}")
-        cells = [(r["K"], r["phi"] if data["task_class"] == 4 else r["phi_nearest"], r["x"],
-                  r["y"], r["deviation"]) for r in rows]
+        timed = "phi" in rows[0]  # (classes 4, and 5 with timing)
+        header = ("K", "φ, °" if timed else "φ*, °", "x, mm", "y, mm", f"Δ{unit}")
+        cells = [(r["K"], r["phi"] if timed else r["phi_nearest"], r["x"], r["y"],
+                  r["deviation"]) for r in rows]
     return _heading("deviations", lang) + table(header, cells, numeric=(0, 1, 2, 3, 4),
                                                 table_id="synthesis-deviations")
 

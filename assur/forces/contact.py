@@ -97,8 +97,8 @@ def contact_force(forces: ForceAnalysis, pair: PairId, normal: Value, follower: 
 
 
 def contact_forces(motion: Motion, forces: ForceAnalysis) -> dict[PairId, ContactForce]:
-    """The normal force of every higher pair of an analysed mechanism whose replacing link
-    is hinged to its follower (a flat face's, which slides, is left out).
+    """The normal force of every higher pair of an analysed mechanism whose contact normal
+    is known: along the replacing link hinged to the follower, or normal to a flat face.
 
     Parameters
     ----------

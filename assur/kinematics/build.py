@@ -56,13 +56,17 @@ from assur.kinematics.model import (
 )
 from assur.kinematics.rules import rules_of
 from assur.model import (
+    CircleProfile,
     Drive,
     ForceData,
     GroupParams,
+    LineProfile,
     LinkId,
     Pair,
     PairId,
     PairType,
+    PolarProfile,
+    Profile,
     Sketch,
     joint_key,
 )
@@ -180,6 +184,22 @@ def build_model(analysis: StructuralAnalysis) -> KinematicModel:
     raise TableError(chain.source, [Issue("geometry", Message("model.no_dimensions", {}))])
 
 
+def _face_normal(links: tuple[LinkId, LinkId], profiles: tuple[Profile, Profile],
+                 follower: LinkId) -> complex | None:
+    """The unit normal at the sketch of a straight profile touching a circle, from the cam
+    towards the follower (the link ``follower`` of the pair); None without a straight one."""
+    lines = [k for k, profile in enumerate(profiles) if isinstance(profile, LineProfile)]
+    circles = [k for k, profile in enumerate(profiles) if isinstance(profile, CircleProfile)]
+    if len(lines) != 1 or len(circles) != 1:
+        return None
+    line, circle = profiles[lines[0]], profiles[circles[0]]
+    assert isinstance(line, LineProfile) and isinstance(circle, CircleProfile)
+    normal = 1j * line.direction.unit
+    if ((line.point - circle.centre) * normal.conjugate()).real < 0:  # centre → face
+        normal = -normal
+    return normal if links[lines[0]] == follower else -normal
+
+
 def with_contacts(analysis: StructuralAnalysis, model: KinematicModel) -> KinematicModel:
     """The model of a replacing mechanism with the higher pairs its replacement does not
     hold for over the cycle: a tabulated cam profile, a gear mesh.
@@ -214,7 +234,6 @@ def with_contacts(analysis: StructuralAnalysis, model: KinematicModel) -> Kinema
         return model
     from assur.kinematics.analysis import analyse, sketch_input
     from assur.kinematics.contact import CamContact, ExactContact, GearContact, PolarSpline
-    from assur.model import CircleProfile, PolarProfile
     from assur.profiles import contact
 
     sketched = analyse(model, np.array([sketch_input(model)]))
@@ -236,7 +255,11 @@ def with_contacts(analysis: StructuralAnalysis, model: KinematicModel) -> Kinema
         tabulated = [isinstance(profile, PolarProfile) for profile in profiles]
         if higher.gear is None and not any(tabulated):
             if group is not None and group.layout is None:
-                contacts[group.label] = ExactContact(higher.id, item.link)
+                follower = next(m for m in group.members if m != item.link)
+                face = _face_normal(higher.links, profiles, follower)
+                contacts[group.label] = ExactContact(
+                    higher.id, item.link,
+                    None if face is None else face * cmath.exp(-1j * frames[follower][1]))
             continue
         if group is None or group.layout is not None or group.kind not in (1, 2) \
                 or (group.kind == 2 and group.j != item.link):

@@ -524,10 +524,15 @@ class ExactContact:
         The higher pair.
     replacing : link id
         The replacing link, a member of the group.
+    face : complex or None
+        For a straight profile (a flat face), the unit normal of the contact from the cam
+        towards the follower in the frame of the group's other member (the follower); None
+        for two circles, whose normal is the replacing link itself.
     """
 
     pair: PairId
     replacing: LinkId
+    face: complex | None = None
 
     def solve(self, state: State, group: GroupModel, q: Value) -> GroupSolution:
         """Solve the group by its kind (:mod:`assur.kinematics.rules`)."""
@@ -607,8 +612,12 @@ def followers(motion: Motion) -> list[Follower]:
             unit = "deg"
             coordinate = Jet(np.degrees(_unwrapped(angle.v)), np.degrees(angle.d1),
                              np.degrees(angle.d2))
-        sliding = model.pair_links[hinge][0] == "P"
-        normal = None if sliding else J.as_jet(J.expi(motion.frames[contact.replacing][1]))
+        if model.pair_links[hinge][0] != "P":  # along the replacing link K1 → K2
+            normal: Jet | None = J.as_jet(J.expi(motion.frames[contact.replacing][1]))
+        elif isinstance(contact, ExactContact) and contact.face is not None:  # a flat face
+            normal = J.as_jet(J.expi(motion.frames[link][1])) * contact.face
+        else:
+            normal = None
         found.append(Follower(contact.pair, label, link, unit, coordinate, normal, hinge,
                               np.asarray(solution.reason)))
     return found

@@ -739,3 +739,30 @@ def test_the_tooth_force_of_a_gear_pair_by_hand() -> None:
     size = 6.0 / (60.0 * math.cos(math.radians(20.0)) * MM)
     assert np.max(np.abs(np.abs(force.normal) - size)) <= 1e-9 * size
     assert np.max(np.abs(force.tangential)) <= 1e-9 * size
+
+
+def test_the_normal_force_on_a_flat_faced_follower_by_newton_s_second_law() -> None:
+    """An eccentric (centre 15 mm from the shaft, radius 40) under a flat-faced follower of
+    2 kg sliding in a vertical guide, the face horizontal, under gravity, at ω = 10 rad/s:
+    the follower rises as y = 15 sin φ mm, so the face pushes it with N = m (g + ÿ) =
+    2 (9.81 − 0.015·ω² sin φ) N, along the face's normal, and nothing across it."""
+    import yaml
+
+    import assur
+    from assur.forces.contact import contact_forces
+    from assur.io.chain_table import chain_from_dict
+
+    data = yaml.safe_load((TABLES / "cam_eccentric_flat.yaml").read_text(encoding="utf-8"))
+    data["masses"] = {2: {"mass": 2.0, "centre": [0.0, 80.0], "inertia": 0.0}}
+    data["gravity"] = [0, -9.81]
+    chain = chain_from_dict(data)
+    result = assur.analyse(chain, points=72, forces=True, omega=10.0)
+    assert result.forces is not None
+    q = result.motion.q
+    assert np.max(np.abs(values(result.motion.joints["K1"]) - 15.0 * np.exp(1j * q))) <= 1e-9
+    want = 2.0 * (9.81 - 0.015 * 10.0 ** 2 * np.sin(q))
+    found = contact_forces(result.motion, result.forces)["K"]
+    assert np.max(np.abs(found.normal - want)) <= 1e-9 * np.max(np.abs(want))
+    assert np.max(np.abs(found.tangential)) <= 1e-9 * np.max(np.abs(want))
+    record = result.to_dict()["forces"]["contacts"]["K"]
+    assert record["lost"] == [] and np.allclose(record["normal"], want, rtol=1e-9, atol=0)

@@ -15,7 +15,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 
@@ -77,6 +77,7 @@ MEET = 1e-8
 MEET_ITERATIONS = 6
 
 Inputs = Callable[[Any], K]
+T = TypeVar("T")
 
 
 def _part(v: Any, name: str) -> np.ndarray:
@@ -197,6 +198,61 @@ def _correct(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarray
         ok = (step <= CONVERGED) & (np.sign(det_rows(jac)) == sign) \
             & (apart <= 0.25 * separation(group, kv, xn))
     return xn, jac, rows, ok
+
+
+def _take(record: T, rows: np.ndarray, design: np.ndarray, shape: tuple[int, ...]) -> T | None:
+    """The record (a group or its inputs) at the positions (``rows``, ``design``) of a grid of
+    ``shape`` (N, D), laid flat: every array value, broadcast to the grid, is indexed; scalars
+    are kept. None where a value does not broadcast (the caller then works on the whole grid).
+    """
+    def take(v: Any) -> Any:
+        if v is None or isinstance(v, str):
+            return v
+        if isinstance(v, tuple):
+            return tuple(take(item) for item in v)
+        a = np.asarray(v)
+        return v if a.ndim == 0 else np.broadcast_to(a, shape)[rows, design]
+
+    try:
+        return dataclasses.replace(record, **{  # type: ignore[type-var]
+            f.name: take(getattr(record, f.name))
+            for f in dataclasses.fields(record) if f.init})  # type: ignore[arg-type]
+    except ValueError:
+        return None
+
+
+def _correct_at(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarray,
+                mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`_correct` on an (N, D) grid of positions, computed only where ``mask`` holds
+    (NaN and False elsewhere)."""
+    rows, design = np.nonzero(mask)
+    small_group = _take(group, rows, design, mask.shape)
+    small_k = _take(kv, rows, design, mask.shape)
+    if small_group is None or small_k is None:
+        x, jac, lines, ok = _correct(group, kv, guess, sign)
+        return x, jac, lines, ok & mask
+    n = group.n
+    x, jac, lines = (np.full(mask.shape + tail, np.nan) for tail in ((n,), (n, n), (n, n)))
+    ok = np.zeros(mask.shape, dtype=bool)
+    if rows.size == 0:
+        return x, jac, lines, ok
+    x[mask], jac[mask], lines[mask], ok[mask] = _correct(
+        small_group, small_k, guess[mask], np.broadcast_to(sign, mask.shape)[mask])
+    return x, jac, lines, ok
+
+
+def _lines_at(group: HigherGroup[K], kv: K, x: np.ndarray, mask: np.ndarray
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """The Jacobian and margin rows (:meth:`HigherGroup.lines`) at the positions ``mask``
+    of an (N, D) grid, laid flat."""
+    rows, design = np.nonzero(mask)
+    small_group = _take(group, rows, design, mask.shape)
+    small_k = _take(kv, rows, design, mask.shape)
+    with np.errstate(all="ignore"):
+        if small_group is None or small_k is None:
+            jac, lines = group.lines(x, kv)
+            return jac[mask], lines[mask]
+        return small_group.lines(x[mask], small_k)
 
 
 def _singularity(group: HigherGroup[K], x: np.ndarray, kv: Any) -> np.ndarray:
@@ -486,7 +542,7 @@ def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: n
         root = np.sqrt((tip.t - grid) / (tip.t - prior.t))
         ending = reach & (tip.t > prior.t) & np.isnan(tip.x1[..., 0]) & (root <= 1.0)
         guess = np.where(ending[..., None], tip.x + (prior.x - tip.x) * root[..., None], guess)
-    x, jac, rows, ok = _correct(group, kv, guess, sign[0])
+    x, jac, rows, ok = _correct_at(group, kv, guess, sign[0], reach)
     retry = reach & ~ok
     if retry.any():
         rank = np.cumsum(retry, axis=0) - 1
@@ -503,8 +559,9 @@ def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: n
         last, _, _ = _walk(group, inputs, s, start, aims, active, sign[0], None)
         ok[j, design] = last.t[rank[j, design], design] == aims[rank[j, design], design]
         x[j, design] = last.x[rank[j, design], design]
-        with np.errstate(all="ignore"):
-            jac, rows = group.lines(x, kv)
+        fresh = np.zeros(reach.shape, dtype=bool)
+        fresh[j, design] = True
+        jac[fresh], rows[fresh] = _lines_at(group, kv, x, fresh)
     reached = reach & ok
     x = np.where(reached[..., None], x, np.nan)
     if jets:

@@ -54,6 +54,10 @@ H_MIN = 1e-10
 #: Newton iterations of the corrector and its convergence bound on the scaled step.
 ITERATIONS = 4
 CONVERGED = 1e-10
+#: From this many positions on, Newton goes on after SETTLE iterations only where it has not
+#: converged.
+MANY = 256
+SETTLE = 2
 #: A mode that ends with a margin up to this ends at a change point.
 CHANGE = 1e-4
 #: After a full turn the joints are back at the sketch within this times L.
@@ -191,7 +195,7 @@ def _correct(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarray
     Newton converged, det J has the sign ``sign``, and the correction is at most a quarter
     of the separation bound.
     """
-    xn, step = newton(group, kv, guess, ITERATIONS, CONVERGED)
+    xn, step = _newton(group, kv, guess)
     with np.errstate(all="ignore"):
         jac, rows = group.lines(xn, kv)
         apart = (np.abs(xn - guess) * weights(group)).sum(axis=-1)
@@ -200,41 +204,62 @@ def _correct(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarray
     return xn, jac, rows, ok
 
 
-def _take(record: T, rows: np.ndarray, design: np.ndarray, shape: tuple[int, ...]) -> T | None:
-    """The record (a group or its inputs) at the positions (``rows``, ``design``) of a grid of
-    ``shape`` (N, D), laid flat: every array value, broadcast to the grid, is indexed; scalars
-    are kept. None where a value does not broadcast (the caller then works on the whole grid).
-    """
+def _newton(group: HigherGroup[K], kv: K, guess: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Newton's method from ``guess`` (:func:`~assur.kinematics.higher.modes.newton`,
+    ``ITERATIONS`` steps to ``CONVERGED``). On many positions, after the first ``SETTLE``
+    steps only those not yet converged go on (laid flat, :func:`_take`)."""
+    if guess[..., 0].size < MANY:
+        return newton(group, kv, guess, ITERATIONS, CONVERGED)
+    x, step = newton(group, kv, guess, SETTLE, CONVERGED)
+    more = step > CONVERGED
+    small_group, small_k = _take(group, more), _take(kv, more)
+    if not more.any() or small_group is None or small_k is None:
+        return newton(group, kv, x, ITERATIONS - SETTLE, CONVERGED) if more.any() else (x, step)
+    x[more], step[more] = newton(small_group, small_k, x[more], ITERATIONS - SETTLE, CONVERGED)
+    return x, step
+
+
+def _take(record: T, mask: np.ndarray) -> T | None:
+    """The record (a group or its inputs) at the positions ``mask`` of a grid, laid flat:
+    every array value (each part of a jet), broadcast to the grid after its own leading axes,
+    is indexed on the grid's axes; scalars are kept. None where a value does not broadcast
+    (the caller then works on the whole grid)."""
     def take(v: Any) -> Any:
         if v is None or isinstance(v, str):
             return v
         if isinstance(v, tuple):
             return tuple(take(item) for item in v)
+        if isinstance(v, Jet):
+            return Jet(take(v.v), take(v.d1), take(v.d2))
         a = np.asarray(v)
-        return v if a.ndim == 0 else np.broadcast_to(a, shape)[rows, design]
+        if a.ndim == 0:
+            return v
+        lead = a.shape[:max(0, a.ndim - mask.ndim)]
+        return np.broadcast_to(a, lead + mask.shape)[(...,) + np.nonzero(mask)]
 
     try:
-        return dataclasses.replace(record, **{  # type: ignore[type-var]
+        out = dataclasses.replace(record, **{  # type: ignore[type-var]
             f.name: take(getattr(record, f.name))
             for f in dataclasses.fields(record) if f.init})  # type: ignore[arg-type]
     except ValueError:
         return None
+    if isinstance(record, HigherGroup):  # L of the drawn points, taken rather than computed
+        vars(out)["size"] = take(record.size)
+    return out
 
 
 def _correct_at(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarray,
                 mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """:func:`_correct` on an (N, D) grid of positions, computed only where ``mask`` holds
     (NaN and False elsewhere)."""
-    rows, design = np.nonzero(mask)
-    small_group = _take(group, rows, design, mask.shape)
-    small_k = _take(kv, rows, design, mask.shape)
+    small_group, small_k = _take(group, mask), _take(kv, mask)
     if small_group is None or small_k is None:
         x, jac, lines, ok = _correct(group, kv, guess, sign)
         return x, jac, lines, ok & mask
     n = group.n
     x, jac, lines = (np.full(mask.shape + tail, np.nan) for tail in ((n,), (n, n), (n, n)))
     ok = np.zeros(mask.shape, dtype=bool)
-    if rows.size == 0:
+    if not mask.any():
         return x, jac, lines, ok
     x[mask], jac[mask], lines[mask], ok[mask] = _correct(
         small_group, small_k, guess[mask], np.broadcast_to(sign, mask.shape)[mask])
@@ -245,9 +270,7 @@ def _lines_at(group: HigherGroup[K], kv: K, x: np.ndarray, mask: np.ndarray
               ) -> tuple[np.ndarray, np.ndarray]:
     """The Jacobian and margin rows (:meth:`HigherGroup.lines`) at the positions ``mask``
     of an (N, D) grid, laid flat."""
-    rows, design = np.nonzero(mask)
-    small_group = _take(group, rows, design, mask.shape)
-    small_k = _take(kv, rows, design, mask.shape)
+    small_group, small_k = _take(group, mask), _take(kv, mask)
     with np.errstate(all="ignore"):
         if small_group is None or small_k is None:
             jac, lines = group.lines(x, kv)
@@ -371,7 +394,7 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
         ending = moving & ~hit & (~taken | (first > 0)) & falling & ~tried
         if ending.any():
             tried |= ending
-            fold, stop = _ending(group, inputs, s, here, beyond, goal, ending)
+            fold, stop = _ending_at(group, inputs, s, here, beyond, goal, ending)
             here = fold.where(stop, here)
             if log is not None:
                 log.append((here, stop))
@@ -390,6 +413,39 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
             why = np.where(stuck, code, why).astype(np.int8)
         done = done | stuck | hit
     return here, end, why
+
+
+def _ending_at(group: HigherGroup[K], inputs: Inputs[K], s: float, here: _Point,
+               beyond: np.ndarray, goal: np.ndarray, rows: np.ndarray
+               ) -> tuple[_Point, np.ndarray]:
+    """:func:`_ending` computed on the ``rows`` only, laid flat (the inputs are evaluated on
+    the whole grid, at φ = 0 off the rows, and taken at the rows)."""
+    small = _take(group, rows)
+    if small is None:
+        return _ending(group, inputs, s, here, beyond, goal, rows)
+
+    def spread(v: Any) -> Any:
+        if np.ndim(v) == 0:
+            return v
+        wide = np.zeros(np.shape(v)[:-1] + rows.shape)
+        wide[..., rows] = v
+        return wide
+
+    def local(t: Any) -> K:
+        wide = Jet(spread(t.v), spread(t.d1), spread(t.d2)) if isinstance(t, Jet) else spread(t)
+        taken = _take(inputs(wide), rows)
+        assert taken is not None
+        return taken
+
+    fold, stop = _ending(small, local, s, here.at(rows), beyond[rows], goal[rows],
+                         np.ones(int(rows.sum()), dtype=bool))
+    out = _Point(*(np.array(np.broadcast_to(getattr(here, name), getattr(here, name).shape))
+                   for name in ("t", "x", "x1", "x2")))
+    for name in ("t", "x", "x1", "x2"):
+        getattr(out, name)[rows] = getattr(fold, name)
+    hold = np.zeros(rows.shape, dtype=bool)
+    hold[rows] = stop
+    return out, hold
 
 
 def _ending(group: HigherGroup[K], inputs: Inputs[K], s: float, here: _Point, beyond: np.ndarray,
@@ -578,7 +634,9 @@ def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: n
                                else (v, 0.0 * v, 0.0 * v) if jets else (v,))]
            for name, v in found.items()}
     with np.errstate(all="ignore"):
-        margin = np.where(reached, hadamard(rows), np.nan).T
+        margin = np.full(reached.shape, np.nan)
+        margin[reached] = hadamard(rows[reached])
+        margin = margin.T
     return _Pass(x=x.transpose(1, 0, 2), out=out, margin=margin, end=end[0], why=why[0])
 
 
@@ -690,10 +748,16 @@ def _gap(group: HigherGroup[K], k: K, rows: np.ndarray) -> np.ndarray:
     where the guides are parallel): there −|sin| of the angle between the guides, 0 where the
     mode ends at the parallel position.
     """
-    coef = np.broadcast_to(coefficients(group, k), rows.shape + (2 * group.degree + 1,))
+    small_group, small_k = _take(group, rows), _take(k, rows)
+    with np.errstate(all="ignore"):
+        if small_group is None or small_k is None:
+            coef = np.broadcast_to(coefficients(group, k), rows.shape + (2 * group.degree + 1,))
+            coef = coef[rows]
+        else:
+            coef = coefficients(small_group, small_k)
     out = np.full(rows.shape, np.nan)
     with np.errstate(all="ignore"):
-        size = np.abs(np.log(np.abs(roots(coef[rows]))))
+        size = np.abs(np.log(np.abs(roots(coef))))
         out[rows] = -np.where(size > TAU, size, np.inf).min(axis=-1)
         if isinstance(group, ClassIVDrawing) and all(group.slides):
             guides = -np.abs(np.sin(np.angle(np.asarray(k.u_c) / k.u_a)))

@@ -312,15 +312,14 @@ def _fold(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, act
                 & (np.abs(g) <= FOLD_RESIDUAL)
             if iteration == FOLD_ITERATIONS or (done | ~active).all():
                 break
-            xs = np.concatenate([x + shift, x - shift, np.broadcast_to(x, (2,) + x.shape)])
-            ts = np.concatenate([np.broadcast_to(t, (2 * n,) + t.shape),
-                                 [t + FOLD_DIFFERENCE, t - FOLD_DIFFERENCE]])
-            gs = _singularity(group, xs, values(inputs(s * ts)))
+            gs = _singularity(group, np.concatenate([x + shift, x - shift]), kv)
+            ts = np.stack([t + FOLD_DIFFERENCE, t - FOLD_DIFFERENCE])
+            gt = _singularity(group, np.broadcast_to(x, (2,) + x.shape), values(inputs(s * ts)))
             system = np.zeros(x.shape[:-1] + (n + 1, n + 1))
             system[..., :n, :n] = group.jacobian(x, kv)
             system[..., :n, n] = s * np.broadcast_to(_stacked(f, "d1"), x.shape)
-            system[..., n, :n] = np.moveaxis((gs[:n] - gs[n:2 * n]), 0, -1) / (2.0 * width)
-            system[..., n, n] = (gs[-2] - gs[-1]) / (2.0 * FOLD_DIFFERENCE)
+            system[..., n, :n] = np.moveaxis((gs[:n] - gs[n:]), 0, -1) / (2.0 * width)
+            system[..., n, n] = (gt[0] - gt[1]) / (2.0 * FOLD_DIFFERENCE)
             rhs = -np.concatenate([value, g[..., None]], axis=-1)
             safe = active & ~done & np.isfinite(system).all(axis=(-2, -1)) \
                 & np.isfinite(rhs).all(axis=-1)
@@ -340,7 +339,8 @@ def _pick(a: np.ndarray, first: np.ndarray) -> np.ndarray:
 
 
 def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goal: np.ndarray,
-          active: np.ndarray, sign: np.ndarray, log: list[tuple[_Point, np.ndarray]] | None
+          active: np.ndarray, sign: np.ndarray, log: list[tuple[_Point, np.ndarray]] | None,
+          state: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
           ) -> tuple[_Point, np.ndarray, np.ndarray]:
     """Step every active row from ``start.t`` to its ``goal`` (arrays (R, D)) under step control.
 
@@ -353,6 +353,9 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
     and the row stops there. The accepted states go to ``log`` (with the mask of the rows
     that moved). Returns the last accepted state of each row and, where a row stopped short,
     the pass parameter and the reason (inf and 0 elsewhere).
+
+    Once at most a quarter of the rows still move, the walk goes on with those alone, laid
+    flat (:func:`_take`), carrying over their step, margin and flags (``state``).
     """
     shape = goal.shape
     count = max(1, min(RUNGS, RUNGS_BUDGET // max(1, int(np.prod(shape)))))
@@ -360,9 +363,26 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
     here, h = start, np.full(shape, H_MAX)
     end, why = np.full(shape, np.inf), np.zeros(shape, dtype=np.int8)
     margin, falling, tried = np.full(shape, np.inf), np.zeros(shape, bool), np.zeros(shape, bool)
+    if state is not None:
+        h, margin, falling, tried = (np.array(np.broadcast_to(v, shape)) for v in state)
     done = ~active
     while not done.all():
         moving = ~done
+        small = _take(group, moving) if 4 * moving.sum() <= moving.size else None
+        if small is not None:
+            part: list[tuple[_Point, np.ndarray]] | None = [] if log is not None else None
+            last, stop, code = _walk(
+                small, _local(inputs, moving), s, here.at(moving), goal[moving],
+                np.ones(int(moving.sum()), dtype=bool), np.broadcast_to(sign, shape)[moving],
+                part, (h[moving], margin[moving], falling[moving], tried[moving]))
+            for point, mask in part or []:
+                wide = np.zeros(shape, dtype=bool)
+                wide[moving] = mask
+                assert log is not None
+                log.append((_widen(here, point, moving), wide))
+            here = _widen(here, last, moving)
+            end[moving], why[moving] = stop, code
+            break
         hs = np.where(moving, np.minimum(h, goal - here.t), 0.0)
         trial = hs * halves
         k = inputs(Jet(s * (here.t + trial), 1.0, 0.0))
@@ -415,15 +435,9 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
     return here, end, why
 
 
-def _ending_at(group: HigherGroup[K], inputs: Inputs[K], s: float, here: _Point,
-               beyond: np.ndarray, goal: np.ndarray, rows: np.ndarray
-               ) -> tuple[_Point, np.ndarray]:
-    """:func:`_ending` computed on the ``rows`` only, laid flat (the inputs are evaluated on
-    the whole grid, at φ = 0 off the rows, and taken at the rows)."""
-    small = _take(group, rows)
-    if small is None:
-        return _ending(group, inputs, s, here, beyond, goal, rows)
-
+def _local(inputs: Inputs[K], rows: np.ndarray) -> Inputs[K]:
+    """``inputs`` of the ``rows`` of a grid laid flat: evaluated on the whole grid (at φ = 0
+    off the rows) and taken at the rows (:func:`_take`)."""
     def spread(v: Any) -> Any:
         if np.ndim(v) == 0:
             return v
@@ -437,15 +451,31 @@ def _ending_at(group: HigherGroup[K], inputs: Inputs[K], s: float, here: _Point,
         assert taken is not None
         return taken
 
-    fold, stop = _ending(small, local, s, here.at(rows), beyond[rows], goal[rows],
-                         np.ones(int(rows.sum()), dtype=bool))
-    out = _Point(*(np.array(np.broadcast_to(getattr(here, name), getattr(here, name).shape))
+    return local
+
+
+def _widen(base: _Point, part: _Point, rows: np.ndarray) -> _Point:
+    """``base`` with the ``rows`` replaced by the flat states ``part``."""
+    out = _Point(*(np.array(np.broadcast_to(getattr(base, name), getattr(base, name).shape))
                    for name in ("t", "x", "x1", "x2")))
     for name in ("t", "x", "x1", "x2"):
-        getattr(out, name)[rows] = getattr(fold, name)
+        getattr(out, name)[rows] = getattr(part, name)
+    return out
+
+
+def _ending_at(group: HigherGroup[K], inputs: Inputs[K], s: float, here: _Point,
+               beyond: np.ndarray, goal: np.ndarray, rows: np.ndarray
+               ) -> tuple[_Point, np.ndarray]:
+    """:func:`_ending` computed on the ``rows`` only, laid flat (the inputs are evaluated on
+    the whole grid, at φ = 0 off the rows, and taken at the rows)."""
+    small = _take(group, rows)
+    if small is None:
+        return _ending(group, inputs, s, here, beyond, goal, rows)
+    fold, stop = _ending(small, _local(inputs, rows), s, here.at(rows), beyond[rows], goal[rows],
+                         np.ones(int(rows.sum()), dtype=bool))
     hold = np.zeros(rows.shape, dtype=bool)
     hold[rows] = stop
-    return out, hold
+    return _widen(here, fold, rows), hold
 
 
 def _ending(group: HigherGroup[K], inputs: Inputs[K], s: float, here: _Point, beyond: np.ndarray,

@@ -110,14 +110,14 @@ def test_batched_angles_equal_a_fine_step_continuation(kind: str,
                                                        monkeypatch: pytest.MonkeyPatch) -> None:
     designs = random_triads(11, 8) if kind.startswith("RRR") else random_class_iv(11, 8)
     if kind.endswith("stepped to"):  # the batch corrector fails everywhere: all step
-        correct = continuation._correct
+        correct = continuation._correct_at
 
-        def failing(group: Any, kv: Any, guess: np.ndarray, sign: np.ndarray) -> Any:
-            xn, jac, rows, ok = correct(group, kv, guess, sign)
-            batch = guess.ndim == 3  # (angles, designs, n); a step's has the rungs in front
-            return np.where(batch, np.nan, xn), jac, rows, ok & ~batch
+        def failing(group: Any, kv: Any, guess: np.ndarray, sign: np.ndarray,
+                    mask: np.ndarray) -> Any:
+            xn, jac, rows, ok = correct(group, kv, guess, sign, mask)
+            return np.full_like(xn, np.nan), jac, rows, ok & False
 
-        monkeypatch.setattr(continuation, "_correct", failing)
+        monkeypatch.setattr(continuation, "_correct_at", failing)
     phi = _near_ends(designs, np.random.default_rng(5), 120)
     solution = _check(designs, phi)
     ends = solution.ends[np.isfinite(solution.ends)]

@@ -15,7 +15,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 
@@ -54,6 +54,10 @@ H_MIN = 1e-10
 #: Newton iterations of the corrector and its convergence bound on the scaled step.
 ITERATIONS = 4
 CONVERGED = 1e-10
+#: From this many positions on, Newton goes on after SETTLE iterations only where it has not
+#: converged.
+MANY = 256
+SETTLE = 2
 #: A mode that ends with a margin up to this ends at a change point.
 CHANGE = 1e-4
 #: After a full turn the joints are back at the sketch within this times L.
@@ -77,6 +81,7 @@ MEET = 1e-8
 MEET_ITERATIONS = 6
 
 Inputs = Callable[[Any], K]
+T = TypeVar("T")
 
 
 def _part(v: Any, name: str) -> np.ndarray:
@@ -190,13 +195,87 @@ def _correct(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarray
     Newton converged, det J has the sign ``sign``, and the correction is at most a quarter
     of the separation bound.
     """
-    xn, step = newton(group, kv, guess, ITERATIONS, CONVERGED)
+    xn, step = _newton(group, kv, guess)
     with np.errstate(all="ignore"):
         jac, rows = group.lines(xn, kv)
         apart = (np.abs(xn - guess) * weights(group)).sum(axis=-1)
         ok = (step <= CONVERGED) & (np.sign(det_rows(jac)) == sign) \
             & (apart <= 0.25 * separation(group, kv, xn))
     return xn, jac, rows, ok
+
+
+def _newton(group: HigherGroup[K], kv: K, guess: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Newton's method from ``guess`` (:func:`~assur.kinematics.higher.modes.newton`,
+    ``ITERATIONS`` steps to ``CONVERGED``). On many positions, after the first ``SETTLE``
+    steps only those not yet converged go on (laid flat, :func:`_take`)."""
+    if guess[..., 0].size < MANY:
+        return newton(group, kv, guess, ITERATIONS, CONVERGED)
+    x, step = newton(group, kv, guess, SETTLE, CONVERGED)
+    more = step > CONVERGED
+    small_group, small_k = _take(group, more), _take(kv, more)
+    if not more.any() or small_group is None or small_k is None:
+        return newton(group, kv, x, ITERATIONS - SETTLE, CONVERGED) if more.any() else (x, step)
+    x[more], step[more] = newton(small_group, small_k, x[more], ITERATIONS - SETTLE, CONVERGED)
+    return x, step
+
+
+def _take(record: T, mask: np.ndarray) -> T | None:
+    """The record (a group or its inputs) at the positions ``mask`` of a grid, laid flat:
+    every array value (each part of a jet), broadcast to the grid after its own leading axes,
+    is indexed on the grid's axes; scalars are kept. None where a value does not broadcast
+    (the caller then works on the whole grid)."""
+    def take(v: Any) -> Any:
+        if v is None or isinstance(v, str):
+            return v
+        if isinstance(v, tuple):
+            return tuple(take(item) for item in v)
+        if isinstance(v, Jet):
+            return Jet(take(v.v), take(v.d1), take(v.d2))
+        a = np.asarray(v)
+        if a.ndim == 0:
+            return v
+        lead = a.shape[:max(0, a.ndim - mask.ndim)]
+        return np.broadcast_to(a, lead + mask.shape)[(...,) + np.nonzero(mask)]
+
+    try:
+        out = dataclasses.replace(record, **{  # type: ignore[type-var]
+            f.name: take(getattr(record, f.name))
+            for f in dataclasses.fields(record) if f.init})  # type: ignore[arg-type]
+    except ValueError:
+        return None
+    if isinstance(record, HigherGroup):  # L of the drawn points, taken rather than computed
+        vars(out)["size"] = take(record.size)
+    return out
+
+
+def _correct_at(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarray,
+                mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`_correct` on an (N, D) grid of positions, computed only where ``mask`` holds
+    (NaN and False elsewhere)."""
+    small_group, small_k = _take(group, mask), _take(kv, mask)
+    if small_group is None or small_k is None:
+        x, jac, lines, ok = _correct(group, kv, guess, sign)
+        return x, jac, lines, ok & mask
+    n = group.n
+    x, jac, lines = (np.full(mask.shape + tail, np.nan) for tail in ((n,), (n, n), (n, n)))
+    ok = np.zeros(mask.shape, dtype=bool)
+    if not mask.any():
+        return x, jac, lines, ok
+    x[mask], jac[mask], lines[mask], ok[mask] = _correct(
+        small_group, small_k, guess[mask], np.broadcast_to(sign, mask.shape)[mask])
+    return x, jac, lines, ok
+
+
+def _lines_at(group: HigherGroup[K], kv: K, x: np.ndarray, mask: np.ndarray
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """The Jacobian and margin rows (:meth:`HigherGroup.lines`) at the positions ``mask``
+    of an (N, D) grid, laid flat."""
+    small_group, small_k = _take(group, mask), _take(kv, mask)
+    with np.errstate(all="ignore"):
+        if small_group is None or small_k is None:
+            jac, lines = group.lines(x, kv)
+            return jac[mask], lines[mask]
+        return small_group.lines(x[mask], small_k)
 
 
 def _singularity(group: HigherGroup[K], x: np.ndarray, kv: Any) -> np.ndarray:
@@ -233,15 +312,14 @@ def _fold(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, act
                 & (np.abs(g) <= FOLD_RESIDUAL)
             if iteration == FOLD_ITERATIONS or (done | ~active).all():
                 break
-            xs = np.concatenate([x + shift, x - shift, np.broadcast_to(x, (2,) + x.shape)])
-            ts = np.concatenate([np.broadcast_to(t, (2 * n,) + t.shape),
-                                 [t + FOLD_DIFFERENCE, t - FOLD_DIFFERENCE]])
-            gs = _singularity(group, xs, values(inputs(s * ts)))
+            gs = _singularity(group, np.concatenate([x + shift, x - shift]), kv)
+            ts = np.stack([t + FOLD_DIFFERENCE, t - FOLD_DIFFERENCE])
+            gt = _singularity(group, np.broadcast_to(x, (2,) + x.shape), values(inputs(s * ts)))
             system = np.zeros(x.shape[:-1] + (n + 1, n + 1))
             system[..., :n, :n] = group.jacobian(x, kv)
             system[..., :n, n] = s * np.broadcast_to(_stacked(f, "d1"), x.shape)
-            system[..., n, :n] = np.moveaxis((gs[:n] - gs[n:2 * n]), 0, -1) / (2.0 * width)
-            system[..., n, n] = (gs[-2] - gs[-1]) / (2.0 * FOLD_DIFFERENCE)
+            system[..., n, :n] = np.moveaxis((gs[:n] - gs[n:]), 0, -1) / (2.0 * width)
+            system[..., n, n] = (gt[0] - gt[1]) / (2.0 * FOLD_DIFFERENCE)
             rhs = -np.concatenate([value, g[..., None]], axis=-1)
             safe = active & ~done & np.isfinite(system).all(axis=(-2, -1)) \
                 & np.isfinite(rhs).all(axis=-1)
@@ -261,7 +339,8 @@ def _pick(a: np.ndarray, first: np.ndarray) -> np.ndarray:
 
 
 def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goal: np.ndarray,
-          active: np.ndarray, sign: np.ndarray, log: list[tuple[_Point, np.ndarray]] | None
+          active: np.ndarray, sign: np.ndarray, log: list[tuple[_Point, np.ndarray]] | None,
+          state: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
           ) -> tuple[_Point, np.ndarray, np.ndarray]:
     """Step every active row from ``start.t`` to its ``goal`` (arrays (R, D)) under step control.
 
@@ -274,6 +353,9 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
     and the row stops there. The accepted states go to ``log`` (with the mask of the rows
     that moved). Returns the last accepted state of each row and, where a row stopped short,
     the pass parameter and the reason (inf and 0 elsewhere).
+
+    Once at most a quarter of the rows still move, the walk goes on with those alone, laid
+    flat (:func:`_take`), carrying over their step, margin and flags (``state``).
     """
     shape = goal.shape
     count = max(1, min(RUNGS, RUNGS_BUDGET // max(1, int(np.prod(shape)))))
@@ -281,9 +363,26 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
     here, h = start, np.full(shape, H_MAX)
     end, why = np.full(shape, np.inf), np.zeros(shape, dtype=np.int8)
     margin, falling, tried = np.full(shape, np.inf), np.zeros(shape, bool), np.zeros(shape, bool)
+    if state is not None:
+        h, margin, falling, tried = (np.array(np.broadcast_to(v, shape)) for v in state)
     done = ~active
     while not done.all():
         moving = ~done
+        small = _take(group, moving) if 4 * moving.sum() <= moving.size else None
+        if small is not None:
+            part: list[tuple[_Point, np.ndarray]] | None = [] if log is not None else None
+            last, stop, code = _walk(
+                small, _local(inputs, moving), s, here.at(moving), goal[moving],
+                np.ones(int(moving.sum()), dtype=bool), np.broadcast_to(sign, shape)[moving],
+                part, (h[moving], margin[moving], falling[moving], tried[moving]))
+            for point, mask in part or []:
+                wide = np.zeros(shape, dtype=bool)
+                wide[moving] = mask
+                assert log is not None
+                log.append((_widen(here, point, moving), wide))
+            here = _widen(here, last, moving)
+            end[moving], why[moving] = stop, code
+            break
         hs = np.where(moving, np.minimum(h, goal - here.t), 0.0)
         trial = hs * halves
         k = inputs(Jet(s * (here.t + trial), 1.0, 0.0))
@@ -315,7 +414,7 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
         ending = moving & ~hit & (~taken | (first > 0)) & falling & ~tried
         if ending.any():
             tried |= ending
-            fold, stop = _ending(group, inputs, s, here, beyond, goal, ending)
+            fold, stop = _ending_at(group, inputs, s, here, beyond, goal, ending)
             here = fold.where(stop, here)
             if log is not None:
                 log.append((here, stop))
@@ -334,6 +433,49 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
             why = np.where(stuck, code, why).astype(np.int8)
         done = done | stuck | hit
     return here, end, why
+
+
+def _local(inputs: Inputs[K], rows: np.ndarray) -> Inputs[K]:
+    """``inputs`` of the ``rows`` of a grid laid flat: evaluated on the whole grid (at φ = 0
+    off the rows) and taken at the rows (:func:`_take`)."""
+    def spread(v: Any) -> Any:
+        if np.ndim(v) == 0:
+            return v
+        wide = np.zeros(np.shape(v)[:-1] + rows.shape)
+        wide[..., rows] = v
+        return wide
+
+    def local(t: Any) -> K:
+        wide = Jet(spread(t.v), spread(t.d1), spread(t.d2)) if isinstance(t, Jet) else spread(t)
+        taken = _take(inputs(wide), rows)
+        assert taken is not None
+        return taken
+
+    return local
+
+
+def _widen(base: _Point, part: _Point, rows: np.ndarray) -> _Point:
+    """``base`` with the ``rows`` replaced by the flat states ``part``."""
+    out = _Point(*(np.array(np.broadcast_to(getattr(base, name), getattr(base, name).shape))
+                   for name in ("t", "x", "x1", "x2")))
+    for name in ("t", "x", "x1", "x2"):
+        getattr(out, name)[rows] = getattr(part, name)
+    return out
+
+
+def _ending_at(group: HigherGroup[K], inputs: Inputs[K], s: float, here: _Point,
+               beyond: np.ndarray, goal: np.ndarray, rows: np.ndarray
+               ) -> tuple[_Point, np.ndarray]:
+    """:func:`_ending` computed on the ``rows`` only, laid flat (the inputs are evaluated on
+    the whole grid, at φ = 0 off the rows, and taken at the rows)."""
+    small = _take(group, rows)
+    if small is None:
+        return _ending(group, inputs, s, here, beyond, goal, rows)
+    fold, stop = _ending(small, _local(inputs, rows), s, here.at(rows), beyond[rows], goal[rows],
+                         np.ones(int(rows.sum()), dtype=bool))
+    hold = np.zeros(rows.shape, dtype=bool)
+    hold[rows] = stop
+    return _widen(here, fold, rows), hold
 
 
 def _ending(group: HigherGroup[K], inputs: Inputs[K], s: float, here: _Point, beyond: np.ndarray,
@@ -486,7 +628,7 @@ def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: n
         root = np.sqrt((tip.t - grid) / (tip.t - prior.t))
         ending = reach & (tip.t > prior.t) & np.isnan(tip.x1[..., 0]) & (root <= 1.0)
         guess = np.where(ending[..., None], tip.x + (prior.x - tip.x) * root[..., None], guess)
-    x, jac, rows, ok = _correct(group, kv, guess, sign[0])
+    x, jac, rows, ok = _correct_at(group, kv, guess, sign[0], reach)
     retry = reach & ~ok
     if retry.any():
         rank = np.cumsum(retry, axis=0) - 1
@@ -503,8 +645,9 @@ def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: n
         last, _, _ = _walk(group, inputs, s, start, aims, active, sign[0], None)
         ok[j, design] = last.t[rank[j, design], design] == aims[rank[j, design], design]
         x[j, design] = last.x[rank[j, design], design]
-        with np.errstate(all="ignore"):
-            jac, rows = group.lines(x, kv)
+        fresh = np.zeros(reach.shape, dtype=bool)
+        fresh[j, design] = True
+        jac[fresh], rows[fresh] = _lines_at(group, kv, x, fresh)
     reached = reach & ok
     x = np.where(reached[..., None], x, np.nan)
     if jets:
@@ -521,7 +664,9 @@ def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: n
                                else (v, 0.0 * v, 0.0 * v) if jets else (v,))]
            for name, v in found.items()}
     with np.errstate(all="ignore"):
-        margin = np.where(reached, hadamard(rows), np.nan).T
+        margin = np.full(reached.shape, np.nan)
+        margin[reached] = hadamard(rows[reached])
+        margin = margin.T
     return _Pass(x=x.transpose(1, 0, 2), out=out, margin=margin, end=end[0], why=why[0])
 
 
@@ -633,10 +778,16 @@ def _gap(group: HigherGroup[K], k: K, rows: np.ndarray) -> np.ndarray:
     where the guides are parallel): there −|sin| of the angle between the guides, 0 where the
     mode ends at the parallel position.
     """
-    coef = np.broadcast_to(coefficients(group, k), rows.shape + (2 * group.degree + 1,))
+    small_group, small_k = _take(group, rows), _take(k, rows)
+    with np.errstate(all="ignore"):
+        if small_group is None or small_k is None:
+            coef = np.broadcast_to(coefficients(group, k), rows.shape + (2 * group.degree + 1,))
+            coef = coef[rows]
+        else:
+            coef = coefficients(small_group, small_k)
     out = np.full(rows.shape, np.nan)
     with np.errstate(all="ignore"):
-        size = np.abs(np.log(np.abs(roots(coef[rows]))))
+        size = np.abs(np.log(np.abs(roots(coef))))
         out[rows] = -np.where(size > TAU, size, np.inf).min(axis=-1)
         if isinstance(group, ClassIVDrawing) and all(group.slides):
             guides = -np.abs(np.sin(np.angle(np.asarray(k.u_c) / k.u_a)))

@@ -494,6 +494,14 @@ class Triad(HigherGroup["TriadInputs"]):
         jac[..., 0], jac[..., 1] = (1j * along).real * x[..., None, 1], along.real
         return jac, rows
 
+    def jacobian(self, x: np.ndarray, k: TriadInputs) -> np.ndarray:
+        """∂F/∂x: the rows [ν_k, cross(X_k − P₁, ν_k)] of :meth:`lines` without the margin
+        rows (a P–P leash: from :meth:`lines`)."""
+        if self.pinned:
+            return self.lines(x, k)[0]
+        nu, at, _, p1 = self._constraints(x, k)
+        return _line_rows(nu, at, p1[..., None], 1.0)
+
     def _linear(self, e: np.ndarray, k: TriadInputs) -> tuple[list[Any], list[Any]]:
         """a_k·W = p_k at the base rotation E (§2.2): k = 2, 3 after a bar, all three
         without one (the first two beside a P–P leash)."""

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from assur.model import Chain, CircleProfile, LineProfile, LinkId, PairType, Profile, joint_key
-from assur.plot.schemes import draw_structural_scheme, separate_labels
+from assur.plot.schemes import draw_structural_scheme, framed, separate_labels
 from assur.profiles import gear_contact, polar_points
 from assur.text import render
 
@@ -160,12 +160,7 @@ def draw_higher_mechanism(chain: Chain, analysis: StructuralAnalysis, *, ax: Axe
         if len(dashed) == 2 and dashed[0] != dashed[1]:
             ax.plot([p.real for p in dashed], [p.imag for p in dashed], "--", color="black",
                     lw=1.2, zorder=7, gid=f"replacing-{item.link}")
-    ax.set_aspect("equal")
-    ax.autoscale_view()
-    ax.margins(0.1)
-    ax.set_axis_off()
-    ax.set_title(render("scheme.original", lang), fontsize=12)
-    return ax
+    return framed(ax, render("scheme.original", lang), 0.1)
 
 
 def _size(chain: Chain) -> float:

@@ -54,6 +54,7 @@ __all__ = [
     "SchemeLayout",
     "draw_formalised_scheme",
     "draw_structural_scheme",
+    "framed",
     "group_graph",
     "roman",
     "save_schemes",
@@ -654,11 +655,17 @@ def draw_structural_scheme(chain: Chain, analysis: StructuralAnalysis, *, ax: Ax
                           "alpha": 0.8})
     _draw_points(ax, chain, analysis, layout)
     _draw_group_outlines(ax, chain, groups, layout, size, lang)
+    return framed(ax, render("scheme.structural", lang), 0.12)
+
+
+def framed(ax: Axes, title: str, margin: float) -> Axes:
+    """A drawn mechanism's axes to scale and fitted to what is drawn, with ``margin`` (a
+    fraction of the span) around it, no axis lines, and ``title``."""
     ax.set_aspect("equal")
     ax.autoscale_view()
-    ax.margins(0.12)
+    ax.margins(margin)
     ax.set_axis_off()
-    ax.set_title(render("scheme.structural", lang), fontsize=12)
+    ax.set_title(title, fontsize=12)
     return ax
 
 

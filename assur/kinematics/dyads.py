@@ -305,14 +305,7 @@ def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
         shape = pin.shape
         return DyadSolution(pin, _spread(o, shape), _spread(angle, shape), None, None, None,
                             None, *_assembled(shape))
-    shape, jets = _layout(o, length, angle)
-    with np.errstate(all="ignore"):
-        point = length * J.expi(angle) + o
-        margin = np.where(np.isfinite(J.value(point)), 1.0, np.nan)
-    return _finish(
-        shape, (o, length, angle), margin, 0.0, lambda: Reason.UNDEFINED_INPUT,
-        (point, _spread(o, shape), _spread(angle, shape), None, None, None, None), jets,
-    )
+    return _along(o, length, angle, crank=True)
 
 
 def solve_slide(base: Value, angle: Value, s: Value) -> DyadSolution:
@@ -340,13 +333,22 @@ def solve_slide(base: Value, angle: Value, s: Value) -> DyadSolution:
     >>> solve_slide(1 + 1j, np.pi / 2, np.array([0.0, 2.0])).c.round(12).tolist()
     [(1+1j), (1+3j)]
     """
-    shape, jets = _layout(base, angle, s)
+    return _along(base, s, angle, crank=False)
+
+
+def _along(origin: Value, length: Value, angle: Value, *, crank: bool) -> DyadSolution:
+    """The point ``origin + length·u(angle)`` of an input group: a crank's pin (the crank's
+    frame at ``origin``) or a driven slider's point (its frame at the point, ``length`` its
+    displacement s); it assembles wherever the inputs are defined."""
+    shape, jets = _layout(origin, length, angle)
     with np.errstate(all="ignore"):
-        point = s * J.expi(angle) + base
+        point = length * J.expi(angle) + origin
         margin = np.where(np.isfinite(J.value(point)), 1.0, np.nan)
+    frame = _spread(origin, shape) if crank else point
     return _finish(
-        shape, (base, angle, s), margin, 0.0, lambda: Reason.UNDEFINED_INPUT,
-        (point, point, _spread(angle, shape), None, None, s, None), jets,
+        shape, (origin, length, angle), margin, 0.0, lambda: Reason.UNDEFINED_INPUT,
+        (point, frame, _spread(angle, shape), None, None, None if crank else length, None),
+        jets,
     )
 
 

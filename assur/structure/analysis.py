@@ -121,6 +121,11 @@ class StructuralAnalysis:
                 f"{len(self.issues)} diagnostics)")
 
     @property
+    def W_active(self) -> int:
+        """W less the passive (local) degrees of freedom: the mobility the inputs must give."""
+        return self.W - len(self.passive)
+
+    @property
     def decomposed(self) -> bool:
         """Whether every link was placed in a group with no error."""
         return not self.leftover and not any(d.code.startswith("E") for d in self.issues)

@@ -143,7 +143,7 @@ def higher_pair_lines(a: StructuralAnalysis, lang: str = "en") -> list[str]:
     lines = []
     if a.passive:
         lines.append(render("report.structure.passive", lang, count=len(a.passive),
-                            W=a.W - len(a.passive)))
+                            W=a.W_active))
         lines += [f"  - {dof.reason.text(lang)}" for dof in a.passive]
     if a.original is None:
         return lines
@@ -214,7 +214,7 @@ def structure_report(analysis: StructuralAnalysis, *, lang: str = "en",
              "  " + render("report.structure.counts", lang, n=a.n, p5=a.p5, p4=a.p4),
              "  " + render("report.structure.mobility", lang, n=a.n, p5=a.p5, p4=a.p4, W=a.W)]
     lines += ["  " + line for line in higher_pair_lines(a, lang)]
-    if a.W_star != a.W - len(a.passive):
+    if a.W_star != a.W_active:
         lines.append("  " + render("report.structure.w_star", lang, W_star=a.W_star))
     lines.append("  " + render("report.structure.inputs", lang, m=a.m,
                                items=", ".join(items) or "—"))

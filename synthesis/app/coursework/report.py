@@ -166,7 +166,7 @@ def _mobility(analysis: StructuralAnalysis) -> str:
     freedom when it has any."""
     formula = f"W = 3·{analysis.n} − 2·{analysis.p5} − {analysis.p4} = {analysis.W}"
     passive = len(analysis.passive)
-    return f"{formula} − {passive} = {analysis.W - passive}" if passive else formula
+    return f"{formula} − {passive} = {analysis.W_active}" if passive else formula
 
 
 def _data_section(chain: Chain, lang: str) -> Section:
@@ -200,7 +200,7 @@ def _counts_section(analysis: StructuralAnalysis, lang: str) -> Section:
     lines = higher_pair_lines(analysis, lang)
     if lines:
         body += "<pre>" + esc("\n".join(lines)) + "</pre>"
-    mobility = analysis.W - len(analysis.passive)
+    mobility = analysis.W_active
     if mobility != analysis.m:
         body += (f'<p class="bad">W = {mobility} ≠ {analysis.m} '
                  f"({esc(render('term.inputs', lang))})</p>")

@@ -36,10 +36,12 @@ import numpy as np
 from assur.model import CircleProfile, GearMesh, LineProfile, PolarProfile, Profile
 
 if TYPE_CHECKING:  # pragma: no cover
+    from scipy.interpolate import CubicSpline
+
     from assur.typing import ComplexArray, FloatArray
 
 __all__ = ["MIN_TABLE_NODES", "TOUCH_TOLERANCE", "Contact", "contact", "gear_contact",
-           "pitch_circles", "polar_points"]
+           "pitch_circles", "polar_points", "radius_spline"]
 
 #: Two profiles of the sketch farther apart, or cut into each other deeper, than this (mm)
 #: do not touch.
@@ -193,17 +195,35 @@ def polar_points(profile: PolarProfile, theta: FloatArray
     >>> bool(np.allclose([abs(p[0]), abs(dp[0]), abs(ddp[0])], 20.0))
     True
     """
-    from scipy.interpolate import CubicSpline
-
-    nodes = np.radians(np.asarray(profile.angles, dtype=float))
-    radii = np.asarray(profile.radii, dtype=float)
-    spline = CubicSpline(np.append(nodes, nodes[0] + 2 * np.pi), np.append(radii, radii[0]),
-                         bc_type="periodic")
-    angle = nodes[0] + np.mod(np.asarray(theta, dtype=float) - nodes[0], 2 * np.pi)
+    spline = radius_spline(profile.angles, profile.radii)
+    start = float(spline.x[0])
+    angle = start + np.mod(np.asarray(theta, dtype=float) - start, 2 * np.pi)
     r, dr, ddr = spline(angle), spline(angle, 1), spline(angle, 2)
     turn = np.exp(1j * angle)
     return (profile.centre + r * turn, (dr + 1j * r) * turn,
             (ddr - r + 2j * dr) * turn)
+
+
+def radius_spline(angles: FloatArray | tuple[float, ...], radii: FloatArray | tuple[float, ...]
+                  ) -> CubicSpline:
+    """r(θ) of a tabulated profile: the periodic cubic spline through its table (angles in
+    degrees, increasing and spanning less than a turn; radii in mm), over θ in radians from
+    the first tabulated angle to one turn past it. It passes through every point of the
+    table with r, r′ and r″ continuous round the whole profile (so the tangent and the
+    curvature are continuous).
+
+    Examples
+    --------
+    >>> spline = radius_spline((0.0, 90.0, 180.0, 270.0), (10.0, 20.0, 10.0, 20.0))
+    >>> float(spline(np.pi / 2)), float(spline(2 * np.pi))
+    (20.0, 10.0)
+    """
+    from scipy.interpolate import CubicSpline  # only a tabulated profile needs scipy
+
+    nodes = np.radians(np.asarray(angles, dtype=float))
+    r = np.asarray(radii, dtype=float)
+    return CubicSpline(np.append(nodes, nodes[0] + 2 * np.pi), np.append(r, r[0]),
+                       bc_type="periodic")
 
 
 def _dot(a: complex, b: complex) -> float:

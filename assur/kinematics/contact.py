@@ -61,6 +61,7 @@ from assur.kinematics.jets import Jet
 from assur.kinematics.reasons import Reason
 from assur.kinematics.rules import given, rules_of
 from assur.model import LinkId, PairId
+from assur.profiles import radius_spline
 from assur.typing import BoolArray, FloatArray, Value
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -201,12 +202,7 @@ class PolarSpline:
     def from_table(cls, angles: FloatArray, radii: FloatArray) -> PolarSpline:
         """The profile through a table: angles in degrees (increasing, spanning less than
         a turn), radii in mm (positive)."""
-        from scipy.interpolate import CubicSpline  # only a tabulated cam needs scipy
-
-        theta = np.radians(np.asarray(angles, dtype=float))
-        r = np.asarray(radii, dtype=float)
-        return cls(CubicSpline(np.append(theta, theta[0] + 2.0 * math.pi), np.append(r, r[0]),
-                               bc_type="periodic"))
+        return cls(radius_spline(angles, radii))
 
     @property
     def nodes(self) -> int:

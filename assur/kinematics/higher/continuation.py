@@ -25,6 +25,7 @@ from assur.kinematics.higher.groups import (
     HigherGroup,
     K,
     det_rows,
+    expand,
     hadamard,
     plain,
     values,
@@ -40,6 +41,7 @@ from assur.kinematics.higher.modes import (
     solve,
     weights,
 )
+from assur.kinematics.higher.track import Chains, chains
 from assur.kinematics.jets import Jet
 from assur.kinematics.reasons import Reason
 from assur.text import Message
@@ -910,6 +912,12 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
     unsort = np.argsort(order)
     grid = wrapped[order]
     n = len(grid)
+    if _tracked(group):
+        found_chains = chains(group, inputs, grid, x0[:, group.eliminated], found)
+        tracked = None if found_chains is None else _from_chains(
+            group, inputs, phi, x0, found, modes, found_chains, analogs, delta)
+        if tracked is not None:
+            return _squeeze(tracked) if shape == () else tracked
     ahead = _follow(group, inputs, x0, np.append(grid, TWO_PI), 1.0, ~found, analogs)
     around = ahead.reached[:, -1]
     size = np.broadcast_to(group.size, (d,))
@@ -962,6 +970,94 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
         ends=ends, end_reasons=np.stack([ahead.why, behind.why], axis=-1), closed=closed,
         found=found, modes=modes)
     return _squeeze(solution) if shape == () else solution
+
+
+def _tracked(group: HigherGroup[K]) -> bool:
+    """Whether the group's modes are followed by their roots at every angle at once
+    (:func:`~assur.kinematics.higher.track.chains`): a group whose eliminated angle fixes
+    the pose, with a bar (a triad without a P–P leash, or a class IV group)."""
+    if isinstance(group, ClassIVDrawing):
+        return not all(group.slides)
+    return not getattr(group, "pinned", True) and not getattr(group, "barless", True)
+
+
+def _from_chains(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: np.ndarray,
+                 found: np.ndarray, modes: AssemblyModes, paths: Chains, jets: bool,
+                 delta: float | np.ndarray) -> HigherSolution | None:
+    """The solution at the angles ``phi`` from the chains of roots: the forward pass where it
+    reached an angle, else the backward one; each pose recovered from its root and polished
+    by Newton's method. None where the chains leave a doubt (a pass lost its root without
+    an end of the mode, or a pose recovered from a root is not one): the caller then follows
+    the mode step by step."""
+    if (paths.why == Reason.NOT_FOLLOWED).any():
+        return None
+    d = x0.shape[0]
+    wrapped = np.mod(phi, TWO_PI)
+    column = np.searchsorted(paths.columns, wrapped)
+    column = np.minimum(column, paths.columns.size - 1)
+    ahead, behind = paths.ahead[column], paths.behind[column]
+    index = np.where(ahead >= 0, ahead, np.where(wrapped[:, None] > 0, behind, -1))
+    reached = index >= 0
+    rows = np.arange(d)
+    theta = paths.theta[column[:, None], rows[None, :], np.maximum(index, 0)]
+    angle = np.broadcast_to(phi[:, None], reached.shape)
+    k = inputs(Jet(angle, 1.0, 0.0)) if jets else inputs(angle)
+    kv = values(k)
+    wide, kw = expand(group), expand(kv)
+    with np.errstate(all="ignore"):
+        x = wide.recover(np.exp(1j * theta)[..., None], kw)[..., 0, :]
+        x, _ = newton(group, kv, x, 2)
+        f = np.stack(np.broadcast_arrays(*map(plain, group.residual(x, kv))), axis=-1)
+        size = np.asarray(group.size)
+        sign = np.sign(det_rows(group.jacobian(x0, values(inputs(np.zeros((1, d)))))))
+        posed = (np.abs(f).max(axis=-1) <= 1e-9 * size) \
+            & (np.sign(det_rows(group.jacobian(x, kv))) == sign)
+    if (reached & ~posed).any():
+        return None
+    x = np.where(reached[..., None], x, np.nan)
+    with np.errstate(all="ignore"):
+        jac, rows_ = group.lines(x, kv)
+        margin = np.where(reached, hadamard(rows_), np.nan)
+    reason = np.zeros(reached.shape, dtype=np.int8)
+    columns = np.flatnonzero(~reached.all(axis=1))
+    both_end = (paths.why == Reason.MODE_ENDS).all(axis=-1)
+    if columns.size:
+        kc = values(inputs(np.broadcast_to(phi[columns, None], (columns.size, d))))
+        defined = np.broadcast_to(finite_inputs(kc), (columns.size, d))
+        gone = ~reached[columns]
+        margin[columns] = np.where(gone, np.where(defined, _gap(group, kc, gone), np.nan),
+                                   margin[columns])
+        reason[columns] = np.where(
+            gone, np.where(defined, np.where((found & both_end)[None, :], Reason.MODE_ENDS,
+                                             Reason.NOT_FOLLOWED),
+                           Reason.UNDEFINED_INPUT), 0)
+    with np.errstate(invalid="ignore"):
+        exists = reached & (margin >= np.asarray(delta))
+    reason = np.where(reached & ~exists, Reason.MODE_ENDS, reason).astype(np.int8)
+    if jets:
+        with np.errstate(all="ignore"):
+            x1, x2 = analogs(group, k, x, jac)
+        cols: Any = [Jet(x[..., i], x1[..., i], x2[..., i]) for i in range(group.n)]
+    else:
+        cols, k = x, kv
+    with np.errstate(all="ignore"):
+        points = group.joints(cols, k)
+        turns = group.rotations(cols, k)
+
+    def final(v: Any) -> Any:
+        parts = [np.where(exists, np.broadcast_to(part, exists.shape), np.nan).T
+                 for part in ((v.v, v.d1, v.d2) if isinstance(v, Jet)
+                              else (v, 0.0 * v, 0.0 * v) if jets else (v,))]
+        return Jet(*parts) if jets else parts[0]
+
+    around = paths.ahead[-1] >= 0
+    closed = ~around | (paths.ahead[-1] == paths.ahead[0])
+    return HigherSolution(
+        joints={a: final(v) for a, v in points.items()},
+        rotations={a: final(v) for a, v in turns.items()},
+        x=np.where(exists[..., None], x, np.nan).transpose(1, 0, 2), margin=margin.T,
+        exists=exists.T, reason=reason.T, ends=paths.end, end_reasons=paths.why,
+        closed=closed, found=found, modes=modes)
 
 
 def _follow_stroke(group: HigherGroup[K], inputs: Inputs[K], q: np.ndarray, stroke: Stroke,

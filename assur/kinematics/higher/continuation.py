@@ -907,17 +907,25 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
         solution = _follow_stroke(group, inputs, phi, stroke, x0, (modes, found), analogs,
                                   delta)
         return _squeeze(solution) if shape == () else solution
+    if _tracked(group):
+        solution = _follow_tracked(group, inputs, phi, x0, found, modes, analogs, delta)
+    else:
+        solution = _step_follow(group, inputs, phi, x0, found, modes, analogs, delta)
+    return _squeeze(solution) if shape == () else solution
+
+
+def _step_follow(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: np.ndarray,
+                 found: np.ndarray, modes: AssemblyModes, analogs: bool,
+                 delta: float | np.ndarray) -> HigherSolution:
+    """The sketched mode x0 (D, n) followed step by step (:func:`_follow`), forward from the
+    sketch and backward where the forward pass ends."""
+    d = x0.shape[0]
+    k0 = _spread(values(inputs(np.zeros(d))), d)
     wrapped = np.mod(phi, TWO_PI)
     order = np.argsort(wrapped, kind="stable")
     unsort = np.argsort(order)
     grid = wrapped[order]
     n = len(grid)
-    if _tracked(group):
-        found_chains = chains(group, inputs, grid, x0[:, group.eliminated], found)
-        tracked = None if found_chains is None else _from_chains(
-            group, inputs, phi, x0, found, modes, found_chains, analogs, delta)
-        if tracked is not None:
-            return _squeeze(tracked) if shape == () else tracked
     ahead = _follow(group, inputs, x0, np.append(grid, TWO_PI), 1.0, ~found, analogs)
     around = ahead.reached[:, -1]
     size = np.broadcast_to(group.size, (d,))
@@ -963,13 +971,12 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
 
     ends = np.stack([np.where(ahead.why > 0, ahead.end, np.nan),
                      np.where(behind.why > 0, TWO_PI - behind.end, np.nan)], axis=-1)
-    solution = HigherSolution(
+    return HigherSolution(
         joints={a[2:]: final(a) for a in ahead.out if a.startswith("p.")},
         rotations={a[2:]: final(a) for a in ahead.out if a.startswith("r.")},
         x=np.where(exists[..., None], x, np.nan), margin=margin, exists=exists, reason=reason,
         ends=ends, end_reasons=np.stack([ahead.why, behind.why], axis=-1), closed=closed,
         found=found, modes=modes)
-    return _squeeze(solution) if shape == () else solution
 
 
 def _tracked(group: HigherGroup[K]) -> bool:
@@ -981,59 +988,74 @@ def _tracked(group: HigherGroup[K]) -> bool:
     return not getattr(group, "pinned", True) and not getattr(group, "barless", True)
 
 
+def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
+                    x0: np.ndarray, found: np.ndarray, modes: AssemblyModes, jets: bool,
+                    delta: float | np.ndarray) -> HigherSolution:
+    """The sketched mode by its chain of roots (:func:`~assur.kinematics.higher.track.chains`)
+    where that chain goes round the whole turn, and step by step (:func:`_step_follow`) for
+    the designs where it does not: there the mode ends, or the roots leave a doubt, and the
+    ends and reasons are those of the continuation."""
+    d = x0.shape[0]
+    paths = chains(group, inputs, np.mod(phi, TWO_PI), x0[:, group.eliminated], found)
+    solution, posed = _from_chains(group, inputs, phi, x0, found, modes, paths, jets, delta)
+    doubt = ~(paths.around & posed)
+    if not doubt.any():
+        return solution
+    rows = np.flatnonzero(doubt)
+    small_group, small_inputs = _take(group, doubt), _local(inputs, doubt)
+    if small_group is None or rows.size == d:
+        return _step_follow(group, inputs, phi, x0, found, modes, jets, delta)
+    part = _step_follow(small_group, small_inputs, phi, x0[rows], found[rows], modes, jets,
+                        np.asarray(delta)[rows] if np.ndim(delta) else delta)
+    return _splice(solution, part, rows)
+
+
+def _splice(whole: HigherSolution, part: HigherSolution, rows: np.ndarray) -> HigherSolution:
+    """``whole`` with its designs ``rows`` replaced by those of ``part`` (its modes kept)."""
+    def put(a: Any, b: Any) -> Any:
+        if isinstance(a, dict):
+            return {name: put(a[name], b[name]) for name in a}
+        if isinstance(a, Jet):
+            return Jet(put(a.v, b.v), put(a.d1, b.d1), put(a.d2, b.d2))
+        out = np.array(a)
+        out[rows] = b
+        return out
+
+    return dataclasses.replace(whole, **{
+        f.name: put(getattr(whole, f.name), getattr(part, f.name))
+        for f in dataclasses.fields(whole) if f.name not in ("modes", "periodic")})
+
+
 def _from_chains(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: np.ndarray,
                  found: np.ndarray, modes: AssemblyModes, paths: Chains, jets: bool,
-                 delta: float | np.ndarray) -> HigherSolution | None:
-    """The solution at the angles ``phi`` from the chains of roots: the forward pass where it
-    reached an angle, else the backward one; each pose recovered from its root and polished
-    by Newton's method. None where the chains leave a doubt (a pass lost its root without
-    an end of the mode, or a pose recovered from a root is not one): the caller then follows
-    the mode step by step."""
-    if (paths.why == Reason.NOT_FOLLOWED).any():
-        return None
+                 delta: float | np.ndarray) -> tuple[HigherSolution, np.ndarray]:
+    """The solution at the angles ``phi`` of the designs whose chain of roots goes round the
+    turn, each pose recovered from its root and polished by Newton's method; and where every
+    pose so found is one (the residual at most 1e-9 L, det J of the sketch's sign)."""
     d = x0.shape[0]
-    wrapped = np.mod(phi, TWO_PI)
-    column = np.searchsorted(paths.columns, wrapped)
-    column = np.minimum(column, paths.columns.size - 1)
-    ahead, behind = paths.ahead[column], paths.behind[column]
-    index = np.where(ahead >= 0, ahead, np.where(wrapped[:, None] > 0, behind, -1))
+    column = np.minimum(np.searchsorted(paths.columns, np.mod(phi, TWO_PI)),
+                        paths.columns.size - 1)
+    index = np.where(paths.around, paths.index[column], -1)
     reached = index >= 0
-    rows = np.arange(d)
-    theta = paths.theta[column[:, None], rows[None, :], np.maximum(index, 0)]
+    theta = paths.theta[column[:, None], np.arange(d)[None, :], np.maximum(index, 0)]
     angle = np.broadcast_to(phi[:, None], reached.shape)
     k = inputs(Jet(angle, 1.0, 0.0)) if jets else inputs(angle)
     kv = values(k)
-    wide, kw = expand(group), expand(kv)
     with np.errstate(all="ignore"):
-        x = wide.recover(np.exp(1j * theta)[..., None], kw)[..., 0, :]
+        x = expand(group).recover(np.exp(1j * theta)[..., None], expand(kv))[..., 0, :]
         x, _ = newton(group, kv, x, 2)
         f = np.stack(np.broadcast_arrays(*map(plain, group.residual(x, kv))), axis=-1)
-        size = np.asarray(group.size)
         sign = np.sign(det_rows(group.jacobian(x0, values(inputs(np.zeros((1, d)))))))
-        posed = (np.abs(f).max(axis=-1) <= 1e-9 * size) \
-            & (np.sign(det_rows(group.jacobian(x, kv))) == sign)
-    if (reached & ~posed).any():
-        return None
-    x = np.where(reached[..., None], x, np.nan)
-    with np.errstate(all="ignore"):
-        jac, rows_ = group.lines(x, kv)
-        margin = np.where(reached, hadamard(rows_), np.nan)
-    reason = np.zeros(reached.shape, dtype=np.int8)
-    columns = np.flatnonzero(~reached.all(axis=1))
-    both_end = (paths.why == Reason.MODE_ENDS).all(axis=-1)
-    if columns.size:
-        kc = values(inputs(np.broadcast_to(phi[columns, None], (columns.size, d))))
-        defined = np.broadcast_to(finite_inputs(kc), (columns.size, d))
-        gone = ~reached[columns]
-        margin[columns] = np.where(gone, np.where(defined, _gap(group, kc, gone), np.nan),
-                                   margin[columns])
-        reason[columns] = np.where(
-            gone, np.where(defined, np.where((found & both_end)[None, :], Reason.MODE_ENDS,
-                                             Reason.NOT_FOLLOWED),
-                           Reason.UNDEFINED_INPUT), 0)
+        jac, lines = group.lines(x, kv)
+        posed = (np.abs(f).max(axis=-1) <= 1e-9 * np.asarray(group.size)) \
+            & (np.sign(det_rows(jac)) == sign)
+        margin = np.where(reached, hadamard(lines), np.nan)
+    posed = (posed | ~reached).all(axis=0)
+    reached &= posed
     with np.errstate(invalid="ignore"):
         exists = reached & (margin >= np.asarray(delta))
-    reason = np.where(reached & ~exists, Reason.MODE_ENDS, reason).astype(np.int8)
+    reason = np.where(exists, 0, np.where(reached, Reason.MODE_ENDS, Reason.NOT_FOLLOWED))
+    x = np.where(exists[..., None], x, np.nan)
     if jets:
         with np.errstate(all="ignore"):
             x1, x2 = analogs(group, k, x, jac)
@@ -1041,8 +1063,7 @@ def _from_chains(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: 
     else:
         cols, k = x, kv
     with np.errstate(all="ignore"):
-        points = group.joints(cols, k)
-        turns = group.rotations(cols, k)
+        points, turns = group.joints(cols, k), group.rotations(cols, k)
 
     def final(v: Any) -> Any:
         parts = [np.where(exists, np.broadcast_to(part, exists.shape), np.nan).T
@@ -1050,14 +1071,14 @@ def _from_chains(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: 
                               else (v, 0.0 * v, 0.0 * v) if jets else (v,))]
         return Jet(*parts) if jets else parts[0]
 
-    around = paths.ahead[-1] >= 0
-    closed = ~around | (paths.ahead[-1] == paths.ahead[0])
+    closed = ~paths.around | (paths.index[-1] == paths.index[0])
     return HigherSolution(
         joints={a: final(v) for a, v in points.items()},
         rotations={a: final(v) for a, v in turns.items()},
-        x=np.where(exists[..., None], x, np.nan).transpose(1, 0, 2), margin=margin.T,
-        exists=exists.T, reason=reason.T, ends=paths.end, end_reasons=paths.why,
-        closed=closed, found=found, modes=modes)
+        x=x.transpose(1, 0, 2), margin=np.where(reached, margin, np.nan).T, exists=exists.T,
+        reason=reason.T.astype(np.int8), ends=np.full((d, 2), np.nan),
+        end_reasons=np.zeros((d, 2), dtype=np.int8), closed=closed, found=found,
+        modes=modes), posed
 
 
 def _follow_stroke(group: HigherGroup[K], inputs: Inputs[K], q: np.ndarray, stroke: Stroke,

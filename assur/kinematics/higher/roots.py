@@ -35,8 +35,13 @@ SPLIT = 8
 #: An interval narrower than this (rad) is taken as certified: one root where Φ changes sign
 #: over it, none where it does not (two roots closer than this are one double root).
 NARROWEST = 1e-12
-#: Safeguarded Newton steps polishing each bracketed root.
-POLISH = 8
+#: At most this many safeguarded Newton steps polish each bracketed root; they stop once
+#: every step is below ``POLISHED`` (rad).
+POLISH = 40
+POLISHED = 1e-15
+#: The samples start here (rad), off the angles where roots lie by construction (θ = 0 at
+#: the sketch, multiples of π/2 in symmetric drawings).
+OFFSET = 0.1234567
 
 
 def trig_form(coef: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -141,7 +146,7 @@ def real_roots(a: np.ndarray, b: np.ndarray) -> RealRoots:
     bound = (n * n * np.hypot(a, b)).sum(axis=-1)
     good &= bound > 0.0
     h = TWO_PI / SAMPLES
-    grid = h * np.arange(SAMPLES + 1)
+    grid = OFFSET + h * np.arange(SAMPLES + 1)
     cos, sin = np.cos(np.outer(n, grid)), np.sin(np.outer(n, grid))
     value = a @ cos + b @ sin
     slope = (b * n) @ cos - (a * n) @ sin
@@ -196,7 +201,10 @@ def _polish(a: np.ndarray, b: np.ndarray, lo: np.ndarray, hi: np.ndarray, at_lo:
             below = (v >= 0.0) == positive
             lo, hi = np.where(below, x, lo), np.where(below, hi, x)
             newton = x - v / d
+            last = x
             x = np.where((newton >= lo) & (newton <= hi), newton, 0.5 * (lo + hi))
+            if not (np.abs(x - last) > POLISHED).any():
+                break
     return np.mod(x, TWO_PI), np.where(positive, -1.0, 1.0)
 
 

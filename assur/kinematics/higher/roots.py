@@ -29,7 +29,7 @@ __all__ = ["RealRoots", "real_roots", "separation", "trig_form"]
 
 TWO_PI = 2.0 * np.pi
 #: θ samples per turn of the first pass.
-SAMPLES = 24
+SAMPLES = 32
 #: An interval that is not certified is split into this many.
 SPLIT = 8
 #: An interval narrower than this (rad) is taken as certified: one root where Φ changes sign
@@ -38,7 +38,7 @@ NARROWEST = 1e-12
 #: At most this many safeguarded Newton steps polish each bracketed root; they stop once
 #: every step is below ``POLISHED`` (rad).
 POLISH = 40
-POLISHED = 1e-15
+POLISHED = 4e-15
 #: The samples start here (rad), off the angles where roots lie by construction (θ = 0 at
 #: the sketch, multiples of π/2 in symmetric drawings).
 OFFSET = 0.1234567
@@ -90,12 +90,22 @@ def _certify(va: np.ndarray, vb: np.ndarray, da: np.ndarray, db: np.ndarray,
              limit: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
     """Per interval of width h (values va, vb and slopes da, db at its ends, |Φ″| ≤ limit):
     where it holds exactly one root, and where it must be split (neither one root nor
-    none is certified)."""
+    none is certified).
+
+    One root: a sign change, and Φ′ at an end too large to vanish within h. No root: no sign
+    change, and Φ kept off zero by its Taylor bound from either end, Φ(a + t) ≥ |va| −
+    |da|·t − limit·t²/2 in the sign of va (the bound is concave: its least value on [0, h]
+    is at t = 0 or t = h), or Φ monotone.
+    """
     change = (va >= 0.0) != (vb >= 0.0)
     monotone = np.maximum(np.abs(da), np.abs(db)) > limit * h
     if h < NARROWEST:
         return change, np.zeros(change.shape, dtype=bool)
-    empty = np.maximum(np.abs(va), np.abs(vb)) > 0.5 * limit * h * h
+    sign = np.where(va >= 0.0, 1.0, -1.0)
+    drop = 0.5 * limit * h * h
+    from_a = sign * (va + da * h) - drop
+    from_b = sign * (vb - db * h) - drop
+    empty = (np.minimum(np.abs(va), from_a) > 0.0) | (np.minimum(np.abs(vb), from_b) > 0.0)
     one = change & monotone
     return one, ~one & (change | ~(monotone | empty))
 
@@ -156,6 +166,7 @@ def real_roots(a: np.ndarray, b: np.ndarray) -> RealRoots:
     rows, cols = np.nonzero(one & good[:, None])
     bracket_rows, bracket_lo, bracket_h = [rows], [grid[cols]], [np.full(rows.size, h)]
     bracket_v = [value[rows, cols]]
+    bracket_w = [value[rows, cols + 1]]
     rows, cols = np.nonzero(split)
     lo = grid[cols]
     while rows.size:
@@ -169,13 +180,14 @@ def real_roots(a: np.ndarray, b: np.ndarray) -> RealRoots:
         bracket_lo.append(points[parent, cols])
         bracket_h.append(np.full(parent.size, h))
         bracket_v.append(v[parent, cols])
+        bracket_w.append(v[parent, cols + 1])
         parent, cols = np.nonzero(split)
         rows, lo = rows[parent], points[parent, cols]
     which = np.concatenate(bracket_rows)
     left = np.concatenate(bracket_lo)
     right = left + np.concatenate(bracket_h)
-    at_left = np.concatenate(bracket_v)
-    theta, sign = _polish(a[which], b[which], left, right, at_left)
+    theta, sign = _polish(a[which], b[which], left, right, np.concatenate(bracket_v),
+                          np.concatenate(bracket_w))
     order = np.lexsort((theta, which))
     which, theta, sign = which[order], theta[order], sign[order]
     count = np.bincount(which, minlength=count_p)
@@ -188,22 +200,28 @@ def real_roots(a: np.ndarray, b: np.ndarray) -> RealRoots:
     return RealRoots(theta=out, count=np.minimum(count, width), slope=signs)
 
 
-def _polish(a: np.ndarray, b: np.ndarray, lo: np.ndarray, hi: np.ndarray, at_lo: np.ndarray
-            ) -> tuple[np.ndarray, np.ndarray]:
-    """The root in each bracket [lo, hi] (Φ(lo) = ``at_lo``, opposite in sign to Φ(hi)) by
-    Newton steps kept inside the shrinking bracket (a step leaving it is a bisection), and the
-    sign of Φ′ there (that of −Φ(lo))."""
+def _polish(a: np.ndarray, b: np.ndarray, lo: np.ndarray, hi: np.ndarray, at_lo: np.ndarray,
+            at_hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The root in each bracket [lo, hi] (Φ = ``at_lo`` and ``at_hi`` there, of opposite signs)
+    from the secant point by Newton steps kept inside the shrinking bracket (a step leaving it
+    is a bisection), iterated on the roots not yet polished only; and the sign of Φ′ there
+    (that of −Φ(lo))."""
     positive = at_lo >= 0.0
-    x = 0.5 * (lo + hi)
+    with np.errstate(all="ignore"):
+        x = lo + (hi - lo) * at_lo / (at_lo - at_hi)
+    x = np.where((x >= lo) & (x <= hi), x, 0.5 * (lo + hi))
+    todo = np.arange(x.size)
     with np.errstate(all="ignore"):
         for _ in range(POLISH):
-            v, d = (part[:, 0] for part in _values(a, b, x[:, None]))
-            below = (v >= 0.0) == positive
-            lo, hi = np.where(below, x, lo), np.where(below, hi, x)
-            newton = x - v / d
-            last = x
-            x = np.where((newton >= lo) & (newton <= hi), newton, 0.5 * (lo + hi))
-            if not (np.abs(x - last) > POLISHED).any():
+            xs, low, high = x[todo], lo[todo], hi[todo]
+            v, d = (part[:, 0] for part in _values(a[todo], b[todo], xs[:, None]))
+            below = (v >= 0.0) == positive[todo]
+            low, high = np.where(below, xs, low), np.where(below, high, xs)
+            newton = xs - v / d
+            moved = np.where((newton >= low) & (newton <= high), newton, 0.5 * (low + high))
+            x[todo], lo[todo], hi[todo] = moved, low, high
+            todo = todo[np.abs(moved - xs) > POLISHED]
+            if not todo.size:
                 break
     return np.mod(x, TWO_PI), np.where(positive, -1.0, 1.0)
 

@@ -31,6 +31,7 @@ from assur.kinematics.higher.groups import (
     values,
 )
 from assur.kinematics.higher.modes import (
+    ACCEPT,
     TAU,
     AssemblyModes,
     assembly_modes,
@@ -991,23 +992,57 @@ def _tracked(group: HigherGroup[K]) -> bool:
 def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
                     x0: np.ndarray, found: np.ndarray, modes: AssemblyModes, jets: bool,
                     delta: float | np.ndarray) -> HigherSolution:
-    """The sketched mode by its chain of roots (:func:`~assur.kinematics.higher.track.chains`)
-    where that chain goes round the whole turn, and step by step (:func:`_step_follow`) for
-    the designs where it does not: there the mode ends, or the roots leave a doubt, and the
-    ends and reasons are those of the continuation."""
+    """The sketched mode along the path of its root over the grid of angles
+    (:func:`~assur.kinematics.higher.track.chains`) where every link of that path passes the
+    continuation's step test (:func:`_links`), and step by step (:func:`_step_follow`) for
+    the other designs: there the mode ends, or the grid is too coarse to tell, and the ends
+    and reasons are those of the continuation."""
     d = x0.shape[0]
     paths = chains(group, inputs, np.mod(phi, TWO_PI), x0[:, group.eliminated], found)
-    solution, posed = _from_chains(group, inputs, phi, x0, found, modes, paths, jets, delta)
-    doubt = ~(paths.around & posed)
-    if not doubt.any():
+    at = np.broadcast_to(paths.columns[:, None], paths.theta.shape)
+    k = inputs(Jet(at, 1.0, 0.0))
+    kv = values(k)
+    with np.errstate(all="ignore"):
+        x = expand(group).recover(np.exp(1j * paths.theta)[..., None], expand(kv))[..., 0, :]
+        x, _ = newton(group, kv, x, 2)
+        f = np.stack(np.broadcast_arrays(*map(plain, group.residual(x, kv))), axis=-1)
+        sign = np.sign(det_rows(group.jacobian(x0, values(inputs(np.zeros((1, d)))))))
+        jac, lines = group.lines(x, kv)
+        x1, x2 = analogs(group, k, x, jac)
+        posed = (np.abs(f).max(axis=-1) <= ACCEPT * np.asarray(group.size)) \
+            & (np.sign(det_rows(jac)) == sign)
+    good = paths.around & posed.all(axis=0) & _links(paths, x1[..., group.eliminated],
+                                                     x2[..., group.eliminated])
+    column = np.searchsorted(paths.columns, np.mod(phi, TWO_PI))
+    angle = np.broadcast_to(phi[:, None], (phi.size, d))
+    solution = _from_path(group, inputs(Jet(angle, 1.0, 0.0)) if jets else inputs(angle),
+                          x[column], (x1[column], x2[column]), lines[column], good,
+                          paths.closed, found, modes, jets, delta)
+    if good.all():
         return solution
-    rows = np.flatnonzero(doubt)
-    small_group, small_inputs = _take(group, doubt), _local(inputs, doubt)
+    rows = np.flatnonzero(~good)
+    small_group, small_inputs = _take(group, ~good), _local(inputs, ~good)
     if small_group is None or rows.size == d:
         return _step_follow(group, inputs, phi, x0, found, modes, jets, delta)
     part = _step_follow(small_group, small_inputs, phi, x0[rows], found[rows], modes, jets,
                         np.asarray(delta)[rows] if np.ndim(delta) else delta)
     return _splice(solution, part, rows)
+
+
+def _links(paths: Chains, t1: np.ndarray, t2: np.ndarray) -> np.ndarray:
+    """Where every link of a path passes the continuation's step test: the root's analogs
+    (θ′, θ″ over the columns, (U + 1, D)) predict the next root, θ + hθ′ + ½h²θ″, within a
+    quarter of its separation bound, and the next root's analogs predict this one back within
+    a quarter of this one's; both keep the sign of Φ′."""
+    h = np.diff(paths.columns)[:, None]
+    theta = paths.theta
+    with np.errstate(invalid="ignore"):
+        ahead = theta[:-1] + h * t1[:-1] + 0.5 * h * h * t2[:-1]
+        back = theta[1:] - h * t1[1:] + 0.5 * h * h * t2[1:]
+        ok = (np.abs(np.exp(1j * ahead) - np.exp(1j * theta[1:])) <= 0.25 * paths.apart[1:]) \
+            & (np.abs(np.exp(1j * back) - np.exp(1j * theta[:-1])) <= 0.25 * paths.apart[:-1]) \
+            & (paths.slope[1:] == paths.slope[:-1])
+    return np.asarray(ok.all(axis=0))
 
 
 def _splice(whole: HigherSolution, part: HigherSolution, rows: np.ndarray) -> HigherSolution:
@@ -1026,42 +1061,20 @@ def _splice(whole: HigherSolution, part: HigherSolution, rows: np.ndarray) -> Hi
         for f in dataclasses.fields(whole) if f.name not in ("modes", "periodic")})
 
 
-def _from_chains(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: np.ndarray,
-                 found: np.ndarray, modes: AssemblyModes, paths: Chains, jets: bool,
-                 delta: float | np.ndarray) -> tuple[HigherSolution, np.ndarray]:
-    """The solution at the angles ``phi`` of the designs whose chain of roots goes round the
-    turn, each pose recovered from its root and polished by Newton's method; and where every
-    pose so found is one (the residual at most 1e-9 L, det J of the sketch's sign)."""
-    d = x0.shape[0]
-    column = np.minimum(np.searchsorted(paths.columns, np.mod(phi, TWO_PI)),
-                        paths.columns.size - 1)
-    index = np.where(paths.around, paths.index[column], -1)
-    reached = index >= 0
-    theta = paths.theta[column[:, None], np.arange(d)[None, :], np.maximum(index, 0)]
-    angle = np.broadcast_to(phi[:, None], reached.shape)
-    k = inputs(Jet(angle, 1.0, 0.0)) if jets else inputs(angle)
-    kv = values(k)
+def _from_path(group: HigherGroup[K], k: K, x: np.ndarray, analog: tuple[np.ndarray, np.ndarray],
+               lines: np.ndarray, good: np.ndarray, closed: np.ndarray, found: np.ndarray,
+               modes: AssemblyModes, jets: bool, delta: float | np.ndarray) -> HigherSolution:
+    """The solution at the requested angles (inputs ``k`` as jets, unknowns ``x`` and their
+    ``analog`` (N, D, n), margin rows ``lines``) of the designs ``good``; the others are
+    left unreached."""
+    reached = np.broadcast_to(good, x.shape[:-1])
     with np.errstate(all="ignore"):
-        x = expand(group).recover(np.exp(1j * theta)[..., None], expand(kv))[..., 0, :]
-        x, _ = newton(group, kv, x, 2)
-        f = np.stack(np.broadcast_arrays(*map(plain, group.residual(x, kv))), axis=-1)
-        sign = np.sign(det_rows(group.jacobian(x0, values(inputs(np.zeros((1, d)))))))
-        jac, lines = group.lines(x, kv)
-        posed = (np.abs(f).max(axis=-1) <= 1e-9 * np.asarray(group.size)) \
-            & (np.sign(det_rows(jac)) == sign)
         margin = np.where(reached, hadamard(lines), np.nan)
-    posed = (posed | ~reached).all(axis=0)
-    reached &= posed
-    with np.errstate(invalid="ignore"):
         exists = reached & (margin >= np.asarray(delta))
     reason = np.where(exists, 0, np.where(reached, Reason.MODE_ENDS, Reason.NOT_FOLLOWED))
     x = np.where(exists[..., None], x, np.nan)
-    if jets:
-        with np.errstate(all="ignore"):
-            x1, x2 = analogs(group, k, x, jac)
-        cols: Any = [Jet(x[..., i], x1[..., i], x2[..., i]) for i in range(group.n)]
-    else:
-        cols, k = x, kv
+    cols: Any = ([Jet(x[..., i], analog[0][..., i], analog[1][..., i]) for i in range(group.n)]
+                 if jets else x)
     with np.errstate(all="ignore"):
         points, turns = group.joints(cols, k), group.rotations(cols, k)
 
@@ -1071,14 +1084,14 @@ def _from_chains(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: 
                               else (v, 0.0 * v, 0.0 * v) if jets else (v,))]
         return Jet(*parts) if jets else parts[0]
 
-    closed = ~paths.around | (paths.index[-1] == paths.index[0])
+    d = good.shape[0]
     return HigherSolution(
         joints={a: final(v) for a, v in points.items()},
         rotations={a: final(v) for a, v in turns.items()},
         x=x.transpose(1, 0, 2), margin=np.where(reached, margin, np.nan).T, exists=exists.T,
         reason=reason.T.astype(np.int8), ends=np.full((d, 2), np.nan),
-        end_reasons=np.zeros((d, 2), dtype=np.int8), closed=closed, found=found,
-        modes=modes), posed
+        end_reasons=np.zeros((d, 2), dtype=np.int8), closed=closed | ~good, found=found,
+        modes=modes)
 
 
 def _follow_stroke(group: HigherGroup[K], inputs: Inputs[K], q: np.ndarray, stroke: Stroke,

@@ -1,16 +1,16 @@
-"""The sketched mode over a grid of crank angles, from every real mode at every angle at once.
+"""The candidate path of the sketched mode over a grid of crank angles, all angles at once.
 
 At every angle of a grid (the requested ones and a uniform one of ``BASE`` per turn) and for
 every design, all real roots of the eliminant are isolated in one vectorised call
-(:func:`~assur.kinematics.higher.roots.real_roots`). A root at one angle continues as the
-root at the next angle nearest to it when that one moves by at most ``SHARE`` of the
-separation of both from every other root of p, real or complex, and keeps the sign of Φ′
-(two merging modes have opposite signs); real roots never cross, so these links are the
-modes' own paths. The sketched mode is the chain of links from its root at φ = 0. Where a
-link is not certified (two roots come closer than the step can separate, or a pair of roots
-appears or vanishes between the angles), the root is stepped over that interval alone by
-halving and doubling the step, with the same test at every step; below ``NARROWEST`` of
-crank the mode ends there: at a change point where the pair of roots is gone beyond it.
+(:func:`~assur.kinematics.higher.roots.real_roots`), with the separation bound of each from
+every other root of p, real or complex. Real roots never cross: a root at one angle goes on
+as a root at the next with the same sign of Φ′, or it meets its neighbour (of the other
+sign) at a change point. The path from the sketched root takes at each angle the nearest
+root that is nearest back and has the same sign. It is only a candidate: a root and its
+neighbour may meet and a new pair appear between two angles. The caller
+(:func:`~assur.kinematics.higher.continuation.follow_mode`) accepts a link only where the
+root's own analogs predict the next root, and the previous one back, within a quarter of
+their separation bounds: the test of a step of the continuation.
 """
 
 from __future__ import annotations
@@ -29,10 +29,6 @@ __all__ = ["Chains", "chains"]
 TWO_PI = 2.0 * np.pi
 #: Columns of the uniform grid per turn, besides the requested angles.
 BASE = 72
-#: A root moves between two columns by at most this share of its separation bound.
-SHARE = 0.25
-#: A mode ends where a step of this (rad) is not certified.
-NARROWEST = 1e-9
 
 
 @dataclass(frozen=True, eq=False)
@@ -67,47 +63,47 @@ def _chord(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.asarray(np.abs(np.exp(1j * a) - np.exp(1j * b)))
 
 
-def _link(theta: np.ndarray, slope: np.ndarray, apart: np.ndarray, there: _Column
+def _link(theta: np.ndarray, slope: np.ndarray, there: _Column
           ) -> tuple[np.ndarray, np.ndarray]:
-    """The continuation at the column ``there`` of the roots (θ, sign of Φ′, separation;
-    shape (..., S)): the index of the nearest root there and where the link is certified."""
+    """The nearest root at the column ``there`` to each of the roots θ (..., S), and where it
+    has the same sign of Φ′."""
     with np.errstate(invalid="ignore"):
         dist = _chord(theta[..., :, None], there.theta[..., None, :])
         dist = np.where(np.isnan(dist), np.inf, dist)
         j = np.argmin(dist, axis=-1)
-        near = np.take_along_axis(dist, j[..., None], axis=-1)[..., 0]
-        other = np.take_along_axis(there.apart[..., None, :], j[..., None], axis=-1)[..., 0]
         same = np.take_along_axis(there.slope[..., None, :], j[..., None], axis=-1)[..., 0]
-        ok = (near <= SHARE * np.minimum(apart, other)) & (same == slope) & (slope != 0)
-    return j, ok
+    return j, (same == slope) & (slope != 0)
 
 
 @dataclass(frozen=True, eq=False)
 class Chains:
-    """The sketched mode's root at every column over one turn forward from φ = 0.
+    """The candidate path of the sketched mode's root over one turn forward from φ = 0.
 
     Attributes
     ----------
-    columns : ndarray, shape (U,)
-        The crank angles of the columns in [0, 2π), increasing, the first 0.
-    theta : ndarray, shape (U, D, R)
-        Every real root at every column.
-    index : ndarray, int, shape (U + 1, D)
-        The index of the mode's root at each column (column U is φ = 2π: column 0 a turn
-        later); −1 after the chain is lost.
+    columns : ndarray, shape (U + 1,)
+        The crank angles of the columns, increasing from 0 to 2π (the last is the first a
+        turn later).
+    theta, apart, slope : ndarray, shape (U + 1, D)
+        The root on the path at each column, its separation bound from every other root of
+        p, and the sign of Φ′ there; NaN (0 for the sign) off the path.
     around : ndarray, bool, shape (D,)
-        The chain reaches φ = 2π: the mode assembles over the whole turn.
+        The path reaches φ = 2π.
+    closed : ndarray, bool, shape (D,)
+        It reaches φ = 2π at the root where it started.
     """
 
     columns: np.ndarray
     theta: np.ndarray
-    index: np.ndarray
+    apart: np.ndarray
+    slope: np.ndarray
     around: np.ndarray
+    closed: np.ndarray
 
 
 def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.ndarray,
            found: np.ndarray) -> Chains:
-    """Follow the roots θ₀ (D,) of the sketch over a turn.
+    """The path of the roots θ₀ (D,) of the sketch over a turn, from root to nearest root.
 
     Parameters
     ----------
@@ -125,9 +121,10 @@ def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.nd
     Returns
     -------
     Chains
-        A chain is lost where the sketched mode is not among the roots at φ = 0 (within
-        1e-6), or where a link is not certified even by steps of ``NARROWEST``: there the
-        mode ends, or the roots leave a doubt, and the caller follows it step by step.
+        A path is lost where the sketched mode is not among the roots at φ = 0 (within
+        1e-6), or where the nearest root at the next column is not nearest back, or has the
+        other sign of Φ′. The path is a candidate: the caller checks every link against the
+        root's analogs before it takes it for the mode's.
     """
     d = theta0.shape[0]
     columns = np.union1d(np.concatenate([[0.0], wanted]), TWO_PI / BASE * np.arange(BASE))
@@ -138,11 +135,10 @@ def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.nd
     start = np.where(np.isnan(start), np.inf, start)
     i0 = np.argmin(start, axis=-1)
     alive = found & (start[np.arange(d), i0] <= 1e-6)
-    to = np.append(columns[1:], TWO_PI)
     nxt = _Column(*(np.concatenate([getattr(col, f)[1:], getattr(col, f)[:1]])
                     for f in ("theta", "slope", "apart", "count", "defined")))
-    forward, ok = _link(col.theta, col.slope, col.apart, nxt)
-    backward, _ = _link(nxt.theta, nxt.slope, nxt.apart, col)
+    forward, ok = _link(col.theta, col.slope, nxt)
+    backward, _ = _link(nxt.theta, nxt.slope, col)
     ok &= np.take_along_axis(backward, forward, axis=-1) == np.arange(forward.shape[-1])
     links = np.where(ok, forward, -1)
     index = np.full((u + 1, d), -1)
@@ -150,50 +146,13 @@ def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.nd
     index[0] = idx
     rows = np.arange(d)
     for c in range(u):
-        here = np.maximum(idx, 0)
-        step = np.where(idx >= 0, links[c, rows, here], -1)
-        stuck = (idx >= 0) & (step < 0)
-        if stuck.any():
-            got = _step_over(group, inputs, stuck, columns[c], to[c], col.theta[c, rows, here],
-                             col.slope[c, rows, here], col.apart[c, rows, here],
-                             _Column(*(getattr(nxt, f)[c] for f in
-                                       ("theta", "slope", "apart", "count", "defined"))))
-            step = np.where(stuck, got, step)
-        idx = step
+        idx = np.where(idx >= 0, links[c, rows, np.maximum(idx, 0)], -1)
         index[c + 1] = idx
-    return Chains(columns, col.theta, index, index[-1] >= 0)
+    on = index >= 0
+    at = np.append(np.arange(u), 0)[:, None], rows[None, :], np.maximum(index, 0)
 
+    def path(v: np.ndarray, off: float) -> np.ndarray:
+        return np.asarray(np.where(on, v[at], off))
 
-def _step_over(group: HigherGroup[K], inputs: Any, rows: np.ndarray, start: float,
-               goal: float, theta: np.ndarray, slope: np.ndarray, apart: np.ndarray,
-               there: _Column) -> np.ndarray:
-    """Step the roots of the ``rows`` (D,) from the crank angle ``start`` to ``goal`` under
-    step control, with the test of :func:`_link` at every step: the index of the root
-    reached among the roots at ``goal`` (``there``), −1 where a step of ``NARROWEST`` fails."""
-    d = rows.shape[0]
-    every = np.arange(d)
-    phi = np.full(d, start)
-    h = np.full(d, goal - start)
-    active = rows.copy()
-    got = np.full(d, -1)
-    while active.any():
-        trial = np.where(active, np.where(np.abs(h) >= np.abs(goal - phi), goal, phi + h), phi)
-        k = values(inputs(trial[None, :]))
-        col = _columns(group, k)
-        j, ok = _link(theta[:, None], slope[:, None], apart[:, None],
-                      _Column(*(getattr(col, f)[0] for f in
-                                ("theta", "slope", "apart", "count", "defined"))))
-        j, ok = j[:, 0], ok[:, 0] & active
-        theta = np.where(ok, col.theta[0, every, j], theta)
-        slope = np.where(ok, col.slope[0, every, j], slope)
-        apart = np.where(ok, col.apart[0, every, j], apart)
-        phi = np.where(ok, trial, phi)
-        arrived = ok & (trial == goal)
-        if arrived.any():
-            there_j, _ = _link(theta[:, None], slope[:, None], apart[:, None], there)
-            got = np.where(arrived, there_j[:, 0], got)
-        remaining = goal - phi
-        h = np.where(ok, np.where(np.abs(2.0 * h) < np.abs(remaining), 2.0 * h, remaining),
-                     0.5 * h)
-        active &= ~arrived & ~(~ok & (np.abs(h) < NARROWEST))
-    return got
+    return Chains(np.append(columns, TWO_PI), path(col.theta, np.nan), path(col.apart, np.nan),
+                  path(col.slope, 0.0), on[-1], on[-1] & (index[-1] == index[0]))

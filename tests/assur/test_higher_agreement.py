@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from test_higher_properties import Designs, random_class_iv, random_triads
 
-from assur.kinematics.higher import assembly_modes, follow_mode
+from assur.kinematics.higher import HigherSolution, assembly_modes, follow_mode
 from assur.kinematics.higher.groups import values
 from assur.kinematics.higher.modes import select_mode
 
@@ -96,10 +96,11 @@ def _pass(designs: Designs, x0: np.ndarray, alive: np.ndarray, s: float,
 @pytest.mark.parametrize(("kind", "count"), [("RR-RR-RR", 400), ("RR-RR-RP", 200),
                                              ("IV", 400)])
 def test_the_follower_equals_a_plain_continuation(kind: str, count: int) -> None:
+    """Both ways of following a turn: by steps, and by the path of the root through every
+    root at every angle (a design's path taken where all its links pass the step test)."""
     designs = (random_class_iv(91, count) if kind == "IV"
                else random_triads(90, count, kind[-2:]))
     group = designs.group
-    solution = follow_mode(group, designs.inputs, PHI)
     k0 = values(designs.inputs(np.zeros(count)))
     x0, found = select_mode(group, k0, assembly_modes(group, k0))
     assert found.mean() > 0.9
@@ -108,6 +109,19 @@ def test_the_follower_equals_a_plain_continuation(kind: str, count: int) -> None
     back_targets = np.append(np.sort(TWO_PI - PHI[1:]), TWO_PI)
     behind, backward = _pass(designs, x0, found & ended, -1.0, back_targets)
     assert 0.1 < ended.mean() < 0.9
+    for method in ("steps", "roots"):
+        _agree(follow_mode(group, designs.inputs, PHI, method=method), designs, x0, found,
+               (ahead, forward), (behind, backward))
+
+
+def _agree(solution: HigherSolution, designs: Designs, x0: np.ndarray, found: np.ndarray,
+           ahead_pass: tuple[np.ndarray, np.ndarray],
+           behind_pass: tuple[np.ndarray, np.ndarray]) -> None:
+    """The solution has the plain continuation's ends (1e-6°) and positions (1e-9 L)."""
+    group = designs.group
+    (ahead, forward), (behind, backward) = ahead_pass, behind_pass
+    ended = ~np.isnan(forward)
+    back_targets = np.append(np.sort(TWO_PI - PHI[1:]), TWO_PI)
     # the same ends of existence, to 1e-6°
     tol = np.radians(1e-6)
     assert (np.isnan(solution.ends[:, 0]) == ~ended).all()

@@ -23,6 +23,7 @@ from assur.kinematics import jets as J
 from assur.kinematics.higher.groups import (
     ClassIVDrawing,
     HigherGroup,
+    Triad,
     K,
     det_rows,
     expand,
@@ -839,8 +840,8 @@ class Stroke:
 
 
 def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: bool = False,
-                delta: float | np.ndarray = 0.0, stroke: Stroke | None = None
-                ) -> HigherSolution:
+                delta: float | np.ndarray = 0.0, stroke: Stroke | None = None,
+                method: str = "auto") -> HigherSolution:
     """Positions of the sketched assembly mode over the crank cycle, for one or many designs.
 
     Parameters
@@ -862,6 +863,13 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
         The input is an actuator's length: ``phi`` and the argument of ``inputs`` are
         lengths q (mm), the mode is followed from the sketch's length q₀ up to the stroke's
         upper end and down to its lower end (:func:`_follow_stroke`).
+    method : {"auto", "roots", "steps"}
+        How a crank's turn is followed: "steps" by the continuation; "roots" by the path of
+        the sketched root through every real root at every angle
+        (:func:`~assur.kinematics.higher.track.chains`), taken for a design only where each
+        of its links passes the continuation's step test, the other designs by steps;
+        "auto" by roots for one design of a triad with a bar and no P–P leash (where one
+        call of the roots costs a few dozen steps' Python), by steps otherwise.
 
     Returns
     -------
@@ -897,6 +905,8 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
         def inputs(t: Any) -> Any:
             return actuator(start + scale * t)
 
+    if method not in ("auto", "roots", "steps"):
+        raise ValueError(f"method: 'auto', 'roots' or 'steps', not {method!r}")
     shape = _designs(group, inputs)
     d = int(np.prod(shape))
     k0 = _spread(values(inputs(np.zeros(d))), d)
@@ -908,7 +918,7 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
         solution = _follow_stroke(group, inputs, phi, stroke, x0, (modes, found), analogs,
                                   delta)
         return _squeeze(solution) if shape == () else solution
-    if _tracked(group):
+    if method == "roots" or (method == "auto" and d == 1 and _tracked(group)):
         solution = _follow_tracked(group, inputs, phi, x0, found, modes, analogs, delta)
     else:
         solution = _step_follow(group, inputs, phi, x0, found, modes, analogs, delta)
@@ -981,12 +991,11 @@ def _step_follow(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: 
 
 
 def _tracked(group: HigherGroup[K]) -> bool:
-    """Whether the group's modes are followed by their roots at every angle at once
-    (:func:`~assur.kinematics.higher.track.chains`): a group whose eliminated angle fixes
-    the pose, with a bar (a triad without a P–P leash, or a class IV group)."""
-    if isinstance(group, ClassIVDrawing):
-        return not all(group.slides)
-    return not getattr(group, "pinned", True) and not getattr(group, "barless", True)
+    """Whether "auto" follows the group by the path of its root: a triad with a bar and no
+    P–P leash (its eliminated angle fixes the pose). Not a class IV group: its eliminant may
+    gather several roots in a cluster (``class_iv_group.yaml`` near φ = 45.3°) where no path
+    is certified, and the steps then follow anyway."""
+    return isinstance(group, Triad) and not group.pinned and not group.barless
 
 
 def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,

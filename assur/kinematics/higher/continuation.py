@@ -23,8 +23,8 @@ from assur.kinematics import jets as J
 from assur.kinematics.higher.groups import (
     ClassIVDrawing,
     HigherGroup,
-    Triad,
     K,
+    Triad,
     det_rows,
     expand,
     hadamard,
@@ -43,6 +43,7 @@ from assur.kinematics.higher.modes import (
     solve,
     weights,
 )
+from assur.kinematics.higher.roots import separation as roots_apart
 from assur.kinematics.higher.track import Chains, chains
 from assur.kinematics.jets import Jet
 from assur.kinematics.reasons import Reason
@@ -140,24 +141,9 @@ def analogs(group: HigherGroup[K], k: K, x: np.ndarray, jac: np.ndarray | None =
 
 
 def separation(group: HigherGroup[K], k: K, x: np.ndarray) -> np.ndarray:
-    """A lower bound on the distance from the root E* of x to every other root of p.
-
-    The Taylor shift q_j = p⁽ʲ⁺¹⁾(E*)/(j+1)! and Fujiwara's bound on the deflated polynomial
-    give ρ ≥ 1 / (2·max_j |q_j/q_0|^{1/j}) (§1.6, test (c)).
-    """
-    coef = coefficients(group, k)
-    z = np.exp(1j * x[..., group.eliminated])
-    n = coef.shape[-1] - 1
-    b = [coef[..., i] for i in range(n, -1, -1)]
-    shifted = []
-    for order in range(n + 1):
-        for i in range(1, n + 1 - order):
-            b[i] = b[i] + z * b[i - 1]
-        shifted.append(b[n - order])
-    q = shifted[1:]
-    with np.errstate(all="ignore"):
-        worst = np.max([np.abs(q[j] / q[0]) ** (1.0 / j) for j in range(1, len(q))], axis=0)
-        return np.asarray(0.5 / worst)
+    """A lower bound on the distance from the root E* of x to every other root of p
+    (:func:`~assur.kinematics.higher.roots.separation`; §1.6, test (c))."""
+    return roots_apart(coefficients(group, k), x[..., group.eliminated])
 
 
 def finite_inputs(k: Any) -> np.ndarray:

@@ -33,14 +33,12 @@ BASE = 72
 
 @dataclass(frozen=True, eq=False)
 class _Column:
-    """All real roots at one crank angle per design: θ, the sign of Φ′, the separation bound
-    (chord) of each, the count, and whether the inputs are defined, shapes (..., R)/(...)."""
+    """All real roots at the crank angles of a grid, per design: θ, the sign of Φ′ and the
+    separation bound (a chord) of each, shape (..., R), NaN (sign 0) after the last."""
 
     theta: np.ndarray
     slope: np.ndarray
     apart: np.ndarray
-    count: np.ndarray
-    defined: np.ndarray
 
 
 def _columns(group: HigherGroup[K], k: K) -> _Column:
@@ -55,8 +53,7 @@ def _columns(group: HigherGroup[K], k: K) -> _Column:
     with np.errstate(all="ignore"):
         apart = separation(flat[:, None, :], found.theta)
     return _Column(found.theta.reshape(shape + (width,)), found.slope.reshape(shape + (width,)),
-                   apart.reshape(shape + (width,)), found.count.reshape(shape),
-                   np.isfinite(coef).all(axis=-1))
+                   apart.reshape(shape + (width,)))
 
 
 def _chord(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -136,7 +133,7 @@ def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.nd
     i0 = np.argmin(start, axis=-1)
     alive = found & (start[np.arange(d), i0] <= 1e-6)
     nxt = _Column(*(np.concatenate([getattr(col, f)[1:], getattr(col, f)[:1]])
-                    for f in ("theta", "slope", "apart", "count", "defined")))
+                    for f in ("theta", "slope", "apart")))
     forward, ok = _link(col.theta, col.slope, nxt)
     backward, _ = _link(nxt.theta, nxt.slope, col)
     ok &= np.take_along_axis(backward, forward, axis=-1) == np.arange(forward.shape[-1])

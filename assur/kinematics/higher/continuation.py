@@ -85,6 +85,10 @@ MEET = 1e-8
 #: Newton iterations for the extremum of Φ between the merging pair.
 MEET_ITERATIONS = 6
 
+#: "auto" follows up to this many designs of a triad by the path of the root (beyond, the
+#: batched steps cost less: ``docs/higher_groups.md`` §3).
+ROOTS_DESIGNS = 64
+
 Inputs = Callable[[Any], K]
 T = TypeVar("T")
 
@@ -854,8 +858,9 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
         the sketched root through every real root at every angle
         (:func:`~assur.kinematics.higher.track.chains`), taken for a design only where each
         of its links passes the continuation's step test, the other designs by steps;
-        "auto" by roots for one design of a triad with a bar and no P–P leash (where one
-        call of the roots costs a few dozen steps' Python), by steps otherwise.
+        "auto" by roots for up to ``ROOTS_DESIGNS`` designs of a triad with a bar and no P–P
+        leash (where the steps' cost is Python's, a few dozen steps for each design), by
+        steps otherwise.
 
     Returns
     -------
@@ -904,7 +909,7 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
         solution = _follow_stroke(group, inputs, phi, stroke, x0, (modes, found), analogs,
                                   delta)
         return _squeeze(solution) if shape == () else solution
-    if method == "roots" or (method == "auto" and d == 1 and _tracked(group)):
+    if method == "roots" or (method == "auto" and d <= ROOTS_DESIGNS and _tracked(group)):
         solution = _follow_tracked(group, inputs, phi, x0, found, modes, analogs, delta)
     else:
         solution = _step_follow(group, inputs, phi, x0, found, modes, analogs, delta)

@@ -1,22 +1,16 @@
-"""Every real root of many trigonometric polynomials at once, each isolated with a certificate.
+"""The real roots of many trigonometric polynomials at once, bracketed by samples.
 
 The eliminant of a four-link group is a real trigonometric polynomial of degree m,
 
     Φ(θ) = Σ_{n=0..m} a_n cos nθ + b_n sin nθ,
 
 whose real roots are the group's assembly modes (``docs/higher_groups.md`` §1.3). Here the
-roots of P such polynomials are found together: Φ is sampled on a uniform grid of θ, and each
-interval between two samples is certified to hold no root or exactly one, from the bound
-|Φ″| ≤ B = Σ n²·√(a_n² + b_n²):
-
-* a sign change and |Φ′| > B·h at one end: Φ is monotone there, one root;
-* no sign change and either Φ monotone or |Φ| > B·h²/2 at one end: no root (two roots in an
-  interval of width h, by Rolle's theorem, keep |Φ| ≤ B·h²/2 at both its ends).
-
-An interval that is neither is split, and its parts are tested in turn; the bracketed roots
-are then polished by safeguarded Newton steps. The separation of a root from every other
-root of p(E) = E^m·Φ, real or complex, is bounded below by Fujiwara's bound on the
-polynomial deflated at the root (:func:`separation`).
+roots of P such polynomials are found together: Φ is sampled on a uniform grid of θ (one
+matrix product), every sign change brackets a root, and the brackets are polished by
+safeguarded Newton steps. Two roots closer than the spacing of the samples may be missed
+(a caller that follows a root checks every step with :func:`separation`, a lower bound on
+the distance from a root to every other root of p(E) = E^m·Φ, real or complex, so a missed
+root can only make a check fail, never pass).
 """
 
 from __future__ import annotations
@@ -25,20 +19,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["RealRoots", "real_roots", "separation", "trig_form"]
+__all__ = ["RealRoots", "polish", "real_roots", "separation", "trig_form"]
 
 TWO_PI = 2.0 * np.pi
-#: θ samples per turn of the first pass.
+#: θ samples per turn.
 SAMPLES = 32
-#: An interval that is not certified is split into this many.
-SPLIT = 8
-#: An interval narrower than this (rad) is taken as certified: one root where Φ changes sign
-#: over it, none where it does not (two roots closer than this are one double root).
-NARROWEST = 1e-12
 #: At most this many safeguarded Newton steps polish each bracketed root; they stop once
-#: every step is below ``POLISHED`` (rad).
+#: every step is below ``POLISHED`` (rad: the pose recovered from the root is polished on
+#: the group's own equations afterwards).
 POLISH = 40
-POLISHED = 4e-15
+POLISHED = 1e-10
 #: The samples start here (rad), off the angles where roots lie by construction (θ = 0 at
 #: the sketch, multiples of π/2 in symmetric drawings).
 OFFSET = 0.1234567
@@ -59,9 +49,9 @@ def trig_form(coef: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
     Examples
     --------
-    >>> a, b = trig_form(np.array([0.5j, 1.0, -0.5j]))  # Φ = 1 + sin θ
+    >>> a, b = trig_form(np.array([-0.5j, 1.0, 0.5j]))  # Φ = 1 − sin θ
     >>> a.tolist(), b.tolist()
-    ([1.0, 0.0], [0.0, 1.0])
+    ([1.0, 0.0], [0.0, -1.0])
     """
     m = (coef.shape[-1] - 1) // 2
     phi = coef[..., m:]
@@ -86,144 +76,123 @@ def _values(a: np.ndarray, b: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray
     return value, slope
 
 
-def _certify(va: np.ndarray, vb: np.ndarray, da: np.ndarray, db: np.ndarray,
-             limit: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
-    """Per interval of width h (values va, vb and slopes da, db at its ends, |Φ″| ≤ limit):
-    where it holds exactly one root, and where it must be split (neither one root nor
-    none is certified).
-
-    One root: a sign change, and Φ′ at an end too large to vanish within h. No root: no sign
-    change, and Φ kept off zero by its Taylor bound from either end, Φ(a + t) ≥ |va| −
-    |da|·t − limit·t²/2 in the sign of va (the bound is concave: its least value on [0, h]
-    is at t = 0 or t = h), or Φ monotone.
-    """
-    change = (va >= 0.0) != (vb >= 0.0)
-    monotone = np.maximum(np.abs(da), np.abs(db)) > limit * h
-    if h < NARROWEST:
-        return change, np.zeros(change.shape, dtype=bool)
-    sign = np.where(va >= 0.0, 1.0, -1.0)
-    drop = 0.5 * limit * h * h
-    from_a = sign * (va + da * h) - drop
-    from_b = sign * (vb - db * h) - drop
-    empty = (np.minimum(np.abs(va), from_a) > 0.0) | (np.minimum(np.abs(vb), from_b) > 0.0)
-    one = change & monotone
-    return one, ~one & (change | ~(monotone | empty))
-
-
 @dataclass(frozen=True, eq=False)
 class RealRoots:
-    """The real roots of P trigonometric polynomials.
+    """The real roots of P trigonometric polynomials, bracketed.
 
     Attributes
     ----------
     theta : ndarray, shape (P, 2m)
-        The roots in [0, 2π), increasing; NaN after the last.
-    count : ndarray, int, shape (P,)
-        The number of real roots.
+        Each root's first estimate, where the chord between the samples of its bracket
+        crosses zero, in [0, 2π), increasing; NaN after the last (:func:`polish` refines it).
     slope : ndarray, shape (P, 2m)
         The sign of Φ′ at each root (0 after the last).
+    low, high : ndarray, shape (P, 2m)
+        The bracket of each root: Φ changes sign from θ = ``low`` to ``high`` (high − low =
+        2π/``SAMPLES``, both possibly above 2π).
     """
 
     theta: np.ndarray
-    count: np.ndarray
     slope: np.ndarray
+    low: np.ndarray
+    high: np.ndarray
 
 
 def real_roots(a: np.ndarray, b: np.ndarray) -> RealRoots:
-    """Every real root of Φ(θ) = Σ a_n cos nθ + b_n sin nθ, for P polynomials at once.
+    """The real roots of Φ(θ) = Σ a_n cos nθ + b_n sin nθ bracketed by ``SAMPLES`` samples, for
+    P polynomials at once.
 
     Parameters
     ----------
     a, b : ndarray, shape (P, m + 1)
         The coefficients (:func:`trig_form`); a polynomial with a coefficient that is not
-        finite, or that is identically zero, has no root.
+        finite has no root.
 
     Returns
     -------
     RealRoots
+        Every root where Φ changes sign between two samples (a pair of roots closer than
+        2π/``SAMPLES`` may be missed).
 
     Examples
     --------
-    >>> found = real_roots(np.array([[0.0, 0.0, 1.0]]), np.zeros((1, 3)))  # cos 2θ
-    >>> np.round(np.degrees(found.theta[0]), 9).tolist(), found.slope[0].tolist()
-    ([45.0, 135.0, 225.0, 315.0], [-1.0, 1.0, -1.0, 1.0])
+    >>> a, b = np.array([[0.0, 0.0, 1.0]]), np.zeros((1, 3))  # cos 2θ
+    >>> found = real_roots(a, b)
+    >>> found.slope[0].tolist()
+    [-1.0, 1.0, -1.0, 1.0]
+    >>> np.round(np.degrees(polish(a[[0]], b[[0]], found.low[:, :1], found.high[:, :1])), 9)
+    array([[45.]])
     """
     count_p, m1 = a.shape
     width = 2 * (m1 - 1)
     n = np.arange(m1)
     good = np.isfinite(a).all(axis=-1) & np.isfinite(b).all(axis=-1)
     a, b = np.where(good[:, None], a, 0.0), np.where(good[:, None], b, 0.0)
-    bound = (n * n * np.hypot(a, b)).sum(axis=-1)
-    good &= bound > 0.0
     h = TWO_PI / SAMPLES
     grid = OFFSET + h * np.arange(SAMPLES + 1)
-    cos, sin = np.cos(np.outer(n, grid)), np.sin(np.outer(n, grid))
-    value = a @ cos + b @ sin
-    slope = (b * n) @ cos - (a * n) @ sin
-    one, split = _certify(value[:, :-1], value[:, 1:], slope[:, :-1], slope[:, 1:],
-                          bound[:, None], h)
-    split &= good[:, None]
-    rows, cols = np.nonzero(one & good[:, None])
-    bracket_rows, bracket_lo, bracket_h = [rows], [grid[cols]], [np.full(rows.size, h)]
-    bracket_v = [value[rows, cols]]
-    bracket_w = [value[rows, cols + 1]]
-    rows, cols = np.nonzero(split)
-    lo = grid[cols]
-    while rows.size:
-        h = h / SPLIT
-        points = lo[:, None] + h * np.arange(SPLIT + 1)
-        v, d = _values(a[rows], b[rows], points)
-        one, split = _certify(v[:, :-1], v[:, 1:], d[:, :-1], d[:, 1:],
-                              bound[rows, None], h)
-        parent, cols = np.nonzero(one)
-        bracket_rows.append(rows[parent])
-        bracket_lo.append(points[parent, cols])
-        bracket_h.append(np.full(parent.size, h))
-        bracket_v.append(v[parent, cols])
-        bracket_w.append(v[parent, cols + 1])
-        parent, cols = np.nonzero(split)
-        rows, lo = rows[parent], points[parent, cols]
-    which = np.concatenate(bracket_rows)
-    left = np.concatenate(bracket_lo)
-    right = left + np.concatenate(bracket_h)
-    theta, sign = _polish(a[which], b[which], left, right, np.concatenate(bracket_v),
-                          np.concatenate(bracket_w))
-    order = np.lexsort((theta, which))
-    which, theta, sign = which[order], theta[order], sign[order]
-    count = np.bincount(which, minlength=count_p)
-    rank = np.arange(which.size) - (np.cumsum(count) - count)[which]
-    keep = rank < width
-    out = np.full((count_p, width), np.nan)
+    value = a @ np.cos(np.outer(n, grid)) + b @ np.sin(np.outer(n, grid))
+    above = value >= 0.0
+    change = (above[:, :-1] != above[:, 1:]) & good[:, None]
+    rank = np.cumsum(change, axis=1, dtype=np.int16) - 1
+    rows, cols = np.nonzero(change & (rank < width))
+    va, vb = value[rows, cols], value[rows, cols + 1]
+    out = [np.full((count_p, width), np.nan) for _ in range(3)]
     signs = np.zeros((count_p, width))
-    out[which[keep], rank[keep]] = theta[keep]
-    signs[which[keep], rank[keep]] = sign[keep]
-    return RealRoots(theta=out, count=np.minimum(count, width), slope=signs)
+    at = rows, rank[rows, cols]
+    with np.errstate(all="ignore"):
+        out[0][at] = np.mod(grid[cols] + h * va / (va - vb), TWO_PI)
+    out[1][at], out[2][at] = grid[cols], grid[cols + 1]
+    signs[at] = np.where(va >= 0.0, -1.0, 1.0)
+    order = np.argsort(out[0], axis=-1)
+    theta, low, high = (np.take_along_axis(v, order, axis=-1) for v in out)
+    return RealRoots(theta=theta, slope=np.take_along_axis(signs, order, axis=-1),
+                     low=low, high=high)
 
 
-def _polish(a: np.ndarray, b: np.ndarray, lo: np.ndarray, hi: np.ndarray, at_lo: np.ndarray,
-            at_hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The root in each bracket [lo, hi] (Φ = ``at_lo`` and ``at_hi`` there, of opposite signs)
-    from the secant point by Newton steps kept inside the shrinking bracket (a step leaving it
-    is a bisection), iterated on the roots not yet polished only; and the sign of Φ′ there
-    (that of −Φ(lo))."""
-    positive = at_lo >= 0.0
+def polish(a: np.ndarray, b: np.ndarray, low: np.ndarray, high: np.ndarray) -> np.ndarray:
+    """The root of Φ in each bracket [low, high] (Φ of opposite signs at its ends), in [0, 2π).
+
+    Parameters
+    ----------
+    a, b : ndarray, shape (P, m + 1)
+        The polynomials (:func:`trig_form`).
+    low, high : ndarray, shape (P, S)
+        Brackets of S roots of each (:class:`RealRoots`); NaN for none.
+
+    Returns
+    -------
+    ndarray, shape (P, S)
+        From the secant point, Newton steps kept inside the shrinking bracket (a step leaving
+        it is a bisection), on the roots not yet polished only, until the step is below
+        ``POLISHED``.
+    """
+    shape = low.shape
+    rows = np.broadcast_to(np.arange(shape[0])[:, None], shape).reshape(-1)
+    lo, hi = low.reshape(-1).copy(), high.reshape(-1).copy()
+    out = np.full(lo.shape, np.nan)
+    todo = np.flatnonzero(np.isfinite(lo) & np.isfinite(hi))
+    v_lo = _values(a[rows[todo]], b[rows[todo]], lo[todo, None])[0][:, 0]
+    v_hi = _values(a[rows[todo]], b[rows[todo]], hi[todo, None])[0][:, 0]
+    positive = np.zeros(lo.shape, dtype=bool)
+    positive[todo] = v_lo >= 0.0
+    x = out.copy()
     with np.errstate(all="ignore"):
-        x = lo + (hi - lo) * at_lo / (at_lo - at_hi)
-    x = np.where((x >= lo) & (x <= hi), x, 0.5 * (lo + hi))
-    todo = np.arange(x.size)
-    with np.errstate(all="ignore"):
+        x[todo] = lo[todo] + (hi[todo] - lo[todo]) * v_lo / (v_lo - v_hi)
+        x[todo] = np.where((x[todo] >= lo[todo]) & (x[todo] <= hi[todo]), x[todo],
+                           0.5 * (lo[todo] + hi[todo]))
         for _ in range(POLISH):
-            xs, low, high = x[todo], lo[todo], hi[todo]
-            v, d = (part[:, 0] for part in _values(a[todo], b[todo], xs[:, None]))
-            below = (v >= 0.0) == positive[todo]
-            low, high = np.where(below, xs, low), np.where(below, high, xs)
-            newton = xs - v / d
-            moved = np.where((newton >= low) & (newton <= high), newton, 0.5 * (low + high))
-            x[todo], lo[todo], hi[todo] = moved, low, high
-            todo = todo[np.abs(moved - xs) > POLISHED]
             if not todo.size:
                 break
-    return np.mod(x, TWO_PI), np.where(positive, -1.0, 1.0)
+            xs, low_t, high_t = x[todo], lo[todo], hi[todo]
+            v, d = (part[:, 0] for part in _values(a[rows[todo]], b[rows[todo]], xs[:, None]))
+            below = (v >= 0.0) == positive[todo]
+            low_t, high_t = np.where(below, xs, low_t), np.where(below, high_t, xs)
+            newton = xs - v / d
+            moved = np.where((newton >= low_t) & (newton <= high_t), newton,
+                             0.5 * (low_t + high_t))
+            x[todo], lo[todo], hi[todo] = moved, low_t, high_t
+            todo = todo[np.abs(moved - xs) > POLISHED]
+    return np.asarray(np.mod(x, TWO_PI).reshape(shape))
 
 
 def separation(coef: np.ndarray, theta: np.ndarray) -> np.ndarray:

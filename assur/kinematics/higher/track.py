@@ -22,7 +22,13 @@ import numpy as np
 
 from assur.kinematics.higher.groups import HigherGroup, K, values
 from assur.kinematics.higher.modes import coefficients
-from assur.kinematics.higher.roots import RealRoots, real_roots, separation, trig_form
+from assur.kinematics.higher.roots import (
+    RealRoots,
+    polish,
+    real_roots,
+    separation,
+    trig_form,
+)
 
 __all__ = ["Chains", "chains"]
 
@@ -33,16 +39,20 @@ BASE = 72
 
 @dataclass(frozen=True, eq=False)
 class _Column:
-    """All real roots at the crank angles of a grid, per design: θ, the sign of Φ′ and the
-    separation bound (a chord) of each, shape (..., R), NaN (sign 0) after the last."""
+    """The real roots at the crank angles of a grid, per design: θ (a first estimate), the sign
+    of Φ′ and the bracket of each, shape (..., R), NaN (sign 0) after the last
+    (:class:`~assur.kinematics.higher.roots.RealRoots`); and the coefficients of p,
+    (..., 2m + 1)."""
 
     theta: np.ndarray
     slope: np.ndarray
-    apart: np.ndarray
+    low: np.ndarray
+    high: np.ndarray
+    coef: np.ndarray
 
 
 def _columns(group: HigherGroup[K], k: K) -> _Column:
-    """Every real root of the group's eliminant at the inputs ``k`` (plain, shape (..., D))."""
+    """The real roots of the group's eliminant at the inputs ``k`` (plain, shape (..., D))."""
     with np.errstate(all="ignore"):
         coef = coefficients(group, k)
     shape = coef.shape[:-1]
@@ -50,26 +60,28 @@ def _columns(group: HigherGroup[K], k: K) -> _Column:
     a, b = trig_form(flat)
     found: RealRoots = real_roots(a, b)
     width = found.theta.shape[-1]
-    with np.errstate(all="ignore"):
-        apart = separation(flat[:, None, :], found.theta)
-    return _Column(found.theta.reshape(shape + (width,)), found.slope.reshape(shape + (width,)),
-                   apart.reshape(shape + (width,)))
+    return _Column(*(getattr(found, f).reshape(shape + (width,))
+                     for f in ("theta", "slope", "low", "high")), coef)
 
 
 def _chord(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return np.asarray(np.abs(np.exp(1j * a) - np.exp(1j * b)))
+    """|e^{ia} − e^{ib}|, NaN where either is NaN."""
+    return np.asarray(2.0 * np.abs(np.sin(0.5 * (a - b))))
 
 
-def _link(theta: np.ndarray, slope: np.ndarray, there: _Column
-          ) -> tuple[np.ndarray, np.ndarray]:
-    """The nearest root at the column ``there`` to each of the roots θ (..., S), and where it
-    has the same sign of Φ′."""
+def _links(here: _Column, there: _Column) -> np.ndarray:
+    """For each root at ``here`` (..., R), the index of the nearest root at ``there``, where
+    that root is also the nearest back and has the same sign of Φ′; −1 elsewhere."""
     with np.errstate(invalid="ignore"):
-        dist = _chord(theta[..., :, None], there.theta[..., None, :])
-        dist = np.where(np.isnan(dist), np.inf, dist)
-        j = np.argmin(dist, axis=-1)
-        same = np.take_along_axis(there.slope[..., None, :], j[..., None], axis=-1)[..., 0]
-    return j, (same == slope) & (slope != 0)
+        dist = _chord(here.theta[..., :, None], there.theta[..., None, :])
+    dist = np.where(np.isnan(dist), np.inf, dist)
+    forward = np.argmin(dist, axis=-1)
+    backward = np.argmin(dist, axis=-2)
+    width = forward.shape[-1]
+    same = np.take_along_axis(there.slope, forward, axis=-1) == here.slope
+    ok = same & (here.slope != 0) \
+        & (np.take_along_axis(backward, forward, axis=-1) == np.arange(width))
+    return np.asarray(np.where(ok, forward, -1))
 
 
 @dataclass(frozen=True, eq=False)
@@ -118,8 +130,7 @@ def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.nd
     Returns
     -------
     Chains
-        A path is lost where the sketched mode is not among the roots at φ = 0 (within
-        1e-6), or where the nearest root at the next column is not nearest back, or has the
+        A path is lost where the sketched mode's root is in no bracket at φ = 0, or where the nearest root at the next column is not nearest back, or has the
         other sign of Φ′. The path is a candidate: the caller checks every link against the
         root's analogs before it takes it for the mode's.
     """
@@ -128,16 +139,13 @@ def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.nd
     u = columns.size
     k = values(inputs(np.broadcast_to(columns[:, None], (u, d))))
     col = _columns(group, k)
-    start = _chord(col.theta[0], theta0[:, None])
-    start = np.where(np.isnan(start), np.inf, start)
-    i0 = np.argmin(start, axis=-1)
-    alive = found & (start[np.arange(d), i0] <= 1e-6)
+    with np.errstate(invalid="ignore"):
+        start = np.mod(theta0[:, None] - col.low[0], TWO_PI) <= col.high[0] - col.low[0]
+    i0 = np.argmax(start, axis=-1)
+    alive = found & start.any(axis=-1)
     nxt = _Column(*(np.concatenate([getattr(col, f)[1:], getattr(col, f)[:1]])
-                    for f in ("theta", "slope", "apart")))
-    forward, ok = _link(col.theta, col.slope, nxt)
-    backward, _ = _link(nxt.theta, nxt.slope, col)
-    ok &= np.take_along_axis(backward, forward, axis=-1) == np.arange(forward.shape[-1])
-    links = np.where(ok, forward, -1)
+                    for f in ("theta", "slope", "low", "high", "coef")))
+    links = _links(col, nxt)
     index = np.full((u + 1, d), -1)
     idx = np.where(alive, i0, -1)
     index[0] = idx
@@ -148,8 +156,11 @@ def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.nd
     on = index >= 0
     at = np.append(np.arange(u), 0)[:, None], rows[None, :], np.maximum(index, 0)
 
-    def path(v: np.ndarray, off: float) -> np.ndarray:
-        return np.asarray(np.where(on, v[at], off))
-
-    return Chains(np.append(columns, TWO_PI), path(col.theta, np.nan), path(col.apart, np.nan),
-                  path(col.slope, 0.0), on[-1], on[-1] & (index[-1] == index[0]))
+    coef = col.coef[at[:2]]
+    a, b = trig_form(coef.reshape(-1, coef.shape[-1]))
+    with np.errstate(all="ignore"):
+        theta = polish(a, b, np.where(on, col.low[at], np.nan).reshape(-1, 1),
+                       np.where(on, col.high[at], np.nan).reshape(-1, 1)).reshape(on.shape)
+        apart = separation(coef, theta)
+    return Chains(np.append(columns, TWO_PI), theta, apart, np.where(on, col.slope[at], 0.0),
+                  on[-1], on[-1] & (index[-1] == index[0]))

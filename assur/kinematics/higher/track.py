@@ -60,8 +60,9 @@ def _columns(group: HigherGroup[K], k: K) -> _Column:
     a, b = trig_form(flat)
     found: RealRoots = real_roots(a, b)
     width = found.theta.shape[-1]
-    return _Column(*(getattr(found, f).reshape(shape + (width,))
-                     for f in ("theta", "slope", "low", "high")), coef)
+    theta, slope, low, high = (getattr(found, f).reshape(shape + (width,))
+                               for f in ("theta", "slope", "low", "high"))
+    return _Column(theta, slope, low, high, coef)
 
 
 def _chord(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -85,6 +85,22 @@ def _links(here: _Column, there: _Column) -> np.ndarray:
     return np.asarray(np.where(ok, forward, -1))
 
 
+def _from_first(links: np.ndarray) -> np.ndarray:
+    """The maps from the first column to every column (U + 1, D, R), composed from the links
+    of each column to the next (U, D, R; −1 where a root has none) by doubling: after the
+    step of k, the map of column c starts at column max(0, c − 2k); log₂ U steps."""
+    width = links.shape[-1]
+    same = np.broadcast_to(np.arange(width), links.shape[1:])
+    maps = np.concatenate([same[None], links])
+    k = 1
+    while k < maps.shape[0]:
+        before = maps[:-k]
+        went = np.take_along_axis(maps[k:], np.maximum(before, 0), axis=-1)
+        maps = np.concatenate([maps[:k], np.where(before >= 0, went, -1)])
+        k *= 2
+    return maps
+
+
 @dataclass(frozen=True, eq=False)
 class Chains:
     """The candidate path of the sketched mode's root over one turn forward from φ = 0.
@@ -147,13 +163,10 @@ def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.nd
     nxt = _Column(*(np.concatenate([getattr(col, f)[1:], getattr(col, f)[:1]])
                     for f in ("theta", "slope", "low", "high", "coef")))
     links = _links(col, nxt)
-    index = np.full((u + 1, d), -1)
-    idx = np.where(alive, i0, -1)
-    index[0] = idx
+    start_at = np.where(alive, i0, -1)[None, :, None]
+    index = np.take_along_axis(_from_first(links), np.maximum(start_at, 0), axis=-1)[..., 0]
+    index = np.where(start_at[..., 0] >= 0, index, -1)
     rows = np.arange(d)
-    for c in range(u):
-        idx = np.where(idx >= 0, links[c, rows, np.maximum(idx, 0)], -1)
-        index[c + 1] = idx
     on = index >= 0
     at = np.append(np.arange(u), 0)[:, None], rows[None, :], np.maximum(index, 0)
 

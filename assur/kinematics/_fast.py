@@ -14,7 +14,7 @@ import cmath
 import math
 import threading
 from collections.abc import Callable
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -114,32 +114,64 @@ def positive(x: Any) -> bool:
 #: ½ as an array: a number operand costs a ufunc call more than an array of shape ().
 _HALF = np.array(0.5)
 
-#: Shapes whose scratch arrays each thread keeps (the oldest is dropped first).
+#: Call shapes whose scratch arrays each thread keeps (the oldest is dropped first).
 SCRATCH_SHAPES = 4
+
+
+class _Work(NamedTuple):
+    """Scratch arrays of the RRR kernel over one call shape, with the views it writes through.
+
+    Three buffers hold everything: r, x + jσy, and four real arrays that then hold the arms;
+    the parts of the arms, laid out for ``arctan2``, take the place of x + jσy and of r once
+    these are used. None of them is ever part of a result.
+    """
+
+    r: np.ndarray  #: H_j − H_i, complex
+    r_parts: np.ndarray  #: its x, y, x, y, …
+    turn: np.ndarray  #: x + jσy (complex); first the squares of the parts of r
+    turn_parts: np.ndarray
+    x: np.ndarray  #: turn.real
+    y: np.ndarray  #: turn.imag
+    d2: np.ndarray
+    below: np.ndarray
+    above: np.ndarray
+    factor: np.ndarray
+    arm_i: np.ndarray  #: C − H_i, complex, over d2 and below
+    arm_j: np.ndarray  #: C − H_j, complex, over above and factor
+    arms_x: np.ndarray  #: the x parts of both arms (strided), shape ``(2, *shape)``
+    arms_y: np.ndarray
+    both_x: np.ndarray  #: the x parts of both arms, contiguous, over x + jσy
+    both_y: np.ndarray  #: the y parts, over r
+
+
+def _work(shape: tuple[int, ...]) -> _Work:
+    """New scratch arrays and views for calls of ``shape``."""
+    r, turn = np.empty(shape, complex), np.empty(shape, complex)
+    reals = np.empty((4, *shape))
+    arms = reals.reshape(-1).view(complex).reshape(2, *shape)
+    both = (a.view(np.float64).reshape(2, *shape) for a in (turn, r))
+    return _Work(r, r.view(np.float64), turn, turn.view(np.float64), turn.real, turn.imag,
+                 *reals, arms[0], arms[1], arms.real, arms.imag, *both)
 
 
 class _Scratch(threading.local):
     """The RRR kernel's scratch arrays by call shape, one set per thread.
 
-    Calls at one resolution, again and again, reuse arrays that are warm in cache instead of
-    taking new ones from the allocator; none of them is ever part of a result.
+    Calls at one resolution, again and again, reuse arrays that are warm in cache and views
+    made once, instead of taking new ones from the allocator.
     """
 
     def __init__(self) -> None:
-        self.by_shape: dict[tuple[int, ...], tuple[np.ndarray, ...]] = {}
+        self.by_shape: dict[tuple[int, ...], _Work] = {}
 
-    def get(self, shape: tuple[int, ...]) -> tuple[np.ndarray, ...]:
-        """r and x + jσy (complex), d², two products and a factor (real), both arms (complex,
-        stacked) and their parts (real, ``(2, 2, *shape)``), all over ``shape``."""
-        arrays = self.by_shape.get(shape)
-        if arrays is None:
+    def get(self, shape: tuple[int, ...]) -> _Work:
+        """The scratch arrays for ``shape``."""
+        work = self.by_shape.get(shape)
+        if work is None:
             if len(self.by_shape) >= SCRATCH_SHAPES:
                 del self.by_shape[next(iter(self.by_shape))]
-            arrays = self.by_shape[shape] = (
-                np.empty(shape, complex), np.empty(shape, complex), np.empty(shape),
-                np.empty(shape), np.empty(shape), np.empty(shape),
-                np.empty((2, *shape), complex), np.empty((2, 2, *shape)))
-        return arrays
+            work = self.by_shape[shape] = _work(shape)
+        return work
 
 
 _SCRATCH = _Scratch()
@@ -160,17 +192,18 @@ def _rrr_block(
     after what it holds; a buffer reused for another quantity gets that quantity's name.
     """
     c, angles, margin, d = out if out is not None else (None,) * 4
-    r, turn, d2, below, above, factor, arms, xy = _SCRATCH.get(shape)
-    np.subtract(h_j, h_i, r)  # r = H_j − H_i, complex whatever the points' type
+    (r, r_parts, turn, turn_parts, x, y, d2, below, above, factor, arm_i, arm_j, arms_x, arms_y,
+     both_x, both_y) = _SCRATCH.get(shape)
+    np.subtract(h_j, h_i, r)  # complex whatever the points' type
     l_sum, l_dif = np.asarray(l_i + l_j), np.asarray(l_i - l_j)
-    parts = r.view(np.float64)
-    np.multiply(parts, parts, turn.view(np.float64))  # turn holds the squares of the parts
-    d2 = np.add(turn.real, turn.imag, d2)
+    np.multiply(r_parts, r_parts, turn_parts)
+    r_x2, r_y2 = x, y  # turn holds the squares of the parts of r until x is computed
+    d2 = np.add(r_x2, r_y2, d2)
     d = np.sqrt(d2, d)
-    below = np.subtract(l_sum, d, below)
+    np.subtract(l_sum, d, below)
     np.subtract(d, l_dif, factor)
     below *= factor  # 2·l_i·d·(1 − c), c = cos of the angle at H_i
-    above = np.add(d, l_dif, above)
+    np.add(d, l_dif, above)
     np.add(l_sum, d, factor)
     above *= factor  # 2·l_i·d·(1 + c)
     margin = np.minimum(below, above, out=margin)
@@ -178,23 +211,23 @@ def _rrr_block(
     margin /= np.asarray(2.0 * l_i)
     heron = np.multiply(below, above, below)  # Δ = 16·area²
     half_inv_d2 = np.divide(_HALF, d2, above)  # 1/(2d²)
-    along = np.multiply(np.add(d2, np.asarray(l_dif * l_sum), d2), half_inv_d2, turn.real)
+    np.multiply(np.add(d2, np.asarray(l_dif * l_sum), d2), half_inv_d2, x)
     lowest = np.minimum.reduce(margin, None) if margin.size else np.inf
     if not (lowest >= 0.0 and positive(l_i) and positive(l_j)):
-        settled, toggle, along_at_toggle = limits(l_i, l_j, d, margin)
+        settled, toggle, x_at_toggle = limits(l_i, l_j, d, margin)
         np.copyto(margin, settled)
         heron[toggle] = 0.0
-        np.copyto(along, along_at_toggle, where=toggle)
+        np.copyto(x, x_at_toggle, where=toggle)
         lowest = np.minimum.reduce(margin, None)
-    across = np.multiply(np.sqrt(heron, heron), half_inv_d2, turn.imag)  # y; NaN only where
-    if type(s) is not float:  # the dyad does not assemble
-        across *= s
+    np.multiply(np.sqrt(heron, heron), half_inv_d2, y)  # NaN only where the dyad does not
+    if type(s) is not float:  # assemble
+        y *= s
     elif s < 0.0:
-        np.negative(across, across)  # σ·y
-    arm_i = np.multiply(r, turn, arms[0])  # arms: C − H_i, C − H_j
+        np.negative(y, y)  # σ·y
+    np.multiply(r, turn, arm_i)
     c = np.add(h_i, arm_i, c)
-    np.subtract(arm_i, r, arms[1])
-    np.copyto(xy[0], arms.real)  # x and y of both arms, contiguous
-    np.copyto(xy[1], arms.imag)
-    angles = np.arctan2(xy[1], xy[0], angles)
+    np.subtract(arm_i, r, arm_j)
+    np.copyto(both_x, arms_x)
+    np.copyto(both_y, arms_y)
+    angles = np.arctan2(both_y, both_x, angles)
     return c, angles[0], angles[1], margin, d, lowest

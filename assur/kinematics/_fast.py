@@ -149,9 +149,9 @@ def _work(shape: tuple[int, ...]) -> _Work:
     r, turn = np.empty(shape, complex), np.empty(shape, complex)
     reals = np.empty((4, *shape))
     arms = reals.reshape(-1).view(complex).reshape(2, *shape)
-    both = (a.view(np.float64).reshape(2, *shape) for a in (turn, r))
     return _Work(r, r.view(np.float64), turn, turn.view(np.float64), turn.real, turn.imag,
-                 *reals, arms[0], arms[1], arms.real, arms.imag, *both)
+                 reals[0], reals[1], reals[2], reals[3], arms[0], arms[1], arms.real, arms.imag,
+                 turn.view(np.float64).reshape(2, *shape), r.view(np.float64).reshape(2, *shape))
 
 
 class _Scratch(threading.local):

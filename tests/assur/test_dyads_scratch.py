@@ -9,6 +9,7 @@ dyads of that shape at the same time.
 from __future__ import annotations
 
 from concurrent.futures import ThreadPoolExecutor
+from typing import cast
 
 import numpy as np
 
@@ -21,15 +22,16 @@ L_I, L_J, H_J = 80.0, 90.0, 100.0 + 0.0j
 
 def pins(seed: int, n: int) -> np.ndarray:
     """Crank pins of a four-bar (crank 30 mm at the origin) at ``n`` random angles."""
-    return 30.0 * np.exp(1j * np.random.default_rng(seed).uniform(-np.pi, np.pi, n))
+    angles = np.random.default_rng(seed).uniform(-np.pi, np.pi, n)
+    return np.asarray(30.0 * np.exp(1j * angles))
 
 
 def closure_error(h_i: np.ndarray, dyad: DyadSolution) -> float:
     """The largest miss of the dyad's closure and link angles, relative to its size."""
-    c = dyad.c
+    c, angle_i, angle_j = (np.asarray(x) for x in (dyad.c, dyad.angle_i, dyad.angle_j))
     misses = [np.abs(np.abs(c - h_i) - L_I), np.abs(np.abs(c - H_J) - L_J),
-              np.abs(h_i + L_I * np.exp(1j * dyad.angle_i) - c),
-              np.abs(H_J + L_J * np.exp(1j * dyad.angle_j) - c)]
+              np.abs(h_i + L_I * np.exp(1j * angle_i) - c),
+              np.abs(H_J + L_J * np.exp(1j * angle_j) - c)]
     return float(max(np.max(m) for m in misses)) / (L_I + L_J + abs(H_J))
 
 
@@ -42,7 +44,7 @@ def test_a_solution_is_unchanged_by_later_calls() -> None:
     assert first.exists.all()
     assert closure_error(first_pins, first) <= 8 * EPS
     size = L_I + L_J + abs(H_J)
-    assert np.max(np.abs(first.c - readable.c.v)) <= 4 * EPS * size
+    assert np.max(np.abs(np.asarray(first.c) - cast(Jet, readable.c).v)) <= 4 * EPS * size
     np.testing.assert_array_equal(first.margin, readable.margin)
 
 

@@ -2,10 +2,12 @@
 
 :mod:`assur.kinematics.dyads` holds the readable formulas, for numbers, arrays and jets alike.
 For plain float arrays, the two groups of every mechanism (the crank and the RRR dyad) are
-computed here instead, with the same formulas in the same order of operations, in real
-arithmetic, with few temporaries and, for large calls, in blocks that stay in cache.
-``tests/assur/test_dyads_fast.py`` checks that both paths give the same positions, margins,
-existence and reasons.
+computed here instead, with the same formulas in the same order of operations: lengths in
+real arithmetic, points as complex numbers, few numpy calls and few temporaries. The RRR
+kernel keeps its scratch arrays between calls (per thread, for the last few call shapes) and
+cuts large calls into blocks that stay in cache. ``tests/assur/test_dyads_fast.py`` checks that
+both paths give the same positions, margins, existence and reasons;
+``tests/assur/test_dyads_scratch.py`` that no result shares the scratch arrays.
 """
 
 from __future__ import annotations
@@ -195,7 +197,9 @@ def _rrr_block(
     (r, r_parts, turn, turn_parts, x, y, d2, below, above, factor, arm_i, arm_j, arms_x, arms_y,
      both_x, both_y) = _SCRATCH.get(shape)
     np.subtract(h_j, h_i, r)  # complex whatever the points' type
-    l_sum, l_dif = np.asarray(l_i + l_j), np.asarray(l_i - l_j)
+    total, difference = l_i + l_j, l_i - l_j  # numbers, or per-design arrays
+    l_sum, l_dif, l_squares, two_l_i = (np.asarray(v) for v in (
+        total, difference, difference * total, 2.0 * l_i))
     np.multiply(r_parts, r_parts, turn_parts)
     r_x2, r_y2 = x, y  # turn holds the squares of the parts of r until x is computed
     d2 = np.add(r_x2, r_y2, d2)
@@ -208,10 +212,10 @@ def _rrr_block(
     above *= factor  # 2·l_i·d·(1 + c)
     margin = np.minimum(below, above, out=margin)
     margin /= d
-    margin /= np.asarray(2.0 * l_i)
+    margin /= two_l_i
     heron = np.multiply(below, above, below)  # Δ = 16·area²
     half_inv_d2 = np.divide(_HALF, d2, above)  # 1/(2d²)
-    np.multiply(np.add(d2, np.asarray(l_dif * l_sum), d2), half_inv_d2, x)
+    np.multiply(np.add(d2, l_squares, d2), half_inv_d2, x)
     lowest = np.minimum.reduce(margin, None) if margin.size else np.inf
     if not (lowest >= 0.0 and positive(l_i) and positive(l_j)):
         settled, toggle, x_at_toggle = limits(l_i, l_j, d, margin)
@@ -219,8 +223,8 @@ def _rrr_block(
         heron[toggle] = 0.0
         np.copyto(x, x_at_toggle, where=toggle)
         lowest = np.minimum.reduce(margin, None)
-    np.multiply(np.sqrt(heron, heron), half_inv_d2, y)  # NaN only where the dyad does not
-    if type(s) is not float:  # assemble
+    np.multiply(np.sqrt(heron, heron), half_inv_d2, y)  # NaN where the dyad does not assemble
+    if type(s) is not float:
         y *= s
     elif s < 0.0:
         np.negative(y, y)  # σ·y

@@ -198,8 +198,8 @@ def _rrr_block(
      both_x, both_y) = _SCRATCH.get(shape)
     np.subtract(h_j, h_i, r)  # complex whatever the points' type
     total, difference = l_i + l_j, l_i - l_j  # numbers, or per-design arrays
-    l_sum, l_dif, l_squares, two_l_i = (np.asarray(v) for v in (
-        total, difference, difference * total, 2.0 * l_i))
+    l_sum, l_dif = np.asarray(total), np.asarray(difference)
+    l_squares, two_l_i = np.asarray(difference * total), np.asarray(2.0 * l_i)
     np.multiply(r_parts, r_parts, turn_parts)
     r_x2, r_y2 = x, y  # turn holds the squares of the parts of r until x is computed
     d2 = np.add(r_x2, r_y2, d2)

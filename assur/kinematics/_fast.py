@@ -113,7 +113,7 @@ def positive(x: Any) -> bool:
     return bool((x if type(x) in REALS else np.minimum.reduce(x, axis=None)) > 0.0)
 
 
-#: ½ as an array: a number operand costs a ufunc call more than an array of shape ().
+#: ½ as an array of shape (): a Python number as an operand makes a ufunc call slower.
 _HALF = np.array(0.5)
 
 #: Call shapes whose scratch arrays each thread keeps (the oldest is dropped first).

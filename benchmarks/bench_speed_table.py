@@ -6,8 +6,8 @@ Figures (one core; positions per second unless marked):
   and tracing point with the groups' existence) at N = 360 and 3,600;
 * four-bar, crank + RRR dyad through ``solve_input`` + ``solve_rrr`` (existence margin, mask
   and reasons included), beside the minimal hand-written numpy closed form of
-  ``bench_fourbar.py``, at N = 360 and N = 3,600 (their ratio measured in the same process,
-  the variants interleaved);
+  ``bench_fourbar.py``, at N = 360 and N = 3,600, both handing back C and both link angles
+  (their ratio measured in the same process, the variants interleaved);
 * RRR triad (``input_tables/eight_bar_triad.yaml``, the whole mechanism) analysed over 360
   crank angles for one design and for D designs at once (the triad's hinges jittered by up
   to ±0.5 mm, shape (D, 1));

@@ -2,18 +2,21 @@
 
 :mod:`assur.kinematics.dyads` holds the readable formulas, for numbers, arrays and jets alike.
 For plain float arrays, the two groups of every mechanism (the crank and the RRR dyad) are
-computed here instead, with the same formulas in the same order of operations, in real
-arithmetic, with few temporaries and, for large calls, in blocks that stay in cache.
-``tests/assur/test_dyads_fast.py`` checks that both paths give the same positions, margins,
-existence and reasons.
+computed here instead, with the same formulas in the same order of operations: lengths in
+real arithmetic, points as complex numbers, few numpy calls and few temporaries. The RRR
+kernel keeps its scratch arrays between calls (per thread, for the last few call shapes) and
+cuts large calls into blocks that stay in cache. ``tests/assur/test_dyads_fast.py`` checks that
+both paths give the same positions, margins, existence and reasons;
+``tests/assur/test_dyads_scratch.py`` that no result shares the scratch arrays.
 """
 
 from __future__ import annotations
 
 import cmath
 import math
+import threading
 from collections.abc import Callable
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -60,14 +63,15 @@ def crank_pin(o: Any, length: Any, angle: Any) -> np.ndarray | None:
             and finite(angle)):
         return None
     unit = np.empty(angle.shape, dtype=complex)
-    np.cos(angle, out=unit.real)
-    np.sin(angle, out=unit.imag)
+    np.cos(angle, unit.real)
+    np.sin(angle, unit.imag)
+    parts = unit.view(np.float64)  # x, y, x, y, …
     if type(length) is np.ndarray:
-        unit_xy = unit.view(np.float64).reshape(*unit.shape, 2)
-        pin = np.multiply(length[..., None], unit_xy).view(np.complex128)[..., 0]
+        pairs = parts.reshape(*unit.shape, 2)
+        pin = np.multiply(length[..., None], pairs).view(np.complex128)[..., 0]
     else:
         pin = unit
-        np.multiply(unit.view(np.float64), length, out=unit.view(np.float64))
+        np.multiply(parts, length, parts)
     if o != 0:
         pin += o
     return pin
@@ -93,15 +97,15 @@ def rrr(h_i: Any, h_j: Any, l_i: Any, l_j: Any, s: Any, shape: tuple[int, ...],
         return _rrr_block(h_i, h_j, l_i, l_j, s, shape, limits)
     args = [x if getattr(x, "ndim", 0) == 0 else np.broadcast_to(x, shape)
             for x in (h_i, h_j, l_i, l_j, s)]
-    outputs = (np.empty(shape, complex), np.empty(shape), np.empty(shape), np.empty(shape),
-               np.empty(shape))
+    c, angles, margin, d = (np.empty(shape, complex), np.empty((2, *shape)), np.empty(shape),
+                            np.empty(shape))
     lowest = np.inf
     for rows in _blocks(shape):
         h_i, h_j, l_i, l_j, s = (x if getattr(x, "ndim", 0) == 0 else x[rows] for x in args)
-        block = tuple(out[rows] for out in outputs)
-        lowest = np.minimum(lowest, _rrr_block(h_i, h_j, l_i, l_j, s, block[0].shape, limits,
-                                               block)[-1])
-    return (*outputs, lowest)  # the minimum keeps a NaN
+        out = (c[rows], angles[:, rows], margin[rows], d[rows])
+        lowest = np.minimum(lowest, _rrr_block(h_i, h_j, l_i, l_j, s, out[0].shape, limits,
+                                               out)[-1])
+    return c, angles[0], angles[1], margin, d, lowest  # the minimum keeps a NaN
 
 
 def positive(x: Any) -> bool:
@@ -109,59 +113,125 @@ def positive(x: Any) -> bool:
     return bool((x if type(x) in REALS else np.minimum.reduce(x, axis=None)) > 0.0)
 
 
+#: ½ as an array of shape (): a Python number as an operand makes a ufunc call slower.
+_HALF = np.array(0.5)
+
+#: Call shapes whose scratch arrays each thread keeps (the oldest is dropped first).
+SCRATCH_SHAPES = 4
+
+
+class _Work(NamedTuple):
+    """Scratch arrays of the RRR kernel over one call shape, with the views it writes through.
+
+    Three buffers hold everything: r, x + jσy, and four real arrays that then hold the arms;
+    the parts of the arms, laid out for ``arctan2``, take the place of x + jσy and of r once
+    these are used. None of them is ever part of a result.
+    """
+
+    r: np.ndarray  #: H_j − H_i, complex
+    r_parts: np.ndarray  #: its x, y, x, y, …
+    turn: np.ndarray  #: x + jσy (complex); first the squares of the parts of r
+    turn_parts: np.ndarray
+    x: np.ndarray  #: turn.real
+    y: np.ndarray  #: turn.imag
+    d2: np.ndarray
+    below: np.ndarray
+    above: np.ndarray
+    factor: np.ndarray
+    arm_i: np.ndarray  #: C − H_i, complex, over d2 and below
+    arm_j: np.ndarray  #: C − H_j, complex, over above and factor
+    arms_x: np.ndarray  #: the x parts of both arms (strided), shape ``(2, *shape)``
+    arms_y: np.ndarray
+    both_x: np.ndarray  #: the x parts of both arms, contiguous, over x + jσy
+    both_y: np.ndarray  #: the y parts, over r
+
+
+def _work(shape: tuple[int, ...]) -> _Work:
+    """New scratch arrays and views for calls of ``shape``."""
+    r, turn = np.empty(shape, complex), np.empty(shape, complex)
+    reals = np.empty((4, *shape))
+    arms = reals.reshape(-1).view(complex).reshape(2, *shape)
+    return _Work(r, r.view(np.float64), turn, turn.view(np.float64), turn.real, turn.imag,
+                 reals[0], reals[1], reals[2], reals[3], arms[0], arms[1], arms.real, arms.imag,
+                 turn.view(np.float64).reshape(2, *shape), r.view(np.float64).reshape(2, *shape))
+
+
+class _Scratch(threading.local):
+    """The RRR kernel's scratch arrays by call shape, one set per thread.
+
+    Calls at one resolution, again and again, reuse arrays that are warm in cache and views
+    made once, instead of taking new ones from the allocator.
+    """
+
+    def __init__(self) -> None:
+        self.by_shape: dict[tuple[int, ...], _Work] = {}
+
+    def get(self, shape: tuple[int, ...]) -> _Work:
+        """The scratch arrays for ``shape``."""
+        work = self.by_shape.get(shape)
+        if work is None:
+            if len(self.by_shape) >= SCRATCH_SHAPES:
+                del self.by_shape[next(iter(self.by_shape))]
+            work = self.by_shape[shape] = _work(shape)
+        return work
+
+
+_SCRATCH = _Scratch()
+
+
 @np.errstate(all="ignore")
 def _rrr_block(
     h_i: Any, h_j: Any, l_i: Any, l_j: Any, s: Any, shape: tuple[int, ...], limits: Limits,
     out: tuple[np.ndarray, ...] | None = None,
 ) -> Rrr:
-    """``dyads._rrr_readable`` for plain arrays of ``shape``, in real arithmetic.
+    """``dyads._rrr_readable`` for plain arrays of ``shape``, with the same operations.
 
-    ``out`` optionally gives the arrays for C, φ_i, φ_j, the margin and d. Every buffer is
-    named after what it holds; a buffer reused for another quantity gets that quantity's name.
+    ``out`` optionally gives the arrays for C, the link angles (stacked, shape ``(2, *shape)``),
+    the margin and d. The distances are computed in real arithmetic on the parts of
+    r = H_j − H_i; the arms C − H_i = r·(x + jσy) and C − H_j are complex, and both link
+    angles come from one ``arctan2`` over their parts laid out contiguously. Number operands
+    enter as arrays of shape () (cheaper ufunc calls, the same values). Every buffer is named
+    after what it holds; a buffer reused for another quantity gets that quantity's name.
     """
-    rx = np.subtract(h_j.real, h_i.real)  # r = H_j − H_i, as contiguous x and y
-    ry = np.subtract(h_j.imag, h_i.imag)
-    if rx.shape != shape:
-        rx, ry = (np.array(np.broadcast_to(t, shape)) for t in (rx, ry))
-    l_sum, l_dif, two_l_i = l_i + l_j, l_i - l_j, 2.0 * l_i
-    l_squares = l_dif * l_sum
-    c, angle_i, angle_j, margin, d = out if out is not None else (None,) * 5
-    d2 = rx * rx
-    d2 += ry * ry
-    d = np.sqrt(d2, out=d)
-    below = l_sum - d
-    below *= d - l_dif  # 2·l_i·d·(1 − c), c = cos of the angle at H_i
-    above = d + l_dif
-    above *= l_sum + d  # 2·l_i·d·(1 + c)
+    c, angles, margin, d = out if out is not None else (None,) * 4
+    (r, r_parts, turn, turn_parts, x, y, d2, below, above, factor, arm_i, arm_j, arms_x, arms_y,
+     both_x, both_y) = _SCRATCH.get(shape)
+    np.subtract(h_j, h_i, r)  # complex whatever the points' type
+    total, difference = l_i + l_j, l_i - l_j  # numbers, or per-design arrays
+    l_sum, l_dif = np.asarray(total), np.asarray(difference)
+    l_squares, two_l_i = np.asarray(difference * total), np.asarray(2.0 * l_i)
+    np.multiply(r_parts, r_parts, turn_parts)
+    r_x2, r_y2 = x, y  # turn holds the squares of the parts of r until x is computed
+    d2 = np.add(r_x2, r_y2, d2)
+    d = np.sqrt(d2, d)
+    np.subtract(l_sum, d, below)
+    np.subtract(d, l_dif, factor)
+    below *= factor  # 2·l_i·d·(1 − c), c = cos of the angle at H_i
+    np.add(d, l_dif, above)
+    np.add(l_sum, d, factor)
+    above *= factor  # 2·l_i·d·(1 + c)
     margin = np.minimum(below, above, out=margin)
     margin /= d
     margin /= two_l_i
-    heron = np.multiply(below, above, out=below)  # Δ = 16·area²
-    half_inv_d2 = np.divide(0.5, d2)  # 1/(2d²)
-    along = np.add(d2, l_squares, out=d2)
-    along *= half_inv_d2  # x
-    lowest = np.minimum.reduce(margin, axis=None) if margin.size else np.inf
+    heron = np.multiply(below, above, below)  # Δ = 16·area²
+    half_inv_d2 = np.divide(_HALF, d2, above)  # 1/(2d²)
+    np.multiply(np.add(d2, l_squares, d2), half_inv_d2, x)
+    lowest = np.minimum.reduce(margin, None) if margin.size else np.inf
     if not (lowest >= 0.0 and positive(l_i) and positive(l_j)):
-        settled, toggle, along_at_toggle = limits(l_i, l_j, d, margin)
+        settled, toggle, x_at_toggle = limits(l_i, l_j, d, margin)
         np.copyto(margin, settled)
         heron[toggle] = 0.0
-        np.copyto(along, along_at_toggle, where=toggle)
-        lowest = np.minimum.reduce(margin, axis=None)
-    across = np.sqrt(heron, out=heron)  # NaN only where the dyad does not assemble
-    across *= half_inv_d2  # y
+        np.copyto(x, x_at_toggle, where=toggle)
+        lowest = np.minimum.reduce(margin, None)
+    np.multiply(np.sqrt(heron, heron), half_inv_d2, y)  # NaN where the dyad does not assemble
     if type(s) is not float:
-        across *= s
+        y *= s
     elif s < 0.0:
-        np.negative(across, out=across)  # σ·y
-    arm_x = np.multiply(rx, along, out=above)  # (arm_x, arm_y) = C − H_i = r·(x + jσy)
-    arm_x -= np.multiply(ry, across, out=half_inv_d2)
-    arm_y = np.multiply(rx, across, out=across)
-    arm_y += np.multiply(ry, along, out=along)
-    angle_i = np.arctan2(arm_y, arm_x, out=angle_i)
-    c = np.empty(shape, dtype=complex) if c is None else c
-    np.add(h_i.real, arm_x, out=c.real)
-    np.add(h_i.imag, arm_y, out=c.imag)
-    arm_jx = np.subtract(arm_x, rx, out=arm_x)  # (arm_jx, arm_jy) = C − H_j
-    arm_jy = np.subtract(arm_y, ry, out=arm_y)
-    angle_j = np.arctan2(arm_jy, arm_jx, out=angle_j)
-    return c, angle_i, angle_j, margin, d, lowest
+        np.negative(y, y)  # σ·y
+    np.multiply(r, turn, arm_i)
+    c = np.add(h_i, arm_i, c)
+    np.subtract(arm_i, r, arm_j)
+    np.copyto(both_x, arms_x)
+    np.copyto(both_y, arms_y)
+    angles = np.arctan2(both_y, both_x, angles)
+    return c, angles[0], angles[1], margin, d, lowest

@@ -983,9 +983,10 @@ def _step_follow(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: 
 
 def _tracked(group: HigherGroup[K]) -> bool:
     """Whether "auto" follows the group by the path of its root: a triad with a bar and no
-    P–P leash (its eliminated angle fixes the pose). Not a class IV group: its eliminant may
-    gather several roots in a cluster (``class_iv_group.yaml`` near φ = 45.3°) where no path
-    is certified, and the steps then follow anyway."""
+    P–P leash (its eliminated angle fixes the pose). Not a class IV group: the drawn mode of
+    ``class_iv_group.yaml`` passes within about 1e-7 rad of its neighbour near φ = 45.3° (a
+    near-double root of the eliminant), where no link between the columns is certified and
+    the steps follow anyway, so there the roots would only add their cost."""
     return isinstance(group, Triad) and not group.pinned and not group.barless
 
 

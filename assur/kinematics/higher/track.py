@@ -1,13 +1,14 @@
 """The candidate path of the sketched mode over a grid of crank angles, all angles at once.
 
 At every angle of a grid (the requested ones and a uniform one of ``BASE`` per turn) and for
-every design, all real roots of the eliminant are isolated in one vectorised call
-(:func:`~assur.kinematics.higher.roots.real_roots`), with the separation bound of each from
-every other root of p, real or complex. Real roots never cross: a root at one angle goes on
-as a root at the next with the same sign of Φ′, or it meets its neighbour (of the other
-sign) at a change point. The path from the sketched root takes at each angle the nearest
-root that is nearest back and has the same sign. It is only a candidate: a root and its
-neighbour may meet and a new pair appear between two angles. The caller
+every design, the real roots of the eliminant are bracketed in one vectorised call
+(:func:`~assur.kinematics.higher.roots.real_roots`). Real roots never cross: a root at one
+angle goes on as a root at the next with the same sign of Φ′, or it meets its neighbour (of
+the other sign) at a change point. The path from the sketched root takes at each angle the
+nearest root that is nearest back and has the same sign; its roots are then polished, with
+the separation bound of each from every other root of p, real or complex. The path is only a
+candidate: a root and its neighbour may meet and a new pair appear between two angles, or a
+pair closer than the samples' spacing may be missed. The caller
 (:func:`~assur.kinematics.higher.continuation.follow_mode`) accepts a link only where the
 root's own analogs predict the next root, and the previous one back, within a quarter of
 their separation bounds: the test of a step of the continuation.
@@ -147,9 +148,10 @@ def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.nd
     Returns
     -------
     Chains
-        A path is lost where the sketched mode's root is in no bracket at φ = 0, or where the nearest root at the next column is not nearest back, or has the
-        other sign of Φ′. The path is a candidate: the caller checks every link against the
-        root's analogs before it takes it for the mode's.
+        A path is lost where the sketched mode's root is in no bracket at φ = 0, or where
+        the nearest root at the next column is not nearest back, or has the other sign of
+        Φ′. The path is a candidate: the caller checks every link against the root's
+        analogs before it takes it for the mode's.
     """
     d = theta0.shape[0]
     columns = np.union1d(np.concatenate([[0.0], wanted]), TWO_PI / BASE * np.arange(BASE))

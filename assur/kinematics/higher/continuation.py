@@ -535,6 +535,14 @@ def _meets(group: HigherGroup[K], inputs: Inputs[K], s: float, t: np.ndarray, x:
     return np.asarray(rows & (sides[0] > 0) & (sides[1] < 0))
 
 
+def _kept(v: Any, mask: np.ndarray, jets: bool) -> list[np.ndarray]:
+    """The parts of a joint or rotation ``v`` (N, D) — its value, and with ``jets`` both
+    analogs (zero for a value that is not a jet) — where ``mask`` holds (NaN elsewhere),
+    transposed to (D, N)."""
+    parts = (v.v, v.d1, v.d2) if isinstance(v, Jet) else (v, 0.0 * v, 0.0 * v) if jets else (v,)
+    return [np.where(mask, np.broadcast_to(part, mask.shape), np.nan).T for part in parts]
+
+
 @dataclass(frozen=True, eq=False)
 class _Pass:
     """The mode followed in one direction: results at the targets and where it ended.
@@ -653,10 +661,7 @@ def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: n
     with np.errstate(all="ignore"):
         found = {"p." + a: b for a, b in group.joints(cols, k).items()}
         found.update({"r." + a: b for a, b in group.rotations(cols, k).items()})
-    out = {name: [np.where(reached, np.broadcast_to(part, reached.shape), np.nan).T
-                  for part in ((v.v, v.d1, v.d2) if isinstance(v, Jet)
-                               else (v, 0.0 * v, 0.0 * v) if jets else (v,))]
-           for name, v in found.items()}
+    out = {name: _kept(v, reached, jets) for name, v in found.items()}
     with np.errstate(all="ignore"):
         margin = np.full(reached.shape, np.nan)
         margin[reached] = hadamard(rows[reached])
@@ -910,7 +915,7 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
                                   delta)
         return _squeeze(solution) if shape == () else solution
     if method == "roots" or (method == "auto" and d <= ROOTS_DESIGNS and _tracked(group)):
-        solution = _follow_tracked(group, inputs, phi, x0, found, modes, analogs, delta)
+        solution = _follow_tracked(group, inputs, phi, (x0, k0), found, modes, analogs, delta)
     else:
         solution = _step_follow(group, inputs, phi, x0, found, modes, analogs, delta)
     return _squeeze(solution) if shape == () else solution
@@ -991,13 +996,15 @@ def _tracked(group: HigherGroup[K]) -> bool:
 
 
 def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
-                    x0: np.ndarray, found: np.ndarray, modes: AssemblyModes, jets: bool,
-                    delta: float | np.ndarray) -> HigherSolution:
+                    sketch: tuple[np.ndarray, K], found: np.ndarray, modes: AssemblyModes,
+                    jets: bool, delta: float | np.ndarray) -> HigherSolution:
     """The sketched mode along the path of its root over the grid of angles
     (:func:`~assur.kinematics.higher.track.chains`) where every link of that path passes the
     continuation's step test (:func:`_links`), and step by step (:func:`_step_follow`) for
     the other designs: there the mode ends, or the grid is too coarse to tell, and the ends
-    and reasons are those of the continuation."""
+    and reasons are those of the continuation. ``sketch`` holds the sketched mode x0 (D, n)
+    and the inputs there."""
+    x0, k0 = sketch
     d = x0.shape[0]
     paths = chains(group, inputs, np.mod(phi, TWO_PI), x0[:, group.eliminated], found)
     at = np.broadcast_to(paths.columns[:, None], paths.theta.shape)
@@ -1007,7 +1014,7 @@ def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
         x = expand(group).recover(np.exp(1j * paths.theta)[..., None], expand(kv))[..., 0, :]
         x, _ = newton(group, kv, x, 2)
         f = np.stack(np.broadcast_arrays(*map(plain, group.residual(x, kv))), axis=-1)
-        sign = np.sign(det_rows(group.jacobian(x0, values(inputs(np.zeros((1, d)))))))
+        sign = np.sign(det_rows(group.jacobian(x0, k0)))
         jac, lines = group.lines(x, kv)
         x1, x2 = analogs(group, k, x, jac)
         posed = (np.abs(f).max(axis=-1) <= ACCEPT * np.asarray(group.size)) \
@@ -1080,9 +1087,7 @@ def _from_path(group: HigherGroup[K], k: K, x: np.ndarray, analog: tuple[np.ndar
         points, turns = group.joints(cols, k), group.rotations(cols, k)
 
     def final(v: Any) -> Any:
-        parts = [np.where(exists, np.broadcast_to(part, exists.shape), np.nan).T
-                 for part in ((v.v, v.d1, v.d2) if isinstance(v, Jet)
-                              else (v, 0.0 * v, 0.0 * v) if jets else (v,))]
+        parts = _kept(v, exists, jets)
         return Jet(*parts) if jets else parts[0]
 
     d = good.shape[0]

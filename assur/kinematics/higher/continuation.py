@@ -640,11 +640,14 @@ def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: n
     guess = anchor.x + (s * h)[..., None] * anchor.x1 + 0.5 * (h * h)[..., None] * anchor.x2
     # between the last accepted state and the change point where the pass ended (its
     # analogs NaN): x* + (x_b − x*)·√((t* − t)/(t* − t_b)), the square-root form of a fold
-    prior, tip = states.at(before), states.at(np.minimum(before + 1, len(states.t) - 1))
+    after = np.minimum(before + 1, len(states.t) - 1)
     with np.errstate(all="ignore"):
-        root = np.sqrt((tip.t - grid) / (tip.t - prior.t))
-        ending = reach & (tip.t > prior.t) & np.isnan(tip.x1[..., 0]) & (root <= 1.0)
-        guess = np.where(ending[..., None], tip.x + (prior.x - tip.x) * root[..., None], guess)
+        root = np.sqrt((states.t[after] - grid) / (states.t[after] - states.t[before]))
+        ending = reach & (states.t[after] > states.t[before]) \
+            & np.isnan(states.x1[after, 0]) & (root <= 1.0)
+        if ending.any():
+            tip, prior = states.x[after[ending]], states.x[before[ending]]
+            guess[ending] = tip + (prior - tip) * root[ending][:, None]
     x, jac, margin, ok = _correct_at(group, kv, guess, sign[0], reach)
     retry = reach & ~ok
     if retry.any():
@@ -962,9 +965,13 @@ def _step_follow(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: 
     use_behind = ~use_ahead & (back_index >= 0) & behind.reached[:, back_index]
     reached = (use_ahead | use_behind)[:, unsort]
 
+    sorted_already = bool((unsort == np.arange(n)).all())
+
     def merge(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        merged = np.where(use_ahead, a[..., :n], np.where(use_behind, b[..., back_index], np.nan))
-        return np.asarray(merged[..., unsort])
+        """A result of both passes (NaN where a pass did not reach) at the requested angles."""
+        merged = (np.where(use_ahead, a[..., :n], np.where(use_behind, b[..., back_index], np.nan))
+                  if use_behind.any() else a[..., :n])
+        return merged if sorted_already else merged[..., unsort]
 
     x = np.stack([merge(ahead.x[..., i], behind.x[..., i]) for i in range(group.n)], axis=-1)
     margin = merge(ahead.margin, behind.margin)
@@ -985,9 +992,12 @@ def _step_follow(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: 
         exists = reached & (margin >= np.asarray(delta)[..., None])
     reason = np.where(reached & ~exists, Reason.MODE_ENDS, reason).astype(np.int8)
 
+    below = (reached & ~exists).any()
+
     def final(name: str) -> Any:
-        parts = [np.where(exists, merge(a, b), np.nan)
-                 for a, b in zip(ahead.out[name], behind.out[name], strict=True)]
+        parts = [merge(a, b) for a, b in zip(ahead.out[name], behind.out[name], strict=True)]
+        if below:
+            parts = [np.where(exists, part, np.nan) for part in parts]
         return Jet(*parts) if analogs else parts[0]
 
     ends = np.stack([np.where(ahead.why > 0, ahead.end, np.nan),

@@ -113,7 +113,17 @@ def _halves_turning(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def _form(va: np.ndarray, m: np.ndarray, vc: np.ndarray) -> np.ndarray:
     """Σ_pq va_p·m_jpq·vc_q of plain arrays (..., 3), (..., 2, 3, 3), (..., 3)."""
-    return np.asarray((va[..., None, :, None] * m * vc[..., None, None, :]).sum(axis=(-2, -1)))
+    return _side(va, _contracted(m, vc))
+
+
+def _contracted(m: np.ndarray, vc: np.ndarray) -> np.ndarray:
+    """Σ_q m_jpq·vc_q, shape (..., 2, 3): the form's matrices on one side's vector."""
+    return np.asarray(np.einsum("...jpq,...q->...jp", m, vc))
+
+
+def _side(va: np.ndarray, mc: np.ndarray) -> np.ndarray:
+    """Σ_p va_p·mc_jp, shape (..., 2)."""
+    return np.asarray(np.einsum("...jp,...p->...j", mc, va))
 
 
 def _contract(va: Value, m: Value, vc: Value) -> J.Jet | np.ndarray:
@@ -413,8 +423,9 @@ class ClassIVCoupled(ClassIVDrawing):
         ya, yc = (np.asarray(col, dtype=float) for col in unknown_columns(x))
         m = plain(self._matrices(k))
         (wa, ta), (wc, tc) = _halves_turning(ya), _halves_turning(yc)
-        g = _form(wa, m, wc)
-        jac = np.stack([_form(ta, m, wc), _form(wa, m, tc)], axis=-1)
+        mc = _contracted(m, wc)
+        g = _side(wa, mc)
+        jac = np.stack([_side(ta, mc), _form(wa, m, tc)], axis=-1)
         if not any(self.slides):
             return g, jac
         (qa, da), (qc, dc) = ((w[..., 0], -w[..., 1]) if slides else (1.0, 0.0)

@@ -113,7 +113,7 @@ def _halves_turning(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def _form(va: np.ndarray, m: np.ndarray, vc: np.ndarray) -> np.ndarray:
     """Σ_pq va_p·m_jpq·vc_q of plain arrays (..., 3), (..., 2, 3, 3), (..., 3)."""
-    return _side(va, _contracted(m, vc))
+    return np.asarray(np.einsum("...p,...jpq,...q->...j", va, m, vc))
 
 
 def _contracted(m: np.ndarray, vc: np.ndarray) -> np.ndarray:

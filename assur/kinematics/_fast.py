@@ -34,7 +34,8 @@ REALS = frozenset({int, float, np.float64})
 Limits = Callable[..., tuple[np.ndarray, np.ndarray, np.ndarray]]
 
 #: What the RRR kernel gives: C, φ_i, φ_j, the margin, the hinge distance d (arrays of the
-#: call's shape) and the smallest margin.
+#: call's shape) and the smallest margin. C, the angles and the margin are the caller's; d
+#: may be a scratch array, valid until the thread's next call of the kernel.
 Rrr = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]
 
 
@@ -60,7 +61,7 @@ def crank_pin(o: Any, length: Any, angle: Any) -> np.ndarray | None:
             and type(o) in NUMBERS and cmath.isfinite(o)
             and (type(length) in REALS and math.isfinite(length)
                  or type(length) is np.ndarray and length.dtype == float and finite(length))
-            and finite(angle)):
+            and (cmath.isfinite(angle.dot(angle)) if angle.ndim == 1 else finite(angle))):
         return None
     unit = np.empty(angle.shape, dtype=complex)
     np.cos(angle, unit.real)
@@ -130,35 +131,40 @@ SCRATCH_SHAPES = 4
 
 
 class _Lengths(NamedTuple):
-    """What the RRR kernel uses of the link lengths, as numbers or arrays of shape ().
+    """What the RRR kernel uses of the link lengths l_i, l_j.
 
-    l_i + l_j, l_i − l_j, (l_i − l_j)(l_i + l_j) and 2·l_i: arrays of shape () for numbers
-    (cheaper ufunc operands), the per-design arrays otherwise.
+    l_i + l_j, l_i − l_j, (l_i − l_j)(l_i + l_j) and 2·l_i as arrays of shape () for numbers
+    (cheaper ufunc operands) or the per-design arrays, and whether both lengths are positive.
     """
 
     l_sum: np.ndarray
     l_dif: np.ndarray
     l_squares: np.ndarray
     two_l_i: np.ndarray
+    positive: bool
 
 
 def _lengths(l_i: Any, l_j: Any) -> _Lengths:
     """The :class:`_Lengths` of the link lengths ``l_i``, ``l_j``."""
     total, difference = l_i + l_j, l_i - l_j  # numbers, or per-design arrays
     return _Lengths(np.asarray(total), np.asarray(difference), np.asarray(difference * total),
-                    np.asarray(2.0 * l_i))
+                    np.asarray(2.0 * l_i), positive(l_i) and positive(l_j))
+
+
+#: Pairs of link lengths (numbers) whose :class:`_Lengths` a scratch set keeps.
+KEPT_LENGTHS = 8
 
 
 class _Work:
     """Scratch arrays of the RRR kernel over one call shape, with the views it writes through.
 
-    None of them is ever part of a result. The lengths of the last call whose link lengths
-    were numbers are kept with them (:meth:`lengths_of`).
+    None of them is ever part of a result. The :class:`_Lengths` of the last few pairs of
+    link lengths given as numbers are kept with them (:meth:`lengths_of`).
     """
 
-    __slots__ = ("above", "arm_i", "arm_j", "arm_parts", "below", "both", "d2", "factors",
-                 "firsts", "key", "lengths", "products", "r", "r_parts", "seconds", "turn",
-                 "turn_parts", "x", "y")
+    __slots__ = ("above", "arm_i", "arm_j", "arm_parts", "below", "both", "d", "d2", "factors",
+                 "firsts", "kept", "products", "r", "r_parts", "seconds", "turn", "turn_parts",
+                 "x", "y")
 
     def __init__(self, shape: tuple[int, ...]) -> None:
         self.r = np.empty(shape, complex)  #: H_j − H_i
@@ -166,7 +172,7 @@ class _Work:
         self.turn = np.empty(shape, complex)  #: x + jσy; first the squares of the parts of r
         self.turn_parts = self.turn.view(np.float64)
         self.x, self.y = self.turn.real, self.turn.imag
-        self.d2 = np.empty(shape)
+        self.d2, self.d = np.empty(shape), np.empty(shape)
         #: l_i + l_j − d, d + (l_i − l_j) | d − (l_i − l_j), d + l_i + l_j: the factors of the
         #: products below | above, each half contiguous
         self.factors = np.empty((4, *shape))
@@ -179,17 +185,19 @@ class _Work:
         #: the parts of the arms as (x or y, arm, *shape), then laid out contiguously
         self.arm_parts = np.moveaxis(arms.view(np.float64).reshape(2, *shape, 2), -1, 0)
         self.both = np.empty((2, 2, *shape))
-        self.key: tuple[Any, ...] | None = None
-        self.lengths: _Lengths | None = None
+        self.kept: dict[tuple[Any, ...], _Lengths] = {}
 
     def lengths_of(self, l_i: Any, l_j: Any) -> _Lengths:
-        """The :class:`_Lengths` of ``l_i``, ``l_j``, kept from the last call if the same."""
+        """The :class:`_Lengths` of ``l_i``, ``l_j``; kept if both are numbers."""
         if type(l_i) not in REALS or type(l_j) not in REALS:
             return _lengths(l_i, l_j)
         key = (type(l_i), l_i, type(l_j), l_j)
-        if self.lengths is None or key != self.key:
-            self.key, self.lengths = key, _lengths(l_i, l_j)
-        return self.lengths
+        lengths = self.kept.get(key)
+        if lengths is None:
+            if len(self.kept) >= KEPT_LENGTHS:
+                self.kept.clear()
+            lengths = self.kept[key] = _lengths(l_i, l_j)
+        return lengths
 
 
 class _Scratch(threading.local):
@@ -230,13 +238,13 @@ def _rrr_block(
     """
     c, angles, margin, d = out if out is not None else (None,) * 4
     work = _SCRATCH.get(shape)
-    l_sum, l_dif, l_squares, two_l_i = work.lengths_of(l_i, l_j)
+    l_sum, l_dif, l_squares, two_l_i, lengths_positive = work.lengths_of(l_i, l_j)
     r, x, y, d2, factors = work.r, work.x, work.y, work.d2, work.factors
     np.subtract(h_j, h_i, r)  # complex whatever the points' type
     np.multiply(work.r_parts, work.r_parts, work.turn_parts)
     r_x2, r_y2 = x, y  # turn holds the squares of the parts of r until x is computed
     np.add(r_x2, r_y2, d2)
-    d = np.sqrt(d2, d)
+    d = np.sqrt(d2, work.d if d is None else d)
     np.subtract(l_sum, d, factors[0])
     np.add(d, l_dif, factors[1])
     np.subtract(d, l_dif, factors[2])
@@ -250,7 +258,7 @@ def _rrr_block(
     half_inv_d2 = np.divide(_HALF, d2, above)  # 1/(2d²)
     np.multiply(np.add(d2, l_squares, d2), half_inv_d2, x)
     lowest = smallest(margin)
-    if not (lowest >= 0.0 and positive(l_i) and positive(l_j)):
+    if not (lowest >= 0.0 and lengths_positive):
         settled, toggle, x_at_toggle = limits(l_i, l_j, d, margin)
         np.copyto(margin, settled)
         heron[toggle] = 0.0

@@ -158,12 +158,15 @@ def _assembled(shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarr
 
 def _spread(x: Value, shape: tuple[int, ...]) -> Value:
     """``x`` with its value broadcast to ``shape``: ``x`` itself, or a read-only view."""
+    if type(x) in _NUMBERS:
+        number: Any = x
+        return _constant(number, shape) if shape else number
     if type(x) is Jet:
         return x if x.v.shape == shape else Jet(np.broadcast_to(x.v, shape), x.d1, x.d2)
     if getattr(x, "shape", ()) == shape:
         return x
     if getattr(x, "ndim", 0) == 0:
-        number: Any = x[()] if type(x) is np.ndarray else x
+        number = x[()] if type(x) is np.ndarray else x
         return _constant(number, shape)
     return np.broadcast_to(cast(np.ndarray, x), shape)  # neither a jet nor a number
 

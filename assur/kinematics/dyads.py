@@ -156,6 +156,13 @@ def _assembled(shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarr
             _constant(np.int8(Reason.ASSEMBLES), shape))
 
 
+@lru_cache(maxsize=64, typed=True)
+def _pivot_and_assembled(o: complex, shape: tuple[int, ...],
+                         ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The pivot number ``o`` over ``shape`` and the outputs of :func:`_assembled`: cached."""
+    return (_constant(o, shape), *_assembled(shape))
+
+
 def _spread(x: Value, shape: tuple[int, ...]) -> Value:
     """``x`` with its value broadcast to ``shape``: ``x`` itself, or a read-only view."""
     if type(x) in _NUMBERS:
@@ -318,8 +325,9 @@ def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
     pin = _fast.crank_pin(o, length, angle)
     if pin is not None:
         shape = pin.shape
-        return _assembling((pin, _spread(o, shape), _spread(angle, shape), None, None, None,
-                            None), shape)
+        origin, one, exists, reason = _pivot_and_assembled(o, shape)
+        return tuple.__new__(DyadSolution, (pin, origin, _spread(angle, shape), None, None, None,
+                                            None, one, exists, reason))
     return _along(o, length, angle, crank=True)
 
 

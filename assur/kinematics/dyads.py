@@ -325,7 +325,7 @@ def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
     pin = _fast.crank_pin(o, length, angle)
     if pin is not None:
         shape = pin.shape
-        origin, one, exists, reason = _pivot_and_assembled(o, shape)
+        origin, one, exists, reason = _pivot_and_assembled(cast(complex, o), shape)  # a number
         return tuple.__new__(DyadSolution, (pin, origin, _spread(angle, shape), None, None, None,
                                             None, one, exists, reason))
     return _along(o, length, angle, crank=True)

@@ -4,10 +4,12 @@
 For plain float arrays, the two groups of every mechanism (the crank and the RRR dyad) are
 computed here instead, with the same formulas in the same order of operations: lengths in
 real arithmetic, points as complex numbers, few numpy calls and few temporaries. The RRR
-kernel keeps its scratch arrays between calls (per thread, for the last few call shapes) and
-cuts large calls into blocks that stay in cache. ``tests/assur/test_dyads_fast.py`` checks that
-both paths give the same positions, margins, existence and reasons;
-``tests/assur/test_dyads_scratch.py`` that no result shares the scratch arrays.
+kernel keeps its scratch arrays between calls (per thread, for the last few call shapes), with
+the arrays it makes of the last few pairs of link lengths, finds the smallest margin by one
+``argmin`` and cuts large calls into blocks that stay in cache. ``tests/assur/test_dyads_fast.py``
+checks that both paths give the same positions, margins, existence and reasons;
+``tests/assur/test_dyads_scratch.py`` that no result shares the scratch arrays;
+``tests/assur/test_dyads_speed_path.py`` the usual call against answers found another way.
 """
 
 from __future__ import annotations

@@ -160,33 +160,33 @@ KEPT_LENGTHS = 8
 class _Work:
     """Scratch arrays of the RRR kernel over one call shape, with the views it writes through.
 
-    None of them is ever part of a result. The :class:`_Lengths` of the last few pairs of
-    link lengths given as numbers are kept with them (:meth:`lengths_of`).
+    Three buffers hold everything, as in the kernel's order of work: r and x + jσy; d² and d;
+    the four factors of the margins, whose products, then Δ and 1/(2d²), take the place of
+    the first two. Once x + jσy is used, the arms C − H_i and C − H_j take the place of the
+    factors and their parts, laid out for ``arctan2``, the place of r and x + jσy. None of
+    them is ever part of a result. The :class:`_Lengths` of the last few pairs of link lengths
+    given as numbers are kept with them (:meth:`lengths_of`).
     """
 
     __slots__ = ("above", "arm_i", "arm_j", "arm_parts", "below", "both", "d", "d2", "factors",
-                 "firsts", "kept", "products", "r", "r_parts", "seconds", "turn", "turn_parts",
-                 "x", "y")
+                 "firsts", "kept", "r", "r_parts", "seconds", "turn", "turn_parts", "x", "y")
 
     def __init__(self, shape: tuple[int, ...]) -> None:
-        self.r = np.empty(shape, complex)  #: H_j − H_i
-        self.r_parts = self.r.view(np.float64)  #: its x, y, x, y, …
-        self.turn = np.empty(shape, complex)  #: x + jσy; first the squares of the parts of r
-        self.turn_parts = self.turn.view(np.float64)
+        points = np.empty((2, *shape), complex)
+        self.r, self.turn = points  #: H_j − H_i; x + jσy, first the squares of the parts of r
+        self.r_parts, self.turn_parts = self.r.view(np.float64), self.turn.view(np.float64)
         self.x, self.y = self.turn.real, self.turn.imag
-        self.d2, self.d = np.empty(shape), np.empty(shape)
+        #: the parts of both arms as (x or y, arm, *shape), contiguous, over r and x + jσy
+        self.both = points.reshape(-1).view(np.float64).reshape(2, 2, *shape)
+        self.d2, self.d = np.empty((2, *shape))
         #: l_i + l_j − d, d + (l_i − l_j) | d − (l_i − l_j), d + l_i + l_j: the factors of the
-        #: products below | above, each half contiguous
+        #: products below | above (2·l_i·d·(1 ∓ c)), which are written over the first half
         self.factors = np.empty((4, *shape))
         self.firsts, self.seconds = self.factors[:2], self.factors[2:]
-        #: 2·l_i·d·(1 − c) and 2·l_i·d·(1 + c); then Δ and 1/(2d²)
-        self.products = np.empty((2, *shape))
-        self.below, self.above = self.products
-        arms = np.empty((2, *shape), complex)
-        self.arm_i, self.arm_j = arms  #: C − H_i and C − H_j
-        #: the parts of the arms as (x or y, arm, *shape), then laid out contiguously
+        self.below, self.above = self.firsts
+        arms = self.factors.reshape(-1).view(complex).reshape(2, *shape)
+        self.arm_i, self.arm_j = arms  #: C − H_i and C − H_j, over the factors
         self.arm_parts = np.moveaxis(arms.view(np.float64).reshape(2, *shape, 2), -1, 0)
-        self.both = np.empty((2, 2, *shape))
         self.kept: dict[tuple[Any, ...], _Lengths] = {}
 
     def lengths_of(self, l_i: Any, l_j: Any) -> _Lengths:
@@ -251,7 +251,7 @@ def _rrr_block(
     np.add(d, l_dif, factors[1])
     np.subtract(d, l_dif, factors[2])
     np.add(l_sum, d, factors[3])
-    np.multiply(work.firsts, work.seconds, work.products)
+    np.multiply(work.firsts, work.seconds, work.firsts)
     below, above = work.below, work.above  # 2·l_i·d·(1 ∓ c)
     margin = np.minimum(below, above, out=margin)
     margin /= d

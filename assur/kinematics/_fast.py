@@ -4,10 +4,12 @@
 For plain float arrays, the two groups of every mechanism (the crank and the RRR dyad) are
 computed here instead, with the same formulas in the same order of operations: lengths in
 real arithmetic, points as complex numbers, few numpy calls and few temporaries. The RRR
-kernel keeps its scratch arrays between calls (per thread, for the last few call shapes) and
-cuts large calls into blocks that stay in cache. ``tests/assur/test_dyads_fast.py`` checks that
-both paths give the same positions, margins, existence and reasons;
-``tests/assur/test_dyads_scratch.py`` that no result shares the scratch arrays.
+kernel keeps its scratch arrays between calls (per thread, for the last few call shapes), with
+the arrays it makes of the last few pairs of link lengths, finds the smallest margin by one
+``argmin`` and cuts large calls into blocks that stay in cache. ``tests/assur/test_dyads_fast.py``
+checks that both paths give the same positions, margins, existence and reasons;
+``tests/assur/test_dyads_scratch.py`` that no result shares the scratch arrays;
+``tests/assur/test_dyads_speed_path.py`` the usual call against answers found another way.
 """
 
 from __future__ import annotations
@@ -20,7 +22,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-__all__ = ["BLOCK", "NUMBERS", "REALS", "crank_pin", "finite", "positive", "rrr"]
+__all__ = ["BLOCK", "NUMBERS", "REALS", "crank_pin", "finite", "positive", "rrr", "smallest"]
 
 #: Positions per block of the RRR kernel in large calls.
 BLOCK = 8192
@@ -34,7 +36,8 @@ REALS = frozenset({int, float, np.float64})
 Limits = Callable[..., tuple[np.ndarray, np.ndarray, np.ndarray]]
 
 #: What the RRR kernel gives: C, φ_i, φ_j, the margin, the hinge distance d (arrays of the
-#: call's shape) and the smallest margin.
+#: call's shape) and the smallest margin. C, the angles and the margin are the caller's; d
+#: may be a scratch array, valid until the thread's next call of the kernel.
 Rrr = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]
 
 
@@ -60,7 +63,7 @@ def crank_pin(o: Any, length: Any, angle: Any) -> np.ndarray | None:
             and type(o) in NUMBERS and cmath.isfinite(o)
             and (type(length) in REALS and math.isfinite(length)
                  or type(length) is np.ndarray and length.dtype == float and finite(length))
-            and finite(angle)):
+            and (cmath.isfinite(angle.dot(angle)) if angle.ndim == 1 else finite(angle))):
         return None
     unit = np.empty(angle.shape, dtype=complex)
     np.cos(angle, unit.real)
@@ -84,6 +87,7 @@ def _blocks(shape: tuple[int, ...]) -> list[slice]:
     return [slice(k, k + step) for k in range(0, shape[0], step)]
 
 
+@np.errstate(all="ignore")
 def rrr(h_i: Any, h_j: Any, l_i: Any, l_j: Any, s: Any, shape: tuple[int, ...],
         limits: Limits) -> Rrr:
     """``dyads._rrr_readable`` for plain numbers and arrays, over blocks of ``BLOCK`` positions.
@@ -108,6 +112,14 @@ def rrr(h_i: Any, h_j: Any, l_i: Any, l_j: Any, s: Any, shape: tuple[int, ...],
     return c, angles[0], angles[1], margin, d, lowest  # the minimum keeps a NaN
 
 
+def smallest(x: np.ndarray) -> float:
+    """The smallest element of the array ``x``: NaN if any is NaN, +inf if it is empty.
+
+    Found by ``argmin``, which costs less than a ufunc reduction for a few hundred elements.
+    """
+    return x.item(x.argmin()) if x.size else math.inf
+
+
 def positive(x: Any) -> bool:
     """Whether the number or every element of the array ``x`` is positive."""
     return bool((x if type(x) in REALS else np.minimum.reduce(x, axis=None)) > 0.0)
@@ -120,40 +132,74 @@ _HALF = np.array(0.5)
 SCRATCH_SHAPES = 4
 
 
-class _Work(NamedTuple):
-    """Scratch arrays of the RRR kernel over one call shape, with the views it writes through.
+class _Lengths(NamedTuple):
+    """What the RRR kernel uses of the link lengths l_i, l_j.
 
-    Three buffers hold everything: r, x + jσy, and four real arrays that then hold the arms;
-    the parts of the arms, laid out for ``arctan2``, take the place of x + jσy and of r once
-    these are used. None of them is ever part of a result.
+    l_i + l_j, l_i − l_j, (l_i − l_j)(l_i + l_j) and 2·l_i as arrays of shape () for numbers
+    (cheaper ufunc operands) or the per-design arrays, and whether both lengths are positive.
     """
 
-    r: np.ndarray  #: H_j − H_i, complex
-    r_parts: np.ndarray  #: its x, y, x, y, …
-    turn: np.ndarray  #: x + jσy (complex); first the squares of the parts of r
-    turn_parts: np.ndarray
-    x: np.ndarray  #: turn.real
-    y: np.ndarray  #: turn.imag
-    d2: np.ndarray
-    below: np.ndarray
-    above: np.ndarray
-    factor: np.ndarray
-    arm_i: np.ndarray  #: C − H_i, complex, over d2 and below
-    arm_j: np.ndarray  #: C − H_j, complex, over above and factor
-    arms_x: np.ndarray  #: the x parts of both arms (strided), shape ``(2, *shape)``
-    arms_y: np.ndarray
-    both_x: np.ndarray  #: the x parts of both arms, contiguous, over x + jσy
-    both_y: np.ndarray  #: the y parts, over r
+    l_sum: np.ndarray
+    l_dif: np.ndarray
+    l_squares: np.ndarray
+    two_l_i: np.ndarray
+    positive: bool
 
 
-def _work(shape: tuple[int, ...]) -> _Work:
-    """New scratch arrays and views for calls of ``shape``."""
-    r, turn = np.empty(shape, complex), np.empty(shape, complex)
-    reals = np.empty((4, *shape))
-    arms = reals.reshape(-1).view(complex).reshape(2, *shape)
-    return _Work(r, r.view(np.float64), turn, turn.view(np.float64), turn.real, turn.imag,
-                 reals[0], reals[1], reals[2], reals[3], arms[0], arms[1], arms.real, arms.imag,
-                 turn.view(np.float64).reshape(2, *shape), r.view(np.float64).reshape(2, *shape))
+def _lengths(l_i: Any, l_j: Any) -> _Lengths:
+    """The :class:`_Lengths` of the link lengths ``l_i``, ``l_j``."""
+    total, difference = l_i + l_j, l_i - l_j  # numbers, or per-design arrays
+    return _Lengths(np.asarray(total), np.asarray(difference), np.asarray(difference * total),
+                    np.asarray(2.0 * l_i), positive(l_i) and positive(l_j))
+
+
+#: Pairs of link lengths (numbers) whose :class:`_Lengths` a scratch set keeps.
+KEPT_LENGTHS = 8
+
+
+class _Work:
+    """Scratch arrays of the RRR kernel over one call shape, with the views it writes through.
+
+    Three buffers hold everything, as in the kernel's order of work: r and x + jσy; d² and d;
+    the four factors of the margins, whose products, then Δ and 1/(2d²), take the place of
+    the first two. Once x + jσy is used, the arms C − H_i and C − H_j take the place of the
+    factors and their parts, laid out for ``arctan2``, the place of r and x + jσy. None of
+    them is ever part of a result. The :class:`_Lengths` of the last few pairs of link lengths
+    given as numbers are kept with them (:meth:`lengths_of`).
+    """
+
+    __slots__ = ("above", "arm_i", "arm_j", "arm_parts", "below", "both", "d", "d2", "factors",
+                 "firsts", "kept", "r", "r_parts", "seconds", "turn", "turn_parts", "x", "y")
+
+    def __init__(self, shape: tuple[int, ...]) -> None:
+        points = np.empty((2, *shape), complex)
+        self.r, self.turn = points  #: H_j − H_i; x + jσy, first the squares of the parts of r
+        self.r_parts, self.turn_parts = self.r.view(np.float64), self.turn.view(np.float64)
+        self.x, self.y = self.turn.real, self.turn.imag
+        #: the parts of both arms as (x or y, arm, *shape), contiguous, over r and x + jσy
+        self.both = points.reshape(-1).view(np.float64).reshape(2, 2, *shape)
+        self.d2, self.d = np.empty((2, *shape))
+        #: l_i + l_j − d, d + (l_i − l_j) | d − (l_i − l_j), d + l_i + l_j: the factors of the
+        #: products below | above (2·l_i·d·(1 ∓ c)), which are written over the first half
+        self.factors = np.empty((4, *shape))
+        self.firsts, self.seconds = self.factors[:2], self.factors[2:]
+        self.below, self.above = self.firsts
+        arms = self.factors.reshape(-1).view(complex).reshape(2, *shape)
+        self.arm_i, self.arm_j = arms  #: C − H_i and C − H_j, over the factors
+        self.arm_parts = np.moveaxis(arms.view(np.float64).reshape(2, *shape, 2), -1, 0)
+        self.kept: dict[tuple[Any, ...], _Lengths] = {}
+
+    def lengths_of(self, l_i: Any, l_j: Any) -> _Lengths:
+        """The :class:`_Lengths` of ``l_i``, ``l_j``; kept if both are numbers."""
+        if type(l_i) not in REALS or type(l_j) not in REALS:
+            return _lengths(l_i, l_j)
+        key = (type(l_i), l_i, type(l_j), l_j)
+        lengths = self.kept.get(key)
+        if lengths is None:
+            if len(self.kept) >= KEPT_LENGTHS:
+                self.kept.clear()
+            lengths = self.kept[key] = _lengths(l_i, l_j)
+        return lengths
 
 
 class _Scratch(threading.local):
@@ -172,14 +218,13 @@ class _Scratch(threading.local):
         if work is None:
             if len(self.by_shape) >= SCRATCH_SHAPES:
                 del self.by_shape[next(iter(self.by_shape))]
-            work = self.by_shape[shape] = _work(shape)
+            work = self.by_shape[shape] = _Work(shape)
         return work
 
 
 _SCRATCH = _Scratch()
 
 
-@np.errstate(all="ignore")
 def _rrr_block(
     h_i: Any, h_j: Any, l_i: Any, l_j: Any, s: Any, shape: tuple[int, ...], limits: Limits,
     out: tuple[np.ndarray, ...] | None = None,
@@ -188,50 +233,48 @@ def _rrr_block(
 
     ``out`` optionally gives the arrays for C, the link angles (stacked, shape ``(2, *shape)``),
     the margin and d. The distances are computed in real arithmetic on the parts of
-    r = H_j − H_i; the arms C − H_i = r·(x + jσy) and C − H_j are complex, and both link
-    angles come from one ``arctan2`` over their parts laid out contiguously. Number operands
-    enter as arrays of shape () (cheaper ufunc calls, the same values). Every buffer is named
-    after what it holds; a buffer reused for another quantity gets that quantity's name.
+    r = H_j − H_i; the two products of the margins' four factors come from one
+    multiplication; the arms C − H_i = r·(x + jσy) and C − H_j are complex, and both link
+    angles come from one ``arctan2`` over their parts, copied contiguous by one call. Number
+    operands enter as arrays of shape () (cheaper ufunc calls, the same values).
     """
     c, angles, margin, d = out if out is not None else (None,) * 4
-    (r, r_parts, turn, turn_parts, x, y, d2, below, above, factor, arm_i, arm_j, arms_x, arms_y,
-     both_x, both_y) = _SCRATCH.get(shape)
+    work = _SCRATCH.get(shape)
+    l_sum, l_dif, l_squares, two_l_i, lengths_positive = work.lengths_of(l_i, l_j)
+    r, x, y, d2, factors = work.r, work.x, work.y, work.d2, work.factors
     np.subtract(h_j, h_i, r)  # complex whatever the points' type
-    total, difference = l_i + l_j, l_i - l_j  # numbers, or per-design arrays
-    l_sum, l_dif = np.asarray(total), np.asarray(difference)
-    l_squares, two_l_i = np.asarray(difference * total), np.asarray(2.0 * l_i)
-    np.multiply(r_parts, r_parts, turn_parts)
+    np.multiply(work.r_parts, work.r_parts, work.turn_parts)
     r_x2, r_y2 = x, y  # turn holds the squares of the parts of r until x is computed
-    d2 = np.add(r_x2, r_y2, d2)
-    d = np.sqrt(d2, d)
-    np.subtract(l_sum, d, below)
-    np.subtract(d, l_dif, factor)
-    below *= factor  # 2·l_i·d·(1 − c), c = cos of the angle at H_i
-    np.add(d, l_dif, above)
-    np.add(l_sum, d, factor)
-    above *= factor  # 2·l_i·d·(1 + c)
+    np.add(r_x2, r_y2, d2)
+    d = np.sqrt(d2, work.d if d is None else d)
+    np.subtract(l_sum, d, factors[0])
+    np.add(d, l_dif, factors[1])
+    np.subtract(d, l_dif, factors[2])
+    np.add(l_sum, d, factors[3])
+    np.multiply(work.firsts, work.seconds, work.firsts)
+    below, above = work.below, work.above  # 2·l_i·d·(1 ∓ c)
     margin = np.minimum(below, above, out=margin)
     margin /= d
     margin /= two_l_i
     heron = np.multiply(below, above, below)  # Δ = 16·area²
     half_inv_d2 = np.divide(_HALF, d2, above)  # 1/(2d²)
     np.multiply(np.add(d2, l_squares, d2), half_inv_d2, x)
-    lowest = np.minimum.reduce(margin, None) if margin.size else np.inf
-    if not (lowest >= 0.0 and positive(l_i) and positive(l_j)):
+    lowest = smallest(margin)
+    if not (lowest >= 0.0 and lengths_positive):
         settled, toggle, x_at_toggle = limits(l_i, l_j, d, margin)
         np.copyto(margin, settled)
         heron[toggle] = 0.0
         np.copyto(x, x_at_toggle, where=toggle)
-        lowest = np.minimum.reduce(margin, None)
+        lowest = smallest(margin)
     np.multiply(np.sqrt(heron, heron), half_inv_d2, y)  # NaN where the dyad does not assemble
     if type(s) is not float:
         y *= s
     elif s < 0.0:
         np.negative(y, y)  # σ·y
-    np.multiply(r, turn, arm_i)
+    arm_i = np.multiply(r, work.turn, work.arm_i)
     c = np.add(h_i, arm_i, c)
-    np.subtract(arm_i, r, arm_j)
-    np.copyto(both_x, arms_x)
-    np.copyto(both_y, arms_y)
-    angles = np.arctan2(both_y, both_x, angles)
+    np.subtract(arm_i, r, work.arm_j)
+    both = work.both
+    np.copyto(both, work.arm_parts)
+    angles = np.arctan2(both[1], both[0], angles)
     return c, angles[0], angles[1], margin, d, lowest

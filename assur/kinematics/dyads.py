@@ -156,14 +156,24 @@ def _assembled(shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarr
             _constant(np.int8(Reason.ASSEMBLES), shape))
 
 
+@lru_cache(maxsize=64, typed=True)
+def _pivot_and_assembled(o: complex, shape: tuple[int, ...],
+                         ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The pivot number ``o`` over ``shape`` and the outputs of :func:`_assembled`: cached."""
+    return (_constant(o, shape), *_assembled(shape))
+
+
 def _spread(x: Value, shape: tuple[int, ...]) -> Value:
     """``x`` with its value broadcast to ``shape``: ``x`` itself, or a read-only view."""
+    if type(x) in _NUMBERS:
+        number: Any = x
+        return _constant(number, shape) if shape else number
     if type(x) is Jet:
         return x if x.v.shape == shape else Jet(np.broadcast_to(x.v, shape), x.d1, x.d2)
     if getattr(x, "shape", ()) == shape:
         return x
     if getattr(x, "ndim", 0) == 0:
-        number: Any = x[()] if type(x) is np.ndarray else x
+        number = x[()] if type(x) is np.ndarray else x
         return _constant(number, shape)
     return np.broadcast_to(cast(np.ndarray, x), shape)  # neither a jet nor a number
 
@@ -258,19 +268,31 @@ def _finish(
         lowest = _lowest(margin)
     if lowest >= (delta if type(delta) in _NUMBERS else np.max(delta)) and (
             above is None or lowest > above):
-        _, exists, reason = _assembled(shape)  # one reduction found every position assembled
-    else:
-        exists = margin >= delta
-        if above is not None:
-            exists &= margin > above
-        bad = ~exists
-        reason = np.zeros(bad.shape, dtype=np.int8)
-        np.copyto(reason, failure(), where=bad)
-        undefined = _undefined(inputs)
-        if undefined is not False:
-            np.copyto(reason, Reason.UNDEFINED_INPUT, where=bad & undefined)
-        geometry = _blank(geometry, bad, owned)
-    return DyadSolution(*geometry, margin, exists, reason)
+        return _assembling(geometry, shape, margin)  # one reduction: every position assembles
+    exists = margin >= delta
+    if above is not None:
+        exists &= margin > above
+    bad = ~exists
+    reason = np.zeros(bad.shape, dtype=np.int8)
+    np.copyto(reason, failure(), where=bad)
+    undefined = _undefined(inputs)
+    if undefined is not False:
+        np.copyto(reason, Reason.UNDEFINED_INPUT, where=bad & undefined)
+    geometry = _blank(geometry, bad, owned)
+    return tuple.__new__(DyadSolution, (*geometry, margin, exists, reason))  # no Python __new__
+
+
+def _assembling(geometry: Geometry, shape: tuple[int, ...], margin: np.ndarray | None = None,
+                ) -> DyadSolution:
+    """The solution of outputs ``geometry`` where every position of ``shape`` assembles.
+
+    ``exists`` and ``reason`` are the cached constant views of ``shape``, and so is the
+    margin unless given (1: an input group). The named tuple is made without its Python
+    constructor.
+    """
+    one, exists, reason = _assembled(shape)
+    return tuple.__new__(DyadSolution, (*geometry, one if margin is None else margin, exists,
+                                        reason))
 
 
 def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
@@ -303,8 +325,9 @@ def solve_input(o: Value, length: Value, angle: Value) -> DyadSolution:
     pin = _fast.crank_pin(o, length, angle)
     if pin is not None:
         shape = pin.shape
-        return DyadSolution(pin, _spread(o, shape), _spread(angle, shape), None, None, None,
-                            None, *_assembled(shape))
+        origin, one, exists, reason = _pivot_and_assembled(cast(complex, o), shape)  # a number
+        return tuple.__new__(DyadSolution, (pin, origin, _spread(angle, shape), None, None, None,
+                                            None, one, exists, reason))
     return _along(o, length, angle, crank=True)
 
 
@@ -409,26 +432,34 @@ def solve_rrr(
     >>> bool(solve_rrr(0j, 8 + 0j, 3.0, 4.0, sigma=1).exists)
     False
     """
-    s = _branch(sigma)
-    shape, jets = _layout(h_i, h_j, l_i, l_j, s)
+    if (type(h_i) is np.ndarray and h_i.ndim and type(h_j) in _NUMBERS and type(l_i) in _REALS
+            and type(l_j) in _REALS and type(sigma) in _REALS):  # joints of an array, numbers
+        s: float | np.ndarray = -1.0 if sigma < 0 else 1.0  # what _branch and _layout give
+        shape, jets = h_i.shape, False
+    else:
+        s = _branch(sigma)
+        shape, jets = _layout(h_i, h_j, l_i, l_j, s)
     if jets or not shape:
         c, angle_i, angle_j, margin, d, lowest = _rrr_readable(h_i, h_j, l_i, l_j, s)
     else:
         c, angle_i, angle_j, margin, d, lowest = _fast.rrr(h_i, h_j, l_i, l_j, s, shape,
                                                            _rrr_limits)
-
-    def failure() -> np.ndarray:
-        long_i, long_j = J.value(l_i), J.value(l_j)
-        coincident = (d == 0.0) | (long_i == 0.0) | (long_j == 0.0)
-        return np.where(coincident, Reason.COINCIDENT_HINGES,
-                        np.where(d > np.maximum(long_i, long_j), Reason.STRETCHED,
-                                 Reason.FOLDED))
-
+    geometry: Geometry = (c, _spread(h_i, shape), angle_i, _spread(h_j, shape), angle_j, None,
+                          None)
+    if not jets and type(delta) in _REALS and lowest >= delta:
+        return _assembling(geometry, shape, margin)  # what _finish gives, without its arguments
     return _finish(
-        shape, (h_i, h_j, l_i, l_j, s), margin, delta, failure,
-        (c, _spread(h_i, shape), angle_i, _spread(h_j, shape), angle_j, None, None), jets,
-        lowest=lowest, owned=(c, angle_i, angle_j),
+        shape, (h_i, h_j, l_i, l_j, s), margin, delta, lambda: _rrr_failure(l_i, l_j, d),
+        geometry, jets, lowest=lowest, owned=(c, angle_i, angle_j),
     )
+
+
+def _rrr_failure(l_i: Value, l_j: Value, d: Any) -> np.ndarray:
+    """RRR reason codes of every position as if it failed (``d`` the hinge distance)."""
+    long_i, long_j = J.value(l_i), J.value(l_j)
+    coincident = (d == 0.0) | (long_i == 0.0) | (long_j == 0.0)
+    return np.where(coincident, Reason.COINCIDENT_HINGES,
+                    np.where(d > np.maximum(long_i, long_j), Reason.STRETCHED, Reason.FOLDED))
 
 
 @np.errstate(all="ignore")

@@ -3,7 +3,7 @@
 A solution is checked against the closure of the dyad (|C − H_i| = l_i, |C − H_j| = l_j, the
 link angles pointing from the hinges to C) and against the readable solver (a jet argument
 takes it), after later calls of the same shape have run, and while other threads solve other
-dyads of that shape at the same time.
+dyads of that shape at the same time; and two solutions of one shape share no memory.
 """
 
 from __future__ import annotations
@@ -61,3 +61,14 @@ def test_threads_solving_at_once_keep_their_own_results() -> None:
     with ThreadPoolExecutor(max_workers=4) as pool:
         errors = list(pool.map(solve, range(4)))
     assert max(errors) <= 8 * EPS
+
+
+def test_solutions_of_one_shape_share_no_memory() -> None:
+    first_pins, later_pins = pins(3, 360), pins(4, 360)
+    first = solve_rrr(first_pins, H_J, L_I, L_J, 1.0)
+    later = solve_rrr(later_pins, H_J, L_I, L_J, -1.0)
+    fields = ("c", "angle_i", "angle_j", "margin")
+    for name in fields:
+        for other in fields:
+            assert not np.may_share_memory(getattr(first, name), getattr(later, other)), (
+                name, other)

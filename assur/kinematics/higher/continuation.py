@@ -1113,9 +1113,10 @@ class _Leg:
         with np.errstate(all="ignore"):
             return coefficients(self.group, values(self.inputs(phi)))
 
-    def root(self, phi: np.ndarray, guess: np.ndarray) -> tuple[_Root, np.ndarray]:
+    def root(self, phi: np.ndarray, guess: np.ndarray) -> tuple[_Root, np.ndarray, np.ndarray]:
         """The root of Φ at φ by Newton's method from ``guess``, with its analogs and
-        separation bound, and where it converged to a pose of the mode (:func:`_poses`)."""
+        separation bound, where it converged to a pose of the mode (:func:`_poses`), and
+        the eliminants' coefficients there."""
         k = self.inputs(Jet(phi, 1.0, 0.0))
         coef = coefficients(self.group, values(k))
         theta, step = guess, np.full(guess.shape, np.inf)
@@ -1131,7 +1132,7 @@ class _Leg:
             slope = np.sign(_trig(coef, theta)[1])
         e = self.group.eliminated
         return (_Root(theta, x1[..., e], x2[..., e], apart, slope, x, x1),
-                posed & (np.abs(step) <= CONVERGED))
+                posed & (np.abs(step) <= CONVERGED), coef)
 
 
     def fold(self, star: np.ndarray, top: np.ndarray, phi: np.ndarray, here: _Root
@@ -1157,16 +1158,15 @@ def _turned(group: HigherGroup[K], dx: np.ndarray) -> np.ndarray:
     return np.asarray(np.where(np.asarray(group.lengths), dx, np.angle(np.exp(1j * dx))))
 
 
-def _locate(leg: _Leg, a: np.ndarray, b: np.ndarray, ends: tuple[np.ndarray, np.ndarray],
+def _locate(leg: _Leg, low: tuple[np.ndarray, ...], high: tuple[np.ndarray, ...],
             rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The change point between φ = ``a`` (the local discriminant D > 0: the pair of roots
-    real) and ``b`` (D < 0) of the ``rows``, by regula falsi with the Illinois rule on D(φ),
-    the extremum between the pair followed from the ends' extrema ``ends`` = (θ_a, θ_b).
-    Returns φ* to ``LOCATED`` and θ* (NaN where not located)."""
-    theta_a, theta_b = ends
-    value_a = _extremum(leg.coef(a), theta_a)[1]
-    value_b = _extremum(leg.coef(b), theta_b)[1]
-    rows = rows & (value_a > 0.0) & (value_b < 0.0)
+    """The change point of the ``rows`` between the ends ``low`` = (φ_a, θ_a, D_a), where the
+    local discriminant D at the extremum θ_a between the pair of roots is positive (the
+    pair real), and ``high`` = (φ_b, θ_b, D_b) with D_b < 0: regula falsi with the Illinois
+    rule on D(φ), the extremum followed from the bracket's ends. Returns φ* to ``LOCATED``
+    and θ* (NaN where not located)."""
+    a, theta_a, value_a = low
+    b, theta_b, value_b = high
     kept = np.zeros(a.shape, dtype=np.int8)
     with np.errstate(all="ignore"):
         for _ in range(LOCATE_ITERATIONS):
@@ -1217,6 +1217,7 @@ def _walk_path(leg: _Leg) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[tupl
     rows = np.arange(r)
     at = leg.start.copy()
     phi, here = columns[at], leg.here
+    coef = leg.coef(phi)
     status = np.zeros(r, dtype=np.int8)
     star, top = np.full(r, np.nan), np.full(r, np.nan)
     h = 0.5 * np.diff(columns).max()
@@ -1236,7 +1237,8 @@ def _walk_path(leg: _Leg) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[tupl
             hit = ~near & (step >= rest)
             trial = np.where(active, np.where(hit, goal, phi + s * step), phi)
             dh = trial - phi
-            new, posed = leg.root(trial, here.theta + dh * here.t1 + 0.5 * dh * dh * here.t2)
+            new, posed, fresh = leg.root(trial,
+                                         here.theta + dh * here.t1 + 0.5 * dh * dh * here.t2)
             ok = active & posed & _link(dh, here, new)
             arrive = ok & hit
             through = arrive & (_chord(new.theta, target) <= 0.5 * new.apart)
@@ -1246,11 +1248,15 @@ def _walk_path(leg: _Leg) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[tupl
             at = np.where(arrive, aim, at)
             look = active & ~ok & ~near
             if look.any():
-                theta_a = _extremum(leg.coef(phi), here.theta)[0]
-                theta_b = _extremum(leg.coef(trial), theta_a)[0]
-                found, point = _locate(leg, phi, trial, (theta_a, theta_b), look)
+                theta_a, value_a = _extremum(coef, here.theta)
+                theta_b, value_b = _extremum(fresh, theta_a)
+                look &= (value_a > 0.0) & (value_b < 0.0)
+            if look.any():
+                found, point = _locate(leg, (phi, theta_a, value_a), (trial, theta_b, value_b),
+                                       look)
                 star, top = np.where(look, found, star), np.where(look, point, top)
             phi, here = np.where(ok, trial, phi), new.where(ok, here)
+            coef = np.where(ok[:, None], fresh, coef)
             h = np.where(ok, np.where(step < h, h, 2.0 * h), 0.5 * step)
             into = active & ~through & np.isfinite(star)
             if into.any():

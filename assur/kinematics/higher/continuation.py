@@ -1305,7 +1305,9 @@ def _refined(group: HigherGroup[K], inputs: Inputs[K], paths: Chains, root: _Roo
                    theta[:, column].T, start, root.at((start, column)), sign[column])
         status, reached, star, passed = _walk_path(leg)
         for row, col, value in passed:
-            theta[col, column[row]] = value
+            # where the forward stretch reaches, its roots count
+            mine = (side[row] == 0) | (col > at[column[row], 0])
+            theta[col[mine], column[row][mine]] = value[mine]
         low = np.where(side == 0, start, reached)
         high = np.where(side == 0, reached, start)
         walked = (link >= low) & (link < high) & (status > 0)
@@ -1342,7 +1344,7 @@ def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
     cert, ends, ends_at, theta = _refined(group, inputs, paths, root, cert, sign,
                                           found & ~cert.all(axis=0))
     around = found & cert.all(axis=0) & np.isnan(ends).all(axis=-1)
-    ended = found & np.isfinite(ends).all(axis=-1) & (ends_at[:, 0] <= ends_at[:, 1])
+    ended = found & np.isfinite(ends).all(axis=-1)
     column = np.searchsorted(paths.columns, np.mod(phi, TWO_PI))[:, None]
     # the poses at the requested columns where a walk took another root than the path's
     moved = np.zeros(theta.shape, dtype=bool)

@@ -1088,6 +1088,8 @@ ROOT_ITERATIONS = 8
 #: discriminant in φ to a bracket of this (rad), in at most ``LOCATE_ITERATIONS`` evaluations.
 LOCATED = 1e-11
 LOCATE_ITERATIONS = 60
+#: A located change point is located again from a bracket about it rounded to this (rad).
+GRAIN = 2.0 ** -30
 #: What a walk of a link ends in: the far column's root, or a change point.
 THROUGH, ENDS = 1, 2
 
@@ -1192,6 +1194,21 @@ def _locate(leg: _Leg, low: tuple[np.ndarray, ...], high: tuple[np.ndarray, ...]
     return np.where(done, 0.5 * (a + b), np.nan), np.where(done, theta_a, np.nan)
 
 
+def _canonical(leg: _Leg, star: np.ndarray, top: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The located change points φ* (θ* their double roots) located once more from a
+    bracket of ±2·``GRAIN`` about φ* rounded to ``GRAIN``, the extremum from θ* rounded
+    likewise: the end found does not depend on where the walk came from (the columns, so
+    the requested angles), but where φ* lies within roundoff of half a grain."""
+    with np.errstate(invalid="ignore"):
+        centre, guess = np.round(star / GRAIN) * GRAIN, np.round(top / GRAIN) * GRAIN
+        a, b = centre - 2.0 * GRAIN * leg.s, centre + 2.0 * GRAIN * leg.s
+        theta_a, value_a = _extremum(leg.coef(a), guess)
+        theta_b, value_b = _extremum(leg.coef(b), guess)
+        again, at = _locate(leg, (a, theta_a, value_a), (b, theta_b, value_b),
+                            np.isfinite(star) & (value_a > 0.0) & (value_b < 0.0))
+    return np.where(np.isfinite(again), again, star), np.where(np.isfinite(again), at, top)
+
+
 def _walk_path(leg: _Leg) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[tuple[np.ndarray, ...]]]:
     """Each row walked by sub-steps from its start column along the path, column after
     column in its direction, until its root is the path's again.
@@ -1252,8 +1269,8 @@ def _walk_path(leg: _Leg) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[tupl
                 theta_b, value_b = _extremum(fresh, theta_a)
                 look &= (value_a > 0.0) & (value_b < 0.0)
             if look.any():
-                found, point = _locate(leg, (phi, theta_a, value_a), (trial, theta_b, value_b),
-                                       look)
+                found, point = _canonical(leg, *_locate(
+                    leg, (phi, theta_a, value_a), (trial, theta_b, value_b), look))
                 star, top = np.where(look, found, star), np.where(look, point, top)
             phi, here = np.where(ok, trial, phi), new.where(ok, here)
             coef = np.where(ok[:, None], fresh, coef)

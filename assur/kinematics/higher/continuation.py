@@ -87,7 +87,7 @@ MEET_ITERATIONS = 6
 
 #: "auto" follows up to this many designs of a triad by the path of the root (beyond, the
 #: batched steps cost less: ``docs/higher_groups.md`` §3).
-ROOTS_DESIGNS = 64
+ROOTS_DESIGNS = 128
 
 Inputs = Callable[[Any], K]
 T = TypeVar("T")
@@ -861,8 +861,10 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
     method : {"auto", "roots", "steps"}
         How a crank's turn is followed: "steps" by the continuation; "roots" by the path of
         the sketched root through every real root at every angle
-        (:func:`~assur.kinematics.higher.track.chains`), taken for a design only where each
-        of its links passes the continuation's step test, the other designs by steps;
+        (:func:`~assur.kinematics.higher.track.chains`), taken for a design where each of
+        its links passes the continuation's step test or is walked through by sub-steps,
+        also where the mode ends (the change points located on the path), the other
+        designs by steps;
         "auto" by roots for up to ``ROOTS_DESIGNS`` designs of a triad with a bar and no P–P
         leash (where the steps' cost is Python's, a few dozen steps for each design), by
         steps otherwise.
@@ -977,10 +979,11 @@ def _step_follow(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: 
 
 def _tracked(group: HigherGroup[K]) -> bool:
     """Whether "auto" follows the group by the path of its root: a triad with a bar and no
-    P–P leash (its eliminated angle fixes the pose). Not a class IV group: the drawn mode of
-    ``class_iv_group.yaml`` passes within about 1e-7 rad of its neighbour near φ = 45.3° (a
-    near-double root of the eliminant), where no link between the columns is certified and
-    the steps follow anyway, so there the roots would only add their cost."""
+    P–P leash (its eliminated angle fixes the pose). Not a class IV group: the sketched root
+    of ``class_iv_group.yaml`` has a neighbour closer than the samples' spacing from φ = 0
+    on and passes within about 1e-7 rad of it near φ = 45.3° (a near-double root of the
+    eliminant); the walk of its links spends its trials before and the steps follow anyway,
+    so there the roots only add their cost (measured 2–4 times slower)."""
     return isinstance(group, Triad) and not group.pinned and not group.barless
 
 

@@ -222,7 +222,7 @@ def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.nd
         slope = np.where(on, col.slope[at], np.where(ends, np.sign(_slope(coef, theta)), 0.0))
     return Chains(np.append(columns, TWO_PI), theta, apart, slope, (ahead >= 0) | ends,
                   ((behind >= 0) & (index == behind)) | ends, ahead[-1] >= 0,
-                  on[-1] & (index[-1] == start))
+                  (on[-1] & (index[-1] == start)) | seed)
 
 
 def _slope(coef: np.ndarray, theta: np.ndarray) -> np.ndarray:

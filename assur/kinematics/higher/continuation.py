@@ -1168,14 +1168,17 @@ def _locate(leg: _Leg, low: tuple[np.ndarray, ...], high: tuple[np.ndarray, ...]
     """The change point of the ``rows`` between the ends ``low`` = (φ_a, θ_a, D_a), where the
     local discriminant D at the extremum θ_a between the pair of roots is positive (the
     pair real), and ``high`` = (φ_b, θ_b, D_b) with D_b < 0: regula falsi with the Illinois
-    rule on D(φ), the extremum followed from the bracket's ends. Returns φ* to ``LOCATED``
-    and θ* (NaN where not located)."""
+    rule on D(φ), the extremum followed from the bracket's ends. Returns φ* where the
+    bracket or two successive points are within ``LOCATED``, and θ* (NaN where not
+    located; the caller confirms the meeting at ``MEET`` on either side)."""
     a, theta_a, value_a = low
     b, theta_b, value_b = high
     kept = np.zeros(a.shape, dtype=np.int8)
+    point, theta_p = np.full(a.shape, np.nan), np.full(a.shape, np.nan)
+    settled = np.zeros(a.shape, dtype=bool)
     with np.errstate(all="ignore"):
         for _ in range(LOCATE_ITERATIONS):
-            wide = rows & (np.abs(b - a) > LOCATED)
+            wide = rows & ~settled & (np.abs(b - a) > LOCATED)
             if not wide.any():
                 break
             mid = (a * value_b - b * value_a) / (value_b - value_a)
@@ -1185,6 +1188,8 @@ def _locate(leg: _Leg, low: tuple[np.ndarray, ...], high: tuple[np.ndarray, ...]
             guess = theta_a + frac * np.angle(np.exp(1j * (theta_b - theta_a)))
             theta, value = _extremum(leg.coef(mid), guess)
             rows &= np.isfinite(value)
+            settled |= wide & (np.abs(mid - point) <= LOCATED)
+            point, theta_p = np.where(wide, mid, point), np.where(wide, theta, theta_p)
             real, gone = wide & (value > 0.0), wide & (value <= 0.0)
             value_b = np.where(real & (kept == 1), 0.5 * value_b, value_b)
             value_a = np.where(gone & (kept == -1), 0.5 * value_a, value_a)
@@ -1193,8 +1198,9 @@ def _locate(leg: _Leg, low: tuple[np.ndarray, ...], high: tuple[np.ndarray, ...]
             b, value_b, theta_b = (np.where(gone, v, w) for v, w in
                                    ((mid, b), (value, value_b), (theta, theta_b)))
             kept = np.where(real, 1, np.where(gone, -1, kept)).astype(np.int8)
-    done = rows & (np.abs(b - a) <= LOCATED)
-    return np.where(done, 0.5 * (a + b), np.nan), np.where(done, theta_a, np.nan)
+    narrow = rows & ~settled & (np.abs(b - a) <= LOCATED)
+    return (np.where(rows & settled, point, np.where(narrow, 0.5 * (a + b), np.nan)),
+            np.where(rows & settled, theta_p, np.where(narrow, theta_a, np.nan)))
 
 
 def _canonical(leg: _Leg, star: np.ndarray, top: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -1314,12 +1320,12 @@ def _refined(group: HigherGroup[K], inputs: Inputs[K], paths: Chains, root: _Roo
         last = u - 1 - np.argmin(cert[::-1], axis=0)
         ahead = todo & ~whole & np.isnan(ends[:, 0])
         behind = todo & ~whole & ~ahead & np.isnan(ends[:, 1]) & paths.backward[-1]
-        rows = np.stack([ahead, behind])
+        rows = ahead | behind
         small = _take(group, rows) if rows.any() else None
         if small is None:
             break
-        side = np.nonzero(rows)[0]
-        column = designs[None, :].repeat(2, axis=0)[rows]
+        column = designs[rows]
+        side = np.where(ahead[column], 0, 1)
         start = np.where(side == 0, first[column], last[column] + 1)
         leg = _Leg(small, _local(inputs, rows), np.where(side == 0, 1.0, -1.0), paths.columns,
                    theta[:, column].T, start, root.at((start, column)), sign[column])

@@ -1227,11 +1227,11 @@ def _walk_path(leg: _Leg) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[tupl
     column the walk is through where its root is the path's (closer than half its
     separation bound); else it goes on to the next column. A rejected sub-step where the
     local discriminant (:func:`_extremum`, at the extremum next to the root) has changed
-    sign from the state brackets a change point, located by :func:`_locate`; the row then
-    ends there once the square-root form of a fold puts it from the state,
-    θ* ≈ θ + 2(φ* − φ)·θ′ to half the distance |θ* − θ| (the sub-steps go on towards it,
-    at most halfway each), and the pair really meets there: the local discriminant
-    (:func:`_pair`) is +1 at ``MEET`` before φ* and −1 after.
+    sign from the state brackets a change point, located by :func:`_locate` and
+    :func:`_canonical`; the row then ends there once the pose at the double root is where
+    the square-root form of a fold puts it from the state (:meth:`_Leg.fold`; the sub-steps
+    go on towards φ*, at most halfway each), and the pair really meets there: the local
+    discriminant (:func:`_pair`) is +1 at ``MEET`` before φ* and −1 after.
 
     Returns the outcome (``THROUGH``, ``ENDS``, or 0: neither within ``REFINE_TRIALS``
     sub-steps above ``REFINE_MIN``), the last column reached (for ``THROUGH`` the one
@@ -1246,8 +1246,7 @@ def _walk_path(leg: _Leg) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[tupl
     coef = leg.coef(phi)
     status = np.zeros(r, dtype=np.int8)
     star, top = np.full(r, np.nan), np.full(r, np.nan)
-    h = 0.5 * np.diff(columns).max()
-    h = np.full(r, h)
+    h = np.full(r, 0.5 * np.diff(columns).max())
     passed: list[tuple[np.ndarray, ...]] = []
     active = np.isfinite(here.theta)
     with np.errstate(all="ignore"):

@@ -120,9 +120,9 @@ class Chains:
         p, and the sign of Φ′ there; NaN (0 for the sign) off the path.
     forward, backward : ndarray, bool, shape (U + 1, D)
         The root at the column is on the chain of nearest roots from the sketched root at
-        φ = 0, or on the one from it at φ = 2π going down. Where both hold it is the same
-        root (the chains are then one); the forward chain counts where they differ. A
-        sketched root in no bracket is on both at φ = 0 and 2π only.
+        φ = 0, or on the one from it at φ = 2π going down (followed only where the forward
+        one is lost before 2π). Where both hold it is the same root (the chains are then
+        one). A sketched root in no bracket is on both at φ = 0 and 2π only.
     around : ndarray, bool, shape (D,)
         The forward chain reaches φ = 2π.
     closed : ndarray, bool, shape (D,)
@@ -201,7 +201,9 @@ def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.nd
     links = _links(col, nxt)
     start = np.where(alive, np.argmax(inside, axis=-1), -1)
     ahead = _chain(_from_first(links), start)
-    behind = _chain(_from_first(_inverse(links)[::-1]), start)[::-1]
+    lost = (start >= 0) & (ahead[-1] < 0)
+    behind = (_chain(_from_first(_inverse(links)[::-1]), np.where(lost, start, -1))[::-1]
+              if lost.any() else np.full(ahead.shape, -1))
     index = np.where(ahead >= 0, ahead, behind)
     rows = np.arange(d)
     on = index >= 0

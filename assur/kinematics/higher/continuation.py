@@ -92,7 +92,7 @@ BLOCK = 8192
 
 #: "auto" follows up to this many designs of a triad by the path of the root (beyond, the
 #: batched steps cost less: ``docs/higher_groups.md`` §3).
-ROOTS_DESIGNS = 64
+ROOTS_DESIGNS = 128
 
 Inputs = Callable[[Any], K]
 T = TypeVar("T")
@@ -878,8 +878,10 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
     method : {"auto", "roots", "steps"}
         How a crank's turn is followed: "steps" by the continuation; "roots" by the path of
         the sketched root through every real root at every angle
-        (:func:`~assur.kinematics.higher.track.chains`), taken for a design only where each
-        of its links passes the continuation's step test, the other designs by steps;
+        (:func:`~assur.kinematics.higher.track.chains`), taken for a design where each of
+        its links passes the continuation's step test or is walked through by sub-steps,
+        also where the mode ends (the change points located on the path), the other
+        designs by steps;
         "auto" by roots for up to ``ROOTS_DESIGNS`` designs of a triad with a bar and no P–P
         leash (where the steps' cost is Python's, a few dozen steps for each design), by
         steps otherwise.
@@ -974,20 +976,9 @@ def _step_follow(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: 
         return merged if sorted_already else merged[..., unsort]
 
     x = np.stack([merge(ahead.x[..., i], behind.x[..., i]) for i in range(group.n)], axis=-1)
-    margin = merge(ahead.margin, behind.margin)
-    reason = np.zeros((d, n), dtype=np.int8)
     merged_ends = (ahead.why == Reason.MODE_ENDS) & (behind.why == Reason.MODE_ENDS)
-    columns = np.flatnonzero(~reached.all(axis=0))
-    if columns.size:
-        kv = values(inputs(np.broadcast_to(phi[columns, None], (columns.size, d))))
-        defined = np.broadcast_to(finite_inputs(kv), (columns.size, d)).T
-        gone = ~reached[:, columns]
-        margin[:, columns] = np.where(gone, np.where(defined, _gap(group, kv, gone.T).T, np.nan),
-                                      margin[:, columns])
-        reason[:, columns] = np.where(
-            gone, np.where(defined, np.where((found & merged_ends)[:, None],
-                                             Reason.MODE_ENDS, Reason.NOT_FOLLOWED),
-                           Reason.UNDEFINED_INPUT), 0)
+    margin, reason = _unreached(group, inputs, phi, reached,
+                                merge(ahead.margin, behind.margin), found & merged_ends)
     with np.errstate(invalid="ignore"):
         exists = reached & (margin >= np.asarray(delta)[..., None])
     reason = np.where(reached & ~exists, Reason.MODE_ENDS, reason).astype(np.int8)
@@ -1012,44 +1003,415 @@ def _step_follow(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: 
 
 def _tracked(group: HigherGroup[K]) -> bool:
     """Whether "auto" follows the group by the path of its root: a triad with a bar and no
-    P–P leash (its eliminated angle fixes the pose). Not a class IV group: the drawn mode of
-    ``class_iv_group.yaml`` passes within about 1e-7 rad of its neighbour near φ = 45.3° (a
-    near-double root of the eliminant), where no link between the columns is certified and
-    the steps follow anyway, so there the roots would only add their cost."""
+    P–P leash (its eliminated angle fixes the pose). Not a class IV group: the sketched root
+    of ``class_iv_group.yaml`` has a neighbour closer than the samples' spacing from φ = 0
+    on and passes within about 1e-7 rad of it near φ = 45.3° (a near-double root of the
+    eliminant); the walk of its links spends its trials before and the steps follow anyway,
+    so there the roots only add their cost (measured 2–4 times slower)."""
     return isinstance(group, Triad) and not group.pinned and not group.barless
+
+
+@dataclass(frozen=True, eq=False)
+class _Root:
+    """Roots of the eliminant on the path: θ, its analogs θ′ and θ″ in φ, its separation
+    bound from every other root of p, the sign of Φ′ there, and the pose x (..., n) with
+    its analog x′."""
+
+    theta: np.ndarray
+    t1: np.ndarray
+    t2: np.ndarray
+    apart: np.ndarray
+    slope: np.ndarray
+    x: np.ndarray
+    x1: np.ndarray
+
+    def at(self, index: Any) -> _Root:
+        """The roots at ``index``."""
+        return _Root(*(getattr(self, f.name)[index] for f in dataclasses.fields(self)))
+
+    def where(self, mask: np.ndarray, other: _Root) -> _Root:
+        """These roots where ``mask``, ``other`` elsewhere."""
+        def pick(name: str) -> np.ndarray:
+            mine = getattr(self, name)
+            return np.asarray(np.where(mask.reshape(mask.shape + (1,) * (mine.ndim - mask.ndim)),
+                                       mine, getattr(other, name)))
+
+        return _Root(*(pick(f.name) for f in dataclasses.fields(self)))
+
+
+def _chord(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """|e^{ia} − e^{ib}|: the distance of two angles as points of the unit circle."""
+    return np.asarray(np.abs(np.exp(1j * a) - np.exp(1j * b)))
+
+
+def _link(h: np.ndarray, here: _Root, there: _Root) -> np.ndarray:
+    """The continuation's step test on a link of the path from ``here`` to ``there``, h = φ
+    there − φ here (either sign): the root's analogs predict the other root, θ + hθ′ + ½h²θ″,
+    within a quarter of its separation bound, and the other root's analogs predict this one
+    back within a quarter of this one's; both keep the sign of Φ′."""
+    with np.errstate(invalid="ignore"):
+        ahead = here.theta + h * here.t1 + 0.5 * h * h * here.t2
+        back = there.theta - h * there.t1 + 0.5 * h * h * there.t2
+        return np.asarray((_chord(ahead, there.theta) <= 0.25 * there.apart)
+                          & (_chord(back, here.theta) <= 0.25 * here.apart)
+                          & (there.slope == here.slope))
+
+
+def _links(columns: np.ndarray, root: _Root) -> np.ndarray:
+    """Where each link of the path between its columns (U + 1,) passes the step test
+    (:func:`_link`), shape (U, D)."""
+    h = np.diff(columns)[:, None]
+    return _link(h, root.at(slice(None, -1)), root.at(slice(1, None)))
+
+
+def _poses(group: HigherGroup[K], k: K, theta: np.ndarray, sign: np.ndarray
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The poses at the roots θ of the eliminant (the inputs ``k`` as jets in φ), by the
+    group's recovery and 2 Newton iterations on the reduced equations; their analogs x′, x″,
+    margin rows, and where they are poses of the mode: the residual at most ``ACCEPT``·L and
+    det J of the sketch's ``sign``."""
+    kv = values(k)
+    with np.errstate(all="ignore"):
+        x = expand(group).recover(np.exp(1j * theta)[..., None], expand(kv))[..., 0, :]
+        x, _ = newton(group, kv, x, 2)
+        f = np.stack(np.broadcast_arrays(*map(plain, group.residual(x, kv))), axis=-1)
+        jac, lines = group.lines(x, kv)
+        x1, x2 = analogs(group, k, x, jac)
+        posed = (np.abs(f).max(axis=-1) <= ACCEPT * np.asarray(group.size)) \
+            & (np.sign(det_rows(jac)) == sign)
+    return x, x1, x2, lines, posed
+
+
+def _trig(coef: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Φ, Φ′ and Φ″ at θ (...) of the eliminants whose p has the coefficients ``coef``
+    (..., 2m + 1): Φ(θ) = Σ φ_n e^{inθ}, n = −m … m."""
+    m = (coef.shape[-1] - 1) // 2
+    n = np.arange(-m, m + 1)
+    e = coef * np.exp(1j * n * theta[..., None])
+    return e.sum(axis=-1).real, (1j * n * e).sum(axis=-1).real, (-n * n * e).sum(axis=-1).real
+
+
+def _extremum(coef: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The extremum θ_c of Φ nearest ``theta`` (Newton's method on Φ′, ``MEET_ITERATIONS``
+    steps) and the local discriminant there, −Φ(θ_c)·sign Φ″(θ_c): positive where a pair of
+    real roots lies about θ_c, negative where it has left the unit circle (:func:`_pair`)."""
+    with np.errstate(all="ignore"):
+        for _ in range(MEET_ITERATIONS):
+            _, slope, bend = _trig(coef, theta)
+            theta = theta - np.where(bend != 0.0, slope / bend, 0.0)
+        value, _, bend = _trig(coef, theta)
+    return theta, np.asarray(-value * np.sign(bend))
+
+
+#: A link of the path that fails the step test is walked by sub-steps: at most this many
+#: trials (a sub-step doubles after an accepted one and halves after a rejected one) ...
+REFINE_TRIALS = 48
+#: ... none below this (rad); and at most this many links per design are walked.
+REFINE_MIN = 1e-10
+REFINE_ROUNDS = 4
+#: Newton iterations on Φ from a sub-step's predictor, and their convergence bound (rad).
+ROOT_ITERATIONS = 8
+#: A change point on the path is located by regula falsi (Illinois) on the local
+#: discriminant in φ to a bracket of this (rad), in at most ``LOCATE_ITERATIONS`` evaluations.
+LOCATED = 1e-11
+LOCATE_ITERATIONS = 60
+#: A located change point is located again from a bracket about it rounded to this (rad).
+GRAIN = 2.0 ** -30
+#: What a walk of a link ends in: the far column's root, or a change point.
+THROUGH, ENDS = 1, 2
+
+
+@dataclass(frozen=True, eq=False)
+class _Leg:
+    """Walks along the path, one row each (R,): the group and inputs at the rows' designs
+    (laid flat), the direction s = ±1, the path's columns (U + 1,) and its roots at them for
+    each row (R, U + 1; NaN off the path), the column each walk starts from (R,) and its
+    root, and the sign of det J of the sketch."""
+
+    group: HigherGroup[Any]
+    inputs: Inputs[Any]
+    s: np.ndarray
+    columns: np.ndarray
+    path: np.ndarray
+    start: np.ndarray
+    here: _Root
+    sign: np.ndarray
+
+    def coef(self, phi: np.ndarray) -> np.ndarray:
+        """The eliminants' coefficients at φ (R,)."""
+        with np.errstate(all="ignore"):
+            return coefficients(self.group, values(self.inputs(phi)))
+
+    def root(self, phi: np.ndarray, guess: np.ndarray) -> tuple[_Root, np.ndarray, np.ndarray]:
+        """The root of Φ at φ by Newton's method from ``guess``, with its analogs and
+        separation bound, where it converged to a pose of the mode (:func:`_poses`), and
+        the eliminants' coefficients there."""
+        k = self.inputs(Jet(phi, 1.0, 0.0))
+        coef = coefficients(self.group, values(k))
+        theta, step = guess, np.full(guess.shape, np.inf)
+        with np.errstate(all="ignore"):
+            for _ in range(ROOT_ITERATIONS):
+                value, slope, _ = _trig(coef, theta)
+                step = value / slope
+                theta = theta - step
+                if not (np.abs(step) > CONVERGED).any():
+                    break
+            x, x1, x2, _, posed = _poses(self.group, k, theta, self.sign)
+            apart = roots_apart(coef, theta)
+            slope = np.sign(_trig(coef, theta)[1])
+        e = self.group.eliminated
+        return (_Root(theta, x1[..., e], x2[..., e], apart, slope, x, x1),
+                posed & (np.abs(step) <= CONVERGED), coef)
+
+
+    def fold(self, star: np.ndarray, top: np.ndarray, phi: np.ndarray, here: _Root
+             ) -> np.ndarray:
+        """Where the double root ``top`` at φ = ``star`` is a change point of the mode the
+        state (φ, ``here``) is on: its pose x* (the group's recovery) satisfies the
+        equations to ``ACCEPT``·L, and the square-root form of a fold puts it from the
+        state, x* ≈ x + 2(φ* − φ)·x′, to half the distance |x* − x| (:func:`_ending`)."""
+        kv = values(self.inputs(star))
+        w = weights(self.group)
+        with np.errstate(all="ignore"):
+            x = expand(self.group).recover(np.exp(1j * top)[..., None], expand(kv))[..., 0, :]
+            f = np.stack(np.broadcast_arrays(*map(plain, self.group.residual(x, kv))), axis=-1)
+            model = here.x + (2.0 * (star - phi))[..., None] * here.x1
+            off = (np.abs(_turned(self.group, x - model)) * w).sum(axis=-1)
+            apart = (np.abs(_turned(self.group, x - here.x)) * w).sum(axis=-1)
+            return np.asarray((np.abs(f).max(axis=-1) <= ACCEPT * np.asarray(self.group.size))
+                              & (off <= 0.5 * apart))
+
+
+def _turned(group: HigherGroup[K], dx: np.ndarray) -> np.ndarray:
+    """Differences of unknowns (..., n) with those of angles taken in (−π, π]."""
+    return np.asarray(np.where(np.asarray(group.lengths), dx, np.angle(np.exp(1j * dx))))
+
+
+def _locate(leg: _Leg, low: tuple[np.ndarray, ...], high: tuple[np.ndarray, ...],
+            rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The change point of the ``rows`` between the ends ``low`` = (φ_a, θ_a, D_a), where the
+    local discriminant D at the extremum θ_a between the pair of roots is positive (the
+    pair real), and ``high`` = (φ_b, θ_b, D_b) with D_b < 0: regula falsi with the Illinois
+    rule on D(φ), the extremum followed from the bracket's ends. Returns φ* where the
+    bracket or two successive points are within ``LOCATED``, and θ* (NaN where not
+    located; the caller confirms the meeting at ``MEET`` on either side)."""
+    a, theta_a, value_a = low
+    b, theta_b, value_b = high
+    kept = np.zeros(a.shape, dtype=np.int8)
+    point, theta_p = np.full(a.shape, np.nan), np.full(a.shape, np.nan)
+    settled = np.zeros(a.shape, dtype=bool)
+    with np.errstate(all="ignore"):
+        for _ in range(LOCATE_ITERATIONS):
+            wide = rows & ~settled & (np.abs(b - a) > LOCATED)
+            if not wide.any():
+                break
+            mid = (a * value_b - b * value_a) / (value_b - value_a)
+            inside = (mid - a) * (mid - b) < 0.0
+            mid = np.where(wide & inside, mid, np.where(wide, 0.5 * (a + b), a))
+            frac = np.where(wide, (mid - a) / (b - a), 0.0)
+            guess = theta_a + frac * np.angle(np.exp(1j * (theta_b - theta_a)))
+            theta, value = _extremum(leg.coef(mid), guess)
+            rows &= np.isfinite(value)
+            settled |= wide & (np.abs(mid - point) <= LOCATED)
+            point, theta_p = np.where(wide, mid, point), np.where(wide, theta, theta_p)
+            real, gone = wide & (value > 0.0), wide & (value <= 0.0)
+            value_b = np.where(real & (kept == 1), 0.5 * value_b, value_b)
+            value_a = np.where(gone & (kept == -1), 0.5 * value_a, value_a)
+            a, value_a, theta_a = (np.where(real, v, w) for v, w in
+                                   ((mid, a), (value, value_a), (theta, theta_a)))
+            b, value_b, theta_b = (np.where(gone, v, w) for v, w in
+                                   ((mid, b), (value, value_b), (theta, theta_b)))
+            kept = np.where(real, 1, np.where(gone, -1, kept)).astype(np.int8)
+    narrow = rows & ~settled & (np.abs(b - a) <= LOCATED)
+    return (np.where(rows & settled, point, np.where(narrow, 0.5 * (a + b), np.nan)),
+            np.where(rows & settled, theta_p, np.where(narrow, theta_a, np.nan)))
+
+
+def _canonical(leg: _Leg, star: np.ndarray, top: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The located change points φ* (θ* their double roots) located once more from a
+    bracket of ±2·``GRAIN`` about φ* rounded to ``GRAIN``, the extremum from θ* rounded
+    likewise: the end found does not depend on where the walk came from (the columns, so
+    the requested angles), but where φ* lies within roundoff of half a grain."""
+    with np.errstate(invalid="ignore"):
+        centre, guess = np.round(star / GRAIN) * GRAIN, np.round(top / GRAIN) * GRAIN
+        a, b = centre - 2.0 * GRAIN * leg.s, centre + 2.0 * GRAIN * leg.s
+        theta_a, value_a = _extremum(leg.coef(a), guess)
+        theta_b, value_b = _extremum(leg.coef(b), guess)
+        again, at = _locate(leg, (a, theta_a, value_a), (b, theta_b, value_b),
+                            np.isfinite(star) & (value_a > 0.0) & (value_b < 0.0))
+    return np.where(np.isfinite(again), again, star), np.where(np.isfinite(again), at, top)
+
+
+def _walk_path(leg: _Leg) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[tuple[np.ndarray, ...]]]:
+    """Each row walked by sub-steps from its start column along the path, column after
+    column in its direction, until its root is the path's again.
+
+    A sub-step takes the root by Newton's method on Φ from the predictor and accepts it
+    where it is a pose of the mode and the link passes the step test (:func:`_link`). At a
+    column the walk is through where its root is the path's (closer than half its
+    separation bound); else it goes on to the next column. A rejected sub-step where the
+    local discriminant (:func:`_extremum`, at the extremum next to the root) has changed
+    sign from the state brackets a change point, located by :func:`_locate` and
+    :func:`_canonical`; the row then ends there once the pose at the double root is where
+    the square-root form of a fold puts it from the state (:meth:`_Leg.fold`; the sub-steps
+    go on towards φ*, at most halfway each), and the pair really meets there: the local
+    discriminant (:func:`_pair`) is +1 at ``MEET`` before φ* and −1 after.
+
+    Returns the outcome (``THROUGH``, ``ENDS``, or 0: neither within ``REFINE_TRIALS``
+    sub-steps above ``REFINE_MIN``), the last column reached (for ``THROUGH`` the one
+    where the path is met again), φ* of the rows that end, and the roots the walk took at
+    the columns it passed (row, column, θ).
+    """
+    s, columns = leg.s, leg.columns
+    r = s.shape[0]
+    rows = np.arange(r)
+    at = leg.start.copy()
+    phi, here = columns[at], leg.here
+    coef = leg.coef(phi)
+    status = np.zeros(r, dtype=np.int8)
+    star, top = np.full(r, np.nan), np.full(r, np.nan)
+    h = np.full(r, 0.5 * np.diff(columns).max())
+    passed: list[tuple[np.ndarray, ...]] = []
+    active = np.isfinite(here.theta)
+    with np.errstate(all="ignore"):
+        for _ in range(REFINE_TRIALS):
+            aim = np.clip(at + s.astype(int), 0, columns.size - 1)
+            active &= aim != at
+            if not active.any():
+                break
+            goal, target = columns[aim], leg.path[rows, aim]
+            rest = np.abs(goal - phi)
+            near = np.isfinite(star)
+            step = np.where(near, np.minimum(h, 0.5 * np.abs(star - phi)), np.minimum(h, rest))
+            hit = ~near & (step >= rest)
+            trial = np.where(active, np.where(hit, goal, phi + s * step), phi)
+            dh = trial - phi
+            new, posed, fresh = leg.root(trial,
+                                         here.theta + dh * here.t1 + 0.5 * dh * dh * here.t2)
+            ok = active & posed & _link(dh, here, new)
+            arrive = ok & hit
+            through = arrive & (_chord(new.theta, target) <= 0.5 * new.apart)
+            status[through] = THROUGH
+            on = arrive & ~through
+            passed.append((rows[on], aim[on], new.theta[on]))
+            at = np.where(arrive, aim, at)
+            look = active & ~ok & ~near
+            if look.any():
+                theta_a, value_a = _extremum(coef, here.theta)
+                theta_b, value_b = _extremum(fresh, theta_a)
+                look &= (value_a > 0.0) & (value_b < 0.0)
+            if look.any():
+                found, point = _canonical(leg, *_locate(
+                    leg, (phi, theta_a, value_a), (trial, theta_b, value_b), look))
+                star, top = np.where(look, found, star), np.where(look, point, top)
+            phi, here = np.where(ok, trial, phi), new.where(ok, here)
+            coef = np.where(ok[:, None], fresh, coef)
+            h = np.where(ok, np.where(step < h, h, 2.0 * h), 0.5 * step)
+            into = active & ~through & np.isfinite(star)
+            if into.any():
+                into &= leg.fold(star, top, phi, here)
+                into &= _pair(leg.group, values(leg.inputs(star - s * MEET)), top) > 0
+                into &= _pair(leg.group, values(leg.inputs(star + s * MEET)), top) < 0
+                status[into] = ENDS
+            active &= ~through & ~into & (h >= REFINE_MIN)
+    return status, at, np.where(status == ENDS, star, np.nan), passed
+
+
+def _refined(group: HigherGroup[K], inputs: Inputs[K], paths: Chains, root: _Root,
+             cert: np.ndarray, sign: np.ndarray, todo: np.ndarray
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The links of the path that fail the step test (``cert`` False, (U, D)) walked by
+    sub-steps (:func:`_walk_path`), for the designs ``todo``: from the first failing link of
+    the forward stretch (from column 0 on), and, once the forward stretch ends at a change
+    point, from the last failing link of the backward stretch (from column U down), up to
+    ``REFINE_ROUNDS`` walks each. The links a walk passes are certified.
+
+    Returns the certified links, the change points (D, 2) where the forward and the
+    backward stretch end (NaN where none is located), the links (D, 2) that hold them, and
+    the path's roots (U + 1, D) with those the walks took at the columns they passed.
+    """
+    u, d = cert.shape
+    cert = cert.copy()
+    theta = paths.theta.copy()
+    ends = np.full((d, 2), np.nan)
+    at = np.full((d, 2), -1)
+    designs = np.arange(d)
+    link = np.arange(u)[:, None]
+    for _ in range(REFINE_ROUNDS + 1):
+        whole = cert.all(axis=0)
+        first = np.argmin(cert, axis=0)
+        last = u - 1 - np.argmin(cert[::-1], axis=0)
+        ahead = todo & ~whole & np.isnan(ends[:, 0])
+        behind = todo & ~whole & ~ahead & np.isnan(ends[:, 1]) & paths.backward[-1]
+        rows = ahead | behind
+        small = _take(group, rows) if rows.any() else None
+        if small is None:
+            break
+        column = designs[rows]
+        side = np.where(ahead[column], 0, 1)
+        start = np.where(side == 0, first[column], last[column] + 1)
+        leg = _Leg(small, _local(inputs, rows), np.where(side == 0, 1.0, -1.0), paths.columns,
+                   theta[:, column].T, start, root.at((start, column)), sign[column])
+        status, reached, star, passed = _walk_path(leg)
+        for row, col, value in passed:
+            # where the forward stretch reaches, its roots count
+            mine = (side[row] == 0) | (col > at[column[row], 0])
+            theta[col[mine], column[row][mine]] = value[mine]
+        low = np.where(side == 0, start, reached)
+        high = np.where(side == 0, reached, start)
+        walked = (link >= low) & (link < high) & (status > 0)
+        cert[:, column] |= walked
+        ending = status == ENDS
+        ends[column[ending], side[ending]] = star[ending]
+        at[column[ending], side[ending]] = np.where(side == 0, reached, reached - 1)[ending]
+        todo = todo.copy()
+        todo[column[status == 0]] = False
+    return cert, ends, at, theta
 
 
 def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
                     sketch: tuple[np.ndarray, K], found: np.ndarray, modes: AssemblyModes,
                     jets: bool, delta: float | np.ndarray) -> HigherSolution:
     """The sketched mode along the path of its root over the grid of angles
-    (:func:`~assur.kinematics.higher.track.chains`) where every link of that path passes the
-    continuation's step test (:func:`_links`), and step by step (:func:`_step_follow`) for
-    the other designs: there the mode ends, or the grid is too coarse to tell, and the ends
-    and reasons are those of the continuation. ``sketch`` holds the sketched mode x0 (D, n)
-    and the inputs there."""
+    (:func:`~assur.kinematics.higher.track.chains`), as far as each link of that path passes
+    the continuation's step test (:func:`_links`) or is walked through by sub-steps
+    (:func:`_refined`). A design is taken where its path goes round the turn, or where its
+    forward stretch (from φ = 0) and backward stretch (from 2π down) both end at located
+    change points (the angles between not reached, reason 8); the other designs are
+    followed step by step (:func:`_step_follow`). ``sketch`` holds the sketched mode x0
+    (D, n) and the inputs there."""
     x0, k0 = sketch
     d = x0.shape[0]
-    paths = chains(group, inputs, np.mod(phi, TWO_PI), x0[:, group.eliminated], found)
+    e = group.eliminated
+    paths = chains(group, inputs, np.mod(phi, TWO_PI), x0[:, e], found)
     at = np.broadcast_to(paths.columns[:, None], paths.theta.shape)
-    k = inputs(Jet(at, 1.0, 0.0))
-    kv = values(k)
-    with np.errstate(all="ignore"):
-        x = expand(group).recover(np.exp(1j * paths.theta)[..., None], expand(kv))[..., 0, :]
-        x, _ = newton(group, kv, x, 2)
-        f = np.stack(np.broadcast_arrays(*map(plain, group.residual(x, kv))), axis=-1)
-        sign = np.sign(det_rows(group.jacobian(x0, k0)))
-        jac, lines = group.lines(x, kv)
-        x1, x2 = analogs(group, k, x, jac)
-        posed = (np.abs(f).max(axis=-1) <= ACCEPT * np.asarray(group.size)) \
-            & (np.sign(det_rows(jac)) == sign)
-    good = paths.around & posed.all(axis=0) & _links(paths, x1[..., group.eliminated],
-                                                     x2[..., group.eliminated])
-    column = np.searchsorted(paths.columns, np.mod(phi, TWO_PI))
+    sign = np.broadcast_to(np.sign(det_rows(group.jacobian(x0, k0))), (d,))
+    x, x1, x2, lines, posed = _poses(group, inputs(Jet(at, 1.0, 0.0)), paths.theta, sign)
+    root = _Root(paths.theta, x1[..., e], x2[..., e], paths.apart, paths.slope, x, x1)
+    same = (paths.forward[:-1] & paths.forward[1:]) | (paths.backward[:-1] & paths.backward[1:])
+    cert = _links(paths.columns, root) & posed[:-1] & posed[1:] & same
+    cert, ends, ends_at, theta = _refined(group, inputs, paths, root, cert, sign,
+                                          found & ~cert.all(axis=0))
+    around = found & cert.all(axis=0) & np.isnan(ends).all(axis=-1)
+    ended = found & np.isfinite(ends).all(axis=-1)
+    column = np.searchsorted(paths.columns, np.mod(phi, TWO_PI))[:, None]
+    # the poses at the requested columns where a walk took another root than the path's
+    moved = np.zeros(theta.shape, dtype=bool)
+    moved[column[:, 0]] = (np.isfinite(theta) & (theta != paths.theta))[column[:, 0]]
+    small = _take(group, moved) if moved.any() else None
+    if small is not None:
+        redo = _poses(small, _local(inputs, moved)(Jet(at[moved], 1.0, 0.0)), theta[moved],
+                      np.broadcast_to(sign, moved.shape)[moved])
+        for whole, fresh in zip((x, x1, x2, lines), redo[:4], strict=True):
+            whole[moved] = fresh
+    reached = around | (ended & ((column <= ends_at[:, 0]) | (column > ends_at[:, 1])))
+    good = around | ended
     angle = np.broadcast_to(phi[:, None], (phi.size, d))
-    solution = _from_path(group, inputs(Jet(angle, 1.0, 0.0)) if jets else inputs(angle),
-                          x[column], (x1[column], x2[column]), lines[column], good,
-                          paths.closed, found, modes, jets, delta)
+    solution = _from_path(group, inputs, (phi, inputs(Jet(angle, 1.0, 0.0)) if jets
+                                          else inputs(angle)),
+                          x[column[:, 0]], (x1[column[:, 0]], x2[column[:, 0]]),
+                          lines[column[:, 0]], reached, ends,
+                          np.where(ended, True, paths.closed), found, modes, jets, delta)
     if good.all():
         return solution
     rows = np.flatnonzero(~good)
@@ -1059,22 +1421,6 @@ def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
     part = _step_follow(small_group, small_inputs, phi, x0[rows], found[rows], modes, jets,
                         np.asarray(delta)[rows] if np.ndim(delta) else delta)
     return _splice(solution, part, rows)
-
-
-def _links(paths: Chains, t1: np.ndarray, t2: np.ndarray) -> np.ndarray:
-    """Where every link of a path passes the continuation's step test: the root's analogs
-    (θ′, θ″ over the columns, (U + 1, D)) predict the next root, θ + hθ′ + ½h²θ″, within a
-    quarter of its separation bound, and the next root's analogs predict this one back within
-    a quarter of this one's; both keep the sign of Φ′."""
-    h = np.diff(paths.columns)[:, None]
-    theta = paths.theta
-    with np.errstate(invalid="ignore"):
-        ahead = theta[:-1] + h * t1[:-1] + 0.5 * h * h * t2[:-1]
-        back = theta[1:] - h * t1[1:] + 0.5 * h * h * t2[1:]
-        ok = (np.abs(np.exp(1j * ahead) - np.exp(1j * theta[1:])) <= 0.25 * paths.apart[1:]) \
-            & (np.abs(np.exp(1j * back) - np.exp(1j * theta[:-1])) <= 0.25 * paths.apart[:-1]) \
-            & (paths.slope[1:] == paths.slope[:-1])
-    return np.asarray(ok.all(axis=0))
 
 
 def _splice(whole: HigherSolution, part: HigherSolution, rows: np.ndarray) -> HigherSolution:
@@ -1093,17 +1439,46 @@ def _splice(whole: HigherSolution, part: HigherSolution, rows: np.ndarray) -> Hi
         for f in dataclasses.fields(whole) if f.name not in ("modes", "periodic")})
 
 
-def _from_path(group: HigherGroup[K], k: K, x: np.ndarray, analog: tuple[np.ndarray, np.ndarray],
-               lines: np.ndarray, good: np.ndarray, closed: np.ndarray, found: np.ndarray,
+def _unreached(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
+               reached: np.ndarray, margin: np.ndarray, ended: np.ndarray
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """The margin and reason (D, N) at the crank angles ``phi`` (N,) with the angles not
+    ``reached`` (D, N) filled in: the gap's margin (:func:`_gap`) and ``MODE_ENDS`` for the
+    designs whose passes both ``ended`` (D,) at change points, ``NOT_FOLLOWED`` for the
+    others; NaN and ``UNDEFINED_INPUT`` where an input is undefined."""
+    d = reached.shape[0]
+    margin = margin.copy()
+    reason = np.zeros(reached.shape, dtype=np.int8)
+    columns = np.flatnonzero(~reached.all(axis=0))
+    if columns.size:
+        kv = values(inputs(np.broadcast_to(phi[columns, None], (columns.size, d))))
+        defined = np.broadcast_to(finite_inputs(kv), (columns.size, d)).T
+        gone = ~reached[:, columns]
+        margin[:, columns] = np.where(gone, np.where(defined, _gap(group, kv, gone.T).T, np.nan),
+                                      margin[:, columns])
+        reason[:, columns] = np.where(
+            gone, np.where(defined, np.where(ended[:, None], Reason.MODE_ENDS,
+                                             Reason.NOT_FOLLOWED),
+                           Reason.UNDEFINED_INPUT), 0)
+    return margin, reason
+
+
+def _from_path(group: HigherGroup[K], inputs: Inputs[K], at: tuple[np.ndarray, K],
+               x: np.ndarray, analog: tuple[np.ndarray, np.ndarray], lines: np.ndarray,
+               reached: np.ndarray, ends: np.ndarray, closed: np.ndarray, found: np.ndarray,
                modes: AssemblyModes, jets: bool, delta: float | np.ndarray) -> HigherSolution:
-    """The solution at the requested angles (inputs ``k`` as jets, unknowns ``x`` and their
-    ``analog`` (N, D, n), margin rows ``lines``) of the designs ``good``; the others are
-    left unreached."""
-    reached = np.broadcast_to(good, x.shape[:-1])
+    """The solution at the requested angles ``at`` = (φ (N,), the inputs there, as jets with
+    ``jets``) from the path's unknowns ``x`` and their ``analog`` (N, D, n) and margin rows
+    ``lines``, where ``reached`` (N, D). The passes' ``ends`` (D, 2) are change points where
+    both are given (reason 8 between them), none where neither is."""
+    phi, k = at
+    ended = np.isfinite(ends).all(axis=-1)
     with np.errstate(all="ignore"):
         margin = np.where(reached, hadamard(lines), np.nan)
-        exists = reached & (margin >= np.asarray(delta))
-    reason = np.where(exists, 0, np.where(reached, Reason.MODE_ENDS, Reason.NOT_FOLLOWED))
+    margin, reason = _unreached(group, inputs, phi, reached.T, margin.T, found & ended)
+    with np.errstate(invalid="ignore"):
+        exists = reached & (margin.T >= np.asarray(delta))
+    reason = np.where(reached.T & ~exists.T, Reason.MODE_ENDS, reason).astype(np.int8)
     x = np.where(exists[..., None], x, np.nan)
     cols: Any = ([Jet(x[..., i], analog[0][..., i], analog[1][..., i]) for i in range(group.n)]
                  if jets else x)
@@ -1114,14 +1489,13 @@ def _from_path(group: HigherGroup[K], k: K, x: np.ndarray, analog: tuple[np.ndar
         parts = _kept(v, exists, jets)
         return Jet(*parts) if jets else parts[0]
 
-    d = good.shape[0]
+    why = np.where(ended, Reason.MODE_ENDS, 0).astype(np.int8)
     return HigherSolution(
         joints={a: final(v) for a, v in points.items()},
         rotations={a: final(v) for a, v in turns.items()},
-        x=x.transpose(1, 0, 2), margin=np.where(reached, margin, np.nan).T, exists=exists.T,
-        reason=reason.T.astype(np.int8), ends=np.full((d, 2), np.nan),
-        end_reasons=np.zeros((d, 2), dtype=np.int8), closed=closed | ~good, found=found,
-        modes=modes)
+        x=x.transpose(1, 0, 2), margin=margin, exists=exists.T, reason=reason,
+        ends=np.where(ended[:, None], ends, np.nan), end_reasons=np.stack([why, why], axis=-1),
+        closed=closed, found=found, modes=modes)
 
 
 def _follow_stroke(group: HigherGroup[K], inputs: Inputs[K], q: np.ndarray, stroke: Stroke,

@@ -5,8 +5,9 @@ every design, the real roots of the eliminant are bracketed in one vectorised ca
 (:func:`~assur.kinematics.higher.roots.real_roots`). Real roots never cross: a root at one
 angle goes on as a root at the next with the same sign of Φ′, or it meets its neighbour (of
 the other sign) at a change point. The path from the sketched root takes at each angle the
-nearest root that is nearest back and has the same sign; its roots are then polished, with
-the separation bound of each from every other root of p, real or complex. The path is only a
+nearest root that is nearest back and has the same sign, forward from φ = 0 and, where that
+chain is lost, backward from φ = 2π; its roots are then polished, with the separation bound
+of each from every other root of p, real or complex. The path is only a
 candidate: a root and its neighbour may meet and a new pair appear between two angles, or a
 pair closer than the samples' spacing may be missed. The caller
 (:func:`~assur.kinematics.higher.continuation.follow_mode`) accepts a link only where the
@@ -36,6 +37,8 @@ __all__ = ["Chains", "chains"]
 TWO_PI = 2.0 * np.pi
 #: Columns of the uniform grid per turn, besides the requested angles.
 BASE = 72
+#: A column of the uniform grid this close to a requested angle (rad) is left out.
+SAME = 1e-9
 
 
 @dataclass(frozen=True, eq=False)
@@ -104,7 +107,8 @@ def _from_first(links: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class Chains:
-    """The candidate path of the sketched mode's root over one turn forward from φ = 0.
+    """The candidate path of the sketched mode's root over one turn: forward from φ = 0 and,
+    where that is lost, backward from φ = 2π.
 
     Attributes
     ----------
@@ -114,18 +118,42 @@ class Chains:
     theta, apart, slope : ndarray, shape (U + 1, D)
         The root on the path at each column, its separation bound from every other root of
         p, and the sign of Φ′ there; NaN (0 for the sign) off the path.
+    forward, backward : ndarray, bool, shape (U + 1, D)
+        The root at the column is on the chain of nearest roots from the sketched root at
+        φ = 0, or on the one from it at φ = 2π going down (followed only where the forward
+        one is lost before 2π). Where both hold it is the same root (the chains are then
+        one). A sketched root in no bracket is on both at φ = 0 and 2π only.
     around : ndarray, bool, shape (D,)
-        The path reaches φ = 2π.
+        The forward chain reaches φ = 2π.
     closed : ndarray, bool, shape (D,)
-        It reaches φ = 2π at the root where it started.
+        The path reaches φ = 2π at the root where it started.
     """
 
     columns: np.ndarray
     theta: np.ndarray
     apart: np.ndarray
     slope: np.ndarray
+    forward: np.ndarray
+    backward: np.ndarray
     around: np.ndarray
     closed: np.ndarray
+
+
+def _inverse(links: np.ndarray) -> np.ndarray:
+    """The links of each column back to the previous one (U, D, R): the root at the previous
+    column linked to each root, −1 where none is (a link is mutual, so at most one is)."""
+    out = np.full(links.shape, -1)
+    c, d, i = np.nonzero(links >= 0)
+    out[c, d, links[c, d, i]] = i
+    return out
+
+
+def _chain(maps: np.ndarray, start: np.ndarray) -> np.ndarray:
+    """The index of the root reached at every column (U + 1, D) from the roots ``start`` (D,)
+    of the first (−1 where a start is missing or the chain is lost)."""
+    at = np.maximum(start, 0)[None, :, None]
+    index = np.take_along_axis(maps, np.broadcast_to(at, maps.shape[:2] + (1,)), axis=-1)[..., 0]
+    return np.asarray(np.where(start >= 0, index, -1))
 
 
 def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.ndarray,
@@ -148,35 +176,59 @@ def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.nd
     Returns
     -------
     Chains
-        A path is lost where the sketched mode's root is in no bracket at φ = 0, or where
+        A chain is lost where the sketched mode's root is in no bracket at φ = 0, or where
         the nearest root at the next column is not nearest back, or has the other sign of
-        Φ′. The path is a candidate: the caller checks every link against the root's
-        analogs before it takes it for the mode's.
+        Φ′; the path is the forward chain, and the backward one from φ = 2π where the forward
+        one is lost. The path is a candidate: the caller checks every link against the
+        root's analogs before it takes it for the mode's.
     """
     d = theta0.shape[0]
-    columns = np.union1d(np.concatenate([[0.0], wanted]), TWO_PI / BASE * np.arange(BASE))
+    asked = np.union1d([0.0], wanted)
+    base = TWO_PI / BASE * np.arange(BASE)
+    # a uniform column within roundoff of a requested angle is that angle
+    after = np.clip(np.searchsorted(asked, base), 1, asked.size - 1)
+    apart = np.minimum(np.abs(base - asked[after - 1]), np.abs(base - asked[after])) \
+        if asked.size > 1 else np.abs(base - asked[0])
+    columns = np.union1d(asked, base[apart > SAME])
     u = columns.size
     k = values(inputs(np.broadcast_to(columns[:, None], (u, d))))
     col = _columns(group, k)
     with np.errstate(invalid="ignore"):
-        start = np.mod(theta0[:, None] - col.low[0], TWO_PI) <= col.high[0] - col.low[0]
-    i0 = np.argmax(start, axis=-1)
-    alive = found & start.any(axis=-1)
+        inside = np.mod(theta0[:, None] - col.low[0], TWO_PI) <= col.high[0] - col.low[0]
+    alive = found & inside.any(axis=-1)
     nxt = _Column(*(np.concatenate([getattr(col, f)[1:], getattr(col, f)[:1]])
                     for f in ("theta", "slope", "low", "high", "coef")))
     links = _links(col, nxt)
-    start_at = np.where(alive, i0, -1)[None, :, None]
-    index = np.take_along_axis(_from_first(links), np.maximum(start_at, 0), axis=-1)[..., 0]
-    index = np.where(start_at[..., 0] >= 0, index, -1)
+    start = np.where(alive, np.argmax(inside, axis=-1), -1)
+    ahead = _chain(_from_first(links), start)
+    lost = (start >= 0) & (ahead[-1] < 0)
+    behind = (_chain(_from_first(_inverse(links)[::-1]), np.where(lost, start, -1))[::-1]
+              if lost.any() else np.full(ahead.shape, -1))
+    index = np.where(ahead >= 0, ahead, behind)
     rows = np.arange(d)
     on = index >= 0
     at = np.append(np.arange(u), 0)[:, None], rows[None, :], np.maximum(index, 0)
 
     coef = col.coef[at[:2]]
     a, b = trig_form(coef.reshape(-1, coef.shape[-1]))
+    # a sketched root in no bracket (its neighbour closer than the samples' spacing) is the
+    # path's root at φ = 0 and 2π all the same, on neither chain beyond
+    seed = found & ~alive
+    ends = np.zeros(on.shape, dtype=bool)
+    ends[[0, -1]] = seed
     with np.errstate(all="ignore"):
         theta = polish(a, b, np.where(on, col.low[at], np.nan).reshape(-1, 1),
                        np.where(on, col.high[at], np.nan).reshape(-1, 1)).reshape(on.shape)
+        theta = np.where(ends, theta0, theta)
         apart = separation(coef, theta)
-    return Chains(np.append(columns, TWO_PI), theta, apart, np.where(on, col.slope[at], 0.0),
-                  on[-1], on[-1] & (index[-1] == index[0]))
+        slope = np.where(on, col.slope[at], np.where(ends, np.sign(_slope(coef, theta)), 0.0))
+    return Chains(np.append(columns, TWO_PI), theta, apart, slope, (ahead >= 0) | ends,
+                  ((behind >= 0) & (index == behind)) | ends, ahead[-1] >= 0,
+                  (on[-1] & (index[-1] == start)) | seed)
+
+
+def _slope(coef: np.ndarray, theta: np.ndarray) -> np.ndarray:
+    """Φ′(θ) of the eliminants whose p has the coefficients ``coef`` (..., 2m + 1)."""
+    m = (coef.shape[-1] - 1) // 2
+    n = np.arange(-m, m + 1)
+    return np.asarray((1j * n * coef * np.exp(1j * n * theta[..., None])).sum(axis=-1).real)

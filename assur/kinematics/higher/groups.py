@@ -496,17 +496,17 @@ class Triad(HigherGroup["TriadInputs"]):
 
     def equations(self, x: np.ndarray, k: TriadInputs) -> tuple[np.ndarray, np.ndarray]:
         """F(x) and the Jacobian from one evaluation of the constraint lines (a P–P leash: as
-        :meth:`HigherGroup.equations`): f_k = ν_k·(P_k − A_k) for a line, and for a bar,
-        where ν_k = (P_k − A_k)/r_k, f_k = (ν_k·(P_k − A_k) − r_k)/2, the residual's
-        (|P_k − A_k|² − r_k²)/(2r_k)."""
+        :meth:`HigherGroup.equations`): with the arm P_k − A_k, f_k = ν_k·(P_k − A_k) of a
+        line, (|P_k − A_k|² − r_k²)/(2r_k) of a bar, the same operations as :meth:`residual`."""
         if self.pinned:
             return super().equations(x, k)
         nu, at, base, p1 = self._constraints(x, k)
         arm = base - np.stack(np.broadcast_arrays(*map(plain, k.a)), axis=-1)
         f = (np.conj(nu) * arm).real
-        bars = [i for i, kind in enumerate(self.leashes) if kind.bar]
-        for i in bars:
-            f[..., i] = 0.5 * (f[..., i] - plain(self._length(i, k)))
+        for i, kind in enumerate(self.leashes):
+            if kind.bar:
+                r = plain(self._length(i, k))
+                f[..., i] = ((np.conj(arm[..., i]) * arm[..., i]).real - r * r) / (2.0 * r)
         return f, _line_rows(nu, at, p1[..., None], 1.0)
 
     def jacobian(self, x: np.ndarray, k: TriadInputs) -> np.ndarray:

@@ -31,6 +31,9 @@ TAU = 1e-6
 ACCEPT = 1e-9
 #: Two modes are one when no joint differs by more than SAME·L.
 SAME = 1e-7
+#: The candidates' Newton steps stop once every step is below this (lengths over L plus
+#: angles): Newton converges quadratically there, so the next step would be below roundoff.
+SETTLED = 1e-12
 #: The complex NaN of a missing point.
 NAN = complex(np.nan, np.nan)
 
@@ -176,8 +179,8 @@ def assembly_modes(group: HigherGroup[K], k: K) -> AssemblyModes:
     wide, kk = expand(group), expand(k)
     with np.errstate(all="ignore"):
         near = np.abs(np.log(np.abs(found))) <= TAU
-        x = wide.recover(found / np.abs(found), kk)
-        x, _ = newton(wide, kk, x, 3)
+        x = np.where(near[..., None], wide.recover(found / np.abs(found), kk), np.nan)
+        x, _ = newton(wide, kk, x, 3, SETTLED)
         f = np.stack(np.broadcast_arrays(*map(plain, wide.residual(x, kk))), axis=-1)
         size = np.asarray(group.size)[..., None]
         valid = near & (np.abs(f).max(axis=-1) <= ACCEPT * size)

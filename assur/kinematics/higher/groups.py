@@ -585,7 +585,8 @@ class Triad(HigherGroup["TriadInputs"]):
         x0, x1 = _cross_terms(line2, line3)
         r1 = plain(self._length(0, k)) ** 2
         cross = [x0 * x0 + 2.0 * np.abs(x1) ** 2, 2.0 * x0 * x1, x1 * x1, 0.0]
-        return [sum(m[j] * np.conj(m[j - n]) for j in range(n, 4)) - r1 * cross[n]
+        conj = [np.conj(v) for v in m]
+        return [sum(m[j] * conj[j - n] for j in range(n, 4)) - r1 * cross[n]
                 for n in range(self.degree + 1)]
 
     def coefficients(self, k: TriadInputs) -> np.ndarray:

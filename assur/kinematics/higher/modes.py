@@ -31,8 +31,9 @@ TAU = 1e-6
 ACCEPT = 1e-9
 #: Two modes are one when no joint differs by more than SAME·L.
 SAME = 1e-7
-#: The candidates' Newton steps stop once every step is below this (lengths over L plus
-#: angles): Newton converges quadratically there, so the next step would be below roundoff.
+#: Candidates recovered with max|F| ≤ SETTLED·L need no Newton step; else the Newton steps
+#: stop once every step is below this (lengths over L plus angles): Newton converges
+#: quadratically there, so the next step would be below roundoff.
 SETTLED = 1e-12
 #: The complex NaN of a missing point.
 NAN = complex(np.nan, np.nan)
@@ -177,33 +178,39 @@ def assembly_modes(group: HigherGroup[K], k: K) -> AssemblyModes:
     """
     found = roots(coefficients(group, k))
     wide, kk = expand(group), expand(k)
+    size = np.asarray(group.size)[..., None]
     with np.errstate(all="ignore"):
         near = np.abs(np.log(np.abs(found))) <= TAU
         x = np.where(near[..., None], wide.recover(found / np.abs(found), kk), np.nan)
-        x, _ = newton(wide, kk, x, 3, SETTLED)
-        f = np.stack(np.broadcast_arrays(*map(plain, wide.residual(x, kk))), axis=-1)
-        size = np.asarray(group.size)[..., None]
+        f = _residual(wide, kk, x)
+        if not (np.abs(f).max(axis=-1) <= SETTLED * size)[near].all():
+            x, _ = newton(wide, kk, x, 3, SETTLED)
+            f = _residual(wide, kk, x)
         valid = near & (np.abs(f).max(axis=-1) <= ACCEPT * size)
-        points = {name: plain(p) for name, p in wide.joints(x, kk).items()}
+        names = list(wide.joints(x, kk).items())
         # the joints and the eliminated rotation (as a point at the distance L): a triad
         # whose leashes all slide on the base has the same joints in two modes
         turn = size * np.exp(1j * x[..., group.eliminated])
-        stack = np.stack(np.broadcast_arrays(*points.values(), turn), axis=-1)
+        stack = np.stack(np.broadcast_arrays(*(plain(p) for _, p in names), turn), axis=-1)
         apart = np.abs(stack[..., :, None, :] - stack[..., None, :, :]).max(axis=-1)
         same = (apart <= SAME * size[..., None]) & valid[..., :, None]
         earlier = np.tril(np.ones(same.shape[-2:], dtype=bool), -1).T
         valid &= ~(same & earlier).any(axis=-2)
         theta = np.where(valid, x[..., group.eliminated], np.inf)
-        order = np.argsort(theta, axis=-1)
-        valid = np.take_along_axis(valid, order, axis=-1)
-        x = np.where(valid[..., None], np.take_along_axis(x, order[..., None], axis=-2), np.nan)
+        order = np.argsort(theta, axis=-1)[..., None]
+        valid = np.take_along_axis(valid, order[..., 0], axis=-1)
+        x = np.where(valid[..., None], np.take_along_axis(x, order, axis=-2), np.nan)
+        stack = np.where(valid[..., None], np.take_along_axis(stack, order, axis=-2), NAN)
         jac, rows = wide.lines(x, kk)
         margin = hadamard(rows)
-        points = {name: np.where(valid, np.take_along_axis(np.broadcast_to(p, valid.shape),
-                                                           order, axis=-1), NAN)
-                  for name, p in points.items()}
-    return AssemblyModes(x=x, count=valid.sum(axis=-1), joints=points, margin=margin,
-                         det_sign=np.sign(det_rows(jac)), roots=found)
+    return AssemblyModes(x=x, count=valid.sum(axis=-1),
+                         joints={name: stack[..., j] for j, (name, _) in enumerate(names)},
+                         margin=margin, det_sign=np.sign(det_rows(jac)), roots=found)
+
+
+def _residual(group: HigherGroup[K], k: K, x: np.ndarray) -> np.ndarray:
+    """F(x), shape (..., n)."""
+    return np.stack(np.broadcast_arrays(*map(plain, group.residual(x, k))), axis=-1)
 
 
 def select_mode(group: HigherGroup[K], k: K, modes: AssemblyModes

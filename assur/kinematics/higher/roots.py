@@ -203,6 +203,13 @@ def polish(a: np.ndarray, b: np.ndarray, low: np.ndarray, high: np.ndarray) -> n
     return np.asarray(np.mod(out, TWO_PI).reshape(shape))
 
 
+def _root(r: np.ndarray, j: int) -> np.ndarray:
+    """r^{1/j} of non-negative r, by square and cube roots where they serve."""
+    if j in (2, 4):
+        return _root(np.sqrt(r), j // 2)
+    return np.asarray(np.cbrt(r) if j == 3 else r if j == 1 else r ** (1.0 / j))
+
+
 def separation(coef: np.ndarray, theta: np.ndarray) -> np.ndarray:
     """A lower bound on the distance from E* = e^{iθ} to every other root of p, real or not.
 
@@ -230,12 +237,14 @@ def separation(coef: np.ndarray, theta: np.ndarray) -> np.ndarray:
     z = np.exp(1j * theta)
     n = coef.shape[-1] - 1
     b = [coef[..., i] for i in range(n, -1, -1)]
-    shifted = []
-    for order in range(n + 1):
-        for i in range(1, n + 1 - order):
+    for order in range(n):
+        # p(E*) itself (b[n] after the first pass) is not needed
+        for i in range(1, n - order if order == 0 else n + 1 - order):
             b[i] = b[i] + z * b[i - 1]
-        shifted.append(b[n - order])
-    q = shifted[1:]
+    size = [np.abs(b[n - 1 - j]) for j in range(n)]  # |q_j|, j = 0 … n − 1
     with np.errstate(all="ignore"):
-        worst = np.max([np.abs(q[j] / q[0]) ** (1.0 / j) for j in range(1, len(q))], axis=0)
+        scale = 1.0 / size[0]
+        worst = size[1] * scale
+        for j in range(2, n):
+            np.maximum(worst, _root(size[j] * scale, j), out=worst)
         return np.asarray(0.5 / worst)

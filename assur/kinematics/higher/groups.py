@@ -2,7 +2,7 @@
 
 Each group is a frozen record of its drawn (sketch) geometry. Its methods give the reduced
 loop equations F(x) = 0 and their Jacobian, the constraint lines that fix the margin, the
-eliminant Φ(θ) sampled on the unit circle, the recovery of the other unknowns from θ, and
+eliminant Φ(θ) and the coefficients of p(E) = E^m·Φ, the recovery of the other unknowns from θ, and
 the joints and link rotations of a solution (``docs/higher_groups.md`` §1–§3).
 
 Points are complex numbers; every drawn value may be a number or an array of shape (D,)

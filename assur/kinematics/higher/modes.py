@@ -1,10 +1,11 @@
 """Every real assembly mode of a triad or a class IV group at one position (§1.4, §1.5).
 
-The eliminant Φ(θ) is a trigonometric polynomial of degree m. It is sampled at 2m + 2 points
-of the unit circle and its coefficients read off an FFT; the roots of p(E) = E^m·Φ are the
-eigenvalues of its companion matrix, batched over designs. Roots on the unit circle give the
-candidates, each completed and polished by Newton's method on the reduced equations, then
-deduplicated on the joint positions.
+The eliminant Φ(θ) is a trigonometric polynomial of degree m; its coefficients come from the
+group in closed form (:meth:`~assur.kinematics.higher.groups.HigherGroup.coefficients`); the
+roots of p(E) = E^m·Φ are the eigenvalues of its companion matrix, batched over designs. Roots
+on the unit circle give the candidates, each completed, polished by Newton's method on the
+reduced equations where the completion does not already satisfy them, then deduplicated on
+the joint positions.
 """
 
 from __future__ import annotations
@@ -52,8 +53,8 @@ def coefficients(group: HigherGroup[K], k: K) -> np.ndarray:
     Returns
     -------
     ndarray, complex
-        The coefficients in increasing powers of E. The FFT bin m + 1 (not returned) is zero
-        up to roundoff, since Φ has degree m.
+        The coefficients in increasing powers of E (p_{2m−n} = conj p_n: Φ is real on the
+        unit circle).
 
     Examples
     --------

@@ -104,11 +104,12 @@ def weights(group: HigherGroup[K]) -> np.ndarray:
 
 
 def newton(group: HigherGroup[K], k: K, x: np.ndarray, iterations: int,
-           tol: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+           tol: float = SETTLED) -> tuple[np.ndarray, np.ndarray]:
     """Newton's method on the reduced equations.
 
-    Stops after ``iterations`` steps, or earlier once every step is at most ``tol``. Returns
-    the iterate and the scaled size of the last step (lengths divided by L, plus angles).
+    Stops after ``iterations`` steps, or earlier once every step is at most ``tol`` (by
+    default ``SETTLED``: a step below it leaves the next one below roundoff). Returns the
+    iterate and the scaled size of the last step (lengths divided by L, plus angles).
     """
     scale = weights(group)
     step = np.full(x.shape[:-1], np.inf)
@@ -185,7 +186,7 @@ def assembly_modes(group: HigherGroup[K], k: K) -> AssemblyModes:
         x = np.where(near[..., None], wide.recover(found / np.abs(found), kk), np.nan)
         f = _residual(wide, kk, x)
         if not (np.abs(f).max(axis=-1) <= SETTLED * size)[near].all():
-            x, _ = newton(wide, kk, x, 3, SETTLED)
+            x, _ = newton(wide, kk, x, 3)
             f = _residual(wide, kk, x)
         valid = near & (np.abs(f).max(axis=-1) <= ACCEPT * size)
         names = list(wide.joints(x, kk).items())

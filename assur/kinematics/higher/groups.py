@@ -2,8 +2,8 @@
 
 Each group is a frozen record of its drawn (sketch) geometry. Its methods give the reduced
 loop equations F(x) = 0 and their Jacobian, the constraint lines that fix the margin, the
-eliminant Φ(θ) and the coefficients of p(E) = E^m·Φ, the recovery of the other unknowns from θ, and
-the joints and link rotations of a solution (``docs/higher_groups.md`` §1–§3).
+eliminant Φ(θ) and the coefficients of p(E) = E^m·Φ, the recovery of the other unknowns from
+θ, and the joints and link rotations of a solution (``docs/higher_groups.md`` §1–§3).
 
 Points are complex numbers; every drawn value may be a number or an array of shape (D,)
 (D candidate designs). The inputs at a crank position (the external hinges and guides carried
@@ -570,10 +570,10 @@ class Triad(HigherGroup["TriadInputs"]):
             return [plain_dot(n, v), np.conj(n) * w / 2.0]
         if self.barless:
             out: list[Any] = [0.0, 0.0, 0.0]
+            lines = [self._leash_line(i, k) for i in range(3)]
             for i in range(3):
-                _, _, c, g = self._leash_line(i, k)
-                x0, x1 = _cross_terms(self._leash_line((i + 1) % 3, k),
-                                      self._leash_line((i + 2) % 3, k))
+                _, _, c, g = lines[i]
+                x0, x1 = _cross_terms(lines[(i + 1) % 3], lines[(i + 2) % 3])
                 out = [out[0] + c * x0 + 2.0 * plain_dot(x1, g), out[1] + c * x1 + g * x0,
                        out[2] + g * x1]
             return out[:self.degree + 1]

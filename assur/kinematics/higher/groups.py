@@ -2,8 +2,8 @@
 
 Each group is a frozen record of its drawn (sketch) geometry. Its methods give the reduced
 loop equations F(x) = 0 and their Jacobian, the constraint lines that fix the margin, the
-eliminant Φ(θ) sampled on the unit circle, the recovery of the other unknowns from θ, and
-the joints and link rotations of a solution (``docs/higher_groups.md`` §1–§3).
+eliminant Φ(θ) and the coefficients of p(E) = E^m·Φ, the recovery of the other unknowns from
+θ, and the joints and link rotations of a solution (``docs/higher_groups.md`` §1–§3).
 
 Points are complex numbers; every drawn value may be a number or an array of shape (D,)
 (D candidate designs). The inputs at a crank position (the external hinges and guides carried
@@ -252,6 +252,14 @@ def _line_rows(nu: np.ndarray, at: np.ndarray, origin: np.ndarray, radius: Any) 
     moment = np.asarray(J.cross(at - origin, nu) / radius)
     nu = np.broadcast_to(nu, moment.shape)
     return np.stack([nu.real, nu.imag, moment], axis=-1)
+
+
+def _cross_terms(one: tuple[Any, ...], two: tuple[Any, ...]) -> tuple[Any, Any]:
+    """cross(a, a′) = x₀ + x₁E + x̄₁/E of two lines' a = α₀ + α₁E, a′ = α′₀ + α′₁E
+    (:meth:`Triad._leash_line`): x₀ = cross(α₀, α′₀) + cross(α₁, α′₁), x₁ = (ᾱ₀α′₁ − α₁ᾱ′₀)/2i."""
+    (a0, a1, _, _), (b0, b1, _, _) = one, two
+    return (plain_cross(a0, b0) + plain_cross(a1, b1),
+            (np.conj(a0) * b1 - a1 * np.conj(b0)) / 2j)
 
 
 @dataclass(frozen=True, eq=False)
@@ -538,22 +546,110 @@ class Triad(HigherGroup["TriadInputs"]):
                 rhs.append(J.dot(normal, ai - a1 - offset))
         return coef, rhs
 
+    def _leash_line(self, i: int, k: TriadInputs) -> tuple[Any, Any, Any, Any]:
+        """The line a_i·W = p_i of leash i (:meth:`_linear`) as polynomials in E: a_i = α₀ + α₁E
+        and p_i = c + γE + γ̄/E (c real), returned as (α₀, α₁, c, γ).
+
+        With d = A_i − A₁ and b the base's offset b_i: a bar a = bE − d, p = (r_i² − r₁²
+        − |bE − d|²)/2; an R–P leash a = n = iu_i, p = n·(d − bE); a P–R leash a = igE (g the
+        base's guide), p = a·(d − bE).
+        """
+        d = plain(k.a[i]) - plain(k.a[0])
+        b = self._offset(i)
+        kind = self.leashes[i]
+        if kind is Leash.RR:
+            c = (plain(self._length(i, k)) ** 2 - plain(self._length(0, k)) ** 2
+                 - np.abs(b) ** 2 - np.abs(d) ** 2) / 2.0
+            return -d, b, c, np.conj(d) * b / 2.0
+        if kind is Leash.RP:
+            n = 1j * plain(present(k.u[i]))
+            return n, 0.0, plain_dot(n, d), -np.conj(n) * b / 2.0
+        g = 1j * plain(present(self.guide[i]))
+        return 0.0, g, -plain_dot(g, b), g * np.conj(d) / 2.0
+
+    def _half(self, k: TriadInputs) -> list[Any]:
+        """φ₀ … φ_m of Φ(θ) = Σ φ_n Eⁿ (φ₋ₙ = φ̄ₙ) in closed form (see :meth:`coefficients`)."""
+        if self.unique:
+            return [0.0, self.size * np.conj(plain(self._turn(k))) / 2j]
+        if self.polar:
+            turn = plain(self._turn(k))
+            v = plain(k.a[0]) + self._offset(1) * turn - plain(k.a[1])
+            w = plain(self._length(0, k)) * self._heading
+            kind = self.leashes[1]
+            if kind is Leash.RR:
+                r2 = plain(self._length(1, k))
+                return [(np.abs(v) ** 2 + np.abs(w) ** 2 - r2 ** 2) / (2.0 * r2),
+                        np.conj(v) * w / (2.0 * r2)]
+            n = 1j * plain(present(k.u[1]) if kind is Leash.RP
+                           else present(self.guide[1]) * turn)
+            return [plain_dot(n, v), np.conj(n) * w / 2.0]
+        if self.barless:
+            out: list[Any] = [0.0, 0.0, 0.0]
+            lines = [self._leash_line(i, k) for i in range(3)]
+            for i in range(3):
+                _, _, c, g = lines[i]
+                x0, x1 = _cross_terms(lines[(i + 1) % 3], lines[(i + 2) % 3])
+                out = [out[0] + c * x0 + 2.0 * plain_dot(x1, g), out[1] + c * x1 + g * x0,
+                       out[2] + g * x1]
+            return out[:self.degree + 1]
+        line2, line3 = self._leash_line(1, k), self._leash_line(2, k)
+        (a2, b2, c2, g2), (a3, b3, c3, g3) = line2, line3
+        h2, h3 = np.conj(g2), np.conj(g3)
+        m = [h2 * a3 - h3 * a2, c2 * a3 + h2 * b3 - c3 * a2 - h3 * b2,
+             g2 * a3 + c2 * b3 - g3 * a2 - c3 * b2, g2 * b3 - g3 * b2]  # M = p₂a₃ − p₃a₂
+        x0, x1 = _cross_terms(line2, line3)
+        r1 = plain(self._length(0, k)) ** 2
+        cross = [x0 * x0 + 2.0 * np.abs(x1) ** 2, 2.0 * x0 * x1, x1 * x1, 0.0]
+        conj = [np.conj(v) for v in m]
+        return [sum(m[j] * conj[j - n] for j in range(n, 4)) - r1 * cross[n]
+                for n in range(self.degree + 1)]
+
+    def coefficients(self, k: TriadInputs) -> np.ndarray:
+        """Coefficients p_0 … p_2m of p(E) = E^m·Φ (increasing powers) in closed form.
+
+        Each leash's line a_k·W = p_k is a polynomial of degree 1 in E and 1/E
+        (:meth:`_leash_line`); with a bar, M = p₂a₃ − p₃a₂ has the powers E⁻¹ … E² and
+        Φ = M·M̄ − r₁²·cross(a₂, a₃)² is read off their products; without one Φ = Σ p_i
+        cross(a_{i+1}, a_{i+2}); with a P–P leash Φ is the second leash's equation on the
+        circle |W| = r₁ (or L·sin(θ − θ_K)). A row with an input that is not finite is NaN.
+
+        Examples
+        --------
+        >>> t = Triad(("RR", "RR", "RR"), (169.5+57j, 174+92.5j, 127.5+52j),
+        ...           (112.8+67.2j, 189.5+151j, -4.9+124.9j))
+        >>> k = TriadInputs(t.external)
+        >>> p = t.coefficients(k)
+        >>> p.shape, bool(np.allclose(p, np.conj(p[::-1])))
+        ((7,), True)
+
+        The drawn pose is a root (θ = 0, E = 1):
+
+        >>> bool(abs(t.eliminant(np.ones(1), k)[0]) < 1e-12 * np.abs(p).max())
+        True
+        """
+        with np.errstate(all="ignore"):
+            half = self._half(k)
+            m = len(half) - 1
+            shape = np.broadcast_shapes(*map(np.shape, half))
+            out = np.empty((2 * m + 1,) + shape, dtype=complex)
+            for n, v in enumerate(half):
+                out[m + n] = v
+                np.conjugate(out[m + n, ...], out=out[m - n, ...])
+            bad = ~np.isfinite(out.sum(axis=0))
+            if bad.any():
+                out[:, bad] = np.nan
+        return np.moveaxis(out, 0, -1)
+
     def eliminant(self, e: np.ndarray, k: TriadInputs) -> np.ndarray:
         """Φ(θ) = |p₂a₃ − p₃a₂|² − r₁² cross(a₂, a₃)²; without a bar the determinant of the
         three rows [a_k, p_k] (the three lines a_k·W = p_k meet in one W); with a bar and a
         P–P leash the second leash's equation at ρ = r₁, θ = θ_K; with a P–P leash and no
-        bar the P–P leash's own equation L·sin(θ − θ_K)."""
-        if self.unique:
-            return np.asarray(self.size * plain_cross(self._turn(k), e))
-        if self.pinned:
-            return np.asarray(self.residual(self.recover(e, k), k)[1])
-        coef, rhs = self._linear(e, k)
-        if self.barless:
-            return np.asarray(sum(rhs[i] * J.cross(coef[(i + 1) % 3], coef[(i + 2) % 3])
-                                  for i in range(3)))
-        (a2, a3), (p2, p3) = coef, rhs
-        m = p2 * a3 - p3 * a2
-        return np.asarray(np.abs(m) ** 2 - (self._length(0, k) * J.cross(a2, a3)) ** 2)
+        bar the P–P leash's own equation L·sin(θ − θ_K): the polynomial of
+        :meth:`coefficients` at E = e."""
+        coef = self.coefficients(k)
+        m = self.degree
+        powers = e[..., None] ** np.arange(-m, m + 1)
+        return np.asarray((coef * powers).sum(axis=-1).real)
 
     def recover(self, e: np.ndarray, k: TriadInputs) -> np.ndarray:
         """W = −i(p_ia_j − p_ja_i)/cross(a_i, a_j) (after a bar i, j = 2, 3; without one the

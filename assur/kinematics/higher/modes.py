@@ -1,10 +1,11 @@
 """Every real assembly mode of a triad or a class IV group at one position (§1.4, §1.5).
 
-The eliminant Φ(θ) is a trigonometric polynomial of degree m. It is sampled at 2m + 2 points
-of the unit circle and its coefficients read off an FFT; the roots of p(E) = E^m·Φ are the
-eigenvalues of its companion matrix, batched over designs. Roots on the unit circle give the
-candidates, each completed and polished by Newton's method on the reduced equations, then
-deduplicated on the joint positions.
+The eliminant Φ(θ) is a trigonometric polynomial of degree m; its coefficients come from the
+group in closed form (:meth:`~assur.kinematics.higher.groups.HigherGroup.coefficients`); the
+roots of p(E) = E^m·Φ are the eigenvalues of its companion matrix, batched over designs. Roots
+on the unit circle give the candidates, each completed, polished by Newton's method on the
+reduced equations where the completion does not already satisfy them, then deduplicated on
+the joint positions.
 """
 
 from __future__ import annotations
@@ -31,6 +32,10 @@ TAU = 1e-6
 ACCEPT = 1e-9
 #: Two modes are one when no joint differs by more than SAME·L.
 SAME = 1e-7
+#: Candidates recovered with max|F| ≤ SETTLED·L need no Newton step; else the Newton steps
+#: stop once every step is below this (lengths over L plus angles): Newton converges
+#: quadratically there, so the next step would be below roundoff.
+SETTLED = 1e-12
 #: The complex NaN of a missing point.
 NAN = complex(np.nan, np.nan)
 
@@ -48,8 +53,8 @@ def coefficients(group: HigherGroup[K], k: K) -> np.ndarray:
     Returns
     -------
     ndarray, complex
-        The coefficients in increasing powers of E. The FFT bin m + 1 (not returned) is zero
-        up to roundoff, since Φ has degree m.
+        The coefficients in increasing powers of E (p_{2m−n} = conj p_n: Φ is real on the
+        unit circle).
 
     Examples
     --------
@@ -99,11 +104,12 @@ def weights(group: HigherGroup[K]) -> np.ndarray:
 
 
 def newton(group: HigherGroup[K], k: K, x: np.ndarray, iterations: int,
-           tol: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+           tol: float = SETTLED) -> tuple[np.ndarray, np.ndarray]:
     """Newton's method on the reduced equations.
 
-    Stops after ``iterations`` steps, or earlier once every step is at most ``tol``. Returns
-    the iterate and the scaled size of the last step (lengths divided by L, plus angles).
+    Stops after ``iterations`` steps, or earlier once every step is at most ``tol`` (by
+    default ``SETTLED``: a step below it leaves the next one below roundoff). Returns the
+    iterate and the scaled size of the last step (lengths divided by L, plus angles).
     """
     scale = weights(group)
     step = np.full(x.shape[:-1], np.inf)
@@ -174,33 +180,39 @@ def assembly_modes(group: HigherGroup[K], k: K) -> AssemblyModes:
     """
     found = roots(coefficients(group, k))
     wide, kk = expand(group), expand(k)
+    size = np.asarray(group.size)[..., None]
     with np.errstate(all="ignore"):
         near = np.abs(np.log(np.abs(found))) <= TAU
-        x = wide.recover(found / np.abs(found), kk)
-        x, _ = newton(wide, kk, x, 3)
-        f = np.stack(np.broadcast_arrays(*map(plain, wide.residual(x, kk))), axis=-1)
-        size = np.asarray(group.size)[..., None]
+        x = np.where(near[..., None], wide.recover(found / np.abs(found), kk), np.nan)
+        f = _residual(wide, kk, x)
+        if not (np.abs(f).max(axis=-1) <= SETTLED * size)[near].all():
+            x, _ = newton(wide, kk, x, 3)
+            f = _residual(wide, kk, x)
         valid = near & (np.abs(f).max(axis=-1) <= ACCEPT * size)
-        points = {name: plain(p) for name, p in wide.joints(x, kk).items()}
+        names = list(wide.joints(x, kk).items())
         # the joints and the eliminated rotation (as a point at the distance L): a triad
         # whose leashes all slide on the base has the same joints in two modes
         turn = size * np.exp(1j * x[..., group.eliminated])
-        stack = np.stack(np.broadcast_arrays(*points.values(), turn), axis=-1)
+        stack = np.stack(np.broadcast_arrays(*(plain(p) for _, p in names), turn), axis=-1)
         apart = np.abs(stack[..., :, None, :] - stack[..., None, :, :]).max(axis=-1)
         same = (apart <= SAME * size[..., None]) & valid[..., :, None]
         earlier = np.tril(np.ones(same.shape[-2:], dtype=bool), -1).T
         valid &= ~(same & earlier).any(axis=-2)
         theta = np.where(valid, x[..., group.eliminated], np.inf)
-        order = np.argsort(theta, axis=-1)
-        valid = np.take_along_axis(valid, order, axis=-1)
-        x = np.where(valid[..., None], np.take_along_axis(x, order[..., None], axis=-2), np.nan)
+        order = np.argsort(theta, axis=-1)[..., None]
+        valid = np.take_along_axis(valid, order[..., 0], axis=-1)
+        x = np.where(valid[..., None], np.take_along_axis(x, order, axis=-2), np.nan)
+        stack = np.where(valid[..., None], np.take_along_axis(stack, order, axis=-2), NAN)
         jac, rows = wide.lines(x, kk)
         margin = hadamard(rows)
-        points = {name: np.where(valid, np.take_along_axis(np.broadcast_to(p, valid.shape),
-                                                           order, axis=-1), NAN)
-                  for name, p in points.items()}
-    return AssemblyModes(x=x, count=valid.sum(axis=-1), joints=points, margin=margin,
-                         det_sign=np.sign(det_rows(jac)), roots=found)
+    return AssemblyModes(x=x, count=valid.sum(axis=-1),
+                         joints={name: stack[..., j] for j, (name, _) in enumerate(names)},
+                         margin=margin, det_sign=np.sign(det_rows(jac)), roots=found)
+
+
+def _residual(group: HigherGroup[K], k: K, x: np.ndarray) -> np.ndarray:
+    """F(x), shape (..., n)."""
+    return np.stack(np.broadcast_arrays(*map(plain, group.residual(x, k))), axis=-1)
 
 
 def select_mode(group: HigherGroup[K], k: K, modes: AssemblyModes

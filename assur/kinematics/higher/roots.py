@@ -15,6 +15,7 @@ root can only make a check fail, never pass).
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -32,6 +33,9 @@ POLISHED = 1e-10
 #: The samples start here (rad), off the angles where roots lie by construction (θ = 0 at
 #: the sketch, multiples of π/2 in symmetric drawings).
 OFFSET = 0.1234567
+#: The spacing of the samples and the samples, from ``OFFSET`` to ``OFFSET`` + 2π.
+STEP = TWO_PI / SAMPLES
+GRID = OFFSET + STEP * np.arange(SAMPLES + 1)
 
 
 def trig_form(coef: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -62,18 +66,16 @@ def trig_form(coef: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return a, b
 
 
-def _values(a: np.ndarray, b: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Φ and Φ′ at θ (Q, K) of the polynomials (Q, m + 1), cos nθ and sin nθ by the angle-sum
-    recurrence."""
-    c1, s1 = np.cos(theta), np.sin(theta)
-    cn, sn = c1, s1
-    value = a[:, :1] + a[:, 1:2] * c1 + b[:, 1:2] * s1
-    slope = b[:, 1:2] * c1 - a[:, 1:2] * s1
-    for n in range(2, a.shape[-1]):
-        cn, sn = cn * c1 - sn * s1, sn * c1 + cn * s1
-        value = value + a[:, n:n + 1] * cn + b[:, n:n + 1] * sn
-        slope = slope + n * (b[:, n:n + 1] * cn - a[:, n:n + 1] * sn)
-    return value, slope
+def _values(phi: np.ndarray, slopes: np.ndarray, theta: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray]:
+    """Φ and Φ′ at θ (Q, K) from φ_n, n = 0 … m, and nφ_n (Q, m + 1, K): Φ = φ₀ + 2 Re g and
+    Φ′ = −2 Im h with g = Σ_{n≥1} φ_nEⁿ and h = Σ nφ_nEⁿ, both by Horner's rule in E = e^{iθ}."""
+    e = np.exp(1j * theta)
+    m = phi.shape[1] - 1
+    g, h = phi[:, m], slopes[:, m]
+    for n in range(m - 1, 0, -1):
+        g, h = g * e + phi[:, n], h * e + slopes[:, n]
+    return phi[:, 0].real + 2.0 * (g * e).real, -2.0 * (h * e).imag
 
 
 @dataclass(frozen=True, eq=False)
@@ -125,28 +127,34 @@ def real_roots(a: np.ndarray, b: np.ndarray) -> RealRoots:
     """
     count_p, m1 = a.shape
     width = 2 * (m1 - 1)
-    n = np.arange(m1)
     good = np.isfinite(a).all(axis=-1) & np.isfinite(b).all(axis=-1)
-    a, b = np.where(good[:, None], a, 0.0), np.where(good[:, None], b, 0.0)
-    h = TWO_PI / SAMPLES
-    grid = OFFSET + h * np.arange(SAMPLES + 1)
-    value = a @ np.cos(np.outer(n, grid)) + b @ np.sin(np.outer(n, grid))
+    cos, sin = _grid(m1)
+    value = np.where(good[:, None], a, 0.0) @ cos + np.where(good[:, None], b, 0.0) @ sin
     above = value >= 0.0
     change = (above[:, :-1] != above[:, 1:]) & good[:, None]
     rank = np.cumsum(change, axis=1, dtype=np.int16) - 1
     rows, cols = np.nonzero(change & (rank < width))
     va, vb = value[rows, cols], value[rows, cols + 1]
-    out = [np.full((count_p, width), np.nan) for _ in range(3)]
-    signs = np.zeros((count_p, width))
-    at = rows, rank[rows, cols]
-    with np.errstate(all="ignore"):
-        out[0][at] = np.mod(grid[cols] + h * va / (va - vb), TWO_PI)
-    out[1][at], out[2][at] = grid[cols], grid[cols + 1]
-    signs[at] = np.where(va >= 0.0, -1.0, 1.0)
-    order = np.argsort(out[0], axis=-1)
-    theta, low, high = (np.take_along_axis(v, order, axis=-1) for v in out)
-    return RealRoots(theta=theta, slope=np.take_along_axis(signs, order, axis=-1),
-                     low=low, high=high)
+    # the chord's zero in each bracket, increasing along a row; those past 2π (the samples
+    # end at OFFSET + 2π) come first once reduced, so each row is turned by their number
+    theta = GRID[cols] + STEP * va / (va - vb)
+    wrapped = theta >= TWO_PI
+    theta = np.where(wrapped, theta - TWO_PI, theta)
+    count = np.bincount(rows, minlength=count_p)[rows]
+    turn = np.bincount(rows, weights=wrapped, minlength=count_p).astype(np.int64)[rows]
+    at = rows, (rank[rows, cols] + turn) % np.maximum(count, 1)
+    out = np.full((4, count_p, width), np.nan)
+    out[0][at], out[1][at], out[2][at] = theta, GRID[cols], GRID[cols + 1]
+    out[3] = 0.0
+    out[3][at] = np.where(va >= 0.0, -1.0, 1.0)
+    return RealRoots(theta=out[0], slope=out[3], low=out[1], high=out[2])
+
+
+@functools.cache
+def _grid(m1: int) -> tuple[np.ndarray, np.ndarray]:
+    """cos nθ and sin nθ, n = 0 … m, at the samples ``GRID``, shape (m + 1, SAMPLES + 1)."""
+    n = np.arange(m1)
+    return np.cos(np.outer(n, GRID)), np.sin(np.outer(n, GRID))
 
 
 def polish(a: np.ndarray, b: np.ndarray, low: np.ndarray, high: np.ndarray) -> np.ndarray:
@@ -168,31 +176,38 @@ def polish(a: np.ndarray, b: np.ndarray, low: np.ndarray, high: np.ndarray) -> n
     """
     shape = low.shape
     rows = np.broadcast_to(np.arange(shape[0])[:, None], shape).reshape(-1)
-    lo, hi = low.reshape(-1).copy(), high.reshape(-1).copy()
+    lo, hi = low.reshape(-1), high.reshape(-1)
     out = np.full(lo.shape, np.nan)
     todo = np.flatnonzero(np.isfinite(lo) & np.isfinite(hi))
-    v_lo = _values(a[rows[todo]], b[rows[todo]], lo[todo, None])[0][:, 0]
-    v_hi = _values(a[rows[todo]], b[rows[todo]], hi[todo, None])[0][:, 0]
-    positive = np.zeros(lo.shape, dtype=bool)
-    positive[todo] = v_lo >= 0.0
-    x = out.copy()
+    lo, hi, rows = lo[todo], hi[todo], rows[todo]
+    n = np.arange(a.shape[-1])
+    phi = ((a - 1j * b) / np.where(n > 0, 2.0, 1.0))[rows, :, None]
+    slopes = n[:, None] * phi
+    ends = _values(phi, slopes, np.stack([lo, hi], axis=-1))[0]
+    v_lo, v_hi = ends[:, 0], ends[:, 1]
+    positive = v_lo >= 0.0
+    live = np.ones(todo.shape, dtype=bool)
     with np.errstate(all="ignore"):
-        x[todo] = lo[todo] + (hi[todo] - lo[todo]) * v_lo / (v_lo - v_hi)
-        x[todo] = np.where((x[todo] >= lo[todo]) & (x[todo] <= hi[todo]), x[todo],
-                           0.5 * (lo[todo] + hi[todo]))
+        x = lo + (hi - lo) * v_lo / (v_lo - v_hi)
+        x = np.where((x >= lo) & (x <= hi), x, 0.5 * (lo + hi))
         for _ in range(POLISH):
-            if not todo.size:
+            v, d = (part[:, 0] for part in _values(phi, slopes, x[:, None]))
+            below = (v >= 0.0) == positive
+            lo, hi = np.where(below, x, lo), np.where(below, hi, x)
+            newton = x - v / d
+            moved = np.where((newton >= lo) & (newton <= hi), newton, 0.5 * (lo + hi))
+            x, live = np.where(live, moved, x), live & (np.abs(moved - x) > POLISHED)
+            if not live.any():
                 break
-            xs, low_t, high_t = x[todo], lo[todo], hi[todo]
-            v, d = (part[:, 0] for part in _values(a[rows[todo]], b[rows[todo]], xs[:, None]))
-            below = (v >= 0.0) == positive[todo]
-            low_t, high_t = np.where(below, xs, low_t), np.where(below, high_t, xs)
-            newton = xs - v / d
-            moved = np.where((newton >= low_t) & (newton <= high_t), newton,
-                             0.5 * (low_t + high_t))
-            x[todo], lo[todo], hi[todo] = moved, low_t, high_t
-            todo = todo[np.abs(moved - xs) > POLISHED]
-    return np.asarray(np.mod(x, TWO_PI).reshape(shape))
+    out[todo] = x
+    return np.asarray(np.mod(out, TWO_PI).reshape(shape))
+
+
+def _root(r: np.ndarray, j: int) -> np.ndarray:
+    """r^{1/j} of non-negative r, by square and cube roots where they serve."""
+    if j in (2, 4):
+        return _root(np.sqrt(r), j // 2)
+    return np.asarray(np.cbrt(r) if j == 3 else r if j == 1 else r ** (1.0 / j))
 
 
 def separation(coef: np.ndarray, theta: np.ndarray) -> np.ndarray:
@@ -222,12 +237,14 @@ def separation(coef: np.ndarray, theta: np.ndarray) -> np.ndarray:
     z = np.exp(1j * theta)
     n = coef.shape[-1] - 1
     b = [coef[..., i] for i in range(n, -1, -1)]
-    shifted = []
-    for order in range(n + 1):
-        for i in range(1, n + 1 - order):
+    for order in range(n):
+        # p(E*) itself (b[n] after the first pass) is not needed
+        for i in range(1, n - order if order == 0 else n + 1 - order):
             b[i] = b[i] + z * b[i - 1]
-        shifted.append(b[n - order])
-    q = shifted[1:]
+    size = [np.abs(b[n - 1 - j]) for j in range(n)]  # |q_j|, j = 0 … n − 1
     with np.errstate(all="ignore"):
-        worst = np.max([np.abs(q[j] / q[0]) ** (1.0 / j) for j in range(1, len(q))], axis=0)
+        scale = 1.0 / size[0]
+        worst = size[1] * scale
+        for j in range(2, n):
+            np.maximum(worst, _root(size[j] * scale, j), out=worst)
         return np.asarray(0.5 / worst)

@@ -1384,14 +1384,19 @@ def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
     d = x0.shape[0]
     e = group.eliminated
     paths = chains(group, inputs, np.mod(phi, TWO_PI), x0[:, e], found)
+    if not paths.bracketed.any():  # see the walks below: every design goes to the steps
+        return _step_follow(group, inputs, phi, x0, found, modes, jets, delta)
     at = np.broadcast_to(paths.columns[:, None], paths.theta.shape)
     sign = np.broadcast_to(np.sign(det_rows(group.jacobian(x0, k0))), (d,))
     x, x1, x2, lines, posed = _poses(group, inputs(Jet(at, 1.0, 0.0)), paths.theta, sign)
     root = _Root(paths.theta, x1[..., e], x2[..., e], paths.apart, paths.slope, x, x1)
     same = (paths.forward[:-1] & paths.forward[1:]) | (paths.backward[:-1] & paths.backward[1:])
     cert = _links(paths.columns, root) & posed[:-1] & posed[1:] & same
+    # a sketched root in no bracket has no chain of the columns' roots to return to: a walk
+    # would stop at every column to the end of its trials (and on a dense grid fall short of
+    # an end 40° away, then leave the design to the steps all the same), so the steps follow
     cert, ends, ends_at, theta = _refined(group, inputs, paths, root, cert, sign,
-                                          found & ~cert.all(axis=0))
+                                          found & paths.bracketed & ~cert.all(axis=0))
     around = found & cert.all(axis=0) & np.isnan(ends).all(axis=-1)
     ended = found & np.isfinite(ends).all(axis=-1)
     column = np.searchsorted(paths.columns, np.mod(phi, TWO_PI))[:, None]

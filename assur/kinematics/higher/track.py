@@ -125,6 +125,8 @@ class Chains:
         one). A sketched root in no bracket is on both at φ = 0 and 2π only.
     around : ndarray, bool, shape (D,)
         The forward chain reaches φ = 2π.
+    bracketed : ndarray, bool, shape (D,)
+        The sketched root lies in a bracket at φ = 0 (the chains start from it).
     closed : ndarray, bool, shape (D,)
         The path reaches φ = 2π at the root where it started.
     """
@@ -136,6 +138,7 @@ class Chains:
     forward: np.ndarray
     backward: np.ndarray
     around: np.ndarray
+    bracketed: np.ndarray
     closed: np.ndarray
 
 
@@ -223,7 +226,7 @@ def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.nd
         apart = separation(coef, theta)
         slope = np.where(on, col.slope[at], np.where(ends, np.sign(_slope(coef, theta)), 0.0))
     return Chains(np.append(columns, TWO_PI), theta, apart, slope, (ahead >= 0) | ends,
-                  ((behind >= 0) & (index == behind)) | ends, ahead[-1] >= 0,
+                  ((behind >= 0) & (index == behind)) | ends, ahead[-1] >= 0, alive,
                   (on[-1] & (index[-1] == start)) | seed)
 
 

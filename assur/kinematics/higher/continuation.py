@@ -44,7 +44,7 @@ from assur.kinematics.higher.modes import (
     weights,
 )
 from assur.kinematics.higher.roots import separation as roots_apart
-from assur.kinematics.higher.track import Chains, chains
+from assur.kinematics.higher.track import Chains, chains, grid
 from assur.kinematics.jets import Jet
 from assur.kinematics.reasons import Reason
 from assur.text import Message
@@ -1383,12 +1383,14 @@ def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
     x0, k0 = sketch
     d = x0.shape[0]
     e = group.eliminated
-    paths = chains(group, inputs, np.mod(phi, TWO_PI), x0[:, e], found)
+    columns = grid(np.mod(phi, TWO_PI))
+    at = np.broadcast_to(np.append(columns, TWO_PI)[:, None], (columns.size + 1, d))
+    k = inputs(Jet(at, 1.0, 0.0))
+    paths = chains(group, values(k), columns, x0[:, e], found)
     if not paths.bracketed.any():  # see the walks below: every design goes to the steps
         return _step_follow(group, inputs, phi, x0, found, modes, jets, delta)
-    at = np.broadcast_to(paths.columns[:, None], paths.theta.shape)
     sign = np.broadcast_to(np.sign(det_rows(group.jacobian(x0, k0))), (d,))
-    x, x1, x2, lines, posed = _poses(group, inputs(Jet(at, 1.0, 0.0)), paths.theta, sign)
+    x, x1, x2, lines, posed = _poses(group, k, paths.theta, sign)
     root = _Root(paths.theta, x1[..., e], x2[..., e], paths.apart, paths.slope, x, x1)
     same = (paths.forward[:-1] & paths.forward[1:]) | (paths.backward[:-1] & paths.backward[1:])
     cert = _links(paths.columns, root) & posed[:-1] & posed[1:] & same
@@ -1411,9 +1413,12 @@ def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
             whole[moved] = fresh
     reached = around | (ended & ((column <= ends_at[:, 0]) | (column > ends_at[:, 1])))
     good = around | ended
-    angle = np.broadcast_to(phi[:, None], (phi.size, d))
-    solution = _from_path(group, inputs, (phi, inputs(Jet(angle, 1.0, 0.0)) if jets
-                                          else inputs(angle)),
+    # the inputs at the requested angles: those at their columns
+    wanted = _take(k, np.ones(at.shape, dtype=bool),
+                   tuple(np.broadcast_arrays(column, np.arange(d))))
+    if wanted is None:
+        wanted = inputs(Jet(np.broadcast_to(phi[:, None], (phi.size, d)), 1.0, 0.0))
+    solution = _from_path(group, inputs, (phi, wanted if jets else values(wanted)),
                           x[column[:, 0]], (x1[column[:, 0]], x2[column[:, 0]]),
                           lines[column[:, 0]], reached, ends,
                           np.where(ended, True, paths.closed), found, modes, jets, delta)

@@ -18,11 +18,10 @@ their separation bounds: the test of a step of the continuation.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
-from assur.kinematics.higher.groups import HigherGroup, K, values
+from assur.kinematics.higher.groups import HigherGroup, K
 from assur.kinematics.higher.modes import coefficients
 from assur.kinematics.higher.roots import (
     RealRoots,
@@ -32,7 +31,7 @@ from assur.kinematics.higher.roots import (
     trig_form,
 )
 
-__all__ = ["Chains", "chains"]
+__all__ = ["Chains", "chains", "grid"]
 
 TWO_PI = 2.0 * np.pi
 #: Columns of the uniform grid per turn, besides the requested angles.
@@ -159,7 +158,19 @@ def _chain(maps: np.ndarray, start: np.ndarray) -> np.ndarray:
     return np.asarray(np.where(start >= 0, index, -1))
 
 
-def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.ndarray,
+def grid(wanted: np.ndarray) -> np.ndarray:
+    """The columns of the path, increasing in [0, 2π): φ = 0, the requested angles ``wanted``
+    (in [0, 2π)) and ``BASE`` uniform ones per turn, but for a uniform one within roundoff of
+    a requested angle (that angle is the column)."""
+    asked = np.union1d([0.0], wanted)
+    base = TWO_PI / BASE * np.arange(BASE)
+    after = np.clip(np.searchsorted(asked, base), 1, asked.size - 1)
+    apart = np.minimum(np.abs(base - asked[after - 1]), np.abs(base - asked[after])) \
+        if asked.size > 1 else np.abs(base - asked[0])
+    return np.asarray(np.union1d(asked, base[apart > SAME]))
+
+
+def chains(group: HigherGroup[K], k: K, columns: np.ndarray, theta0: np.ndarray,
            found: np.ndarray) -> Chains:
     """The path of the roots θ₀ (D,) of the sketch over a turn, from root to nearest root.
 
@@ -167,10 +178,10 @@ def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.nd
     ----------
     group : HigherGroup
         The group, drawn values of shape () or (D,).
-    inputs : callable
-        The inputs at crank angles of shape (U, D).
-    wanted : ndarray
-        The requested angles in [0, 2π).
+    k : TriadInputs or ClassIVInputs
+        The inputs (plain arrays) at the columns and at 2π, shape (U + 1, D).
+    columns : ndarray, shape (U,)
+        The columns (:func:`grid`).
     theta0 : ndarray, shape (D,)
         The eliminated angle of the sketched mode.
     found : ndarray, bool, shape (D,)
@@ -186,16 +197,9 @@ def chains(group: HigherGroup[K], inputs: Any, wanted: np.ndarray, theta0: np.nd
         root's analogs before it takes it for the mode's.
     """
     d = theta0.shape[0]
-    asked = np.union1d([0.0], wanted)
-    base = TWO_PI / BASE * np.arange(BASE)
-    # a uniform column within roundoff of a requested angle is that angle
-    after = np.clip(np.searchsorted(asked, base), 1, asked.size - 1)
-    apart = np.minimum(np.abs(base - asked[after - 1]), np.abs(base - asked[after])) \
-        if asked.size > 1 else np.abs(base - asked[0])
-    columns = np.union1d(asked, base[apart > SAME])
     u = columns.size
-    k = values(inputs(np.broadcast_to(columns[:, None], (u, d))))
-    col = _columns(group, k)
+    whole = _columns(group, k)  # the row at 2π is the first a turn later: not used
+    col = _Column(*(getattr(whole, f)[:u] for f in ("theta", "slope", "low", "high", "coef")))
     with np.errstate(invalid="ignore"):
         inside = np.mod(theta0[:, None] - col.low[0], TWO_PI) <= col.high[0] - col.low[0]
     alive = found & inside.any(axis=-1)

@@ -822,8 +822,9 @@ def _spread(k: Any, d: int) -> Any:
                                      for f in dataclasses.fields(k)})
 
 
-def _designs(group: HigherGroup[K], inputs: Inputs[K]) -> tuple[int, ...]:
-    """The design shape: () for one design, (D,) for many."""
+def _designs(group: HigherGroup[K], inputs: Inputs[K]) -> tuple[tuple[int, ...], K]:
+    """The design shape, () for one design, (D,) for many; and the inputs (plain) at φ = 0
+    of a single crank angle, which are those of the sketch when there is one design."""
     first = values(inputs(np.zeros(1)))
     shapes = [np.shape(group.size)]
     for f in dataclasses.fields(first):
@@ -831,7 +832,7 @@ def _designs(group: HigherGroup[K], inputs: Inputs[K]) -> tuple[int, ...]:
         shapes += [np.shape(item) for item in (v if isinstance(v, tuple) else (v,))
                    if item is not None]
     shape = np.broadcast_shapes(*shapes)
-    return () if shape in ((), (1,)) and np.shape(group.size) == () else shape
+    return (() if shape in ((), (1,)) and np.shape(group.size) == () else shape), first
 
 
 @dataclass(frozen=True, eq=False)
@@ -922,9 +923,9 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
 
     if method not in ("auto", "roots", "steps"):
         raise ValueError(f"method: 'auto', 'roots' or 'steps', not {method!r}")
-    shape = _designs(group, inputs)
+    shape, first = _designs(group, inputs)
     d = int(np.prod(shape))
-    k0 = _spread(values(inputs(np.zeros(d))), d)
+    k0 = _spread(first if d == 1 else values(inputs(np.zeros(d))), d)
     modes = assembly_modes(group, k0)
     x0, found = select_mode(group, k0, modes)
     x0 = np.broadcast_to(x0, (d, group.n))

@@ -82,19 +82,15 @@ def _deflate(series: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def _halves(y: Value) -> Value:
     """w(y) = (κ², κσ, σ²) on a last axis (κ = cos(y/2), σ = sin(y/2)); a jet of y gives a
     jet, w′ = (−κσ, (κ² − σ²)/2, κσ), w″ = ((σ² − κ²)/2, −κσ, (κ² − σ²)/2)."""
-    t = np.asarray(J.value(y), dtype=float)
-    k, s = np.cos(0.5 * t), np.sin(0.5 * t)
-    w = np.empty(t.shape + (3,))
-    np.multiply(k, k, out=w[..., 0])
-    np.multiply(k, s, out=w[..., 1])
-    np.multiply(s, s, out=w[..., 2])
     if not isinstance(y, J.Jet):
-        return w
-    half = 0.5 * (k * k - s * s)
-    d1 = np.stack([-k * s, half, k * s], axis=-1)
-    d2 = np.stack([-half, -k * s, half], axis=-1)
+        return _halves_turning(np.asarray(y, dtype=float))[0]
+    w, d1 = _halves_turning(np.asarray(y.v, dtype=float))
+    d2 = np.empty_like(w)
+    np.negative(d1[..., 1], out=d2[..., 0])
+    np.negative(w[..., 1], out=d2[..., 1])
+    d2[..., 2] = d1[..., 1]
     y1, y2 = np.asarray(y.d1)[..., None], np.asarray(y.d2)[..., None]
-    return J.Jet(w, d1 * y1, d2 * y1 * y1 + d1 * y2)
+    return J.Jet(w, d1 * y1, d2 * (y1 * y1) + d1 * y2)
 
 
 def _halves_turning(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -116,28 +112,30 @@ def _form(va: np.ndarray, m: np.ndarray, vc: np.ndarray) -> np.ndarray:
     return np.asarray(np.einsum("...p,...jpq,...q->...j", va, m, vc))
 
 
-def _contracted(m: np.ndarray, vc: np.ndarray) -> np.ndarray:
-    """Σ_q m_jpq·vc_q, shape (..., 2, 3): the form's matrices on one side's vector."""
-    return np.asarray(np.einsum("...jpq,...q->...jp", m, vc))
+#: The product rule of a trilinear form to second order: the part (v, d1, d2) of each factor in
+#: each of the ten terms, and the terms of F, F′ (1–3) and F″ (4–6 once, 7–9 twice).
+_LEIBNIZ = (np.array([0, 1, 0, 0, 2, 0, 0, 1, 1, 0]), np.array([0, 0, 1, 0, 0, 2, 0, 1, 0, 1]),
+            np.array([0, 0, 0, 1, 0, 0, 2, 0, 1, 1]))
 
 
-def _side(va: np.ndarray, mc: np.ndarray) -> np.ndarray:
-    """Σ_p va_p·mc_jp, shape (..., 2)."""
-    return np.asarray(np.einsum("...jp,...p->...j", mc, va))
+#: w, w′, w of y_a against w, w, w′ of y_c: the form and its two partial derivatives.
+_SIDES = (np.array([0, 1, 0]), np.array([0, 0, 1]))
+
+
+def _parts(t: Value) -> np.ndarray:
+    """The parts v, d1, d2 of a jet (or a plain array, its derivatives 0) on a leading axis."""
+    j = J.as_jet(t)
+    return np.stack(np.broadcast_arrays(j.v, j.d1, j.d2))
 
 
 def _contract(va: Value, m: Value, vc: Value) -> J.Jet | np.ndarray:
-    """F̂_j = Σ_pq w(y_a)_p·M_jpq·w(y_c)_q, with jets by the product rule (plain arrays: one einsum)."""
+    """F̂_j = Σ_pq w(y_a)_p·M_jpq·w(y_c)_q, with jets by the product rule, its ten terms in
+    one contraction (plain arrays: one einsum)."""
     if not any(isinstance(t, J.Jet) for t in (va, m, vc)):
         return _form(*(np.asarray(J.value(t)) for t in (va, m, vc)))
-    a, b, c = (np.broadcast_arrays(j.v, j.d1, j.d2) for j in map(J.as_jet, (va, m, vc)))
-
-    def f(i: int, j: int, k: int) -> np.ndarray:
-        return _form(a[i], b[j], c[k])
-
-    return J.Jet(f(0, 0, 0), f(1, 0, 0) + f(0, 1, 0) + f(0, 0, 1),
-                 f(2, 0, 0) + f(0, 2, 0) + f(0, 0, 2)
-                 + 2.0 * (f(1, 1, 0) + f(1, 0, 1) + f(0, 1, 1)))
+    ia, im, ic = _LEIBNIZ
+    t = np.einsum("n...p,n...jpq,n...q->n...j", _parts(va)[ia], _parts(m)[im], _parts(vc)[ic])
+    return J.Jet(t[0], t[1] + t[2] + t[3], t[4] + t[5] + t[6] + 2.0 * (t[7] + t[8] + t[9]))
 
 
 @dataclass(frozen=True)
@@ -352,24 +350,28 @@ class ClassIVCoupled(ClassIVDrawing):
         """
         memo = self._memo
         if k not in memo:
-            depth = max(np.ndim(J.value(getattr(record, f.name)))
-                        for record in (self, k) for f in fields(record)
-                        if getattr(record, f.name) is not None)
-            grid = np.ones((3, 3) + (1,) * depth)
+            depth = max([self._depth] + [np.ndim(J.value(v)) for v in vars(k).values()
+                                         if v is not None])
+            tail = (1,) * depth
             lifted = [f * scale for f, scale in zip(
-                self._lifted([SAMPLES.reshape((3, 1) + (1,) * depth),
-                              SAMPLES.reshape((1, 3) + (1,) * depth)], k),
-                self._scales(k), strict=True)]
-            parts = [J.as_jet(f) for f in lifted]
-
-            def fit(name: str) -> np.ndarray:
-                samples = np.stack(np.broadcast_arrays(*(getattr(f, name) * grid for f in parts)))
-                return np.asarray(np.einsum("pa,jab...,qb->...jpq", FROM_SAMPLES, samples,
-                                            FROM_SAMPLES))
-
-            jets = any(isinstance(f, J.Jet) for f in lifted)
-            memo[k] = J.Jet(fit("v"), fit("d1"), fit("d2")) if jets else fit("v")
+                self._lifted([SAMPLES.reshape((3, 1) + tail), SAMPLES.reshape((1, 3) + tail)],
+                             k), self._scales(k), strict=True)]
+            if any(isinstance(f, J.Jet) for f in lifted):
+                samples = np.stack(np.broadcast_arrays(
+                    *(_parts(f) for f in lifted), np.ones((3, 3) + tail)))[:-1]
+                fit = np.einsum("pa,jnab...,qb->n...jpq", FROM_SAMPLES, samples, FROM_SAMPLES)
+                memo[k] = J.Jet(fit[0], fit[1], fit[2])
+            else:
+                samples = np.stack(np.broadcast_arrays(
+                    *(plain(f) for f in lifted), np.ones((3, 3) + tail)))[:-1]
+                memo[k] = np.einsum("pa,jab...,qb->...jpq", FROM_SAMPLES, samples, FROM_SAMPLES)
         return memo[k]
+
+    @cached_property
+    def _depth(self) -> int:
+        """The number of axes of the drawing's values (designs)."""
+        return max(np.ndim(J.value(getattr(self, f.name))) for f in fields(self)
+                   if getattr(self, f.name) is not None)
 
     def _scales(self, k: ClassIVInputs) -> list[Value]:
         """Per coupler, the natural residual's scale: 1/(2l) of a bar, L of a PP coupler, 1."""
@@ -420,12 +422,13 @@ class ClassIVCoupled(ClassIVDrawing):
     def equations(self, x: np.ndarray, k: ClassIVInputs) -> tuple[np.ndarray, np.ndarray]:
         """g (..., 2) and the Jacobian in (y_a, y_c), from one evaluation of w(y_a), w(y_c):
         ∂g_j/∂y = (∂(scale_j·F̂_j)/∂y − g_j·∂lift_j/∂y)/lift_j, the first from M and w′(y)."""
-        ya, yc = (np.asarray(col, dtype=float) for col in unknown_columns(x))
         m = plain(self._matrices(k))
-        (wa, ta), (wc, tc) = _halves_turning(ya), _halves_turning(yc)
-        mc = _contracted(m, wc)
-        g = _side(wa, mc)
-        jac = np.stack([_side(ta, mc), _form(wa, m, tc)], axis=-1)
+        halves = np.stack(_halves_turning(np.moveaxis(np.asarray(x, dtype=float), -1, 0)))
+        (wa, wc) = halves[0]
+        f = np.einsum("n...p,...jpq,n...q->n...j", halves[_SIDES[0], 0], m,
+                      halves[_SIDES[1], 1])
+        g = f[0]
+        jac = np.moveaxis(f[1:], 0, -1)
         if not any(self.slides):
             return g, jac
         (qa, da), (qc, dc) = ((w[..., 0], -w[..., 1]) if slides else (1.0, 0.0)

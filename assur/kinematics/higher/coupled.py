@@ -79,24 +79,12 @@ def _deflate(series: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return quotient, carry
 
 
-def _halves(y: Value) -> Value:
-    """w(y) = (κ², κσ, σ²) on a last axis (κ = cos(y/2), σ = sin(y/2)); a jet of y gives a
-    jet, w′ = (−κσ, (κ² − σ²)/2, κσ), w″ = ((σ² − κ²)/2, −κσ, (κ² − σ²)/2)."""
-    if not isinstance(y, J.Jet):
-        return _halves_turning(np.asarray(y, dtype=float))[0]
-    w, d1 = _halves_turning(np.asarray(y.v, dtype=float))
-    d2 = np.empty_like(w)
-    np.negative(d1[..., 1], out=d2[..., 0])
-    np.negative(w[..., 1], out=d2[..., 1])
-    d2[..., 2] = d1[..., 1]
-    y1, y2 = np.asarray(y.d1)[..., None], np.asarray(y.d2)[..., None]
-    return J.Jet(w, d1 * y1, d2 * (y1 * y1) + d1 * y2)
-
-
-def _halves_turning(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """w(y) and w′(y) = (−κσ, (κ² − σ²)/2, κσ) of plain angles."""
+def _halves_turning(y: np.ndarray) -> np.ndarray:
+    """w(y) = (κ², κσ, σ²) (κ = cos(y/2), σ = sin(y/2)) and w′(y) = (−κσ, (κ² − σ²)/2, κσ)
+    of plain angles, on a last axis, the two stacked on a leading one."""
     k, s = np.cos(0.5 * y), np.sin(0.5 * y)
-    w, turning = np.empty(np.shape(y) + (3,)), np.empty(np.shape(y) + (3,))
+    out = np.empty((2,) + np.shape(y) + (3,))
+    w, turning = out
     np.multiply(k, k, out=w[..., 0])
     np.multiply(k, s, out=w[..., 1])
     np.multiply(s, s, out=w[..., 2])
@@ -104,18 +92,7 @@ def _halves_turning(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     turning[..., 2] = w[..., 1]
     np.subtract(w[..., 0], w[..., 2], out=turning[..., 1])
     turning[..., 1] *= 0.5
-    return w, turning
-
-
-def _form(va: np.ndarray, m: np.ndarray, vc: np.ndarray) -> np.ndarray:
-    """Σ_pq va_p·m_jpq·vc_q of plain arrays (..., 3), (..., 2, 3, 3), (..., 3)."""
-    return np.asarray(np.einsum("...p,...jpq,...q->...j", va, m, vc))
-
-
-#: The product rule of a trilinear form to second order: the part (v, d1, d2) of each factor in
-#: each of the ten terms, and the terms of F, F′ (1–3) and F″ (4–6 once, 7–9 twice).
-_LEIBNIZ = (np.array([0, 1, 0, 0, 2, 0, 0, 1, 1, 0]), np.array([0, 0, 1, 0, 0, 2, 0, 1, 0, 1]),
-            np.array([0, 0, 0, 1, 0, 0, 2, 0, 1, 1]))
+    return out
 
 
 #: w, w′, w of y_a against w, w, w′ of y_c: the form and its two partial derivatives.
@@ -126,16 +103,6 @@ def _parts(t: Value) -> np.ndarray:
     """The parts v, d1, d2 of a jet (or a plain array, its derivatives 0) on a leading axis."""
     j = J.as_jet(t)
     return np.stack(np.broadcast_arrays(j.v, j.d1, j.d2))
-
-
-def _contract(va: Value, m: Value, vc: Value) -> J.Jet | np.ndarray:
-    """F̂_j = Σ_pq w(y_a)_p·M_jpq·w(y_c)_q, with jets by the product rule, its ten terms in
-    one contraction (plain arrays: one einsum)."""
-    if not any(isinstance(t, J.Jet) for t in (va, m, vc)):
-        return _form(*(np.asarray(J.value(t)) for t in (va, m, vc)))
-    ia, im, ic = _LEIBNIZ
-    t = np.einsum("n...p,n...jpq,n...q->n...j", _parts(va)[ia], _parts(m)[im], _parts(vc)[ic])
-    return J.Jet(t[0], t[1] + t[2] + t[3], t[4] + t[5] + t[6] + 2.0 * (t[7] + t[8] + t[9]))
 
 
 @dataclass(frozen=True)
@@ -301,7 +268,10 @@ class ClassIVCoupled(ClassIVDrawing):
 
     def _lifted(self, y: Sequence[Value], k: ClassIVInputs) -> list[Value]:
         """F̂_b, F̂_d at the unknowns y (the loop equations times their lifting factors)."""
-        a, c = self._links(y, k)
+        return self._loops(*self._links(y, k), k)
+
+    def _loops(self, a: _Link, c: _Link, k: ClassIVInputs) -> list[Value]:
+        """F̂_b, F̂_d of the links a and c at a pose (:meth:`_lifted`)."""
         both = a.weight * a.weight * c.weight * c.weight
         out: list[Value] = []
         for j, ((first, second), kind, (wa, wc)) in enumerate(zip(
@@ -341,12 +311,13 @@ class ClassIVCoupled(ClassIVDrawing):
 
     def _matrices(self, k: ClassIVInputs) -> Value:
         """M_j, shape (..., 2, 3, 3): scale_j·F̂_j = Σ_pq w(y_a)_p·M_jpq·w(y_c)_q
-        (:func:`_halves`), scale_j that of the natural residual (:meth:`_scales`).
+        (w(y) = (κ², κσ, σ²), :func:`_halves_turning`), scale_j that of the natural residual
+        (:meth:`_scales`).
 
         F̂_j is trigonometrically linear in y_a and in y_c separately (a quadratic form in
         (κ, σ) of each), so its values at y_a, y_c ∈ {0, π/2, π} give M_j, once per inputs
-        record; the residual, the Jacobian, the eliminant and the recovery are contractions
-        of M (a positive factor per equation moves no root of Φ). Jet inputs give a jet M.
+        record; the Jacobian, the eliminant and the recovery are contractions of M (a
+        positive factor per equation moves no root of Φ). Jet inputs give a jet M.
         """
         memo = self._memo
         if k not in memo:
@@ -378,20 +349,16 @@ class ClassIVCoupled(ClassIVDrawing):
         return [0.5 / self._length(j, k) if kind is Leash.RR else self.size
                 if kind is Leash.PP else 1.0 for j, kind in enumerate(self.kinds)]
 
-    def _lifts(self, wa: Value, wc: Value) -> list[Value]:
-        """Per coupler, the lifting factor κ_a²κ_c² from w(y_a), w(y_c) (1 of a PP coupler;
-        κ = 1 of a hinged link)."""
-        qa, qc = ((w[..., 0] if isinstance(w, J.Jet) else plain(w)[..., 0]) if slides else 1.0
-                  for w, slides in zip((wa, wc), self.slides, strict=True))
-        return [1.0 if kind is Leash.PP else qa * qc for kind in self.kinds]
-
     def residual(self, x: Unknowns, k: ClassIVInputs) -> list[Value]:
         """g_b, g_d: RR (|C − D|² − l²)/(2l), PR/RP the offset of the hinge from the guide
-        minus its drawn value, PP L·sin(θ_a − θ_c) (rotations of a sliding link its guide's)."""
-        cols = unknown_columns(x)
-        wa, wc = _halves(cols[0]), _halves(cols[1])
-        f = _contract(wa, self._matrices(k), wc)
-        return [f[..., j] / lift for j, lift in enumerate(self._lifts(wa, wc))]
+        minus its drawn value, PP L·sin(θ_a − θ_c) (rotations of a sliding link its guide's).
+
+        Straight from the loop equations at x (:meth:`_loops`), not from the fitted matrices:
+        with jets of the inputs (the analogs) that fit would be needed once only."""
+        a, c = self._links(unknown_columns(x), k)
+        lift = a.weight * a.weight * c.weight * c.weight
+        return [f * scale if kind is Leash.PP else f * scale / lift for f, scale, kind in zip(
+            self._loops(a, c, k), self._scales(k), self.kinds, strict=True)]
 
     def lines(self, x: np.ndarray, k: ClassIVInputs) -> tuple[np.ndarray, np.ndarray]:
         """The Jacobian in (y_a, y_c) and the margin rows in physical columns.
@@ -423,7 +390,7 @@ class ClassIVCoupled(ClassIVDrawing):
         """g (..., 2) and the Jacobian in (y_a, y_c), from one evaluation of w(y_a), w(y_c):
         ∂g_j/∂y = (∂(scale_j·F̂_j)/∂y − g_j·∂lift_j/∂y)/lift_j, the first from M and w′(y)."""
         m = plain(self._matrices(k))
-        halves = np.stack(_halves_turning(np.moveaxis(np.asarray(x, dtype=float), -1, 0)))
+        halves = _halves_turning(np.moveaxis(np.asarray(x, dtype=float), -1, 0))
         (wa, wc) = halves[0]
         f = np.einsum("n...p,...jpq,n...q->n...j", halves[_SIDES[0], 0], m,
                       halves[_SIDES[1], 1])

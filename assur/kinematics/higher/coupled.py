@@ -105,18 +105,38 @@ def _parts(t: Value) -> np.ndarray:
     return np.stack(np.broadcast_arrays(j.v, j.d1, j.d2))
 
 
+def _times(weight: Value, v: Value) -> Value:
+    """weight·v, v itself for the weight 1.0 of a hinged link."""
+    return v if isinstance(weight, float) and weight == 1.0 else weight * v
+
+
+def _square(v: Value) -> Value:
+    """|v|² of a complex array or jet (the terms of the product rule as in ``J.dot(v, v)``)."""
+    if not isinstance(v, J.Jet):
+        return J.dot(v, v)
+    square = (np.conj(v.v) * v.v).real
+    first = (np.conj(v.v) * v.d1).real
+    second = (np.conj(v.v) * v.d2).real
+    return J.Jet(square, first + first, second + 2.0 * (np.conj(v.d1) * v.d1).real + second)
+
+
 @dataclass(frozen=True)
 class _Link:
     """A link a or c at one pose: its turn E, the weight κ (cos(t/2) of a sliding link, 1 of
-    a hinged one) and κ·O, O its point drawn at the external pair."""
+    a hinged one), κ·O, O its point drawn at the external pair, and κ·E."""
 
     turn: Value
     weight: Value
     origin: Value
+    carried: Value
 
     def at(self, drawn: Value, pair: Value) -> Value:
         """κ times the point of the link drawn at ``drawn`` (pair: its drawn external pair)."""
-        return self.origin + self.weight * self.turn * (np.asarray(drawn) - pair)
+        return self.reach(np.asarray(drawn) - pair)
+
+    def reach(self, arm: Value) -> Value:
+        """κ times the point of the link drawn at ``arm`` from its external pair."""
+        return self.origin + self.carried * arm
 
 
 @dataclass(frozen=True, eq=False)
@@ -260,10 +280,12 @@ class ClassIVCoupled(ClassIVDrawing):
         """a and c at the unknowns y (angles; plain arrays or jets)."""
         def link(angle: Value, h: Value, u: Value | None, drawn: Value | None) -> _Link:
             if drawn is None or u is None:
-                return _Link(J.expi(angle), 1.0, h)
+                unit = J.expi(angle)
+                return _Link(unit, 1.0, h, unit)
             half = J.expi(0.5 * angle)
             weight = J.real(half)
-            return _Link(u / drawn, weight, weight * h + self.size * J.imag(half) * u)
+            turn = u / drawn
+            return _Link(turn, weight, weight * h + self.size * J.imag(half) * u, weight * turn)
         return (link(y[0], k.h_a, k.u_a, self.u_a), link(y[1], k.h_c, k.u_c, self.u_c))
 
     def _lifted(self, y: Sequence[Value], k: ClassIVInputs) -> list[Value]:
@@ -274,16 +296,16 @@ class ClassIVCoupled(ClassIVDrawing):
         """F̂_b, F̂_d of the links a and c at a pose (:meth:`_lifted`)."""
         both = a.weight * a.weight * c.weight * c.weight
         out: list[Value] = []
-        for j, ((first, second), kind, (wa, wc)) in enumerate(zip(
-                ((self.c, self.d), (self.f, self.e)), self.kinds,
+        for j, ((first, second), (arm_a, arm_c), kind, (wa, wc)) in enumerate(zip(
+                ((self.c, self.d), (self.f, self.e)), self._arms, self.kinds,
                 (self._guides(0), self._guides(1)), strict=True)):
-            pa = a.at(first, self.h_a)     # κ_a·(the point of a at the pair on a)
-            pc = c.at(second, self.h_c)    # κ_c·(the point of c at the pair on c)
-            gap = c.weight * pa - a.weight * pc   # κ_aκ_c·(that on a − that on c)
+            pa = a.reach(arm_a)     # κ_a·(the point of a at the pair on a)
+            pc = c.reach(arm_c)     # κ_c·(the point of c at the pair on c)
+            gap = _times(c.weight, pa) - _times(a.weight, pc)  # κ_aκ_c·(that on a − on c)
             drawn = np.asarray(first) - second
             if kind is Leash.RR:  # a bar: its drawn length, or an actuator's from the inputs
                 length = self._length(j, k)
-                out.append(J.dot(gap, gap) - length * length * both)
+                out.append(_square(gap) - length * length * both)
             elif kind is Leash.PP:
                 out.append(J.cross(a.turn, c.turn))
             else:
@@ -296,8 +318,19 @@ class ClassIVCoupled(ClassIVDrawing):
     def _length(self, j: int, k: ClassIVInputs) -> Value:
         """The length of bar j (0: b, 1: d): drawn, or an actuator's from the inputs."""
         given = k.l_b if j == 0 else k.l_d
-        drawn = np.asarray(J.value((self.c, self.f)[j])) - J.value((self.d, self.e)[j])
-        return np.abs(drawn) if given is None else given
+        return self._drawn_lengths[j] if given is None else given
+
+    @cached_property
+    def _drawn_lengths(self) -> tuple[np.ndarray, np.ndarray]:
+        """|C − D| and |F − E| as drawn."""
+        return (np.abs(np.asarray(J.value(self.c)) - J.value(self.d)),
+                np.abs(np.asarray(J.value(self.f)) - J.value(self.e)))
+
+    @cached_property
+    def _arms(self) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+        """C − H_a, D − H_c (coupler b) and F − H_a, E − H_c (coupler d) as drawn."""
+        return ((np.asarray(self.c) - self.h_a, np.asarray(self.d) - self.h_c),
+                (np.asarray(self.f) - self.h_a, np.asarray(self.e) - self.h_c))
 
     def __getstate__(self) -> dict[str, object]:
         """The record without the fitted matrices of :meth:`_matrices` (weak references do
@@ -390,12 +423,11 @@ class ClassIVCoupled(ClassIVDrawing):
         """g (..., 2) and the Jacobian in (y_a, y_c), from one evaluation of w(y_a), w(y_c):
         ∂g_j/∂y = (∂(scale_j·F̂_j)/∂y − g_j·∂lift_j/∂y)/lift_j, the first from M and w′(y)."""
         m = plain(self._matrices(k))
-        halves = _halves_turning(np.moveaxis(np.asarray(x, dtype=float), -1, 0))
-        (wa, wc) = halves[0]
-        f = np.einsum("n...p,...jpq,n...q->n...j", halves[_SIDES[0], 0], m,
-                      halves[_SIDES[1], 1])
-        g = f[0]
-        jac = np.moveaxis(f[1:], 0, -1)
+        halves = _halves_turning(np.asarray(x, dtype=float))
+        wa, wc = halves[0, ..., 0, :], halves[0, ..., 1, :]
+        f = np.einsum("n...p,...jpq,n...q->...jn", halves[_SIDES[0], ..., 0, :], m,
+                      halves[_SIDES[1], ..., 1, :])
+        g, jac = f[..., 0], f[..., 1:]
         if not any(self.slides):
             return g, jac
         (qa, da), (qc, dc) = ((w[..., 0], -w[..., 1]) if slides else (1.0, 0.0)

@@ -99,12 +99,6 @@ def _halves_turning(y: np.ndarray) -> np.ndarray:
 _SIDES = (np.array([0, 1, 0]), np.array([0, 0, 1]))
 
 
-def _parts(t: Value) -> np.ndarray:
-    """The parts v, d1, d2 of a jet (or a plain array, its derivatives 0) on a leading axis."""
-    j = J.as_jet(t)
-    return np.stack(np.broadcast_arrays(j.v, j.d1, j.d2))
-
-
 def _times(weight: Value, v: Value) -> Value:
     """weight·v, v itself for the weight 1.0 of a hinged link."""
     return v if isinstance(weight, float) and weight == 1.0 else weight * v
@@ -338,11 +332,11 @@ class ClassIVCoupled(ClassIVDrawing):
         return {name: value for name, value in self.__dict__.items() if name != "_memo"}
 
     @cached_property
-    def _memo(self) -> WeakKeyDictionary[ClassIVInputs, Value]:
+    def _memo(self) -> WeakKeyDictionary[ClassIVInputs, np.ndarray]:
         """The matrices of :meth:`_matrices` of the inputs records at hand."""
         return WeakKeyDictionary()
 
-    def _matrices(self, k: ClassIVInputs) -> Value:
+    def _matrices(self, k: ClassIVInputs) -> np.ndarray:
         """M_j, shape (..., 2, 3, 3): scale_j·F̂_j = Σ_pq w(y_a)_p·M_jpq·w(y_c)_q
         (w(y) = (κ², κσ, σ²), :func:`_halves_turning`), scale_j that of the natural residual
         (:meth:`_scales`).
@@ -350,7 +344,7 @@ class ClassIVCoupled(ClassIVDrawing):
         F̂_j is trigonometrically linear in y_a and in y_c separately (a quadratic form in
         (κ, σ) of each), so its values at y_a, y_c ∈ {0, π/2, π} give M_j, once per inputs
         record; the Jacobian, the eliminant and the recovery are contractions of M (a
-        positive factor per equation moves no root of Φ). Jet inputs give a jet M.
+        positive factor per equation moves no root of Φ). Plain inputs only (no jets).
         """
         memo = self._memo
         if k not in memo:
@@ -360,15 +354,9 @@ class ClassIVCoupled(ClassIVDrawing):
             lifted = [f * scale for f, scale in zip(
                 self._lifted([SAMPLES.reshape((3, 1) + tail), SAMPLES.reshape((1, 3) + tail)],
                              k), self._scales(k), strict=True)]
-            if any(isinstance(f, J.Jet) for f in lifted):
-                samples = np.stack(np.broadcast_arrays(
-                    *(_parts(f) for f in lifted), np.ones((3, 3) + tail)))[:-1]
-                fit = np.einsum("pa,jnab...,qb->n...jpq", FROM_SAMPLES, samples, FROM_SAMPLES)
-                memo[k] = J.Jet(fit[0], fit[1], fit[2])
-            else:
-                samples = np.stack(np.broadcast_arrays(
-                    *(plain(f) for f in lifted), np.ones((3, 3) + tail)))[:-1]
-                memo[k] = np.einsum("pa,jab...,qb->...jpq", FROM_SAMPLES, samples, FROM_SAMPLES)
+            samples = np.stack(np.broadcast_arrays(
+                *(plain(f) for f in lifted), np.ones((3, 3) + tail)))[:-1]
+            memo[k] = np.einsum("pa,jab...,qb->...jpq", FROM_SAMPLES, samples, FROM_SAMPLES)
         return memo[k]
 
     @cached_property
@@ -422,7 +410,7 @@ class ClassIVCoupled(ClassIVDrawing):
     def equations(self, x: np.ndarray, k: ClassIVInputs) -> tuple[np.ndarray, np.ndarray]:
         """g (..., 2) and the Jacobian in (y_a, y_c), from one evaluation of w(y_a), w(y_c):
         ∂g_j/∂y = (∂(scale_j·F̂_j)/∂y − g_j·∂lift_j/∂y)/lift_j, the first from M and w′(y)."""
-        m = plain(self._matrices(k))
+        m = self._matrices(k)
         halves = _halves_turning(np.asarray(x, dtype=float))
         wa, wc = halves[0, ..., 0, :], halves[0, ..., 1, :]
         f = np.einsum("n...p,...jpq,n...q->...jn", halves[_SIDES[0], ..., 0, :], m,
@@ -458,7 +446,7 @@ class ClassIVCoupled(ClassIVDrawing):
         w = np.stack(np.broadcast_arrays(0.5 + 0.5 * unit.real, 0.5 * unit.imag,
                                          0.5 - 0.5 * unit.real), axis=-1)
         spec = "...p,...jpq->...jq" if self.eliminated == 0 else "...q,...jpq->...jp"
-        m = plain(self._matrices(k))
+        m = self._matrices(k)
         d = np.einsum(spec, w, m[..., None, :, :, :] if spread else m)
         return [(0.5 * (d[..., j, 0] - d[..., j, 2] + 1j * d[..., j, 1]),
                  -0.5 * (d[..., j, 0] + d[..., j, 2])) for j in (0, 1)]

@@ -48,6 +48,17 @@ FULL_DEGREE = 4
 #: Φ sampled at these points (not at −1) gives its coefficients: SPLIT[n] · Φ(GRID) = φ_{n−4}.
 GRID = np.exp(1j * np.pi * (2 * np.arange(2 * FULL_DEGREE + 2) + 1) / (2 * FULL_DEGREE + 2))
 SPLIT = GRID[None, :] ** -np.arange(-FULL_DEGREE, FULL_DEGREE + 1)[:, None] / GRID.size
+
+
+def _unit_halves(e: np.ndarray) -> np.ndarray:
+    """w(y) = ((1 + cos y)/2, sin y/2, (1 − cos y)/2) on a last axis, y = arg e."""
+    unit = e / np.abs(e)
+    return np.stack(np.broadcast_arrays(0.5 + 0.5 * unit.real, 0.5 * unit.imag,
+                                        0.5 - 0.5 * unit.real), axis=-1)
+
+
+#: w(y) at the samples ``GRID``.
+GRID_HALVES = _unit_halves(GRID)
 #: A coefficient of Φ at most this times the largest vanishes for the form.
 VANISH = 1e-10
 
@@ -378,8 +389,10 @@ class ClassIVCoupled(ClassIVDrawing):
         with jets of the inputs (the analogs) that fit would be needed once only."""
         a, c = self._links(unknown_columns(x), k)
         lift = a.weight * a.weight * c.weight * c.weight
-        return [f * scale if kind is Leash.PP else f * scale / lift for f, scale, kind in zip(
-            self._loops(a, c, k), self._scales(k), self.kinds, strict=True)]
+        hinged = isinstance(lift, float) and lift == 1.0
+        return [f * scale if kind is Leash.PP or hinged else f * scale / lift
+                for f, scale, kind in zip(self._loops(a, c, k), self._scales(k), self.kinds,
+                                          strict=True)]
 
     def lines(self, x: np.ndarray, k: ClassIVInputs) -> tuple[np.ndarray, np.ndarray]:
         """The Jacobian in (y_a, y_c) and the margin rows in physical columns.
@@ -435,31 +448,28 @@ class ClassIVCoupled(ClassIVDrawing):
 
     # --- elimination ----------------------------------------------------------------------
 
-    def _linear(self, e: np.ndarray, k: ClassIVInputs, spread: bool = False
+    def _linear(self, w: np.ndarray, k: ClassIVInputs, spread: bool = False
                 ) -> list[tuple[np.ndarray, np.ndarray]]:
-        """α_j, π_j of Re(ᾱ_j E_o) = π_j at y_ε = arg e: the coefficients (d₀, d₁, d₂) of
-        F̂_j in w(y_o) are M_j contracted with w(y_ε) = ((1 + cos)/2, sin/2, (1 − cos)/2);
-        with κ² = (1 + cos)/2, κσ = sin/2, σ² = (1 − cos)/2, α_j = (d₀ − d₂ + i·d₁)/2 and
-        π_j = −(d₀ + d₂)/2. With ``spread`` the samples ``e`` lie on a new last axis (group
-        and inputs not expanded)."""
-        unit = e / np.abs(e)
-        w = np.stack(np.broadcast_arrays(0.5 + 0.5 * unit.real, 0.5 * unit.imag,
-                                         0.5 - 0.5 * unit.real), axis=-1)
+        """α_j, π_j of Re(ᾱ_j E_o) = π_j at y_ε, w = w(y_ε) (:func:`_unit_halves`): the
+        coefficients (d₀, d₁, d₂) of F̂_j in w(y_o) are M_j contracted with w(y_ε); with
+        κ² = (1 + cos)/2, κσ = sin/2, σ² = (1 − cos)/2, α_j = (d₀ − d₂ + i·d₁)/2 and
+        π_j = −(d₀ + d₂)/2. With ``spread`` the samples lie on a new axis before the last
+        (group and inputs not expanded)."""
         spec = "...p,...jpq->...jq" if self.eliminated == 0 else "...q,...jpq->...jp"
         m = self._matrices(k)
         d = np.einsum(spec, w, m[..., None, :, :, :] if spread else m)
         return [(0.5 * (d[..., j, 0] - d[..., j, 2] + 1j * d[..., j, 1]),
                  -0.5 * (d[..., j, 0] + d[..., j, 2])) for j in (0, 1)]
 
-    def _full(self, e: np.ndarray, k: ClassIVInputs, spread: bool = False) -> np.ndarray:
-        """Φ(y_ε) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² at y_ε = arg e.
+    def _full(self, k: ClassIVInputs, spread: bool = False) -> np.ndarray:
+        """Φ(y_ε) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² at y_ε = arg e, e ∈ ``GRID``.
 
         Where both equations are linear in the kept slide s_o (:attr:`_linear_kept`), each
         is A_j·s_o + B_j = 0, lifted α_j = B_j/2 + i·L·A_j/2 and π_j = −Re α_j: then Φ ≡ 0
         (the common root y_o = π), and Φ is the resultant A_b·B_d − A_d·B_b ∝ cross(α_b, α_d)
         instead, of degree at most 2.
         """
-        (ab, pb), (ad, pd) = self._linear(e, k, spread)
+        (ab, pb), (ad, pd) = self._linear(GRID_HALVES, k, spread)
         if self._linear_kept:
             return np.asarray(plain_cross(ab, ad))
         return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - plain_cross(ab, ad) ** 2)
@@ -467,7 +477,7 @@ class ClassIVCoupled(ClassIVDrawing):
     def _series(self, k: ClassIVInputs, spread: bool) -> np.ndarray:
         """Coefficients of E⁴Φ (increasing powers, shape (..., 9)) from Φ sampled off −1
         (with ``spread`` on group and inputs as given, else on both expanded)."""
-        return np.asarray(np.einsum("...k,nk->...n", self._full(GRID, k, spread), SPLIT))
+        return np.asarray(np.einsum("...k,nk->...n", self._full(k, spread), SPLIT))
 
     def _kept(self, series: np.ndarray) -> np.ndarray:
         """The coefficients φ₋ₘ … φₘ of Φ̃ from those of E⁴Φ (see :meth:`eliminant`)."""
@@ -499,7 +509,7 @@ class ClassIVCoupled(ClassIVDrawing):
         """y_ε = arg e, y_o = arg E_o with E_o = −i(π_bα_d − π_dα_b)/cross(α_b, α_d) (−α/ᾱ of
         the larger α where both equations are linear in the kept slide); NaN where a PP
         coupler would be turned by π from one of its links."""
-        (ab, pb), (ad, pd) = self._linear(e, k)
+        (ab, pb), (ad, pd) = self._linear(_unit_halves(e), k)
         if self._linear_kept:  # s_o = −L·Re α/Im α of either line: E_o = −α/ᾱ
             alpha = np.where(np.abs(ab) >= np.abs(ad), ab, ad)
             other = np.angle(-alpha / np.conj(alpha))

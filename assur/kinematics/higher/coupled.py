@@ -458,8 +458,9 @@ class ClassIVCoupled(ClassIVDrawing):
         spec = "...p,...jpq->...jq" if self.eliminated == 0 else "...q,...jpq->...jp"
         m = self._matrices(k)
         d = np.einsum(spec, w, m[..., None, :, :, :] if spread else m)
-        return [(0.5 * (d[..., j, 0] - d[..., j, 2] + 1j * d[..., j, 1]),
-                 -0.5 * (d[..., j, 0] + d[..., j, 2])) for j in (0, 1)]
+        alpha = 0.5 * (d[..., 0] - d[..., 2] + 1j * d[..., 1])
+        pi = -0.5 * (d[..., 0] + d[..., 2])
+        return [(alpha[..., 0], pi[..., 0]), (alpha[..., 1], pi[..., 1])]
 
     def _full(self, k: ClassIVInputs, spread: bool = False) -> np.ndarray:
         """Φ(y_ε) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² at y_ε = arg e, e ∈ ``GRID``.

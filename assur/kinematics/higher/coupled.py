@@ -48,6 +48,17 @@ FULL_DEGREE = 4
 #: Φ sampled at these points (not at −1) gives its coefficients: SPLIT[n] · Φ(GRID) = φ_{n−4}.
 GRID = np.exp(1j * np.pi * (2 * np.arange(2 * FULL_DEGREE + 2) + 1) / (2 * FULL_DEGREE + 2))
 SPLIT = GRID[None, :] ** -np.arange(-FULL_DEGREE, FULL_DEGREE + 1)[:, None] / GRID.size
+
+
+def _unit_halves(e: np.ndarray) -> np.ndarray:
+    """w(y) = ((1 + cos y)/2, sin y/2, (1 − cos y)/2) on a last axis, y = arg e."""
+    unit = e / np.abs(e)
+    return np.stack(np.broadcast_arrays(0.5 + 0.5 * unit.real, 0.5 * unit.imag,
+                                        0.5 - 0.5 * unit.real), axis=-1)
+
+
+#: w(y) at the samples ``GRID``.
+GRID_HALVES = _unit_halves(GRID)
 #: A coefficient of Φ at most this times the largest vanishes for the form.
 VANISH = 1e-10
 
@@ -79,28 +90,12 @@ def _deflate(series: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return quotient, carry
 
 
-def _halves(y: Value) -> Value:
-    """w(y) = (κ², κσ, σ²) on a last axis (κ = cos(y/2), σ = sin(y/2)); a jet of y gives a
-    jet, w′ = (−κσ, (κ² − σ²)/2, κσ), w″ = ((σ² − κ²)/2, −κσ, (κ² − σ²)/2)."""
-    t = np.asarray(J.value(y), dtype=float)
-    k, s = np.cos(0.5 * t), np.sin(0.5 * t)
-    w = np.empty(t.shape + (3,))
-    np.multiply(k, k, out=w[..., 0])
-    np.multiply(k, s, out=w[..., 1])
-    np.multiply(s, s, out=w[..., 2])
-    if not isinstance(y, J.Jet):
-        return w
-    half = 0.5 * (k * k - s * s)
-    d1 = np.stack([-k * s, half, k * s], axis=-1)
-    d2 = np.stack([-half, -k * s, half], axis=-1)
-    y1, y2 = np.asarray(y.d1)[..., None], np.asarray(y.d2)[..., None]
-    return J.Jet(w, d1 * y1, d2 * y1 * y1 + d1 * y2)
-
-
-def _halves_turning(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """w(y) and w′(y) = (−κσ, (κ² − σ²)/2, κσ) of plain angles."""
+def _halves_turning(y: np.ndarray) -> np.ndarray:
+    """w(y) = (κ², κσ, σ²) (κ = cos(y/2), σ = sin(y/2)) and w′(y) = (−κσ, (κ² − σ²)/2, κσ)
+    of plain angles, on a last axis, the two stacked on a leading one."""
     k, s = np.cos(0.5 * y), np.sin(0.5 * y)
-    w, turning = np.empty(np.shape(y) + (3,)), np.empty(np.shape(y) + (3,))
+    out = np.empty((2,) + np.shape(y) + (3,))
+    w, turning = out
     np.multiply(k, k, out=w[..., 0])
     np.multiply(k, s, out=w[..., 1])
     np.multiply(s, s, out=w[..., 2])
@@ -108,50 +103,47 @@ def _halves_turning(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     turning[..., 2] = w[..., 1]
     np.subtract(w[..., 0], w[..., 2], out=turning[..., 1])
     turning[..., 1] *= 0.5
-    return w, turning
+    return out
 
 
-def _form(va: np.ndarray, m: np.ndarray, vc: np.ndarray) -> np.ndarray:
-    """Σ_pq va_p·m_jpq·vc_q of plain arrays (..., 3), (..., 2, 3, 3), (..., 3)."""
-    return np.asarray(np.einsum("...p,...jpq,...q->...j", va, m, vc))
+#: Up to this many positions and designs the form and its Jacobian are one contraction.
+FEW = 256
+#: w, w′, w of y_a against w, w, w′ of y_c: the form and its two partial derivatives.
+_SIDES = (np.array([0, 1, 0]), np.array([0, 0, 1]))
 
 
-def _contracted(m: np.ndarray, vc: np.ndarray) -> np.ndarray:
-    """Σ_q m_jpq·vc_q, shape (..., 2, 3): the form's matrices on one side's vector."""
-    return np.asarray(np.einsum("...jpq,...q->...jp", m, vc))
+def _times(weight: Value, v: Value) -> Value:
+    """weight·v, v itself for the weight 1.0 of a hinged link."""
+    return v if isinstance(weight, float) and weight == 1.0 else weight * v
 
 
-def _side(va: np.ndarray, mc: np.ndarray) -> np.ndarray:
-    """Σ_p va_p·mc_jp, shape (..., 2)."""
-    return np.asarray(np.einsum("...jp,...p->...j", mc, va))
-
-
-def _contract(va: Value, m: Value, vc: Value) -> J.Jet | np.ndarray:
-    """F̂_j = Σ_pq w(y_a)_p·M_jpq·w(y_c)_q, with jets by the product rule (plain arrays: one einsum)."""
-    if not any(isinstance(t, J.Jet) for t in (va, m, vc)):
-        return _form(*(np.asarray(J.value(t)) for t in (va, m, vc)))
-    a, b, c = (np.broadcast_arrays(j.v, j.d1, j.d2) for j in map(J.as_jet, (va, m, vc)))
-
-    def f(i: int, j: int, k: int) -> np.ndarray:
-        return _form(a[i], b[j], c[k])
-
-    return J.Jet(f(0, 0, 0), f(1, 0, 0) + f(0, 1, 0) + f(0, 0, 1),
-                 f(2, 0, 0) + f(0, 2, 0) + f(0, 0, 2)
-                 + 2.0 * (f(1, 1, 0) + f(1, 0, 1) + f(0, 1, 1)))
+def _square(v: Value) -> Value:
+    """|v|² of a complex array or jet (the terms of the product rule as in ``J.dot(v, v)``)."""
+    if not isinstance(v, J.Jet):
+        return J.dot(v, v)
+    square = (np.conj(v.v) * v.v).real
+    first = (np.conj(v.v) * v.d1).real
+    second = (np.conj(v.v) * v.d2).real
+    return J.Jet(square, first + first, second + 2.0 * (np.conj(v.d1) * v.d1).real + second)
 
 
 @dataclass(frozen=True)
 class _Link:
     """A link a or c at one pose: its turn E, the weight κ (cos(t/2) of a sliding link, 1 of
-    a hinged one) and κ·O, O its point drawn at the external pair."""
+    a hinged one), κ·O, O its point drawn at the external pair, and κ·E."""
 
     turn: Value
     weight: Value
     origin: Value
+    carried: Value
 
     def at(self, drawn: Value, pair: Value) -> Value:
         """κ times the point of the link drawn at ``drawn`` (pair: its drawn external pair)."""
-        return self.origin + self.weight * self.turn * (np.asarray(drawn) - pair)
+        return self.reach(np.asarray(drawn) - pair)
+
+    def reach(self, arm: Value) -> Value:
+        """κ times the point of the link drawn at ``arm`` from its external pair."""
+        return self.origin + self.carried * arm
 
 
 @dataclass(frozen=True, eq=False)
@@ -295,27 +287,32 @@ class ClassIVCoupled(ClassIVDrawing):
         """a and c at the unknowns y (angles; plain arrays or jets)."""
         def link(angle: Value, h: Value, u: Value | None, drawn: Value | None) -> _Link:
             if drawn is None or u is None:
-                return _Link(J.expi(angle), 1.0, h)
+                unit = J.expi(angle)
+                return _Link(unit, 1.0, h, unit)
             half = J.expi(0.5 * angle)
             weight = J.real(half)
-            return _Link(u / drawn, weight, weight * h + self.size * J.imag(half) * u)
+            turn = u / drawn
+            return _Link(turn, weight, weight * h + self.size * J.imag(half) * u, weight * turn)
         return (link(y[0], k.h_a, k.u_a, self.u_a), link(y[1], k.h_c, k.u_c, self.u_c))
 
     def _lifted(self, y: Sequence[Value], k: ClassIVInputs) -> list[Value]:
         """F̂_b, F̂_d at the unknowns y (the loop equations times their lifting factors)."""
-        a, c = self._links(y, k)
+        return self._loops(*self._links(y, k), k)
+
+    def _loops(self, a: _Link, c: _Link, k: ClassIVInputs) -> list[Value]:
+        """F̂_b, F̂_d of the links a and c at a pose (:meth:`_lifted`)."""
         both = a.weight * a.weight * c.weight * c.weight
         out: list[Value] = []
-        for j, ((first, second), kind, (wa, wc)) in enumerate(zip(
-                ((self.c, self.d), (self.f, self.e)), self.kinds,
+        for j, ((first, second), (arm_a, arm_c), kind, (wa, wc)) in enumerate(zip(
+                ((self.c, self.d), (self.f, self.e)), self._arms, self.kinds,
                 (self._guides(0), self._guides(1)), strict=True)):
-            pa = a.at(first, self.h_a)     # κ_a·(the point of a at the pair on a)
-            pc = c.at(second, self.h_c)    # κ_c·(the point of c at the pair on c)
-            gap = c.weight * pa - a.weight * pc   # κ_aκ_c·(that on a − that on c)
+            pa = a.reach(arm_a)     # κ_a·(the point of a at the pair on a)
+            pc = c.reach(arm_c)     # κ_c·(the point of c at the pair on c)
+            gap = _times(c.weight, pa) - _times(a.weight, pc)  # κ_aκ_c·(that on a − on c)
             drawn = np.asarray(first) - second
             if kind is Leash.RR:  # a bar: its drawn length, or an actuator's from the inputs
                 length = self._length(j, k)
-                out.append(J.dot(gap, gap) - length * length * both)
+                out.append(_square(gap) - length * length * both)
             elif kind is Leash.PP:
                 out.append(J.cross(a.turn, c.turn))
             else:
@@ -328,8 +325,19 @@ class ClassIVCoupled(ClassIVDrawing):
     def _length(self, j: int, k: ClassIVInputs) -> Value:
         """The length of bar j (0: b, 1: d): drawn, or an actuator's from the inputs."""
         given = k.l_b if j == 0 else k.l_d
-        drawn = np.asarray(J.value((self.c, self.f)[j])) - J.value((self.d, self.e)[j])
-        return np.abs(drawn) if given is None else given
+        return self._drawn_lengths[j] if given is None else given
+
+    @cached_property
+    def _drawn_lengths(self) -> tuple[np.ndarray, np.ndarray]:
+        """|C − D| and |F − E| as drawn."""
+        return (np.abs(np.asarray(J.value(self.c)) - J.value(self.d)),
+                np.abs(np.asarray(J.value(self.f)) - J.value(self.e)))
+
+    @cached_property
+    def _arms(self) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+        """C − H_a, D − H_c (coupler b) and F − H_a, E − H_c (coupler d) as drawn."""
+        return ((np.asarray(self.c) - self.h_a, np.asarray(self.d) - self.h_c),
+                (np.asarray(self.f) - self.h_a, np.asarray(self.e) - self.h_c))
 
     def __getstate__(self) -> dict[str, object]:
         """The record without the fitted matrices of :meth:`_matrices` (weak references do
@@ -337,59 +345,56 @@ class ClassIVCoupled(ClassIVDrawing):
         return {name: value for name, value in self.__dict__.items() if name != "_memo"}
 
     @cached_property
-    def _memo(self) -> WeakKeyDictionary[ClassIVInputs, Value]:
+    def _memo(self) -> WeakKeyDictionary[ClassIVInputs, np.ndarray]:
         """The matrices of :meth:`_matrices` of the inputs records at hand."""
         return WeakKeyDictionary()
 
-    def _matrices(self, k: ClassIVInputs) -> Value:
+    def _matrices(self, k: ClassIVInputs) -> np.ndarray:
         """M_j, shape (..., 2, 3, 3): scale_j·F̂_j = Σ_pq w(y_a)_p·M_jpq·w(y_c)_q
-        (:func:`_halves`), scale_j that of the natural residual (:meth:`_scales`).
+        (w(y) = (κ², κσ, σ²), :func:`_halves_turning`), scale_j that of the natural residual
+        (:meth:`_scales`).
 
         F̂_j is trigonometrically linear in y_a and in y_c separately (a quadratic form in
         (κ, σ) of each), so its values at y_a, y_c ∈ {0, π/2, π} give M_j, once per inputs
-        record; the residual, the Jacobian, the eliminant and the recovery are contractions
-        of M (a positive factor per equation moves no root of Φ). Jet inputs give a jet M.
+        record; the Jacobian, the eliminant and the recovery are contractions of M (a
+        positive factor per equation moves no root of Φ). Plain inputs only (no jets).
         """
         memo = self._memo
         if k not in memo:
-            depth = max(np.ndim(J.value(getattr(record, f.name)))
-                        for record in (self, k) for f in fields(record)
-                        if getattr(record, f.name) is not None)
-            grid = np.ones((3, 3) + (1,) * depth)
+            depth = max([self._depth] + [np.ndim(J.value(v)) for v in vars(k).values()
+                                         if v is not None])
+            tail = (1,) * depth
             lifted = [f * scale for f, scale in zip(
-                self._lifted([SAMPLES.reshape((3, 1) + (1,) * depth),
-                              SAMPLES.reshape((1, 3) + (1,) * depth)], k),
-                self._scales(k), strict=True)]
-            parts = [J.as_jet(f) for f in lifted]
-
-            def fit(name: str) -> np.ndarray:
-                samples = np.stack(np.broadcast_arrays(*(getattr(f, name) * grid for f in parts)))
-                return np.asarray(np.einsum("pa,jab...,qb->...jpq", FROM_SAMPLES, samples,
-                                            FROM_SAMPLES))
-
-            jets = any(isinstance(f, J.Jet) for f in lifted)
-            memo[k] = J.Jet(fit("v"), fit("d1"), fit("d2")) if jets else fit("v")
+                self._lifted([SAMPLES.reshape((3, 1) + tail), SAMPLES.reshape((1, 3) + tail)],
+                             k), self._scales(k), strict=True)]
+            samples = np.stack(np.broadcast_arrays(
+                *(plain(f) for f in lifted), np.ones((3, 3) + tail)))[:-1]
+            memo[k] = np.einsum("pa,jab...,qb->...jpq", FROM_SAMPLES, samples, FROM_SAMPLES)
         return memo[k]
+
+    @cached_property
+    def _depth(self) -> int:
+        """The number of axes of the drawing's values (designs)."""
+        return max(np.ndim(J.value(getattr(self, f.name))) for f in fields(self)
+                   if getattr(self, f.name) is not None)
 
     def _scales(self, k: ClassIVInputs) -> list[Value]:
         """Per coupler, the natural residual's scale: 1/(2l) of a bar, L of a PP coupler, 1."""
         return [0.5 / self._length(j, k) if kind is Leash.RR else self.size
                 if kind is Leash.PP else 1.0 for j, kind in enumerate(self.kinds)]
 
-    def _lifts(self, wa: Value, wc: Value) -> list[Value]:
-        """Per coupler, the lifting factor κ_a²κ_c² from w(y_a), w(y_c) (1 of a PP coupler;
-        κ = 1 of a hinged link)."""
-        qa, qc = ((w[..., 0] if isinstance(w, J.Jet) else plain(w)[..., 0]) if slides else 1.0
-                  for w, slides in zip((wa, wc), self.slides, strict=True))
-        return [1.0 if kind is Leash.PP else qa * qc for kind in self.kinds]
-
     def residual(self, x: Unknowns, k: ClassIVInputs) -> list[Value]:
         """g_b, g_d: RR (|C − D|² − l²)/(2l), PR/RP the offset of the hinge from the guide
-        minus its drawn value, PP L·sin(θ_a − θ_c) (rotations of a sliding link its guide's)."""
-        cols = unknown_columns(x)
-        wa, wc = _halves(cols[0]), _halves(cols[1])
-        f = _contract(wa, self._matrices(k), wc)
-        return [f[..., j] / lift for j, lift in enumerate(self._lifts(wa, wc))]
+        minus its drawn value, PP L·sin(θ_a − θ_c) (rotations of a sliding link its guide's).
+
+        Straight from the loop equations at x (:meth:`_loops`), not from the fitted matrices:
+        with jets of the inputs (the analogs) that fit would be needed once only."""
+        a, c = self._links(unknown_columns(x), k)
+        lift = a.weight * a.weight * c.weight * c.weight
+        hinged = isinstance(lift, float) and lift == 1.0
+        return [f * scale if kind is Leash.PP or hinged else f * scale / lift
+                for f, scale, kind in zip(self._loops(a, c, k), self._scales(k), self.kinds,
+                                          strict=True)]
 
     def lines(self, x: np.ndarray, k: ClassIVInputs) -> tuple[np.ndarray, np.ndarray]:
         """The Jacobian in (y_a, y_c) and the margin rows in physical columns.
@@ -420,12 +425,19 @@ class ClassIVCoupled(ClassIVDrawing):
     def equations(self, x: np.ndarray, k: ClassIVInputs) -> tuple[np.ndarray, np.ndarray]:
         """g (..., 2) and the Jacobian in (y_a, y_c), from one evaluation of w(y_a), w(y_c):
         ∂g_j/∂y = (∂(scale_j·F̂_j)/∂y − g_j·∂lift_j/∂y)/lift_j, the first from M and w′(y)."""
-        ya, yc = (np.asarray(col, dtype=float) for col in unknown_columns(x))
-        m = plain(self._matrices(k))
-        (wa, ta), (wc, tc) = _halves_turning(ya), _halves_turning(yc)
-        mc = _contracted(m, wc)
-        g = _side(wa, mc)
-        jac = np.stack([_side(ta, mc), _form(wa, m, tc)], axis=-1)
+        m = self._matrices(k)
+        halves = _halves_turning(np.asarray(x, dtype=float))
+        wa, wc = halves[0, ..., 0, :], halves[0, ..., 1, :]
+        if m[..., 0, 0, 0].size <= FEW:  # one contraction: the fewest calls
+            f = np.einsum("n...p,...jpq,n...q->...jn", halves[_SIDES[0], ..., 0, :], m,
+                          halves[_SIDES[1], ..., 1, :])
+            g, jac = f[..., 0], f[..., 1:]
+        else:  # M·w(y_c) and M·w′(y_c) once, then the three sides: the fewest operations
+            mc = np.einsum("...jpq,n...q->n...jp", m, halves[:, ..., 1, :])
+            g = np.einsum("...jp,...p->...j", mc[0], wa)
+            jac = np.empty(g.shape + (2,))
+            np.einsum("...jp,...p->...j", mc[0], halves[1, ..., 0, :], out=jac[..., 0])
+            np.einsum("...jp,...p->...j", mc[1], wa, out=jac[..., 1])
         if not any(self.slides):
             return g, jac
         (qa, da), (qc, dc) = ((w[..., 0], -w[..., 1]) if slides else (1.0, 0.0)
@@ -445,31 +457,29 @@ class ClassIVCoupled(ClassIVDrawing):
 
     # --- elimination ----------------------------------------------------------------------
 
-    def _linear(self, e: np.ndarray, k: ClassIVInputs, spread: bool = False
+    def _linear(self, w: np.ndarray, k: ClassIVInputs, spread: bool = False
                 ) -> list[tuple[np.ndarray, np.ndarray]]:
-        """α_j, π_j of Re(ᾱ_j E_o) = π_j at y_ε = arg e: the coefficients (d₀, d₁, d₂) of
-        F̂_j in w(y_o) are M_j contracted with w(y_ε) = ((1 + cos)/2, sin/2, (1 − cos)/2);
-        with κ² = (1 + cos)/2, κσ = sin/2, σ² = (1 − cos)/2, α_j = (d₀ − d₂ + i·d₁)/2 and
-        π_j = −(d₀ + d₂)/2. With ``spread`` the samples ``e`` lie on a new last axis (group
-        and inputs not expanded)."""
-        unit = e / np.abs(e)
-        w = np.stack(np.broadcast_arrays(0.5 + 0.5 * unit.real, 0.5 * unit.imag,
-                                         0.5 - 0.5 * unit.real), axis=-1)
+        """α_j, π_j of Re(ᾱ_j E_o) = π_j at y_ε, w = w(y_ε) (:func:`_unit_halves`): the
+        coefficients (d₀, d₁, d₂) of F̂_j in w(y_o) are M_j contracted with w(y_ε); with
+        κ² = (1 + cos)/2, κσ = sin/2, σ² = (1 − cos)/2, α_j = (d₀ − d₂ + i·d₁)/2 and
+        π_j = −(d₀ + d₂)/2. With ``spread`` the samples lie on a new axis before the last
+        (group and inputs not expanded)."""
         spec = "...p,...jpq->...jq" if self.eliminated == 0 else "...q,...jpq->...jp"
-        m = plain(self._matrices(k))
+        m = self._matrices(k)
         d = np.einsum(spec, w, m[..., None, :, :, :] if spread else m)
-        return [(0.5 * (d[..., j, 0] - d[..., j, 2] + 1j * d[..., j, 1]),
-                 -0.5 * (d[..., j, 0] + d[..., j, 2])) for j in (0, 1)]
+        alpha = 0.5 * (d[..., 0] - d[..., 2] + 1j * d[..., 1])
+        pi = -0.5 * (d[..., 0] + d[..., 2])
+        return [(alpha[..., 0], pi[..., 0]), (alpha[..., 1], pi[..., 1])]
 
-    def _full(self, e: np.ndarray, k: ClassIVInputs, spread: bool = False) -> np.ndarray:
-        """Φ(y_ε) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² at y_ε = arg e.
+    def _full(self, k: ClassIVInputs, spread: bool = False) -> np.ndarray:
+        """Φ(y_ε) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² at y_ε = arg e, e ∈ ``GRID``.
 
         Where both equations are linear in the kept slide s_o (:attr:`_linear_kept`), each
         is A_j·s_o + B_j = 0, lifted α_j = B_j/2 + i·L·A_j/2 and π_j = −Re α_j: then Φ ≡ 0
         (the common root y_o = π), and Φ is the resultant A_b·B_d − A_d·B_b ∝ cross(α_b, α_d)
         instead, of degree at most 2.
         """
-        (ab, pb), (ad, pd) = self._linear(e, k, spread)
+        (ab, pb), (ad, pd) = self._linear(GRID_HALVES, k, spread)
         if self._linear_kept:
             return np.asarray(plain_cross(ab, ad))
         return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - plain_cross(ab, ad) ** 2)
@@ -477,7 +487,7 @@ class ClassIVCoupled(ClassIVDrawing):
     def _series(self, k: ClassIVInputs, spread: bool) -> np.ndarray:
         """Coefficients of E⁴Φ (increasing powers, shape (..., 9)) from Φ sampled off −1
         (with ``spread`` on group and inputs as given, else on both expanded)."""
-        return np.asarray(np.einsum("...k,nk->...n", self._full(GRID, k, spread), SPLIT))
+        return np.asarray(np.einsum("...k,nk->...n", self._full(k, spread), SPLIT))
 
     def _kept(self, series: np.ndarray) -> np.ndarray:
         """The coefficients φ₋ₘ … φₘ of Φ̃ from those of E⁴Φ (see :meth:`eliminant`)."""
@@ -509,7 +519,7 @@ class ClassIVCoupled(ClassIVDrawing):
         """y_ε = arg e, y_o = arg E_o with E_o = −i(π_bα_d − π_dα_b)/cross(α_b, α_d) (−α/ᾱ of
         the larger α where both equations are linear in the kept slide); NaN where a PP
         coupler would be turned by π from one of its links."""
-        (ab, pb), (ad, pd) = self._linear(e, k)
+        (ab, pb), (ad, pd) = self._linear(_unit_halves(e), k)
         if self._linear_kept:  # s_o = −L·Re α/Im α of either line: E_o = −α/ᾱ
             alpha = np.where(np.abs(ab) >= np.abs(ad), ab, ad)
             other = np.angle(-alpha / np.conj(alpha))

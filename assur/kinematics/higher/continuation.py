@@ -43,6 +43,7 @@ from assur.kinematics.higher.modes import (
     solve,
     weights,
 )
+from assur.kinematics.higher.roots import chord, derivatives
 from assur.kinematics.higher.roots import separation as roots_apart
 from assur.kinematics.higher.track import Chains, chains, grid
 from assur.kinematics.jets import Jet
@@ -515,21 +516,11 @@ def _pair(group: HigherGroup[K], k: K, theta: np.ndarray) -> np.ndarray:
     """The sign of the local discriminant of the two roots of Φ near ``theta``.
 
     Φ(θ) = Σ φ_n e^{inθ} (n = −m … m, the coefficients of p) has an extremum θ_c between the
-    two roots of a merging pair, found by Newton's method on Φ′ from ``theta``. Two real roots
-    lie about θ_c where Φ(θ_c) and Φ″(θ_c) have opposite signs, none where they have the same:
-    returns −sign(Φ(θ_c)·Φ″(θ_c)), +1 with the pair on the unit circle, −1 with it off.
+    two roots of a merging pair (:func:`_extremum`). Two real roots lie about θ_c where
+    Φ(θ_c) and Φ″(θ_c) have opposite signs, none where they have the same: returns
+    −sign(Φ(θ_c)·Φ″(θ_c)), +1 with the pair on the unit circle, −1 with it off.
     """
-    coef = coefficients(group, k)
-    m = group.degree
-    n = np.arange(-m, m + 1)
-    with np.errstate(all="ignore"):
-        for _ in range(MEET_ITERATIONS):
-            e = coef * np.exp(1j * n * theta[..., None])
-            slope, bend = (1j * n * e).sum(axis=-1).real, (-n * n * e).sum(axis=-1).real
-            theta = theta - np.where(bend != 0.0, slope / bend, 0.0)
-        e = coef * np.exp(1j * n * theta[..., None])
-        value, bend = e.sum(axis=-1).real, (-n * n * e).sum(axis=-1).real
-    return np.asarray(-np.sign(value * bend))
+    return np.asarray(np.sign(_extremum(coefficients(group, k), theta)[1]))
 
 
 def _meets(group: HigherGroup[K], inputs: Inputs[K], s: float, t: np.ndarray, x: np.ndarray,
@@ -1040,11 +1031,6 @@ class _Root:
         return _Root(*(pick(f.name) for f in dataclasses.fields(self)))
 
 
-def _chord(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """|e^{ia} − e^{ib}|: the distance of two angles as points of the unit circle."""
-    return np.asarray(np.abs(np.exp(1j * a) - np.exp(1j * b)))
-
-
 def _link(h: np.ndarray, here: _Root, there: _Root) -> np.ndarray:
     """The continuation's step test on a link of the path from ``here`` to ``there``, h = φ
     there − φ here (either sign): the root's analogs predict the other root, θ + hθ′ + ½h²θ″,
@@ -1053,8 +1039,8 @@ def _link(h: np.ndarray, here: _Root, there: _Root) -> np.ndarray:
     with np.errstate(invalid="ignore"):
         ahead = here.theta + h * here.t1 + 0.5 * h * h * here.t2
         back = there.theta - h * there.t1 + 0.5 * h * h * there.t2
-        return np.asarray((_chord(ahead, there.theta) <= 0.25 * there.apart)
-                          & (_chord(back, here.theta) <= 0.25 * here.apart)
+        return np.asarray((chord(ahead, there.theta) <= 0.25 * there.apart)
+                          & (chord(back, here.theta) <= 0.25 * here.apart)
                           & (there.slope == here.slope))
 
 
@@ -1083,24 +1069,15 @@ def _poses(group: HigherGroup[K], k: K, theta: np.ndarray, sign: np.ndarray
     return x, x1, x2, lines, posed
 
 
-def _trig(coef: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Φ, Φ′ and Φ″ at θ (...) of the eliminants whose p has the coefficients ``coef``
-    (..., 2m + 1): Φ(θ) = Σ φ_n e^{inθ}, n = −m … m."""
-    m = (coef.shape[-1] - 1) // 2
-    n = np.arange(-m, m + 1)
-    e = coef * np.exp(1j * n * theta[..., None])
-    return e.sum(axis=-1).real, (1j * n * e).sum(axis=-1).real, (-n * n * e).sum(axis=-1).real
-
-
 def _extremum(coef: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The extremum θ_c of Φ nearest ``theta`` (Newton's method on Φ′, ``MEET_ITERATIONS``
     steps) and the local discriminant there, −Φ(θ_c)·sign Φ″(θ_c): positive where a pair of
     real roots lies about θ_c, negative where it has left the unit circle (:func:`_pair`)."""
     with np.errstate(all="ignore"):
         for _ in range(MEET_ITERATIONS):
-            _, slope, bend = _trig(coef, theta)
+            _, slope, bend = derivatives(coef, theta)
             theta = theta - np.where(bend != 0.0, slope / bend, 0.0)
-        value, _, bend = _trig(coef, theta)
+        value, _, bend = derivatives(coef, theta)
     return theta, np.asarray(-value * np.sign(bend))
 
 
@@ -1152,14 +1129,14 @@ class _Leg:
         theta, step = guess, np.full(guess.shape, np.inf)
         with np.errstate(all="ignore"):
             for _ in range(ROOT_ITERATIONS):
-                value, slope, _ = _trig(coef, theta)
+                value, slope, _ = derivatives(coef, theta)
                 step = value / slope
                 theta = theta - step
                 if not (np.abs(step) > CONVERGED).any():
                     break
             x, x1, x2, _, posed = _poses(self.group, k, theta, self.sign)
             apart = roots_apart(coef, theta)
-            slope = np.sign(_trig(coef, theta)[1])
+            slope = np.sign(derivatives(coef, theta)[1])
         e = self.group.eliminated
         return (_Root(theta, x1[..., e], x2[..., e], apart, slope, x, x1),
                 posed & (np.abs(step) <= CONVERGED), coef)
@@ -1291,7 +1268,7 @@ def _walk_path(leg: _Leg) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[tupl
                                          here.theta + dh * here.t1 + 0.5 * dh * dh * here.t2)
             ok = active & posed & _link(dh, here, new)
             arrive = ok & hit
-            through = arrive & (_chord(new.theta, target) <= 0.5 * new.apart)
+            through = arrive & (chord(new.theta, target) <= 0.5 * new.apart)
             status[through] = THROUGH
             on = arrive & ~through
             passed.append((rows[on], aim[on], new.theta[on]))

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["RealRoots", "polish", "real_roots", "separation", "trig_form"]
+__all__ = ["RealRoots", "chord", "derivatives", "polish", "real_roots", "separation", "trig_form"]
 
 TWO_PI = 2.0 * np.pi
 #: θ samples per turn.
@@ -64,6 +64,28 @@ def trig_form(coef: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     a[..., 0] = phi[..., 0].real
     b[..., 0] = 0.0
     return a, b
+
+
+def derivatives(coef: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Φ, Φ′ and Φ″ at θ (...) of the eliminants whose p has the coefficients ``coef``
+    (..., 2m + 1): Φ(θ) = Σ φ_n e^{inθ}, n = −m … m.
+
+    Examples
+    --------
+    >>> value, slope, bend = derivatives(np.array([-0.5j, 1.0, 0.5j]), np.array(0.0))
+    >>> float(value), float(slope), float(bend)  # Φ = 1 − sin θ
+    (1.0, -1.0, 0.0)
+    """
+    m = (coef.shape[-1] - 1) // 2
+    n = np.arange(-m, m + 1)
+    e = coef * np.exp(1j * n * theta[..., None])
+    return e.sum(axis=-1).real, (1j * n * e).sum(axis=-1).real, (-n * n * e).sum(axis=-1).real
+
+
+def chord(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """|e^{ia} − e^{ib}|: the distance of two angles as points of the unit circle; NaN where
+    either is NaN."""
+    return np.asarray(2.0 * np.abs(np.sin(0.5 * (a - b))))
 
 
 def _values(phi: np.ndarray, slopes: np.ndarray, theta: np.ndarray

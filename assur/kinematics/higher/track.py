@@ -25,6 +25,8 @@ from assur.kinematics.higher.groups import HigherGroup, K
 from assur.kinematics.higher.modes import coefficients
 from assur.kinematics.higher.roots import (
     RealRoots,
+    chord,
+    derivatives,
     polish,
     real_roots,
     separation,
@@ -68,16 +70,11 @@ def _columns(group: HigherGroup[K], k: K) -> _Column:
     return _Column(theta, slope, low, high, coef)
 
 
-def _chord(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """|e^{ia} − e^{ib}|, NaN where either is NaN."""
-    return np.asarray(2.0 * np.abs(np.sin(0.5 * (a - b))))
-
-
 def _links(here: _Column, there: _Column) -> np.ndarray:
     """For each root at ``here`` (..., R), the index of the nearest root at ``there``, where
     that root is also the nearest back and has the same sign of Φ′; −1 elsewhere."""
     with np.errstate(invalid="ignore"):
-        dist = _chord(here.theta[..., :, None], there.theta[..., None, :])
+        dist = chord(here.theta[..., :, None], there.theta[..., None, :])
     dist = np.where(np.isnan(dist), np.inf, dist)
     forward = np.argmin(dist, axis=-1)
     backward = np.argmin(dist, axis=-2)
@@ -228,14 +225,7 @@ def chains(group: HigherGroup[K], k: K, columns: np.ndarray, theta0: np.ndarray,
                        np.where(on, col.high[at], np.nan).reshape(-1, 1)).reshape(on.shape)
         theta = np.where(ends, theta0, theta)
         apart = separation(coef, theta)
-        slope = np.where(on, col.slope[at], np.where(ends, np.sign(_slope(coef, theta)), 0.0))
+        slope = np.where(on, col.slope[at], np.where(ends, np.sign(derivatives(coef, theta)[1]), 0.0))
     return Chains(np.append(columns, TWO_PI), theta, apart, slope, (ahead >= 0) | ends,
                   ((behind >= 0) & (index == behind)) | ends, ahead[-1] >= 0, alive,
                   (on[-1] & (index[-1] == start)) | seed)
-
-
-def _slope(coef: np.ndarray, theta: np.ndarray) -> np.ndarray:
-    """Φ′(θ) of the eliminants whose p has the coefficients ``coef`` (..., 2m + 1)."""
-    m = (coef.shape[-1] - 1) // 2
-    n = np.arange(-m, m + 1)
-    return np.asarray((1j * n * coef * np.exp(1j * n * theta[..., None])).sum(axis=-1).real)

@@ -63,7 +63,7 @@ def crank_pin(o: Any, length: Any, angle: Any) -> np.ndarray | None:
             and type(o) in NUMBERS and cmath.isfinite(o)
             and (type(length) in REALS and math.isfinite(length)
                  or type(length) is np.ndarray and length.dtype == float and finite(length))
-            and (cmath.isfinite(angle.dot(angle)) if angle.ndim == 1 else finite(angle))):
+            and finite(angle)):
         return None
     unit = np.empty(angle.shape, dtype=complex)
     np.cos(angle, unit.real)

@@ -1061,7 +1061,7 @@ def _poses(group: HigherGroup[K], k: K, theta: np.ndarray, sign: np.ndarray
     with np.errstate(all="ignore"):
         x = expand(group).recover(np.exp(1j * theta)[..., None], expand(kv))[..., 0, :]
         x, _ = newton(group, kv, x, 2)
-        f = np.stack(np.broadcast_arrays(*map(plain, group.residual(x, kv))), axis=-1)
+        f = group.residuals(x, kv)
         jac, lines = group.lines(x, kv)
         x1, x2 = analogs(group, k, x, jac)
         posed = (np.abs(f).max(axis=-1) <= ACCEPT * np.asarray(group.size)) \
@@ -1152,7 +1152,7 @@ class _Leg:
         w = weights(self.group)
         with np.errstate(all="ignore"):
             x = expand(self.group).recover(np.exp(1j * top)[..., None], expand(kv))[..., 0, :]
-            f = np.stack(np.broadcast_arrays(*map(plain, self.group.residual(x, kv))), axis=-1)
+            f = self.group.residuals(x, kv)
             model = here.x + (2.0 * (star - phi))[..., None] * here.x1
             off = (np.abs(_turned(self.group, x - model)) * w).sum(axis=-1)
             apart = (np.abs(_turned(self.group, x - here.x)) * w).sum(axis=-1)

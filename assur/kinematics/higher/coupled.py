@@ -137,10 +137,6 @@ class _Link:
     origin: Value
     carried: Value
 
-    def at(self, drawn: Value, pair: Value) -> Value:
-        """κ times the point of the link drawn at ``drawn`` (pair: its drawn external pair)."""
-        return self.reach(np.asarray(drawn) - pair)
-
     def reach(self, arm: Value) -> Value:
         """κ times the point of the link drawn at ``arm`` from its external pair."""
         return self.origin + self.carried * arm
@@ -540,7 +536,8 @@ class ClassIVCoupled(ClassIVDrawing):
         for j, ((p, q), (on_a, on_c)) in enumerate(zip((("C", "D"), ("F", "E")),
                                                        (("Ca", "Dc"), ("Fa", "Ec")), strict=True)):
             first, second = getattr(self, p.lower()), getattr(self, q.lower())
-            pa, pc = a.at(first, self.h_a) / a.weight, c.at(second, self.h_c) / c.weight
+            arm_a, arm_c = self._arms[j]
+            pa, pc = a.reach(arm_a) / a.weight, c.reach(arm_c) / c.weight
             drawn = np.asarray(second) - first
             kind = self.kinds[j]
             wa, wc = self._guides(j)

@@ -222,10 +222,13 @@ class HigherGroup(ABC, Generic[K]):
         bins = np.fft.fft(phi, axis=-1) / samples
         return np.asarray(bins[..., np.arange(-m, m + 1) % samples])
 
+    def residuals(self, x: np.ndarray, k: K) -> np.ndarray:
+        """F(x) of plain inputs, stacked: shape (..., n)."""
+        return np.stack(np.broadcast_arrays(*map(plain, self.residual(x, k))), axis=-1)
+
     def equations(self, x: np.ndarray, k: K) -> tuple[np.ndarray, np.ndarray]:
         """F(x), shape (..., n), and the Jacobian: the data of one Newton step."""
-        f = np.stack(np.broadcast_arrays(*map(plain, self.residual(x, k))), axis=-1)
-        return f, self.jacobian(x, k)
+        return self.residuals(x, k), self.jacobian(x, k)
 
     def jacobian(self, x: np.ndarray, k: K) -> np.ndarray:
         """∂F/∂x, shape (..., n, n)."""

@@ -184,10 +184,10 @@ def assembly_modes(group: HigherGroup[K], k: K) -> AssemblyModes:
     with np.errstate(all="ignore"):
         near = np.abs(np.log(np.abs(found))) <= TAU
         x = np.where(near[..., None], wide.recover(found / np.abs(found), kk), np.nan)
-        f = _residual(wide, kk, x)
+        f = wide.residuals(x, kk)
         if not (np.abs(f).max(axis=-1) <= SETTLED * size)[near].all():
             x, _ = newton(wide, kk, x, 3)
-            f = _residual(wide, kk, x)
+            f = wide.residuals(x, kk)
         valid = near & (np.abs(f).max(axis=-1) <= ACCEPT * size)
         names = list(wide.joints(x, kk).items())
         # the joints and the eliminated rotation (as a point at the distance L): a triad
@@ -208,11 +208,6 @@ def assembly_modes(group: HigherGroup[K], k: K) -> AssemblyModes:
     return AssemblyModes(x=x, count=valid.sum(axis=-1),
                          joints={name: stack[..., j] for j, (name, _) in enumerate(names)},
                          margin=margin, det_sign=np.sign(det_rows(jac)), roots=found)
-
-
-def _residual(group: HigherGroup[K], k: K, x: np.ndarray) -> np.ndarray:
-    """F(x), shape (..., n)."""
-    return np.stack(np.broadcast_arrays(*map(plain, group.residual(x, k))), axis=-1)
 
 
 def select_mode(group: HigherGroup[K], k: K, modes: AssemblyModes

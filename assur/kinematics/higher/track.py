@@ -56,10 +56,11 @@ class _Column:
     coef: np.ndarray
 
 
-def _columns(group: HigherGroup[K], k: K) -> _Column:
-    """The real roots of the group's eliminant at the inputs ``k`` (plain, shape (..., D))."""
+def _columns(group: HigherGroup[K], k: K, u: int) -> _Column:
+    """The real roots of the group's eliminant at the first ``u`` rows of the inputs ``k``
+    (plain, shape (U + 1, D))."""
     with np.errstate(all="ignore"):
-        coef = coefficients(group, k)
+        coef = coefficients(group, k)[:u]
     shape = coef.shape[:-1]
     flat = coef.reshape(-1, coef.shape[-1])
     a, b = trig_form(flat)
@@ -70,17 +71,19 @@ def _columns(group: HigherGroup[K], k: K) -> _Column:
     return _Column(theta, slope, low, high, coef)
 
 
-def _links(here: _Column, there: _Column) -> np.ndarray:
-    """For each root at ``here`` (..., R), the index of the nearest root at ``there``, where
-    that root is also the nearest back and has the same sign of Φ′; −1 elsewhere."""
+def _links(col: _Column) -> np.ndarray:
+    """For each root at each column (U, D, R), the index of the nearest root at the next
+    column (the last column's next is the first), where that root is also the nearest back
+    and has the same sign of Φ′; −1 elsewhere."""
+    theta, slope = np.roll(col.theta, -1, axis=0), np.roll(col.slope, -1, axis=0)
     with np.errstate(invalid="ignore"):
-        dist = chord(here.theta[..., :, None], there.theta[..., None, :])
+        dist = chord(col.theta[..., :, None], theta[..., None, :])
     dist = np.where(np.isnan(dist), np.inf, dist)
     forward = np.argmin(dist, axis=-1)
     backward = np.argmin(dist, axis=-2)
     width = forward.shape[-1]
-    same = np.take_along_axis(there.slope, forward, axis=-1) == here.slope
-    ok = same & (here.slope != 0) \
+    same = np.take_along_axis(slope, forward, axis=-1) == col.slope
+    ok = same & (col.slope != 0) \
         & (np.take_along_axis(backward, forward, axis=-1) == np.arange(width))
     return np.asarray(np.where(ok, forward, -1))
 
@@ -119,8 +122,6 @@ class Chains:
         φ = 0, or on the one from it at φ = 2π going down (followed only where the forward
         one is lost before 2π). Where both hold it is the same root (the chains are then
         one). A sketched root in no bracket is on both at φ = 0 and 2π only.
-    around : ndarray, bool, shape (D,)
-        The forward chain reaches φ = 2π.
     bracketed : ndarray, bool, shape (D,)
         The sketched root lies in a bracket at φ = 0 (the chains start from it).
     closed : ndarray, bool, shape (D,)
@@ -133,7 +134,6 @@ class Chains:
     slope: np.ndarray
     forward: np.ndarray
     backward: np.ndarray
-    around: np.ndarray
     bracketed: np.ndarray
     closed: np.ndarray
 
@@ -161,9 +161,7 @@ def grid(wanted: np.ndarray) -> np.ndarray:
     a requested angle (that angle is the column)."""
     asked = np.union1d([0.0], wanted)
     base = TWO_PI / BASE * np.arange(BASE)
-    after = np.clip(np.searchsorted(asked, base), 1, asked.size - 1)
-    apart = np.minimum(np.abs(base - asked[after - 1]), np.abs(base - asked[after])) \
-        if asked.size > 1 else np.abs(base - asked[0])
+    apart = np.abs(base[:, None] - asked).min(axis=-1)
     return np.asarray(np.union1d(asked, base[apart > SAME]))
 
 
@@ -195,14 +193,11 @@ def chains(group: HigherGroup[K], k: K, columns: np.ndarray, theta0: np.ndarray,
     """
     d = theta0.shape[0]
     u = columns.size
-    whole = _columns(group, k)  # the row at 2π is the first a turn later: not used
-    col = _Column(*(getattr(whole, f)[:u] for f in ("theta", "slope", "low", "high", "coef")))
+    col = _columns(group, k, u)  # the row at 2π is the first a turn later
     with np.errstate(invalid="ignore"):
         inside = np.mod(theta0[:, None] - col.low[0], TWO_PI) <= col.high[0] - col.low[0]
     alive = found & inside.any(axis=-1)
-    nxt = _Column(*(np.concatenate([getattr(col, f)[1:], getattr(col, f)[:1]])
-                    for f in ("theta", "slope", "low", "high", "coef")))
-    links = _links(col, nxt)
+    links = _links(col)
     start = np.where(alive, np.argmax(inside, axis=-1), -1)
     ahead = _chain(_from_first(links), start)
     lost = (start >= 0) & (ahead[-1] < 0)
@@ -227,5 +222,5 @@ def chains(group: HigherGroup[K], k: K, columns: np.ndarray, theta0: np.ndarray,
         apart = separation(coef, theta)
         slope = np.where(on, col.slope[at], np.where(ends, np.sign(derivatives(coef, theta)[1]), 0.0))
     return Chains(np.append(columns, TWO_PI), theta, apart, slope, (ahead >= 0) | ends,
-                  ((behind >= 0) & (index == behind)) | ends, ahead[-1] >= 0, alive,
+                  ((behind >= 0) & (index == behind)) | ends, alive,
                   (on[-1] & (index[-1] == start)) | seed)

@@ -20,6 +20,7 @@ from typing import Any, TypeVar
 import numpy as np
 
 from assur.kinematics import jets as J
+from assur.kinematics.higher import compiled
 from assur.kinematics.higher.groups import (
     ClassIVDrawing,
     HigherGroup,
@@ -191,17 +192,20 @@ def _correct(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarray
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Newton from the predictor ``guess`` and the acceptance tests (a)–(c) of §1.6.
 
-    Returns the corrected unknowns, their Jacobian and margin rows, and where they pass:
-    Newton converged, det J has the sign ``sign``, and the correction is at most a quarter
-    of the separation bound.
+    Returns the corrected unknowns, their Jacobian and margin (the Hadamard ratio of the
+    margin rows), and where they pass: Newton converged, det J has the sign ``sign``, and
+    the correction is at most a quarter of the separation bound; by compiled code where
+    :mod:`~assur.kinematics.higher.compiled` has a kernel for the group.
     """
+    if compiled.supports(group):
+        return compiled.correct(group, kv, guess, sign, ITERATIONS, CONVERGED)
     xn, step = _newton(group, kv, guess)
     with np.errstate(all="ignore"):
         jac, rows = group.lines(xn, kv)
         apart = (np.abs(xn - guess) * weights(group)).sum(axis=-1)
         ok = (step <= CONVERGED) & (np.sign(det_rows(jac)) == sign) \
             & (apart <= 0.25 * separation(group, kv, xn))
-    return xn, jac, rows, ok
+        return xn, jac, hadamard(rows), ok
 
 
 def _newton(group: HigherGroup[K], kv: K, guess: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -267,12 +271,9 @@ def _correct_at(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarra
         at = tuple(w[start:start + BLOCK] for w in where)
         small_group, small_k = _take(group, mask, at), _take(kv, mask, at)
         if small_group is None or small_k is None:
-            x, jac, rows, ok = _correct(group, kv, guess, sign)
-            with np.errstate(all="ignore"):
-                return x, jac, np.where(mask, hadamard(rows), np.nan), ok & mask
-        x[at], jac[at], rows, ok[at] = _correct(small_group, small_k, guess[at], sign[at])
-        with np.errstate(all="ignore"):
-            margin[at] = hadamard(rows)
+            x, jac, margin, ok = _correct(group, kv, guess, sign)
+            return x, jac, np.where(mask, margin, np.nan), ok & mask
+        x[at], jac[at], margin[at], ok[at] = _correct(small_group, small_k, guess[at], sign[at])
     return x, jac, margin, ok
 
 
@@ -399,13 +400,13 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
         kv = values(k)
         guess = here.x + (s * trial)[..., None] * here.x1 \
             + 0.5 * (trial * trial)[..., None] * here.x2
-        xn, jac, rows, ok = _correct(group, kv, guess, sign)
+        xn, jac, margins, ok = _correct(group, kv, guess, sign)
         ok &= moving & ((halves == 1.0) | (trial >= H_MIN))
         taken = np.asarray(ok.any(axis=0))
         first = np.argmax(ok, axis=0)
         with np.errstate(all="ignore"):
             n1, n2 = analogs(group, k, xn, jac)
-            now = _pick(hadamard(rows), first)
+            now = _pick(margins, first)
         step = _pick(trial, first)
         hit = taken & (first == 0) & (hs >= goal - here.t)
         # the nearest rejected step beyond the new state

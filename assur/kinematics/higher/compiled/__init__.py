@@ -1,0 +1,62 @@
+"""The corrector of the continuation compiled: Newton's method and the acceptance tests.
+
+At many positions (the requested angles of many designs, the rungs of a step) the corrector
+of the continuation (:func:`~assur.kinematics.higher.continuation._correct`) spends its
+time in numpy's calls on short arrays and in one pass over memory per operation, some two
+hundred of them per Newton step. Here each position is corrected from start to finish by
+compiled scalar code (numba): Newton's method on the group's loop equations with Cramer's
+rule, each position stopping once its own step is settled, then its Jacobian, the sign of
+its determinant, the margin and the separation bound of the root, each with the operations
+of the group's own methods.
+
+:func:`supports` tells which groups have kernels without loading numba; the kernels' modules
+import it, and :func:`correct` imports them at its first call: a program that meets no such
+group never loads numba, and the compiled code is cached on disk after the first run.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from assur.kinematics.higher.groups import HigherGroup, Triad, TriadInputs
+
+__all__ = ["correct", "supports"]
+
+
+def supports(group: HigherGroup[Any]) -> bool:
+    """Whether a kernel corrects this group: a triad without a P–P leash."""
+    return isinstance(group, Triad) and not group.pinned
+
+
+def correct(group: HigherGroup[Any], k: Any, guess: np.ndarray,
+            sign: np.ndarray, iterations: int, converged: float
+            ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The corrector and the acceptance tests (a)–(c) of §1.6 at every position of ``guess``
+    for a group that :func:`supports` accepts.
+
+    Parameters
+    ----------
+    group : HigherGroup
+        The group; drawn values broadcasting against the positions.
+    k : TriadInputs
+        Its inputs at the positions, plain arrays.
+    guess : ndarray, shape (..., n)
+        The predictor.
+    sign : ndarray
+        The sign of det J of the mode followed, broadcasting against the positions.
+    iterations, converged : int, float
+        Newton's steps at most, and the scaled step at which a position stops.
+
+    Returns
+    -------
+    x, jac, margin, ok : ndarray
+        The corrected unknowns (..., n), their Jacobian (..., n, n), the margin (...), and
+        where Newton's method converged, det J has the sign ``sign`` and the correction is
+        at most a quarter of the separation bound.
+    """
+    from assur.kinematics.higher.compiled.triad import correct_triad
+
+    assert isinstance(group, Triad) and isinstance(k, TriadInputs)
+    return correct_triad(group, k, guess, sign, iterations, converged)

@@ -1,0 +1,99 @@
+"""What the kernels share: how they are compiled, and the scalar steps of more than one.
+
+Every function here is compiled by numba; importing this module imports numba.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any, TypeVar, cast
+
+import numba
+import numpy as np
+
+__all__ = ["cross", "det3", "dot", "inline", "kernel", "separation", "solve3"]
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def kernel(f: F) -> F:
+    """``f`` compiled for the CPU and cached on disk; floating-point errors give inf and NaN
+    as in numpy, never an exception."""
+    return cast(F, numba.njit(cache=True, nogil=True, error_model="numpy")(f))
+
+
+def inline(f: F) -> F:
+    """A step of the kernels, compiled into each caller (no call, no array references)."""
+    return cast(F, numba.njit(inline="always", error_model="numpy")(f))
+
+
+@inline
+def cross(a: complex, b: complex) -> float:
+    """Im(ā b) (:func:`~assur.kinematics.jets.cross`)."""
+    return (a.conjugate() * b).imag
+
+
+@inline
+def dot(a: complex, b: complex) -> float:
+    """Re(ā b) (:func:`~assur.kinematics.jets.dot`)."""
+    return (a.conjugate() * b).real
+
+
+@inline
+def det3(e00: float, e01: float, e02: float, e10: float, e11: float, e12: float,
+         e20: float, e21: float, e22: float) -> float:
+    """The determinant by the first row's cofactors (:func:`~assur.kinematics.higher.groups.
+    cofactors`)."""
+    return (e00 * (e11 * e22 - e12 * e21) + e01 * (e12 * e20 - e10 * e22)
+            + e02 * (e10 * e21 - e11 * e20))
+
+
+@inline
+def solve3(e00: float, e01: float, e02: float, e10: float, e11: float, e12: float,
+           e20: float, e21: float, e22: float, f0: float, f1: float, f2: float
+           ) -> tuple[float, float, float]:
+    """x with e·x = f by Cramer's rule (:func:`~assur.kinematics.higher.modes.solve`)."""
+    c00, c01, c02 = e11 * e22 - e12 * e21, e12 * e20 - e10 * e22, e10 * e21 - e11 * e20
+    c10, c11, c12 = e21 * e02 - e22 * e01, e22 * e00 - e20 * e02, e20 * e01 - e21 * e00
+    c20, c21, c22 = e01 * e12 - e02 * e11, e02 * e10 - e00 * e12, e00 * e11 - e01 * e10
+    det = e00 * c00 + e01 * c01 + e02 * c02
+    return ((c00 * f0 + c10 * f1 + c20 * f2) / det, (c01 * f0 + c11 * f1 + c21 * f2) / det,
+            (c02 * f0 + c12 * f1 + c22 * f2) / det)
+
+
+@inline
+def _root(r: float, j: int) -> float:
+    """r^{1/j} as :func:`~assur.kinematics.higher.roots._root` takes it."""
+    if j == 2:
+        return math.sqrt(r)
+    if j == 4:
+        return math.sqrt(math.sqrt(r))
+    if j == 3:
+        return float(np.cbrt(r))
+    root: float = r ** (1.0 / j)
+    return root
+
+
+@inline
+def separation(coef: np.ndarray, theta: float, work: np.ndarray) -> float:
+    """The separation bound of the root e^{iθ} of p (coefficients ``coef`` in increasing
+    powers; :func:`~assur.kinematics.higher.roots.separation`: the Taylor shift by synthetic
+    division, then Fujiwara's bound on the deflated polynomial). ``work`` holds as many
+    numbers as ``coef``."""
+    n = coef.shape[0] - 1
+    for i in range(n + 1):
+        work[i] = coef[n - i]
+    z = complex(math.cos(theta), math.sin(theta))
+    for order in range(n):
+        for i in range(1, n - order if order == 0 else n + 1 - order):
+            work[i] = work[i] + z * work[i - 1]
+    scale = 1.0 / abs(work[n - 1])
+    worst: float = abs(work[n - 2]) * scale
+    for j in range(2, n):
+        v = _root(abs(work[n - 1 - j]) * scale, j)
+        if math.isnan(v) or math.isnan(worst):
+            worst = math.nan
+        elif v > worst:
+            worst = v
+    return 0.5 / worst

@@ -1,0 +1,242 @@
+"""The triad's kernel: the corrector of a triad without a P–P leash (unknowns W and θ).
+
+Per position, with the operations of the group's methods: Newton's method on
+:meth:`~assur.kinematics.higher.groups.Triad.equations`; the Jacobian and the margin of
+:meth:`~assur.kinematics.higher.groups.Triad.lines`; the closed-form coefficients of
+:meth:`~assur.kinematics.higher.groups.Triad.coefficients` and the root's separation bound.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from assur.kinematics.higher.compiled._jit import (
+    cross,
+    det3,
+    dot,
+    inline,
+    kernel,
+    separation,
+    solve3,
+)
+from assur.kinematics.higher.groups import Leash, Triad, TriadInputs, plain
+
+__all__ = ["correct_triad"]
+
+#: Leash forms as the kernel numbers them.
+_CODES = {Leash.RR: 0, Leash.RP: 1, Leash.PR: 2}
+_RR, _RP = 0, 1
+
+
+@inline
+def _leash(kind: int, p1: complex, e: complex, a: complex, u: complex, r: float, b: complex,
+           g: complex) -> tuple[complex, complex, complex]:
+    """The base point P₁ + b·E of a leash, its line's direction ν and a point X of the line
+    (:meth:`Triad._constraints`)."""
+    point = p1 + b * e
+    if kind == _RR:
+        return point, (point - a) / r, point
+    if kind == _RP:
+        return point, 1j * u, point
+    return point, 1j * g * e, a
+
+
+@inline
+def _residual(kind: int, point: complex, nu: complex, a: complex, r: float) -> float:
+    """f of a leash (:meth:`Triad.equations`)."""
+    arm = point - a
+    if kind == _RR:
+        return ((arm.conjugate() * arm).real - r * r) / (2.0 * r)
+    return (nu.conjugate() * arm).real
+
+
+@inline
+def _leash_line(kind: int, a_i: complex, a_0: complex, u_i: complex, g_i: complex,
+                b_i: complex, r_i: float, r_0: float) -> tuple[complex, complex, float, complex]:
+    """(α₀, α₁, c, γ) of the leash's line a·W = p (:meth:`Triad._leash_line`)."""
+    d = a_i - a_0
+    if kind == _RR:
+        c = (r_i * r_i - r_0 * r_0 - _square(b_i) - _square(d)) / 2.0
+        return -d, b_i, c, d.conjugate() * b_i / 2.0
+    if kind == _RP:
+        n = 1j * u_i
+        return n, 0j, dot(n, d), -n.conjugate() * b_i / 2.0
+    gg = 1j * g_i
+    return 0j, gg, -dot(gg, b_i), gg * d.conjugate() / 2.0
+
+
+@inline
+def _square(z: complex) -> float:
+    """|z|²."""
+    return z.real * z.real + z.imag * z.imag
+
+
+@inline
+def _cross_terms(a0: complex, a1: complex, b0: complex, b1: complex) -> tuple[float, complex]:
+    """x₀ and x₁ of cross(a, a′) = x₀ + x₁E + x̄₁/E (groups._cross_terms)."""
+    return (cross(a0, b0) + cross(a1, b1),
+            (a0.conjugate() * b1 - a1 * b0.conjugate()) / 2j)
+
+
+@inline
+def _half(kinds: np.ndarray, degree: int, a: np.ndarray, u: np.ndarray, r: np.ndarray,
+          b: np.ndarray, g: np.ndarray, p: int) -> tuple[complex, complex, complex, complex]:
+    """φ₀ … φ₃ of Φ(θ) = Σ φ_n Eⁿ at position ``p`` (:meth:`Triad._half`; zero above the
+    degree)."""
+    l0 = _leash_line(kinds[0], a[p, 0], a[p, 0], u[p, 0], g[p, 0], b[p, 0], r[p, 0], r[p, 0])
+    l1 = _leash_line(kinds[1], a[p, 1], a[p, 0], u[p, 1], g[p, 1], b[p, 1], r[p, 1], r[p, 0])
+    l2 = _leash_line(kinds[2], a[p, 2], a[p, 0], u[p, 2], g[p, 2], b[p, 2], r[p, 2], r[p, 0])
+    if kinds[0] == _RR:
+        (a2, b2, c2, g2), (a3, b3, c3, g3) = l1, l2
+        h2, h3 = g2.conjugate(), g3.conjugate()
+        m0 = h2 * a3 - h3 * a2
+        m1 = c2 * a3 + h2 * b3 - c3 * a2 - h3 * b2
+        m2 = g2 * a3 + c2 * b3 - g3 * a2 - c3 * b2
+        m3 = g2 * b3 - g3 * b2
+        x0, x1 = _cross_terms(a2, b2, a3, b3)
+        r1 = r[p, 0] * r[p, 0]
+        top = m3 * m0.conjugate() if degree == 3 else 0j
+        return ((m0 * m0.conjugate() + m1 * m1.conjugate() + m2 * m2.conjugate()
+                 + m3 * m3.conjugate()) - r1 * (x0 * x0 + 2.0 * _square(x1)),
+                (m1 * m0.conjugate() + m2 * m1.conjugate() + m3 * m2.conjugate())
+                - r1 * (2.0 * x0 * x1),
+                (m2 * m0.conjugate() + m3 * m1.conjugate()) - r1 * (x1 * x1), top)
+    h0, h1, h2 = 0j, 0j, 0j
+    for own, one, two in ((l0, l1, l2), (l1, l2, l0), (l2, l0, l1)):
+        x0, x1 = _cross_terms(one[0], one[1], two[0], two[1])
+        h0 = h0 + own[2] * x0 + 2.0 * dot(x1, own[3])
+        h1 = h1 + own[2] * x1 + own[3] * x0
+        h2 = h2 + own[3] * x1
+    return h0, h1, (h2 if degree == 2 else 0j), 0j
+
+
+@inline
+def _coefficients(half: tuple[complex, complex, complex, complex], degree: int,
+                  out: np.ndarray) -> None:
+    """p₀ … p_2m of p(E) = E^m·Φ from φ₀ … φ_m into ``out`` as
+    :meth:`~assur.kinematics.higher.groups.Triad.coefficients` lays them out (p_{m±n} = φ_n
+    and its conjugate); all NaN where one is not finite."""
+    for n in range(degree + 1):
+        out[degree + n] = half[n]
+        out[degree - n] = half[n].conjugate()
+    total = 0j
+    for n in range(2 * degree + 1):
+        total += out[n]
+    if not (math.isfinite(total.real) and math.isfinite(total.imag)):
+        out[:] = complex(math.nan, math.nan)
+
+
+@kernel
+def _correct_kernel(kinds: np.ndarray, degree: int, iterations: int, converged: float,
+                    a: np.ndarray, u: np.ndarray, r: np.ndarray, b: np.ndarray,
+                    g: np.ndarray, size: np.ndarray, guess: np.ndarray, sign: np.ndarray,
+                    x: np.ndarray, jac: np.ndarray, margin: np.ndarray, ok: np.ndarray
+                    ) -> None:
+    """Every position of the flat arrays corrected and tested (:func:`correct_triad`)."""
+    k0, k1, k2 = kinds[0], kinds[1], kinds[2]
+    coef = np.empty(2 * degree + 1, dtype=np.complex128)
+    work = np.empty(2 * degree + 1, dtype=np.complex128)
+    for p in range(guess.shape[0]):
+        a0, a1, a2 = a[p, 0], a[p, 1], a[p, 2]
+        u0, u1, u2 = u[p, 0], u[p, 1], u[p, 2]
+        r0, r1, r2 = r[p, 0], r[p, 1], r[p, 2]
+        b0, b1, b2 = b[p, 0], b[p, 1], b[p, 2]
+        g0, g1, g2 = g[p, 0], g[p, 1], g[p, 2]
+        inv = 1.0 / size[p]
+        w0, w1, th = guess[p, 0], guess[p, 1], guess[p, 2]
+        step = math.inf
+        for iteration in range(iterations + 1):
+            e = complex(math.cos(th), math.sin(th))
+            p1 = a0 + complex(w0, w1)
+            q0, n0, x0 = _leash(k0, p1, e, a0, u0, r0, b0, g0)
+            q1, n1, x1 = _leash(k1, p1, e, a1, u1, r1, b1, g1)
+            q2, n2, x2 = _leash(k2, p1, e, a2, u2, r2, b2, g2)
+            e02, e12, e22 = cross(x0 - p1, n0), cross(x1 - p1, n1), cross(x2 - p1, n2)
+            if iteration == iterations or step <= converged:
+                break
+            d0, d1, d2 = solve3(n0.real, n0.imag, e02, n1.real, n1.imag, e12,
+                                n2.real, n2.imag, e22,
+                                -_residual(k0, q0, n0, a0, r0), -_residual(k1, q1, n1, a1, r1),
+                                -_residual(k2, q2, n2, a2, r2))
+            w0, w1, th = w0 + d0, w1 + d1, th + d2
+            step = abs(d0 * inv) + abs(d1 * inv) + abs(d2)
+        x[p, 0], x[p, 1], x[p, 2] = w0, w1, th
+        jac[p, 0, 0], jac[p, 0, 1], jac[p, 0, 2] = n0.real, n0.imag, e02
+        jac[p, 1, 0], jac[p, 1, 1], jac[p, 1, 2] = n1.real, n1.imag, e12
+        jac[p, 2, 0], jac[p, 2, 1], jac[p, 2, 2] = n2.real, n2.imag, e22
+        centre = (q0 + q1 + q2) / 3.0
+        spread = math.sqrt((abs(q0 - centre) ** 2 + abs(q1 - centre) ** 2
+                            + abs(q2 - centre) ** 2) / 3.0)
+        v0, v1, v2 = n0 / abs(n0), n1 / abs(n1), n2 / abs(n2)
+        m02 = cross(x0 - centre, v0) / spread
+        m12 = cross(x1 - centre, v1) / spread
+        m22 = cross(x2 - centre, v2) / spread
+        norms = (math.sqrt(v0.real ** 2 + v0.imag ** 2 + m02 ** 2)
+                 * math.sqrt(v1.real ** 2 + v1.imag ** 2 + m12 ** 2)
+                 * math.sqrt(v2.real ** 2 + v2.imag ** 2 + m22 ** 2))
+        margin[p] = abs(det3(v0.real, v0.imag, m02, v1.real, v1.imag, m12,
+                             v2.real, v2.imag, m22)) / norms
+        det = det3(n0.real, n0.imag, e02, n1.real, n1.imag, e12, n2.real, n2.imag, e22)
+        apart = (abs(w0 - guess[p, 0]) * inv + abs(w1 - guess[p, 1]) * inv
+                 + abs(th - guess[p, 2]))
+        _coefficients(_half(kinds, degree, a, u, r, b, g, p), degree, coef)
+        bound = separation(coef, th, work)
+        ok[p] = (step <= converged) and (np.sign(det) == sign[p]) and (apart <= 0.25 * bound)
+
+
+def _columns(values: tuple[Any, ...], shape: tuple[int, ...], dtype: type) -> np.ndarray:
+    """Three values (None for 0), broadcast to ``shape`` and laid flat, as columns (N, 3)."""
+    out: np.ndarray = np.zeros((int(np.prod(shape)), 3), dtype=dtype)
+    for i, v in enumerate(values):
+        if v is not None:
+            out[:, i] = np.broadcast_to(plain(v), shape).reshape(-1)
+    return out
+
+
+def correct_triad(group: Triad, k: TriadInputs, guess: np.ndarray, sign: np.ndarray,
+                  iterations: int, converged: float
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The corrector and the acceptance tests (a)–(c) of §1.6 at every position of ``guess``.
+
+    Parameters
+    ----------
+    group : Triad
+        A triad without a P–P leash (:func:`supports`); drawn values broadcasting against
+        the positions.
+    k : TriadInputs
+        Its inputs at the positions, plain arrays.
+    guess : ndarray, shape (..., 3)
+        The predictor (W_x, W_y, θ).
+    sign : ndarray
+        The sign of det J of the mode followed, broadcasting against the positions.
+    iterations, converged : int, float
+        Newton's steps at most, and the scaled step at which a position stops.
+
+    Returns
+    -------
+    x, jac, margin, ok : ndarray
+        The corrected unknowns (..., 3), their Jacobian (..., 3, 3), the margin (...), and
+        where Newton's method converged, det J has the sign ``sign`` and the correction is
+        at most a quarter of the separation bound.
+    """
+    shape = guess.shape[:-1]
+    count = int(np.prod(shape))
+    lengths = tuple(group._length(i, k) for i in range(3))
+    x = np.empty((count, 3))
+    jac = np.empty((count, 3, 3))
+    margin = np.empty(count)
+    ok = np.empty(count, dtype=bool)
+    _correct_kernel(
+        np.array([_CODES[kind] for kind in group.leashes], dtype=np.int64), group.degree,
+        iterations, converged, _columns(k.a, shape, complex), _columns(k.u, shape, complex),
+        _columns(lengths, shape, float), _columns(group._offsets, shape, complex),
+        _columns(group.guide, shape, complex),
+        np.broadcast_to(np.asarray(group.size, dtype=float), shape).reshape(-1),
+        np.ascontiguousarray(guess, dtype=float).reshape(count, 3),
+        np.broadcast_to(np.asarray(sign, dtype=float), shape).reshape(-1),
+        x, jac, margin, ok)
+    return (x.reshape(shape + (3,)), jac.reshape(shape + (3, 3)), margin.reshape(shape),
+            ok.reshape(shape))

@@ -259,7 +259,7 @@ def _take(record: T, mask: np.ndarray, index: tuple[np.ndarray, ...] | None = No
 def _correct_at(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarray,
                 mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """:func:`_correct` on an (N, D) grid of positions, computed only where ``mask`` holds,
-    ``BLOCK`` positions at a time. Returns the unknowns, the Jacobians, the margins (the
+    ``BLOCK`` positions at a time (all at once by a compiled kernel). Returns the unknowns, the Jacobians, the margins (the
     Hadamard ratio of the margin rows) and where the tests pass; NaN and False elsewhere."""
     n = group.n
     x, jac = (np.full(mask.shape + tail, np.nan) for tail in ((n,), (n, n)))
@@ -267,8 +267,9 @@ def _correct_at(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarra
     ok = np.zeros(mask.shape, dtype=bool)
     where = np.nonzero(mask)
     sign = np.broadcast_to(sign, mask.shape)
-    for start in range(0, where[0].size, BLOCK):
-        at = tuple(w[start:start + BLOCK] for w in where)
+    block = max(1, where[0].size) if compiled.supports(group) else BLOCK  # no temporaries
+    for start in range(0, where[0].size, block):
+        at = tuple(w[start:start + block] for w in where)
         small_group, small_k = _take(group, mask, at), _take(kv, mask, at)
         if small_group is None or small_k is None:
             x, jac, margin, ok = _correct(group, kv, guess, sign)
@@ -953,25 +954,31 @@ def _step_follow(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: 
                        for a, v in group.joints(x0, k0).items()], axis=0)
     closed = ~around | (home <= CLOSED * size)
     back_targets = np.append(TWO_PI - grid[grid > 0][::-1], TWO_PI)
-    behind = _follow(group, inputs, x0, back_targets, -1.0, ~found | around, analogs)
+    # the backward pass, where the forward one did not go round
+    behind = (_follow(group, inputs, x0, back_targets, -1.0, ~found | around, analogs)
+              if (found & ~around).any() else None)
     back_index = np.full(n, -1)
     back_index[grid > 0] = np.arange(len(back_targets) - 1)[::-1]
     use_ahead = ahead.reached[:, :n]
-    use_behind = ~use_ahead & (back_index >= 0) & behind.reached[:, back_index]
+    use_behind = ~use_ahead & (back_index >= 0) & (
+        behind.reached[:, back_index] if behind is not None else False)
     reached = (use_ahead | use_behind)[:, unsort]
 
     sorted_already = bool((unsort == np.arange(n)).all())
 
-    def merge(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    def merge(a: np.ndarray, b: np.ndarray | None) -> np.ndarray:
         """A result of both passes (NaN where a pass did not reach) at the requested angles."""
         merged = (np.where(use_ahead, a[..., :n], np.where(use_behind, b[..., back_index], np.nan))
-                  if use_behind.any() else a[..., :n])
+                  if b is not None and use_behind.any() else a[..., :n])
         return merged if sorted_already else merged[..., unsort]
 
-    x = np.stack([merge(ahead.x[..., i], behind.x[..., i]) for i in range(group.n)], axis=-1)
-    merged_ends = (ahead.why == Reason.MODE_ENDS) & (behind.why == Reason.MODE_ENDS)
+    back_why = behind.why if behind is not None else np.zeros(d, dtype=np.int8)
+    x = np.stack([merge(ahead.x[..., i], None if behind is None else behind.x[..., i])
+                  for i in range(group.n)], axis=-1)
+    merged_ends = (ahead.why == Reason.MODE_ENDS) & (back_why == Reason.MODE_ENDS)
     margin, reason = _unreached(group, inputs, phi, reached,
-                                merge(ahead.margin, behind.margin), found & merged_ends)
+                                merge(ahead.margin, None if behind is None else behind.margin),
+                                found & merged_ends)
     with np.errstate(invalid="ignore"):
         exists = reached & (margin >= np.asarray(delta)[..., None])
     reason = np.where(reached & ~exists, Reason.MODE_ENDS, reason).astype(np.int8)
@@ -979,18 +986,20 @@ def _step_follow(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray, x0: 
     below = (reached & ~exists).any()
 
     def final(name: str) -> Any:
-        parts = [merge(a, b) for a, b in zip(ahead.out[name], behind.out[name], strict=True)]
+        parts = [merge(a, None if behind is None else behind.out[name][i])
+                 for i, a in enumerate(ahead.out[name])]
         if below:
             parts = [np.where(exists, part, np.nan) for part in parts]
         return Jet(*parts) if analogs else parts[0]
 
     ends = np.stack([np.where(ahead.why > 0, ahead.end, np.nan),
-                     np.where(behind.why > 0, TWO_PI - behind.end, np.nan)], axis=-1)
+                     np.where(back_why > 0, TWO_PI - (behind.end if behind is not None else 0.0),
+                              np.nan)], axis=-1)
     return HigherSolution(
         joints={a[2:]: final(a) for a in ahead.out if a.startswith("p.")},
         rotations={a[2:]: final(a) for a in ahead.out if a.startswith("r.")},
         x=np.where(exists[..., None], x, np.nan), margin=margin, exists=exists, reason=reason,
-        ends=ends, end_reasons=np.stack([ahead.why, behind.why], axis=-1), closed=closed,
+        ends=ends, end_reasons=np.stack([ahead.why, back_why], axis=-1), closed=closed,
         found=found, modes=modes)
 
 

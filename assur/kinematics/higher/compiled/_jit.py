@@ -12,7 +12,7 @@ from typing import Any, TypeVar, cast
 import numba
 import numpy as np
 
-__all__ = ["cross", "det3", "dot", "inline", "kernel", "separation", "solve3"]
+__all__ = ["close", "cross", "det3", "dot", "inline", "kernel", "over", "solve3", "square"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -63,24 +63,27 @@ def solve3(e00: float, e01: float, e02: float, e10: float, e11: float, e12: floa
 
 
 @inline
-def _root(r: float, j: int) -> float:
-    """r^{1/j} as :func:`~assur.kinematics.higher.roots._root` takes it."""
-    if j == 2:
-        return math.sqrt(r)
-    if j == 4:
-        return math.sqrt(math.sqrt(r))
-    if j == 3:
-        return float(np.cbrt(r))
-    root: float = r ** (1.0 / j)
-    return root
+def over(z: complex, r: float) -> complex:
+    """z/r of a real r, part by part: numpy's complex division by a real, to the bit."""
+    return complex(z.real / r, z.imag / r)
 
 
 @inline
-def separation(coef: np.ndarray, theta: float, work: np.ndarray) -> float:
-    """The separation bound of the root e^{iθ} of p (coefficients ``coef`` in increasing
-    powers; :func:`~assur.kinematics.higher.roots.separation`: the Taylor shift by synthetic
-    division, then Fujiwara's bound on the deflated polynomial). ``work`` holds as many
-    numbers as ``coef``."""
+def square(z: complex) -> float:
+    """|z|² = Re(z)² + Im(z)²."""
+    return z.real * z.real + z.imag * z.imag
+
+
+@inline
+def close(coef: np.ndarray, theta: float, reach: float, work: np.ndarray) -> bool:
+    """Whether ``reach`` is at most a quarter of the separation bound of the root e^{iθ} of p
+    (coefficients ``coef`` in increasing powers; ``work`` holds as many numbers).
+
+    The bound is :func:`~assur.kinematics.higher.roots.separation`'s: the Taylor shift
+    q_j = p⁽ʲ⁺¹⁾(E*)/(j+1)! by synthetic division, and ρ = 1/(2·max_j |q_j/q_0|^{1/j}).
+    ``reach`` ≤ ρ/4 is tested as |q_j|²·(8·reach)^{2j} ≤ |q_0|² for every j ≥ 1, the same
+    inequality without its roots and divisions; False where a number is NaN.
+    """
     n = coef.shape[0] - 1
     for i in range(n + 1):
         work[i] = coef[n - i]
@@ -88,12 +91,11 @@ def separation(coef: np.ndarray, theta: float, work: np.ndarray) -> float:
     for order in range(n):
         for i in range(1, n - order if order == 0 else n + 1 - order):
             work[i] = work[i] + z * work[i - 1]
-    scale = 1.0 / abs(work[n - 1])
-    worst: float = abs(work[n - 2]) * scale
-    for j in range(2, n):
-        v = _root(abs(work[n - 1 - j]) * scale, j)
-        if math.isnan(v) or math.isnan(worst):
-            worst = math.nan
-        elif v > worst:
-            worst = v
-    return 0.5 / worst
+    first = square(work[n - 1])
+    step = (8.0 * reach) ** 2
+    power = 1.0
+    for j in range(1, n):
+        power *= step
+        if not square(work[n - 1 - j]) * power <= first:
+            return False
+    return True

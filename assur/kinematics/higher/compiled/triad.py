@@ -14,13 +14,15 @@ from typing import Any
 import numpy as np
 
 from assur.kinematics.higher.compiled._jit import (
+    close,
     cross,
     det3,
     dot,
     inline,
     kernel,
-    separation,
+    over,
     solve3,
+    square,
 )
 from assur.kinematics.higher.groups import Leash, Triad, TriadInputs, plain
 
@@ -38,7 +40,7 @@ def _leash(kind: int, p1: complex, e: complex, a: complex, u: complex, r: float,
     (:meth:`Triad._constraints`)."""
     point = p1 + b * e
     if kind == _RR:
-        return point, (point - a) / r, point
+        return point, over(point - a, r), point
     if kind == _RP:
         return point, 1j * u, point
     return point, 1j * g * e, a
@@ -59,19 +61,13 @@ def _leash_line(kind: int, a_i: complex, a_0: complex, u_i: complex, g_i: comple
     """(α₀, α₁, c, γ) of the leash's line a·W = p (:meth:`Triad._leash_line`)."""
     d = a_i - a_0
     if kind == _RR:
-        c = (r_i * r_i - r_0 * r_0 - _square(b_i) - _square(d)) / 2.0
+        c = (r_i * r_i - r_0 * r_0 - square(b_i) - square(d)) / 2.0
         return -d, b_i, c, d.conjugate() * b_i / 2.0
     if kind == _RP:
         n = 1j * u_i
         return n, 0j, dot(n, d), -n.conjugate() * b_i / 2.0
     gg = 1j * g_i
     return 0j, gg, -dot(gg, b_i), gg * d.conjugate() / 2.0
-
-
-@inline
-def _square(z: complex) -> float:
-    """|z|²."""
-    return z.real * z.real + z.imag * z.imag
 
 
 @inline
@@ -100,7 +96,7 @@ def _half(kinds: np.ndarray, degree: int, a: np.ndarray, u: np.ndarray, r: np.nd
         r1 = r[p, 0] * r[p, 0]
         top = m3 * m0.conjugate() if degree == 3 else 0j
         return ((m0 * m0.conjugate() + m1 * m1.conjugate() + m2 * m2.conjugate()
-                 + m3 * m3.conjugate()) - r1 * (x0 * x0 + 2.0 * _square(x1)),
+                 + m3 * m3.conjugate()) - r1 * (x0 * x0 + 2.0 * square(x1)),
                 (m1 * m0.conjugate() + m2 * m1.conjugate() + m3 * m2.conjugate())
                 - r1 * (2.0 * x0 * x1),
                 (m2 * m0.conjugate() + m3 * m1.conjugate()) - r1 * (x1 * x1), top)
@@ -183,8 +179,7 @@ def _correct_kernel(kinds: np.ndarray, degree: int, iterations: int, converged: 
         apart = (abs(w0 - guess[p, 0]) * inv + abs(w1 - guess[p, 1]) * inv
                  + abs(th - guess[p, 2]))
         _coefficients(_half(kinds, degree, a, u, r, b, g, p), degree, coef)
-        bound = separation(coef, th, work)
-        ok[p] = (step <= converged) and (np.sign(det) == sign[p]) and (apart <= 0.25 * bound)
+        ok[p] = (step <= converged) and (np.sign(det) == sign[p]) and close(coef, th, apart, work)
 
 
 def _columns(values: tuple[Any, ...], shape: tuple[int, ...], dtype: type) -> np.ndarray:

@@ -1,0 +1,136 @@
+"""The compiled corrector of a triad against numpy's, and against checks of its own.
+
+``compiled.correct`` runs Newton's method, the Jacobian, the margin and the acceptance tests
+per position in compiled code. Here, on every form of leashes without a P–P leash, many
+random designs and predictors:
+
+* it agrees with the corrector written with numpy (``continuation._correct`` with the
+  kernels switched off): the same positions pass, the same poses, Jacobians and margins;
+* where a position passes, the pose satisfies the loop equations (the group's residual),
+  the Jacobian is the residual's by central differences, and the root is farther than four
+  times the correction from every other root of the eliminant (the roots by ``numpy.roots``);
+* the root-free form of the separation test (``_jit.close``) decides as the bound of
+  ``roots.separation`` does, on random polynomials either side of the threshold.
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pytest
+
+from assur.kinematics.higher import Triad, TriadInputs, compiled, continuation
+from assur.kinematics.higher.groups import plain
+from assur.kinematics.higher.roots import separation
+
+FORMS = ([("RR", *rest) for rest in itertools.product(("RR", "RP", "PR"), repeat=2)]
+         + [tuple(kinds) for kinds in itertools.product(("RP", "PR"), repeat=3)])
+DESIGNS = 300
+
+
+def _case(kinds: tuple[str, ...], seed: int) -> tuple[Triad, TriadInputs, np.ndarray]:
+    """Random designs of one form, inputs moved off the drawing, and predictors near it."""
+    rng = np.random.default_rng(seed)
+
+    def points() -> tuple[np.ndarray, ...]:
+        return tuple(rng.normal(0.0, 60.0, DESIGNS) + 1j * rng.normal(0.0, 60.0, DESIGNS)
+                     for _ in range(3))
+
+    base, external = points(), list(points())
+    guide = tuple(None if kind == "RR" else np.exp(1j * rng.uniform(0.0, 6.3, DESIGNS))
+                  for kind in kinds)
+    for i, g in enumerate(guide):  # a sliding leash's guide through its drawn base point
+        if g is not None:
+            external[i] = base[i] + rng.normal(0.0, 60.0, DESIGNS) * g
+    triad = Triad(kinds, base, tuple(external), guide)  # type: ignore[arg-type]
+    a = [p + rng.normal(0.0, 0.5, DESIGNS) + 1j * rng.normal(0.0, 0.5, DESIGNS)
+         for p in external]
+    a[1][7] = np.nan  # an input that is not finite: no pose, never an error
+    u = tuple(g * np.exp(1j * rng.normal(0.0, 0.01, DESIGNS)) if kind == "RP" else None
+              for g, kind in zip(guide, kinds, strict=True))
+    k = TriadInputs(tuple(a), u)  # type: ignore[arg-type]
+    spread = 0.01 * np.stack([triad.size, triad.size, np.ones(DESIGNS)], axis=-1)  # L, rad
+    guess = triad.drawn() + rng.normal(0.0, 1.0, (DESIGNS, 3)) * spread
+    return triad, k, guess
+
+
+def _sign(triad: Triad, k: TriadInputs) -> np.ndarray:
+    """The sign of det J at the drawn unknowns (the mode of the sketch)."""
+    with np.errstate(invalid="ignore"):
+        return np.sign(np.linalg.det(triad.jacobian(triad.drawn(), k)))
+
+
+def _numpy_corrector(triad: Triad, k: TriadInputs, guess: np.ndarray, sign: np.ndarray,
+                     monkeypatch: pytest.MonkeyPatch
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    with monkeypatch.context() as patch:
+        patch.setattr(compiled, "supports", lambda group: False)
+        return continuation._correct(triad, k, guess, sign)
+
+
+@pytest.mark.parametrize("kinds", FORMS, ids="-".join)
+def test_the_compiled_corrector_is_numpys(kinds: tuple[str, ...],
+                                          monkeypatch: pytest.MonkeyPatch) -> None:
+    triad, k, guess = _case(kinds, sum(map(ord, "".join(kinds))))
+    assert compiled.supports(triad)
+    sign = _sign(triad, k)
+    x, jac, margin, ok = compiled.correct(triad, k, guess, sign, continuation.ITERATIONS,
+                                          continuation.CONVERGED)
+    xn, jn, mn, okn = _numpy_corrector(triad, k, guess, sign, monkeypatch)
+    assert np.array_equal(ok, okn)
+    assert 0.2 < ok.mean() < 1.0 and not ok[7]  # both outcomes are compared
+    size = triad.size[:, None]
+    scale = np.concatenate([size, size, np.ones_like(size)], axis=-1)
+    assert np.allclose(x[ok] / scale[ok], xn[ok] / scale[ok], rtol=0.0, atol=1e-12)
+    assert np.isnan(x[7]).all() and np.isnan(xn[7]).all()
+    assert np.allclose(jac[ok], jn[ok], rtol=1e-12, atol=1e-12 * size.max())
+    assert np.allclose(margin[ok], mn[ok], rtol=1e-12, atol=1e-15)
+
+
+@pytest.mark.parametrize("kinds", FORMS[:4] + FORMS[-2:], ids="-".join)
+def test_a_pose_that_passes_is_a_pose_of_its_own_root(kinds: tuple[str, ...]) -> None:
+    triad, k, guess = _case(kinds, 7 + sum(map(ord, "".join(kinds))))
+    sign = _sign(triad, k)
+    x, jac, _, ok = compiled.correct(triad, k, guess, sign, continuation.ITERATIONS,
+                                     continuation.CONVERGED)
+    residual = np.stack(np.broadcast_arrays(*map(plain, triad.residual(x, k))), axis=-1)
+    assert np.abs(residual[ok]).max(axis=-1).max() <= 1e-9 * triad.size[ok].max()
+    width = 1e-6 * np.array([triad.size.max(), triad.size.max(), 1.0])
+    columns = []
+    for i in range(3):
+        shift = np.zeros(3)
+        shift[i] = width[i]
+        ahead, behind = (np.stack(np.broadcast_arrays(*map(plain, triad.residual(x + h, k))),
+                                  axis=-1) for h in (shift, -shift))
+        columns.append((ahead - behind) / (2.0 * width[i]))
+    assert np.allclose(jac[ok], np.stack(columns, axis=-1)[ok], rtol=1e-6, atol=1e-6)
+    # every other root of p is farther than four times the correction
+    coef = triad.coefficients(k)
+    apart = (np.abs(x - guess) * np.array([1.0, 1.0, 0.0])).sum(axis=-1) / triad.size \
+        + np.abs(x - guess)[:, 2]
+    for design in np.flatnonzero(ok):
+        found = np.roots(coef[design][::-1])
+        own = np.exp(1j * x[design, 2])
+        others = np.sort(np.abs(found - own))[1:]
+        assert others.min() >= 4.0 * apart[design] * (1.0 - 1e-9)
+
+
+def test_the_root_free_separation_test_decides_as_the_bound() -> None:
+    from assur.kinematics.higher.compiled._jit import close
+
+    rng = np.random.default_rng(26)
+    work = np.empty(7, dtype=complex)
+    checked = 0
+    for degree in (1, 2, 3):
+        for _ in range(300):
+            half = rng.normal(0.0, 1.0, degree + 1) + 1j * rng.normal(0.0, 1.0, degree + 1)
+            half[0] = half[0].real
+            coef = np.concatenate([np.conj(half[:0:-1]), half])  # p_{m±n} = φ_n, φ̄_n
+            theta = rng.uniform(0.0, 2.0 * np.pi)
+            bound = float(separation(coef[None], np.array([theta]))[0])
+            for factor in (0.9, 0.999, 1.001, 1.1):
+                reach = 0.25 * bound * factor
+                assert close(coef, theta, reach, work[:coef.size]) == (factor < 1.0)
+                checked += 1
+    assert checked == 3 * 300 * 4

@@ -87,6 +87,10 @@ MEET = 1e-8
 #: Newton iterations for the extremum of Φ between the merging pair.
 MEET_ITERATIONS = 6
 
+#: A pass over at least this many positions (requested angles × designs) corrects by a
+#: compiled kernel where the group has one: about 1 µs less per position, once numba and the
+#: cached kernel are loaded (about 0.5 s, once per process), so not for fewer positions.
+KERNEL_POSITIONS = 50_000
 #: Positions corrected at once on a grid (:func:`_correct_at`): few enough that the entries
 #: of their Jacobians stay in a core's cache (on 360,000 positions at once the products of
 #: the strided entries of the 3×3 matrices cost about four times as much).
@@ -188,16 +192,23 @@ class _Point:
                       np.where(wide, self.x1, other.x1), np.where(wide, self.x2, other.x2))
 
 
-def _correct(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarray
-             ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _kernel(group: HigherGroup[K], positions: int) -> bool:
+    """Whether a pass over ``positions`` positions corrects by the group's compiled kernel
+    (:mod:`~assur.kinematics.higher.compiled`): where it has one and they are at least
+    ``KERNEL_POSITIONS``."""
+    return positions >= KERNEL_POSITIONS and compiled.supports(group)
+
+
+def _correct(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarray,
+             kernel: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Newton from the predictor ``guess`` and the acceptance tests (a)–(c) of §1.6.
 
     Returns the corrected unknowns, their Jacobian and margin (the Hadamard ratio of the
     margin rows), and where they pass: Newton converged, det J has the sign ``sign``, and
-    the correction is at most a quarter of the separation bound; by compiled code where
-    :mod:`~assur.kinematics.higher.compiled` has a kernel for the group.
+    the correction is at most a quarter of the separation bound; by the group's compiled
+    kernel where ``kernel`` (:func:`_kernel`).
     """
-    if compiled.supports(group):
+    if kernel:
         return compiled.correct(group, kv, guess, sign, ITERATIONS, CONVERGED)
     xn, step = _newton(group, kv, guess)
     with np.errstate(all="ignore"):
@@ -257,19 +268,22 @@ def _take(record: T, mask: np.ndarray, index: tuple[np.ndarray, ...] | None = No
 
 
 def _correct_at(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarray,
-                mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                mask: np.ndarray, kernel: bool = False
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """:func:`_correct` on an (N, D) grid of positions, computed only where ``mask`` holds,
-    ``BLOCK`` positions at a time (all at once by a compiled kernel). Returns the unknowns, the Jacobians, the margins (the
-    Hadamard ratio of the margin rows) and where the tests pass; NaN and False elsewhere."""
+    ``BLOCK`` positions at a time (by the compiled ``kernel``: all at once, in place). Returns the
+    unknowns, the Jacobians, the margins (the Hadamard ratio of the margin rows) and where
+    the tests pass; NaN and False elsewhere."""
+    if kernel:
+        return compiled.correct(group, kv, guess, sign, ITERATIONS, CONVERGED, mask)
     n = group.n
     x, jac = (np.full(mask.shape + tail, np.nan) for tail in ((n,), (n, n)))
     margin = np.full(mask.shape, np.nan)
     ok = np.zeros(mask.shape, dtype=bool)
     where = np.nonzero(mask)
     sign = np.broadcast_to(sign, mask.shape)
-    block = max(1, where[0].size) if compiled.supports(group) else BLOCK  # no temporaries
-    for start in range(0, where[0].size, block):
-        at = tuple(w[start:start + block] for w in where)
+    for start in range(0, where[0].size, BLOCK):
+        at = tuple(w[start:start + BLOCK] for w in where)
         small_group, small_k = _take(group, mask, at), _take(kv, mask, at)
         if small_group is None or small_k is None:
             x, jac, margin, ok = _correct(group, kv, guess, sign)
@@ -352,8 +366,8 @@ def _pick(a: np.ndarray, first: np.ndarray) -> np.ndarray:
 
 def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goal: np.ndarray,
           active: np.ndarray, sign: np.ndarray, log: list[tuple[_Point, np.ndarray]] | None,
-          state: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
-          ) -> tuple[_Point, np.ndarray, np.ndarray]:
+          state: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None,
+          kernel: bool = False) -> tuple[_Point, np.ndarray, np.ndarray]:
     """Step every active row from ``start.t`` to its ``goal`` (arrays (R, D)) under step control.
 
     One step from t: the predictor from the analogs, the corrector and the acceptance tests
@@ -386,7 +400,7 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
             last, stop, code = _walk(
                 small, _local(inputs, moving), s, here.at(moving), goal[moving],
                 np.ones(int(moving.sum()), dtype=bool), np.broadcast_to(sign, shape)[moving],
-                part, (h[moving], margin[moving], falling[moving], tried[moving]))
+                part, (h[moving], margin[moving], falling[moving], tried[moving]), kernel)
             for point, mask in part or []:
                 wide = np.zeros(shape, dtype=bool)
                 wide[moving] = mask
@@ -401,7 +415,7 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
         kv = values(k)
         guess = here.x + (s * trial)[..., None] * here.x1 \
             + 0.5 * (trial * trial)[..., None] * here.x2
-        xn, jac, margins, ok = _correct(group, kv, guess, sign)
+        xn, jac, margins, ok = _correct(group, kv, guess, sign, kernel)
         ok &= moving & ((halves == 1.0) | (trial >= H_MIN))
         taken = np.asarray(ok.any(axis=0))
         first = np.argmax(ok, axis=0)
@@ -622,7 +636,8 @@ def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: n
     with np.errstate(all="ignore"):
         x1, x2 = analogs(group, k, x, jac)
     log = [(_Point(np.zeros((1, d)), x, x1, x2), ~done[None])]
-    _, end, why = _walk(group, inputs, s, log[0][0], goal, ~done[None], sign, log)
+    kernel = _kernel(group, grid.size)
+    _, end, why = _walk(group, inputs, s, log[0][0], goal, ~done[None], sign, log, None, kernel)
     log = [(p.at(0), mask[0]) for p, mask in log]
     states, nearest, before, reach = _anchors(log, grid, max(OFFSET, float(goal.max()) + 1.0))
     angle = np.broadcast_to(s * grid, reach.shape)
@@ -641,7 +656,7 @@ def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: n
         if ending.any():
             tip, prior = states.x[after[ending]], states.x[before[ending]]
             guess[ending] = tip + (prior - tip) * root[ending][:, None]
-    x, jac, margin, ok = _correct_at(group, kv, guess, sign[0], reach)
+    x, jac, margin, ok = _correct_at(group, kv, guess, sign[0], reach, kernel)
     retry = reach & ~ok
     if retry.any():
         rank = np.cumsum(retry, axis=0) - 1
@@ -655,7 +670,7 @@ def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: n
         aims, active = np.zeros(shape), np.zeros(shape, dtype=bool)
         aims[rank[j, design], design] = grid[j, design]
         active[rank[j, design], design] = True
-        last, _, _ = _walk(group, inputs, s, start, aims, active, sign[0], None)
+        last, _, _ = _walk(group, inputs, s, start, aims, active, sign[0], None, None, kernel)
         ok[j, design] = last.t[rank[j, design], design] == aims[rank[j, design], design]
         x[j, design] = last.x[rank[j, design], design]
         fresh = np.zeros(reach.shape, dtype=bool)

@@ -31,7 +31,7 @@ def supports(group: HigherGroup[Any]) -> bool:
 
 
 def correct(group: HigherGroup[Any], k: Any, guess: np.ndarray,
-            sign: np.ndarray, iterations: int, converged: float
+            sign: np.ndarray, iterations: int, converged: float, mask: np.ndarray | None = None
             ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The corrector and the acceptance tests (a)–(c) of §1.6 at every position of ``guess``
     for a group that :func:`supports` accepts.
@@ -48,6 +48,8 @@ def correct(group: HigherGroup[Any], k: Any, guess: np.ndarray,
         The sign of det J of the mode followed, broadcasting against the positions.
     iterations, converged : int, float
         Newton's steps at most, and the scaled step at which a position stops.
+    mask : ndarray of bool, optional
+        The positions to correct (all if None); the others are NaN and fail.
 
     Returns
     -------
@@ -59,4 +61,4 @@ def correct(group: HigherGroup[Any], k: Any, guess: np.ndarray,
     from assur.kinematics.higher.compiled.triad import correct_triad
 
     assert isinstance(group, Triad) and isinstance(k, TriadInputs)
-    return correct_triad(group, k, guess, sign, iterations, converged)
+    return correct_triad(group, k, guess, sign, iterations, converged, mask)

@@ -129,13 +129,15 @@ def _coefficients(half: tuple[complex, complex, complex, complex], degree: int,
 def _correct_kernel(kinds: np.ndarray, degree: int, iterations: int, converged: float,
                     a: np.ndarray, u: np.ndarray, r: np.ndarray, b: np.ndarray,
                     g: np.ndarray, size: np.ndarray, guess: np.ndarray, sign: np.ndarray,
-                    x: np.ndarray, jac: np.ndarray, margin: np.ndarray, ok: np.ndarray
-                    ) -> None:
-    """Every position of the flat arrays corrected and tested (:func:`correct_triad`)."""
+                    index: np.ndarray, x: np.ndarray, jac: np.ndarray, margin: np.ndarray,
+                    ok: np.ndarray) -> None:
+    """Every position of the flat arrays corrected and tested (:func:`correct_triad`), the
+    results written at the rows ``index`` of the outputs."""
     k0, k1, k2 = kinds[0], kinds[1], kinds[2]
     coef = np.empty(2 * degree + 1, dtype=np.complex128)
     work = np.empty(2 * degree + 1, dtype=np.complex128)
     for p in range(guess.shape[0]):
+        o = index[p]
         a0, a1, a2 = a[p, 0], a[p, 1], a[p, 2]
         u0, u1, u2 = u[p, 0], u[p, 1], u[p, 2]
         r0, r1, r2 = r[p, 0], r[p, 1], r[p, 2]
@@ -159,10 +161,10 @@ def _correct_kernel(kinds: np.ndarray, degree: int, iterations: int, converged: 
                                 -_residual(k2, q2, n2, a2, r2))
             w0, w1, th = w0 + d0, w1 + d1, th + d2
             step = abs(d0 * inv) + abs(d1 * inv) + abs(d2)
-        x[p, 0], x[p, 1], x[p, 2] = w0, w1, th
-        jac[p, 0, 0], jac[p, 0, 1], jac[p, 0, 2] = n0.real, n0.imag, e02
-        jac[p, 1, 0], jac[p, 1, 1], jac[p, 1, 2] = n1.real, n1.imag, e12
-        jac[p, 2, 0], jac[p, 2, 1], jac[p, 2, 2] = n2.real, n2.imag, e22
+        x[o, 0], x[o, 1], x[o, 2] = w0, w1, th
+        jac[o, 0, 0], jac[o, 0, 1], jac[o, 0, 2] = n0.real, n0.imag, e02
+        jac[o, 1, 0], jac[o, 1, 1], jac[o, 1, 2] = n1.real, n1.imag, e12
+        jac[o, 2, 0], jac[o, 2, 1], jac[o, 2, 2] = n2.real, n2.imag, e22
         centre = (q0 + q1 + q2) / 3.0
         spread = math.sqrt((abs(q0 - centre) ** 2 + abs(q1 - centre) ** 2
                             + abs(q2 - centre) ** 2) / 3.0)
@@ -173,28 +175,37 @@ def _correct_kernel(kinds: np.ndarray, degree: int, iterations: int, converged: 
         norms = (math.sqrt(v0.real ** 2 + v0.imag ** 2 + m02 ** 2)
                  * math.sqrt(v1.real ** 2 + v1.imag ** 2 + m12 ** 2)
                  * math.sqrt(v2.real ** 2 + v2.imag ** 2 + m22 ** 2))
-        margin[p] = abs(det3(v0.real, v0.imag, m02, v1.real, v1.imag, m12,
+        margin[o] = abs(det3(v0.real, v0.imag, m02, v1.real, v1.imag, m12,
                              v2.real, v2.imag, m22)) / norms
         det = det3(n0.real, n0.imag, e02, n1.real, n1.imag, e12, n2.real, n2.imag, e22)
         apart = (abs(w0 - guess[p, 0]) * inv + abs(w1 - guess[p, 1]) * inv
                  + abs(th - guess[p, 2]))
         _coefficients(_half(kinds, degree, a, u, r, b, g, p), degree, coef)
-        ok[p] = (step <= converged) and (np.sign(det) == sign[p]) and close(coef, th, apart, work)
+        ok[o] = (step <= converged) and (np.sign(det) == sign[p]) and close(coef, th, apart, work)
 
 
-def _columns(values: tuple[Any, ...], shape: tuple[int, ...], dtype: type) -> np.ndarray:
-    """Three values (None for 0), broadcast to ``shape`` and laid flat, as columns (N, 3)."""
-    out: np.ndarray = np.zeros((int(np.prod(shape)), 3), dtype=dtype)
+def _flat(v: Any, shape: tuple[int, ...], where: tuple[np.ndarray, ...] | None,
+          dtype: type) -> np.ndarray:
+    """``v`` broadcast to ``shape`` at the positions ``where`` (all if None), laid flat."""
+    wide: np.ndarray = np.broadcast_to(np.asarray(plain(v), dtype=dtype), shape)
+    return wide.reshape(-1) if where is None else wide[where]
+
+
+def _columns(values: tuple[Any, ...], shape: tuple[int, ...],
+             where: tuple[np.ndarray, ...] | None, dtype: type) -> np.ndarray:
+    """Three values (None for 0) at the positions, as columns (P, 3)."""
+    count = int(np.prod(shape)) if where is None else where[0].size
+    out: np.ndarray = np.zeros((count, 3), dtype=dtype)
     for i, v in enumerate(values):
         if v is not None:
-            out[:, i] = np.broadcast_to(plain(v), shape).reshape(-1)
+            out[:, i] = _flat(v, shape, where, dtype)
     return out
 
 
 def correct_triad(group: Triad, k: TriadInputs, guess: np.ndarray, sign: np.ndarray,
-                  iterations: int, converged: float
+                  iterations: int, converged: float, mask: np.ndarray | None = None
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The corrector and the acceptance tests (a)–(c) of §1.6 at every position of ``guess``.
+    """The corrector and the acceptance tests (a)–(c) of §1.6 at the positions of ``guess``.
 
     Parameters
     ----------
@@ -209,6 +220,8 @@ def correct_triad(group: Triad, k: TriadInputs, guess: np.ndarray, sign: np.ndar
         The sign of det J of the mode followed, broadcasting against the positions.
     iterations, converged : int, float
         Newton's steps at most, and the scaled step at which a position stops.
+    mask : ndarray of bool, optional
+        The positions to correct (all if None); the others are NaN and fail.
 
     Returns
     -------
@@ -219,19 +232,20 @@ def correct_triad(group: Triad, k: TriadInputs, guess: np.ndarray, sign: np.ndar
     """
     shape = guess.shape[:-1]
     count = int(np.prod(shape))
+    where = None if mask is None else np.nonzero(np.broadcast_to(mask, shape))
+    index = np.arange(count) if where is None else np.ravel_multi_index(where, shape)
     lengths = tuple(group._length(i, k) for i in range(3))
-    x = np.empty((count, 3))
-    jac = np.empty((count, 3, 3))
-    margin = np.empty(count)
-    ok = np.empty(count, dtype=bool)
+    x = np.full((count, 3), np.nan)
+    jac = np.full((count, 3, 3), np.nan)
+    margin = np.full(count, np.nan)
+    ok = np.zeros(count, dtype=bool)
     _correct_kernel(
         np.array([_CODES[kind] for kind in group.leashes], dtype=np.int64), group.degree,
-        iterations, converged, _columns(k.a, shape, complex), _columns(k.u, shape, complex),
-        _columns(lengths, shape, float), _columns(group._offsets, shape, complex),
-        _columns(group.guide, shape, complex),
-        np.broadcast_to(np.asarray(group.size, dtype=float), shape).reshape(-1),
-        np.ascontiguousarray(guess, dtype=float).reshape(count, 3),
-        np.broadcast_to(np.asarray(sign, dtype=float), shape).reshape(-1),
+        iterations, converged, _columns(k.a, shape, where, complex),
+        _columns(k.u, shape, where, complex), _columns(lengths, shape, where, float),
+        _columns(group._offsets, shape, where, complex),
+        _columns(group.guide, shape, where, complex), _flat(group.size, shape, where, float),
+        guess.reshape(count, 3)[index], _flat(sign, shape, where, float), index,
         x, jac, margin, ok)
     return (x.reshape(shape + (3,)), jac.reshape(shape + (3, 3)), margin.reshape(shape),
             ok.reshape(shape))

@@ -15,7 +15,13 @@ import numpy as np
 import pytest
 from test_higher_properties import Designs, random_class_iv, random_triads
 
-from assur.kinematics.higher import HigherSolution, assembly_modes, follow_mode
+from assur.kinematics.higher import (
+    HigherSolution,
+    assembly_modes,
+    compiled,
+    continuation,
+    follow_mode,
+)
 from assur.kinematics.higher.groups import values
 from assur.kinematics.higher.modes import select_mode
 
@@ -95,9 +101,11 @@ def _pass(designs: Designs, x0: np.ndarray, alive: np.ndarray, s: float,
 @pytest.mark.slow
 @pytest.mark.parametrize(("kind", "count"), [("RR-RR-RR", 400), ("RR-RR-RP", 200),
                                              ("IV", 400)])
-def test_the_follower_equals_a_plain_continuation(kind: str, count: int) -> None:
+def test_the_follower_equals_a_plain_continuation(kind: str, count: int,
+                                                  monkeypatch: pytest.MonkeyPatch) -> None:
     """Both ways of following a turn: by steps, and by the path of the root through every
-    root at every angle (a design's path taken where all its links pass the step test)."""
+    root at every angle (a design's path taken where all its links pass the step test); by
+    steps also with the group's compiled corrector, which only larger grids use."""
     designs = (random_class_iv(91, count) if kind == "IV"
                else random_triads(90, count, kind[-2:]))
     group = designs.group
@@ -111,6 +119,10 @@ def test_the_follower_equals_a_plain_continuation(kind: str, count: int) -> None
     assert 0.1 < ended.mean() < 0.9
     for method in ("steps", "roots"):
         _agree(follow_mode(group, designs.inputs, PHI, method=method), designs, x0, found,
+               (ahead, forward), (behind, backward))
+    if compiled.supports(group):
+        monkeypatch.setattr(continuation, "KERNEL_POSITIONS", 1)
+        _agree(follow_mode(group, designs.inputs, PHI, method="steps"), designs, x0, found,
                (ahead, forward), (behind, backward))
 
 

@@ -343,7 +343,7 @@ class Triad(HigherGroup["TriadInputs"]):
     # --- drawn dimensions -----------------------------------------------------------------
 
     @cached_property
-    def _offsets(self) -> tuple[np.ndarray, ...]:
+    def offsets(self) -> tuple[np.ndarray, ...]:
         """b_k (or s_k for P–R) = drawn base point − P₁⁰."""
         return tuple(np.asarray(b) - np.asarray(self.base[0]) for b in self.base)
 
@@ -354,9 +354,9 @@ class Triad(HigherGroup["TriadInputs"]):
                      for b, a in zip(self.base, self.external, strict=True))
 
     def _offset(self, k: int) -> np.ndarray:
-        return self._offsets[k]
+        return self.offsets[k]
 
-    def _length(self, i: int, k: TriadInputs) -> Value:
+    def leash_length(self, i: int, k: TriadInputs) -> Value:
         """r_i: the input's length of an actuator leash, else the drawn one."""
         given = k.lengths[i]
         return self._lengths[i] if given is None else given
@@ -448,7 +448,7 @@ class Triad(HigherGroup["TriadInputs"]):
         for i, kind in enumerate(self.leashes):
             point = p1 + self._offset(i) * e
             if kind is Leash.RR:
-                r = self._length(i, k)
+                r = self.leash_length(i, k)
                 arm = point - k.a[i]
                 out.append((J.dot(arm, arm) - r * r) / (2.0 * r))
             elif kind is Leash.RP:
@@ -468,7 +468,7 @@ class Triad(HigherGroup["TriadInputs"]):
             point = p1 + self._offset(i) * e
             base.append(point)
             if kind is Leash.RR:
-                nu.append((point - k.a[i]) / self._length(i, k))
+                nu.append((point - k.a[i]) / self.leash_length(i, k))
                 at.append(point)
             elif kind.slides[1]:  # on a known link's guide; a P–P row is replaced in lines()
                 nu.append(1j * np.asarray(k.u[i]))
@@ -516,7 +516,7 @@ class Triad(HigherGroup["TriadInputs"]):
         f = (np.conj(nu) * arm).real
         for i, kind in enumerate(self.leashes):
             if kind.bar:
-                r = plain(self._length(i, k))
+                r = plain(self.leash_length(i, k))
                 f[..., i] = ((np.conj(arm[..., i]) * arm[..., i]).real - r * r) / (2.0 * r)
         return f, _line_rows(nu, at, p1[..., None], 1.0)
 
@@ -532,7 +532,7 @@ class Triad(HigherGroup["TriadInputs"]):
         """a_k·W = p_k at the base rotation E (§2.2): k = 2, 3 after a bar, all three
         without one (the first two beside a P–P leash)."""
         a1 = np.asarray(k.a[0])
-        r1 = self._length(0, k)
+        r1 = self.leash_length(0, k)
         coef, rhs = [], []
         for i in (((0, 1) if self.pinned else (0, 1, 2)) if self.barless else (1, 2)):
             kind = self.leashes[i]
@@ -541,7 +541,7 @@ class Triad(HigherGroup["TriadInputs"]):
             if kind is Leash.RR:
                 v = offset - (ai - a1)
                 coef.append(v)
-                rhs.append((self._length(i, k) ** 2 - r1 ** 2 - np.abs(v) ** 2) / 2.0)
+                rhs.append((self.leash_length(i, k) ** 2 - r1 ** 2 - np.abs(v) ** 2) / 2.0)
             else:
                 normal = (1j * np.asarray(k.u[i]) if kind is Leash.RP
                           else 1j * plain(present(self.guide[i])) * e)
@@ -561,7 +561,7 @@ class Triad(HigherGroup["TriadInputs"]):
         b = self._offset(i)
         kind = self.leashes[i]
         if kind is Leash.RR:
-            c = (plain(self._length(i, k)) ** 2 - plain(self._length(0, k)) ** 2
+            c = (plain(self.leash_length(i, k)) ** 2 - plain(self.leash_length(0, k)) ** 2
                  - np.abs(b) ** 2 - np.abs(d) ** 2) / 2.0
             return -d, b, c, np.conj(d) * b / 2.0
         if kind is Leash.RP:
@@ -577,10 +577,10 @@ class Triad(HigherGroup["TriadInputs"]):
         if self.polar:
             turn = plain(self._turn(k))
             v = plain(k.a[0]) + self._offset(1) * turn - plain(k.a[1])
-            w = plain(self._length(0, k)) * self._heading
+            w = plain(self.leash_length(0, k)) * self._heading
             kind = self.leashes[1]
             if kind is Leash.RR:
-                r2 = plain(self._length(1, k))
+                r2 = plain(self.leash_length(1, k))
                 return [(np.abs(v) ** 2 + np.abs(w) ** 2 - r2 ** 2) / (2.0 * r2),
                         np.conj(v) * w / (2.0 * r2)]
             n = 1j * plain(present(k.u[1]) if kind is Leash.RP
@@ -601,7 +601,7 @@ class Triad(HigherGroup["TriadInputs"]):
         m = [h2 * a3 - h3 * a2, c2 * a3 + h2 * b3 - c3 * a2 - h3 * b2,
              g2 * a3 + c2 * b3 - g3 * a2 - c3 * b2, g2 * b3 - g3 * b2]  # M = p₂a₃ − p₃a₂
         x0, x1 = _cross_terms(line2, line3)
-        r1 = plain(self._length(0, k)) ** 2
+        r1 = plain(self.leash_length(0, k)) ** 2
         cross = [x0 * x0 + 2.0 * np.abs(x1) ** 2, 2.0 * x0 * x1, x1 * x1, 0.0]
         conj = [np.conj(v) for v in m]
         return [sum(m[j] * conj[j - n] for j in range(n, 4)) - r1 * cross[n]
@@ -668,7 +668,7 @@ class Triad(HigherGroup["TriadInputs"]):
             e = plain(self._turn(k)) * np.ones(np.shape(e))
         elif self.pinned:
             theta = np.angle(plain(self._turn(k)))
-            return np.stack(np.broadcast_arrays(np.angle(e), plain(self._length(0, k)), theta),
+            return np.stack(np.broadcast_arrays(np.angle(e), plain(self.leash_length(0, k)), theta),
                             axis=-1)
         coef, rhs = self._linear(e, k)
         pairs = ((1, 2), (2, 0), (0, 1)) if len(coef) == 3 else ((0, 1),)

@@ -234,7 +234,7 @@ def correct_triad(group: Triad, k: TriadInputs, guess: np.ndarray, sign: np.ndar
     count = int(np.prod(shape))
     where = None if mask is None else np.nonzero(np.broadcast_to(mask, shape))
     index = np.arange(count) if where is None else np.ravel_multi_index(where, shape)
-    lengths = tuple(group._length(i, k) for i in range(3))
+    lengths = tuple(group.leash_length(i, k) for i in range(3))
     x = np.full((count, 3), np.nan)
     jac = np.full((count, 3, 3), np.nan)
     margin = np.full(count, np.nan)
@@ -243,7 +243,7 @@ def correct_triad(group: Triad, k: TriadInputs, guess: np.ndarray, sign: np.ndar
         np.array([_CODES[kind] for kind in group.leashes], dtype=np.int64), group.degree,
         iterations, converged, _columns(k.a, shape, where, complex),
         _columns(k.u, shape, where, complex), _columns(lengths, shape, where, float),
-        _columns(group._offsets, shape, where, complex),
+        _columns(group.offsets, shape, where, complex),
         _columns(group.guide, shape, where, complex), _flat(group.size, shape, where, float),
         guess.reshape(count, 3)[index], _flat(sign, shape, where, float), index,
         x, jac, margin, ok)

@@ -9,6 +9,8 @@ random designs and predictors:
 * where a position passes, the pose satisfies the loop equations (the group's residual),
   the Jacobian is the residual's by central differences, and the root is farther than four
   times the correction from every other root of the eliminant (the roots by ``numpy.roots``);
+* its analogs x′, x″ are numpy's (``continuation.analogs``) and the central differences of
+  poses solved along a path of the inputs;
 * the root-free form of the separation test (``_jit.close``) decides as the bound of
   ``roots.separation`` does, on random polynomials either side of the threshold.
 """
@@ -22,7 +24,9 @@ import pytest
 
 from assur.kinematics.higher import Triad, TriadInputs, compiled, continuation
 from assur.kinematics.higher.groups import plain
+from assur.kinematics.higher.modes import newton
 from assur.kinematics.higher.roots import separation
+from assur.kinematics.jets import Jet
 
 FORMS = ([("RR", *rest) for rest in itertools.product(("RR", "RP", "PR"), repeat=2)]
          + [tuple(kinds) for kinds in itertools.product(("RP", "PR"), repeat=3)])
@@ -125,3 +129,47 @@ def test_the_root_free_separation_test_decides_as_the_bound() -> None:
                 assert close(coef, theta, reach, work[:coef.size]) == (factor < 1.0)
                 checked += 1
     assert checked == 3 * 300 * 4
+
+
+@pytest.mark.parametrize("kinds", FORMS[:3] + FORMS[4:5] + FORMS[-3:], ids="-".join)
+def test_the_compiled_analogs_are_the_derivatives_of_the_poses(kinds: tuple[str, ...]) -> None:
+    """x′ and x″ against numpy's implicit differentiation (``continuation.analogs``) and
+    against central differences of poses solved on a path of the inputs: a_k(φ) = a_k +
+    a′_kφ + a″_kφ²/2, u_k(φ) = u_k·e^{iωφ}, and, for a bar, an actuator's length
+    r(φ) = r + r′φ + r″φ²/2."""
+    triad, k, guess = _case(kinds, 11 + sum(map(ord, "".join(kinds))))
+    x, jac, _, ok = continuation._correct(triad, k, guess, _sign(triad, k))
+    rng = np.random.default_rng(5)
+
+    def complex_normal() -> np.ndarray:
+        return rng.normal(0.0, 1.0, DESIGNS) + 1j * rng.normal(0.0, 1.0, DESIGNS)
+
+    slope, bend = [complex_normal() for _ in k.a], [complex_normal() for _ in k.a]
+    omega = 0.3
+    lengths = [triad.leash_length(i, k) for i in range(3)]
+    stretch = [rng.normal(0.0, 1.0, (2, DESIGNS)) if kind == "RR" else None for kind in kinds]
+
+    def inputs(phi: float) -> TriadInputs:
+        a = tuple(a + s * phi + 0.5 * c * phi * phi for a, s, c in zip(k.a, slope, bend))
+        u = tuple(None if v is None else v * np.exp(1j * omega * phi) for v in k.u)
+        r = tuple(None if t is None else r + t[0] * phi + 0.5 * t[1] * phi * phi
+                  for r, t in zip(lengths, stretch))
+        return TriadInputs(a, u, r)  # type: ignore[arg-type]
+
+    jets = TriadInputs(
+        tuple(Jet(a, s, c) for a, s, c in zip(k.a, slope, bend)),  # type: ignore[arg-type]
+        tuple(None if v is None else Jet(v, 1j * omega * v, -omega * omega * v)
+              for v in k.u),  # type: ignore[arg-type]
+        tuple(None if t is None else Jet(r, t[0], t[1])
+              for r, t in zip(lengths, stretch)))  # type: ignore[arg-type]
+    x1, x2 = compiled.analogs(triad, jets, x, jac)
+    n1, n2 = continuation.analogs(triad, jets, x, jac)
+    assert np.allclose(x1[ok], n1[ok], rtol=1e-12, atol=1e-12 * np.abs(n1[ok]).max())
+    assert np.allclose(x2[ok], n2[ok], rtol=1e-12, atol=1e-12 * np.abs(n2[ok]).max())
+    h = 1e-4
+    ahead, _ = newton(triad, inputs(h), x + h * x1, 8)
+    behind, _ = newton(triad, inputs(-h), x - h * x1, 8)
+    first = (ahead - behind) / (2.0 * h)
+    second = (ahead - 2.0 * x + behind) / (h * h)
+    assert np.allclose(x1[ok], first[ok], rtol=1e-5, atol=1e-5 * np.abs(first[ok]).max())
+    assert np.allclose(x2[ok], second[ok], rtol=1e-3, atol=1e-3 * np.abs(second[ok]).max())

@@ -420,7 +420,7 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
         taken = np.asarray(ok.any(axis=0))
         first = np.argmax(ok, axis=0)
         with np.errstate(all="ignore"):
-            n1, n2 = analogs(group, k, xn, jac)
+            n1, n2 = (compiled.analogs if kernel else analogs)(group, k, xn, jac)
             now = _pick(margins, first)
         step = _pick(trial, first)
         hit = taken & (first == 0) & (hs >= goal - here.t)
@@ -682,7 +682,7 @@ def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: n
     x = np.where(reached[..., None], x, np.nan)
     if jets:
         with np.errstate(all="ignore"):
-            x1, x2 = analogs(group, k, x, jac)
+            x1, x2 = (compiled.analogs if kernel else analogs)(group, k, x, jac)
         cols: Any = [Jet(x[..., i], x1[..., i], x2[..., i]) for i in range(group.n)]
     else:
         cols, k = x, kv

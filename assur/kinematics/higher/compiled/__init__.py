@@ -22,7 +22,7 @@ import numpy as np
 
 from assur.kinematics.higher.groups import HigherGroup, Triad, TriadInputs
 
-__all__ = ["correct", "supports"]
+__all__ = ["analogs", "correct", "supports"]
 
 
 def supports(group: HigherGroup[Any]) -> bool:
@@ -62,3 +62,14 @@ def correct(group: HigherGroup[Any], k: Any, guess: np.ndarray,
 
     assert isinstance(group, Triad) and isinstance(k, TriadInputs)
     return correct_triad(group, k, guess, sign, iterations, converged, mask)
+
+
+def analogs(group: HigherGroup[Any], k: Any, x: np.ndarray, jac: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray]:
+    """The analogs x′, x″ at every position of ``x`` for a group that :func:`supports`
+    accepts (:func:`~assur.kinematics.higher.continuation.analogs`: the same implicit
+    differentiation; ``k`` the inputs as jets in the crank angle)."""
+    from assur.kinematics.higher.compiled.triad import analogs_triad
+
+    assert isinstance(group, Triad) and isinstance(k, TriadInputs)
+    return analogs_triad(group, k, x, jac)

@@ -25,8 +25,9 @@ from assur.kinematics.higher.compiled._jit import (
     square,
 )
 from assur.kinematics.higher.groups import Leash, Triad, TriadInputs, plain
+from assur.kinematics.jets import Jet
 
-__all__ = ["correct_triad"]
+__all__ = ["analogs_triad", "correct_triad"]
 
 #: Leash forms as the kernel numbers them.
 _CODES = {Leash.RR: 0, Leash.RP: 1, Leash.PR: 2}
@@ -82,9 +83,9 @@ def _half(kinds: np.ndarray, degree: int, a: np.ndarray, u: np.ndarray, r: np.nd
           b: np.ndarray, g: np.ndarray, p: int) -> tuple[complex, complex, complex, complex]:
     """φ₀ … φ₃ of Φ(θ) = Σ φ_n Eⁿ at position ``p`` (:meth:`Triad._half`; zero above the
     degree)."""
-    l0 = _leash_line(kinds[0], a[p, 0], a[p, 0], u[p, 0], g[p, 0], b[p, 0], r[p, 0], r[p, 0])
-    l1 = _leash_line(kinds[1], a[p, 1], a[p, 0], u[p, 1], g[p, 1], b[p, 1], r[p, 1], r[p, 0])
-    l2 = _leash_line(kinds[2], a[p, 2], a[p, 0], u[p, 2], g[p, 2], b[p, 2], r[p, 2], r[p, 0])
+    l0 = _leash_line(kinds[0], a[0, p], a[0, p], u[0, p], g[0, p], b[0, p], r[0, p], r[0, p])
+    l1 = _leash_line(kinds[1], a[1, p], a[0, p], u[1, p], g[1, p], b[1, p], r[1, p], r[0, p])
+    l2 = _leash_line(kinds[2], a[2, p], a[0, p], u[2, p], g[2, p], b[2, p], r[2, p], r[0, p])
     if kinds[0] == _RR:
         (a2, b2, c2, g2), (a3, b3, c3, g3) = l1, l2
         h2, h3 = g2.conjugate(), g3.conjugate()
@@ -93,7 +94,7 @@ def _half(kinds: np.ndarray, degree: int, a: np.ndarray, u: np.ndarray, r: np.nd
         m2 = g2 * a3 + c2 * b3 - g3 * a2 - c3 * b2
         m3 = g2 * b3 - g3 * b2
         x0, x1 = _cross_terms(a2, b2, a3, b3)
-        r1 = r[p, 0] * r[p, 0]
+        r1 = r[0, p] * r[0, p]
         top = m3 * m0.conjugate() if degree == 3 else 0j
         return ((m0 * m0.conjugate() + m1 * m1.conjugate() + m2 * m2.conjugate()
                  + m3 * m3.conjugate()) - r1 * (x0 * x0 + 2.0 * square(x1)),
@@ -138,11 +139,11 @@ def _correct_kernel(kinds: np.ndarray, degree: int, iterations: int, converged: 
     work = np.empty(2 * degree + 1, dtype=np.complex128)
     for p in range(guess.shape[0]):
         o = index[p]
-        a0, a1, a2 = a[p, 0], a[p, 1], a[p, 2]
-        u0, u1, u2 = u[p, 0], u[p, 1], u[p, 2]
-        r0, r1, r2 = r[p, 0], r[p, 1], r[p, 2]
-        b0, b1, b2 = b[p, 0], b[p, 1], b[p, 2]
-        g0, g1, g2 = g[p, 0], g[p, 1], g[p, 2]
+        a0, a1, a2 = a[0, p], a[1, p], a[2, p]
+        u0, u1, u2 = u[0, p], u[1, p], u[2, p]
+        r0, r1, r2 = r[0, p], r[1, p], r[2, p]
+        b0, b1, b2 = b[0, p], b[1, p], b[2, p]
+        g0, g1, g2 = g[0, p], g[1, p], g[2, p]
         inv = 1.0 / size[p]
         w0, w1, th = guess[p, 0], guess[p, 1], guess[p, 2]
         step = math.inf
@@ -184,6 +185,73 @@ def _correct_kernel(kinds: np.ndarray, degree: int, iterations: int, converged: 
         ok[o] = (step <= converged) and (np.sign(det) == sign[p]) and close(coef, th, apart, work)
 
 
+@inline
+def _jmul(a: complex, a1: complex, a2: complex, b: complex, b1: complex, b2: complex
+          ) -> tuple[complex, complex, complex]:
+    """The product of two jets (value, first and second derivative; :class:`~assur.
+    kinematics.jets.Jet`)."""
+    return a * b, a1 * b + a * b1, a2 * b + 2.0 * a1 * b1 + a * b2
+
+
+@inline
+def _residual_jet(kind: int, p: complex, p1: complex, p2: complex, e: complex, e1: complex,
+                  e2: complex, a: complex, a1: complex, a2: complex, u: complex, u1: complex,
+                  u2: complex, r: float, r1: float, r2: float, b: complex, g: complex
+                  ) -> tuple[float, float]:
+    """The first and second derivative of a leash's f (:meth:`Triad.residual`) with P₁, E,
+    the input point, guide and length as jets (p, e, a, u, r)."""
+    m, m1, m2 = p + b * e - a, p1 + b * e1 - a1, p2 + b * e2 - a2  # P_k − A_k
+    if kind == _RR:
+        d, d1, d2 = _jmul(m.conjugate(), m1.conjugate(), m2.conjugate(), m, m1, m2)
+        n, n1, n2 = d.real - r * r, d1.real - 2.0 * r * r1, d2.real - 2.0 * (r1 * r1 + r * r2)
+        q = n / (2.0 * r)
+        q1 = (n1 - q * 2.0 * r1) / (2.0 * r)
+        return q1, (n2 - 2.0 * q1 * 2.0 * r1 - q * 2.0 * r2) / (2.0 * r)
+    if kind == _RP:  # the line's normal ν
+        v, v1, v2 = 1j * u, 1j * u1, 1j * u2
+    else:
+        v, v1, v2 = _jmul(1j * g, 0j, 0j, e, e1, e2)
+    _, f1, f2 = _jmul(v.conjugate(), v1.conjugate(), v2.conjugate(), m, m1, m2)
+    return f1.real, f2.real
+
+
+@inline
+def _derivatives(kinds: np.ndarray, a: np.ndarray, u: np.ndarray, r: np.ndarray,
+                 b: np.ndarray, g: np.ndarray, x: np.ndarray, jac: np.ndarray, p: int,
+                 w1: complex, t1: float, part: int) -> tuple[float, float, float]:
+    """y with J y = −(derivative ``part`` of F) at position ``p``, the unknowns a jet with
+    first derivative (w1, t1) and none of second order."""
+    e = complex(math.cos(x[p, 2]), math.sin(x[p, 2]))
+    e1, e2 = 1j * e * t1, -e * t1 * t1
+    p0 = a[0, 0, p] + complex(x[p, 0], x[p, 1])
+    p1, p2 = a[1, 0, p] + w1, a[2, 0, p]
+    f0 = _residual_jet(kinds[0], p0, p1, p2, e, e1, e2, a[0, 0, p], a[1, 0, p], a[2, 0, p],
+                       u[0, 0, p], u[1, 0, p], u[2, 0, p], r[0, 0, p].real, r[1, 0, p].real,
+                       r[2, 0, p].real, b[0, p], g[0, p])
+    f1 = _residual_jet(kinds[1], p0, p1, p2, e, e1, e2, a[0, 1, p], a[1, 1, p], a[2, 1, p],
+                       u[0, 1, p], u[1, 1, p], u[2, 1, p], r[0, 1, p].real, r[1, 1, p].real,
+                       r[2, 1, p].real, b[1, p], g[1, p])
+    f2 = _residual_jet(kinds[2], p0, p1, p2, e, e1, e2, a[0, 2, p], a[1, 2, p], a[2, 2, p],
+                       u[0, 2, p], u[1, 2, p], u[2, 2, p], r[0, 2, p].real, r[1, 2, p].real,
+                       r[2, 2, p].real, b[2, p], g[2, p])
+    return solve3(jac[p, 0, 0], jac[p, 0, 1], jac[p, 0, 2], jac[p, 1, 0], jac[p, 1, 1],
+                  jac[p, 1, 2], jac[p, 2, 0], jac[p, 2, 1], jac[p, 2, 2],
+                  -f0[part], -f1[part], -f2[part])
+
+
+@kernel
+def _analogs_kernel(kinds: np.ndarray, a: np.ndarray, u: np.ndarray, r: np.ndarray,
+                    b: np.ndarray, g: np.ndarray, x: np.ndarray, jac: np.ndarray,
+                    out1: np.ndarray, out2: np.ndarray) -> None:
+    """x′ and x″ of every position (:func:`analogs_triad`); ``a``, ``u``, ``r`` hold the
+    inputs' value and both derivatives on their first axis."""
+    for p in range(x.shape[0]):
+        v0, v1, v2 = _derivatives(kinds, a, u, r, b, g, x, jac, p, 0j, 0.0, 0)
+        out1[p, 0], out1[p, 1], out1[p, 2] = v0, v1, v2
+        out2[p, 0], out2[p, 1], out2[p, 2] = _derivatives(kinds, a, u, r, b, g, x, jac, p,
+                                                          complex(v0, v1), v2, 1)
+
+
 def _flat(v: Any, shape: tuple[int, ...], where: tuple[np.ndarray, ...] | None,
           dtype: type) -> np.ndarray:
     """``v`` broadcast to ``shape`` at the positions ``where`` (all if None), laid flat."""
@@ -193,12 +261,12 @@ def _flat(v: Any, shape: tuple[int, ...], where: tuple[np.ndarray, ...] | None,
 
 def _columns(values: tuple[Any, ...], shape: tuple[int, ...],
              where: tuple[np.ndarray, ...] | None, dtype: type) -> np.ndarray:
-    """Three values (None for 0) at the positions, as columns (P, 3)."""
+    """Three values (None for 0) at the positions, as rows (3, P)."""
     count = int(np.prod(shape)) if where is None else where[0].size
-    out: np.ndarray = np.zeros((count, 3), dtype=dtype)
+    out: np.ndarray = np.zeros((3, count), dtype=dtype)
     for i, v in enumerate(values):
         if v is not None:
-            out[:, i] = _flat(v, shape, where, dtype)
+            out[i] = _flat(v, shape, where, dtype)
     return out
 
 
@@ -249,3 +317,48 @@ def correct_triad(group: Triad, k: TriadInputs, guess: np.ndarray, sign: np.ndar
         x, jac, margin, ok)
     return (x.reshape(shape + (3,)), jac.reshape(shape + (3, 3)), margin.reshape(shape),
             ok.reshape(shape))
+
+
+def _jets(values: tuple[Any, ...], shape: tuple[int, ...]) -> np.ndarray:
+    """Three inputs (None for 0; a jet or a plain value): their value and both derivatives
+    at the positions of ``shape``, laid flat, shape (3 parts, 3 inputs, P)."""
+    out: np.ndarray = np.zeros((3, 3) + shape, dtype=complex)
+    for i, v in enumerate(values):
+        if v is not None:
+            for j, part in enumerate((v.v, v.d1, v.d2) if isinstance(v, Jet) else (v,)):
+                out[j, i] = part
+    return out.reshape(3, 3, -1)
+
+
+def analogs_triad(group: Triad, k: TriadInputs, x: np.ndarray, jac: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """The analogs x′, x″ of a triad's unknowns by implicit differentiation
+    (:func:`~assur.kinematics.higher.continuation.analogs`): J x′ = −∂F/∂φ, and
+    J x″ = −d²F/dφ² with x′ known and x″ = 0.
+
+    Parameters
+    ----------
+    group : Triad
+        A triad without a P–P leash.
+    k : TriadInputs
+        Its inputs at the positions, as jets in the crank angle φ.
+    x : ndarray, shape (..., 3)
+        A solution at each position.
+    jac : ndarray, shape (..., 3, 3)
+        The Jacobian there.
+
+    Returns
+    -------
+    x1, x2 : ndarray, shape (..., 3)
+    """
+    shape = x.shape[:-1]
+    count = int(np.prod(shape))
+    lengths = tuple(group.leash_length(i, k) for i in range(3))
+    x1, x2 = np.empty((count, 3)), np.empty((count, 3))
+    _analogs_kernel(np.array([_CODES[kind] for kind in group.leashes], dtype=np.int64),
+                    _jets(k.a, shape), _jets(k.u, shape), _jets(lengths, shape),
+                    _columns(group.offsets, shape, None, complex),
+                    _columns(group.guide, shape, None, complex),
+                    np.ascontiguousarray(x, dtype=float).reshape(count, 3),
+                    np.ascontiguousarray(jac, dtype=float).reshape(count, 3, 3), x1, x2)
+    return x1.reshape(shape + (3,)), x2.reshape(shape + (3,))

@@ -79,28 +79,29 @@ def _cross_terms(a0: complex, a1: complex, b0: complex, b1: complex) -> tuple[fl
 
 
 @inline
-def _half(kinds: np.ndarray, degree: int, a: np.ndarray, u: np.ndarray, r: np.ndarray,
-          b: np.ndarray, g: np.ndarray, p: int) -> tuple[complex, complex, complex, complex]:
-    """φ₀ … φ₃ of Φ(θ) = Σ φ_n Eⁿ at position ``p`` (:meth:`Triad._half`; zero above the
-    degree)."""
-    l0 = _leash_line(kinds[0], a[0, p], a[0, p], u[0, p], g[0, p], b[0, p], r[0, p], r[0, p])
-    l1 = _leash_line(kinds[1], a[1, p], a[0, p], u[1, p], g[1, p], b[1, p], r[1, p], r[0, p])
-    l2 = _leash_line(kinds[2], a[2, p], a[0, p], u[2, p], g[2, p], b[2, p], r[2, p], r[0, p])
+def _half(kinds: np.ndarray, degree: int, a0: complex, a1: complex, a2: complex,
+          u0: complex, u1: complex, u2: complex, r0: float, r1: float, r2: float,
+          b0: complex, b1: complex, b2: complex, g0: complex, g1: complex, g2: complex
+          ) -> tuple[complex, complex, complex, complex]:
+    """φ₀ … φ₃ of Φ(θ) = Σ φ_n Eⁿ (:meth:`Triad._half`; zero above the degree)."""
+    l0 = _leash_line(kinds[0], a0, a0, u0, g0, b0, r0, r0)
+    l1 = _leash_line(kinds[1], a1, a0, u1, g1, b1, r1, r0)
+    l2 = _leash_line(kinds[2], a2, a0, u2, g2, b2, r2, r0)
     if kinds[0] == _RR:
-        (a2, b2, c2, g2), (a3, b3, c3, g3) = l1, l2
-        h2, h3 = g2.conjugate(), g3.conjugate()
-        m0 = h2 * a3 - h3 * a2
-        m1 = c2 * a3 + h2 * b3 - c3 * a2 - h3 * b2
-        m2 = g2 * a3 + c2 * b3 - g3 * a2 - c3 * b2
-        m3 = g2 * b3 - g3 * b2
-        x0, x1 = _cross_terms(a2, b2, a3, b3)
-        r1 = r[0, p] * r[0, p]
+        (al2, be2, c2, ga2), (al3, be3, c3, ga3) = l1, l2
+        h2, h3 = ga2.conjugate(), ga3.conjugate()
+        m0 = h2 * al3 - h3 * al2
+        m1 = c2 * al3 + h2 * be3 - c3 * al2 - h3 * be2
+        m2 = ga2 * al3 + c2 * be3 - ga3 * al2 - c3 * be2
+        m3 = ga2 * be3 - ga3 * be2
+        x0, x1 = _cross_terms(al2, be2, al3, be3)
+        rr = r0 * r0
         top = m3 * m0.conjugate() if degree == 3 else 0j
         return ((m0 * m0.conjugate() + m1 * m1.conjugate() + m2 * m2.conjugate()
-                 + m3 * m3.conjugate()) - r1 * (x0 * x0 + 2.0 * square(x1)),
+                 + m3 * m3.conjugate()) - rr * (x0 * x0 + 2.0 * square(x1)),
                 (m1 * m0.conjugate() + m2 * m1.conjugate() + m3 * m2.conjugate())
-                - r1 * (2.0 * x0 * x1),
-                (m2 * m0.conjugate() + m3 * m1.conjugate()) - r1 * (x1 * x1), top)
+                - rr * (2.0 * x0 * x1),
+                (m2 * m0.conjugate() + m3 * m1.conjugate()) - rr * (x1 * x1), top)
     h0, h1, h2 = 0j, 0j, 0j
     for own, one, two in ((l0, l1, l2), (l1, l2, l0), (l2, l0, l1)):
         x0, x1 = _cross_terms(one[0], one[1], two[0], two[1])
@@ -129,22 +130,30 @@ def _coefficients(half: tuple[complex, complex, complex, complex], degree: int,
 @kernel
 def _correct_kernel(kinds: np.ndarray, degree: int, iterations: int, converged: float,
                     a: np.ndarray, u: np.ndarray, r: np.ndarray, b: np.ndarray,
-                    g: np.ndarray, size: np.ndarray, guess: np.ndarray, sign: np.ndarray,
-                    index: np.ndarray, x: np.ndarray, jac: np.ndarray, margin: np.ndarray,
+                    g: np.ndarray, size: np.ndarray, sign: np.ndarray, guess: np.ndarray,
+                    mask: np.ndarray, x: np.ndarray, jac: np.ndarray, margin: np.ndarray,
                     ok: np.ndarray) -> None:
-    """Every position of the flat arrays corrected and tested (:func:`correct_triad`), the
-    results written at the rows ``index`` of the outputs."""
+    """Every position of the flat arrays where ``mask`` corrected and tested
+    (:func:`correct_triad`), the others NaN and failed. ``a``, ``u``, ``r`` hold the inputs
+    per position (3, P); ``b``, ``g``, ``size``, ``sign`` the drawing per design (3, D), the
+    design of position p being p mod D (the positions' last axis)."""
     k0, k1, k2 = kinds[0], kinds[1], kinds[2]
+    width = size.shape[0]
     coef = np.empty(2 * degree + 1, dtype=np.complex128)
     work = np.empty(2 * degree + 1, dtype=np.complex128)
     for p in range(guess.shape[0]):
-        o = index[p]
+        if not mask[p]:
+            x[p, :] = math.nan
+            jac[p, :, :] = math.nan
+            margin[p], ok[p] = math.nan, False
+            continue
+        d = p % width
         a0, a1, a2 = a[0, p], a[1, p], a[2, p]
         u0, u1, u2 = u[0, p], u[1, p], u[2, p]
         r0, r1, r2 = r[0, p], r[1, p], r[2, p]
-        b0, b1, b2 = b[0, p], b[1, p], b[2, p]
-        g0, g1, g2 = g[0, p], g[1, p], g[2, p]
-        inv = 1.0 / size[p]
+        b0, b1, b2 = b[0, d], b[1, d], b[2, d]
+        g0, g1, g2 = g[0, d], g[1, d], g[2, d]
+        inv = 1.0 / size[d]
         w0, w1, th = guess[p, 0], guess[p, 1], guess[p, 2]
         step = math.inf
         for iteration in range(iterations + 1):
@@ -162,10 +171,10 @@ def _correct_kernel(kinds: np.ndarray, degree: int, iterations: int, converged: 
                                 -_residual(k2, q2, n2, a2, r2))
             w0, w1, th = w0 + d0, w1 + d1, th + d2
             step = abs(d0 * inv) + abs(d1 * inv) + abs(d2)
-        x[o, 0], x[o, 1], x[o, 2] = w0, w1, th
-        jac[o, 0, 0], jac[o, 0, 1], jac[o, 0, 2] = n0.real, n0.imag, e02
-        jac[o, 1, 0], jac[o, 1, 1], jac[o, 1, 2] = n1.real, n1.imag, e12
-        jac[o, 2, 0], jac[o, 2, 1], jac[o, 2, 2] = n2.real, n2.imag, e22
+        x[p, 0], x[p, 1], x[p, 2] = w0, w1, th
+        jac[p, 0, 0], jac[p, 0, 1], jac[p, 0, 2] = n0.real, n0.imag, e02
+        jac[p, 1, 0], jac[p, 1, 1], jac[p, 1, 2] = n1.real, n1.imag, e12
+        jac[p, 2, 0], jac[p, 2, 1], jac[p, 2, 2] = n2.real, n2.imag, e22
         centre = (q0 + q1 + q2) / 3.0
         spread = math.sqrt((abs(q0 - centre) ** 2 + abs(q1 - centre) ** 2
                             + abs(q2 - centre) ** 2) / 3.0)
@@ -176,13 +185,14 @@ def _correct_kernel(kinds: np.ndarray, degree: int, iterations: int, converged: 
         norms = (math.sqrt(v0.real ** 2 + v0.imag ** 2 + m02 ** 2)
                  * math.sqrt(v1.real ** 2 + v1.imag ** 2 + m12 ** 2)
                  * math.sqrt(v2.real ** 2 + v2.imag ** 2 + m22 ** 2))
-        margin[o] = abs(det3(v0.real, v0.imag, m02, v1.real, v1.imag, m12,
+        margin[p] = abs(det3(v0.real, v0.imag, m02, v1.real, v1.imag, m12,
                              v2.real, v2.imag, m22)) / norms
         det = det3(n0.real, n0.imag, e02, n1.real, n1.imag, e12, n2.real, n2.imag, e22)
         apart = (abs(w0 - guess[p, 0]) * inv + abs(w1 - guess[p, 1]) * inv
                  + abs(th - guess[p, 2]))
-        _coefficients(_half(kinds, degree, a, u, r, b, g, p), degree, coef)
-        ok[o] = (step <= converged) and (np.sign(det) == sign[p]) and close(coef, th, apart, work)
+        _coefficients(_half(kinds, degree, a0, a1, a2, u0, u1, u2, r0, r1, r2, b0, b1, b2,
+                            g0, g1, g2), degree, coef)
+        ok[p] = (step <= converged) and (np.sign(det) == sign[d]) and close(coef, th, apart, work)
 
 
 @inline
@@ -217,23 +227,23 @@ def _residual_jet(kind: int, p: complex, p1: complex, p2: complex, e: complex, e
 
 @inline
 def _derivatives(kinds: np.ndarray, a: np.ndarray, u: np.ndarray, r: np.ndarray,
-                 b: np.ndarray, g: np.ndarray, x: np.ndarray, jac: np.ndarray, p: int,
+                 b: np.ndarray, g: np.ndarray, x: np.ndarray, jac: np.ndarray, p: int, d: int,
                  w1: complex, t1: float, part: int) -> tuple[float, float, float]:
-    """y with J y = −(derivative ``part`` of F) at position ``p``, the unknowns a jet with
-    first derivative (w1, t1) and none of second order."""
+    """y with J y = −(derivative ``part`` of F) at position ``p`` of the design ``d``, the
+    unknowns a jet with first derivative (w1, t1) and none of second order."""
     e = complex(math.cos(x[p, 2]), math.sin(x[p, 2]))
     e1, e2 = 1j * e * t1, -e * t1 * t1
     p0 = a[0, 0, p] + complex(x[p, 0], x[p, 1])
     p1, p2 = a[1, 0, p] + w1, a[2, 0, p]
     f0 = _residual_jet(kinds[0], p0, p1, p2, e, e1, e2, a[0, 0, p], a[1, 0, p], a[2, 0, p],
                        u[0, 0, p], u[1, 0, p], u[2, 0, p], r[0, 0, p].real, r[1, 0, p].real,
-                       r[2, 0, p].real, b[0, p], g[0, p])
+                       r[2, 0, p].real, b[0, d], g[0, d])
     f1 = _residual_jet(kinds[1], p0, p1, p2, e, e1, e2, a[0, 1, p], a[1, 1, p], a[2, 1, p],
                        u[0, 1, p], u[1, 1, p], u[2, 1, p], r[0, 1, p].real, r[1, 1, p].real,
-                       r[2, 1, p].real, b[1, p], g[1, p])
+                       r[2, 1, p].real, b[1, d], g[1, d])
     f2 = _residual_jet(kinds[2], p0, p1, p2, e, e1, e2, a[0, 2, p], a[1, 2, p], a[2, 2, p],
                        u[0, 2, p], u[1, 2, p], u[2, 2, p], r[0, 2, p].real, r[1, 2, p].real,
-                       r[2, 2, p].real, b[2, p], g[2, p])
+                       r[2, 2, p].real, b[2, d], g[2, d])
     return solve3(jac[p, 0, 0], jac[p, 0, 1], jac[p, 0, 2], jac[p, 1, 0], jac[p, 1, 1],
                   jac[p, 1, 2], jac[p, 2, 0], jac[p, 2, 1], jac[p, 2, 2],
                   -f0[part], -f1[part], -f2[part])
@@ -244,30 +254,55 @@ def _analogs_kernel(kinds: np.ndarray, a: np.ndarray, u: np.ndarray, r: np.ndarr
                     b: np.ndarray, g: np.ndarray, x: np.ndarray, jac: np.ndarray,
                     out1: np.ndarray, out2: np.ndarray) -> None:
     """x′ and x″ of every position (:func:`analogs_triad`); ``a``, ``u``, ``r`` hold the
-    inputs' value and both derivatives on their first axis."""
+    inputs' value and both derivatives on their first axis, ``b`` and ``g`` the drawing per
+    design (:func:`_correct_kernel`)."""
+    width = b.shape[1]
     for p in range(x.shape[0]):
-        v0, v1, v2 = _derivatives(kinds, a, u, r, b, g, x, jac, p, 0j, 0.0, 0)
+        d = p % width
+        v0, v1, v2 = _derivatives(kinds, a, u, r, b, g, x, jac, p, d, 0j, 0.0, 0)
         out1[p, 0], out1[p, 1], out1[p, 2] = v0, v1, v2
-        out2[p, 0], out2[p, 1], out2[p, 2] = _derivatives(kinds, a, u, r, b, g, x, jac, p,
+        out2[p, 0], out2[p, 1], out2[p, 2] = _derivatives(kinds, a, u, r, b, g, x, jac, p, d,
                                                           complex(v0, v1), v2, 1)
 
 
-def _flat(v: Any, shape: tuple[int, ...], where: tuple[np.ndarray, ...] | None,
-          dtype: type) -> np.ndarray:
-    """``v`` broadcast to ``shape`` at the positions ``where`` (all if None), laid flat."""
-    wide: np.ndarray = np.broadcast_to(np.asarray(plain(v), dtype=dtype), shape)
-    return wide.reshape(-1) if where is None else wide[where]
+def _per_position(values: tuple[Any, ...], shape: tuple[int, ...], dtype: type
+                  ) -> np.ndarray:
+    """Three inputs (None for 0) at the positions of ``shape``, laid flat: shape (3, P)."""
+    out: np.ndarray = np.empty((3,) + shape, dtype=dtype)
+    for i, v in enumerate(values):
+        out[i] = 0.0 if v is None else plain(v)
+    return out.reshape(3, -1)
 
 
-def _columns(values: tuple[Any, ...], shape: tuple[int, ...],
-             where: tuple[np.ndarray, ...] | None, dtype: type) -> np.ndarray:
-    """Three values (None for 0) at the positions, as rows (3, P)."""
-    count = int(np.prod(shape)) if where is None else where[0].size
-    out: np.ndarray = np.zeros((3, count), dtype=dtype)
+def _per_design(values: tuple[Any, ...], shape: tuple[int, ...], dtype: type) -> np.ndarray:
+    """Three drawn values (None for 0) or values per design (the positions' last axis), as
+    rows (3, D)."""
+    out: np.ndarray = np.empty((3, shape[-1] if shape else 1), dtype=dtype)
+    for i, v in enumerate(values):
+        out[i] = 0.0 if v is None else _design(v, shape)
+    return out
+
+
+def _design(v: Any, shape: tuple[int, ...]) -> np.ndarray:
+    """A drawn value (a number or one per design) or the sign of a mode per design, along
+    the positions' last axis: shape (D,)."""
+    row: np.ndarray = np.broadcast_to(plain(v), shape)[(0,) * (len(shape) - 1)]
+    return np.asarray(row).reshape(-1)
+
+
+def _jets(values: tuple[Any, ...], shape: tuple[int, ...]) -> np.ndarray:
+    """Three inputs (None for 0; a jet or a plain value): their value and both derivatives
+    at the positions of ``shape``, laid flat, shape (3 parts, 3 inputs, P)."""
+    out: np.ndarray = np.zeros((3, 3) + shape, dtype=complex)
     for i, v in enumerate(values):
         if v is not None:
-            out[i] = _flat(v, shape, where, dtype)
-    return out
+            for j, part in enumerate((v.v, v.d1, v.d2) if isinstance(v, Jet) else (v,)):
+                out[j, i] = part
+    return out.reshape(3, 3, -1)
+
+
+def _codes(group: Triad) -> np.ndarray:
+    return np.array([_CODES[kind] for kind in group.leashes], dtype=np.int64)
 
 
 def correct_triad(group: Triad, k: TriadInputs, guess: np.ndarray, sign: np.ndarray,
@@ -278,14 +313,14 @@ def correct_triad(group: Triad, k: TriadInputs, guess: np.ndarray, sign: np.ndar
     Parameters
     ----------
     group : Triad
-        A triad without a P–P leash (:func:`supports`); drawn values broadcasting against
-        the positions.
+        A triad without a P–P leash (:func:`supports`); drawn values numbers or one per
+        design, the positions' last axis.
     k : TriadInputs
         Its inputs at the positions, plain arrays.
-    guess : ndarray, shape (..., 3)
+    guess : ndarray, shape (..., D, 3)
         The predictor (W_x, W_y, θ).
     sign : ndarray
-        The sign of det J of the mode followed, broadcasting against the positions.
+        The sign of det J of the mode followed, per design.
     iterations, converged : int, float
         Newton's steps at most, and the scaled step at which a position stops.
     mask : ndarray of bool, optional
@@ -300,34 +335,22 @@ def correct_triad(group: Triad, k: TriadInputs, guess: np.ndarray, sign: np.ndar
     """
     shape = guess.shape[:-1]
     count = int(np.prod(shape))
-    where = None if mask is None else np.nonzero(np.broadcast_to(mask, shape))
-    index = np.arange(count) if where is None else np.ravel_multi_index(where, shape)
+    wanted = np.ones(shape, dtype=bool)
+    if mask is not None:
+        wanted &= mask
     lengths = tuple(group.leash_length(i, k) for i in range(3))
-    x = np.full((count, 3), np.nan)
-    jac = np.full((count, 3, 3), np.nan)
-    margin = np.full(count, np.nan)
-    ok = np.zeros(count, dtype=bool)
+    x, jac = np.empty((count, 3)), np.empty((count, 3, 3))
+    margin, ok = np.empty(count), np.empty(count, dtype=bool)
     _correct_kernel(
-        np.array([_CODES[kind] for kind in group.leashes], dtype=np.int64), group.degree,
-        iterations, converged, _columns(k.a, shape, where, complex),
-        _columns(k.u, shape, where, complex), _columns(lengths, shape, where, float),
-        _columns(group.offsets, shape, where, complex),
-        _columns(group.guide, shape, where, complex), _flat(group.size, shape, where, float),
-        guess.reshape(count, 3)[index], _flat(sign, shape, where, float), index,
+        _codes(group), group.degree, iterations, converged,
+        _per_position(k.a, shape, complex), _per_position(k.u, shape, complex),
+        _per_position(lengths, shape, float), _per_design(group.offsets, shape, complex),
+        _per_design(group.guide, shape, complex), _design(group.size, shape).astype(float),
+        _design(sign, shape).astype(float),
+        np.ascontiguousarray(guess, dtype=float).reshape(count, 3), wanted.reshape(-1),
         x, jac, margin, ok)
     return (x.reshape(shape + (3,)), jac.reshape(shape + (3, 3)), margin.reshape(shape),
             ok.reshape(shape))
-
-
-def _jets(values: tuple[Any, ...], shape: tuple[int, ...]) -> np.ndarray:
-    """Three inputs (None for 0; a jet or a plain value): their value and both derivatives
-    at the positions of ``shape``, laid flat, shape (3 parts, 3 inputs, P)."""
-    out: np.ndarray = np.zeros((3, 3) + shape, dtype=complex)
-    for i, v in enumerate(values):
-        if v is not None:
-            for j, part in enumerate((v.v, v.d1, v.d2) if isinstance(v, Jet) else (v,)):
-                out[j, i] = part
-    return out.reshape(3, 3, -1)
 
 
 def analogs_triad(group: Triad, k: TriadInputs, x: np.ndarray, jac: np.ndarray
@@ -339,26 +362,25 @@ def analogs_triad(group: Triad, k: TriadInputs, x: np.ndarray, jac: np.ndarray
     Parameters
     ----------
     group : Triad
-        A triad without a P–P leash.
+        A triad without a P–P leash; drawn values numbers or one per design.
     k : TriadInputs
         Its inputs at the positions, as jets in the crank angle φ.
-    x : ndarray, shape (..., 3)
+    x : ndarray, shape (..., D, 3)
         A solution at each position.
-    jac : ndarray, shape (..., 3, 3)
+    jac : ndarray, shape (..., D, 3, 3)
         The Jacobian there.
 
     Returns
     -------
-    x1, x2 : ndarray, shape (..., 3)
+    x1, x2 : ndarray, shape (..., D, 3)
     """
     shape = x.shape[:-1]
     count = int(np.prod(shape))
     lengths = tuple(group.leash_length(i, k) for i in range(3))
     x1, x2 = np.empty((count, 3)), np.empty((count, 3))
-    _analogs_kernel(np.array([_CODES[kind] for kind in group.leashes], dtype=np.int64),
-                    _jets(k.a, shape), _jets(k.u, shape), _jets(lengths, shape),
-                    _columns(group.offsets, shape, None, complex),
-                    _columns(group.guide, shape, None, complex),
+    _analogs_kernel(_codes(group), _jets(k.a, shape), _jets(k.u, shape), _jets(lengths, shape),
+                    _per_design(group.offsets, shape, complex),
+                    _per_design(group.guide, shape, complex),
                     np.ascontiguousarray(x, dtype=float).reshape(count, 3),
                     np.ascontiguousarray(jac, dtype=float).reshape(count, 3, 3), x1, x2)
     return x1.reshape(shape + (3,)), x2.reshape(shape + (3,))

@@ -562,6 +562,9 @@ def _kept(v: Any, mask: np.ndarray, jets: bool) -> list[np.ndarray]:
     analogs (zero for a value that is not a jet) — where ``mask`` holds (NaN elsewhere),
     transposed to (D, N)."""
     parts = (v.v, v.d1, v.d2) if isinstance(v, Jet) else (v, 0.0 * v, 0.0 * v) if jets else (v,)
+    if mask.all():  # nothing to blank: the parts as they are, where they have the grid's shape
+        return [np.asarray(part).T if np.shape(part) == mask.shape
+                else np.broadcast_to(part, mask.shape).T.copy() for part in parts]
     return [np.where(mask, np.broadcast_to(part, mask.shape), np.nan).T for part in parts]
 
 
@@ -643,9 +646,12 @@ def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: n
     angle = np.broadcast_to(s * grid, reach.shape)
     k = inputs(Jet(angle, 1.0, 0.0)) if jets else inputs(angle)
     kv = values(k)
-    anchor = states.at(nearest)
-    h = grid - anchor.t
-    guess = anchor.x + (s * h)[..., None] * anchor.x1 + 0.5 * (h * h)[..., None] * anchor.x2
+    if kernel:
+        guess = compiled.predict(states.t, states.x, states.x1, states.x2, nearest, grid, s)
+    else:
+        anchor = states.at(nearest)
+        h = grid - anchor.t
+        guess = anchor.x + (s * h)[..., None] * anchor.x1 + 0.5 * (h * h)[..., None] * anchor.x2
     # between the last accepted state and the change point where the pass ended (its
     # analogs NaN): x* + (x_b − x*)·√((t* − t)/(t* − t_b)), the square-root form of a fold
     after = np.minimum(before + 1, len(states.t) - 1)

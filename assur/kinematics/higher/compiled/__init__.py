@@ -22,7 +22,7 @@ import numpy as np
 
 from assur.kinematics.higher.groups import HigherGroup, Triad, TriadInputs
 
-__all__ = ["analogs", "correct", "supports"]
+__all__ = ["analogs", "correct", "predict", "supports"]
 
 
 def supports(group: HigherGroup[Any]) -> bool:
@@ -73,3 +73,17 @@ def analogs(group: HigherGroup[Any], k: Any, x: np.ndarray, jac: np.ndarray
 
     assert isinstance(group, Triad) and isinstance(k, TriadInputs)
     return analogs_triad(group, k, x, jac)
+
+
+def predict(t: np.ndarray, x: np.ndarray, x1: np.ndarray, x2: np.ndarray, nearest: np.ndarray,
+            targets: np.ndarray, s: float) -> np.ndarray:
+    """The predictor x + s·h·x′ + ½h²·x″, h = target − t, of every target (..., shape of
+    ``nearest``) from the state ``nearest`` of the states t (S,), x, x′, x″ (S, n); the
+    continuation's predictor from the accepted states, in one compiled pass."""
+    from assur.kinematics.higher.compiled._jit import predict as kernel
+
+    out = np.empty(nearest.shape + x.shape[-1:])
+    kernel(t, x, x1, x2, np.ascontiguousarray(nearest).reshape(-1),
+           np.ascontiguousarray(targets, dtype=float).reshape(-1), s,
+           out.reshape(-1, x.shape[-1]))
+    return out

@@ -12,7 +12,8 @@ from typing import Any, TypeVar, cast
 import numba
 import numpy as np
 
-__all__ = ["close", "cross", "det3", "dot", "inline", "kernel", "over", "solve3", "square"]
+__all__ = ["close", "cross", "det3", "dot", "inline", "kernel", "over", "predict", "solve3",
+           "square"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -99,3 +100,15 @@ def close(coef: np.ndarray, theta: float, reach: float, work: np.ndarray) -> boo
         if not square(work[n - 1 - j]) * power <= first:
             return False
     return True
+
+
+@kernel
+def predict(t: np.ndarray, x: np.ndarray, x1: np.ndarray, x2: np.ndarray, nearest: np.ndarray,
+            targets: np.ndarray, s: float, out: np.ndarray) -> None:
+    """The predictor x + s·h·x′ + ½h²·x″ (h = target − t) of every target from its state
+    ``nearest`` (flat arrays: states (S,) and (S, n), targets (P,)), into ``out`` (P, n)."""
+    for p in range(targets.shape[0]):
+        q = nearest[p]
+        h = targets[p] - t[q]
+        for i in range(x.shape[1]):
+            out[p, i] = x[q, i] + (s * h) * x1[q, i] + (0.5 * (h * h)) * x2[q, i]

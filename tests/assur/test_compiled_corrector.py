@@ -173,3 +173,16 @@ def test_the_compiled_analogs_are_the_derivatives_of_the_poses(kinds: tuple[str,
     second = (ahead - 2.0 * x + behind) / (h * h)
     assert np.allclose(x1[ok], first[ok], rtol=1e-5, atol=1e-5 * np.abs(first[ok]).max())
     assert np.allclose(x2[ok], second[ok], rtol=1e-3, atol=1e-3 * np.abs(second[ok]).max())
+
+
+def test_the_compiled_predictor_is_the_taylor_polynomial_of_the_nearest_state() -> None:
+    rng = np.random.default_rng(3)
+    t = np.sort(rng.uniform(0.0, 6.0, 40))
+    x, x1, x2 = (rng.normal(0.0, 1.0, (40, 3)) for _ in range(3))
+    nearest = rng.integers(0, 40, (50, 7))
+    targets = t[nearest] + rng.uniform(-0.1, 0.1, nearest.shape)
+    for s in (1.0, -1.0):
+        h = (targets - t[nearest])[..., None]
+        expected = x[nearest] + s * h * x1[nearest] + 0.5 * h * h * x2[nearest]
+        found = compiled.predict(t, x, x1, x2, nearest, targets, s)
+        assert np.allclose(found, expected, rtol=1e-15, atol=1e-15)

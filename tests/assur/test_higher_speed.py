@@ -105,7 +105,8 @@ def _near_ends(designs: Designs, rng: np.random.Generator, n: int) -> np.ndarray
     return np.unique(np.mod(probes, TWO_PI))
 
 
-@pytest.mark.parametrize("kind", ["RRR triad", "class IV", "RRR triad, every angle stepped to"])
+@pytest.mark.parametrize("kind", ["RRR triad", "class IV", "RRR triad, every angle stepped to",
+                                  "RRR triad, compiled", "class IV, compiled"])
 def test_batched_angles_equal_a_fine_step_continuation(kind: str,
                                                        monkeypatch: pytest.MonkeyPatch) -> None:
     designs = random_triads(11, 8) if kind.startswith("RRR") else random_class_iv(11, 8)
@@ -113,11 +114,13 @@ def test_batched_angles_equal_a_fine_step_continuation(kind: str,
         correct = continuation._correct_at
 
         def failing(group: Any, kv: Any, guess: np.ndarray, sign: np.ndarray,
-                    mask: np.ndarray) -> Any:
-            xn, jac, rows, ok = correct(group, kv, guess, sign, mask)
+                    mask: np.ndarray, kernel: bool = False) -> Any:
+            xn, jac, rows, ok = correct(group, kv, guess, sign, mask, kernel)
             return np.full_like(xn, np.nan), jac, rows, ok & False
 
         monkeypatch.setattr(continuation, "_correct_at", failing)
+    if kind.endswith("compiled"):  # the compiled corrector, which larger grids use
+        monkeypatch.setattr(continuation, "KERNEL_POSITIONS", 1)
     phi = _near_ends(designs, np.random.default_rng(5), 120)
     solution = _check(designs, phi)
     ends = solution.ends[np.isfinite(solution.ends)]

@@ -192,6 +192,14 @@ class _Point:
                       np.where(wide, self.x1, other.x1), np.where(wide, self.x2, other.x2))
 
 
+def _analogs(group: HigherGroup[K], k: K, x: np.ndarray, jac: np.ndarray, kernel: bool
+             ) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`analogs`, by the group's compiled kernel where ``kernel`` and it has one."""
+    if kernel and compiled.has_analogs(group):
+        return compiled.analogs(group, k, x, jac)
+    return analogs(group, k, x, jac)
+
+
 def _kernel(group: HigherGroup[K], positions: int) -> bool:
     """Whether a pass over ``positions`` positions corrects by the group's compiled kernel
     (:mod:`~assur.kinematics.higher.compiled`): where it has one and they are at least
@@ -420,7 +428,7 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
         taken = np.asarray(ok.any(axis=0))
         first = np.argmax(ok, axis=0)
         with np.errstate(all="ignore"):
-            n1, n2 = (compiled.analogs if kernel else analogs)(group, k, xn, jac)
+            n1, n2 = _analogs(group, k, xn, jac, kernel)
             now = _pick(margins, first)
         step = _pick(trial, first)
         hit = taken & (first == 0) & (hs >= goal - here.t)
@@ -688,7 +696,7 @@ def _follow(group: HigherGroup[K], inputs: Inputs[K], x0: np.ndarray, targets: n
     x = np.where(reached[..., None], x, np.nan)
     if jets:
         with np.errstate(all="ignore"):
-            x1, x2 = (compiled.analogs if kernel else analogs)(group, k, x, jac)
+            x1, x2 = _analogs(group, k, x, jac, kernel)
         cols: Any = [Jet(x[..., i], x1[..., i], x2[..., i]) for i in range(group.n)]
     else:
         cols, k = x, kv

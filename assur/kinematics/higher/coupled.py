@@ -70,7 +70,7 @@ SAMPLES = np.array([0.0, 0.5 * np.pi, np.pi])
 FROM_SAMPLES = np.array([[1.0, 0.0, 0.0], [-1.0, 2.0, -1.0], [0.0, 0.0, 1.0]])
 
 
-#: (p, m) of each form (couplers' kinds, slides, ε) once read (see ClassIVCoupled._form).
+#: (p, m) of each form (couplers' kinds, slides, ε) once read (see ClassIVCoupled.form).
 _FORMS: dict[tuple[tuple[Leash, Leash], tuple[bool, bool], int], tuple[int, int]] = {}
 
 
@@ -216,7 +216,7 @@ class ClassIVCoupled(ClassIVDrawing):
         return None
 
     @property
-    def _linear_kept(self) -> bool:
+    def linear_kept(self) -> bool:
         """Whether both equations are linear in the kept unknown, a slide (both couplers PR
         or RP): lifted, both then vanish at y_o = π (s = ∞) for every ε, so Φ ≡ 0, and the
         eliminant is the resultant of the two lines instead (:meth:`_full`)."""
@@ -239,10 +239,10 @@ class ClassIVCoupled(ClassIVDrawing):
     @property
     def degree(self) -> int:
         """The degree m of the deflated eliminant Φ̃ (see :meth:`eliminant`)."""
-        return self._form[1]
+        return self.form[1]
 
     @property
-    def _form(self) -> tuple[int, int]:
+    def form(self) -> tuple[int, int]:
         """The multiplicity p of the root e = −1 that Φ has on every design and input, and
         the degree of Φ̃: both structural, read once per form off Φ at generic inputs."""
         key = (self.kinds, self.slides, self.eliminated)
@@ -300,14 +300,14 @@ class ClassIVCoupled(ClassIVDrawing):
         both = a.weight * a.weight * c.weight * c.weight
         out: list[Value] = []
         for j, ((first, second), (arm_a, arm_c), kind, (wa, wc)) in enumerate(zip(
-                ((self.c, self.d), (self.f, self.e)), self._arms, self.kinds,
+                ((self.c, self.d), (self.f, self.e)), self.arms, self.kinds,
                 (self._guides(0), self._guides(1)), strict=True)):
             pa = a.reach(arm_a)     # κ_a·(the point of a at the pair on a)
             pc = c.reach(arm_c)     # κ_c·(the point of c at the pair on c)
             gap = _times(c.weight, pa) - _times(a.weight, pc)  # κ_aκ_c·(that on a − on c)
             drawn = np.asarray(first) - second
             if kind is Leash.RR:  # a bar: its drawn length, or an actuator's from the inputs
-                length = self._length(j, k)
+                length = self.coupler_length(j, k)
                 out.append(_square(gap) - length * length * both)
             elif kind is Leash.PP:
                 out.append(J.cross(a.turn, c.turn))
@@ -318,7 +318,7 @@ class ClassIVCoupled(ClassIVDrawing):
                            - offset * both)
         return out
 
-    def _length(self, j: int, k: ClassIVInputs) -> Value:
+    def coupler_length(self, j: int, k: ClassIVInputs) -> Value:
         """The length of bar j (0: b, 1: d): drawn, or an actuator's from the inputs."""
         given = k.l_b if j == 0 else k.l_d
         return self._drawn_lengths[j] if given is None else given
@@ -330,7 +330,7 @@ class ClassIVCoupled(ClassIVDrawing):
                 np.abs(np.asarray(J.value(self.f)) - J.value(self.e)))
 
     @cached_property
-    def _arms(self) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+    def arms(self) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
         """C − H_a, D − H_c (coupler b) and F − H_a, E − H_c (coupler d) as drawn."""
         return ((np.asarray(self.c) - self.h_a, np.asarray(self.d) - self.h_c),
                 (np.asarray(self.f) - self.h_a, np.asarray(self.e) - self.h_c))
@@ -376,7 +376,7 @@ class ClassIVCoupled(ClassIVDrawing):
 
     def _scales(self, k: ClassIVInputs) -> list[Value]:
         """Per coupler, the natural residual's scale: 1/(2l) of a bar, L of a PP coupler, 1."""
-        return [0.5 / self._length(j, k) if kind is Leash.RR else self.size
+        return [0.5 / self.coupler_length(j, k) if kind is Leash.RR else self.size
                 if kind is Leash.PP else 1.0 for j, kind in enumerate(self.kinds)]
 
     def residual(self, x: Unknowns, k: ClassIVInputs) -> list[Value]:
@@ -402,7 +402,7 @@ class ClassIVCoupled(ClassIVDrawing):
         ya, yc = unknown_columns(x)
         jac = self.equations(x, k)[1]
         scales = []
-        for y, slides, radius in zip((ya, yc), self.slides, self._radii, strict=True):
+        for y, slides, radius in zip((ya, yc), self.slides, self.radii, strict=True):
             if slides:
                 s = self.size * np.tan(0.5 * plain(y))
                 scales.append(2.0 * self.size / (self.size ** 2 + s * s))
@@ -412,7 +412,7 @@ class ClassIVCoupled(ClassIVDrawing):
         return jac, rows
 
     @cached_property
-    def _radii(self) -> tuple[np.ndarray, np.ndarray]:
+    def radii(self) -> tuple[np.ndarray, np.ndarray]:
         """The RMS radius of the internal pairs of a, of c, about its external pair."""
         return tuple(np.sqrt((np.abs(np.asarray(p) - h) ** 2 + np.abs(np.asarray(q) - h) ** 2)
                              / 2.0) for (p, q), h in zip(((self.c, self.f), (self.d, self.e)),
@@ -470,13 +470,13 @@ class ClassIVCoupled(ClassIVDrawing):
     def _full(self, k: ClassIVInputs, spread: bool = False) -> np.ndarray:
         """Φ(y_ε) = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² at y_ε = arg e, e ∈ ``GRID``.
 
-        Where both equations are linear in the kept slide s_o (:attr:`_linear_kept`), each
+        Where both equations are linear in the kept slide s_o (:attr:`linear_kept`), each
         is A_j·s_o + B_j = 0, lifted α_j = B_j/2 + i·L·A_j/2 and π_j = −Re α_j: then Φ ≡ 0
         (the common root y_o = π), and Φ is the resultant A_b·B_d − A_d·B_b ∝ cross(α_b, α_d)
         instead, of degree at most 2.
         """
         (ab, pb), (ad, pd) = self._linear(GRID_HALVES, k, spread)
-        if self._linear_kept:
+        if self.linear_kept:
             return np.asarray(plain_cross(ab, ad))
         return np.asarray(np.abs(pb * ad - pd * ab) ** 2 - plain_cross(ab, ad) ** 2)
 
@@ -487,7 +487,7 @@ class ClassIVCoupled(ClassIVDrawing):
 
     def _kept(self, series: np.ndarray) -> np.ndarray:
         """The coefficients φ₋ₘ … φₘ of Φ̃ from those of E⁴Φ (see :meth:`eliminant`)."""
-        p, m = self._form
+        p, m = self.form
         for _ in range(p):
             series = _deflate(series)[0]
         half = FULL_DEGREE - p // 2
@@ -505,7 +505,7 @@ class ClassIVCoupled(ClassIVDrawing):
         input (all α_j vanish there, or both lines coincide); that root is no pose, and
         divided out, as are the top coefficients that vanish for the form.
         """
-        m = self._form[1]
+        m = self.form[1]
         powers = np.arange(-m, m + 1)
         kept = self._kept(self._series(k, False))
         return np.asarray(np.einsum("...n,...kn->...k", kept,
@@ -516,7 +516,7 @@ class ClassIVCoupled(ClassIVDrawing):
         the larger α where both equations are linear in the kept slide); NaN where a PP
         coupler would be turned by π from one of its links."""
         (ab, pb), (ad, pd) = self._linear(_unit_halves(e), k)
-        if self._linear_kept:  # s_o = −L·Re α/Im α of either line: E_o = −α/ᾱ
+        if self.linear_kept:  # s_o = −L·Re α/Im α of either line: E_o = −α/ᾱ
             alpha = np.where(np.abs(ab) >= np.abs(ad), ab, ad)
             other = np.angle(-alpha / np.conj(alpha))
         else:
@@ -536,7 +536,7 @@ class ClassIVCoupled(ClassIVDrawing):
         for j, ((p, q), (on_a, on_c)) in enumerate(zip((("C", "D"), ("F", "E")),
                                                        (("Ca", "Dc"), ("Fa", "Ec")), strict=True)):
             first, second = getattr(self, p.lower()), getattr(self, q.lower())
-            arm_a, arm_c = self._arms[j]
+            arm_a, arm_c = self.arms[j]
             pa, pc = a.reach(arm_a) / a.weight, c.reach(arm_c) / c.weight
             drawn = np.asarray(second) - first
             kind = self.kinds[j]

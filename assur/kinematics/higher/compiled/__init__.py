@@ -20,13 +20,20 @@ from typing import Any
 
 import numpy as np
 
-from assur.kinematics.higher.groups import HigherGroup, Triad, TriadInputs
+from assur.kinematics.higher.coupled import ClassIVCoupled
+from assur.kinematics.higher.groups import ClassIVInputs, HigherGroup, Triad, TriadInputs
 
-__all__ = ["analogs", "correct", "predict", "supports"]
+__all__ = ["analogs", "correct", "has_analogs", "predict", "supports"]
 
 
 def supports(group: HigherGroup[Any]) -> bool:
-    """Whether a kernel corrects this group: a triad without a P–P leash."""
+    """Whether a kernel corrects this group: a class IV group of any form, a triad without a
+    P–P leash."""
+    return isinstance(group, ClassIVCoupled) or has_analogs(group)
+
+
+def has_analogs(group: HigherGroup[Any]) -> bool:
+    """Whether a kernel gives this group's analogs: a triad without a P–P leash."""
     return isinstance(group, Triad) and not group.pinned
 
 
@@ -40,7 +47,7 @@ def correct(group: HigherGroup[Any], k: Any, guess: np.ndarray,
     ----------
     group : HigherGroup
         The group; drawn values broadcasting against the positions.
-    k : TriadInputs
+    k : TriadInputs or ClassIVInputs
         Its inputs at the positions, plain arrays.
     guess : ndarray, shape (..., n)
         The predictor.
@@ -58,6 +65,11 @@ def correct(group: HigherGroup[Any], k: Any, guess: np.ndarray,
         where Newton's method converged, det J has the sign ``sign`` and the correction is
         at most a quarter of the separation bound.
     """
+    if isinstance(group, ClassIVCoupled):
+        from assur.kinematics.higher.compiled.coupled import correct_coupled
+
+        assert isinstance(k, ClassIVInputs)
+        return correct_coupled(group, k, guess, sign, iterations, converged, mask)
     from assur.kinematics.higher.compiled.triad import correct_triad
 
     assert isinstance(group, Triad) and isinstance(k, TriadInputs)
@@ -66,7 +78,7 @@ def correct(group: HigherGroup[Any], k: Any, guess: np.ndarray,
 
 def analogs(group: HigherGroup[Any], k: Any, x: np.ndarray, jac: np.ndarray
             ) -> tuple[np.ndarray, np.ndarray]:
-    """The analogs x′, x″ at every position of ``x`` for a group that :func:`supports`
+    """The analogs x′, x″ at every position of ``x`` for a group that :func:`has_analogs`
     accepts (:func:`~assur.kinematics.higher.continuation.analogs`: the same implicit
     differentiation; ``k`` the inputs as jets in the crank angle)."""
     from assur.kinematics.higher.compiled.triad import analogs_triad

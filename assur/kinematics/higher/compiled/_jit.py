@@ -1,6 +1,8 @@
-"""What the kernels share: how they are compiled, and the scalar steps of more than one.
+"""What the kernels share: how they are compiled, the scalar steps of more than one, and
+how their arguments are laid out.
 
-Every function here is compiled by numba; importing this module imports numba.
+Every function here but :func:`columns` is compiled by numba; importing this module imports
+numba.
 """
 
 from __future__ import annotations
@@ -12,8 +14,10 @@ from typing import Any, TypeVar, cast
 import numba
 import numpy as np
 
-__all__ = ["close", "cross", "det3", "dot", "inline", "kernel", "over", "predict", "solve3",
-           "square"]
+from assur.kinematics.higher.groups import plain
+
+__all__ = ["close", "columns", "cross", "det2", "det3", "dot", "inline", "kernel", "over",
+           "predict", "solve2", "solve3", "square"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -29,6 +33,15 @@ def inline(f: F) -> F:
     return cast(F, numba.njit(inline="always", error_model="numpy")(f))
 
 
+def columns(values: tuple[Any, ...], shape: tuple[int, ...], dtype: type) -> np.ndarray:
+    """Values (None for 0), broadcast to ``shape`` and laid flat, as columns (N, len(values))."""
+    out: np.ndarray = np.zeros((int(np.prod(shape)), len(values)), dtype=dtype)
+    for i, v in enumerate(values):
+        if v is not None:
+            out[:, i] = np.broadcast_to(plain(v), shape).reshape(-1)
+    return out
+
+
 @inline
 def cross(a: complex, b: complex) -> float:
     """Im(ā b) (:func:`~assur.kinematics.jets.cross`)."""
@@ -39,6 +52,21 @@ def cross(a: complex, b: complex) -> float:
 def dot(a: complex, b: complex) -> float:
     """Re(ā b) (:func:`~assur.kinematics.jets.dot`)."""
     return (a.conjugate() * b).real
+
+
+@inline
+def det2(e00: float, e01: float, e10: float, e11: float) -> float:
+    """The determinant by the first row's cofactors (:func:`~assur.kinematics.higher.groups.
+    cofactors`)."""
+    return e00 * e11 + e01 * -e10
+
+
+@inline
+def solve2(e00: float, e01: float, e10: float, e11: float, f0: float, f1: float
+           ) -> tuple[float, float]:
+    """x with e·x = f by Cramer's rule (:func:`~assur.kinematics.higher.modes.solve`)."""
+    det = e00 * e11 + e01 * -e10
+    return (e11 * f0 + -e01 * f1) / det, (-e10 * f0 + e00 * f1) / det
 
 
 @inline

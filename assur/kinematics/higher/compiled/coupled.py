@@ -1,0 +1,324 @@
+"""The class IV group's kernel: the corrector of :class:`~assur.kinematics.higher.coupled.
+ClassIVCoupled` (unknowns y_a, y_c), every form.
+
+Per position, with the operations of the group's methods: the fitted matrices M_j of
+:meth:`~assur.kinematics.higher.coupled.ClassIVCoupled._matrices` (the lifted loop equations
+of :meth:`~assur.kinematics.higher.coupled.ClassIVCoupled._loops` at y_a, y_c ∈ {0, π/2, π});
+Newton's method on
+:meth:`~assur.kinematics.higher.coupled.ClassIVCoupled.equations` (w(y), w′(y) contracted
+with M, the lifting factors of sliding links, none for a PP coupler); the Jacobian and the
+margin of :meth:`~assur.kinematics.higher.coupled.ClassIVCoupled.lines`; the coefficients of
+the eliminant from M (:meth:`~assur.kinematics.higher.coupled.ClassIVCoupled.coefficients`)
+and the root's separation bound.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from assur.kinematics import jets as J
+from assur.kinematics.higher.compiled._jit import (
+    close,
+    columns,
+    cross,
+    det2,
+    inline,
+    kernel,
+    solve2,
+)
+from assur.kinematics.higher.coupled import (
+    FULL_DEGREE,
+    GRID_HALVES,
+    SAMPLES,
+    SPLIT,
+    ClassIVCoupled,
+)
+from assur.kinematics.higher.groups import ClassIVInputs, Leash, plain
+
+__all__ = ["correct_coupled"]
+
+#: Coupler forms as the kernel numbers them.
+_CODES = {Leash.RR: 0, Leash.PR: 1, Leash.RP: 2, Leash.PP: 3}
+_RR, _PR, _PP = 0, 1, 3
+#: e^{iy} and e^{iy/2} at the samples y ∈ {0, π/2, π} of the fit, as the group takes them.
+_UNITS, _HALF_UNITS = plain(J.expi(SAMPLES)), plain(J.expi(0.5 * SAMPLES))
+
+
+@inline
+def _link(slides: bool, unit: complex, half: complex, h: complex, u: complex, drawn: complex,
+          size: float) -> tuple[complex, float, complex, complex]:
+    """A link a or c at the unknown y, ``unit`` = e^{iy}, ``half`` = e^{iy/2}: its turn E,
+    the weight κ, κ·O and κ·E (:meth:`ClassIVCoupled._links`)."""
+    if not slides:
+        return unit, 1.0, h, unit
+    weight = half.real
+    turn = u / drawn
+    return turn, weight, weight * h + size * half.imag * u, weight * turn
+
+
+@inline
+def _loop(kind: int, a: tuple[complex, float, complex, complex],
+          c: tuple[complex, float, complex, complex], arm_a: complex, arm_c: complex,
+          length: float, guide_a: complex, guide_c: complex, side: complex) -> float:
+    """F̂_j of a coupler (:meth:`ClassIVCoupled._loops`): its pairs' points on a and on c,
+    ``arm_a``, ``arm_c`` from the external pairs, the bar's length, the guides of its pairs
+    (on a, on c), ``side`` the first pair's point less the second's as drawn."""
+    turn_a, weight_a, origin_a, carried_a = a
+    turn_c, weight_c, origin_c, carried_c = c
+    both = weight_a * weight_a * weight_c * weight_c
+    gap = weight_c * (origin_a + carried_a * arm_a) - weight_a * (origin_c + carried_c * arm_c)
+    if kind == _RR:
+        return (gap.conjugate() * gap).real - length * length * both
+    if kind == _PP:
+        return cross(turn_a, turn_c)
+    turn, guide = (turn_a, guide_a) if kind == _PR else (turn_c, guide_c)
+    return weight_a * weight_c * cross(turn * guide, gap) - cross(guide, side) * both
+
+
+@inline
+def _fit(kinds: np.ndarray, sa: bool, sc: bool, unit: np.ndarray, half: np.ndarray,
+         h: np.ndarray, u: np.ndarray, drawn: np.ndarray, length: np.ndarray, arm: np.ndarray,
+         guide: np.ndarray, side: np.ndarray, size: float, p: int, values: np.ndarray,
+         m: np.ndarray) -> None:
+    """M_j (2, 3, 3) at position ``p`` into ``m`` (:meth:`ClassIVCoupled._matrices`):
+    scale_j·F̂_j at y_a, y_c ∈ ``coupled.SAMPLES`` (e^{iy} ``unit``, e^{iy/2} ``half``)
+    into ``values``, then FROM·values_j·FROMᵀ (``coupled.FROM_SAMPLES``: F(0),
+    2F(π/2) − F(0) − F(π), F(π) along each axis)."""
+    links_c = (_link(sc, unit[0], half[0], h[p, 1], u[p, 1], drawn[p, 1], size),
+               _link(sc, unit[1], half[1], h[p, 1], u[p, 1], drawn[p, 1], size),
+               _link(sc, unit[2], half[2], h[p, 1], u[p, 1], drawn[p, 1], size))
+    scales = (0.5 / length[p, 0] if kinds[0] == _RR else size if kinds[0] == _PP else 1.0,
+              0.5 / length[p, 1] if kinds[1] == _RR else size if kinds[1] == _PP else 1.0)
+    for ia in range(3):
+        a = _link(sa, unit[ia], half[ia], h[p, 0], u[p, 0], drawn[p, 0], size)
+        for ic in range(3):
+            for j in range(2):
+                values[j, ia, ic] = scales[j] * _loop(
+                    kinds[j], a, links_c[ic], arm[p, 2 * j], arm[p, 2 * j + 1], length[p, j],
+                    guide[p, 2 * j], guide[p, 2 * j + 1], side[p, j])
+    for j in range(2):
+        for ia in range(3):  # rows: FROM·values_j
+            v0, v1, v2 = values[j, 0, ia], values[j, 1, ia], values[j, 2, ia]
+            values[j, 0, ia], values[j, 1, ia] = v0, -v0 + 2.0 * v1 - v2
+            values[j, 2, ia] = v2
+        for ia in range(3):  # columns: ·FROMᵀ
+            v0, v1, v2 = values[j, ia, 0], values[j, ia, 1], values[j, ia, 2]
+            m[j, ia, 0], m[j, ia, 1], m[j, ia, 2] = v0, -v0 + 2.0 * v1 - v2, v2
+
+
+@inline
+def _halves(y: float) -> tuple[float, float, float, float, float, float]:
+    """w(y) = (κ², κσ, σ²) and w′(y) = (−κσ, (κ² − σ²)/2, κσ), κ = cos(y/2), σ = sin(y/2)
+    (:func:`~assur.kinematics.higher.coupled._halves_turning`)."""
+    k, s = math.cos(0.5 * y), math.sin(0.5 * y)
+    w0, w1, w2 = k * k, k * s, s * s
+    return w0, w1, w2, -w1, (w0 - w2) * 0.5, w1
+
+
+@inline
+def _form(m: np.ndarray, j: int, a0: float, a1: float, a2: float, c0: float,
+          c1: float, c2: float) -> float:
+    """w_a·M_j·w_c."""
+    form: float = (a0 * (m[j, 0, 0] * c0 + m[j, 0, 1] * c1 + m[j, 0, 2] * c2)
+                   + a1 * (m[j, 1, 0] * c0 + m[j, 1, 1] * c1 + m[j, 1, 2] * c2)
+                   + a2 * (m[j, 2, 0] * c0 + m[j, 2, 1] * c1 + m[j, 2, 2] * c2))
+    return form
+
+
+@inline
+def _row(m: np.ndarray, j: int, ha: tuple[float, float, float, float, float, float],
+         hc: tuple[float, float, float, float, float, float], lifted: bool, qa: float,
+         da: float, qc: float, dc: float) -> tuple[float, float, float]:
+    """g_j and ∂g_j/∂y_a, ∂g_j/∂y_c from M_j, w and w′ of y_a (``ha``) and of y_c (``hc``),
+    divided by the lifting factor qa·qc (slopes da·qc, qa·dc) where ``lifted``."""
+    wa0, wa1, wa2, ta0, ta1, ta2 = ha
+    wc0, wc1, wc2, tc0, tc1, tc2 = hc
+    g = _form(m, j, wa0, wa1, wa2, wc0, wc1, wc2)
+    ga = _form(m, j, ta0, ta1, ta2, wc0, wc1, wc2)
+    gc = _form(m, j, wa0, wa1, wa2, tc0, tc1, tc2)
+    if not lifted:
+        return g, ga, gc
+    lift = qa * qc
+    g = g / lift
+    return g, (ga - g * (da * qc)) / lift, (gc - g * (qa * dc)) / lift
+
+
+@inline
+def _lines(m: np.ndarray, j: int, eliminated: int
+           ) -> tuple[complex, complex, complex, float, float, float]:
+    """α_j = Σ_r w_r·A_r and π_j = Σ_r w_r·P_r at y_ε, w = w(y_ε): A_r, P_r of Re(ᾱ_j E_o) =
+    π_j (:meth:`ClassIVCoupled._linear`: the coefficients (d₀, d₁, d₂) of F̂_j in w(y_o) are
+    M_j contracted with w(y_ε), α_j = (d₀ − d₂ + i·d₁)/2, π_j = −(d₀ + d₂)/2)."""
+    if eliminated == 0:
+        e0, e1, e2 = m[j, 0, 0], m[j, 0, 1], m[j, 0, 2]
+        f0, f1, f2 = m[j, 1, 0], m[j, 1, 1], m[j, 1, 2]
+        g0, g1, g2 = m[j, 2, 0], m[j, 2, 1], m[j, 2, 2]
+    else:
+        e0, e1, e2 = m[j, 0, 0], m[j, 1, 0], m[j, 2, 0]
+        f0, f1, f2 = m[j, 0, 1], m[j, 1, 1], m[j, 2, 1]
+        g0, g1, g2 = m[j, 0, 2], m[j, 1, 2], m[j, 2, 2]
+    return (0.5 * complex(e0 - e2, e1), 0.5 * complex(f0 - f2, f1), 0.5 * complex(g0 - g2, g1),
+            -0.5 * (e0 + e2), -0.5 * (f0 + f2), -0.5 * (g0 + g2))
+
+
+@inline
+def _coefficients(m: np.ndarray, eliminated: int, linear_kept: bool, deflations: int,
+                  grid: np.ndarray, split: np.ndarray, full: np.ndarray, series: np.ndarray,
+                  out: np.ndarray) -> None:
+    """p₀ … p_2m of p(E) = E^m·Φ̃ into ``out`` (:meth:`ClassIVCoupled.
+    coefficients`): Φ = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² (cross(α_b, α_d) where both
+    lines are linear in a kept slide) at the samples ``grid`` (w there) into ``full``, the
+    coefficients of E⁴Φ by ``split`` into ``series``, the root −1 divided out
+    ``deflations`` times, the middle 2m + 1 kept."""
+    b0, b1, b2, q0, q1, q2 = _lines(m, 0, eliminated)
+    d0, d1, d2, r0, r1, r2 = _lines(m, 1, eliminated)
+    for at in range(grid.shape[0]):
+        w0, w1, w2 = grid[at, 0], grid[at, 1], grid[at, 2]
+        ab, pb = w0 * b0 + w1 * b1 + w2 * b2, w0 * q0 + w1 * q1 + w2 * q2
+        ad, pd = w0 * d0 + w1 * d1 + w2 * d2, w0 * r0 + w1 * r1 + w2 * r2
+        across = cross(ab, ad)
+        gap = pb * ad - pd * ab
+        full[at] = across if linear_kept else (gap.real * gap.real + gap.imag * gap.imag
+                                               - across * across)
+    for n in range(series.shape[0]):
+        re, im = 0.0, 0.0
+        for at in range(grid.shape[0]):
+            re += full[at] * split[n, at].real
+            im += full[at] * split[n, at].imag
+        series[n] = complex(re, im)
+    top = series.shape[0] - 1
+    for _ in range(deflations):  # the quotient by E + 1 in place (coupled._deflate)
+        carry = series[top]
+        for i in range(top - 1, -1, -1):
+            rest = series[i]
+            series[i] = carry
+            carry = rest - carry
+        top -= 1
+    start = FULL_DEGREE - deflations // 2 - (out.shape[0] - 1) // 2
+    scale = 2.0 ** deflations
+    for n in range(out.shape[0]):
+        out[n] = series[start + n] * scale
+
+
+@inline
+def _column(slides: bool, y: float, size: float, radius: float) -> float:
+    """The margin rows' scale of a column: ∂t/∂s = 2L/(L² + s²) of a slide s = L·tan(t/2),
+    1/radius of a rotation (:meth:`~assur.kinematics.higher.coupled.ClassIVCoupled.lines`)."""
+    if slides:
+        s = size * math.tan(0.5 * y)
+        return 2.0 * size / (size ** 2 + s * s)
+    return 1.0 / radius
+
+
+@kernel
+def _correct_kernel(kinds: np.ndarray, slides: np.ndarray, eliminated: int,
+                    linear_kept: bool, deflations: int, degree: int, unit: np.ndarray,
+                    half: np.ndarray, grid: np.ndarray, split: np.ndarray, iterations: int,
+                    converged: float,
+                    h: np.ndarray, u: np.ndarray, drawn: np.ndarray, length: np.ndarray,
+                    arm: np.ndarray, guide: np.ndarray, side: np.ndarray, size: np.ndarray,
+                    radius: np.ndarray, guess: np.ndarray, sign: np.ndarray, mask: np.ndarray,
+                    x: np.ndarray, jac: np.ndarray, margin: np.ndarray, ok: np.ndarray) -> None:
+    """Every position of the flat arrays where ``mask`` corrected and tested
+    (:func:`correct_coupled`), the others NaN and failed."""
+    sa, sc = slides[0] != 0, slides[1] != 0
+    lift0, lift1 = (sa or sc) and kinds[0] != _PP, (sa or sc) and kinds[1] != _PP
+    values = np.empty((2, 3, 3))
+    m = np.empty((2, 3, 3))
+    full = np.empty(grid.shape[0])
+    series = np.empty(split.shape[0], dtype=np.complex128)
+    coef = np.empty(2 * degree + 1, dtype=np.complex128)
+    work = np.empty(2 * degree + 1, dtype=np.complex128)
+    for p in range(guess.shape[0]):
+        if not mask[p]:
+            x[p, :] = math.nan
+            jac[p, :, :] = math.nan
+            margin[p], ok[p] = math.nan, False
+            continue
+        _fit(kinds, sa, sc, unit, half, h, u, drawn, length, arm, guide, side, size[p], p,
+             values, m)
+        ya, yc = guess[p, 0], guess[p, 1]
+        step = math.inf
+        for iteration in range(iterations + 1):
+            ha, hc = _halves(ya), _halves(yc)
+            qa, da = (ha[0], -ha[1]) if sa else (1.0, 0.0)
+            qc, dc = (hc[0], -hc[1]) if sc else (1.0, 0.0)
+            g0, e00, e01 = _row(m, 0, ha, hc, lift0, qa, da, qc, dc)
+            g1, e10, e11 = _row(m, 1, ha, hc, lift1, qa, da, qc, dc)
+            if iteration == iterations or step <= converged:
+                break
+            d0, d1 = solve2(e00, e01, e10, e11, -g0, -g1)
+            ya, yc = ya + d0, yc + d1
+            step = abs(d0) + abs(d1)
+        x[p, 0], x[p, 1] = ya, yc
+        jac[p, 0, 0], jac[p, 0, 1], jac[p, 1, 0], jac[p, 1, 1] = e00, e01, e10, e11
+        ka = _column(sa, ya, size[p], radius[p, 0])
+        kc = _column(sc, yc, size[p], radius[p, 1])
+        r00, r01, r10, r11 = e00 * ka, e01 * kc, e10 * ka, e11 * kc
+        margin[p] = abs(det2(r00, r01, r10, r11)) / (math.sqrt(r00 * r00 + r01 * r01)
+                                                     * math.sqrt(r10 * r10 + r11 * r11))
+        ok[p] = (step <= converged) and (np.sign(det2(e00, e01, e10, e11)) == sign[p])
+        if ok[p]:  # the bound only where the other tests pass
+            _coefficients(m, eliminated, linear_kept, deflations, grid, split, full, series,
+                          coef)
+            ok[p] = close(coef, ya if eliminated == 0 else yc,
+                          abs(ya - guess[p, 0]) + abs(yc - guess[p, 1]), work)
+
+
+def correct_coupled(group: ClassIVCoupled, k: ClassIVInputs, guess: np.ndarray,
+                    sign: np.ndarray, iterations: int, converged: float,
+                    mask: np.ndarray | None = None
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The corrector and the acceptance tests (a)–(c) of §1.6 at every position of ``guess``.
+
+    Parameters
+    ----------
+    group : ClassIVCoupled
+        The group; drawn values broadcasting against the positions.
+    k : ClassIVInputs
+        Its inputs at the positions, plain arrays.
+    guess : ndarray, shape (..., 2)
+        The predictor (y_a, y_c).
+    sign : ndarray
+        The sign of det J of the mode followed, broadcasting against the positions.
+    iterations, converged : int, float
+        Newton's steps at most, and the scaled step at which a position stops.
+    mask : ndarray of bool, optional
+        The positions to correct (all if None); the others are NaN and fail.
+
+    Returns
+    -------
+    x, jac, margin, ok : ndarray
+        The corrected unknowns (..., 2), their Jacobian (..., 2, 2), the margin (...), and
+        where Newton's method converged, det J has the sign ``sign`` and the correction is
+        at most a quarter of the separation bound.
+    """
+    shape = guess.shape[:-1]
+    count = int(np.prod(shape))
+    x = np.empty((count, 2))
+    jac = np.empty((count, 2, 2))
+    margin = np.empty(count)
+    ok = np.empty(count, dtype=bool)
+    wanted = np.ones(shape, dtype=bool)
+    if mask is not None:
+        wanted &= mask
+    deflations, degree = group.form
+    (arm_c, arm_d), (arm_f, arm_e) = group.arms
+    _correct_kernel(
+        np.array([_CODES[kind] for kind in group.kinds], dtype=np.int64),
+        np.array(group.slides, dtype=np.int64), group.eliminated, group.linear_kept,
+        deflations, degree, _UNITS, _HALF_UNITS, GRID_HALVES, SPLIT, iterations, converged,
+        columns((k.h_a, k.h_c), shape, complex), columns((k.u_a, k.u_c), shape, complex),
+        columns((group.u_a, group.u_c), shape, complex),
+        columns((group.coupler_length(0, k), group.coupler_length(1, k)), shape, float),
+        columns((arm_c, arm_d, arm_f, arm_e), shape, complex),
+        columns((group.w_c, group.w_d, group.w_f, group.w_e), shape, complex),
+        columns((np.asarray(group.c) - group.d, np.asarray(group.f) - group.e), shape,
+                complex),
+        columns((group.size,), shape, float)[:, 0], columns(group.radii, shape, float),
+        np.ascontiguousarray(guess, dtype=float).reshape(count, 2),
+        columns((sign,), shape, float)[:, 0], wanted.reshape(-1), x, jac, margin, ok)
+    return (x.reshape(shape + (2,)), jac.reshape(shape + (2, 2)), margin.reshape(shape),
+            ok.reshape(shape))

@@ -33,7 +33,7 @@ PROBLEM = ROOT / "input_tables" / "problems" / "class1_fourbar_rocker.yaml"
 #: Packages that ``assur check`` of a small table of dyads has no use for (it runs the
 #: existence check over the cycle behind its verdict: the kinematic analysis, with the
 #: solutions of every kind of group, is loaded).
-UNUSED = ("networkx", "scipy", "matplotlib", "tqdm", "dask", "assur.forces")
+UNUSED = ("networkx", "scipy", "matplotlib", "tqdm", "dask", "assur.forces", "numba")
 #: Runs ``assur check`` and prints its output and the modules loaded (JSON) as its last line.
 CHECK = ("import io, json, sys, contextlib\n"
          "from synthesis.cli import main\n"

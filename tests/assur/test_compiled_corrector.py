@@ -18,6 +18,10 @@ random designs and predictors:
 from __future__ import annotations
 
 import itertools
+import os
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -186,3 +190,26 @@ def test_the_compiled_predictor_is_the_taylor_polynomial_of_the_nearest_state() 
         expected = x[nearest] + s * h * x1[nearest] + 0.5 * h * h * x2[nearest]
         found = compiled.predict(t, x, x1, x2, nearest, targets, s)
         assert np.allclose(found, expected, rtol=1e-15, atol=1e-15)
+
+
+def test_numba_loads_for_a_large_grid_only() -> None:
+    """One design of a triad mechanism over 360 angles (followed by the path of its root)
+    and 200 designs at 36 angles (by steps, 7,400 positions) are corrected by numpy: numba is
+    not loaded, as importing it and the cached kernels would cost more than the analysis;
+    200 designs at 360 angles (72,200 positions) load it."""
+    script = ("import sys, numpy as np, assur\n"
+              "from assur.kinematics.analysis import analyse\n"
+              "model = assur.load_model('input_tables/eight_bar_triad.yaml')\n"
+              "analyse(model, assur.input_grid(model, 360))\n"
+              "many = model.with_params({name: value + np.linspace(-0.3, 0.3, 200)[:, None]\n"
+              "                          for name, value in model.params.items()\n"
+              "                          if name.startswith('III(') and '.x_' in name})\n"
+              "analyse(many, assur.input_grid(model, 36))\n"
+              "print('numba' in sys.modules)\n"
+              "analyse(many, assur.input_grid(model, 360))\n"
+              "print('numba' in sys.modules)\n")
+    root = Path(__file__).resolve().parents[2]
+    done = subprocess.run([sys.executable, "-c", script], cwd=root, capture_output=True,
+                          text=True, check=True, timeout=300,
+                          env=dict(os.environ, PYTHONPATH=str(root)))
+    assert done.stdout.strip().splitlines()[-2:] == ["False", "True"]

@@ -46,13 +46,13 @@ def correct(group: HigherGroup[Any], k: Any, guess: np.ndarray,
     Parameters
     ----------
     group : HigherGroup
-        The group; drawn values broadcasting against the positions.
+        The group; drawn values numbers or one per design (the positions' last axis).
     k : TriadInputs or ClassIVInputs
         Its inputs at the positions, plain arrays.
     guess : ndarray, shape (..., n)
         The predictor.
     sign : ndarray
-        The sign of det J of the mode followed, broadcasting against the positions.
+        The sign of det J of the mode followed, per design.
     iterations, converged : int, float
         Newton's steps at most, and the scaled step at which a position stops.
     mask : ndarray of bool, optional

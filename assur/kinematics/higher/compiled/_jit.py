@@ -16,7 +16,7 @@ import numpy as np
 
 from assur.kinematics.higher.groups import plain
 
-__all__ = ["close", "columns", "cross", "det2", "det3", "dot", "inline", "kernel", "over",
+__all__ = ["blank", "close", "columns", "cross", "det2", "det3", "dot", "inline", "kernel", "over",
            "predict", "solve2", "solve3", "square"]
 
 F = TypeVar("F", bound=Callable[..., Any])
@@ -31,6 +31,14 @@ def kernel(f: F) -> F:
 def inline(f: F) -> F:
     """A step of the kernels, compiled into each caller (no call, no array references)."""
     return cast(F, numba.njit(inline="always", error_model="numpy")(f))
+
+
+@inline
+def blank(p: int, x: np.ndarray, jac: np.ndarray, margin: np.ndarray, ok: np.ndarray) -> None:
+    """Position ``p`` not corrected: its unknowns, Jacobian and margin NaN, its tests failed."""
+    x[p, :] = math.nan
+    jac[p, :, :] = math.nan
+    margin[p], ok[p] = math.nan, False
 
 
 def columns(values: tuple[Any, ...], shape: tuple[int, ...], dtype: type) -> np.ndarray:

@@ -20,6 +20,7 @@ import numpy as np
 
 from assur.kinematics import jets as J
 from assur.kinematics.higher.compiled._jit import (
+    blank,
     close,
     columns,
     cross,
@@ -233,9 +234,7 @@ def _correct_kernel(kinds: np.ndarray, slides: np.ndarray, eliminated: int,
     work = np.empty(2 * degree + 1, dtype=np.complex128)
     for p in range(guess.shape[0]):
         if not mask[p]:
-            x[p, :] = math.nan
-            jac[p, :, :] = math.nan
-            margin[p], ok[p] = math.nan, False
+            blank(p, x, jac, margin, ok)
             continue
         _fit(kinds, sa, sc, unit, half, h, u, drawn, length, arm, guide, side, size[p], p,
              values, m)
@@ -271,30 +270,8 @@ def correct_coupled(group: ClassIVCoupled, k: ClassIVInputs, guess: np.ndarray,
                     sign: np.ndarray, iterations: int, converged: float,
                     mask: np.ndarray | None = None
                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The corrector and the acceptance tests (a)–(c) of §1.6 at every position of ``guess``.
-
-    Parameters
-    ----------
-    group : ClassIVCoupled
-        The group; drawn values broadcasting against the positions.
-    k : ClassIVInputs
-        Its inputs at the positions, plain arrays.
-    guess : ndarray, shape (..., 2)
-        The predictor (y_a, y_c).
-    sign : ndarray
-        The sign of det J of the mode followed, broadcasting against the positions.
-    iterations, converged : int, float
-        Newton's steps at most, and the scaled step at which a position stops.
-    mask : ndarray of bool, optional
-        The positions to correct (all if None); the others are NaN and fail.
-
-    Returns
-    -------
-    x, jac, margin, ok : ndarray
-        The corrected unknowns (..., 2), their Jacobian (..., 2, 2), the margin (...), and
-        where Newton's method converged, det J has the sign ``sign`` and the correction is
-        at most a quarter of the separation bound.
-    """
+    """:func:`~assur.kinematics.higher.compiled.correct` for a class IV group: unknowns
+    (y_a, y_c); drawn values broadcasting against the positions."""
     shape = guess.shape[:-1]
     count = int(np.prod(shape))
     x = np.empty((count, 2))

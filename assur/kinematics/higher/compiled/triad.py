@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from assur.kinematics.higher.compiled._jit import (
+    blank,
     close,
     cross,
     det3,
@@ -143,9 +144,7 @@ def _correct_kernel(kinds: np.ndarray, degree: int, iterations: int, converged: 
     work = np.empty(2 * degree + 1, dtype=np.complex128)
     for p in range(guess.shape[0]):
         if not mask[p]:
-            x[p, :] = math.nan
-            jac[p, :, :] = math.nan
-            margin[p], ok[p] = math.nan, False
+            blank(p, x, jac, margin, ok)
             continue
         d = p % width
         a0, a1, a2 = a[0, p], a[1, p], a[2, p]
@@ -308,31 +307,9 @@ def _codes(group: Triad) -> np.ndarray:
 def correct_triad(group: Triad, k: TriadInputs, guess: np.ndarray, sign: np.ndarray,
                   iterations: int, converged: float, mask: np.ndarray | None = None
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The corrector and the acceptance tests (a)–(c) of §1.6 at the positions of ``guess``.
-
-    Parameters
-    ----------
-    group : Triad
-        A triad without a P–P leash (:func:`supports`); drawn values numbers or one per
-        design, the positions' last axis.
-    k : TriadInputs
-        Its inputs at the positions, plain arrays.
-    guess : ndarray, shape (..., D, 3)
-        The predictor (W_x, W_y, θ).
-    sign : ndarray
-        The sign of det J of the mode followed, per design.
-    iterations, converged : int, float
-        Newton's steps at most, and the scaled step at which a position stops.
-    mask : ndarray of bool, optional
-        The positions to correct (all if None); the others are NaN and fail.
-
-    Returns
-    -------
-    x, jac, margin, ok : ndarray
-        The corrected unknowns (..., 3), their Jacobian (..., 3, 3), the margin (...), and
-        where Newton's method converged, det J has the sign ``sign`` and the correction is
-        at most a quarter of the separation bound.
-    """
+    """:func:`~assur.kinematics.higher.compiled.correct` for a triad without a P–P leash:
+    unknowns (W_x, W_y, θ); drawn values and ``sign`` numbers or one per design, the
+    positions' last axis."""
     shape = guess.shape[:-1]
     count = int(np.prod(shape))
     wanted = np.ones(shape, dtype=bool)

@@ -88,8 +88,8 @@ MEET = 1e-8
 MEET_ITERATIONS = 6
 
 #: A pass over at least this many positions (requested angles × designs) corrects by a
-#: compiled kernel where the group has one: about 1 µs less per position, once numba and the
-#: cached kernel are loaded (about 0.5 s, once per process), so not for fewer positions.
+#: compiled kernel where the group has one: about 1.5 µs less per position, once numba and
+#: the cached kernels are loaded (0.5–1 s, once per process), so not for fewer positions.
 KERNEL_POSITIONS = 50_000
 #: Positions corrected at once on a grid (:func:`_correct_at`): few enough that the entries
 #: of their Jacobians stay in a core's cache (on 360,000 positions at once the products of

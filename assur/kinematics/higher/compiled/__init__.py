@@ -9,9 +9,11 @@ rule, each position stopping once its own step is settled, then its Jacobian, th
 its determinant, the margin and the separation bound of the root, each with the operations
 of the group's own methods.
 
-:func:`supports` tells which groups have kernels without loading numba; the kernels' modules
-import it, and :func:`correct` imports them at its first call: a program that meets no such
-group never loads numba, and the compiled code is cached on disk after the first run.
+:func:`supports` and :func:`has_analogs` tell which groups have kernels without loading
+numba; the kernels' modules import it, and :func:`correct`, :func:`analogs` and
+:func:`predict` import them when first called. The continuation calls them on a pass over a
+large grid only (``continuation.KERNEL_POSITIONS``): a smaller analysis never loads numba.
+The compiled code is cached on disk after the first run.
 """
 
 from __future__ import annotations

@@ -24,10 +24,13 @@ from assur.kinematics.higher.compiled._jit import (
     close,
     columns,
     cross,
+    design,
     det2,
     inline,
     kernel,
+    per_design,
     solve2,
+    square,
 )
 from assur.kinematics.higher.coupled import (
     FULL_DEGREE,
@@ -79,27 +82,30 @@ def _loop(kind: int, a: tuple[complex, float, complex, complex],
 
 
 @inline
-def _fit(kinds: np.ndarray, sa: bool, sc: bool, unit: np.ndarray, half: np.ndarray,
-         h: np.ndarray, u: np.ndarray, drawn: np.ndarray, length: np.ndarray, arm: np.ndarray,
-         guide: np.ndarray, side: np.ndarray, size: float, p: int, values: np.ndarray,
-         m: np.ndarray) -> None:
-    """M_j (2, 3, 3) at position ``p`` into ``m`` (:meth:`ClassIVCoupled._matrices`):
-    scale_j·F̂_j at y_a, y_c ∈ ``coupled.SAMPLES`` (e^{iy} ``unit``, e^{iy/2} ``half``)
-    into ``values``, then FROM·values_j·FROMᵀ (``coupled.FROM_SAMPLES``: F(0),
-    2F(π/2) − F(0) − F(π), F(π) along each axis)."""
-    links_c = (_link(sc, unit[0], half[0], h[p, 1], u[p, 1], drawn[p, 1], size),
-               _link(sc, unit[1], half[1], h[p, 1], u[p, 1], drawn[p, 1], size),
-               _link(sc, unit[2], half[2], h[p, 1], u[p, 1], drawn[p, 1], size))
+def _fit(kinds: np.ndarray, sampled: tuple[bool, bool], sa: bool, sc: bool, unit: np.ndarray,
+         half: np.ndarray, h: np.ndarray, u: np.ndarray, drawn: np.ndarray, length: np.ndarray,
+         arm: np.ndarray, guide: np.ndarray, side: np.ndarray, size: float, p: int, d: int,
+         values: np.ndarray, m: np.ndarray) -> None:
+    """M_j (2, 3, 3) at position ``p`` of design ``d`` into ``m`` where ``sampled``
+    (:meth:`ClassIVCoupled._matrices`): scale_j·F̂_j at y_a, y_c ∈ ``coupled.SAMPLES``
+    (e^{iy} ``unit``, e^{iy/2} ``half``) into ``values``, then FROM·values_j·FROMᵀ
+    (``coupled.FROM_SAMPLES``: F(0), 2F(π/2) − F(0) − F(π), F(π) along each axis)."""
+    links_c = (_link(sc, unit[0], half[0], h[p, 1], u[p, 1], drawn[1, d], size),
+               _link(sc, unit[1], half[1], h[p, 1], u[p, 1], drawn[1, d], size),
+               _link(sc, unit[2], half[2], h[p, 1], u[p, 1], drawn[1, d], size))
     scales = (0.5 / length[p, 0] if kinds[0] == _RR else size if kinds[0] == _PP else 1.0,
               0.5 / length[p, 1] if kinds[1] == _RR else size if kinds[1] == _PP else 1.0)
     for ia in range(3):
-        a = _link(sa, unit[ia], half[ia], h[p, 0], u[p, 0], drawn[p, 0], size)
+        a = _link(sa, unit[ia], half[ia], h[p, 0], u[p, 0], drawn[0, d], size)
         for ic in range(3):
             for j in range(2):
-                values[j, ia, ic] = scales[j] * _loop(
-                    kinds[j], a, links_c[ic], arm[p, 2 * j], arm[p, 2 * j + 1], length[p, j],
-                    guide[p, 2 * j], guide[p, 2 * j + 1], side[p, j])
+                if sampled[j]:
+                    values[j, ia, ic] = scales[j] * _loop(
+                        kinds[j], a, links_c[ic], arm[2 * j, d], arm[2 * j + 1, d],
+                        length[p, j], guide[2 * j, d], guide[2 * j + 1, d], side[j, d])
     for j in range(2):
+        if not sampled[j]:
+            continue
         for ia in range(3):  # rows: FROM·values_j
             v0, v1, v2 = values[j, 0, ia], values[j, 1, ia], values[j, 2, ia]
             values[j, 0, ia], values[j, 1, ia] = v0, -v0 + 2.0 * v1 - v2
@@ -107,6 +113,35 @@ def _fit(kinds: np.ndarray, sa: bool, sc: bool, unit: np.ndarray, half: np.ndarr
         for ia in range(3):  # columns: ·FROMᵀ
             v0, v1, v2 = values[j, ia, 0], values[j, ia, 1], values[j, ia, 2]
             m[j, ia, 0], m[j, ia, 1], m[j, ia, 2] = v0, -v0 + 2.0 * v1 - v2, v2
+
+
+@inline
+def _bar(gap: complex, arm_a: complex, arm_c: complex, length: float, m: np.ndarray,
+         j: int) -> None:
+    """M_j of a bar between hinged links a and c in closed form into ``m``: the same matrix
+    as :func:`_fit`'s to roundoff.
+
+    With P = H_a − H_c (``gap``), A, C the arms, l the length: F̂_j = |P + A·E_a − C·E_c|² −
+    l² = K + 2Re(P̄A·E_a) − 2Re(P̄C·E_c) − 2Re(ĀC·Ē_aE_c), K = |P|² + |A|² + |C|² − l², its
+    coefficients T of (1, cos y, sin y) of y_a (rows) and y_c (columns), and 1 = w₀ + w₂,
+    cos y = w₀ − w₂, sin y = 2w₁ in w(y) = (κ², κσ, σ²): M_j = LTLᵀ/(2l), L = [[1, 1, 0],
+    [0, 0, 2], [1, −1, 0]].
+    """
+    za = gap.conjugate() * arm_a
+    zc = gap.conjugate() * arm_c
+    q = arm_a.conjugate() * arm_c
+    k = square(gap) + square(arm_a) + square(arm_c) - length * length
+    t00, t01, t02 = k, -2.0 * zc.real, 2.0 * zc.imag
+    t10, t11, t12 = 2.0 * za.real, -2.0 * q.real, 2.0 * q.imag
+    t20, t21, t22 = -2.0 * za.imag, -2.0 * q.imag, -2.0 * q.real
+    scale = 0.5 / length
+    rows = ((t00 + t10, t01 + t11, t02 + t12), (2.0 * t20, 2.0 * t21, 2.0 * t22),
+            (t00 - t10, t01 - t11, t02 - t12))
+    for r in range(3):
+        r0, r1, r2 = rows[r]
+        m[j, r, 0] = scale * (r0 + r1)
+        m[j, r, 1] = scale * (2.0 * r2)
+        m[j, r, 2] = scale * (r0 - r1)
 
 
 @inline
@@ -217,15 +252,23 @@ def _column(slides: bool, y: float, size: float, radius: float) -> float:
 def _correct_kernel(kinds: np.ndarray, slides: np.ndarray, eliminated: int,
                     linear_kept: bool, deflations: int, degree: int, unit: np.ndarray,
                     half: np.ndarray, grid: np.ndarray, split: np.ndarray, iterations: int,
-                    converged: float,
-                    h: np.ndarray, u: np.ndarray, drawn: np.ndarray, length: np.ndarray,
-                    arm: np.ndarray, guide: np.ndarray, side: np.ndarray, size: np.ndarray,
-                    radius: np.ndarray, guess: np.ndarray, sign: np.ndarray, mask: np.ndarray,
-                    x: np.ndarray, jac: np.ndarray, margin: np.ndarray, ok: np.ndarray) -> None:
+                    converged: float, h: np.ndarray, u: np.ndarray, length: np.ndarray,
+                    drawn: np.ndarray, arm: np.ndarray, guide: np.ndarray, side: np.ndarray,
+                    size: np.ndarray, radius: np.ndarray, sign: np.ndarray, guess: np.ndarray,
+                    mask: np.ndarray, x: np.ndarray, jac: np.ndarray, margin: np.ndarray,
+                    ok: np.ndarray) -> None:
     """Every position of the flat arrays where ``mask`` corrected and tested
-    (:func:`correct_coupled`), the others NaN and failed."""
+    (:func:`correct_coupled`), the others NaN and failed. ``h``, ``u``, ``length`` hold the
+    inputs per position (P, 2), ``sign`` (P,); ``drawn``, ``arm``, ``guide``, ``side``,
+    ``radius`` the drawing per design as rows (n, D), ``size`` (D,), the design of position p
+    being p mod D (the positions' last axis). A bar between hinged links has its M_j in
+    closed form (:func:`_bar`), the other couplers theirs fitted (:func:`_fit`)."""
     sa, sc = slides[0] != 0, slides[1] != 0
     lift0, lift1 = (sa or sc) and kinds[0] != _PP, (sa or sc) and kinds[1] != _PP
+    bars = (kinds[0] == _RR and not (sa or sc), kinds[1] == _RR and not (sa or sc))
+    sampled = (not bars[0], not bars[1])
+    fitted = sampled[0] or sampled[1]
+    width = size.shape[0]
     values = np.empty((2, 3, 3))
     m = np.empty((2, 3, 3))
     full = np.empty(grid.shape[0])
@@ -236,8 +279,13 @@ def _correct_kernel(kinds: np.ndarray, slides: np.ndarray, eliminated: int,
         if not mask[p]:
             blank(p, x, jac, margin, ok)
             continue
-        _fit(kinds, sa, sc, unit, half, h, u, drawn, length, arm, guide, side, size[p], p,
-             values, m)
+        d = p % width
+        if fitted:
+            _fit(kinds, sampled, sa, sc, unit, half, h, u, drawn, length, arm, guide, side,
+                 size[d], p, d, values, m)
+        for j in range(2):
+            if bars[j]:
+                _bar(h[p, 0] - h[p, 1], arm[2 * j, d], arm[2 * j + 1, d], length[p, j], m, j)
         ya, yc = guess[p, 0], guess[p, 1]
         step = math.inf
         for iteration in range(iterations + 1):
@@ -253,8 +301,8 @@ def _correct_kernel(kinds: np.ndarray, slides: np.ndarray, eliminated: int,
             step = abs(d0) + abs(d1)
         x[p, 0], x[p, 1] = ya, yc
         jac[p, 0, 0], jac[p, 0, 1], jac[p, 1, 0], jac[p, 1, 1] = e00, e01, e10, e11
-        ka = _column(sa, ya, size[p], radius[p, 0])
-        kc = _column(sc, yc, size[p], radius[p, 1])
+        ka = _column(sa, ya, size[d], radius[0, d])
+        kc = _column(sc, yc, size[d], radius[1, d])
         r00, r01, r10, r11 = e00 * ka, e01 * kc, e10 * ka, e11 * kc
         margin[p] = abs(det2(r00, r01, r10, r11)) / (math.sqrt(r00 * r00 + r01 * r01)
                                                      * math.sqrt(r10 * r10 + r11 * r11))
@@ -271,7 +319,8 @@ def correct_coupled(group: ClassIVCoupled, k: ClassIVInputs, guess: np.ndarray,
                     mask: np.ndarray | None = None
                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """:func:`~assur.kinematics.higher.compiled.correct` for a class IV group: unknowns
-    (y_a, y_c); drawn values broadcasting against the positions."""
+    (y_a, y_c); drawn values numbers or one per design, the positions' last axis; ``sign``
+    broadcasting against the positions."""
     shape = guess.shape[:-1]
     count = int(np.prod(shape))
     x = np.empty((count, 2))
@@ -288,14 +337,15 @@ def correct_coupled(group: ClassIVCoupled, k: ClassIVInputs, guess: np.ndarray,
         np.array(group.slides, dtype=np.int64), group.eliminated, group.linear_kept,
         deflations, degree, _UNITS, _HALF_UNITS, GRID_HALVES, SPLIT, iterations, converged,
         columns((k.h_a, k.h_c), shape, complex), columns((k.u_a, k.u_c), shape, complex),
-        columns((group.u_a, group.u_c), shape, complex),
         columns((group.coupler_length(0, k), group.coupler_length(1, k)), shape, float),
-        columns((arm_c, arm_d, arm_f, arm_e), shape, complex),
-        columns((group.w_c, group.w_d, group.w_f, group.w_e), shape, complex),
-        columns((np.asarray(group.c) - group.d, np.asarray(group.f) - group.e), shape,
-                complex),
-        columns((group.size,), shape, float)[:, 0], columns(group.radii, shape, float),
-        np.ascontiguousarray(guess, dtype=float).reshape(count, 2),
-        columns((sign,), shape, float)[:, 0], wanted.reshape(-1), x, jac, margin, ok)
+        per_design((group.u_a, group.u_c), shape, complex),
+        per_design((arm_c, arm_d, arm_f, arm_e), shape, complex),
+        per_design((group.w_c, group.w_d, group.w_f, group.w_e), shape, complex),
+        per_design((np.asarray(group.c) - group.d, np.asarray(group.f) - group.e), shape,
+                   complex),
+        design(group.size, shape).astype(float), per_design(group.radii, shape, float),
+        columns((sign,), shape, float)[:, 0],
+        np.ascontiguousarray(guess, dtype=float).reshape(count, 2), wanted.reshape(-1),
+        x, jac, margin, ok)
     return (x.reshape(shape + (2,)), jac.reshape(shape + (2, 2)), margin.reshape(shape),
             ok.reshape(shape))

@@ -16,7 +16,7 @@ import numpy as np
 
 from assur.kinematics.higher.groups import plain
 
-__all__ = ["blank", "close", "columns", "cross", "det2", "det3", "design", "dot", "inline", "kernel",
+__all__ = ["blank", "close", "columns", "cross", "design", "det2", "det3", "dot", "inline", "kernel",
            "over", "per_design", "predict", "solve2", "solve3", "square"]
 
 F = TypeVar("F", bound=Callable[..., Any])

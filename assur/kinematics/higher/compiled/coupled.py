@@ -34,9 +34,7 @@ from assur.kinematics.higher.compiled._jit import (
 )
 from assur.kinematics.higher.coupled import (
     FULL_DEGREE,
-    GRID_HALVES,
     SAMPLES,
-    SPLIT,
     ClassIVCoupled,
 )
 from assur.kinematics.higher.groups import ClassIVInputs, Leash, plain
@@ -200,30 +198,61 @@ def _lines(m: np.ndarray, j: int, eliminated: int
 
 
 @inline
+def _laurent(a0: complex, a1: complex, a2: complex) -> tuple[complex, complex, complex]:
+    """The coefficients of E⁻¹, 1, E of Σ_r w_r·a_r on |E| = 1, w = w(arg E): w₀ = 1/2 +
+    (E + E⁻¹)/4, w₁ = (E − E⁻¹)/(4i), w₂ = 1/2 − (E + E⁻¹)/4."""
+    return 0.25 * (a0 - a2 + 1j * a1), 0.5 * (a0 + a2), 0.25 * (a0 - a2 - 1j * a1)
+
+
+@inline
+def _times(x: tuple[complex, complex, complex], y: tuple[complex, complex, complex]
+           ) -> tuple[complex, complex, complex, complex, complex]:
+    """The coefficients of E⁻² … E² of the product of two Laurent polynomials of degree 1."""
+    return (x[0] * y[0], x[0] * y[1] + x[1] * y[0], x[0] * y[2] + x[1] * y[1] + x[2] * y[0],
+            x[1] * y[2] + x[2] * y[1], x[2] * y[2])
+
+
+@inline
 def _coefficients(m: np.ndarray, eliminated: int, linear_kept: bool, deflations: int,
-                  grid: np.ndarray, split: np.ndarray, full: np.ndarray, series: np.ndarray,
-                  out: np.ndarray) -> None:
-    """p₀ … p_2m of p(E) = E^m·Φ̃ into ``out`` (:meth:`ClassIVCoupled.
-    coefficients`): Φ = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² (cross(α_b, α_d) where both
-    lines are linear in a kept slide) at the samples ``grid`` (w there) into ``full``, the
-    coefficients of E⁴Φ by ``split`` into ``series``, the root −1 divided out
-    ``deflations`` times, the middle 2m + 1 kept."""
+                  series: np.ndarray, out: np.ndarray) -> None:
+    """p₀ … p_2m of p(E) = E^m·Φ̃ into ``out`` (:meth:`ClassIVCoupled.coefficients`): Φ =
+    |π_bα_d − π_dα_b|² − cross(α_b, α_d)² (cross(α_b, α_d) where both lines are linear in
+    a kept slide) as a Laurent polynomial in E = e^{iy_ε}, the coefficients of E⁴Φ into
+    ``series``, the root −1 divided out ``deflations`` times, the middle 2m + 1 kept.
+
+    α_j, π_j are Laurent polynomials of degree 1 (:func:`_laurent`); the gap g = π_bα_d −
+    π_dα_b and h = ᾱ_bα_d of degree 2 (:func:`_times`, ᾱ_b = Σ ā_k E⁻ᵏ on the unit
+    circle). Φ is real there: φ₋ₙ = φ̄ₙ, and for n ≥ 0 |g|² has the coefficients
+    Σ_k g_k·ḡ_{k−n}, cross(α_b, α_d) = Im h the coefficients c_n = (h_n − h̄₋ₙ)/(2i) and
+    its square Σ_k c_k·c_{n−k}: the coefficients that sampling Φ off −1 gives, without
+    the samples.
+    """
     b0, b1, b2, q0, q1, q2 = _lines(m, 0, eliminated)
     d0, d1, d2, r0, r1, r2 = _lines(m, 1, eliminated)
-    for at in range(grid.shape[0]):
-        w0, w1, w2 = grid[at, 0], grid[at, 1], grid[at, 2]
-        ab, pb = w0 * b0 + w1 * b1 + w2 * b2, w0 * q0 + w1 * q1 + w2 * q2
-        ad, pd = w0 * d0 + w1 * d1 + w2 * d2, w0 * r0 + w1 * r1 + w2 * r2
-        across = cross(ab, ad)
-        gap = pb * ad - pd * ab
-        full[at] = across if linear_kept else (gap.real * gap.real + gap.imag * gap.imag
-                                               - across * across)
-    for n in range(series.shape[0]):
-        re, im = 0.0, 0.0
-        for at in range(grid.shape[0]):
-            re += full[at] * split[n, at].real
-            im += full[at] * split[n, at].imag
-        series[n] = complex(re, im)
+    ab, ad = _laurent(b0, b1, b2), _laurent(d0, d1, d2)
+    h = _times((ab[2].conjugate(), ab[1].conjugate(), ab[0].conjugate()), ad)
+    c0 = h[2].imag
+    c1 = (h[3] - h[1].conjugate()) * -0.5j
+    c2 = (h[4] - h[0].conjugate()) * -0.5j
+    if linear_kept:
+        phi = (complex(c0), c1, c2, 0j, 0j)
+    else:
+        pb = _laurent(complex(q0), complex(q1), complex(q2))
+        pd = _laurent(complex(r0), complex(r1), complex(r2))
+        x, y = _times(pb, ad), _times(pd, ab)
+        g0, g1, g2, g3, g4 = x[0] - y[0], x[1] - y[1], x[2] - y[2], x[3] - y[3], x[4] - y[4]
+        k1, k2 = c1.conjugate(), c2.conjugate()
+        phi = (complex(square(g0) + square(g1) + square(g2) + square(g3) + square(g4)
+                       - 2.0 * (square(c2) + square(c1)) - c0 * c0),
+               g1 * g0.conjugate() + g2 * g1.conjugate() + g3 * g2.conjugate()
+               + g4 * g3.conjugate() - 2.0 * (k1 * c2 + c0 * c1),
+               g2 * g0.conjugate() + g3 * g1.conjugate() + g4 * g2.conjugate()
+               - 2.0 * c0 * c2 - c1 * c1,
+               g3 * g0.conjugate() + g4 * g1.conjugate() - 2.0 * c1 * c2,
+               g4 * g0.conjugate() - c2 * c2)
+    for n in range(FULL_DEGREE + 1):
+        series[FULL_DEGREE + n] = phi[n]
+        series[FULL_DEGREE - n] = phi[n].conjugate()
     top = series.shape[0] - 1
     for _ in range(deflations):  # the quotient by E + 1 in place (coupled._deflate)
         carry = series[top]
@@ -251,8 +280,8 @@ def _column(slides: bool, y: float, size: float, radius: float) -> float:
 @kernel
 def _correct_kernel(kinds: np.ndarray, slides: np.ndarray, eliminated: int,
                     linear_kept: bool, deflations: int, degree: int, unit: np.ndarray,
-                    half: np.ndarray, grid: np.ndarray, split: np.ndarray, iterations: int,
-                    converged: float, h: np.ndarray, u: np.ndarray, length: np.ndarray,
+                    half: np.ndarray, iterations: int, converged: float, h: np.ndarray,
+                    u: np.ndarray, length: np.ndarray,
                     drawn: np.ndarray, arm: np.ndarray, guide: np.ndarray, side: np.ndarray,
                     size: np.ndarray, radius: np.ndarray, sign: np.ndarray, guess: np.ndarray,
                     mask: np.ndarray, x: np.ndarray, jac: np.ndarray, margin: np.ndarray,
@@ -271,8 +300,7 @@ def _correct_kernel(kinds: np.ndarray, slides: np.ndarray, eliminated: int,
     width = size.shape[0]
     values = np.empty((2, 3, 3))
     m = np.empty((2, 3, 3))
-    full = np.empty(grid.shape[0])
-    series = np.empty(split.shape[0], dtype=np.complex128)
+    series = np.empty(2 * FULL_DEGREE + 1, dtype=np.complex128)
     coef = np.empty(2 * degree + 1, dtype=np.complex128)
     work = np.empty(2 * degree + 1, dtype=np.complex128)
     for p in range(guess.shape[0]):
@@ -308,8 +336,7 @@ def _correct_kernel(kinds: np.ndarray, slides: np.ndarray, eliminated: int,
                                                      * math.sqrt(r10 * r10 + r11 * r11))
         ok[p] = (step <= converged) and (np.sign(det2(e00, e01, e10, e11)) == sign[p])
         if ok[p]:  # the bound only where the other tests pass
-            _coefficients(m, eliminated, linear_kept, deflations, grid, split, full, series,
-                          coef)
+            _coefficients(m, eliminated, linear_kept, deflations, series, coef)
             ok[p] = close(coef, ya if eliminated == 0 else yc,
                           abs(ya - guess[p, 0]) + abs(yc - guess[p, 1]), work)
 
@@ -335,7 +362,7 @@ def correct_coupled(group: ClassIVCoupled, k: ClassIVInputs, guess: np.ndarray,
     _correct_kernel(
         np.array([_CODES[kind] for kind in group.kinds], dtype=np.int64),
         np.array(group.slides, dtype=np.int64), group.eliminated, group.linear_kept,
-        deflations, degree, _UNITS, _HALF_UNITS, GRID_HALVES, SPLIT, iterations, converged,
+        deflations, degree, _UNITS, _HALF_UNITS, iterations, converged,
         columns((k.h_a, k.h_c), shape, complex), columns((k.u_a, k.u_c), shape, complex),
         columns((group.coupler_length(0, k), group.coupler_length(1, k)), shape, float),
         per_design((group.u_a, group.u_c), shape, complex),

@@ -241,11 +241,10 @@ def _coefficients(m: np.ndarray, eliminated: int, linear_kept: bool, deflations:
         pd = _laurent(complex(r0), complex(r1), complex(r2))
         x, y = _times(pb, ad), _times(pd, ab)
         g0, g1, g2, g3, g4 = x[0] - y[0], x[1] - y[1], x[2] - y[2], x[3] - y[3], x[4] - y[4]
-        k1, k2 = c1.conjugate(), c2.conjugate()
         phi = (complex(square(g0) + square(g1) + square(g2) + square(g3) + square(g4)
                        - 2.0 * (square(c2) + square(c1)) - c0 * c0),
                g1 * g0.conjugate() + g2 * g1.conjugate() + g3 * g2.conjugate()
-               + g4 * g3.conjugate() - 2.0 * (k1 * c2 + c0 * c1),
+               + g4 * g3.conjugate() - 2.0 * (c1.conjugate() * c2 + c0 * c1),
                g2 * g0.conjugate() + g3 * g1.conjugate() + g4 * g2.conjugate()
                - 2.0 * c0 * c2 - c1 * c1,
                g3 * g0.conjugate() + g4 * g1.conjugate() - 2.0 * c1 * c2,

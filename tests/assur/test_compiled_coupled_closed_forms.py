@@ -16,7 +16,7 @@ from test_higher_coupled import COUPLED, SHARED, random_designs
 
 from assur.kinematics.higher.compiled import coupled as compiled_coupled
 from assur.kinematics.higher.coupled import ClassIVCoupled
-from assur.kinematics.higher.groups import ClassIVInputs, Leash
+from assur.kinematics.higher.groups import ClassIVInputs, Leash, plain
 
 D = 24
 FORMS = SHARED + COUPLED
@@ -38,15 +38,15 @@ def test_a_hinged_bar_in_closed_form_is_the_fitted_matrix(form: str, actuated: b
         k = ClassIVInputs(k.h_a, k.h_c, k.u_a, k.u_c, l_b=length)
     fitted = group._matrices(k)
     arms = group.arms
+    gap = plain(k.h_a) - plain(k.h_c)
     bars = [j for j, kind in enumerate(group.kinds) if kind is Leash.RR]
     assert bars and not any(group.slides)
     m = np.full((2, 3, 3), np.nan)
     for d in range(D):
         for j in bars:
-            compiled_coupled._bar(complex(k.h_a[d] - k.h_c[d]), complex(arms[j][0][d]),
-                                  complex(arms[j][1][d]),
-                                  float(np.broadcast_to(group.coupler_length(j, k), D)[d]),
-                                  m, j)
+            length = np.broadcast_to(plain(group.coupler_length(j, k)), D)
+            compiled_coupled._bar(complex(gap[d]), complex(arms[j][0][d]),
+                                  complex(arms[j][1][d]), float(length[d]), m, j)
             scale = np.abs(fitted[d, j]).max()
             assert np.abs(m[j] - fitted[d, j]).max() <= 1e-13 * scale
 

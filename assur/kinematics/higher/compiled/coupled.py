@@ -253,7 +253,9 @@ def _coefficients(m: np.ndarray, eliminated: int, linear_kept: bool, deflations:
         series[FULL_DEGREE + n] = phi[n]
         series[FULL_DEGREE - n] = phi[n].conjugate()
     top = series.shape[0] - 1
+    scale = 1.0
     for _ in range(deflations):  # the quotient by E + 1 in place (coupled._deflate)
+        scale *= 2.0
         carry = series[top]
         for i in range(top - 1, -1, -1):
             rest = series[i]
@@ -261,7 +263,6 @@ def _coefficients(m: np.ndarray, eliminated: int, linear_kept: bool, deflations:
             carry = rest - carry
         top -= 1
     start = FULL_DEGREE - deflations // 2 - (out.shape[0] - 1) // 2
-    scale = 2.0 ** deflations
     for n in range(out.shape[0]):
         out[n] = series[start + n] * scale
 

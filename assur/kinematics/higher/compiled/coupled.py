@@ -80,11 +80,11 @@ def _loop(kind: int, a: tuple[complex, float, complex, complex],
 
 
 @inline
-def _fit(kinds: np.ndarray, sampled: tuple[bool, bool], sa: bool, sc: bool, unit: np.ndarray,
-         half: np.ndarray, h: np.ndarray, u: np.ndarray, drawn: np.ndarray, length: np.ndarray,
-         arm: np.ndarray, guide: np.ndarray, side: np.ndarray, size: float, p: int, d: int,
-         values: np.ndarray, m: np.ndarray) -> None:
-    """M_j (2, 3, 3) at position ``p`` of design ``d`` into ``m`` where ``sampled``
+def _fit(kinds: np.ndarray, sa: bool, sc: bool, unit: np.ndarray, half: np.ndarray,
+         h: np.ndarray, u: np.ndarray, drawn: np.ndarray, length: np.ndarray, arm: np.ndarray,
+         guide: np.ndarray, side: np.ndarray, size: float, p: int, d: int, values: np.ndarray,
+         m: np.ndarray) -> None:
+    """M_j (2, 3, 3) at position ``p`` of design ``d`` into ``m``
     (:meth:`ClassIVCoupled._matrices`): scale_j·F̂_j at y_a, y_c ∈ ``coupled.SAMPLES``
     (e^{iy} ``unit``, e^{iy/2} ``half``) into ``values``, then FROM·values_j·FROMᵀ
     (``coupled.FROM_SAMPLES``: F(0), 2F(π/2) − F(0) − F(π), F(π) along each axis)."""
@@ -97,13 +97,10 @@ def _fit(kinds: np.ndarray, sampled: tuple[bool, bool], sa: bool, sc: bool, unit
         a = _link(sa, unit[ia], half[ia], h[p, 0], u[p, 0], drawn[0, d], size)
         for ic in range(3):
             for j in range(2):
-                if sampled[j]:
-                    values[j, ia, ic] = scales[j] * _loop(
-                        kinds[j], a, links_c[ic], arm[2 * j, d], arm[2 * j + 1, d],
-                        length[p, j], guide[2 * j, d], guide[2 * j + 1, d], side[j, d])
+                values[j, ia, ic] = scales[j] * _loop(
+                    kinds[j], a, links_c[ic], arm[2 * j, d], arm[2 * j + 1, d], length[p, j],
+                    guide[2 * j, d], guide[2 * j + 1, d], side[j, d])
     for j in range(2):
-        if not sampled[j]:
-            continue
         for ia in range(3):  # rows: FROM·values_j
             v0, v1, v2 = values[j, 0, ia], values[j, 1, ia], values[j, 2, ia]
             values[j, 0, ia], values[j, 1, ia] = v0, -v0 + 2.0 * v1 - v2
@@ -114,25 +111,48 @@ def _fit(kinds: np.ndarray, sampled: tuple[bool, bool], sa: bool, sc: bool, unit
 
 
 @inline
-def _bar(gap: complex, arm_a: complex, arm_c: complex, length: float, m: np.ndarray,
-         j: int) -> None:
-    """M_j of a bar between hinged links a and c in closed form into ``m``: the same matrix
-    as :func:`_fit`'s to roundoff.
+def _hinged(kind: int, gap: complex, arm_a: complex, arm_c: complex, length: float,
+            guide_a: complex, guide_c: complex, side: complex, size: float, m: np.ndarray,
+            j: int) -> None:
+    """M_j of a coupler between hinged links a and c in closed form into ``m``: the matrix
+    of :func:`_fit` to roundoff.
 
-    With P = H_a − H_c (``gap``), A, C the arms, l the length: F̂_j = |P + A·E_a − C·E_c|² −
-    l² = K + 2Re(P̄A·E_a) − 2Re(P̄C·E_c) − 2Re(ĀC·Ē_aE_c), K = |P|² + |A|² + |C|² − l², its
-    coefficients T of (1, cos y, sin y) of y_a (rows) and y_c (columns), and 1 = w₀ + w₂,
-    cos y = w₀ − w₂, sin y = 2w₁ in w(y) = (κ², κσ, σ²): M_j = LTLᵀ/(2l), L = [[1, 1, 0],
-    [0, 0, 2], [1, −1, 0]].
+    With E_a = e^{iy_a}, E_c = e^{iy_c}, P = H_a − H_c (``gap``), A, C the arms, the gap of
+    the coupler's pairs is P + A·E_a − C·E_c, and F̂_j (:func:`_loop`) has the coefficients
+    T of (1, cos y, sin y) of y_a (rows) and of y_c (columns):
+
+    - a bar of length l: |P + A·E_a − C·E_c|² − l² = K + 2Re(P̄A·E_a) − 2Re(P̄C·E_c) −
+      2Re(ĀC·Ē_aE_c), K = |P|² + |A|² + |C|² − l², scale 1/(2l);
+    - a block turning with a (guide g on a): Im(ḡP·Ē_a) + Im(ḡA) − Im(ḡC·Ē_aE_c) −
+      cross(g, side); with c (guide g on c): Im(ḡP·Ē_c) + Im(ḡA·E_aĒ_c) − Im(ḡC) −
+      cross(g, side);
+    - a PP coupler: Im(Ē_aE_c), scale L.
+
+    Then 1 = w₀ + w₂, cos y = w₀ − w₂, sin y = 2w₁ in w(y) = (κ², κσ, σ²): M_j = scale·LTLᵀ,
+    L = [[1, 1, 0], [0, 0, 2], [1, −1, 0]].
     """
-    za = gap.conjugate() * arm_a
-    zc = gap.conjugate() * arm_c
-    q = arm_a.conjugate() * arm_c
-    k = square(gap) + square(arm_a) + square(arm_c) - length * length
-    t00, t01, t02 = k, -2.0 * zc.real, 2.0 * zc.imag
-    t10, t11, t12 = 2.0 * za.real, -2.0 * q.real, 2.0 * q.imag
-    t20, t21, t22 = -2.0 * za.imag, -2.0 * q.imag, -2.0 * q.real
-    scale = 0.5 / length
+    t00, t01, t02, t10, t20 = 0.0, 0.0, 0.0, 0.0, 0.0
+    if kind == _RR:
+        za, zc, q = gap.conjugate() * arm_a, gap.conjugate() * arm_c, arm_a.conjugate() * arm_c
+        t00 = square(gap) + square(arm_a) + square(arm_c) - length * length
+        t10, t20, t01, t02 = 2.0 * za.real, -2.0 * za.imag, -2.0 * zc.real, 2.0 * zc.imag
+        t11, t12, t21, t22 = -2.0 * q.real, 2.0 * q.imag, -2.0 * q.imag, -2.0 * q.real
+        scale = 0.5 / length
+    elif kind == _PP:
+        t11, t12, t21, t22 = 0.0, 1.0, -1.0, 0.0
+        scale = size
+    elif kind == _PR:
+        z1, z2 = guide_a.conjugate() * gap, guide_a.conjugate() * arm_c
+        t00 = cross(guide_a, arm_a) - cross(guide_a, side)
+        t10, t20 = z1.imag, -z1.real
+        t11, t12, t21, t22 = -z2.imag, -z2.real, z2.real, -z2.imag
+        scale = 1.0
+    else:
+        z1, z2 = guide_c.conjugate() * gap, guide_c.conjugate() * arm_a
+        t00 = -cross(guide_c, arm_c) - cross(guide_c, side)
+        t01, t02 = z1.imag, -z1.real
+        t11, t12, t21, t22 = z2.imag, -z2.real, z2.real, z2.imag
+        scale = 1.0
     rows = ((t00 + t10, t01 + t11, t02 + t12), (2.0 * t20, 2.0 * t21, 2.0 * t22),
             (t00 - t10, t01 - t11, t02 - t12))
     for r in range(3):
@@ -290,13 +310,10 @@ def _correct_kernel(kinds: np.ndarray, slides: np.ndarray, eliminated: int,
     (:func:`correct_coupled`), the others NaN and failed. ``h``, ``u``, ``length`` hold the
     inputs per position (P, 2), ``sign`` (P,); ``drawn``, ``arm``, ``guide``, ``side``,
     ``radius`` the drawing per design as rows (n, D), ``size`` (D,), the design of position p
-    being p mod D (the positions' last axis). A bar between hinged links has its M_j in
-    closed form (:func:`_bar`), the other couplers theirs fitted (:func:`_fit`)."""
+    being p mod D (the positions' last axis). With both links hinged M is written in closed
+    form (:func:`_hinged`), with a sliding link fitted (:func:`_fit`)."""
     sa, sc = slides[0] != 0, slides[1] != 0
     lift0, lift1 = (sa or sc) and kinds[0] != _PP, (sa or sc) and kinds[1] != _PP
-    bars = (kinds[0] == _RR and not (sa or sc), kinds[1] == _RR and not (sa or sc))
-    sampled = (not bars[0], not bars[1])
-    fitted = sampled[0] or sampled[1]
     width = size.shape[0]
     values = np.empty((2, 3, 3))
     m = np.empty((2, 3, 3))
@@ -308,12 +325,14 @@ def _correct_kernel(kinds: np.ndarray, slides: np.ndarray, eliminated: int,
             blank(p, x, jac, margin, ok)
             continue
         d = p % width
-        if fitted:
-            _fit(kinds, sampled, sa, sc, unit, half, h, u, drawn, length, arm, guide, side,
-                 size[d], p, d, values, m)
-        for j in range(2):
-            if bars[j]:
-                _bar(h[p, 0] - h[p, 1], arm[2 * j, d], arm[2 * j + 1, d], length[p, j], m, j)
+        if sa or sc:
+            _fit(kinds, sa, sc, unit, half, h, u, drawn, length, arm, guide, side, size[d], p,
+                 d, values, m)
+        else:
+            for j in range(2):
+                _hinged(kinds[j], h[p, 0] - h[p, 1], arm[2 * j, d], arm[2 * j + 1, d],
+                        length[p, j], guide[2 * j, d], guide[2 * j + 1, d], side[j, d],
+                        size[d], m, j)
         ya, yc = guess[p, 0], guess[p, 1]
         step = math.inf
         for iteration in range(iterations + 1):

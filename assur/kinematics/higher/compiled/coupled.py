@@ -1,15 +1,18 @@
 """The class IV group's kernel: the corrector of :class:`~assur.kinematics.higher.coupled.
 ClassIVCoupled` (unknowns y_a, y_c), every form.
 
-Per position, with the operations of the group's methods: the fitted matrices M_j of
-:meth:`~assur.kinematics.higher.coupled.ClassIVCoupled._matrices` (the lifted loop equations
-of :meth:`~assur.kinematics.higher.coupled.ClassIVCoupled._loops` at y_a, y_c ∈ {0, π/2, π});
+Per position: the matrices M_j of
+:meth:`~assur.kinematics.higher.coupled.ClassIVCoupled._matrices`, in closed form from the
+inputs, the arms and the coupler's length or guide where both links are hinged, else fitted
+as the group fits them (the lifted loop equations of
+:meth:`~assur.kinematics.higher.coupled.ClassIVCoupled._loops` at y_a, y_c ∈ {0, π/2, π});
 Newton's method on
 :meth:`~assur.kinematics.higher.coupled.ClassIVCoupled.equations` (w(y), w′(y) contracted
 with M, the lifting factors of sliding links, none for a PP coupler); the Jacobian and the
 margin of :meth:`~assur.kinematics.higher.coupled.ClassIVCoupled.lines`; the coefficients of
-the eliminant from M (:meth:`~assur.kinematics.higher.coupled.ClassIVCoupled.coefficients`)
-and the root's separation bound.
+the eliminant from M (:meth:`~assur.kinematics.higher.coupled.ClassIVCoupled.coefficients`,
+as products of Laurent polynomials in e^{iy_ε} rather than from samples) and the root's
+separation bound. The drawing is read per design, the inputs per position.
 """
 
 from __future__ import annotations

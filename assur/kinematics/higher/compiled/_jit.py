@@ -1,7 +1,7 @@
 """What the kernels share: how they are compiled, the scalar steps of more than one, and
 how their arguments are laid out.
 
-Every function here but :func:`columns` is compiled by numba; importing this module imports
+Every function here but :func:`columns`, :func:`per_design` and :func:`design` is compiled by numba; importing this module imports
 numba.
 """
 
@@ -16,8 +16,8 @@ import numpy as np
 
 from assur.kinematics.higher.groups import plain
 
-__all__ = ["blank", "close", "columns", "cross", "det2", "det3", "dot", "inline", "kernel", "over",
-           "predict", "solve2", "solve3", "square"]
+__all__ = ["blank", "close", "columns", "cross", "design", "det2", "det3", "dot", "inline", "kernel",
+           "over", "per_design", "predict", "solve2", "solve3", "square"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -48,6 +48,22 @@ def columns(values: tuple[Any, ...], shape: tuple[int, ...], dtype: type) -> np.
         if v is not None:
             out[:, i] = np.broadcast_to(plain(v), shape).reshape(-1)
     return out
+
+
+def per_design(values: tuple[Any, ...], shape: tuple[int, ...], dtype: type) -> np.ndarray:
+    """Drawn values (None for 0), each a number or one per design (the positions' last
+    axis), as rows (len(values), D): the design of flat position p is p mod D."""
+    out: np.ndarray = np.empty((len(values), shape[-1] if shape else 1), dtype=dtype)
+    for i, v in enumerate(values):
+        out[i] = 0.0 if v is None else design(v, shape)
+    return out
+
+
+def design(v: Any, shape: tuple[int, ...]) -> np.ndarray:
+    """A drawn value (a number or one per design) or the sign of a mode per design, along
+    the positions' last axis: shape (D,)."""
+    row: np.ndarray = np.broadcast_to(plain(v), shape)[(0,) * (len(shape) - 1)]
+    return np.asarray(row).reshape(-1)
 
 
 @inline

@@ -1,15 +1,18 @@
 """The class IV group's kernel: the corrector of :class:`~assur.kinematics.higher.coupled.
 ClassIVCoupled` (unknowns y_a, y_c), every form.
 
-Per position, with the operations of the group's methods: the fitted matrices M_j of
-:meth:`~assur.kinematics.higher.coupled.ClassIVCoupled._matrices` (the lifted loop equations
-of :meth:`~assur.kinematics.higher.coupled.ClassIVCoupled._loops` at y_a, y_c ∈ {0, π/2, π});
+Per position: the matrices M_j of
+:meth:`~assur.kinematics.higher.coupled.ClassIVCoupled._matrices`, in closed form from the
+inputs, the arms and the coupler's length or guide where both links are hinged, else fitted
+as the group fits them (the lifted loop equations of
+:meth:`~assur.kinematics.higher.coupled.ClassIVCoupled._loops` at y_a, y_c ∈ {0, π/2, π});
 Newton's method on
 :meth:`~assur.kinematics.higher.coupled.ClassIVCoupled.equations` (w(y), w′(y) contracted
 with M, the lifting factors of sliding links, none for a PP coupler); the Jacobian and the
 margin of :meth:`~assur.kinematics.higher.coupled.ClassIVCoupled.lines`; the coefficients of
-the eliminant from M (:meth:`~assur.kinematics.higher.coupled.ClassIVCoupled.coefficients`)
-and the root's separation bound.
+the eliminant from M (:meth:`~assur.kinematics.higher.coupled.ClassIVCoupled.coefficients`,
+as products of Laurent polynomials in e^{iy_ε} rather than from samples) and the root's
+separation bound. The drawing is read per design, the inputs per position.
 """
 
 from __future__ import annotations
@@ -24,16 +27,17 @@ from assur.kinematics.higher.compiled._jit import (
     close,
     columns,
     cross,
+    design,
     det2,
     inline,
     kernel,
+    per_design,
     solve2,
+    square,
 )
 from assur.kinematics.higher.coupled import (
     FULL_DEGREE,
-    GRID_HALVES,
     SAMPLES,
-    SPLIT,
     ClassIVCoupled,
 )
 from assur.kinematics.higher.groups import ClassIVInputs, Leash, plain
@@ -81,24 +85,24 @@ def _loop(kind: int, a: tuple[complex, float, complex, complex],
 @inline
 def _fit(kinds: np.ndarray, sa: bool, sc: bool, unit: np.ndarray, half: np.ndarray,
          h: np.ndarray, u: np.ndarray, drawn: np.ndarray, length: np.ndarray, arm: np.ndarray,
-         guide: np.ndarray, side: np.ndarray, size: float, p: int, values: np.ndarray,
+         guide: np.ndarray, side: np.ndarray, size: float, p: int, d: int, values: np.ndarray,
          m: np.ndarray) -> None:
-    """M_j (2, 3, 3) at position ``p`` into ``m`` (:meth:`ClassIVCoupled._matrices`):
-    scale_j·F̂_j at y_a, y_c ∈ ``coupled.SAMPLES`` (e^{iy} ``unit``, e^{iy/2} ``half``)
-    into ``values``, then FROM·values_j·FROMᵀ (``coupled.FROM_SAMPLES``: F(0),
-    2F(π/2) − F(0) − F(π), F(π) along each axis)."""
-    links_c = (_link(sc, unit[0], half[0], h[p, 1], u[p, 1], drawn[p, 1], size),
-               _link(sc, unit[1], half[1], h[p, 1], u[p, 1], drawn[p, 1], size),
-               _link(sc, unit[2], half[2], h[p, 1], u[p, 1], drawn[p, 1], size))
+    """M_j (2, 3, 3) at position ``p`` of design ``d`` into ``m``
+    (:meth:`ClassIVCoupled._matrices`): scale_j·F̂_j at y_a, y_c ∈ ``coupled.SAMPLES``
+    (e^{iy} ``unit``, e^{iy/2} ``half``) into ``values``, then FROM·values_j·FROMᵀ
+    (``coupled.FROM_SAMPLES``: F(0), 2F(π/2) − F(0) − F(π), F(π) along each axis)."""
+    links_c = (_link(sc, unit[0], half[0], h[p, 1], u[p, 1], drawn[1, d], size),
+               _link(sc, unit[1], half[1], h[p, 1], u[p, 1], drawn[1, d], size),
+               _link(sc, unit[2], half[2], h[p, 1], u[p, 1], drawn[1, d], size))
     scales = (0.5 / length[p, 0] if kinds[0] == _RR else size if kinds[0] == _PP else 1.0,
               0.5 / length[p, 1] if kinds[1] == _RR else size if kinds[1] == _PP else 1.0)
     for ia in range(3):
-        a = _link(sa, unit[ia], half[ia], h[p, 0], u[p, 0], drawn[p, 0], size)
+        a = _link(sa, unit[ia], half[ia], h[p, 0], u[p, 0], drawn[0, d], size)
         for ic in range(3):
             for j in range(2):
                 values[j, ia, ic] = scales[j] * _loop(
-                    kinds[j], a, links_c[ic], arm[p, 2 * j], arm[p, 2 * j + 1], length[p, j],
-                    guide[p, 2 * j], guide[p, 2 * j + 1], side[p, j])
+                    kinds[j], a, links_c[ic], arm[2 * j, d], arm[2 * j + 1, d], length[p, j],
+                    guide[2 * j, d], guide[2 * j + 1, d], side[j, d])
     for j in range(2):
         for ia in range(3):  # rows: FROM·values_j
             v0, v1, v2 = values[j, 0, ia], values[j, 1, ia], values[j, 2, ia]
@@ -107,6 +111,58 @@ def _fit(kinds: np.ndarray, sa: bool, sc: bool, unit: np.ndarray, half: np.ndarr
         for ia in range(3):  # columns: ·FROMᵀ
             v0, v1, v2 = values[j, ia, 0], values[j, ia, 1], values[j, ia, 2]
             m[j, ia, 0], m[j, ia, 1], m[j, ia, 2] = v0, -v0 + 2.0 * v1 - v2, v2
+
+
+@inline
+def _hinged(kind: int, gap: complex, arm_a: complex, arm_c: complex, length: float,
+            guide_a: complex, guide_c: complex, side: complex, size: float, m: np.ndarray,
+            j: int) -> None:
+    """M_j of a coupler between hinged links a and c in closed form into ``m``: the matrix
+    of :func:`_fit` to roundoff.
+
+    With E_a = e^{iy_a}, E_c = e^{iy_c}, P = H_a − H_c (``gap``), A, C the arms, the gap of
+    the coupler's pairs is P + A·E_a − C·E_c, and F̂_j (:func:`_loop`) has the coefficients
+    T of (1, cos y, sin y) of y_a (rows) and of y_c (columns):
+
+    - a bar of length l: |P + A·E_a − C·E_c|² − l² = K + 2Re(P̄A·E_a) − 2Re(P̄C·E_c) −
+      2Re(ĀC·Ē_aE_c), K = |P|² + |A|² + |C|² − l², scale 1/(2l);
+    - a block turning with a (guide g on a): Im(ḡP·Ē_a) + Im(ḡA) − Im(ḡC·Ē_aE_c) −
+      cross(g, side); with c (guide g on c): Im(ḡP·Ē_c) + Im(ḡA·E_aĒ_c) − Im(ḡC) −
+      cross(g, side);
+    - a PP coupler: Im(Ē_aE_c), scale L.
+
+    Then 1 = w₀ + w₂, cos y = w₀ − w₂, sin y = 2w₁ in w(y) = (κ², κσ, σ²): M_j = scale·LTLᵀ,
+    L = [[1, 1, 0], [0, 0, 2], [1, −1, 0]].
+    """
+    t00, t01, t02, t10, t20 = 0.0, 0.0, 0.0, 0.0, 0.0
+    if kind == _RR:
+        za, zc, q = gap.conjugate() * arm_a, gap.conjugate() * arm_c, arm_a.conjugate() * arm_c
+        t00 = square(gap) + square(arm_a) + square(arm_c) - length * length
+        t10, t20, t01, t02 = 2.0 * za.real, -2.0 * za.imag, -2.0 * zc.real, 2.0 * zc.imag
+        t11, t12, t21, t22 = -2.0 * q.real, 2.0 * q.imag, -2.0 * q.imag, -2.0 * q.real
+        scale = 0.5 / length
+    elif kind == _PP:
+        t11, t12, t21, t22 = 0.0, 1.0, -1.0, 0.0
+        scale = size
+    elif kind == _PR:
+        z1, z2 = guide_a.conjugate() * gap, guide_a.conjugate() * arm_c
+        t00 = cross(guide_a, arm_a) - cross(guide_a, side)
+        t10, t20 = z1.imag, -z1.real
+        t11, t12, t21, t22 = -z2.imag, -z2.real, z2.real, -z2.imag
+        scale = 1.0
+    else:
+        z1, z2 = guide_c.conjugate() * gap, guide_c.conjugate() * arm_a
+        t00 = -cross(guide_c, arm_c) - cross(guide_c, side)
+        t01, t02 = z1.imag, -z1.real
+        t11, t12, t21, t22 = z2.imag, -z2.real, z2.real, z2.imag
+        scale = 1.0
+    rows = ((t00 + t10, t01 + t11, t02 + t12), (2.0 * t20, 2.0 * t21, 2.0 * t22),
+            (t00 - t10, t01 - t11, t02 - t12))
+    for r in range(3):
+        r0, r1, r2 = rows[r]
+        m[j, r, 0] = scale * (r0 + r1)
+        m[j, r, 1] = scale * (2.0 * r2)
+        m[j, r, 2] = scale * (r0 - r1)
 
 
 @inline
@@ -165,32 +221,64 @@ def _lines(m: np.ndarray, j: int, eliminated: int
 
 
 @inline
+def _laurent(a0: complex, a1: complex, a2: complex) -> tuple[complex, complex, complex]:
+    """The coefficients of E⁻¹, 1, E of Σ_r w_r·a_r on |E| = 1, w = w(arg E): w₀ = 1/2 +
+    (E + E⁻¹)/4, w₁ = (E − E⁻¹)/(4i), w₂ = 1/2 − (E + E⁻¹)/4."""
+    return 0.25 * (a0 - a2 + 1j * a1), 0.5 * (a0 + a2), 0.25 * (a0 - a2 - 1j * a1)
+
+
+@inline
+def _times(x: tuple[complex, complex, complex], y: tuple[complex, complex, complex]
+           ) -> tuple[complex, complex, complex, complex, complex]:
+    """The coefficients of E⁻² … E² of the product of two Laurent polynomials of degree 1."""
+    return (x[0] * y[0], x[0] * y[1] + x[1] * y[0], x[0] * y[2] + x[1] * y[1] + x[2] * y[0],
+            x[1] * y[2] + x[2] * y[1], x[2] * y[2])
+
+
+@inline
 def _coefficients(m: np.ndarray, eliminated: int, linear_kept: bool, deflations: int,
-                  grid: np.ndarray, split: np.ndarray, full: np.ndarray, series: np.ndarray,
-                  out: np.ndarray) -> None:
-    """p₀ … p_2m of p(E) = E^m·Φ̃ into ``out`` (:meth:`ClassIVCoupled.
-    coefficients`): Φ = |π_bα_d − π_dα_b|² − cross(α_b, α_d)² (cross(α_b, α_d) where both
-    lines are linear in a kept slide) at the samples ``grid`` (w there) into ``full``, the
-    coefficients of E⁴Φ by ``split`` into ``series``, the root −1 divided out
-    ``deflations`` times, the middle 2m + 1 kept."""
+                  series: np.ndarray, out: np.ndarray) -> None:
+    """p₀ … p_2m of p(E) = E^m·Φ̃ into ``out`` (:meth:`ClassIVCoupled.coefficients`): Φ =
+    |π_bα_d − π_dα_b|² − cross(α_b, α_d)² (cross(α_b, α_d) where both lines are linear in
+    a kept slide) as a Laurent polynomial in E = e^{iy_ε}, the coefficients of E⁴Φ into
+    ``series``, the root −1 divided out ``deflations`` times, the middle 2m + 1 kept.
+
+    α_j, π_j are Laurent polynomials of degree 1 (:func:`_laurent`); the gap g = π_bα_d −
+    π_dα_b and h = ᾱ_bα_d of degree 2 (:func:`_times`, ᾱ_b = Σ ā_k E⁻ᵏ on the unit
+    circle). Φ is real there: φ₋ₙ = φ̄ₙ, and for n ≥ 0 |g|² has the coefficients
+    Σ_k g_k·ḡ_{k−n}, cross(α_b, α_d) = Im h the coefficients c_n = (h_n − h̄₋ₙ)/(2i) and
+    its square Σ_k c_k·c_{n−k}: the coefficients that sampling Φ off −1 gives, without
+    the samples.
+    """
     b0, b1, b2, q0, q1, q2 = _lines(m, 0, eliminated)
     d0, d1, d2, r0, r1, r2 = _lines(m, 1, eliminated)
-    for at in range(grid.shape[0]):
-        w0, w1, w2 = grid[at, 0], grid[at, 1], grid[at, 2]
-        ab, pb = w0 * b0 + w1 * b1 + w2 * b2, w0 * q0 + w1 * q1 + w2 * q2
-        ad, pd = w0 * d0 + w1 * d1 + w2 * d2, w0 * r0 + w1 * r1 + w2 * r2
-        across = cross(ab, ad)
-        gap = pb * ad - pd * ab
-        full[at] = across if linear_kept else (gap.real * gap.real + gap.imag * gap.imag
-                                               - across * across)
-    for n in range(series.shape[0]):
-        re, im = 0.0, 0.0
-        for at in range(grid.shape[0]):
-            re += full[at] * split[n, at].real
-            im += full[at] * split[n, at].imag
-        series[n] = complex(re, im)
+    ab, ad = _laurent(b0, b1, b2), _laurent(d0, d1, d2)
+    h = _times((ab[2].conjugate(), ab[1].conjugate(), ab[0].conjugate()), ad)
+    c0 = h[2].imag
+    c1 = (h[3] - h[1].conjugate()) * -0.5j
+    c2 = (h[4] - h[0].conjugate()) * -0.5j
+    if linear_kept:
+        phi = (complex(c0), c1, c2, 0j, 0j)
+    else:
+        pb = _laurent(complex(q0), complex(q1), complex(q2))
+        pd = _laurent(complex(r0), complex(r1), complex(r2))
+        x, y = _times(pb, ad), _times(pd, ab)
+        g0, g1, g2, g3, g4 = x[0] - y[0], x[1] - y[1], x[2] - y[2], x[3] - y[3], x[4] - y[4]
+        phi = (complex(square(g0) + square(g1) + square(g2) + square(g3) + square(g4)
+                       - 2.0 * (square(c2) + square(c1)) - c0 * c0),
+               g1 * g0.conjugate() + g2 * g1.conjugate() + g3 * g2.conjugate()
+               + g4 * g3.conjugate() - 2.0 * (c1.conjugate() * c2 + c0 * c1),
+               g2 * g0.conjugate() + g3 * g1.conjugate() + g4 * g2.conjugate()
+               - 2.0 * c0 * c2 - c1 * c1,
+               g3 * g0.conjugate() + g4 * g1.conjugate() - 2.0 * c1 * c2,
+               g4 * g0.conjugate() - c2 * c2)
+    for n in range(FULL_DEGREE + 1):
+        series[FULL_DEGREE + n] = phi[n]
+        series[FULL_DEGREE - n] = phi[n].conjugate()
     top = series.shape[0] - 1
+    scale = 1.0
     for _ in range(deflations):  # the quotient by E + 1 in place (coupled._deflate)
+        scale *= 2.0
         carry = series[top]
         for i in range(top - 1, -1, -1):
             rest = series[i]
@@ -198,7 +286,6 @@ def _coefficients(m: np.ndarray, eliminated: int, linear_kept: bool, deflations:
             carry = rest - carry
         top -= 1
     start = FULL_DEGREE - deflations // 2 - (out.shape[0] - 1) // 2
-    scale = 2.0 ** deflations
     for n in range(out.shape[0]):
         out[n] = series[start + n] * scale
 
@@ -216,28 +303,39 @@ def _column(slides: bool, y: float, size: float, radius: float) -> float:
 @kernel
 def _correct_kernel(kinds: np.ndarray, slides: np.ndarray, eliminated: int,
                     linear_kept: bool, deflations: int, degree: int, unit: np.ndarray,
-                    half: np.ndarray, grid: np.ndarray, split: np.ndarray, iterations: int,
-                    converged: float,
-                    h: np.ndarray, u: np.ndarray, drawn: np.ndarray, length: np.ndarray,
-                    arm: np.ndarray, guide: np.ndarray, side: np.ndarray, size: np.ndarray,
-                    radius: np.ndarray, guess: np.ndarray, sign: np.ndarray, mask: np.ndarray,
-                    x: np.ndarray, jac: np.ndarray, margin: np.ndarray, ok: np.ndarray) -> None:
+                    half: np.ndarray, iterations: int, converged: float, h: np.ndarray,
+                    u: np.ndarray, length: np.ndarray,
+                    drawn: np.ndarray, arm: np.ndarray, guide: np.ndarray, side: np.ndarray,
+                    size: np.ndarray, radius: np.ndarray, sign: np.ndarray, guess: np.ndarray,
+                    mask: np.ndarray, x: np.ndarray, jac: np.ndarray, margin: np.ndarray,
+                    ok: np.ndarray) -> None:
     """Every position of the flat arrays where ``mask`` corrected and tested
-    (:func:`correct_coupled`), the others NaN and failed."""
+    (:func:`correct_coupled`), the others NaN and failed. ``h``, ``u``, ``length`` hold the
+    inputs per position (P, 2), ``sign`` (P,); ``drawn``, ``arm``, ``guide``, ``side``,
+    ``radius`` the drawing per design as rows (n, D), ``size`` (D,), the design of position p
+    being p mod D (the positions' last axis). With both links hinged M is written in closed
+    form (:func:`_hinged`), with a sliding link fitted (:func:`_fit`)."""
     sa, sc = slides[0] != 0, slides[1] != 0
     lift0, lift1 = (sa or sc) and kinds[0] != _PP, (sa or sc) and kinds[1] != _PP
+    width = size.shape[0]
     values = np.empty((2, 3, 3))
     m = np.empty((2, 3, 3))
-    full = np.empty(grid.shape[0])
-    series = np.empty(split.shape[0], dtype=np.complex128)
+    series = np.empty(2 * FULL_DEGREE + 1, dtype=np.complex128)
     coef = np.empty(2 * degree + 1, dtype=np.complex128)
     work = np.empty(2 * degree + 1, dtype=np.complex128)
     for p in range(guess.shape[0]):
         if not mask[p]:
             blank(p, x, jac, margin, ok)
             continue
-        _fit(kinds, sa, sc, unit, half, h, u, drawn, length, arm, guide, side, size[p], p,
-             values, m)
+        d = p % width
+        if sa or sc:
+            _fit(kinds, sa, sc, unit, half, h, u, drawn, length, arm, guide, side, size[d], p,
+                 d, values, m)
+        else:
+            for j in range(2):
+                _hinged(kinds[j], h[p, 0] - h[p, 1], arm[2 * j, d], arm[2 * j + 1, d],
+                        length[p, j], guide[2 * j, d], guide[2 * j + 1, d], side[j, d],
+                        size[d], m, j)
         ya, yc = guess[p, 0], guess[p, 1]
         step = math.inf
         for iteration in range(iterations + 1):
@@ -253,15 +351,14 @@ def _correct_kernel(kinds: np.ndarray, slides: np.ndarray, eliminated: int,
             step = abs(d0) + abs(d1)
         x[p, 0], x[p, 1] = ya, yc
         jac[p, 0, 0], jac[p, 0, 1], jac[p, 1, 0], jac[p, 1, 1] = e00, e01, e10, e11
-        ka = _column(sa, ya, size[p], radius[p, 0])
-        kc = _column(sc, yc, size[p], radius[p, 1])
+        ka = _column(sa, ya, size[d], radius[0, d])
+        kc = _column(sc, yc, size[d], radius[1, d])
         r00, r01, r10, r11 = e00 * ka, e01 * kc, e10 * ka, e11 * kc
         margin[p] = abs(det2(r00, r01, r10, r11)) / (math.sqrt(r00 * r00 + r01 * r01)
                                                      * math.sqrt(r10 * r10 + r11 * r11))
         ok[p] = (step <= converged) and (np.sign(det2(e00, e01, e10, e11)) == sign[p])
         if ok[p]:  # the bound only where the other tests pass
-            _coefficients(m, eliminated, linear_kept, deflations, grid, split, full, series,
-                          coef)
+            _coefficients(m, eliminated, linear_kept, deflations, series, coef)
             ok[p] = close(coef, ya if eliminated == 0 else yc,
                           abs(ya - guess[p, 0]) + abs(yc - guess[p, 1]), work)
 
@@ -271,7 +368,8 @@ def correct_coupled(group: ClassIVCoupled, k: ClassIVInputs, guess: np.ndarray,
                     mask: np.ndarray | None = None
                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """:func:`~assur.kinematics.higher.compiled.correct` for a class IV group: unknowns
-    (y_a, y_c); drawn values broadcasting against the positions."""
+    (y_a, y_c); drawn values numbers or one per design, the positions' last axis; ``sign``
+    broadcasting against the positions."""
     shape = guess.shape[:-1]
     count = int(np.prod(shape))
     x = np.empty((count, 2))
@@ -286,16 +384,17 @@ def correct_coupled(group: ClassIVCoupled, k: ClassIVInputs, guess: np.ndarray,
     _correct_kernel(
         np.array([_CODES[kind] for kind in group.kinds], dtype=np.int64),
         np.array(group.slides, dtype=np.int64), group.eliminated, group.linear_kept,
-        deflations, degree, _UNITS, _HALF_UNITS, GRID_HALVES, SPLIT, iterations, converged,
+        deflations, degree, _UNITS, _HALF_UNITS, iterations, converged,
         columns((k.h_a, k.h_c), shape, complex), columns((k.u_a, k.u_c), shape, complex),
-        columns((group.u_a, group.u_c), shape, complex),
         columns((group.coupler_length(0, k), group.coupler_length(1, k)), shape, float),
-        columns((arm_c, arm_d, arm_f, arm_e), shape, complex),
-        columns((group.w_c, group.w_d, group.w_f, group.w_e), shape, complex),
-        columns((np.asarray(group.c) - group.d, np.asarray(group.f) - group.e), shape,
-                complex),
-        columns((group.size,), shape, float)[:, 0], columns(group.radii, shape, float),
-        np.ascontiguousarray(guess, dtype=float).reshape(count, 2),
-        columns((sign,), shape, float)[:, 0], wanted.reshape(-1), x, jac, margin, ok)
+        per_design((group.u_a, group.u_c), shape, complex),
+        per_design((arm_c, arm_d, arm_f, arm_e), shape, complex),
+        per_design((group.w_c, group.w_d, group.w_f, group.w_e), shape, complex),
+        per_design((np.asarray(group.c) - group.d, np.asarray(group.f) - group.e), shape,
+                   complex),
+        design(group.size, shape).astype(float), per_design(group.radii, shape, float),
+        columns((sign,), shape, float)[:, 0],
+        np.ascontiguousarray(guess, dtype=float).reshape(count, 2), wanted.reshape(-1),
+        x, jac, margin, ok)
     return (x.reshape(shape + (2,)), jac.reshape(shape + (2, 2)), margin.reshape(shape),
             ok.reshape(shape))

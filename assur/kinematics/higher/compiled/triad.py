@@ -17,11 +17,13 @@ from assur.kinematics.higher.compiled._jit import (
     blank,
     close,
     cross,
+    design,
     det3,
     dot,
     inline,
     kernel,
     over,
+    per_design,
     solve3,
     square,
 )
@@ -273,22 +275,6 @@ def _per_position(values: tuple[Any, ...], shape: tuple[int, ...], dtype: type
     return out.reshape(3, -1)
 
 
-def _per_design(values: tuple[Any, ...], shape: tuple[int, ...], dtype: type) -> np.ndarray:
-    """Three drawn values (None for 0) or values per design (the positions' last axis), as
-    rows (3, D)."""
-    out: np.ndarray = np.empty((3, shape[-1] if shape else 1), dtype=dtype)
-    for i, v in enumerate(values):
-        out[i] = 0.0 if v is None else _design(v, shape)
-    return out
-
-
-def _design(v: Any, shape: tuple[int, ...]) -> np.ndarray:
-    """A drawn value (a number or one per design) or the sign of a mode per design, along
-    the positions' last axis: shape (D,)."""
-    row: np.ndarray = np.broadcast_to(plain(v), shape)[(0,) * (len(shape) - 1)]
-    return np.asarray(row).reshape(-1)
-
-
 def _jets(values: tuple[Any, ...], shape: tuple[int, ...]) -> np.ndarray:
     """Three inputs (None for 0; a jet or a plain value): their value and both derivatives
     at the positions of ``shape``, laid flat, shape (3 parts, 3 inputs, P)."""
@@ -321,9 +307,9 @@ def correct_triad(group: Triad, k: TriadInputs, guess: np.ndarray, sign: np.ndar
     _correct_kernel(
         _codes(group), group.degree, iterations, converged,
         _per_position(k.a, shape, complex), _per_position(k.u, shape, complex),
-        _per_position(lengths, shape, float), _per_design(group.offsets, shape, complex),
-        _per_design(group.guide, shape, complex), _design(group.size, shape).astype(float),
-        _design(sign, shape).astype(float),
+        _per_position(lengths, shape, float), per_design(group.offsets, shape, complex),
+        per_design(group.guide, shape, complex), design(group.size, shape).astype(float),
+        design(sign, shape).astype(float),
         np.ascontiguousarray(guess, dtype=float).reshape(count, 3), wanted.reshape(-1),
         x, jac, margin, ok)
     return (x.reshape(shape + (3,)), jac.reshape(shape + (3, 3)), margin.reshape(shape),
@@ -356,8 +342,8 @@ def analogs_triad(group: Triad, k: TriadInputs, x: np.ndarray, jac: np.ndarray
     lengths = tuple(group.leash_length(i, k) for i in range(3))
     x1, x2 = np.empty((count, 3)), np.empty((count, 3))
     _analogs_kernel(_codes(group), _jets(k.a, shape), _jets(k.u, shape), _jets(lengths, shape),
-                    _per_design(group.offsets, shape, complex),
-                    _per_design(group.guide, shape, complex),
+                    per_design(group.offsets, shape, complex),
+                    per_design(group.guide, shape, complex),
                     np.ascontiguousarray(x, dtype=float).reshape(count, 3),
                     np.ascontiguousarray(jac, dtype=float).reshape(count, 3, 3), x1, x2)
     return x1.reshape(shape + (3,)), x2.reshape(shape + (3,))

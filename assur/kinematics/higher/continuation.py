@@ -616,7 +616,9 @@ def _anchors(log: list[tuple[_Point, np.ndarray]], targets: np.ndarray, offset: 
     first = np.cumsum(count) - count
     # the designs side by side on one line: t < offset
     query = targets + offset * np.arange(d)
-    after = np.searchsorted(states.t + offset * design, query, side="right")
+    # design after design the queries increase, and a sorted search is about twice as fast
+    after = np.searchsorted(states.t + offset * design, np.ascontiguousarray(query.T),
+                            side="right").T
     before = np.maximum(after - 1, 0)
     inside = (after > first) & (after < first + count) & followed
     on_last = (after > first) & (states.t[before] == targets) & followed

@@ -1,9 +1,12 @@
-"""The triad's kernel: the corrector of a triad without a P–P leash (unknowns W and θ).
+"""The triad's kernels: the corrector and the analogs of a triad without a P–P leash
+(unknowns W and θ).
 
 Per position, with the operations of the group's methods: Newton's method on
 :meth:`~assur.kinematics.higher.groups.Triad.equations`; the Jacobian and the margin of
 :meth:`~assur.kinematics.higher.groups.Triad.lines`; the closed-form coefficients of
-:meth:`~assur.kinematics.higher.groups.Triad.coefficients` and the root's separation bound.
+:meth:`~assur.kinematics.higher.groups.Triad.coefficients` and the root's separation test;
+the analogs by the implicit differentiation of
+:func:`~assur.kinematics.higher.continuation.analogs`.
 """
 
 from __future__ import annotations
@@ -227,6 +230,16 @@ def _residual_jet(kind: int, p: complex, p1: complex, p2: complex, e: complex, e
 
 
 @inline
+def _leash_jet(i: int, kinds: np.ndarray, a: np.ndarray, u: np.ndarray, r: np.ndarray,
+               b: np.ndarray, g: np.ndarray, p: int, d: int, p0: complex, p1: complex,
+               p2: complex, e: complex, e1: complex, e2: complex) -> tuple[float, float]:
+    """:func:`_residual_jet` of leash ``i`` at position ``p`` of the design ``d``."""
+    return _residual_jet(kinds[i], p0, p1, p2, e, e1, e2, a[0, i, p], a[1, i, p], a[2, i, p],
+                         u[0, i, p], u[1, i, p], u[2, i, p], r[0, i, p].real,
+                         r[1, i, p].real, r[2, i, p].real, b[i, d], g[i, d])
+
+
+@inline
 def _derivatives(kinds: np.ndarray, a: np.ndarray, u: np.ndarray, r: np.ndarray,
                  b: np.ndarray, g: np.ndarray, x: np.ndarray, jac: np.ndarray, p: int, d: int,
                  w1: complex, t1: float, part: int) -> tuple[float, float, float]:
@@ -236,15 +249,9 @@ def _derivatives(kinds: np.ndarray, a: np.ndarray, u: np.ndarray, r: np.ndarray,
     e1, e2 = 1j * e * t1, -e * t1 * t1
     p0 = a[0, 0, p] + complex(x[p, 0], x[p, 1])
     p1, p2 = a[1, 0, p] + w1, a[2, 0, p]
-    f0 = _residual_jet(kinds[0], p0, p1, p2, e, e1, e2, a[0, 0, p], a[1, 0, p], a[2, 0, p],
-                       u[0, 0, p], u[1, 0, p], u[2, 0, p], r[0, 0, p].real, r[1, 0, p].real,
-                       r[2, 0, p].real, b[0, d], g[0, d])
-    f1 = _residual_jet(kinds[1], p0, p1, p2, e, e1, e2, a[0, 1, p], a[1, 1, p], a[2, 1, p],
-                       u[0, 1, p], u[1, 1, p], u[2, 1, p], r[0, 1, p].real, r[1, 1, p].real,
-                       r[2, 1, p].real, b[1, d], g[1, d])
-    f2 = _residual_jet(kinds[2], p0, p1, p2, e, e1, e2, a[0, 2, p], a[1, 2, p], a[2, 2, p],
-                       u[0, 2, p], u[1, 2, p], u[2, 2, p], r[0, 2, p].real, r[1, 2, p].real,
-                       r[2, 2, p].real, b[2, d], g[2, d])
+    f0 = _leash_jet(0, kinds, a, u, r, b, g, p, d, p0, p1, p2, e, e1, e2)
+    f1 = _leash_jet(1, kinds, a, u, r, b, g, p, d, p0, p1, p2, e, e1, e2)
+    f2 = _leash_jet(2, kinds, a, u, r, b, g, p, d, p0, p1, p2, e, e1, e2)
     return solve3(jac[p, 0, 0], jac[p, 0, 1], jac[p, 0, 2], jac[p, 1, 0], jac[p, 1, 1],
                   jac[p, 1, 2], jac[p, 2, 0], jac[p, 2, 1], jac[p, 2, 2],
                   -f0[part], -f1[part], -f2[part])

@@ -213,3 +213,25 @@ def test_numba_loads_for_a_large_grid_only() -> None:
                           text=True, check=True, timeout=300,
                           env=dict(os.environ, PYTHONPATH=str(root)))
     assert done.stdout.strip().splitlines()[-2:] == ["False", "True"]
+
+
+def test_the_kernels_compile_where_no_cache_directory_is_writable() -> None:
+    """With every cache directory refused (as numba finds it when neither the package's
+    folder nor the user's cache can be written), the kernels still compile and run."""
+    script = ("import numpy as np\n"
+              "from numba.core import caching\n"
+              "def refuse(self):\n"
+              "    raise OSError('read-only')\n"
+              "caching._CacheLocator.ensure_cache_path = refuse\n"
+              "from assur.kinematics.higher import compiled\n"
+              "t = np.array([0.0, 1.0])\n"
+              "x = np.array([[1.0, 2.0], [3.0, 4.0]])\n"
+              "out = compiled.predict(t, x, x, x, np.array([1]), np.array([1.5]), 1.0)\n"
+              "print(out.tolist())\n")
+    root = Path(__file__).resolve().parents[2]
+    done = subprocess.run([sys.executable, "-c", script], cwd=root, capture_output=True,
+                          text=True, check=False, timeout=300,
+                          env=dict(os.environ, PYTHONPATH=str(root)))
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip().splitlines()[-1] == str([[3.0 + 0.5 * 3.0 + 0.125 * 3.0,
+                                                          4.0 + 0.5 * 4.0 + 0.125 * 4.0]])

@@ -24,8 +24,12 @@ F = TypeVar("F", bound=Callable[..., Any])
 
 def kernel(f: F) -> F:
     """``f`` compiled for the CPU and cached on disk; floating-point errors give inf and NaN
-    as in numpy, never an exception."""
-    return cast(F, numba.njit(cache=True, nogil=True, error_model="numpy")(f))
+    as in numpy, never an exception. Where no cache directory is writable (neither next to
+    the module nor the user's), it is compiled anew in each process instead."""
+    try:
+        return cast(F, numba.njit(cache=True, nogil=True, error_model="numpy")(f))
+    except RuntimeError:  # numba found no cache directory it can write
+        return cast(F, numba.njit(nogil=True, error_model="numpy")(f))
 
 
 def inline(f: F) -> F:

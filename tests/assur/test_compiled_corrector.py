@@ -235,3 +235,31 @@ def test_the_kernels_compile_where_no_cache_directory_is_writable() -> None:
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip().splitlines()[-1] == str([[3.0 + 0.5 * 3.0 + 0.125 * 3.0,
                                                           4.0 + 0.5 * 4.0 + 0.125 * 4.0]])
+
+
+@pytest.mark.parametrize("kinds", [("RR", "RR", "RR"), ("RR", "RP", "PR"), ("RP", "PR", "RP")],
+                         ids="-".join)
+def test_the_compiled_corrector_decides_alike_at_every_scale(kinds: tuple[str, ...]) -> None:
+    """The drawing, the inputs and the predictor scaled from 1e-3 to 1e4 mm: the acceptance
+    tests are dimensionless, so the same positions pass at every scale, and the poses scale
+    with the drawing (to 1e-12 of its size) — no overflow or loss in the squared
+    separation test or the margin."""
+    triad, k, guess = _case(kinds, 5)
+    sign = _sign(triad, k)
+    x, _, margin, ok = compiled.correct(triad, k, guess, sign, continuation.ITERATIONS,
+                                        continuation.CONVERGED)
+    assert 0.2 < ok.mean() < 1.0
+    size = triad.size[:, None]
+    for scale in (1e-3, 1e-1, 1e2, 1e4):
+        scaled = Triad(kinds, tuple(b * scale for b in triad.base),  # type: ignore[arg-type]
+                       tuple(e * scale for e in triad.external),  # type: ignore[arg-type]
+                       triad.guide)
+        inputs = TriadInputs(tuple(a * scale for a in k.a), k.u)  # type: ignore[arg-type]
+        start = guess * np.array([scale, scale, 1.0])
+        xs, _, margins, oks = compiled.correct(scaled, inputs, start, sign,
+                                               continuation.ITERATIONS, continuation.CONVERGED)
+        assert np.array_equal(oks, ok)
+        assert np.allclose(xs[ok, :2] / scale / size[ok], x[ok, :2] / size[ok], rtol=0.0,
+                           atol=1e-12)
+        assert np.allclose(xs[ok, 2], x[ok, 2], rtol=0.0, atol=1e-12)
+        assert np.allclose(margins[ok], margin[ok], rtol=1e-12, atol=1e-15)

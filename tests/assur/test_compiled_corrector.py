@@ -160,12 +160,12 @@ def test_the_compiled_analogs_are_the_derivatives_of_the_poses(kinds: tuple[str,
                   for r, t in zip(lengths, stretch))
         return TriadInputs(a, u, r)  # type: ignore[arg-type]
 
-    jets = TriadInputs(
-        tuple(Jet(a, s, c) for a, s, c in zip(k.a, slope, bend)),  # type: ignore[arg-type]
-        tuple(None if v is None else Jet(v, 1j * omega * v, -omega * omega * v)
-              for v in k.u),  # type: ignore[arg-type]
-        tuple(None if t is None else Jet(r, t[0], t[1])
-              for r, t in zip(lengths, stretch)))  # type: ignore[arg-type]
+    points = tuple(Jet(plain(a), s, c) for a, s, c in zip(k.a, slope, bend))
+    guides = tuple(None if v is None else Jet(plain(v), 1j * omega * plain(v),
+                                              -omega * omega * plain(v)) for v in k.u)
+    bars = tuple(None if t is None else Jet(plain(r), t[0], t[1])
+                 for r, t in zip(lengths, stretch))
+    jets = TriadInputs(points, guides, bars)  # type: ignore[arg-type]
     x1, x2 = compiled.analogs(triad, jets, x, jac)
     n1, n2 = continuation.analogs(triad, jets, x, jac)
     assert np.allclose(x1[ok], n1[ok], rtol=1e-12, atol=1e-12 * np.abs(n1[ok]).max())
@@ -192,6 +192,14 @@ def test_the_compiled_predictor_is_the_taylor_polynomial_of_the_nearest_state() 
         assert np.allclose(found, expected, rtol=1e-15, atol=1e-15)
 
 
+def _python(script: str) -> subprocess.CompletedProcess[str]:
+    """``script`` run by a fresh interpreter on this tree (what it imports, it loads anew)."""
+    root = Path(__file__).resolve().parents[2]
+    return subprocess.run([sys.executable, "-c", script], cwd=root, capture_output=True,
+                          text=True, check=False, timeout=300,
+                          env=dict(os.environ, PYTHONPATH=str(root)))
+
+
 def test_numba_loads_for_a_large_grid_only() -> None:
     """One design of a triad mechanism over 360 angles (followed by the path of its root)
     and 200 designs at 36 angles (by steps, 7,400 positions) are corrected by numpy: numba is
@@ -208,10 +216,8 @@ def test_numba_loads_for_a_large_grid_only() -> None:
               "print('numba' in sys.modules)\n"
               "analyse(many, assur.input_grid(model, 360))\n"
               "print('numba' in sys.modules)\n")
-    root = Path(__file__).resolve().parents[2]
-    done = subprocess.run([sys.executable, "-c", script], cwd=root, capture_output=True,
-                          text=True, check=True, timeout=300,
-                          env=dict(os.environ, PYTHONPATH=str(root)))
+    done = _python(script)
+    assert done.returncode == 0, done.stderr
     assert done.stdout.strip().splitlines()[-2:] == ["False", "True"]
 
 
@@ -228,10 +234,7 @@ def test_the_kernels_compile_where_no_cache_directory_is_writable() -> None:
               "x = np.array([[1.0, 2.0], [3.0, 4.0]])\n"
               "out = compiled.predict(t, x, x, x, np.array([1]), np.array([1.5]), 1.0)\n"
               "print(out.tolist())\n")
-    root = Path(__file__).resolve().parents[2]
-    done = subprocess.run([sys.executable, "-c", script], cwd=root, capture_output=True,
-                          text=True, check=False, timeout=300,
-                          env=dict(os.environ, PYTHONPATH=str(root)))
+    done = _python(script)
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip().splitlines()[-1] == str([[3.0 + 0.5 * 3.0 + 0.125 * 3.0,
                                                           4.0 + 0.5 * 4.0 + 0.125 * 4.0]])

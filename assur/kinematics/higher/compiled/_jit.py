@@ -1,8 +1,8 @@
 """What the kernels share: how they are compiled, the scalar steps of more than one, and
 how their arguments are laid out.
 
-Every function here but :func:`columns`, :func:`per_design` and :func:`design` is compiled by numba; importing this module imports
-numba.
+Every function here but :func:`per_position`, :func:`per_design` and :func:`design` is
+compiled by numba; importing this module imports numba.
 """
 
 from __future__ import annotations
@@ -16,8 +16,8 @@ import numpy as np
 
 from assur.kinematics.higher.groups import plain
 
-__all__ = ["blank", "close", "columns", "cross", "design", "det2", "det3", "dot", "inline", "kernel",
-           "over", "per_design", "predict", "solve2", "solve3", "square"]
+__all__ = ["blank", "close", "cross", "design", "det2", "det3", "dot", "inline", "kernel",
+           "over", "per_design", "per_position", "predict", "solve2", "solve3", "square"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -45,13 +45,13 @@ def blank(p: int, x: np.ndarray, jac: np.ndarray, margin: np.ndarray, ok: np.nda
     margin[p], ok[p] = math.nan, False
 
 
-def columns(values: tuple[Any, ...], shape: tuple[int, ...], dtype: type) -> np.ndarray:
-    """Values (None for 0), broadcast to ``shape`` and laid flat, as columns (N, len(values))."""
-    out: np.ndarray = np.zeros((int(np.prod(shape)), len(values)), dtype=dtype)
+def per_position(values: tuple[Any, ...], shape: tuple[int, ...], dtype: type) -> np.ndarray:
+    """Values (None for 0) at the positions of ``shape``, laid flat, one row each:
+    shape (len(values), P)."""
+    out: np.ndarray = np.empty((len(values),) + shape, dtype=dtype)
     for i, v in enumerate(values):
-        if v is not None:
-            out[:, i] = np.broadcast_to(plain(v), shape).reshape(-1)
-    return out
+        out[i] = 0.0 if v is None else plain(v)
+    return out.reshape(len(values), -1)
 
 
 def per_design(values: tuple[Any, ...], shape: tuple[int, ...], dtype: type) -> np.ndarray:

@@ -25,13 +25,13 @@ from assur.kinematics import jets as J
 from assur.kinematics.higher.compiled._jit import (
     blank,
     close,
-    columns,
     cross,
     design,
     det2,
     inline,
     kernel,
     per_design,
+    per_position,
     solve2,
     square,
 )
@@ -91,17 +91,17 @@ def _fit(kinds: np.ndarray, sa: bool, sc: bool, unit: np.ndarray, half: np.ndarr
     (:meth:`ClassIVCoupled._matrices`): scale_j·F̂_j at y_a, y_c ∈ ``coupled.SAMPLES``
     (e^{iy} ``unit``, e^{iy/2} ``half``) into ``values``, then FROM·values_j·FROMᵀ
     (``coupled.FROM_SAMPLES``: F(0), 2F(π/2) − F(0) − F(π), F(π) along each axis)."""
-    links_c = (_link(sc, unit[0], half[0], h[p, 1], u[p, 1], drawn[1, d], size),
-               _link(sc, unit[1], half[1], h[p, 1], u[p, 1], drawn[1, d], size),
-               _link(sc, unit[2], half[2], h[p, 1], u[p, 1], drawn[1, d], size))
-    scales = (0.5 / length[p, 0] if kinds[0] == _RR else size if kinds[0] == _PP else 1.0,
-              0.5 / length[p, 1] if kinds[1] == _RR else size if kinds[1] == _PP else 1.0)
+    links_c = (_link(sc, unit[0], half[0], h[1, p], u[1, p], drawn[1, d], size),
+               _link(sc, unit[1], half[1], h[1, p], u[1, p], drawn[1, d], size),
+               _link(sc, unit[2], half[2], h[1, p], u[1, p], drawn[1, d], size))
+    scales = (0.5 / length[0, p] if kinds[0] == _RR else size if kinds[0] == _PP else 1.0,
+              0.5 / length[1, p] if kinds[1] == _RR else size if kinds[1] == _PP else 1.0)
     for ia in range(3):
-        a = _link(sa, unit[ia], half[ia], h[p, 0], u[p, 0], drawn[0, d], size)
+        a = _link(sa, unit[ia], half[ia], h[0, p], u[0, p], drawn[0, d], size)
         for ic in range(3):
             for j in range(2):
                 values[j, ia, ic] = scales[j] * _loop(
-                    kinds[j], a, links_c[ic], arm[2 * j, d], arm[2 * j + 1, d], length[p, j],
+                    kinds[j], a, links_c[ic], arm[2 * j, d], arm[2 * j + 1, d], length[j, p],
                     guide[2 * j, d], guide[2 * j + 1, d], side[j, d])
     for j in range(2):
         for ia in range(3):  # rows: FROM·values_j
@@ -311,7 +311,7 @@ def _correct_kernel(kinds: np.ndarray, slides: np.ndarray, eliminated: int,
                     ok: np.ndarray) -> None:
     """Every position of the flat arrays where ``mask`` corrected and tested
     (:func:`correct_coupled`), the others NaN and failed. ``h``, ``u``, ``length`` hold the
-    inputs per position (P, 2), ``sign`` (P,); ``drawn``, ``arm``, ``guide``, ``side``,
+    inputs per position (2, P), ``sign`` (P,); ``drawn``, ``arm``, ``guide``, ``side``,
     ``radius`` the drawing per design as rows (n, D), ``size`` (D,), the design of position p
     being p mod D (the positions' last axis). With both links hinged M is written in closed
     form (:func:`_hinged`), with a sliding link fitted (:func:`_fit`)."""
@@ -333,8 +333,8 @@ def _correct_kernel(kinds: np.ndarray, slides: np.ndarray, eliminated: int,
                  d, values, m)
         else:
             for j in range(2):
-                _hinged(kinds[j], h[p, 0] - h[p, 1], arm[2 * j, d], arm[2 * j + 1, d],
-                        length[p, j], guide[2 * j, d], guide[2 * j + 1, d], side[j, d],
+                _hinged(kinds[j], h[0, p] - h[1, p], arm[2 * j, d], arm[2 * j + 1, d],
+                        length[j, p], guide[2 * j, d], guide[2 * j + 1, d], side[j, d],
                         size[d], m, j)
         ya, yc = guess[p, 0], guess[p, 1]
         step = math.inf
@@ -385,15 +385,16 @@ def correct_coupled(group: ClassIVCoupled, k: ClassIVInputs, guess: np.ndarray,
         np.array([_CODES[kind] for kind in group.kinds], dtype=np.int64),
         np.array(group.slides, dtype=np.int64), group.eliminated, group.linear_kept,
         deflations, degree, _UNITS, _HALF_UNITS, iterations, converged,
-        columns((k.h_a, k.h_c), shape, complex), columns((k.u_a, k.u_c), shape, complex),
-        columns((group.coupler_length(0, k), group.coupler_length(1, k)), shape, float),
+        per_position((k.h_a, k.h_c), shape, complex),
+        per_position((k.u_a, k.u_c), shape, complex),
+        per_position((group.coupler_length(0, k), group.coupler_length(1, k)), shape, float),
         per_design((group.u_a, group.u_c), shape, complex),
         per_design((arm_c, arm_d, arm_f, arm_e), shape, complex),
         per_design((group.w_c, group.w_d, group.w_f, group.w_e), shape, complex),
         per_design((np.asarray(group.c) - group.d, np.asarray(group.f) - group.e), shape,
                    complex),
         design(group.size, shape).astype(float), per_design(group.radii, shape, float),
-        columns((sign,), shape, float)[:, 0],
+        per_position((sign,), shape, float)[0],
         np.ascontiguousarray(guess, dtype=float).reshape(count, 2), wanted.reshape(-1),
         x, jac, margin, ok)
     return (x.reshape(shape + (2,)), jac.reshape(shape + (2, 2)), margin.reshape(shape),

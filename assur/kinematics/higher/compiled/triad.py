@@ -27,10 +27,11 @@ from assur.kinematics.higher.compiled._jit import (
     kernel,
     over,
     per_design,
+    per_position,
     solve3,
     square,
 )
-from assur.kinematics.higher.groups import Leash, Triad, TriadInputs, plain
+from assur.kinematics.higher.groups import Leash, Triad, TriadInputs
 from assur.kinematics.jets import Jet
 
 __all__ = ["analogs_triad", "correct_triad"]
@@ -273,15 +274,6 @@ def _analogs_kernel(kinds: np.ndarray, a: np.ndarray, u: np.ndarray, r: np.ndarr
                                                           complex(v0, v1), v2, 1)
 
 
-def _per_position(values: tuple[Any, ...], shape: tuple[int, ...], dtype: type
-                  ) -> np.ndarray:
-    """Three inputs (None for 0) at the positions of ``shape``, laid flat: shape (3, P)."""
-    out: np.ndarray = np.empty((3,) + shape, dtype=dtype)
-    for i, v in enumerate(values):
-        out[i] = 0.0 if v is None else plain(v)
-    return out.reshape(3, -1)
-
-
 def _jets(values: tuple[Any, ...], shape: tuple[int, ...]) -> np.ndarray:
     """Three inputs (None for 0; a jet or a plain value): their value and both derivatives
     at the positions of ``shape``, laid flat, shape (3 parts, 3 inputs, P)."""
@@ -313,8 +305,8 @@ def correct_triad(group: Triad, k: TriadInputs, guess: np.ndarray, sign: np.ndar
     margin, ok = np.empty(count), np.empty(count, dtype=bool)
     _correct_kernel(
         _codes(group), group.degree, iterations, converged,
-        _per_position(k.a, shape, complex), _per_position(k.u, shape, complex),
-        _per_position(lengths, shape, float), per_design(group.offsets, shape, complex),
+        per_position(k.a, shape, complex), per_position(k.u, shape, complex),
+        per_position(lengths, shape, float), per_design(group.offsets, shape, complex),
         per_design(group.guide, shape, complex), design(group.size, shape).astype(float),
         design(sign, shape).astype(float),
         np.ascontiguousarray(guess, dtype=float).reshape(count, 3), wanted.reshape(-1),

@@ -44,6 +44,8 @@ import assur.kinematics.analysis
 from assur import KinematicModel, Motion, TableError
 from assur.errors import Issue
 from assur.kinematics.analysis import analyse
+from assur.kinematics.higher import compiled
+from assur.kinematics.higher.continuation import KERNEL_POSITIONS
 from assur.text import Message
 from assur.typing import ComplexArray, FloatArray, Value
 from synthesis import criteria as C
@@ -133,6 +135,21 @@ class Evaluator:
         self.lower = problem.lower
         self.upper = problem.upper
         self._check_pressure_angles()
+
+    def prepare(self, trials: int) -> bool:
+        """Load the compiled corrector of the higher groups before ``trials`` designs are
+        evaluated in this process, where the mechanism has a triad or a class IV group and
+        the trials' positions (the grid and the control angles of each) reach
+        ``KERNEL_POSITIONS``, as many as one analysis that would load it itself. Loaded
+        first (:func:`assur.kinematics.higher.compiled.load`, about 0.4 s once), it
+        corrects the batches of the search too, each of them too small to pay for the
+        loading alone. Returns whether it loaded.
+        """
+        higher = any(group.kind in ("III", "IV") for group in self.problem.model.groups)
+        if not higher or trials * self.positions.size < KERNEL_POSITIONS:
+            return False
+        compiled.load()
+        return True
 
     def _check_pressure_angles(self) -> None:
         """Pressure angles exist only for L1/L2 groups with a two-hinge rod

@@ -202,6 +202,8 @@ def synthesize(problem: Problem, settings: SearchSettings | None = None, *,
         restarts=_given(restarts, base.restarts),
         time_limit=_given(time_limit, base.time_limit), progress=_given(progress, base.progress))
     evaluator = Evaluator(problem)
+    if scheduler is None:  # the batches are analysed in this process
+        evaluator.prepare(settings.round_trials)
     if scheduler is None or isinstance(scheduler, str):
         with executor_for(scheduler) as executor:
             result = search(evaluator, problem.lower, problem.upper, problem.initial,

@@ -209,9 +209,17 @@ evaluation); got 0
         >>> SearchSettings(budget_log2=7, shrink_passes=3, restarts=3).planned
         897
         """
-        per_round = 2 ** self.budget_log2 + self.shrink_passes * 2 ** max(self.budget_log2 - 2,
-                                                                           4)
-        return int(1 + (1 + self.restarts) * per_round)
+        return int(1 + (1 + self.restarts) * self.round_trials)
+
+    @property
+    def round_trials(self) -> int:
+        """The trials of the passive passes of one round: 2**budget_log2 and, in each
+        shrinking pass, a quarter of that (at least 16).
+
+        >>> SearchSettings(budget_log2=7, shrink_passes=3).round_trials
+        224
+        """
+        return int(2 ** self.budget_log2 + self.shrink_passes * 2 ** max(self.budget_log2 - 2, 4))
 
     @property
     def evaluations(self) -> int:

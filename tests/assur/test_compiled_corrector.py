@@ -266,3 +266,35 @@ def test_the_compiled_corrector_decides_alike_at_every_scale(kinds: tuple[str, .
                            atol=1e-12)
         assert np.allclose(xs[ok, 2], x[ok, 2], rtol=0.0, atol=1e-12)
         assert np.allclose(margins[ok], margin[ok], rtol=1e-12, atol=1e-15)
+
+
+def test_loaded_on_purpose_the_kernels_correct_a_small_analysis_alike() -> None:
+    """Before ``compiled.load()`` one design of the class IV group over 36 angles (followed by
+    steps, 36 positions) is corrected by numpy and numba is not loaded; after it, the same
+    analysis is corrected by the kernels, and every joint is where numpy put it (1e-9 mm)."""
+    script = ("import sys, numpy as np, assur\n"
+              "from assur.kinematics.analysis import analyse\n"
+              "from assur.kinematics.higher import compiled\n"
+              "calls = []\n"
+              "real = compiled.correct\n"
+              "def spy(*args, **kwargs):\n"
+              "    calls.append(1)\n"
+              "    return real(*args, **kwargs)\n"
+              "compiled.correct = spy\n"
+              "model = assur.load_model('input_tables/class_iv_group.yaml')\n"
+              "q = assur.input_grid(model, 36)\n"
+              "before = analyse(model, q)\n"
+              "print('numba' in sys.modules, len(calls))\n"
+              "compiled.load()\n"
+              "after = analyse(model, q)\n"
+              "print('numba' in sys.modules, len(calls) > 0)\n"
+              "gap = max(float(np.nanmax(np.abs(after.joints[p] - before.joints[p])))\n"
+              "          for p in before.joints)\n"
+              "same = all(np.array_equal(np.isnan(after.joints[p]), np.isnan(before.joints[p]))\n"
+              "           for p in before.joints)\n"
+              "print(gap <= 1e-9, same, len(before.joints))\n")
+    done = _python(script)
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.strip().splitlines()[-3:]
+    assert lines[:2] == ["False 0", "True True"]
+    assert lines[2].split()[:2] == ["True", "True"] and int(lines[2].split()[2]) >= 4

@@ -240,3 +240,25 @@ def test_a_fixed_cell_changes_the_sketch_it_names() -> None:
     points = {**_points(chain["geometry"]), "C": 80 + 30.5j}
     phi = np.array([row["phi"] for row in data["control_points"]])
     assert np.abs(analysis.output_control[0] - stroke(points, phi)).max() < 1e-8
+
+
+@pytest.mark.parametrize(("budget", "loads"), [(4, False), (5, True)])
+def test_a_search_large_enough_loads_the_compiled_corrector_first(
+        budget: int, loads: bool, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A search whose passive pass analyses at least ``KERNEL_POSITIONS`` positions loads the
+    kernels before its first batch (here the threshold set to 1,000 positions: 2**5 trials ×
+    (36 grid + 12 control angles) = 1,536 reach it, 2**4 × 48 = 768 do not); a four-bar
+    problem never does, whatever its budget."""
+    import synthesis
+    from synthesis import evaluate
+
+    loaded: list[int] = []
+    monkeypatch.setattr(evaluate.compiled, "load", lambda: loaded.append(1))
+    monkeypatch.setattr(evaluate, "KERNEL_POSITIONS", 1000)
+    problem = synthesis.load_problem(PROBLEM)
+    assert Evaluator(problem).positions.size == 36 + 12
+    synthesis.synthesize(problem, budget=budget, shrink=0, restarts=0, refine=False)
+    assert loaded == ([1] if loads else [])
+    fourbar = synthesis.load_problem(ROOT / "input_tables" / "problems" / "class3_fourbar_path.yaml")
+    assert not Evaluator(fourbar).prepare(2 ** 20)
+    assert loaded == ([1] if loads else [])

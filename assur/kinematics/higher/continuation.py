@@ -89,7 +89,8 @@ MEET_ITERATIONS = 6
 
 #: A pass over at least this many positions (requested angles × designs) corrects by a
 #: compiled kernel where the group has one: about 1.5 µs less per position, once numba and
-#: the cached kernels are loaded (0.5–1 s, once per process), so not for fewer positions.
+#: the cached kernels are loaded (0.5–1 s, once per process), so not for fewer positions,
+#: unless the kernels were loaded on purpose (:func:`~assur.kinematics.higher.compiled.load`).
 KERNEL_POSITIONS = 50_000
 #: Positions corrected at once on a grid (:func:`_correct_at`): few enough that the entries
 #: of their Jacobians stay in a core's cache (on 360,000 positions at once the products of
@@ -203,8 +204,8 @@ def _analogs(group: HigherGroup[K], k: K, x: np.ndarray, jac: np.ndarray, kernel
 def _kernel(group: HigherGroup[K], positions: int) -> bool:
     """Whether a pass over ``positions`` positions corrects by the group's compiled kernel
     (:mod:`~assur.kinematics.higher.compiled`): where it has one and they are at least
-    ``KERNEL_POSITIONS``."""
-    return positions >= KERNEL_POSITIONS and compiled.supports(group)
+    ``KERNEL_POSITIONS``, or the kernels were loaded on purpose (:func:`compiled.load`)."""
+    return (positions >= KERNEL_POSITIONS or compiled.engaged()) and compiled.supports(group)
 
 
 def _correct(group: HigherGroup[K], kv: K, guess: np.ndarray, sign: np.ndarray,

@@ -12,8 +12,10 @@ of the group's own methods.
 :func:`supports` and :func:`has_analogs` tell which groups have kernels without loading
 numba; the kernels' modules import it, and :func:`correct`, :func:`analogs` and
 :func:`predict` import them when first called. The continuation calls them on a pass over a
-large grid only (``continuation.KERNEL_POSITIONS``): a smaller analysis never loads numba.
-The compiled code is cached on disk after the first run.
+large grid (``continuation.KERNEL_POSITIONS``), or on every pass once :func:`load` has been
+called: a program that will analyse many positions in this process (a search) loads them
+first, and a single smaller analysis never loads numba. The compiled code is cached on disk
+after the first run.
 """
 
 from __future__ import annotations
@@ -25,7 +27,29 @@ import numpy as np
 from assur.kinematics.higher.coupled import ClassIVCoupled
 from assur.kinematics.higher.groups import ClassIVInputs, HigherGroup, Triad, TriadInputs
 
-__all__ = ["analogs", "correct", "has_analogs", "predict", "supports"]
+__all__ = ["analogs", "correct", "engaged", "has_analogs", "load", "predict", "supports"]
+
+#: Whether :func:`load` was called in this process.
+_ENGAGED = [False]
+
+
+def load() -> None:
+    """Load numba and the kernels now (compiling them on the first run after installation),
+    and correct every later pass of the continuation by them, however few its positions.
+
+    Loading costs about half a second once per process; once loaded, the compiled
+    corrector follows even one design 2–4 times faster than numpy's (``docs/higher_groups.md``
+    §7). Call it before many analyses of mechanisms with higher groups, as the search does
+    for a large budget.
+    """
+    from assur.kinematics.higher.compiled import coupled, triad  # noqa: F401
+
+    _ENGAGED[0] = True
+
+
+def engaged() -> bool:
+    """Whether :func:`load` was called in this process (every pass then uses the kernels)."""
+    return _ENGAGED[0]
 
 
 def supports(group: HigherGroup[Any]) -> bool:

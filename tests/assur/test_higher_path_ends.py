@@ -76,3 +76,33 @@ def test_a_link_closer_than_the_columns_is_walked(monkeypatch: pytest.MonkeyPatc
     monkeypatch.setattr(continuation, "_step_follow", _forbidden)
     with pytest.raises(AssertionError, match="step by step"):
         follow_mode(designs.group, designs.inputs, PHI, method="roots")
+
+
+def test_the_extremum_between_a_merging_pair_is_where_the_slope_vanishes() -> None:
+    """``_extremum`` from a start 0.1 rad away lands on the zero of Φ′ found by bisection on
+    a sign change of Φ′ written out here (Φ(θ) = Σ φ_n e^{inθ}), to 1e-12 rad, and its local
+    discriminant −Φ·sign Φ″ there is the one computed from that zero."""
+    rng = np.random.default_rng(5)
+    m = 3
+    n = np.arange(-m, m + 1)
+    half = rng.normal(size=(40, m)) + 1j * rng.normal(size=(40, m))
+    coef = np.concatenate([np.conj(half[:, ::-1]), rng.normal(size=(40, 1)), half], axis=1)
+    coef[:, m + 1] += 4.0  # a dominant first harmonic: one maximum and one minimum
+    coef[:, m - 1] += 4.0
+
+    def derivative(k: int, theta: np.ndarray) -> np.ndarray:
+        return np.real(((1j * n) ** k * coef * np.exp(1j * n * theta[:, None])).sum(axis=-1))
+
+    grid = np.linspace(0.0, TWO_PI, 4001)
+    slopes = np.stack([derivative(1, np.full(40, t)) for t in grid], axis=1)
+    first = np.argmax(np.sign(slopes[:, :-1]) != np.sign(slopes[:, 1:]), axis=1)
+    low, high = grid[first], grid[first + 1]
+    for _ in range(60):  # bisection on the sign of Φ′
+        mid = 0.5 * (low + high)
+        same = np.sign(derivative(1, mid)) == np.sign(derivative(1, low))
+        low, high = np.where(same, mid, low), np.where(same, high, mid)
+    zero = 0.5 * (low + high)
+    theta, local = continuation._extremum(coef, zero + rng.choice([-0.1, 0.1], 40))
+    assert np.abs(np.angle(np.exp(1j * (theta - zero)))).max() <= 1e-12
+    expected = -derivative(0, zero) * np.sign(derivative(2, zero))
+    np.testing.assert_allclose(local, expected, rtol=1e-12, atol=1e-12)

@@ -84,8 +84,11 @@ FOLD_DIFFERENCE = 1e-6
 #: A change point is confirmed this far (pass parameter) before and after it: two real roots
 #: of p near the merging pair before, none after (:func:`_meets`).
 MEET = 1e-8
-#: Newton iterations for the extremum of Φ between the merging pair.
+#: Newton iterations for the extremum of Φ between the merging pair, and the step (rad)
+#: after which they stop: the iteration converges quadratically, so the next step would be
+#: of the order of its square, below roundoff (the steps then only jitter by an ulp).
 MEET_ITERATIONS = 6
+MEET_SETTLED = 1e-9
 
 #: A pass over at least this many positions (requested angles × designs) corrects by a
 #: compiled kernel where the group has one: about 1.5 µs less per position, once numba and
@@ -1112,13 +1115,17 @@ def _poses(group: HigherGroup[K], k: K, theta: np.ndarray, sign: np.ndarray
 
 
 def _extremum(coef: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The extremum θ_c of Φ nearest ``theta`` (Newton's method on Φ′, ``MEET_ITERATIONS``
-    steps) and the local discriminant there, −Φ(θ_c)·sign Φ″(θ_c): positive where a pair of
-    real roots lies about θ_c, negative where it has left the unit circle (:func:`_pair`)."""
+    """The extremum θ_c of Φ nearest ``theta`` (Newton's method on Φ′, at most
+    ``MEET_ITERATIONS`` steps, none once every step is at most ``MEET_SETTLED``) and the
+    local discriminant there, −Φ(θ_c)·sign Φ″(θ_c): positive where a pair of real roots lies
+    about θ_c, negative where it has left the unit circle (:func:`_pair`)."""
     with np.errstate(all="ignore"):
         for _ in range(MEET_ITERATIONS):
             _, slope, bend = derivatives(coef, theta)
-            theta = theta - np.where(bend != 0.0, slope / bend, 0.0)
+            step = np.where(bend != 0.0, slope / bend, 0.0)
+            theta = theta - step
+            if not (np.abs(step) > MEET_SETTLED).any():
+                break
         value, _, bend = derivatives(coef, theta)
     return theta, np.asarray(-value * np.sign(bend))
 

@@ -1278,11 +1278,13 @@ def _walk_path(leg: _Leg) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[tupl
     column the walk is through where its root is the path's (closer than half its
     separation bound); else it goes on to the next column. A rejected sub-step where the
     local discriminant (:func:`_extremum`, at the extremum next to the root) has changed
-    sign from the state brackets a change point, located by :func:`_locate` and
-    :func:`_canonical`; the row then ends there once the pose at the double root is where
-    the square-root form of a fold puts it from the state (:meth:`_Leg.fold`; the sub-steps
-    go on towards φ*, at most halfway each), and the pair really meets there: the local
-    discriminant (:func:`_pair`) is +1 at ``MEET`` before φ* and −1 after.
+    sign from the state brackets a change point; the row waits there while the others walk
+    on, and the change points of all the rows waiting are located together, once no row is
+    walking (:func:`_locate` and :func:`_canonical`). A row then ends at its change point once
+    the pose at the double root is where the square-root form of a fold puts it from the
+    state (:meth:`_Leg.fold`; the sub-steps go on towards φ*, at most halfway each), and the
+    pair really meets there: the local discriminant (:func:`_pair`) is +1 at ``MEET`` before
+    φ* and −1 after.
 
     Returns the outcome (``THROUGH``, ``ENDS``, or 0: neither within ``REFINE_TRIALS``
     sub-steps above ``REFINE_MIN``), the last column reached (for ``THROUGH`` the one
@@ -1300,47 +1302,61 @@ def _walk_path(leg: _Leg) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[tupl
     h = np.full(r, 0.5 * np.diff(columns).max())
     passed: list[tuple[np.ndarray, ...]] = []
     active = np.isfinite(here.theta)
+    trials = np.zeros(r, dtype=int)
+    waiting = np.zeros(r, dtype=bool)
+    low = high = (phi, phi, phi)  # the brackets of the rows waiting (φ, θ, D at both ends)
     with np.errstate(all="ignore"):
-        for _ in range(REFINE_TRIALS):
+        while True:
             aim = np.clip(at + s.astype(int), 0, columns.size - 1)
-            active &= aim != at
-            if not active.any():
-                break
-            goal, target = columns[aim], leg.path[rows, aim]
-            rest = np.abs(goal - phi)
-            near = np.isfinite(star)
-            step = np.where(near, np.minimum(h, 0.5 * np.abs(star - phi)), np.minimum(h, rest))
-            hit = ~near & (step >= rest)
-            trial = np.where(active, np.where(hit, goal, phi + s * step), phi)
-            dh = trial - phi
-            new, posed, fresh = leg.root(trial,
-                                         here.theta + dh * here.t1 + 0.5 * dh * dh * here.t2)
-            ok = active & posed & _link(dh, here, new)
-            arrive = ok & hit
-            through = arrive & (chord(new.theta, target) <= 0.5 * new.apart)
-            status[through] = THROUGH
-            on = arrive & ~through
-            passed.append((rows[on], aim[on], new.theta[on]))
-            at = np.where(arrive, aim, at)
-            look = active & ~ok & ~near
-            if look.any():
-                theta_a, value_a = _extremum(coef, here.theta)
-                theta_b, value_b = _extremum(fresh, theta_a)
-                look &= (value_a > 0.0) & (value_b < 0.0)
-            if look.any():
-                found, point = _canonical(leg, *_locate(
-                    leg, (phi, theta_a, value_a), (trial, theta_b, value_b), look))
-                star, top = np.where(look, found, star), np.where(look, point, top)
-            phi, here = np.where(ok, trial, phi), new.where(ok, here)
-            coef = np.where(ok[:, None], fresh, coef)
-            h = np.where(ok, np.where(step < h, h, 2.0 * h), 0.5 * step)
-            into = active & ~through & np.isfinite(star)
+            active &= (aim != at) & ((trials < REFINE_TRIALS) | waiting)
+            walking = active & ~waiting
+            if not walking.any():
+                if not (active & waiting).any():
+                    break
+                found, point = _canonical(leg, *_locate(leg, low, high, active & waiting))
+                star, top = np.where(waiting, found, star), np.where(waiting, point, top)
+                moved, waiting = waiting, np.zeros(r, dtype=bool)
+            else:
+                trials += walking
+                goal, target = columns[aim], leg.path[rows, aim]
+                rest = np.abs(goal - phi)
+                near = np.isfinite(star)
+                step = np.where(near, np.minimum(h, 0.5 * np.abs(star - phi)),
+                                np.minimum(h, rest))
+                hit = ~near & (step >= rest)
+                trial = np.where(walking, np.where(hit, goal, phi + s * step), phi)
+                dh = trial - phi
+                new, posed, fresh = leg.root(trial,
+                                             here.theta + dh * here.t1 + 0.5 * dh * dh * here.t2)
+                ok = walking & posed & _link(dh, here, new)
+                arrive = ok & hit
+                through = arrive & (chord(new.theta, target) <= 0.5 * new.apart)
+                status[through] = THROUGH
+                on = arrive & ~through
+                passed.append((rows[on], aim[on], new.theta[on]))
+                at = np.where(arrive, aim, at)
+                look = walking & ~ok & ~near
+                if look.any():
+                    theta_a, value_a = _extremum(coef, here.theta)
+                    theta_b, value_b = _extremum(fresh, theta_a)
+                    look &= (value_a > 0.0) & (value_b < 0.0)
+                    low = tuple(np.where(look, v, w) for v, w in
+                                zip((phi, theta_a, value_a), low, strict=True))
+                    high = tuple(np.where(look, v, w) for v, w in
+                                 zip((trial, theta_b, value_b), high, strict=True))
+                    waiting |= look
+                phi, here = np.where(ok, trial, phi), new.where(ok, here)
+                coef = np.where(ok[:, None], fresh, coef)
+                h = np.where(ok, np.where(step < h, h, 2.0 * h), np.where(walking, 0.5 * step, h))
+                moved = walking & ~through
+                active &= ~through
+            into = active & moved & ~waiting & np.isfinite(star)
             if into.any():
                 into &= leg.fold(star, top, phi, here)
                 into &= _pair(leg.group, values(leg.inputs(star - s * MEET)), top) > 0
                 into &= _pair(leg.group, values(leg.inputs(star + s * MEET)), top) < 0
                 status[into] = ENDS
-            active &= ~through & ~into & (h >= REFINE_MIN)
+            active &= ~into & ((h >= REFINE_MIN) | waiting)
     return status, at, np.where(status == ENDS, star, np.nan), passed
 
 

@@ -404,9 +404,25 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
     if state is not None:
         h, margin, falling, tried = (np.array(np.broadcast_to(v, shape)) for v in state)
     done = ~active
+    # rows whose mode may be ending wait, unmoved, for their change points to be solved
+    # together: the nearest rejected step beyond each, and whether a smaller step was taken
+    waiting, beyond, taken_before = (np.zeros(shape, bool), np.full(shape, np.nan),
+                                     np.zeros(shape, bool))
     while not done.all():
         moving = ~done
-        small = _take(group, moving) if 4 * moving.sum() <= moving.size else None
+        few = 4 * moving.sum() <= moving.size
+        if waiting.any() and (few or not (moving & ~waiting).any()):
+            fold, stop = _ending_at(group, inputs, s, here, beyond, goal, waiting)
+            here = fold.where(stop, here)
+            if log is not None:
+                log.append((here, stop))
+            end = np.where(stop, here.t, end)
+            why = np.where(stop, Reason.MODE_ENDS, why).astype(np.int8)
+            done = done | stop | _stuck(group, inputs, s, here, waiting & ~stop & ~taken_before
+                                        & (h < H_MIN), end, why)
+            waiting = np.zeros(shape, bool)
+            continue
+        small = _take(group, moving) if few else None
         if small is not None:
             part: list[tuple[_Point, np.ndarray]] | None = [] if log is not None else None
             last, stop, code = _walk(
@@ -421,6 +437,7 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
             here = _widen(here, last, moving)
             end[moving], why[moving] = stop, code
             break
+        moving &= ~waiting
         hs = np.where(moving, np.minimum(h, goal - here.t), 0.0)
         trial = hs * halves
         k = inputs(Jet(s * (here.t + trial), 1.0, 0.0))
@@ -436,41 +453,41 @@ def _walk(group: HigherGroup[K], inputs: Inputs[K], s: float, start: _Point, goa
             now = _pick(margins, first)
         step = _pick(trial, first)
         hit = taken & (first == 0) & (hs >= goal - here.t)
-        # the nearest rejected step beyond the new state
-        beyond = here.t + np.where(taken, _pick(trial, np.maximum(first - 1, 0)),
-                                   trial[-1])
         moved = _Point(np.where(hit, goal, here.t + step), _pick(xn, first), _pick(n1, first),
                        _pick(n2, first))
         here = moved.where(taken, here)
-        h = np.where(taken, np.minimum(2.0 * np.where(first == 0, h, step), H_MAX),
-                     hs * 0.5 ** count)
+        h = np.where(moving, np.where(taken, np.minimum(2.0 * np.where(first == 0, h, step),
+                                                        H_MAX), hs * 0.5 ** count), h)
         if log is not None:
             log.append((here, taken))
         falling = np.where(taken, now < margin, falling)
         margin = np.where(taken, now, margin)
         tried &= ~taken
         ending = moving & ~hit & (~taken | (first > 0)) & falling & ~tried
-        if ending.any():
-            tried |= ending
-            fold, stop = _ending_at(group, inputs, s, here, beyond, goal, ending)
-            here = fold.where(stop, here)
-            if log is not None:
-                log.append((here, stop))
-            end = np.where(stop, here.t, end)
-            why = np.where(stop, Reason.MODE_ENDS, why).astype(np.int8)
-            done = done | stop
-        stuck = moving & ~done & ~taken & (h < H_MIN)
-        if stuck.any():
-            kv = values(inputs(s * here.t))
-            with np.errstate(all="ignore"):
-                margin_here = group.margin(here.x, kv)
-            code = np.where(~finite_inputs(kv), Reason.UNDEFINED_INPUT,
-                            np.where(margin_here <= CHANGE, Reason.MODE_ENDS,
-                                     Reason.NOT_FOLLOWED))
-            end = np.where(stuck, here.t, end)
-            why = np.where(stuck, code, why).astype(np.int8)
-        done = done | stuck | hit
+        tried |= ending
+        waiting |= ending
+        # the nearest rejected step beyond the new state
+        beyond = np.where(ending, here.t + np.where(taken, _pick(trial, np.maximum(first - 1, 0)),
+                                                    trial[-1]), beyond)
+        taken_before = np.where(ending, taken, taken_before)
+        done = done | hit | _stuck(group, inputs, s, here,
+                                   moving & ~ending & ~taken & (h < H_MIN), end, why)
     return here, end, why
+
+
+def _stuck(group: HigherGroup[K], inputs: Inputs[K], s: float, here: _Point,
+           stuck: np.ndarray, end: np.ndarray, why: np.ndarray) -> np.ndarray:
+    """Stop the rows ``stuck`` (a step below ``H_MIN`` rejected) at their states: the pass
+    parameter into ``end`` and the reason into ``why`` (in place): an input not finite, the
+    mode ending (margin at most ``CHANGE``) or not followed. Returns ``stuck``."""
+    if stuck.any():
+        kv = values(inputs(s * here.t))
+        with np.errstate(all="ignore"):
+            margin_here = group.margin(here.x, kv)
+        code = np.where(~finite_inputs(kv), Reason.UNDEFINED_INPUT,
+                        np.where(margin_here <= CHANGE, Reason.MODE_ENDS, Reason.NOT_FOLLOWED))
+        end[stuck], why[stuck] = here.t[stuck], code[stuck]
+    return stuck
 
 
 def _local(inputs: Inputs[K], rows: np.ndarray) -> Inputs[K]:

@@ -26,10 +26,12 @@ from assur.kinematics.higher.groups import (
     HigherGroup,
     K,
     Triad,
+    cofactors,
     det_rows,
     expand,
     hadamard,
     plain,
+    stack_last,
     values,
 )
 from assur.kinematics.higher.modes import (
@@ -38,10 +40,10 @@ from assur.kinematics.higher.modes import (
     AssemblyModes,
     assembly_modes,
     coefficients,
+    cramer,
     newton,
     roots,
     select_mode,
-    solve,
     weights,
 )
 from assur.kinematics.higher.roots import chord, derivatives
@@ -111,8 +113,7 @@ def _part(v: Any, name: str) -> np.ndarray:
 
 def _stacked(f: list[Any], name: str) -> np.ndarray:
     """The part ``name`` ("v", "d1", "d2") of the residuals ``f``, stacked on a last axis."""
-    parts = [np.asarray(J.value(v)) if name == "v" else _part(v, name) for v in f]
-    return np.stack(np.broadcast_arrays(*parts), axis=-1)
+    return stack_last([np.asarray(J.value(v)) if name == "v" else _part(v, name) for v in f])
 
 
 def analogs(group: HigherGroup[K], k: K, x: np.ndarray, jac: np.ndarray | None = None
@@ -149,11 +150,17 @@ def analogs(group: HigherGroup[K], k: K, x: np.ndarray, jac: np.ndarray | None =
     """
     if jac is None:
         jac = group.jacobian(x, values(k))
-    cols = [Jet(x[..., i], 0.0, 0.0) for i in range(group.n)]
-    x1 = solve(jac, -_stacked(group.residual(cols, k), "d1"))
-    cols = [Jet(x[..., i], x1[..., i], 0.0) for i in range(group.n)]
-    x2 = solve(jac, -_stacked(group.residual(cols, k), "d2"))
-    return x1, x2
+    return _implicit(group, k, x, cofactors(jac))
+
+
+def _implicit(group: HigherGroup[K], k: K, x: np.ndarray,
+              jac: tuple[list[list[np.ndarray]], np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`analogs` from the cofactors and determinants ``jac`` of the Jacobian: ∂F/∂φ
+    with x held (plain), then d²F/dφ² with x′ and x″ = 0, both solved with them."""
+    held = [x[..., i] for i in range(group.n)]
+    x1 = cramer(*jac, -_stacked(group.residual(held, k), "d1"))
+    moving = [Jet(x[..., i], x1[..., i], 0.0) for i in range(group.n)]
+    return x1, cramer(*jac, -_stacked(group.residual(moving, k), "d2"))
 
 
 def separation(group: HigherGroup[K], k: K, x: np.ndarray) -> np.ndarray:
@@ -1101,13 +1108,13 @@ def _poses(group: HigherGroup[K], k: K, theta: np.ndarray, sign: np.ndarray
     det J of the sketch's ``sign``."""
     kv = values(k)
     with np.errstate(all="ignore"):
-        x = expand(group).recover(np.exp(1j * theta)[..., None], expand(kv))[..., 0, :]
+        x = group.recover(np.exp(1j * theta), kv)
         x, _ = newton(group, kv, x, 2)
-        f = group.residuals(x, kv)
-        jac, lines = group.lines(x, kv)
-        x1, x2 = analogs(group, k, x, jac)
+        f, jac, lines = group.assessed(x, kv)
+        factors = cofactors(jac)
+        x1, x2 = _implicit(group, k, x, factors)
         posed = (np.abs(f).max(axis=-1) <= ACCEPT * np.asarray(group.size)) \
-            & (np.sign(det_rows(jac)) == sign)
+            & (np.sign(factors[1]) == sign)
     return x, x1, x2, lines, posed
 
 

@@ -22,9 +22,10 @@ from assur.kinematics.higher.groups import (
     expand,
     hadamard,
     plain,
+    stack_last,
 )
 
-__all__ = ["AssemblyModes", "assembly_modes", "coefficients", "newton", "select_mode"]
+__all__ = ["AssemblyModes", "assembly_modes", "coefficients", "cramer", "newton", "select_mode"]
 
 #: Roots with |ln|E|| up to this are candidates for real modes.
 TAU = 1e-6
@@ -90,11 +91,25 @@ def roots(coef: np.ndarray) -> np.ndarray:
 
 def solve(jac: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     """x with jac·x = rhs (stacked 2×2 or 3×3) by Cramer's rule; NaN if singular, no error."""
-    cof, det = cofactors(jac)
+    return cramer(*cofactors(jac), rhs)
+
+
+def cramer(cof: list[list[np.ndarray]], det: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """x with J·x = rhs from the cofactors C[i][j] and determinants of J
+    (:func:`~assur.kinematics.higher.groups.cofactors`): x_j = Σ_i C_ij·rhs_i / det J; NaN
+    where J is singular, no error. Several right-hand sides share one factorisation.
+
+    Examples
+    --------
+    >>> from assur.kinematics.higher.groups import cofactors
+    >>> jac = np.array([[2.0, 1.0], [1.0, 3.0]])
+    >>> cramer(*cofactors(jac), np.array([3.0, 4.0])).tolist()
+    [1.0, 1.0]
+    """
     n = len(cof)
+    parts = [rhs[..., i] for i in range(n)]
     with np.errstate(all="ignore"):
-        return np.stack([sum(cof[i][j] * rhs[..., i] for i in range(n)) / det
-                         for j in range(n)], axis=-1)
+        return stack_last([sum(cof[i][j] * parts[i] for i in range(n)) / det for j in range(n)])
 
 
 def weights(group: HigherGroup[K]) -> np.ndarray:

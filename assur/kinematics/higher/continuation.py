@@ -1406,17 +1406,21 @@ def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
     forward stretch (from φ = 0) and backward stretch (from 2π down) both end at located
     change points (the angles between not reached, reason 8); the other designs are
     followed step by step (:func:`_step_follow`). ``sketch`` holds the sketched mode x0
-    (D, n) and the inputs there."""
-    x0, k0 = sketch
+    (D, n) and the inputs there (its sign of det J is read off ``modes``)."""
+    x0 = sketch[0]
     d = x0.shape[0]
     e = group.eliminated
     columns = grid(np.mod(phi, TWO_PI))
     at = np.broadcast_to(np.append(columns, TWO_PI)[:, None], (columns.size + 1, d))
     k = inputs(Jet(at, 1.0, 0.0))
-    paths = chains(group, values(k), columns, x0[:, e], found)
+    kv = values(k)
+    paths = chains(group, kv, columns, x0[:, e], found)
     if not paths.bracketed.any():  # see the walks below: every design goes to the steps
         return _step_follow(group, inputs, phi, x0, found, modes, jets, delta)
-    sign = np.broadcast_to(np.sign(det_rows(group.jacobian(x0, k0))), (d,))
+    # the sign of det J of the sketched mode: that of the mode x0 is (NaN where none is)
+    mode = (modes.x.reshape(d, -1, group.n) == x0[:, None, :]).all(axis=-1)
+    sign = np.where(mode.any(axis=-1),
+                    np.where(mode, modes.det_sign.reshape(d, -1), 0.0).sum(axis=-1), np.nan)
     x, x1, x2, lines, posed = _poses(group, k, paths.theta, sign)
     root = _Root(paths.theta, x1[..., e], x2[..., e], paths.apart, paths.slope, x, x1)
     same = (paths.forward[:-1] & paths.forward[1:]) | (paths.backward[:-1] & paths.backward[1:])
@@ -1441,7 +1445,7 @@ def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
     reached = around | (ended & ((column <= ends_at[:, 0]) | (column > ends_at[:, 1])))
     good = around | ended
     # the inputs at the requested angles: those at their columns
-    wanted = _take(k, np.ones(at.shape, dtype=bool),
+    wanted = _take(k if jets else kv, np.ones(at.shape, dtype=bool),
                    tuple(np.broadcast_arrays(column, np.arange(d))))
     if wanted is None:
         wanted = inputs(Jet(np.broadcast_to(phi[:, None], (phi.size, d)), 1.0, 0.0))

@@ -10,6 +10,7 @@ the joint positions.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -199,30 +200,46 @@ def assembly_modes(group: HigherGroup[K], k: K) -> AssemblyModes:
     with np.errstate(all="ignore"):
         near = np.abs(np.log(np.abs(found))) <= TAU
         x = np.where(near[..., None], wide.recover(found / np.abs(found), kk), np.nan)
-        f = wide.residuals(x, kk)
+        f, jac, rows = wide.assessed(x, kk)
         if not (np.abs(f).max(axis=-1) <= SETTLED * size)[near].all():
             x, _ = newton(wide, kk, x, 3)
-            f = wide.residuals(x, kk)
+            f, jac, rows = wide.assessed(x, kk)
         valid = near & (np.abs(f).max(axis=-1) <= ACCEPT * size)
         names = list(wide.joints(x, kk).items())
         # the joints and the eliminated rotation (as a point at the distance L): a triad
         # whose leashes all slide on the base has the same joints in two modes
         turn = size * np.exp(1j * x[..., group.eliminated])
-        stack = np.stack(np.broadcast_arrays(*(plain(p) for _, p in names), turn), axis=-1)
+        stack = stack_last([plain(p) for _, p in names] + [turn])
         apart = np.abs(stack[..., :, None, :] - stack[..., None, :, :]).max(axis=-1)
         same = (apart <= SAME * size[..., None]) & valid[..., :, None]
-        earlier = np.tril(np.ones(same.shape[-2:], dtype=bool), -1).T
-        valid &= ~(same & earlier).any(axis=-2)
+        valid &= ~(same & _earlier(same.shape[-1])).any(axis=-2)
         theta = np.where(valid, x[..., group.eliminated], np.inf)
-        order = np.argsort(theta, axis=-1)[..., None]
-        valid = np.take_along_axis(valid, order[..., 0], axis=-1)
-        x = np.where(valid[..., None], np.take_along_axis(x, order, axis=-2), np.nan)
-        stack = np.where(valid[..., None], np.take_along_axis(stack, order, axis=-2), NAN)
-        jac, rows = wide.lines(x, kk)
+        # each mode's row in the order of θ, laid flat
+        order = np.argsort(theta, axis=-1)
+        order += np.arange(0, order.size, order.shape[-1]).reshape(order.shape[:-1] + (1,))
+        valid = valid.reshape(-1)[order]
+        x, stack = _sorted(x, order, valid, np.nan), _sorted(stack, order, valid, NAN)
+        jac, rows = _sorted(jac, order, valid, np.nan), _sorted(rows, order, valid, np.nan)
         margin = hadamard(rows)
     return AssemblyModes(x=x, count=valid.sum(axis=-1),
                          joints={name: stack[..., j] for j, (name, _) in enumerate(names)},
                          margin=margin, det_sign=np.sign(det_rows(jac)), roots=found)
+
+
+def _sorted(a: np.ndarray, order: np.ndarray, valid: np.ndarray, empty: complex
+            ) -> np.ndarray:
+    """The rows of ``a`` (..., 2m, …) at the flat row indices ``order`` (..., 2m), ``empty``
+    where not ``valid``."""
+    lead = order.ndim
+    out = np.broadcast_to(a, order.shape + a.shape[lead:]).reshape((-1,) + a.shape[lead:])[order]
+    out[~valid] = empty
+    return np.asarray(out)
+
+
+@functools.cache
+def _earlier(n: int) -> np.ndarray:
+    """[i, j] True where i < j: mode i comes before mode j (n × n)."""
+    return np.asarray(np.tril(np.ones((n, n), dtype=bool), -1).T)
 
 
 def select_mode(group: HigherGroup[K], k: K, modes: AssemblyModes
@@ -265,10 +282,12 @@ def select_mode(group: HigherGroup[K], k: K, modes: AssemblyModes
         rms = np.where(np.isnan(rms), np.inf, rms)
         ranked = np.sort(rms, axis=-1)
         own = np.where(modes.det_sign == sign[..., None], rms, np.inf)
-        best = np.argmin(own, axis=-1)
-        nearest = np.take_along_axis(own, best[..., None], axis=-1)[..., 0]
-        x = np.take_along_axis(modes.x, best[..., None, None], axis=-2)[..., 0, :]
-        margin = np.take_along_axis(modes.margin, best[..., None], axis=-1)[..., 0]
+        # the nearest mode's row, laid flat
+        best = np.argmin(own, axis=-1) + np.arange(0, own.size, own.shape[-1]).reshape(
+            own.shape[:-1])
+        nearest = own.reshape(-1)[best]
+        x = modes.x.reshape(-1, modes.x.shape[-1])[best]
+        margin = modes.margin.reshape(-1)[best]
         found = np.isfinite(nearest) & (nearest == ranked[..., 0]) \
             & (nearest <= 0.5 * ranked[..., 1]) & (margin >= 1e-6)
     return np.where(found[..., None], x, np.nan), found

@@ -48,8 +48,8 @@ _UNIFORM = TWO_PI / BASE * np.arange(BASE)
 class _Column:
     """The real roots at the crank angles of a grid, per design: θ (a first estimate), the sign
     of Φ′ and the bracket of each, shape (..., R), NaN (sign 0) after the last
-    (:class:`~assur.kinematics.higher.roots.RealRoots`); and the coefficients of p,
-    (..., 2m + 1)."""
+    (:class:`~assur.kinematics.higher.roots.RealRoots`, R the most real roots at any of
+    them); and the coefficients of p, (..., 2m + 1)."""
 
     theta: np.ndarray
     slope: np.ndarray
@@ -67,8 +67,9 @@ def _columns(group: HigherGroup[K], k: K, u: int) -> _Column:
     flat = coef.reshape(-1, coef.shape[-1])
     a, b = trig_form(flat)
     found: RealRoots = real_roots(a, b)
-    width = found.theta.shape[-1]
-    theta, slope, low, high = (getattr(found, f).reshape(shape + (width,))
+    # the roots come first in each row: the columns beyond the most at any angle are empty
+    width = max(1, int(np.count_nonzero(found.slope, axis=-1).max(initial=0)))
+    theta, slope, low, high = (getattr(found, f)[:, :width].reshape(shape + (width,))
                                for f in ("theta", "slope", "low", "high"))
     return _Column(theta, slope, low, high, coef)
 

@@ -140,12 +140,14 @@ def _entries(m: np.ndarray) -> list[list[np.ndarray]]:
     return [[m[..., i, j] for j in range(n)] for i in range(n)]
 
 
-def _cofactor(e: list[list[np.ndarray]], i: int, j: int) -> np.ndarray:
-    """C[i][j] of stacked 2×2 or 3×3 matrices of the entries ``e``."""
+def _cofactors(e: list[list[np.ndarray]], rows: int) -> list[list[np.ndarray]]:
+    """The first ``rows`` rows of the cofactors C[i][j] of stacked 2×2 or 3×3 matrices of
+    the entries ``e``."""
     if len(e) == 2:
-        return e[1 - i][1 - j] if i == j else -e[1 - i][1 - j]
-    return np.asarray(e[(i + 1) % 3][(j + 1) % 3] * e[(i + 2) % 3][(j + 2) % 3]
-                      - e[(i + 1) % 3][(j + 2) % 3] * e[(i + 2) % 3][(j + 1) % 3])
+        return [[e[1][1], -e[1][0]], [-e[0][1], e[0][0]]][:rows]
+    return [[e[(i + 1) % 3][(j + 1) % 3] * e[(i + 2) % 3][(j + 2) % 3]
+             - e[(i + 1) % 3][(j + 2) % 3] * e[(i + 2) % 3][(j + 1) % 3]
+             for j in range(3)] for i in range(rows)]
 
 
 def _determinant(e: list[list[np.ndarray]], first: list[np.ndarray]) -> np.ndarray:
@@ -166,14 +168,14 @@ def cofactors(m: np.ndarray) -> tuple[list[list[np.ndarray]], np.ndarray]:
     (7.0, True)
     """
     e = _entries(m)
-    cof = [[_cofactor(e, i, j) for j in range(len(e))] for i in range(len(e))]
+    cof = _cofactors(e, len(e))
     return cof, _determinant(e, cof[0])
 
 
 def det_rows(rows: np.ndarray) -> np.ndarray:
     """Determinants of stacked 2×2 or 3×3 matrices (by the first row's cofactors)."""
     e = _entries(rows)
-    return _determinant(e, [_cofactor(e, 0, j) for j in range(len(e))])
+    return _determinant(e, _cofactors(e, 1)[0])
 
 
 def hadamard(rows: np.ndarray) -> np.ndarray:

@@ -151,7 +151,9 @@ def real_roots(a: np.ndarray, b: np.ndarray) -> RealRoots:
     width = 2 * (m1 - 1)
     good = np.isfinite(a).all(axis=-1) & np.isfinite(b).all(axis=-1)
     cos, sin = _grid(m1)
-    value = np.where(good[:, None], a, 0.0) @ cos + np.where(good[:, None], b, 0.0) @ sin
+    if not good.all():
+        a, b = np.where(good[:, None], a, 0.0), np.where(good[:, None], b, 0.0)
+    value = a @ cos + b @ sin
     above = value >= 0.0
     change = (above[:, :-1] != above[:, 1:]) & good[:, None]
     rank = np.cumsum(change, axis=1, dtype=np.int16) - 1

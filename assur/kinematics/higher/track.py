@@ -49,13 +49,16 @@ class _Column:
     """The real roots at the crank angles of a grid, per design: θ (a first estimate), the sign
     of Φ′ and the bracket of each, shape (..., R), NaN (sign 0) after the last
     (:class:`~assur.kinematics.higher.roots.RealRoots`, R the most real roots at any of
-    them); and the coefficients of p, (..., 2m + 1)."""
+    them); the coefficients of p, (..., 2m + 1), and those of Φ, (..., m + 1) each
+    (:func:`~assur.kinematics.higher.roots.trig_form`)."""
 
     theta: np.ndarray
     slope: np.ndarray
     low: np.ndarray
     high: np.ndarray
     coef: np.ndarray
+    a: np.ndarray
+    b: np.ndarray
 
 
 def _columns(group: HigherGroup[K], k: K, u: int) -> _Column:
@@ -71,7 +74,8 @@ def _columns(group: HigherGroup[K], k: K, u: int) -> _Column:
     width = max(1, int(np.count_nonzero(found.slope, axis=-1).max(initial=0)))
     theta, slope, low, high = (getattr(found, f)[:, :width].reshape(shape + (width,))
                                for f in ("theta", "slope", "low", "high"))
-    return _Column(theta, slope, low, high, coef)
+    return _Column(theta, slope, low, high, coef, a.reshape(shape + a.shape[-1:]),
+                   b.reshape(shape + b.shape[-1:]))
 
 
 def _rows(shape: tuple[int, ...]) -> np.ndarray:
@@ -220,7 +224,7 @@ def chains(group: HigherGroup[K], k: K, columns: np.ndarray, theta0: np.ndarray,
     at = np.append(np.arange(u), 0)[:, None], rows[None, :], np.maximum(index, 0)
 
     coef = col.coef[at[:2]]
-    a, b = trig_form(coef.reshape(-1, coef.shape[-1]))
+    a, b = (v[at[:2]].reshape(-1, v.shape[-1]) for v in (col.a, col.b))
     # a sketched root in no bracket (its neighbour closer than the samples' spacing) is the
     # path's root at φ = 0 and 2π all the same, on neither chain beyond
     seed = found & ~alive

@@ -156,8 +156,11 @@ def real_roots(a: np.ndarray, b: np.ndarray) -> RealRoots:
     value = a @ cos + b @ sin
     above = value >= 0.0
     change = (above[:, :-1] != above[:, 1:]) & good[:, None]
-    rank = np.cumsum(change, axis=1, dtype=np.int16) - 1
-    rows, cols = np.nonzero(change & (rank < width))
+    # the rank of each sign change in its row: a running count over all rows, less the
+    # count before the row
+    total = np.cumsum(change.reshape(-1)).reshape(change.shape)
+    rank = total - (total[:, :1] - change[:, :1]) - 1
+    rows, cols = np.divmod(np.flatnonzero(change & (rank < width)), SAMPLES)
     va, vb = value[rows, cols], value[rows, cols + 1]
     # the chord's zero in each bracket, increasing along a row; those past 2π (the samples
     # end at OFFSET + 2π) come first once reduced, so each row is turned by their number

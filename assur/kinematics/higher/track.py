@@ -105,18 +105,19 @@ def _links(col: _Column) -> np.ndarray:
 def _from_first(links: np.ndarray) -> np.ndarray:
     """The maps from the first column to every column (U + 1, D, R), composed from the links
     of each column to the next (U, D, R; −1 where a root has none) by doubling: after the
-    step of k, the map of column c starts at column max(0, c − 2k); log₂ U steps."""
-    maps = np.empty((links.shape[0] + 1,) + links.shape[1:], dtype=links.dtype)
-    maps[0] = np.arange(links.shape[-1])
-    maps[1:] = links
+    step of k, the map of column c starts at column max(0, c − 2k); log₂ U steps. A lost
+    root goes to an extra slot R that every map keeps, −1 again in the result."""
+    width = links.shape[-1]
+    maps = np.empty((links.shape[0] + 1,) + links.shape[1:-1] + (width + 1,), dtype=links.dtype)
+    maps[0] = np.arange(width + 1)
+    maps[1:, ..., :width] = np.where(links >= 0, links, width)
+    maps[1:, ..., width] = width
     rows = _rows(maps.shape)
     k = 1
     while k < maps.shape[0]:
-        before = maps[:-k]
-        went = maps.reshape(-1)[rows[k:] + np.maximum(before, 0)]
-        maps[k:] = np.where(before >= 0, went, -1)
+        maps[k:] = maps.reshape(-1)[rows[k:] + maps[:-k]]
         k *= 2
-    return maps
+    return np.asarray(np.where(maps[..., :width] == width, -1, maps[..., :width]))
 
 
 @dataclass(frozen=True, eq=False)

@@ -178,10 +178,26 @@ def det_rows(rows: np.ndarray) -> np.ndarray:
     return _determinant(e, _cofactors(e, 1)[0])
 
 
+def _row_sums(a: np.ndarray) -> np.ndarray:
+    """Σ_j a[..., j] over a short last axis, term by term (as ``a.sum(axis=-1)`` adds them)."""
+    total = a[..., 0]
+    for j in range(1, a.shape[-1]):
+        total = total + a[..., j]
+    return np.asarray(total)
+
+
+def _row_product(a: np.ndarray) -> np.ndarray:
+    """Π_j a[..., j] over a short last axis, factor by factor."""
+    total = a[..., 0]
+    for j in range(1, a.shape[-1]):
+        total = total * a[..., j]
+    return np.asarray(total)
+
+
 def hadamard(rows: np.ndarray) -> np.ndarray:
     """|det R| / Π‖R_k‖: 1 for orthogonal rows, 0 for dependent ones (the margin's form)."""
-    norms = np.prod(np.linalg.norm(rows, axis=-1), axis=-1)
-    return np.asarray(np.abs(det_rows(rows)) / norms)
+    norms = np.sqrt(_row_sums(rows * rows))
+    return np.asarray(np.abs(det_rows(rows)) / _row_product(norms))
 
 
 #: The inputs record of a group: :class:`TriadInputs` or :class:`ClassIVInputs`.
@@ -537,8 +553,9 @@ class Triad(HigherGroup["TriadInputs"]):
     def _margin_rows(nu: np.ndarray, at: np.ndarray, base: np.ndarray) -> np.ndarray:
         """The rows of the unit constraint lines about the base centroid, moments over the
         base's spread (:meth:`lines`)."""
-        centre = base.mean(axis=-1, keepdims=True)
-        spread = np.sqrt((np.abs(base - centre) ** 2).mean(axis=-1, keepdims=True))
+        count = base.shape[-1]
+        centre = (_row_sums(base) / count)[..., None]
+        spread = np.sqrt(_row_sums(np.abs(base - centre) ** 2) / count)[..., None]
         return _line_rows(nu / np.abs(nu), at, centre, spread)
 
     def _forms(self, nu: np.ndarray, base: np.ndarray, k: TriadInputs) -> np.ndarray:

@@ -31,6 +31,7 @@ from assur.kinematics.higher.groups import (
     expand,
     hadamard,
     plain,
+    row_max,
     stack_last,
     values,
 )
@@ -1113,7 +1114,7 @@ def _poses(group: HigherGroup[K], k: K, theta: np.ndarray, sign: np.ndarray
         f, jac, lines = group.assessed(x, kv)
         factors = cofactors(jac)
         x1, x2 = _implicit(group, k, x, factors)
-        posed = (np.abs(f).max(axis=-1) <= ACCEPT * np.asarray(group.size)) \
+        posed = (row_max(np.abs(f)) <= ACCEPT * np.asarray(group.size)) \
             & (np.sign(factors[1]) == sign)
     return x, x1, x2, lines, posed
 

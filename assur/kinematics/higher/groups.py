@@ -178,11 +178,32 @@ def det_rows(rows: np.ndarray) -> np.ndarray:
     return _determinant(e, _cofactors(e, 1)[0])
 
 
-def _row_sums(a: np.ndarray) -> np.ndarray:
-    """Σ_j a[..., j] over a short last axis, term by term (as ``a.sum(axis=-1)`` adds them)."""
+def row_sums(a: np.ndarray) -> np.ndarray:
+    """Σ_j a[..., j] over a short last axis, term by term (as ``a.sum(axis=-1)`` adds them).
+
+    Examples
+    --------
+    >>> row_sums(np.array([[1.0, 3.0, 2.0], [0.5, 0.25, 1.0]])).tolist()
+    [6.0, 1.75]
+    """
     total = a[..., 0]
     for j in range(1, a.shape[-1]):
         total = total + a[..., j]
+    return np.asarray(total)
+
+
+def row_max(a: np.ndarray) -> np.ndarray:
+    """max_j a[..., j] over a short last axis, element by element (NaN where any is NaN,
+    as ``a.max(axis=-1)``).
+
+    Examples
+    --------
+    >>> row_max(np.array([[1.0, 3.0, 2.0], [0.0, np.nan, 1.0]])).tolist()
+    [3.0, nan]
+    """
+    total = a[..., 0]
+    for j in range(1, a.shape[-1]):
+        total = np.maximum(total, a[..., j])
     return np.asarray(total)
 
 
@@ -196,7 +217,7 @@ def _row_product(a: np.ndarray) -> np.ndarray:
 
 def hadamard(rows: np.ndarray) -> np.ndarray:
     """|det R| / Π‖R_k‖: 1 for orthogonal rows, 0 for dependent ones (the margin's form)."""
-    norms = np.sqrt(_row_sums(rows * rows))
+    norms = np.sqrt(row_sums(rows * rows))
     return np.asarray(np.abs(det_rows(rows)) / _row_product(norms))
 
 
@@ -554,8 +575,8 @@ class Triad(HigherGroup["TriadInputs"]):
         """The rows of the unit constraint lines about the base centroid, moments over the
         base's spread (:meth:`lines`)."""
         count = base.shape[-1]
-        centre = (_row_sums(base) / count)[..., None]
-        spread = np.sqrt(_row_sums(np.abs(base - centre) ** 2) / count)[..., None]
+        centre = (row_sums(base) / count)[..., None]
+        spread = np.sqrt(row_sums(np.abs(base - centre) ** 2) / count)[..., None]
         return _line_rows(nu / np.abs(nu), at, centre, spread)
 
     def _forms(self, nu: np.ndarray, base: np.ndarray, k: TriadInputs) -> np.ndarray:

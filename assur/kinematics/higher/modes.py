@@ -23,6 +23,8 @@ from assur.kinematics.higher.groups import (
     expand,
     hadamard,
     plain,
+    row_max,
+    row_sums,
     stack_last,
 )
 
@@ -134,7 +136,7 @@ def newton(group: HigherGroup[K], k: K, x: np.ndarray, iterations: int,
             f, jac = group.equations(x, k)
             dx = solve(jac, -f)
             x = x + dx
-            step = np.abs(dx * scale).sum(axis=-1)
+            step = row_sums(np.abs(dx * scale))
             if not (step > tol).any():
                 break
     return x, step
@@ -201,10 +203,12 @@ def assembly_modes(group: HigherGroup[K], k: K) -> AssemblyModes:
         near = np.abs(np.log(np.abs(found))) <= TAU
         x = np.where(near[..., None], wide.recover(found / np.abs(found), kk), np.nan)
         f, jac, rows = wide.assessed(x, kk)
-        if not (np.abs(f).max(axis=-1) <= SETTLED * size)[near].all():
+        worst = row_max(np.abs(f))
+        if not (worst <= SETTLED * size)[near].all():
             x, _ = newton(wide, kk, x, 3)
             f, jac, rows = wide.assessed(x, kk)
-        valid = near & (np.abs(f).max(axis=-1) <= ACCEPT * size)
+            worst = row_max(np.abs(f))
+        valid = near & (worst <= ACCEPT * size)
         names = list(wide.joints(x, kk).items())
         # the joints and the eliminated rotation (as a point at the distance L): a triad
         # whose leashes all slide on the base has the same joints in two modes

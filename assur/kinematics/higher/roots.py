@@ -85,7 +85,12 @@ def derivatives(coef: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.nda
 def chord(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """|e^{ia} − e^{ib}|: the distance of two angles as points of the unit circle; NaN where
     either is NaN."""
-    return np.asarray(2.0 * np.abs(np.sin(0.5 * (a - b))))
+    d = np.asarray(np.subtract(a, b, dtype=float))
+    d *= 0.5
+    np.sin(d, out=d)
+    np.abs(d, out=d)
+    d *= 2.0
+    return d
 
 
 def _unit(theta: np.ndarray) -> np.ndarray:

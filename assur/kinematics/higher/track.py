@@ -92,7 +92,7 @@ def _links(col: _Column) -> np.ndarray:
     slope = np.concatenate([col.slope[1:], col.slope[:1]])
     with np.errstate(invalid="ignore"):
         dist = chord(col.theta[..., :, None], theta[..., None, :])
-    dist = np.where(np.isnan(dist), np.inf, dist)
+    dist[np.isnan(dist)] = np.inf
     forward = np.argmin(dist, axis=-1)
     at = _rows(forward.shape) + forward
     backward = np.argmin(dist, axis=-2)

@@ -26,10 +26,13 @@ from assur.kinematics.higher.groups import (
     HigherGroup,
     K,
     Triad,
+    cofactors,
     det_rows,
     expand,
     hadamard,
     plain,
+    row_max,
+    stack_last,
     values,
 )
 from assur.kinematics.higher.modes import (
@@ -38,10 +41,10 @@ from assur.kinematics.higher.modes import (
     AssemblyModes,
     assembly_modes,
     coefficients,
+    cramer,
     newton,
     roots,
     select_mode,
-    solve,
     weights,
 )
 from assur.kinematics.higher.roots import chord, derivatives
@@ -114,8 +117,7 @@ def _part(v: Any, name: str) -> np.ndarray:
 
 def _stacked(f: list[Any], name: str) -> np.ndarray:
     """The part ``name`` ("v", "d1", "d2") of the residuals ``f``, stacked on a last axis."""
-    parts = [np.asarray(J.value(v)) if name == "v" else _part(v, name) for v in f]
-    return np.stack(np.broadcast_arrays(*parts), axis=-1)
+    return stack_last([np.asarray(J.value(v)) if name == "v" else _part(v, name) for v in f])
 
 
 def analogs(group: HigherGroup[K], k: K, x: np.ndarray, jac: np.ndarray | None = None
@@ -152,11 +154,17 @@ def analogs(group: HigherGroup[K], k: K, x: np.ndarray, jac: np.ndarray | None =
     """
     if jac is None:
         jac = group.jacobian(x, values(k))
-    cols = [Jet(x[..., i], 0.0, 0.0) for i in range(group.n)]
-    x1 = solve(jac, -_stacked(group.residual(cols, k), "d1"))
-    cols = [Jet(x[..., i], x1[..., i], 0.0) for i in range(group.n)]
-    x2 = solve(jac, -_stacked(group.residual(cols, k), "d2"))
-    return x1, x2
+    return _implicit(group, k, x, cofactors(jac))
+
+
+def _implicit(group: HigherGroup[K], k: K, x: np.ndarray,
+              jac: tuple[list[list[np.ndarray]], np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`analogs` from the cofactors and determinants ``jac`` of the Jacobian: ∂F/∂φ
+    with x held (plain), then d²F/dφ² with x′ and x″ = 0, both solved with them."""
+    held = [x[..., i] for i in range(group.n)]
+    x1 = cramer(*jac, -_stacked(group.residual(held, k), "d1"))
+    moving = [Jet(x[..., i], x1[..., i], 0.0) for i in range(group.n)]
+    return x1, cramer(*jac, -_stacked(group.residual(moving, k), "d2"))
 
 
 def separation(group: HigherGroup[K], k: K, x: np.ndarray) -> np.ndarray:
@@ -1121,13 +1129,13 @@ def _poses(group: HigherGroup[K], k: K, theta: np.ndarray, sign: np.ndarray
     det J of the sketch's ``sign``."""
     kv = values(k)
     with np.errstate(all="ignore"):
-        x = expand(group).recover(np.exp(1j * theta)[..., None], expand(kv))[..., 0, :]
+        x = group.recover(np.exp(1j * theta), kv)
         x, _ = newton(group, kv, x, 2)
-        f = group.residuals(x, kv)
-        jac, lines = group.lines(x, kv)
-        x1, x2 = analogs(group, k, x, jac)
-        posed = (np.abs(f).max(axis=-1) <= ACCEPT * np.asarray(group.size)) \
-            & (np.sign(det_rows(jac)) == sign)
+        f, jac, lines = group.assessed(x, kv)
+        factors = cofactors(jac)
+        x1, x2 = _implicit(group, k, x, factors)
+        posed = (row_max(np.abs(f)) <= ACCEPT * np.asarray(group.size)) \
+            & (np.sign(factors[1]) == sign)
     return x, x1, x2, lines, posed
 
 
@@ -1439,17 +1447,21 @@ def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
     forward stretch (from φ = 0) and backward stretch (from 2π down) both end at located
     change points (the angles between not reached, reason 8); the other designs are
     followed step by step (:func:`_step_follow`). ``sketch`` holds the sketched mode x0
-    (D, n) and the inputs there."""
-    x0, k0 = sketch
+    (D, n) and the inputs there (its sign of det J is read off ``modes``)."""
+    x0 = sketch[0]
     d = x0.shape[0]
     e = group.eliminated
     columns = grid(np.mod(phi, TWO_PI))
     at = np.broadcast_to(np.append(columns, TWO_PI)[:, None], (columns.size + 1, d))
     k = inputs(Jet(at, 1.0, 0.0))
-    paths = chains(group, values(k), columns, x0[:, e], found)
+    kv = values(k)
+    paths = chains(group, kv, columns, x0[:, e], found)
     if not paths.bracketed.any():  # see the walks below: every design goes to the steps
         return _step_follow(group, inputs, phi, x0, found, modes, jets, delta)
-    sign = np.broadcast_to(np.sign(det_rows(group.jacobian(x0, k0))), (d,))
+    # the sign of det J of the sketched mode: that of the mode x0 is (NaN where none is)
+    mode = (modes.x.reshape(d, -1, group.n) == x0[:, None, :]).all(axis=-1)
+    sign = np.where(mode.any(axis=-1),
+                    np.where(mode, modes.det_sign.reshape(d, -1), 0.0).sum(axis=-1), np.nan)
     x, x1, x2, lines, posed = _poses(group, k, paths.theta, sign)
     root = _Root(paths.theta, x1[..., e], x2[..., e], paths.apart, paths.slope, x, x1)
     same = (paths.forward[:-1] & paths.forward[1:]) | (paths.backward[:-1] & paths.backward[1:])
@@ -1474,7 +1486,7 @@ def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
     reached = around | (ended & ((column <= ends_at[:, 0]) | (column > ends_at[:, 1])))
     good = around | ended
     # the inputs at the requested angles: those at their columns
-    wanted = _take(k, np.ones(at.shape, dtype=bool),
+    wanted = _take(k if jets else kv, np.ones(at.shape, dtype=bool),
                    tuple(np.broadcast_arrays(column, np.arange(d))))
     if wanted is None:
         wanted = inputs(Jet(np.broadcast_to(phi[:, None], (phi.size, d)), 1.0, 0.0))

@@ -126,31 +126,99 @@ def plain(v: Value) -> np.ndarray:
     return np.asarray(v)
 
 
+#: Stacked matrices of more numbers than this are copied entry by entry before their
+#: cofactors are formed (the products then run over contiguous arrays).
+CONTIGUOUS = 1 << 14
+
+
+def _entries(m: np.ndarray) -> list[list[np.ndarray]]:
+    """The entries m[..., i, j] of stacked square matrices (copied to contiguous arrays where
+    there are more than ``CONTIGUOUS`` numbers)."""
+    n = m.shape[-1]
+    if m.size > CONTIGUOUS:
+        return [list(row) for row in np.ascontiguousarray(np.moveaxis(m, (-2, -1), (0, 1)))]
+    return [[m[..., i, j] for j in range(n)] for i in range(n)]
+
+
+def _cofactors(e: list[list[np.ndarray]], rows: int) -> list[list[np.ndarray]]:
+    """The first ``rows`` rows of the cofactors C[i][j] of stacked 2×2 or 3×3 matrices of
+    the entries ``e``."""
+    if len(e) == 2:
+        return [[e[1][1], -e[1][0]], [-e[0][1], e[0][0]]][:rows]
+    return [[e[(i + 1) % 3][(j + 1) % 3] * e[(i + 2) % 3][(j + 2) % 3]
+             - e[(i + 1) % 3][(j + 2) % 3] * e[(i + 2) % 3][(j + 1) % 3]
+             for j in range(3)] for i in range(rows)]
+
+
+def _determinant(e: list[list[np.ndarray]], first: list[np.ndarray]) -> np.ndarray:
+    """Σ_j m[0][j]·C[0][j] from the entries ``e`` and the cofactors ``first`` of row 0."""
+    return np.asarray(sum(e[0][j] * first[j] for j in range(len(e))))
+
+
 def cofactors(m: np.ndarray) -> tuple[list[list[np.ndarray]], np.ndarray]:
     """Cofactors C[i][j] and determinants of stacked 2×2 or 3×3 matrices, in closed form.
 
     NaN entries give NaN results; a singular matrix gives determinant 0, never an error.
+
+    Examples
+    --------
+    >>> m = np.array([[2.0, 1.0, 0.0], [0.0, 3.0, 1.0], [1.0, 0.0, 1.0]])
+    >>> cof, det = cofactors(m)
+    >>> float(det), bool(np.allclose(np.transpose(cof) / det, np.linalg.inv(m)))
+    (7.0, True)
     """
-    e = [[m[..., i, j] for j in range(m.shape[-1])] for i in range(m.shape[-1])]
-    if m.shape[-1] == 2:
-        cof = [[e[1][1], -e[1][0]], [-e[0][1], e[0][0]]]
-    else:
-        cof = [[e[(i + 1) % 3][(j + 1) % 3] * e[(i + 2) % 3][(j + 2) % 3]
-                - e[(i + 1) % 3][(j + 2) % 3] * e[(i + 2) % 3][(j + 1) % 3]
-                for j in range(3)] for i in range(3)]
-    det = sum(e[0][j] * cof[0][j] for j in range(len(e)))
-    return cof, np.asarray(det)
+    e = _entries(m)
+    cof = _cofactors(e, len(e))
+    return cof, _determinant(e, cof[0])
 
 
 def det_rows(rows: np.ndarray) -> np.ndarray:
-    """Determinants of stacked 2×2 or 3×3 matrices."""
-    return cofactors(rows)[1]
+    """Determinants of stacked 2×2 or 3×3 matrices (by the first row's cofactors)."""
+    e = _entries(rows)
+    return _determinant(e, _cofactors(e, 1)[0])
+
+
+def row_sums(a: np.ndarray) -> np.ndarray:
+    """Σ_j a[..., j] over a short last axis, term by term (as ``a.sum(axis=-1)`` adds them).
+
+    Examples
+    --------
+    >>> row_sums(np.array([[1.0, 3.0, 2.0], [0.5, 0.25, 1.0]])).tolist()
+    [6.0, 1.75]
+    """
+    total = a[..., 0]
+    for j in range(1, a.shape[-1]):
+        total = total + a[..., j]
+    return np.asarray(total)
+
+
+def row_max(a: np.ndarray) -> np.ndarray:
+    """max_j a[..., j] over a short last axis, element by element (NaN where any is NaN,
+    as ``a.max(axis=-1)``).
+
+    Examples
+    --------
+    >>> row_max(np.array([[1.0, 3.0, 2.0], [0.0, np.nan, 1.0]])).tolist()
+    [3.0, nan]
+    """
+    total = a[..., 0]
+    for j in range(1, a.shape[-1]):
+        total = np.maximum(total, a[..., j])
+    return np.asarray(total)
+
+
+def _row_product(a: np.ndarray) -> np.ndarray:
+    """Π_j a[..., j] over a short last axis, factor by factor."""
+    total = a[..., 0]
+    for j in range(1, a.shape[-1]):
+        total = total * a[..., j]
+    return np.asarray(total)
 
 
 def hadamard(rows: np.ndarray) -> np.ndarray:
     """|det R| / Π‖R_k‖: 1 for orthogonal rows, 0 for dependent ones (the margin's form)."""
-    norms = np.prod(np.linalg.norm(rows, axis=-1), axis=-1)
-    return np.asarray(np.abs(det_rows(rows)) / norms)
+    norms = np.sqrt(row_sums(rows * rows))
+    return np.asarray(np.abs(det_rows(rows)) / _row_product(norms))
 
 
 #: The inputs record of a group: :class:`TriadInputs` or :class:`ClassIVInputs`.
@@ -224,7 +292,13 @@ class HigherGroup(ABC, Generic[K]):
 
     def residuals(self, x: np.ndarray, k: K) -> np.ndarray:
         """F(x) of plain inputs, stacked: shape (..., n)."""
-        return np.stack(np.broadcast_arrays(*map(plain, self.residual(x, k))), axis=-1)
+        return stack_last([plain(v) for v in self.residual(x, k)])
+
+    def assessed(self, x: np.ndarray, k: K) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """F(x) (..., n), the Jacobian and the margin rows (..., n, n): what tells whether x
+        is a pose of the group and how far from a change point it is."""
+        jac, rows = self.lines(x, k)
+        return self.residuals(x, k), jac, rows
 
     def equations(self, x: np.ndarray, k: K) -> tuple[np.ndarray, np.ndarray]:
         """F(x), shape (..., n), and the Jacobian: the data of one Newton step."""
@@ -237,6 +311,23 @@ class HigherGroup(ABC, Generic[K]):
     def margin(self, x: np.ndarray, k: K) -> np.ndarray:
         """The Hadamard ratio of the constraint lines, 0 at a change point (§1.7, §3.2)."""
         return hadamard(self.lines(x, k)[1])
+
+
+def stack_last(parts: Sequence[Any]) -> np.ndarray:
+    """The values ``parts`` broadcast together and stacked on a new last axis, as
+    ``np.stack(np.broadcast_arrays(*parts), axis=-1)`` but written into one array.
+
+    Examples
+    --------
+    >>> stack_last([np.arange(3.0), 1j]).tolist()
+    [[0j, 1j], [(1+0j), 1j], [(2+0j), 1j]]
+    """
+    shapes = {np.shape(part) for part in parts}
+    shape = shapes.pop() if len(shapes) == 1 else np.broadcast_shapes(*shapes)
+    out = np.empty(shape + (len(parts),), dtype=np.result_type(*parts))
+    for i, part in enumerate(parts):
+        out[..., i] = part
+    return out
 
 
 def unknown_columns(x: Unknowns) -> list[Value]:
@@ -253,8 +344,9 @@ def plain_cross(a: Any, b: Any) -> np.ndarray:
 def _line_rows(nu: np.ndarray, at: np.ndarray, origin: np.ndarray, radius: Any) -> np.ndarray:
     """Rows [ν_k, cross(X_k − O, ν_k)/radius] of the lines through X_k along ν_k."""
     moment = np.asarray(J.cross(at - origin, nu) / radius)
-    nu = np.broadcast_to(nu, moment.shape)
-    return np.stack([nu.real, nu.imag, moment], axis=-1)
+    out = np.empty(moment.shape + (3,))
+    out[..., 0], out[..., 1], out[..., 2] = nu.real, nu.imag, moment
+    return out
 
 
 def _cross_terms(one: tuple[Any, ...], two: tuple[Any, ...]) -> tuple[Any, Any]:
@@ -463,21 +555,41 @@ class Triad(HigherGroup["TriadInputs"]):
                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Line directions ν_k, line points X_k, base points and P₁, stacked over k."""
         p1, e = self._pose(unknown_columns(x), k)
-        nu, at, base = [], [], []
+        parts = []
         for i, kind in enumerate(self.leashes):
             point = p1 + self._offset(i) * e
-            base.append(point)
             if kind is Leash.RR:
-                nu.append((point - k.a[i]) / self.leash_length(i, k))
-                at.append(point)
+                parts.append(((point - k.a[i]) / self.leash_length(i, k), point, point))
             elif kind.slides[1]:  # on a known link's guide; a P–P row is replaced in lines()
-                nu.append(1j * np.asarray(k.u[i]))
-                at.append(point)
+                parts.append((1j * np.asarray(k.u[i]), point, point))
             else:
-                nu.append(1j * np.asarray(self.guide[i]) * e)
-                at.append(np.asarray(k.a[i]))
-        stack = [np.stack(np.broadcast_arrays(*v), axis=-1) for v in (nu, at, base)]
-        return stack[0], stack[1], stack[2], np.asarray(p1)
+                parts.append((1j * np.asarray(self.guide[i]) * e, np.asarray(k.a[i]), point))
+        out = np.empty((3,) + np.broadcast_shapes(*(np.shape(v) for part in parts for v in part))
+                       + (3,), dtype=complex)
+        for i, part in enumerate(parts):
+            out[0, ..., i], out[1, ..., i], out[2, ..., i] = part
+        return out[0], out[1], out[2], np.asarray(p1)
+
+    @staticmethod
+    def _margin_rows(nu: np.ndarray, at: np.ndarray, base: np.ndarray) -> np.ndarray:
+        """The rows of the unit constraint lines about the base centroid, moments over the
+        base's spread (:meth:`lines`)."""
+        count = base.shape[-1]
+        centre = (row_sums(base) / count)[..., None]
+        spread = np.sqrt(row_sums(np.abs(base - centre) ** 2) / count)[..., None]
+        return _line_rows(nu / np.abs(nu), at, centre, spread)
+
+    def _forms(self, nu: np.ndarray, base: np.ndarray, k: TriadInputs) -> np.ndarray:
+        """F(x) from the constraint lines: with the arm P_k − A_k, f_k = ν_k·(P_k − A_k) of a
+        line, (|P_k − A_k|² − r_k²)/(2r_k) of a bar, the same operations as :meth:`residual`
+        (no P–P leash)."""
+        arm = base - stack_last([plain(a) for a in k.a])
+        f = (np.conj(nu) * arm).real
+        for i, kind in enumerate(self.leashes):
+            if kind.bar:
+                r = plain(self.leash_length(i, k))
+                f[..., i] = ((np.conj(arm[..., i]) * arm[..., i]).real - r * r) / (2.0 * r)
+        return np.asarray(f)
 
     def lines(self, x: np.ndarray, k: TriadInputs) -> tuple[np.ndarray, np.ndarray]:
         """The Jacobian and the margin rows about the base centroid.
@@ -488,9 +600,7 @@ class Triad(HigherGroup["TriadInputs"]):
         of ψ and ρ by ∂W/∂ψ = iW, ∂W/∂ρ = W/ρ (W = ρ·e^{iψ}·W⁰/|W⁰|).
         """
         nu, at, base, p1 = self._constraints(x, k)
-        centre = base.mean(axis=-1, keepdims=True)
-        spread = np.sqrt((np.abs(base - centre) ** 2).mean(axis=-1, keepdims=True))
-        rows = _line_rows(nu / np.abs(nu), at, centre, spread)
+        rows = self._margin_rows(nu, at, base)
         jac = _line_rows(nu, at, p1[..., None], 1.0)
         if not self.pinned:
             return jac, rows
@@ -506,19 +616,22 @@ class Triad(HigherGroup["TriadInputs"]):
         return jac, rows
 
     def equations(self, x: np.ndarray, k: TriadInputs) -> tuple[np.ndarray, np.ndarray]:
-        """F(x) and the Jacobian from one evaluation of the constraint lines (a P–P leash: as
-        :meth:`HigherGroup.equations`): with the arm P_k − A_k, f_k = ν_k·(P_k − A_k) of a
-        line, (|P_k − A_k|² − r_k²)/(2r_k) of a bar, the same operations as :meth:`residual`."""
+        """F(x) and the Jacobian from one evaluation of the constraint lines (:meth:`_forms`;
+        a P–P leash: as :meth:`HigherGroup.equations`)."""
         if self.pinned:
             return super().equations(x, k)
         nu, at, base, p1 = self._constraints(x, k)
-        arm = base - np.stack(np.broadcast_arrays(*map(plain, k.a)), axis=-1)
-        f = (np.conj(nu) * arm).real
-        for i, kind in enumerate(self.leashes):
-            if kind.bar:
-                r = plain(self.leash_length(i, k))
-                f[..., i] = ((np.conj(arm[..., i]) * arm[..., i]).real - r * r) / (2.0 * r)
-        return f, _line_rows(nu, at, p1[..., None], 1.0)
+        return self._forms(nu, base, k), _line_rows(nu, at, p1[..., None], 1.0)
+
+    def assessed(self, x: np.ndarray, k: TriadInputs
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """F(x), the Jacobian and the margin rows from one evaluation of the constraint lines
+        (a P–P leash: as :meth:`HigherGroup.assessed`)."""
+        if self.pinned:
+            return super().assessed(x, k)
+        nu, at, base, p1 = self._constraints(x, k)
+        return (self._forms(nu, base, k), _line_rows(nu, at, p1[..., None], 1.0),
+                self._margin_rows(nu, at, base))
 
     def jacobian(self, x: np.ndarray, k: TriadInputs) -> np.ndarray:
         """∂F/∂x: the rows [ν_k, cross(X_k − P₁, ν_k)] of :meth:`lines` without the margin
@@ -682,7 +795,7 @@ class Triad(HigherGroup["TriadInputs"]):
                 wider = np.abs(det) > best
                 best, w = np.where(wider, np.abs(det), best), np.where(wider, here, w)
         assert w is not None
-        return np.stack(np.broadcast_arrays(w.real, w.imag, np.angle(e)), axis=-1)
+        return stack_last([w.real, w.imag, np.angle(e)])
 
     def joints(self, x: Unknowns, k: TriadInputs) -> dict[str, Value]:
         """P1, P2, P3: the internal pairs (for a P–R leash, the slider at its hinge A_k); O:

@@ -10,6 +10,7 @@ the joint positions.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -22,9 +23,12 @@ from assur.kinematics.higher.groups import (
     expand,
     hadamard,
     plain,
+    row_max,
+    row_sums,
+    stack_last,
 )
 
-__all__ = ["AssemblyModes", "assembly_modes", "coefficients", "newton", "select_mode"]
+__all__ = ["AssemblyModes", "assembly_modes", "coefficients", "cramer", "newton", "select_mode"]
 
 #: Roots with |ln|E|| up to this are candidates for real modes.
 TAU = 1e-6
@@ -90,11 +94,25 @@ def roots(coef: np.ndarray) -> np.ndarray:
 
 def solve(jac: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     """x with jac·x = rhs (stacked 2×2 or 3×3) by Cramer's rule; NaN if singular, no error."""
-    cof, det = cofactors(jac)
+    return cramer(*cofactors(jac), rhs)
+
+
+def cramer(cof: list[list[np.ndarray]], det: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """x with J·x = rhs from the cofactors C[i][j] and determinants of J
+    (:func:`~assur.kinematics.higher.groups.cofactors`): x_j = Σ_i C_ij·rhs_i / det J; NaN
+    where J is singular, no error. Several right-hand sides share one factorisation.
+
+    Examples
+    --------
+    >>> from assur.kinematics.higher.groups import cofactors
+    >>> jac = np.array([[2.0, 1.0], [1.0, 3.0]])
+    >>> cramer(*cofactors(jac), np.array([3.0, 4.0])).tolist()
+    [1.0, 1.0]
+    """
     n = len(cof)
+    parts = [rhs[..., i] for i in range(n)]
     with np.errstate(all="ignore"):
-        return np.stack([sum(cof[i][j] * rhs[..., i] for i in range(n)) / det
-                         for j in range(n)], axis=-1)
+        return stack_last([sum(cof[i][j] * parts[i] for i in range(n)) / det for j in range(n)])
 
 
 def weights(group: HigherGroup[K]) -> np.ndarray:
@@ -118,7 +136,7 @@ def newton(group: HigherGroup[K], k: K, x: np.ndarray, iterations: int,
             f, jac = group.equations(x, k)
             dx = solve(jac, -f)
             x = x + dx
-            step = np.abs(dx * scale).sum(axis=-1)
+            step = row_sums(np.abs(dx * scale))
             if not (step > tol).any():
                 break
     return x, step
@@ -184,30 +202,48 @@ def assembly_modes(group: HigherGroup[K], k: K) -> AssemblyModes:
     with np.errstate(all="ignore"):
         near = np.abs(np.log(np.abs(found))) <= TAU
         x = np.where(near[..., None], wide.recover(found / np.abs(found), kk), np.nan)
-        f = wide.residuals(x, kk)
-        if not (np.abs(f).max(axis=-1) <= SETTLED * size)[near].all():
+        f, jac, rows = wide.assessed(x, kk)
+        worst = row_max(np.abs(f))
+        if not (worst <= SETTLED * size)[near].all():
             x, _ = newton(wide, kk, x, 3)
-            f = wide.residuals(x, kk)
-        valid = near & (np.abs(f).max(axis=-1) <= ACCEPT * size)
+            f, jac, rows = wide.assessed(x, kk)
+            worst = row_max(np.abs(f))
+        valid = near & (worst <= ACCEPT * size)
         names = list(wide.joints(x, kk).items())
         # the joints and the eliminated rotation (as a point at the distance L): a triad
         # whose leashes all slide on the base has the same joints in two modes
         turn = size * np.exp(1j * x[..., group.eliminated])
-        stack = np.stack(np.broadcast_arrays(*(plain(p) for _, p in names), turn), axis=-1)
+        stack = stack_last([plain(p) for _, p in names] + [turn])
         apart = np.abs(stack[..., :, None, :] - stack[..., None, :, :]).max(axis=-1)
         same = (apart <= SAME * size[..., None]) & valid[..., :, None]
-        earlier = np.tril(np.ones(same.shape[-2:], dtype=bool), -1).T
-        valid &= ~(same & earlier).any(axis=-2)
+        valid &= ~(same & _earlier(same.shape[-1])).any(axis=-2)
         theta = np.where(valid, x[..., group.eliminated], np.inf)
-        order = np.argsort(theta, axis=-1)[..., None]
-        valid = np.take_along_axis(valid, order[..., 0], axis=-1)
-        x = np.where(valid[..., None], np.take_along_axis(x, order, axis=-2), np.nan)
-        stack = np.where(valid[..., None], np.take_along_axis(stack, order, axis=-2), NAN)
-        jac, rows = wide.lines(x, kk)
+        # each mode's row in the order of θ, laid flat
+        order = np.argsort(theta, axis=-1)
+        order += np.arange(0, order.size, order.shape[-1]).reshape(order.shape[:-1] + (1,))
+        valid = valid.reshape(-1)[order]
+        x, stack = _sorted(x, order, valid, np.nan), _sorted(stack, order, valid, NAN)
+        jac, rows = _sorted(jac, order, valid, np.nan), _sorted(rows, order, valid, np.nan)
         margin = hadamard(rows)
     return AssemblyModes(x=x, count=valid.sum(axis=-1),
                          joints={name: stack[..., j] for j, (name, _) in enumerate(names)},
                          margin=margin, det_sign=np.sign(det_rows(jac)), roots=found)
+
+
+def _sorted(a: np.ndarray, order: np.ndarray, valid: np.ndarray, empty: complex
+            ) -> np.ndarray:
+    """The rows of ``a`` (..., 2m, …) at the flat row indices ``order`` (..., 2m), ``empty``
+    where not ``valid``."""
+    lead = order.ndim
+    out = np.broadcast_to(a, order.shape + a.shape[lead:]).reshape((-1,) + a.shape[lead:])[order]
+    out[~valid] = empty
+    return np.asarray(out)
+
+
+@functools.cache
+def _earlier(n: int) -> np.ndarray:
+    """[i, j] True where i < j: mode i comes before mode j (n × n)."""
+    return np.asarray(np.tril(np.ones((n, n), dtype=bool), -1).T)
 
 
 def select_mode(group: HigherGroup[K], k: K, modes: AssemblyModes
@@ -250,10 +286,12 @@ def select_mode(group: HigherGroup[K], k: K, modes: AssemblyModes
         rms = np.where(np.isnan(rms), np.inf, rms)
         ranked = np.sort(rms, axis=-1)
         own = np.where(modes.det_sign == sign[..., None], rms, np.inf)
-        best = np.argmin(own, axis=-1)
-        nearest = np.take_along_axis(own, best[..., None], axis=-1)[..., 0]
-        x = np.take_along_axis(modes.x, best[..., None, None], axis=-2)[..., 0, :]
-        margin = np.take_along_axis(modes.margin, best[..., None], axis=-1)[..., 0]
+        # the nearest mode's row, laid flat
+        best = np.argmin(own, axis=-1) + np.arange(0, own.size, own.shape[-1]).reshape(
+            own.shape[:-1])
+        nearest = own.reshape(-1)[best]
+        x = modes.x.reshape(-1, modes.x.shape[-1])[best]
+        margin = modes.margin.reshape(-1)[best]
         found = np.isfinite(nearest) & (nearest == ranked[..., 0]) \
             & (nearest <= 0.5 * ranked[..., 1]) & (margin >= 1e-6)
     return np.where(found[..., None], x, np.nan), found

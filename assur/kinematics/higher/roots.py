@@ -85,19 +85,41 @@ def derivatives(coef: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.nda
 def chord(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """|e^{ia} − e^{ib}|: the distance of two angles as points of the unit circle; NaN where
     either is NaN."""
-    return np.asarray(2.0 * np.abs(np.sin(0.5 * (a - b))))
+    d = np.asarray(np.subtract(a, b, dtype=float))
+    d *= 0.5
+    np.sin(d, out=d)
+    np.abs(d, out=d)
+    d *= 2.0
+    return d
 
 
-def _values(phi: np.ndarray, slopes: np.ndarray, theta: np.ndarray
-            ) -> tuple[np.ndarray, np.ndarray]:
-    """Φ and Φ′ at θ (Q, K) from φ_n, n = 0 … m, and nφ_n (Q, m + 1, K): Φ = φ₀ + 2 Re g and
-    Φ′ = −2 Im h with g = Σ_{n≥1} φ_nEⁿ and h = Σ nφ_nEⁿ, both by Horner's rule in E = e^{iθ}."""
-    e = np.exp(1j * theta)
-    m = phi.shape[1] - 1
-    g, h = phi[:, m], slopes[:, m]
+def _unit(theta: np.ndarray) -> np.ndarray:
+    """E = e^{iθ} of real θ, from one cosine and one sine."""
+    e = np.empty(theta.shape, dtype=complex)
+    np.cos(theta, out=e.real)
+    np.sin(theta, out=e.imag)
+    return e
+
+
+def _value(phi: list[np.ndarray], e: np.ndarray) -> np.ndarray:
+    """Φ at E = e^{iθ} from its columns φ_n, n = 0 … m (each (Q,) or (Q, 1)): Φ = φ₀ + 2 Re g
+    with g = Σ_{n≥1} φ_nEⁿ by Horner's rule in E."""
+    m = len(phi) - 1
+    g = phi[m]
     for n in range(m - 1, 0, -1):
-        g, h = g * e + phi[:, n], h * e + slopes[:, n]
-    return phi[:, 0].real + 2.0 * (g * e).real, -2.0 * (h * e).imag
+        g = g * e + phi[n]
+    return np.asarray(phi[0].real + 2.0 * (g * e).real)
+
+
+def _values(phi: list[np.ndarray], slopes: list[np.ndarray], e: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray]:
+    """Φ and Φ′ at E = e^{iθ} from the columns φ_n and nφ_n, n = 0 … m: Φ as in
+    :func:`_value` and Φ′ = −2 Im h with h = Σ nφ_nEⁿ, by Horner's rule in E."""
+    m = len(phi) - 1
+    g, h = phi[m], slopes[m]
+    for n in range(m - 1, 0, -1):
+        g, h = g * e + phi[n], h * e + slopes[n]
+    return phi[0].real + 2.0 * (g * e).real, -2.0 * (h * e).imag
 
 
 @dataclass(frozen=True, eq=False)
@@ -151,11 +173,18 @@ def real_roots(a: np.ndarray, b: np.ndarray) -> RealRoots:
     width = 2 * (m1 - 1)
     good = np.isfinite(a).all(axis=-1) & np.isfinite(b).all(axis=-1)
     cos, sin = _grid(m1)
-    value = np.where(good[:, None], a, 0.0) @ cos + np.where(good[:, None], b, 0.0) @ sin
+    if not good.all():
+        a, b = np.where(good[:, None], a, 0.0), np.where(good[:, None], b, 0.0)
+    value = a @ cos + b @ sin
     above = value >= 0.0
     change = (above[:, :-1] != above[:, 1:]) & good[:, None]
-    rank = np.cumsum(change, axis=1, dtype=np.int16) - 1
-    rows, cols = np.nonzero(change & (rank < width))
+    # every sign change, row by row, and its rank in its row: its place in that list less
+    # the number of changes in the rows before
+    rows, cols = np.divmod(np.flatnonzero(change), SAMPLES)
+    before = np.bincount(rows, minlength=count_p)
+    rank = np.arange(rows.size) - (np.cumsum(before) - before)[rows]
+    first = rank < width
+    rows, cols, rank = rows[first], cols[first], rank[first]
     va, vb = value[rows, cols], value[rows, cols + 1]
     # the chord's zero in each bracket, increasing along a row; those past 2π (the samples
     # end at OFFSET + 2π) come first once reduced, so each row is turned by their number
@@ -164,11 +193,10 @@ def real_roots(a: np.ndarray, b: np.ndarray) -> RealRoots:
     theta = np.where(wrapped, theta - TWO_PI, theta)
     count = np.bincount(rows, minlength=count_p)[rows]
     turn = np.bincount(rows, weights=wrapped, minlength=count_p).astype(np.int64)[rows]
-    at = rows, (rank[rows, cols] + turn) % np.maximum(count, 1)
+    at = rows * width + (rank + turn) % np.maximum(count, 1)
     out = np.full((4, count_p, width), np.nan)
-    out[0][at], out[1][at], out[2][at] = theta, GRID[cols], GRID[cols + 1]
     out[3] = 0.0
-    out[3][at] = np.where(va >= 0.0, -1.0, 1.0)
+    out.reshape(4, -1)[:, at] = (theta, GRID[cols], GRID[cols + 1], np.where(va >= 0.0, -1.0, 1.0))
     return RealRoots(theta=out[0], slope=out[3], low=out[1], high=out[2])
 
 
@@ -203,9 +231,10 @@ def polish(a: np.ndarray, b: np.ndarray, low: np.ndarray, high: np.ndarray) -> n
     todo = np.flatnonzero(np.isfinite(lo) & np.isfinite(hi))
     lo, hi, rows = lo[todo], hi[todo], rows[todo]
     n = np.arange(a.shape[-1])
-    phi = ((a - 1j * b) / np.where(n > 0, 2.0, 1.0))[rows, :, None]
-    slopes = n[:, None] * phi
-    ends = _values(phi, slopes, np.stack([lo, hi], axis=-1))[0]
+    every = ((a - 1j * b) / np.where(n > 0, 2.0, 1.0))[rows]
+    phi = [every[:, j] for j in n]
+    slopes = [j * every[:, j] for j in n]
+    ends = _value([v[:, None] for v in phi], _unit(np.stack([lo, hi], axis=-1)))
     v_lo, v_hi = ends[:, 0], ends[:, 1]
     positive = v_lo >= 0.0
     live = np.ones(todo.shape, dtype=bool)
@@ -213,7 +242,7 @@ def polish(a: np.ndarray, b: np.ndarray, low: np.ndarray, high: np.ndarray) -> n
         x = lo + (hi - lo) * v_lo / (v_lo - v_hi)
         x = np.where((x >= lo) & (x <= hi), x, 0.5 * (lo + hi))
         for _ in range(POLISH):
-            v, d = (part[:, 0] for part in _values(phi, slopes, x[:, None]))
+            v, d = _values(phi, slopes, _unit(x))
             below = (v >= 0.0) == positive
             lo, hi = np.where(below, x, lo), np.where(below, hi, x)
             newton = x - v / d

@@ -40,20 +40,25 @@ TWO_PI = 2.0 * np.pi
 BASE = 72
 #: A column of the uniform grid this close to a requested angle (rad) is left out.
 SAME = 1e-9
+#: The uniform grid.
+_UNIFORM = TWO_PI / BASE * np.arange(BASE)
 
 
 @dataclass(frozen=True, eq=False)
 class _Column:
     """The real roots at the crank angles of a grid, per design: θ (a first estimate), the sign
     of Φ′ and the bracket of each, shape (..., R), NaN (sign 0) after the last
-    (:class:`~assur.kinematics.higher.roots.RealRoots`); and the coefficients of p,
-    (..., 2m + 1)."""
+    (:class:`~assur.kinematics.higher.roots.RealRoots`, R the most real roots at any of
+    them); the coefficients of p, (..., 2m + 1), and those of Φ, (..., m + 1) each
+    (:func:`~assur.kinematics.higher.roots.trig_form`)."""
 
     theta: np.ndarray
     slope: np.ndarray
     low: np.ndarray
     high: np.ndarray
     coef: np.ndarray
+    a: np.ndarray
+    b: np.ndarray
 
 
 def _columns(group: HigherGroup[K], k: K, u: int) -> _Column:
@@ -65,43 +70,54 @@ def _columns(group: HigherGroup[K], k: K, u: int) -> _Column:
     flat = coef.reshape(-1, coef.shape[-1])
     a, b = trig_form(flat)
     found: RealRoots = real_roots(a, b)
-    width = found.theta.shape[-1]
-    theta, slope, low, high = (getattr(found, f).reshape(shape + (width,))
+    # the roots come first in each row: the columns beyond the most at any angle are empty
+    width = max(1, int(np.count_nonzero(found.slope, axis=-1).max(initial=0)))
+    theta, slope, low, high = (getattr(found, f)[:, :width].reshape(shape + (width,))
                                for f in ("theta", "slope", "low", "high"))
-    return _Column(theta, slope, low, high, coef)
+    return _Column(theta, slope, low, high, coef, a.reshape(shape + a.shape[-1:]),
+                   b.reshape(shape + b.shape[-1:]))
+
+
+def _rows(shape: tuple[int, ...]) -> np.ndarray:
+    """The flat offset of the first element of each row of an array of ``shape`` (..., R),
+    shape (..., 1): ``a.reshape(-1)[_rows(a.shape) + i]`` is ``a[..., i]`` row by row."""
+    return np.arange(0, int(np.prod(shape)), shape[-1]).reshape(shape[:-1] + (1,))
 
 
 def _links(col: _Column) -> np.ndarray:
     """For each root at each column (U, D, R), the index of the nearest root at the next
     column (the last column's next is the first), where that root is also the nearest back
     and has the same sign of Φ′; −1 elsewhere."""
-    theta, slope = np.roll(col.theta, -1, axis=0), np.roll(col.slope, -1, axis=0)
+    theta = np.concatenate([col.theta[1:], col.theta[:1]])
+    slope = np.concatenate([col.slope[1:], col.slope[:1]])
     with np.errstate(invalid="ignore"):
         dist = chord(col.theta[..., :, None], theta[..., None, :])
-    dist = np.where(np.isnan(dist), np.inf, dist)
+    dist[np.isnan(dist)] = np.inf
     forward = np.argmin(dist, axis=-1)
+    at = _rows(forward.shape) + forward
     backward = np.argmin(dist, axis=-2)
     width = forward.shape[-1]
-    same = np.take_along_axis(slope, forward, axis=-1) == col.slope
-    ok = same & (col.slope != 0) \
-        & (np.take_along_axis(backward, forward, axis=-1) == np.arange(width))
+    ok = (slope.reshape(-1)[at] == col.slope) & (col.slope != 0) \
+        & (backward.reshape(-1)[at] == np.arange(width))
     return np.asarray(np.where(ok, forward, -1))
 
 
 def _from_first(links: np.ndarray) -> np.ndarray:
     """The maps from the first column to every column (U + 1, D, R), composed from the links
     of each column to the next (U, D, R; −1 where a root has none) by doubling: after the
-    step of k, the map of column c starts at column max(0, c − 2k); log₂ U steps."""
+    step of k, the map of column c starts at column max(0, c − 2k); log₂ U steps. A lost
+    root goes to an extra slot R that every map keeps, −1 again in the result."""
     width = links.shape[-1]
-    same = np.broadcast_to(np.arange(width), links.shape[1:])
-    maps = np.concatenate([same[None], links])
+    maps = np.empty((links.shape[0] + 1,) + links.shape[1:-1] + (width + 1,), dtype=links.dtype)
+    maps[0] = np.arange(width + 1)
+    maps[1:, ..., :width] = np.where(links >= 0, links, width)
+    maps[1:, ..., width] = width
+    rows = _rows(maps.shape)
     k = 1
     while k < maps.shape[0]:
-        before = maps[:-k]
-        went = np.take_along_axis(maps[k:], np.maximum(before, 0), axis=-1)
-        maps = np.concatenate([maps[:k], np.where(before >= 0, went, -1)])
+        maps[k:] = maps.reshape(-1)[rows[k:] + maps[:-k]]
         k *= 2
-    return maps
+    return np.asarray(np.where(maps[..., :width] == width, -1, maps[..., :width]))
 
 
 @dataclass(frozen=True, eq=False)
@@ -150,8 +166,7 @@ def _inverse(links: np.ndarray) -> np.ndarray:
 def _chain(maps: np.ndarray, start: np.ndarray) -> np.ndarray:
     """The index of the root reached at every column (U + 1, D) from the roots ``start`` (D,)
     of the first (−1 where a start is missing or the chain is lost)."""
-    at = np.maximum(start, 0)[None, :, None]
-    index = np.take_along_axis(maps, np.broadcast_to(at, maps.shape[:2] + (1,)), axis=-1)[..., 0]
+    index = maps.reshape(-1)[_rows(maps.shape)[..., 0] + np.maximum(start, 0)]
     return np.asarray(np.where(start >= 0, index, -1))
 
 
@@ -159,10 +174,11 @@ def grid(wanted: np.ndarray) -> np.ndarray:
     """The columns of the path, increasing in [0, 2π): φ = 0, the requested angles ``wanted``
     (in [0, 2π)) and ``BASE`` uniform ones per turn, but for a uniform one within roundoff of
     a requested angle (that angle is the column)."""
-    asked = np.union1d([0.0], wanted)
-    base = TWO_PI / BASE * np.arange(BASE)
-    apart = np.abs(base[:, None] - asked).min(axis=-1)
-    return np.asarray(np.union1d(asked, base[apart > SAME]))
+    asked = np.unique(np.append(wanted, 0.0))
+    # the distance of each uniform column to the nearest requested angle (sorted)
+    after = np.minimum(np.searchsorted(asked, _UNIFORM), asked.size - 1)
+    apart = np.minimum(np.abs(asked[after] - _UNIFORM), np.abs(_UNIFORM - asked[after - 1]))
+    return np.asarray(np.unique(np.append(asked, _UNIFORM[apart > SAME])))
 
 
 def chains(group: HigherGroup[K], k: K, columns: np.ndarray, theta0: np.ndarray,
@@ -209,7 +225,7 @@ def chains(group: HigherGroup[K], k: K, columns: np.ndarray, theta0: np.ndarray,
     at = np.append(np.arange(u), 0)[:, None], rows[None, :], np.maximum(index, 0)
 
     coef = col.coef[at[:2]]
-    a, b = trig_form(coef.reshape(-1, coef.shape[-1]))
+    a, b = (v[at[:2]].reshape(-1, v.shape[-1]) for v in (col.a, col.b))
     # a sketched root in no bracket (its neighbour closer than the samples' spacing) is the
     # path's root at φ = 0 and 2π all the same, on neither chain beyond
     seed = found & ~alive
@@ -220,7 +236,9 @@ def chains(group: HigherGroup[K], k: K, columns: np.ndarray, theta0: np.ndarray,
                        np.where(on, col.high[at], np.nan).reshape(-1, 1)).reshape(on.shape)
         theta = np.where(ends, theta0, theta)
         apart = separation(coef, theta)
-        slope = np.where(on, col.slope[at], np.where(ends, np.sign(derivatives(coef, theta)[1]), 0.0))
+        # Φ′ is wanted only at the seeds off the chains (rare)
+        slope = np.where(on, col.slope[at], np.where(ends, np.sign(derivatives(coef, theta)[1]), 0.0)
+                         if ends.any() else 0.0)
     return Chains(np.append(columns, TWO_PI), theta, apart, slope, (ahead >= 0) | ends,
                   ((behind >= 0) & (index == behind)) | ends, alive,
                   (on[-1] & (index[-1] == start)) | seed)

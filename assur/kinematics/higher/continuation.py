@@ -988,7 +988,7 @@ def follow_mode(group: HigherGroup[K], inputs: Inputs[K], phi: Any, *, analogs: 
                                   delta)
         return _squeeze(solution) if shape == () else solution
     if method == "roots" or (method == "auto" and d <= ROOTS_DESIGNS and _tracked(group)):
-        solution = _follow_tracked(group, inputs, phi, (x0, k0), found, modes, analogs, delta)
+        solution = _follow_tracked(group, inputs, phi, x0, found, modes, analogs, delta)
     else:
         solution = _step_follow(group, inputs, phi, x0, found, modes, analogs, delta)
     return _squeeze(solution) if shape == () else solution
@@ -1438,7 +1438,7 @@ def _refined(group: HigherGroup[K], inputs: Inputs[K], paths: Chains, root: _Roo
 
 
 def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
-                    sketch: tuple[np.ndarray, K], found: np.ndarray, modes: AssemblyModes,
+                    x0: np.ndarray, found: np.ndarray, modes: AssemblyModes,
                     jets: bool, delta: float | np.ndarray) -> HigherSolution:
     """The sketched mode along the path of its root over the grid of angles
     (:func:`~assur.kinematics.higher.track.chains`), as far as each link of that path passes
@@ -1446,9 +1446,8 @@ def _follow_tracked(group: HigherGroup[K], inputs: Inputs[K], phi: np.ndarray,
     (:func:`_refined`). A design is taken where its path goes round the turn, or where its
     forward stretch (from φ = 0) and backward stretch (from 2π down) both end at located
     change points (the angles between not reached, reason 8); the other designs are
-    followed step by step (:func:`_step_follow`). ``sketch`` holds the sketched mode x0
-    (D, n) and the inputs there (its sign of det J is read off ``modes``)."""
-    x0 = sketch[0]
+    followed step by step (:func:`_step_follow`). ``x0`` (D, n) is the sketched mode, one of
+    ``modes`` (its sign of det J is read off them)."""
     d = x0.shape[0]
     e = group.eliminated
     columns = grid(np.mod(phi, TWO_PI))

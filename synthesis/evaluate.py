@@ -44,8 +44,6 @@ import assur.kinematics.analysis
 from assur import KinematicModel, Motion, TableError
 from assur.errors import Issue
 from assur.kinematics.analysis import analyse
-from assur.kinematics.higher import compiled
-from assur.kinematics.higher.continuation import KERNEL_POSITIONS
 from assur.text import Message
 from assur.typing import ComplexArray, FloatArray, Value
 from synthesis import criteria as C
@@ -145,8 +143,11 @@ class Evaluator:
         corrects the batches of the search too, each of them too small to pay for the
         loading alone. Returns whether it loaded.
         """
-        higher = any(group.kind in ("III", "IV") for group in self.problem.model.groups)
-        if not higher or trials * self.positions.size < KERNEL_POSITIONS:
+        if not any(group.kind in ("III", "IV") for group in self.problem.model.groups):
+            return False
+        from assur.kinematics.higher import compiled, continuation  # as the analysis would
+
+        if trials * self.positions.size < continuation.KERNEL_POSITIONS:
             return False
         compiled.load()
         return True

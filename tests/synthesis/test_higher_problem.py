@@ -250,11 +250,11 @@ def test_a_search_large_enough_loads_the_compiled_corrector_first(
     (36 grid + 12 control angles) = 1,536 reach it, 2**4 × 48 = 768 do not); a four-bar
     problem never does, whatever its budget."""
     import synthesis
-    from synthesis import evaluate
+    from assur.kinematics.higher import compiled, continuation
 
     loaded: list[int] = []
-    monkeypatch.setattr(evaluate.compiled, "load", lambda: loaded.append(1))
-    monkeypatch.setattr(evaluate, "KERNEL_POSITIONS", 1000)
+    monkeypatch.setattr(compiled, "load", lambda: loaded.append(1))
+    monkeypatch.setattr(continuation, "KERNEL_POSITIONS", 1000)
     problem = synthesis.load_problem(PROBLEM)
     assert Evaluator(problem).positions.size == 36 + 12
     synthesis.synthesize(problem, budget=budget, shrink=0, restarts=0, refine=False)

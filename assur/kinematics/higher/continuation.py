@@ -589,9 +589,17 @@ def _meets(group: HigherGroup[K], inputs: Inputs[K], s: float, t: np.ndarray, x:
     out = np.zeros(rows.shape, dtype=bool)
     if not rows.any():
         return out
-    theta = x[..., group.eliminated]
-    sides = [_pair(group, values(inputs(s * (t + side))), theta) for side in (-MEET, MEET)]
-    return np.asarray(rows & (sides[0] > 0) & (sides[1] < 0))
+    return np.asarray(rows & _crosses(group, inputs, s * (t - MEET), s * (t + MEET),
+                                      x[..., group.eliminated]))
+
+
+def _crosses(group: HigherGroup[K], inputs: Inputs[K], before: np.ndarray, after: np.ndarray,
+             theta: np.ndarray) -> np.ndarray:
+    """Where the local discriminant of the pair of roots near ``theta`` (:func:`_pair`) is +1
+    at the crank angles ``before`` and −1 at ``after``: the pair real on one side, complex on
+    the other (the inputs at both evaluated at once)."""
+    sides = _pair(group, values(inputs(np.stack([before, after]))), theta)
+    return np.asarray((sides[0] > 0) & (sides[1] < 0))
 
 
 def _kept(v: Any, mask: np.ndarray, jets: bool) -> list[np.ndarray]:
@@ -1287,10 +1295,9 @@ def _canonical(leg: _Leg, star: np.ndarray, top: np.ndarray) -> tuple[np.ndarray
     with np.errstate(invalid="ignore"):
         centre, guess = np.round(star / GRAIN) * GRAIN, np.round(top / GRAIN) * GRAIN
         a, b = centre - 2.0 * GRAIN * leg.s, centre + 2.0 * GRAIN * leg.s
-        theta_a, value_a = _extremum(leg.coef(a), guess)
-        theta_b, value_b = _extremum(leg.coef(b), guess)
-        again, at = _locate(leg, (a, theta_a, value_a), (b, theta_b, value_b),
-                            np.isfinite(star) & (value_a > 0.0) & (value_b < 0.0))
+        theta, value = _extremum(leg.coef(np.stack([a, b])), guess)
+        again, at = _locate(leg, (a, theta[0], value[0]), (b, theta[1], value[1]),
+                            np.isfinite(star) & (value[0] > 0.0) & (value[1] < 0.0))
     return np.where(np.isfinite(again), again, star), np.where(np.isfinite(again), at, top)
 
 
@@ -1378,8 +1385,7 @@ def _walk_path(leg: _Leg) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[tupl
             into = active & moved & ~waiting & np.isfinite(star)
             if into.any():
                 into &= leg.fold(star, top, phi, here)
-                into &= _pair(leg.group, values(leg.inputs(star - s * MEET)), top) > 0
-                into &= _pair(leg.group, values(leg.inputs(star + s * MEET)), top) < 0
+                into &= _crosses(leg.group, leg.inputs, star - s * MEET, star + s * MEET, top)
                 status[into] = ENDS
             active &= ~into & ((h >= REFINE_MIN) | waiting)
     return status, at, np.where(status == ENDS, star, np.nan), passed

@@ -5,14 +5,16 @@ pair has two unknowns (the force of one link on the other), every prismatic pair
 normal force N along the guide's left normal n and the couple M about the slider point K).
 The three equilibrium equations of each link (d'Alembert, its known loads included) make one
 square system per position, solved for all positions (and designs) at once with a batched
-:func:`numpy.linalg.solve`. It serves the triads and the class IV groups
+:func:`numpy.linalg.solve`, after the force of each external revolute pair has been condensed
+out (read off its link's force equations: a triad's 12 unknowns become 6). It serves the triads and the class IV groups
 (their entries in :data:`assur.forces.solver.EQUILIBRIA`); for a dyad it gives what the closed forms of
 :mod:`assur.forces.groups` give.
 
 Scaling: each link's moment equation is taken about the mean of its pair points and divided
 by a length of the group (the RMS distance of its pair points from their mean), and a couple
 is solved for in the same length's units, so that every entry of the matrix is of the order
-of 1. The group's normalised determinant is the reciprocal condition number of that matrix
+of 1. The group's normalised determinant is the reciprocal condition number of the condensed
+matrix, singular exactly where the whole one is
 (its 1-norm one, ``1/(‖A‖₁·‖A⁻¹‖₁)``, with ``‖A⁻¹‖₁`` estimated as LAPACK's condition
 estimator starts, from one more batched solve): 0 where the reactions are indeterminate (the
 constraint lines of the group's pairs meet in one point, the dead position). There, and where
@@ -95,7 +97,7 @@ def equilibrium_linear(group: GroupModel, loads: Loads) -> Solved:
         centroid = sum(points.values()) / len(points)
         length = np.sqrt(sum(np.abs(p - centroid) ** 2 for p in points.values()) / len(points))
         matrix, rhs = _system(layout.links, pairs, points, normals, loads, length)
-        unknowns, determinant = _solve(matrix, rhs)
+        unknowns, determinant = _condensed_solve(matrix, rhs, _eliminated(layout.links, pairs))
     transfers = []
     for k, (pair, kind, source, target) in enumerate(pairs):
         first, second = unknowns[..., 2 * k], unknowns[..., 2 * k + 1]
@@ -146,9 +148,53 @@ def _system(links: tuple[LinkId, ...], pairs: list[tuple[PairId, str, LinkId, Li
         rhs[r] = -force.real
         rhs[r + 1] = -force.imag
         rhs[r + 2] = -loads.moment(link, centres[link]) / length
-    axes = tuple(range(2, matrix.ndim))
-    return (np.ascontiguousarray(matrix.transpose(*axes, 0, 1)),
-            np.ascontiguousarray(rhs.transpose(*(a - 1 for a in axes), 0)))
+    return matrix, rhs
+
+
+def _eliminated(links: tuple[LinkId, ...], pairs: list[tuple[PairId, str, LinkId, LinkId]]
+                ) -> dict[int, int]:
+    """The external revolute pairs whose force is read off their link's two force equations
+    (at most one per link): the pair's index in ``pairs`` → the link's index in ``links``."""
+    out: dict[int, int] = {}
+    for k, (_, kind, source, target) in enumerate(pairs):
+        if kind == "R" and source not in links and links.index(target) not in out.values():
+            out[k] = links.index(target)
+    return out
+
+
+def _condensed_solve(matrix: np.ndarray, rhs: np.ndarray, eliminated: dict[int, int]
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """Solve the system of :func:`_system` (positions last) with the external revolute pairs
+    of ``eliminated`` condensed out; the unknowns (…, 3n) and the reciprocal condition number
+    of the condensed matrix.
+
+    The force of an external revolute pair on its link enters only that link's force rows,
+    with the identity as coefficient: F = b_f − A_f·x for the other unknowns x. Put into the
+    link's moment row, it leaves a system of 3n − 2e unknowns, singular exactly where the
+    whole one is (the Schur complement of an identity block) — a triad's 12 unknowns become
+    6, a quarter of the solve's work.
+    """
+    size = matrix.shape[0]
+    for pair, link in eliminated.items():
+        force, moment = 3 * link, 3 * link + 2
+        for column, source in ((2 * pair, force), (2 * pair + 1, force + 1)):
+            factor = matrix[moment, column].copy()
+            matrix[moment] -= factor * matrix[source]
+            rhs[moment] -= factor * rhs[source]
+    dropped_rows = [3 * link + i for link in eliminated.values() for i in (0, 1)]
+    dropped = [2 * pair + i for pair in eliminated for i in (0, 1)]
+    kept_rows = [r for r in range(size) if r not in dropped_rows]
+    kept = [c for c in range(size) if c not in dropped]
+    positions, m = matrix.shape[2:], len(kept)
+    condensed = matrix[np.ix_(kept_rows, kept)].reshape(m * m, -1)
+    x, rcond = _solve(np.ascontiguousarray(condensed.T).reshape(*positions, m, m),
+                      np.ascontiguousarray(rhs[kept_rows].reshape(m, -1).T).reshape(*positions, m))
+    unknowns = np.empty((*x.shape[:-1], size))
+    unknowns[..., kept] = x
+    coupling = matrix[np.ix_(dropped_rows, kept)]
+    unknowns[..., dropped] = np.moveaxis(rhs[dropped_rows], 0, -1) - np.einsum(
+        "rc...,...c->...r", coupling, x)
+    return unknowns, rcond
 
 
 def _mean(points: list[np.ndarray]) -> np.ndarray:
@@ -178,7 +224,7 @@ def _solve(matrix: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray]
         finite &= values[..., -1] > _DEGENERATE * values[..., 0]
         x, inverse_norm = _solve_regular(np.where(finite[..., None, None], matrix, eye), rhs)
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        rcond = 1.0 / (np.max(np.sum(np.abs(matrix), axis=-2), axis=-1) * inverse_norm)
+        rcond = 1.0 / (np.einsum("...ij->...j", np.abs(matrix)).max(axis=-1) * inverse_norm)
     rcond = np.where(finite & np.isfinite(rcond), rcond, 0.0)
     good = rcond > _DEGENERATE
     return np.where(good[..., None], x, np.nan), rcond

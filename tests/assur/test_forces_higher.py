@@ -23,7 +23,7 @@ from test_forces_global import _global, agrees
 
 import assur
 from assur.forces import ForceData, Load, Mass, kinetostatics
-from assur.forces.linear import _solve, equilibrium_linear
+from assur.forces.linear import _condensed_solve, _solve, equilibrium_linear
 from assur.kinematics.analysis import analyse
 from assur.kinematics.higher.kind import Layout
 from synthesis.cli.main import main
@@ -217,6 +217,34 @@ def test_a_singular_matrix_in_a_batch_is_nan_and_the_others_are_solved() -> None
     x, rcond = _solve(matrix, np.ones((3, 3)))
     assert np.all(np.isnan(x[0])) and np.all(np.isnan(x[2]))
     assert x[1].tolist() == [1.0, 0.5, 0.25] and rcond.tolist() == [0.0, 0.25, 0.0]
+
+
+def _structured(rng: np.random.Generator, positions: int) -> np.ndarray:
+    """Random 12×12 systems (positions last) shaped like a triad's: pairs 3, 4, 5 external
+    revolute pairs on links 0, 1, 2, entering only those links' rows, the identity in their
+    force rows; every other entry random."""
+    matrix = rng.normal(size=(12, 12, positions))
+    for pair, link in ((3, 0), (4, 1), (5, 2)):
+        columns = [2 * pair, 2 * pair + 1]
+        matrix[:, columns] = 0.0
+        matrix[3 * link:3 * link + 2, columns] = np.eye(2)[..., None]
+        matrix[3 * link + 2, columns] = rng.normal(size=(2, positions))
+    return matrix
+
+
+def test_the_condensed_solve_is_the_whole_systems_solve() -> None:
+    rng = np.random.default_rng(3)
+    matrix, rhs = _structured(rng, 50), rng.normal(size=(12, 50))
+    # the last system singular: a row of link 3 a combination of its other two
+    matrix[9, :, -1] = 0.5 * matrix[10, :, -1] - 2.0 * matrix[11, :, -1]
+    rhs[9, -1] = 0.5 * rhs[10, -1] - 2.0 * rhs[11, -1]
+    whole = np.moveaxis(matrix, -1, 0)
+    expected = np.linalg.solve(whole[:-1], np.moveaxis(rhs, -1, 0)[:-1, :, None])[..., 0]
+    x, rcond = _condensed_solve(matrix.copy(), rhs.copy(), {3: 0, 4: 1, 5: 2})
+    assert np.allclose(x[:-1], expected, rtol=1e-9, atol=1e-9 * np.abs(expected).max())
+    assert np.all(np.isnan(x[-1])) and rcond[-1] <= 1e-14 and np.all(rcond[:-1] > 1e-6)
+    # singular exactly where the whole is: the condensed determinant is the whole one's
+    assert abs(np.linalg.det(whole[-1])) < 1e-12 and np.all(np.abs(np.linalg.det(whole[:-1])) > 1e-6)
 
 
 def test_analyze_forces_on_the_six_bar_with_a_triad(capsys: pytest.CaptureFixture[str]

@@ -32,11 +32,13 @@ from assur.kinematics.higher.groups import (
     hadamard,
     plain,
     row_max,
+    row_sums,
     stack_last,
     values,
 )
 from assur.kinematics.higher.modes import (
     ACCEPT,
+    SETTLED,
     TAU,
     AssemblyModes,
     assembly_modes,
@@ -1134,13 +1136,25 @@ def _poses(group: HigherGroup[K], k: K, theta: np.ndarray, sign: np.ndarray
     """The poses at the roots θ of the eliminant (the inputs ``k`` as jets in φ), by the
     group's recovery and 2 Newton iterations on the reduced equations; their analogs x′, x″,
     margin rows, and where they are poses of the mode: the residual at most ``ACCEPT``·L and
-    det J of the sketch's ``sign``."""
+    det J of the sketch's ``sign``.
+
+    An iteration's step below ``SETTLED`` ends them, and the residual, Jacobian and margin
+    rows are then those of the point it started from: the step moved the pose by less than
+    ``SETTLED``·L, so they differ from the final point's by that relative amount, and one
+    evaluation of the equations is saved."""
     kv = values(k)
+    scale = weights(group)
     with np.errstate(all="ignore"):
         x = group.recover(np.exp(1j * theta), kv)
-        x, _ = newton(group, kv, x, 2)
-        f, jac, lines = group.assessed(x, kv)
-        factors = cofactors(jac)
+        for iteration in range(POSE_ITERATIONS + 1):
+            f, jac, lines = group.assessed(x, kv)
+            factors = cofactors(jac)
+            if iteration == POSE_ITERATIONS:
+                break
+            dx = cramer(*factors, -f)
+            x = x + dx
+            if not (row_sums(np.abs(dx * scale)) > SETTLED).any():
+                break
         x1, x2 = _implicit(group, k, x, factors)
         posed = (row_max(np.abs(f)) <= ACCEPT * np.asarray(group.size)) \
             & (np.sign(factors[1]) == sign)
@@ -1171,6 +1185,8 @@ REFINE_MIN = 1e-10
 REFINE_ROUNDS = 4
 #: Newton iterations on Φ from a sub-step's predictor, and their convergence bound (rad).
 ROOT_ITERATIONS = 8
+#: Newton iterations on the reduced equations from a pose recovered at a root (:func:`_poses`).
+POSE_ITERATIONS = 2
 #: A change point on the path is located by regula falsi (Illinois) on the local
 #: discriminant in φ to a bracket of this (rad), in at most ``LOCATE_ITERATIONS`` evaluations.
 LOCATED = 1e-11

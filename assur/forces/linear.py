@@ -6,17 +6,17 @@ normal force N along the guide's left normal n and the couple M about the slider
 The three equilibrium equations of each link (d'Alembert, its known loads included) make one
 square system per position, solved for all positions (and designs) at once with a batched
 :func:`numpy.linalg.solve`, after the force of each external revolute pair has been condensed
-out (read off its link's force equations: a triad's 12 unknowns become 6). It serves the triads and the class IV groups
-(their entries in :data:`assur.forces.solver.EQUILIBRIA`); for a dyad it gives what the closed forms of
-:mod:`assur.forces.groups` give.
+out (read off its link's force equations: a triad's 12 unknowns become 6). It serves the
+triads and the class IV groups (their entries in :data:`assur.forces.solver.EQUILIBRIA`); for
+a dyad it gives what the closed forms of :mod:`assur.forces.groups` give.
 
 Scaling: each link's moment equation is taken about the mean of its pair points and divided
 by a length of the group (the RMS distance of its pair points from their mean), and a couple
 is solved for in the same length's units, so that every entry of the matrix is of the order
 of 1. The group's normalised determinant is the reciprocal condition number of the condensed
-matrix, singular exactly where the whole one is
-(its 1-norm one, ``1/(‖A‖₁·‖A⁻¹‖₁)``, with ``‖A⁻¹‖₁`` estimated as LAPACK's condition
-estimator starts, from one more batched solve): 0 where the reactions are indeterminate (the
+matrix, which is singular exactly where the whole one is (its 1-norm one,
+``1/(‖A‖₁·‖A⁻¹‖₁)``, with ``‖A⁻¹‖₁`` estimated as LAPACK's condition estimator starts,
+from one more batched solve): 0 where the reactions are indeterminate (the
 constraint lines of the group's pairs meet in one point, the dead position). There, and where
 the group is not assembled, the reactions are NaN; the solve never raises.
 """
@@ -171,8 +171,8 @@ def _condensed_solve(matrix: np.ndarray, rhs: np.ndarray, eliminated: dict[int, 
     The force of an external revolute pair on its link enters only that link's force rows,
     with the identity as coefficient: F = b_f − A_f·x for the other unknowns x. Put into the
     link's moment row, it leaves a system of 3n − 2e unknowns, singular exactly where the
-    whole one is (the Schur complement of an identity block) — a triad's 12 unknowns become
-    6, a quarter of the solve's work.
+    whole one is (the Schur complement of an identity block): a triad's 12 unknowns become 6,
+    an eighth of the factorisation's arithmetic. ``matrix`` and ``rhs`` are changed in place.
     """
     size = matrix.shape[0]
     for pair, link in eliminated.items():

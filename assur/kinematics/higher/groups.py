@@ -207,6 +207,20 @@ def row_max(a: np.ndarray) -> np.ndarray:
     return np.asarray(total)
 
 
+def row_offsets(shape: tuple[int, ...]) -> np.ndarray:
+    """The flat index of the first element of each row of an array of ``shape`` (..., R),
+    shape (..., 1): ``a.reshape(-1)[row_offsets(a.shape) + i]`` is ``a[..., i]`` row by row,
+    for an index array ``i`` (..., K) — what ``np.take_along_axis`` gives, in one flat take.
+
+    Examples
+    --------
+    >>> a = np.arange(6.0).reshape(2, 3)
+    >>> a.reshape(-1)[row_offsets(a.shape) + np.array([[2, 0], [1, 1]])].tolist()
+    [[2.0, 0.0], [4.0, 4.0]]
+    """
+    return np.arange(0, int(np.prod(shape)), shape[-1]).reshape(shape[:-1] + (1,))
+
+
 def _row_product(a: np.ndarray) -> np.ndarray:
     """Π_j a[..., j] over a short last axis, factor by factor."""
     total = a[..., 0]

@@ -24,6 +24,7 @@ from assur.kinematics.higher.groups import (
     hadamard,
     plain,
     row_max,
+    row_offsets,
     row_sums,
     stack_last,
 )
@@ -220,7 +221,7 @@ def assembly_modes(group: HigherGroup[K], k: K) -> AssemblyModes:
         theta = np.where(valid, x[..., group.eliminated], np.inf)
         # each mode's row in the order of θ, laid flat
         order = np.argsort(theta, axis=-1)
-        order += np.arange(0, order.size, order.shape[-1]).reshape(order.shape[:-1] + (1,))
+        order += row_offsets(order.shape)
         valid = valid.reshape(-1)[order]
         x, stack = _sorted(x, order, valid, np.nan), _sorted(stack, order, valid, NAN)
         jac, rows = _sorted(jac, order, valid, np.nan), _sorted(rows, order, valid, np.nan)
@@ -287,8 +288,7 @@ def select_mode(group: HigherGroup[K], k: K, modes: AssemblyModes
         ranked = np.sort(rms, axis=-1)
         own = np.where(modes.det_sign == sign[..., None], rms, np.inf)
         # the nearest mode's row, laid flat
-        best = np.argmin(own, axis=-1) + np.arange(0, own.size, own.shape[-1]).reshape(
-            own.shape[:-1])
+        best = np.argmin(own, axis=-1) + row_offsets(own.shape)[..., 0]
         nearest = own.reshape(-1)[best]
         x = modes.x.reshape(-1, modes.x.shape[-1])[best]
         margin = modes.margin.reshape(-1)[best]

@@ -20,6 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from assur.kinematics.jets import expi
+
 __all__ = ["RealRoots", "chord", "derivatives", "polish", "real_roots", "separation", "trig_form"]
 
 TWO_PI = 2.0 * np.pi
@@ -91,14 +93,6 @@ def chord(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     np.abs(d, out=d)
     d *= 2.0
     return d
-
-
-def _unit(theta: np.ndarray) -> np.ndarray:
-    """E = e^{iθ} of real θ, from one cosine and one sine."""
-    e = np.empty(theta.shape, dtype=complex)
-    np.cos(theta, out=e.real)
-    np.sin(theta, out=e.imag)
-    return e
 
 
 def _value(phi: list[np.ndarray], e: np.ndarray) -> np.ndarray:
@@ -234,7 +228,7 @@ def polish(a: np.ndarray, b: np.ndarray, low: np.ndarray, high: np.ndarray) -> n
     every = ((a - 1j * b) / np.where(n > 0, 2.0, 1.0))[rows]
     phi = [every[:, j] for j in n]
     slopes = [j * every[:, j] for j in n]
-    ends = _value([v[:, None] for v in phi], _unit(np.stack([lo, hi], axis=-1)))
+    ends = _value([v[:, None] for v in phi], np.asarray(expi(np.stack([lo, hi], axis=-1))))
     v_lo, v_hi = ends[:, 0], ends[:, 1]
     positive = v_lo >= 0.0
     live = np.ones(todo.shape, dtype=bool)
@@ -242,7 +236,7 @@ def polish(a: np.ndarray, b: np.ndarray, low: np.ndarray, high: np.ndarray) -> n
         x = lo + (hi - lo) * v_lo / (v_lo - v_hi)
         x = np.where((x >= lo) & (x <= hi), x, 0.5 * (lo + hi))
         for _ in range(POLISH):
-            v, d = _values(phi, slopes, _unit(x))
+            v, d = _values(phi, slopes, np.asarray(expi(x)))
             below = (v >= 0.0) == positive
             lo, hi = np.where(below, x, lo), np.where(below, hi, x)
             newton = x - v / d

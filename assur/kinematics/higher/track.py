@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from assur.kinematics.higher.groups import HigherGroup, K
+from assur.kinematics.higher.groups import HigherGroup, K, row_offsets
 from assur.kinematics.higher.modes import coefficients
 from assur.kinematics.higher.roots import (
     RealRoots,
@@ -78,12 +78,6 @@ def _columns(group: HigherGroup[K], k: K, u: int) -> _Column:
                    b.reshape(shape + b.shape[-1:]))
 
 
-def _rows(shape: tuple[int, ...]) -> np.ndarray:
-    """The flat offset of the first element of each row of an array of ``shape`` (..., R),
-    shape (..., 1): ``a.reshape(-1)[_rows(a.shape) + i]`` is ``a[..., i]`` row by row."""
-    return np.arange(0, int(np.prod(shape)), shape[-1]).reshape(shape[:-1] + (1,))
-
-
 def _links(col: _Column) -> np.ndarray:
     """For each root at each column (U, D, R), the index of the nearest root at the next
     column (the last column's next is the first), where that root is also the nearest back
@@ -94,7 +88,7 @@ def _links(col: _Column) -> np.ndarray:
         dist = chord(col.theta[..., :, None], theta[..., None, :])
     dist[np.isnan(dist)] = np.inf
     forward = np.argmin(dist, axis=-1)
-    at = _rows(forward.shape) + forward
+    at = row_offsets(forward.shape) + forward
     backward = np.argmin(dist, axis=-2)
     width = forward.shape[-1]
     ok = (slope.reshape(-1)[at] == col.slope) & (col.slope != 0) \
@@ -112,7 +106,7 @@ def _from_first(links: np.ndarray) -> np.ndarray:
     maps[0] = np.arange(width + 1)
     maps[1:, ..., :width] = np.where(links >= 0, links, width)
     maps[1:, ..., width] = width
-    rows = _rows(maps.shape)
+    rows = row_offsets(maps.shape)
     k = 1
     while k < maps.shape[0]:
         maps[k:] = maps.reshape(-1)[rows[k:] + maps[:-k]]
@@ -166,7 +160,7 @@ def _inverse(links: np.ndarray) -> np.ndarray:
 def _chain(maps: np.ndarray, start: np.ndarray) -> np.ndarray:
     """The index of the root reached at every column (U + 1, D) from the roots ``start`` (D,)
     of the first (−1 where a start is missing or the chain is lost)."""
-    index = maps.reshape(-1)[_rows(maps.shape)[..., 0] + np.maximum(start, 0)]
+    index = maps.reshape(-1)[row_offsets(maps.shape)[..., 0] + np.maximum(start, 0)]
     return np.asarray(np.where(start >= 0, index, -1))
 
 

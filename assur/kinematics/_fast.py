@@ -22,6 +22,8 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from assur.kinematics.jets import expi
+
 __all__ = ["BLOCK", "NUMBERS", "REALS", "crank_pin", "finite", "positive", "rrr", "smallest"]
 
 #: Positions per block of the RRR kernel in large calls.
@@ -65,9 +67,7 @@ def crank_pin(o: Any, length: Any, angle: Any) -> np.ndarray | None:
                  or type(length) is np.ndarray and length.dtype == float and finite(length))
             and finite(angle)):
         return None
-    unit = np.empty(angle.shape, dtype=complex)
-    np.cos(angle, unit.real)
-    np.sin(angle, unit.imag)
+    unit = expi(angle)
     parts = unit.view(np.float64)  # x, y, x, y, …
     if type(length) is np.ndarray:
         pairs = parts.reshape(*unit.shape, 2)

@@ -9,6 +9,7 @@ of complex-step first derivatives).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 
 import numpy as np
@@ -183,3 +184,27 @@ def test_value_of_plain_and_jet() -> None:
     a = np.arange(3.0)
     assert J.value(a) is a
     assert J.value(Jet(a, 1.0)) is not None and np.array_equal(J.value(Jet(a, 1.0)), a)
+
+
+@pytest.mark.parametrize("size", [J.TANGENT_FROM - 1, J.TANGENT_FROM, 50_000])
+def test_unit_vectors_are_the_correctly_rounded_cosine_and_sine_to_two_eps(size: int) -> None:
+    """Both forms of ``expi`` (a cosine and a sine; the tangent of the half angle) against
+    ``math.cos``/``math.sin`` angle by angle: angles of every size, the multiples of π/2 and
+    π and their neighbours (the tangent's poles and zeros), and angles far out."""
+    rng = np.random.default_rng(size)
+    special = np.arange(-16, 17) * (np.pi / 4)  # ±4π in steps of π/4
+    special = np.concatenate([special, np.nextafter(special, np.inf),
+                              np.nextafter(special, -np.inf), [0.0, -0.0, 1e-300, 5e-324]])
+    scales = rng.choice([1e-8, 1.0, 10.0, 1e3, 1e6, 1e15], size)
+    t = np.resize(np.concatenate([special, rng.uniform(-1.0, 1.0, size) * scales]), size)
+    u = J.expi(t)
+    assert isinstance(u, np.ndarray) and u.shape == (size,)
+    cos = np.array([math.cos(x) for x in t.tolist()])
+    sin = np.array([math.sin(x) for x in t.tolist()])
+    eps = np.finfo(float).eps
+    assert np.max(np.abs(u.real - cos)) <= 2 * eps
+    assert np.max(np.abs(u.imag - sin)) <= 2 * eps
+    small = (np.abs(t) < 1e-3) & (np.abs(t) >= np.finfo(float).tiny)  # sin t ≈ t: the sine
+    # keeps its relative accuracy there (not for subnormal t, whose half may round to 0)
+    assert np.all(np.abs(u.imag - sin)[small] <= 2 * eps * np.abs(sin[small]))
+    assert np.all(np.isnan(J.expi(np.full(size, np.nan))))

@@ -261,13 +261,11 @@ def _unit(t: np.ndarray) -> np.ndarray:
     rounded to 1 ulp, no step cancels more than an absolute ε, and near the poles of the
     tangent (t near π modulo 2π) τ² stays far from overflow (|τ| < 10²⁰ for every double).
     """
-    if not t.ndim:
-        return _unit(t.reshape(1))[0]
     u = np.empty(t.shape, dtype=complex)
-    if t.shape[-1] < TANGENT_FROM:
+    if not t.ndim or t.shape[-1] < TANGENT_FROM:
         np.cos(t, u.real)
         np.sin(t, u.imag)
-        return u
+        return u if u.ndim else u[()]
     tau = np.multiply(t, _HALF)
     np.tan(tau, tau)
     g = np.multiply(tau, tau)

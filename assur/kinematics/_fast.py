@@ -22,7 +22,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from assur.kinematics.jets import expi
+from assur.kinematics.jets import unit as unit_vectors
 
 __all__ = ["BLOCK", "NUMBERS", "REALS", "crank_pin", "finite", "positive", "rrr", "smallest"]
 
@@ -67,7 +67,7 @@ def crank_pin(o: Any, length: Any, angle: Any) -> np.ndarray | None:
                  or type(length) is np.ndarray and length.dtype == float and finite(length))
             and finite(angle)):
         return None
-    unit = expi(angle)
+    unit = unit_vectors(angle)
     parts = unit.view(np.float64)  # x, y, x, y, …
     if type(length) is np.ndarray:
         pairs = parts.reshape(*unit.shape, 2)

@@ -36,6 +36,7 @@ __all__ = [
     "imag",
     "real",
     "sqrt",
+    "unit",
     "value",
     "where",
 ]
@@ -241,12 +242,12 @@ def arg(z: Jet | ArrayLike) -> Jet | np.ndarray:
 #: ½, 1 and 2 as arrays of shape (): cheaper ufunc operands than Python numbers.
 _HALF, _ONE, _TWO = np.array(0.5), np.array(1.0), np.array(2.0)
 
-#: Angles along the last axis from which :func:`_unit` takes the tangent of the half angle.
+#: Angles along the last axis from which :func:`unit` takes the tangent of the half angle.
 TANGENT_FROM = 1024
 
 
-def _unit(t: np.ndarray) -> np.ndarray:
-    """``exp(1j*t)`` of a real array (a number for a 0-d array).
+def unit(t: np.ndarray) -> np.ndarray:
+    """``exp(1j*t)`` of a plain real array (a number for a 0-d array): :func:`expi`'s values.
 
     Rows of fewer than :data:`TANGENT_FROM` angles (the last axis: the positions of a
     mechanism's analysis, whatever the designs along the others) take one cosine and one
@@ -281,10 +282,10 @@ def expi(theta: Jet | ArrayLike) -> Jet | np.ndarray:
     if not isinstance(theta, Jet):
         t = theta if type(theta) is np.ndarray and theta.dtype == float else np.asarray(
             theta, dtype=float)
-        return _unit(t)
-    unit = _unit(np.asarray(theta.v, dtype=float))
-    ju = 1j * unit
-    return Jet(unit, ju * theta.d1, (ju * theta.d2) - unit * theta.d1 * theta.d1)
+        return unit(t)
+    u = unit(np.asarray(theta.v, dtype=float))
+    ju = 1j * u
+    return Jet(u, ju * theta.d1, (ju * theta.d2) - u * theta.d1 * theta.d1)
 
 
 def abs(x: Jet | ArrayLike) -> Jet | np.ndarray:

@@ -107,10 +107,13 @@ def test_fast_and_readable_solutions_agree(arguments: tuple, delta: float) -> No
        pivot=st.sampled_from([0j, 1.5 - 2.0j]))
 def test_fast_crank_equals_the_readable_path(seed: int, designs: int, pivot: complex) -> None:
     rng = np.random.default_rng(seed)
-    angles = rng.uniform(-10.0, 10.0, int(rng.integers(1, 50)))
+    count = int(rng.choice([rng.integers(1, 50), rng.integers(1024, 1500)]))  # both unit forms
+    angles = rng.uniform(-10.0, 10.0, count)
     length = rng.uniform(0.1, 50.0, (designs, 1)) if designs else float(rng.uniform(0.1, 50))
     assert _fast.crank_pin(pivot, length, angles) is not None  # the fast path serves this
     pin = solve_input(pivot, length, angles)
     readable = solve_input(pivot, length, Jet(angles))  # a jet takes the readable path
     np.testing.assert_array_equal(pin.c, readable.c.v)
     assert pin.exists.all() and (pin.margin == 1.0).all()
+    exact = pivot + length * np.exp(1j * angles)  # numpy's complex exponential
+    assert np.all(np.abs(pin.c - exact) <= 4 * EPS * (np.abs(length) + abs(pivot)))

@@ -250,8 +250,10 @@ def unit(t: np.ndarray) -> np.ndarray:
     """``exp(1j*t)`` of a plain real array (a number for a 0-d array): :func:`expi`'s values.
 
     Rows of fewer than :data:`TANGENT_FROM` angles (the last axis: the positions of a
-    mechanism's analysis, whatever the designs along the others) take one cosine and one
-    sine. Longer rows take the tangent of the half angle τ = tan(t/2):
+    mechanism's analysis, whatever the designs along the others, so that a design has the
+    same unit vectors alone and in a batch) take one cosine and one sine. (The higher
+    groups lay their designs along the last axis: there batches of 1,024 designs or more
+    take the other form.) Longer rows take the tangent of the half angle τ = tan(t/2):
     ``cos t = 2/(1 + τ²) − 1`` and ``sin t = 2τ/(1 + τ²)``, one tangent and five arithmetic
     passes. numpy computes the tangent by vector instructions where the machine has them,
     and the cosine and the sine one number at a time, so this form costs 0.36 times the two

@@ -22,6 +22,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from assur.kinematics.jets import HALF
 from assur.kinematics.jets import unit as unit_vectors
 
 __all__ = ["BLOCK", "NUMBERS", "REALS", "crank_pin", "finite", "positive", "rrr", "smallest"]
@@ -124,9 +125,6 @@ def positive(x: Any) -> bool:
     """Whether the number or every element of the array ``x`` is positive."""
     return bool((x if type(x) in REALS else np.minimum.reduce(x, axis=None)) > 0.0)
 
-
-#: ½ as an array of shape (): a Python number as an operand makes a ufunc call slower.
-_HALF = np.array(0.5)
 
 #: Call shapes whose scratch arrays each thread keeps (the oldest is dropped first).
 SCRATCH_SHAPES = 4
@@ -257,7 +255,7 @@ def _rrr_block(
     margin /= d
     margin /= two_l_i
     heron = np.multiply(below, above, below)  # Δ = 16·area²
-    half_inv_d2 = np.divide(_HALF, d2, above)  # 1/(2d²)
+    half_inv_d2 = np.divide(HALF, d2, above)  # 1/(2d²)
     np.multiply(np.add(d2, l_squares, d2), half_inv_d2, x)
     lowest = smallest(margin)
     if not (lowest >= 0.0 and lengths_positive):

@@ -239,8 +239,10 @@ def arg(z: Jet | ArrayLike) -> Jet | np.ndarray:
     return Jet(np.angle(z.v), np.imag(w), np.imag(z.d2 / z.v - w * w))
 
 
-#: ½, 1 and 2 as arrays of shape (): cheaper ufunc operands than Python numbers.
-_HALF, _ONE, _TWO = np.array(0.5), np.array(1.0), np.array(2.0)
+#: ½ as an array of shape (): a cheaper ufunc operand than the Python number (also for
+#: :mod:`assur.kinematics._fast`); 1 and 2 likewise.
+HALF = np.array(0.5)
+_ONE, _TWO = np.array(1.0), np.array(2.0)
 
 #: Angles along the last axis from which :func:`unit` takes the tangent of the half angle.
 TANGENT_FROM = 1024
@@ -269,7 +271,7 @@ def unit(t: np.ndarray) -> np.ndarray:
         np.cos(t, u.real)
         np.sin(t, u.imag)
         return u if u.ndim else u[()]
-    tau = np.multiply(t, _HALF)
+    tau = np.multiply(t, HALF)
     np.tan(tau, tau)
     g = np.multiply(tau, tau)
     g += _ONE

@@ -186,10 +186,7 @@ def row_sums(a: np.ndarray) -> np.ndarray:
     >>> row_sums(np.array([[1.0, 3.0, 2.0], [0.5, 0.25, 1.0]])).tolist()
     [6.0, 1.75]
     """
-    total = a[..., 0]
-    for j in range(1, a.shape[-1]):
-        total = total + a[..., j]
-    return np.asarray(total)
+    return _fold(a, np.add)
 
 
 def row_max(a: np.ndarray) -> np.ndarray:
@@ -201,10 +198,7 @@ def row_max(a: np.ndarray) -> np.ndarray:
     >>> row_max(np.array([[1.0, 3.0, 2.0], [0.0, np.nan, 1.0]])).tolist()
     [3.0, nan]
     """
-    total = a[..., 0]
-    for j in range(1, a.shape[-1]):
-        total = np.maximum(total, a[..., j])
-    return np.asarray(total)
+    return _fold(a, np.maximum)
 
 
 def row_offsets(shape: tuple[int, ...]) -> np.ndarray:
@@ -221,18 +215,19 @@ def row_offsets(shape: tuple[int, ...]) -> np.ndarray:
     return np.arange(0, int(np.prod(shape)), shape[-1]).reshape(shape[:-1] + (1,))
 
 
-def _row_product(a: np.ndarray) -> np.ndarray:
-    """Π_j a[..., j] over a short last axis, factor by factor."""
+def _fold(a: np.ndarray, op: np.ufunc) -> np.ndarray:
+    """``op`` applied along a short last axis term by term, from the first:
+    op(…op(a[..., 0], a[..., 1])…, a[..., −1]) — no reduction call over a short axis."""
     total = a[..., 0]
     for j in range(1, a.shape[-1]):
-        total = total * a[..., j]
+        total = op(total, a[..., j])
     return np.asarray(total)
 
 
 def hadamard(rows: np.ndarray) -> np.ndarray:
     """|det R| / Π‖R_k‖: 1 for orthogonal rows, 0 for dependent ones (the margin's form)."""
     norms = np.sqrt(row_sums(rows * rows))
-    return np.asarray(np.abs(det_rows(rows)) / _row_product(norms))
+    return np.asarray(np.abs(det_rows(rows)) / _fold(norms, np.multiply))
 
 
 #: The inputs record of a group: :class:`TriadInputs` or :class:`ClassIVInputs`.
